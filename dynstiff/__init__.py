@@ -1,0 +1,44 @@
+"""dynstiff: frequency-domain vibration analysis of cable-driven parallel robots with
+heavy, elastic, sagging cables.
+
+Importing dynstiff loads numpy and scipy only; matplotlib and pandas are imported when a
+plot or a table is asked for.
+"""
+
+from .cable_dsm import (
+    CableModes,
+    cable_dynamic_stiffness,
+    cable_mode_count,
+    cable_natural_frequencies,
+    chord_parameters,
+)
+from .catenary import CatenaryState, solve_catenary, unstretched_length_for_tension
+from .constants import STANDARD_GRAVITY
+from .errors import (
+    ConvergenceError,
+    DynstiffError,
+    InvalidParameterError,
+    PoleWarning,
+    SlackCableError,
+)
+from .params import Cable
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Cable",
+    "CableModes",
+    "CatenaryState",
+    "ConvergenceError",
+    "DynstiffError",
+    "InvalidParameterError",
+    "PoleWarning",
+    "STANDARD_GRAVITY",
+    "SlackCableError",
+    "cable_dynamic_stiffness",
+    "cable_mode_count",
+    "cable_natural_frequencies",
+    "chord_parameters",
+    "solve_catenary",
+    "unstretched_length_for_tension",
+]

@@ -1,0 +1,493 @@
+"""Closed-form dynamic stiffness matrix (DSM) of one inclined, sagging, elastic cable.
+
+Linear theory of Irvine & Caughey (1974) for the in-plane motion and the taut string for the
+out-of-plane motion, written as end-force / end-displacement relations (Starossek 1991;
+theory.md §3). The weight component along the chord is neglected (Irvine's inclined-cable
+approximation), as is the cable's chordwise inertia, which can be restored to first order
+(``chordwise_inertia=True``, consistent axial mass m L/3, theory.md §3.6).
+
+Notation (chord frame, theory.md §1.2, §3.1)
+--------------------------------------------
+==============  =====================================================  ========
+symbol          meaning                                                unit
+==============  =====================================================  ========
+L               chord length |B - A|                                   m
+T               tension used by the linear theory (see ``tension``)   N
+m               mass per unit chord length, m0 L0 / L                  kg/m
+q               load perpendicular to the chord, m g cos(theta)        N/m
+d               mid-span sag, q L^2 / (8 T)                            m
+L_e             compliance length, L0 (1 + 8 (d/L)^2)                  m
+K0              EA / L_e                                               N/m
+lambda_sq       Irvine parameter (q L / T)^2 L EA / (T L_e)            --
+alpha           static end slope to the chord, q L / (2 T)             --
+psi             half the nondimensional frequency, Omega / 2           --
+Omega           beta L, beta^2 = (omega^2 m - i omega c) / T           --
+==============  =====================================================  ========
+
+Conventions chosen (and why)
+----------------------------
+* **Tension** ``tension="mean"`` (default): T is the tension averaged over the cable. With the
+  chordwise weight neglected, T is uniform in the theory; the true tension varies linearly
+  along the chord, and to first order a string's frequencies depend on the average of T
+  (perturbation of the Rayleigh quotient with the even weight sin^2(n pi x/L)). The option
+  ``tension="chord"`` uses Irvine's H* = H / cos(theta) (tension where the tangent is parallel
+  to the chord); the two differ by O(q L / T)^2 and by the along-chord weight.
+* **Mass** per unit *chord* length, m = m0 L0 / L (m0 per unstretched length), so the model
+  carries the cable's true total mass m0 L0. Per stretched length would differ by O((d/L)^2).
+* **Compliance** uses the unstretched length, L_e = L0 (1 + 8 (d/L)^2), because EA refers to
+  the unstretched length: the chord stiffness of a straight weightless cable is then exactly
+  EA / L0 and the transverse one T / L (the massless limit is exact). Irvine's L (1 + 8 (d/L)^2)
+  differs by the static strain T/EA.
+
+All matrices give the forces applied **to** the cable ends per unit end displacement.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import omega_array
+from .errors import InvalidParameterError
+
+__all__ = [
+    "ChordParameters",
+    "chord_parameters",
+    "local_end_stiffness",
+    "local_two_end_stiffness",
+    "cable_dynamic_stiffness",
+    "cable_mode_count",
+    "CableModes",
+    "cable_natural_frequencies",
+    "DEFAULT_CHORDWISE_INERTIA",
+]
+
+#: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
+DEFAULT_CHORDWISE_INERTIA = True
+
+_SERIES_RADIUS = 1.0
+_N_TERMS = 16
+
+
+# --------------------------------------------------------------------------- chord frame
+@dataclass(frozen=True)
+class ChordParameters:
+    """Chord-frame parameters of the linear theory for one cable equilibrium.
+
+    Attributes
+    ----------
+    L : float
+        Chord length [m].
+    T : float
+        Tension used by the linear theory [N].
+    m : float
+        Mass per unit chord length [kg/m].
+    c : float
+        Viscous damping per unit chord length [N s/m^2].
+    EA : complex or float
+        Axial stiffness [N], EA (1 + i eta) with hysteretic damping.
+    q : float
+        Weight per chord length perpendicular to the chord [N/m].
+    L_e : float
+        Compliance length L0 (1 + 8 (d/L)^2) [m].
+    cos_theta : float
+        Cosine of the chord inclination [-].
+    rotation : ndarray, shape (3, 3)
+        R = [e_u e_v e_w] (columns): chord direction A -> B, sag direction, out of plane.
+    """
+
+    L: float
+    T: float
+    m: float
+    c: float
+    EA: complex
+    q: float
+    L_e: float
+    cos_theta: float
+    rotation: np.ndarray
+
+    @property
+    def sag(self):
+        """Mid-span sag perpendicular to the chord, d = q L^2 / (8 T) [m]."""
+        return self.q * self.L**2 / (8.0 * self.T)
+
+    @property
+    def K0(self):
+        """EA / L_e [N/m] (complex with hysteretic damping)."""
+        return self.EA / self.L_e
+
+    @property
+    def alpha(self):
+        """Static end slope relative to the chord, q L / (2 T) [-]."""
+        return self.q * self.L / (2.0 * self.T)
+
+    @property
+    def lambda_sq(self):
+        """Irvine parameter lambda^2 = (q L / T)^2 L / (T L_e / EA) [-] (real part if damped)."""
+        return float(np.real(self._lambda_sq_complex))
+
+    @property
+    def _lambda_sq_complex(self):
+        return (self.q * self.L / self.T) ** 2 * self.L * self.EA / (self.T * self.L_e)
+
+    def psi(self, omega):
+        """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
+        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if self.c > 0 \
+            else omega**2 * self.m / self.T
+        return 0.5 * self.L * np.sqrt(beta_sq)
+
+
+def chord_parameters(state, tension="mean"):
+    """Chord-frame parameters of the linear theory from an elastic-catenary equilibrium.
+
+    Parameters
+    ----------
+    state : CatenaryState
+        Static equilibrium from :func:`dynstiff.solve_catenary`.
+    tension : {"mean", "chord"}
+        "mean": tension averaged over the cable (default); "chord": H / cos(theta)
+        (Irvine's H*). A vertical chord always uses the mean tension.
+
+    Returns
+    -------
+    ChordParameters
+    """
+    if tension not in ("mean", "chord"):
+        raise InvalidParameterError(f"tension must be 'mean' or 'chord', got {tension!r}")
+    cable, g = state.cable, state.g
+    L = state.chord_length
+    e_u = state.chord / L
+    g_vec = np.array([0.0, 0.0, -g])
+    g_perp = g_vec - (g_vec @ e_u) * e_u
+    gp = np.linalg.norm(g_perp)
+    if gp > 1e-12 * max(g, 1e-300):
+        e_v = g_perp / gp
+    else:                                 # vertical chord (or g = 0): any transverse pair
+        e_v = state.horizontal_direction - (state.horizontal_direction @ e_u) * e_u
+        e_v /= np.linalg.norm(e_v)
+    e_w = np.cross(e_u, e_v)
+    cos_theta = state.cos_theta
+    if tension == "chord" and cos_theta > 1e-12:
+        T = state.H / cos_theta
+    else:
+        T = state.mean_tension
+    L0 = state.unstretched_length
+    m = cable.mass_per_length * L0 / L
+    c = cable.viscous_damping * L0 / L
+    q = m * g * cos_theta
+    d_over_L = q * L / (8.0 * T)
+    L_e = L0 * (1.0 + 8.0 * d_over_L**2)
+    EA = cable.EA * (1.0 + 1j * cable.loss_factor) if cable.loss_factor > 0 else cable.EA
+    return ChordParameters(L=L, T=T, m=m, c=c, EA=EA, q=q, L_e=L_e, cos_theta=cos_theta,
+                           rotation=np.column_stack([e_u, e_v, e_w]))
+
+
+# --------------------------------------------------------------------------- psi kernels
+def _series_coefficients():
+    """Taylor coefficients (in powers psi^(2k), k = 0..N-1) of E, P~ and Q~."""
+    from math import factorial
+    a = [(-1) ** k * 4**k / factorial(2 * k + 1) for k in range(_N_TERMS + 2)]  # sin2psi/2
+    b = [(-1) ** k * 4**k / factorial(2 * k) for k in range(_N_TERMS + 2)]      # cos 2psi
+    E = [(-1) ** n * 2 * n / factorial(2 * n + 1) for n in range(1, _N_TERMS + 1)]
+    P = [a[k] + a[k - 1] for k in range(1, _N_TERMS + 1)]
+    Q = [b[k] + a[k - 1] - a[k] for k in range(1, _N_TERMS + 1)]
+    # numpy.polyval wants the highest power first
+    return np.array(E[::-1]), np.array(P[::-1]), np.array(Q[::-1])
+
+
+_E_COEF, _P_COEF, _Q_COEF = _series_coefficients()
+
+
+def _psi_functions(psi):
+    """Cancellation-free functions of psi (real or complex array).
+
+    Returns (c, s_over_psi, cos2, E, Pt, Qt) with
+    E  = (psi cos psi - sin psi) / psi^3,
+    Pt = ((1 + psi^2) sin(2 psi)/2 - psi) / psi^3,
+    Qt = (psi cos 2psi + (psi^2 - 1) sin(2 psi)/2) / psi^3,
+    each by its Taylor series for |psi| < 1 (no cancellation) and directly otherwise.
+    """
+    s, c = np.sin(psi), np.cos(psi)
+    cos2 = c * c - s * s
+    small = np.abs(psi) < _SERIES_RADIUS
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s_over_psi = np.where(psi == 0, 1.0, s / np.where(psi == 0, 1.0, psi))
+        p3 = psi**3
+        E = (psi * c - s) / p3
+        Pt = ((1 + psi * psi) * s * c - psi) / p3
+        Qt = (psi * cos2 + (psi * psi - 1) * s * c) / p3
+    if np.any(small):
+        x = psi[small] ** 2
+        E[small] = np.polyval(_E_COEF, x)
+        Pt[small] = np.polyval(_P_COEF, x)
+        Qt[small] = np.polyval(_Q_COEF, x)
+    return c, s_over_psi, cos2, E, Pt, Qt
+
+
+def _local_entries(p, omega, chordwise_inertia):
+    """Independent entries of the local two-end DSM, each shape (n_omega,).
+
+    Returns (k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_axial) where, with the two-end
+    in-plane matrix written as (K0/D) g g^T + string terms, g = [1, a_t, -1, a_t]:
+    k_uu = K0/D, k_uv = alpha tau K0/D, k_vv = k_s + (alpha tau)^2 K0/D,
+    k_vv_AB = k_c + (alpha tau)^2 K0/D, kw_s / kw_c the out-of-plane string terms and
+    m_axial = -omega^2 m~ L / 6 the consistent chordwise-mass unit (0 when not requested).
+    Stable forms of theory.md §3.5, rewritten with the series functions above
+    (den = 4 cos psi - lambda^2 E = Delta / psi^3).
+    """
+    psi = np.asarray(p.psi(omega))
+    lam2 = p._lambda_sq_complex
+    K0, T, L = p.K0, p.T, p.L
+    c, s_over_psi, cos2, E, Pt, Qt = _psi_functions(psi)
+    den = 4.0 * c - lam2 * E
+    TL = T / L
+    with np.errstate(divide="ignore", invalid="ignore"):
+        k_uu = 4.0 * K0 * c / den
+        k_uv = 4.0 * p.alpha * K0 * psi * psi * E / den
+        k_vv = TL * (4.0 * cos2 + lam2 * Pt) / (s_over_psi * den)
+        k_vv_AB = TL * (-4.0 + lam2 * Qt) / (s_over_psi * den)
+        sinc2 = s_over_psi * c                       # sin(2 psi) / (2 psi)
+        kw_s = TL * cos2 / sinc2
+        kw_c = -TL / sinc2
+    if chordwise_inertia:
+        m_tilde = p.m - 1j * p.c / np.where(omega == 0, 1.0, omega) if p.c > 0 else p.m
+        m_axial = -(omega**2) * m_tilde * L / 6.0
+        if p.c > 0:
+            m_axial = np.where(omega == 0, 0.0, m_axial)
+    else:
+        m_axial = np.zeros_like(k_uu)
+    return k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_axial
+
+
+def _real_if_undamped(p, K):
+    if p.c == 0 and np.isrealobj(p.EA):
+        return np.real(K)
+    return K
+
+
+def local_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+    """3x3 DSM of end B with A clamped, in the local chord frame (u, v, w).
+
+    K_B = [[K0/D, -alpha tau K0/D, 0], [., k_s + (alpha tau)^2 K0/D, 0], [0, 0, k_s]]
+    (theory.md §3.4), plus -omega^2 m L / 3 on K_uu with ``chordwise_inertia``.
+
+    Parameters
+    ----------
+    params : ChordParameters
+    omega : ndarray, shape (n_omega,)
+        Angular frequencies [rad/s], >= 0.
+    chordwise_inertia : bool
+
+    Returns
+    -------
+    ndarray, shape (n_omega, 3, 3) [N/m]; real if undamped, complex otherwise.
+    """
+    k_uu, k_uv, k_vv, _, kw_s, _, m_ax = _local_entries(params, omega, chordwise_inertia)
+    K = np.zeros((omega.size, 3, 3), dtype=np.result_type(k_uu, k_vv, kw_s, m_ax))
+    K[:, 0, 0] = k_uu + 2.0 * m_ax
+    K[:, 0, 1] = K[:, 1, 0] = -k_uv
+    K[:, 1, 1] = k_vv
+    K[:, 2, 2] = kw_s
+    return _real_if_undamped(params, K)
+
+
+def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+    """6x6 DSM of both ends in the local chord frame, ordered (u_A, v_A, w_A, u_B, v_B, w_B).
+
+    In-plane: (K0/D) g g^T + [[0,0,0,0],[0,k_s,0,k_c],[0,0,0,0],[0,k_c,0,k_s]],
+    g = [1, alpha tau, -1, alpha tau] on (u_A, v_A, u_B, v_B); out-of-plane [[k_s, k_c],
+    [k_c, k_s]] on (w_A, w_B) (theory.md §3.2-3.3); with ``chordwise_inertia`` the consistent
+    axial mass -omega^2 (m L / 6) [[2, 1], [1, 2]] on (u_A, u_B).
+
+    Returns
+    -------
+    ndarray, shape (n_omega, 6, 6) [N/m].
+    """
+    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(
+        params, omega, chordwise_inertia)
+    K = np.zeros((omega.size, 6, 6), dtype=np.result_type(k_uu, k_vv, kw_s, m_ax))
+    uA, vA, wA, uB, vB, wB = range(6)
+    K[:, uA, uA] = K[:, uB, uB] = k_uu + 2.0 * m_ax
+    K[:, uA, uB] = K[:, uB, uA] = -k_uu + m_ax
+    K[:, uA, vA] = K[:, vA, uA] = k_uv
+    K[:, uA, vB] = K[:, vB, uA] = k_uv
+    K[:, uB, vA] = K[:, vA, uB] = -k_uv
+    K[:, uB, vB] = K[:, vB, uB] = -k_uv
+    K[:, vA, vA] = K[:, vB, vB] = k_vv
+    K[:, vA, vB] = K[:, vB, vA] = k_vv_AB
+    K[:, wA, wA] = K[:, wB, wB] = kw_s
+    K[:, wA, wB] = K[:, wB, wA] = kw_c
+    return _real_if_undamped(params, K)
+
+
+def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
+                            chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+    """Dynamic stiffness matrix of one sagging cable in the global frame.
+
+    Parameters
+    ----------
+    state : CatenaryState
+        Static equilibrium from :func:`dynstiff.solve_catenary`.
+    omega : float or array_like, shape (n_omega,)
+        Angular frequencies [rad/s], finite and >= 0.
+    ends : {"end", "both"}
+        "end": 3x3 matrix of end B with A clamped; "both": 6x6 ordered (A xyz, B xyz).
+    tension : {"mean", "chord"}
+        Tension of the linear theory (see :func:`chord_parameters`).
+    chordwise_inertia : bool
+        Add the consistent chordwise mass of the cable (theory.md §3.6).
+
+    Returns
+    -------
+    ndarray, shape (n_omega, 3, 3) or (n_omega, 6, 6) [N/m]
+        Force applied to the cable end(s) per unit displacement: K_glob = R K_loc R^T with
+        R = [e_u e_v e_w]. Real when the cable is undamped, complex otherwise.
+        Symmetric (complex-symmetric with damping). Entries grow without bound at the
+        poles, the clamped-clamped natural frequencies of the cable.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``omega`` negative or not finite, or ``ends`` / ``tension`` unknown.
+    """
+    omega = omega_array(omega)
+    p = chord_parameters(state, tension)
+    R = p.rotation
+    if ends == "end":
+        K = local_end_stiffness(p, omega, chordwise_inertia)
+        return R @ K @ R.T
+    if ends == "both":
+        K = local_two_end_stiffness(p, omega, chordwise_inertia)
+        R6 = np.zeros((6, 6))
+        R6[:3, :3] = R6[3:, 3:] = R
+        return R6 @ K @ R6.T
+    raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
+
+
+# --------------------------------------------------------------------------- fixed-end modes
+def cable_mode_count(state, omega, tension="mean"):
+    """Wittrick-Williams J0: number of clamped-clamped cable frequencies below omega.
+
+    J0 = floor(Omega/pi) + floor(Omega/(2 pi)) + N_sym, with N_sym = 0 if k = 0 else
+    (k - 1) + [(4 cos psi - lambda^2 E(psi)) cos psi > 0], k = floor(psi/pi + 1/2)
+    (theory.md §5.2; the bracket is g(psi) = tan psi - psi + 4 psi^3/lambda^2 > 0 written
+    without division). The chordwise-inertia correction adds no clamped-clamped mode.
+
+    Parameters
+    ----------
+    state : CatenaryState
+    omega : float or array_like, shape (n_omega,)
+        Angular frequencies [rad/s].
+
+    Returns
+    -------
+    ndarray of int, shape (n_omega,)
+    """
+    omega = omega_array(omega)
+    p = chord_parameters(state, tension)
+    psi = 0.5 * omega * p.L * np.sqrt(p.m / p.T)
+    Omega = 2.0 * psi
+    c, _, _, E, _, _ = _psi_functions(psi)
+    k = np.floor(psi / np.pi + 0.5).astype(int)
+    upper = ((4.0 * c - p.lambda_sq * E) * c > 0).astype(int)
+    n_sym = np.where(k == 0, 0, k - 1 + upper)
+    return (np.floor(Omega / np.pi).astype(int) + np.floor(Omega / (2 * np.pi)).astype(int)
+            + n_sym)
+
+
+def irvine_symmetric_roots(lambda_sq, n_roots):
+    """First ``n_roots`` roots Omega of the Irvine-Caughey symmetric equation.
+
+    tan(Omega/2) = Omega/2 - (4/lambda^2)(Omega/2)^3, solved as 4 cos psi - lambda^2 E(psi) = 0,
+    psi = Omega/2, with exactly one root in each ((2k-1) pi/2, (2k+1) pi/2) (theory.md §2.2),
+    by Brent's method to machine precision. lambda_sq = 0 gives the taut string (2k-1) pi.
+
+    Returns
+    -------
+    ndarray, shape (n_roots,)
+    """
+    from scipy.optimize import brentq
+
+    lam2 = float(lambda_sq)
+    if not np.isfinite(lam2) or lam2 < 0:
+        raise InvalidParameterError(f"lambda_sq must be finite and >= 0, got {lambda_sq!r}")
+    out = np.empty(int(n_roots))
+    for k in range(1, int(n_roots) + 1):
+        lo, hi = (2 * k - 1) * np.pi / 2, (2 * k + 1) * np.pi / 2
+        if lam2 == 0.0:
+            out[k - 1] = 2 * lo
+            continue
+
+        def f(x):
+            c, _, _, E, _, _ = _psi_functions(np.array([x]))
+            return float(4.0 * c[0] - lam2 * E[0])
+
+        out[k - 1] = 2.0 * brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=500)
+    return out
+
+
+@dataclass(frozen=True)
+class CableModes:
+    """Clamped-clamped natural frequencies of one cable.
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (n,)
+        Natural frequencies [Hz], ascending.
+    Omega : ndarray, shape (n,)
+        Nondimensional frequencies omega L sqrt(m/T) [-].
+    family : tuple of str
+        "out-of-plane", "in-plane antisymmetric" or "in-plane symmetric".
+    order : ndarray of int, shape (n,)
+        Index of the mode within its family, from 1.
+    """
+
+    freq_hz: np.ndarray
+    Omega: np.ndarray
+    family: tuple
+    order: np.ndarray
+
+    @property
+    def labels(self):
+        """Labels such as "in-plane symmetric 1"."""
+        return tuple(f"{f} {k}" for f, k in zip(self.family, self.order))
+
+    def __len__(self):
+        return len(self.freq_hz)
+
+    def to_frame(self):
+        """pandas DataFrame with columns freq [Hz], Omega [-], family, order."""
+        import pandas as pd
+        return pd.DataFrame({"freq [Hz]": self.freq_hz, "Omega [-]": self.Omega,
+                             "family": list(self.family), "order": self.order})
+
+
+def cable_natural_frequencies(state, n_modes, tension="mean"):
+    """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
+
+    Out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane symmetric the
+    Irvine-Caughey roots (theory.md §2.2, inclined-cable approximation). These are the poles
+    of :func:`cable_dynamic_stiffness`.
+
+    Parameters
+    ----------
+    state : CatenaryState
+    n_modes : int
+        Number of modes, >= 1.
+
+    Returns
+    -------
+    CableModes
+    """
+    n = int(n_modes)
+    if n < 1 or n != n_modes:
+        raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
+    p = chord_parameters(state, tension)
+    k = np.arange(1, n + 1)
+    Om = np.concatenate([k * np.pi, 2 * k * np.pi, irvine_symmetric_roots(p.lambda_sq, n)])
+    fam = (["out-of-plane"] * n + ["in-plane antisymmetric"] * n
+           + ["in-plane symmetric"] * n)
+    order = np.concatenate([k, k, k])
+    idx = np.argsort(Om, kind="stable")[:n]
+    to_hz = np.sqrt(p.T / p.m) / (2 * np.pi * p.L)
+    return CableModes(freq_hz=Om[idx] * to_hz, Omega=Om[idx],
+                      family=tuple(fam[i] for i in idx), order=order[idx])

@@ -1,0 +1,37 @@
+"""Exception and warning types of dynstiff.
+
+Every error names the offending argument, what was expected and what was found.
+The exceptions subclass built-ins so that generic handlers keep working.
+"""
+
+__all__ = [
+    "DynstiffError",
+    "InvalidParameterError",
+    "ConvergenceError",
+    "SlackCableError",
+    "PoleWarning",
+]
+
+
+class DynstiffError(Exception):
+    """Base class of all dynstiff errors."""
+
+
+class InvalidParameterError(DynstiffError, ValueError):
+    """An argument has the wrong type, shape, sign or is not finite."""
+
+
+class ConvergenceError(DynstiffError, RuntimeError):
+    """An iterative solver did not converge; the message gives its residual."""
+
+    def __init__(self, message, residual=None):
+        super().__init__(message)
+        self.residual = residual
+
+
+class SlackCableError(DynstiffError, ValueError):
+    """A cable has no tensile equilibrium (it would be slack or compressed)."""
+
+
+class PoleWarning(RuntimeWarning):
+    """A quantity was evaluated exactly on a pole; the value returned is inf."""
