@@ -49,6 +49,8 @@ def _divided_differences(a, b, delta):
     differences so nothing cancels when delta << |a|.
     """
     sa, sb = np.hypot(1.0, a), np.hypot(1.0, b)
+    if delta == 0.0:                    # weightless cable: the derivatives at a
+        return 1.0 / sa, 1.0 / sa**3, -a / sa**3, a / sa
     if a * b > 0:
         # same sign: rationalise b sa - a sb = delta (a + b) / (b sa + a sb)
         inner_over_delta = (a + b) / (b * sa + a * sb)

@@ -1,0 +1,221 @@
+"""Elastic-catenary statics (theory.md §1.1): independent solutions, symmetry, stiffness."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import fsolve
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError, SlackCableError
+
+from conftest import A0, B0, cogiro_cable
+
+G = ds.STANDARD_GRAVITY
+
+# (anchor, end, L0 / chord) cases: taut, slack, steep, near-vertical, rising, horizontal
+CASES = [
+    ("taut CoGiRo", A0, B0, 0.998),
+    ("slack", (0, 0, 5), (7, 0, 0), 1.15),
+    ("very slack", (0, 0, 0), (10, 0, 0), 1.3),
+    ("steep", (0, 0, 10), (0.5, 0, 0), 1.0),
+    ("near vertical", (0, 0, 10), (1e-4, 0, 0), 0.999),
+    ("rising", (0, 0, 0), (3, 2, 6), 0.9995),
+    ("horizontal taut", (0, 0, 0), (10, 0, 0), 0.9999),
+]
+
+
+def quadrature_solution(A, B, L0, cable, g=G):
+    """Independent solution: integrate dx/ds = (H/T)(1 + T/EA), dz/ds = (V/T)(1 + T/EA)
+    by adaptive quadrature and shoot on (H, Vb) with fsolve. Returns the force on B."""
+    d = np.asarray(B, float) - np.asarray(A, float)
+    lh, h = np.hypot(d[0], d[1]), d[2]
+    w0, EA = cable.mass_per_length * g, cable.EA
+
+    def ends(x):
+        H, Vb = x
+        V = lambda s: Vb - w0 * (L0 - s)
+        T = lambda s: np.hypot(H, V(s))
+        xe = quad(lambda s: H / T(s) * (1 + T(s) / EA), 0, L0, epsabs=0, epsrel=1e-13, limit=200)[0]
+        ze = quad(lambda s: V(s) / T(s) * (1 + T(s) / EA), 0, L0, epsabs=0, epsrel=1e-13, limit=200)[0]
+        return [xe / lh - 1.0, (ze - h) / L0]
+
+    s0 = ds.solve_catenary(A, B, L0, cable, g)      # start nearby, converge independently
+    (H, Vb), info, *_ = fsolve(ends, [s0.H * 1.01, s0.Vb * 0.99 + 0.01 * s0.H], xtol=1e-12,
+                               full_output=True)
+    assert np.max(np.abs(info["fvec"])) < 1e-11      # the reference itself converged
+    e_h = np.array([d[0], d[1], 0.0]) / lh
+    return -(H * e_h + Vb * np.array([0, 0, 1.0]))
+
+
+@pytest.mark.parametrize("name,A,B,ratio", CASES, ids=[c[0] for c in CASES])
+def test_matches_independent_quadrature_solution(name, A, B, ratio):
+    cable = cogiro_cable(17e9)
+    L0 = ratio * np.linalg.norm(np.subtract(B, A))
+    s = ds.solve_catenary(A, B, L0, cable)
+    assert s.residual <= 1e-12
+    f_ref = quadrature_solution(A, B, L0, cable)
+    np.testing.assert_allclose(s.force_on_end, f_ref, rtol=1e-8, atol=1e-8 * np.linalg.norm(f_ref))
+
+
+# MoorPy treats the near-vertical chord (l_h = 1e-4 m) as exactly vertical (H = 0, V off by
+# 5e-8); the quadrature test above confirms H = 1.4e-3 N = lateral stiffness * l_h there.
+MOORPY_CASES = [c for c in CASES if c[0] != "near vertical"]
+
+
+@pytest.mark.parametrize("name,A,B,ratio", MOORPY_CASES, ids=[c[0] for c in MOORPY_CASES])
+def test_matches_moorpy(name, A, B, ratio):
+    catenary = pytest.importorskip("moorpy.Catenary").catenary
+    cable = cogiro_cable(17e9)
+    L0 = ratio * np.linalg.norm(np.subtract(B, A))
+    s = ds.solve_catenary(A, B, L0, cable)
+    d = np.subtract(B, A)
+    lh = np.hypot(d[0], d[1])
+    fAH, fAV, fBH, fBV, info = catenary(lh, d[2], L0, cable.EA, cable.mass_per_length * G,
+                                        CB=-1e3, Tol=1e-12, MaxIter=500)
+    # MoorPy: (fAH, fAV) force on A, (fBH, fBV) force on B in its plane
+    np.testing.assert_allclose([s.H, s.V0, -s.Vb], [fAH, fAV, fBV], rtol=1e-8)
+    K = s.static_stiffness
+    if True:
+        e_h = s.horizontal_direction
+    K2 = np.array([[e_h @ K @ e_h, e_h @ K[:, 2]], [K[2] @ e_h, K[2, 2]]])
+    np.testing.assert_allclose(K2, info["stiffnessB"], rtol=1e-7,
+                               atol=1e-9 * np.abs(info["stiffnessB"]).max())
+
+
+def test_theory_example_tension():
+    # theory.md §1.1: 7 m horizontal, 5 m drop, L0 = 8.5 m, m = 0.064, EA = 1.39e5: T ~ 1680 N
+    s = ds.solve_catenary((0, 0, 5), (7, 0, 0), 8.5, ds.Cable(0.064, 1.39e5))
+    assert s.tension_at_end == pytest.approx(1680, rel=0.01)
+
+
+def test_force_balance_and_profile_ends(state300):
+    s = state300
+    np.testing.assert_allclose(s.force_on_end + s.force_on_anchor, [0, 0, -s.total_weight],
+                               atol=1e-10 * s.tension_at_end)
+    prof = s.profile(7)
+    np.testing.assert_allclose(prof[0], s.anchor, atol=1e-12)
+    np.testing.assert_allclose(prof[-1], s.end, atol=1e-10)
+    # tension along the cable: ends agree with the end forces
+    assert s.tension(0.0) == pytest.approx(np.linalg.norm(s.force_on_anchor), rel=1e-14)
+    assert s.tension(s.unstretched_length) == pytest.approx(np.linalg.norm(s.force_on_end),
+                                                            rel=1e-14)
+
+
+def test_mirror_symmetry():
+    cable = cogiro_cable(120e9)
+    A, B = np.array([3.0, 1.0, 5.0]), np.array([-2.0, 0.5, 1.0])
+    M = np.diag([-1.0, 1.0, 1.0])
+    L0 = 1.0005 * np.linalg.norm(B - A)
+    s1 = ds.solve_catenary(A, B, L0, cable)
+    s2 = ds.solve_catenary(M @ A, M @ B, L0, cable)
+    np.testing.assert_allclose(s2.force_on_end, M @ s1.force_on_end, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(s2.static_stiffness, M @ s1.static_stiffness @ M, rtol=1e-10,
+                               atol=1e-9)
+
+
+@pytest.mark.parametrize("name,A,B,ratio", CASES, ids=[c[0] for c in CASES])
+def test_static_stiffness_is_derivative_of_end_force(name, A, B, ratio):
+    cable = cogiro_cable(17e9)
+    A, B = np.asarray(A, float), np.asarray(B, float)
+    L0 = ratio * np.linalg.norm(B - A)
+    s = ds.solve_catenary(A, B, L0, cable)
+    K = s.static_stiffness
+    assert np.allclose(K, K.T)
+    assert np.all(np.linalg.eigvalsh(K) > 0)
+    h = 1e-7 * np.linalg.norm(B - A)     # central differences, truncation error O(h^2)
+    K_fd = np.empty((3, 3))
+    for j in range(3):
+        dB = np.zeros(3)
+        dB[j] = h
+        fp = ds.solve_catenary(A, B + dB, L0, cable).force_on_end
+        fm = ds.solve_catenary(A, B - dB, L0, cable).force_on_end
+        K_fd[:, j] = -(fp - fm) / (2 * h)
+    np.testing.assert_allclose(K, K_fd, rtol=1e-5, atol=1e-6 * np.abs(K).max())
+
+
+def test_vertical_limit_is_continuous():
+    cable = cogiro_cable(17e9)
+    for A, B in [((0, 0, 10), (0, 0, 0)), ((0, 0, 0), (0, 0, 10))]:
+        A, B = np.asarray(A, float), np.asarray(B, float)
+        L0 = 0.999 * 10
+        sv = ds.solve_catenary(A, B, L0, cable)
+        sn = ds.solve_catenary(A, B + [1e-7, 0, 0], L0, cable)
+        assert sv.H == 0.0
+        np.testing.assert_allclose(sn.static_stiffness, sv.static_stiffness, rtol=1e-6,
+                                   atol=1e-6 * sv.static_stiffness.max())
+        np.testing.assert_allclose(sn.force_on_end, sv.force_on_end, rtol=1e-6, atol=1e-3)
+        # straight hanging cable: lateral stiffness 1 / int ds/T (exact), vertical EA/L0
+        w0 = cable.mass_per_length * G
+        Ts = np.linspace(sv.tension_at_anchor, sv.tension_at_end, 20001)
+        lateral = 1.0 / (L0 / cable.EA + np.trapezoid(1.0 / Ts, Ts) / w0 * np.sign(
+            sv.tension_at_end - sv.tension_at_anchor))
+        assert sv.static_stiffness[0, 0] == pytest.approx(lateral, rel=1e-7)
+        assert sv.static_stiffness[2, 2] == pytest.approx(cable.EA / L0, rel=1e-12)
+
+
+def test_weightless_cable_is_straight_spring():
+    cable = cogiro_cable(17e9)
+    A, B = np.zeros(3), np.array([3.0, 4.0, 0.0])
+    s = ds.solve_catenary(A, B, 4.99, cable, g=0.0)
+    T = cable.EA * (5.0 / 4.99 - 1)
+    np.testing.assert_allclose(s.force_on_end, -T * B / 5.0, rtol=1e-13)
+    u = B / 5
+    np.testing.assert_allclose(
+        s.static_stiffness, cable.EA / 4.99 * np.outer(u, u) + T / 5.0 * (np.eye(3) - np.outer(u, u)),
+        rtol=1e-12, atol=1e-9)
+
+
+@pytest.mark.parametrize("at", ["end", "anchor"])
+def test_unstretched_length_for_tension_round_trip(at, cable17):
+    s = ds.unstretched_length_for_tension(A0, B0, 437.0, cable17, at=at)
+    T = s.tension_at_end if at == "end" else s.tension_at_anchor
+    assert T == pytest.approx(437.0, rel=1e-12)
+    s2 = ds.solve_catenary(A0, B0, s.unstretched_length, cable17)
+    assert s2.H == pytest.approx(s.H, rel=1e-12)
+
+
+def test_unreachable_tension_raises(cable17):
+    with pytest.raises(SlackCableError, match="tension"):
+        ds.unstretched_length_for_tension(A0, B0, 0.3, cable17)
+
+
+def test_slack_vertical_cable_raises(cable17):
+    with pytest.raises(SlackCableError, match="slack"):
+        ds.solve_catenary((0, 0, 10), (0, 0, 0), 12.0, cable17)
+
+
+@pytest.mark.parametrize("kwargs,name", [
+    (dict(mass_per_length=0.0, EA=1e5), "mass_per_length"),
+    (dict(mass_per_length=-1.0, EA=1e5), "mass_per_length"),
+    (dict(mass_per_length=0.1, EA=0.0), "EA"),
+    (dict(mass_per_length=0.1, EA=-5.0), "EA"),
+    (dict(mass_per_length=float("nan"), EA=1e5), "mass_per_length"),
+    (dict(mass_per_length=0.1, EA=float("inf")), "EA"),
+    (dict(mass_per_length=0.1, EA=1e5, loss_factor=-0.1), "loss_factor"),
+    (dict(mass_per_length=0.1, EA=1e5, viscous_damping=float("nan")), "viscous_damping"),
+])
+def test_bad_cable_raises_naming_field(kwargs, name):
+    with pytest.raises(InvalidParameterError, match=name):
+        ds.Cable(**kwargs)
+
+
+@pytest.mark.parametrize("args,name", [
+    (((0, 0, 0), (0, 0, 0), 1.0), "anchor and end"),
+    (((0, 0, 0), (1, 0, 0), 0.0), "unstretched_length"),
+    (((0, 0, 0), (1, 0, 0), -2.0), "unstretched_length"),
+    (((0, 0, 0), (1, 0, 0), float("nan")), "unstretched_length"),
+    (((0, 0, float("nan")), (1, 0, 0), 1.0), "anchor"),
+    (((0, 0, 0), (1, 0, float("inf")), 1.0), "end"),
+    (((0, 0), (1, 0, 0), 1.0), "anchor"),
+])
+def test_bad_statics_input_raises_naming_argument(args, name, cable17):
+    with pytest.raises(InvalidParameterError, match=name):
+        ds.solve_catenary(*args, cable17)
+
+
+def test_bad_gravity_and_profile_count(cable17):
+    with pytest.raises(InvalidParameterError, match="g must"):
+        ds.solve_catenary((0, 0, 0), (1, 0, 0), 1.0, cable17, g=-9.81)
+    s = ds.solve_catenary((0, 0, 1), (1, 0, 0), 1.4, cable17)
+    with pytest.raises(InvalidParameterError, match="n must"):
+        s.profile(1)
