@@ -365,12 +365,15 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
 
 # --------------------------------------------------------------------------- fixed-end modes
 def cable_mode_count(state, omega, tension="mean"):
-    """Wittrick-Williams J0: number of clamped-clamped cable frequencies below omega.
+    """Wittrick-Williams J0: number of clamped-clamped cable frequencies strictly below omega.
 
-    J0 = floor(Omega/pi) + floor(Omega/(2 pi)) + N_sym, with N_sym = 0 if k = 0 else
-    (k - 1) + [(4 cos psi - lambda^2 E(psi)) cos psi > 0], k = floor(psi/pi + 1/2)
-    (theory.md §5.2; the bracket is g(psi) = tan psi - psi + 4 psi^3/lambda^2 > 0 written
-    without division). The chordwise-inertia correction adds no clamped-clamped mode.
+    J0 = #{n pi < Omega} + #{2 n pi < Omega} + N_sym, N_sym = 0 if k = 0, else
+    (k - 1) + [g(psi) > 0], k = floor(psi/pi + 1/2), psi = Omega/2 (theory.md §5.2), where
+    g(psi) = tan psi - psi + 4 psi^3/lambda^2 > 0 is evaluated without division as
+    (4 cos psi - lambda^2 E(psi)) cos psi > 0 together with cos psi having the sign
+    (-1)^k of branch k (at a branch end, where rounding may give cos psi the wrong sign,
+    g -> -inf and the root of that branch is not yet passed). The chordwise-inertia
+    correction adds no clamped-clamped mode.
 
     Parameters
     ----------
@@ -384,14 +387,25 @@ def cable_mode_count(state, omega, tension="mean"):
     """
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
-    psi = 0.5 * omega * p.L * np.sqrt(p.m / p.T)
-    Omega = 2.0 * psi
+    return _mode_count_Omega(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
+
+
+def _mode_count_Omega(Omega, lambda_sq):
+    """J0 as a function of the nondimensional frequency Omega >= 0 (see cable_mode_count)."""
+    psi = 0.5 * Omega
     c, _, _, E, _, _ = _psi_functions(psi)
     k = np.floor(psi / np.pi + 0.5).astype(int)
-    upper = ((4.0 * c - p.lambda_sq * E) * c > 0).astype(int)
+    on_branch = c * np.where(k % 2 == 0, 1.0, -1.0) > 0
+    upper = (((4.0 * c - lambda_sq * E) * c > 0) & on_branch).astype(int)
     n_sym = np.where(k == 0, 0, k - 1 + upper)
-    return (np.floor(Omega / np.pi).astype(int) + np.floor(Omega / (2 * np.pi)).astype(int)
-            + n_sym)
+    return _count_multiples_below(Omega, np.pi) + _count_multiples_below(Omega, 2 * np.pi) + n_sym
+
+
+def _count_multiples_below(x, step):
+    """#{n >= 1 : n * step < x}, with ties decided in the same float arithmetic as n * step."""
+    n = np.maximum(np.ceil(x / step).astype(int) - 1, 0)
+    n = n - ((n >= 1) & (n * step >= x))    # x / step rounded up past an integer
+    return n + ((n + 1) * step < x)         # x / step rounded down below one
 
 
 def irvine_symmetric_roots(lambda_sq, n_roots):

@@ -1,0 +1,250 @@
+"""Closed-form cable dynamic stiffness (theory.md §3, §5.2): limits, symmetry, poles, counts."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dynstiff as ds
+from dynstiff.cable_dsm import (chord_parameters, irvine_symmetric_roots,
+                                local_end_stiffness, local_two_end_stiffness)
+from dynstiff.errors import InvalidParameterError
+
+from conftest import A0, B0, cogiro_cable
+
+TWO_PI = 2 * np.pi
+
+
+def local(K, p):
+    """Global (n, 3, 3) -> chord frame (u, v, w)."""
+    R = p.rotation
+    return R.T @ K @ R
+
+
+# ----------------------------------------------------------------------------- limits
+@pytest.mark.parametrize("omega", [0.0, 1e-9, 1e-4])
+def test_zero_frequency_is_parabolic_static_stiffness(state300, omega):
+    """omega -> 0: K_B = diag(K0/(1 + lambda^2/12), T/L, T/L) exactly (theory.md §3.6)."""
+    p = chord_parameters(state300)
+    K = local(ds.cable_dynamic_stiffness(state300, omega, chordwise_inertia=False), p)[0]
+    expected = np.diag([p.K0 / (1 + p.lambda_sq / 12), p.T / p.L, p.T / p.L])
+    rtol = 1e-13 if omega < 1e-6 else 1e-8   # at 1e-4 rad/s the O(omega^2) terms are 1e-9
+    np.testing.assert_allclose(K, expected, rtol=rtol, atol=rtol * p.K0)
+
+
+def shallow_error_bound(s):
+    """Measured envelope of the shallow-cable (parabolic, no chordwise weight) error of the
+    static end stiffness, with delta = d/L and eps = W sin(theta) / T (the tension change
+    along the chord relative to T, which the linear theory neglects):
+    15 delta^2 + 2 delta eps (1 + 40 eps). Fitted on the 30 cases of the test below; every
+    case sits at least 1.4x inside it."""
+    p = chord_parameters(s)
+    sin_t = abs(s.chord[2]) / s.chord_length
+    delta = p.sag / p.L
+    eps = s.total_weight * sin_t / p.T
+    return 15 * delta**2 + 2 * delta * eps * (1 + 40 * eps)
+
+
+@pytest.mark.parametrize("E", [17e9, 120e9])
+@pytest.mark.parametrize("T", [30.0, 100.0, 300.0, 1000.0, 3000.0])
+@pytest.mark.parametrize("A,B", [(A0, B0), ((0, 0, 0), (10, 0, 0)), ((0, 0, 10), (3, 0, 0))],
+                         ids=["cogiro", "horizontal", "steep"])
+def test_zero_frequency_matches_exact_catenary_within_shallow_cable_error(E, T, A, B):
+    s = ds.unstretched_length_for_tension(A, B, T, cogiro_cable(E))
+    K0 = ds.cable_dynamic_stiffness(s, 0.0, chordwise_inertia=False)[0]
+    Ks = s.static_stiffness
+    err = np.linalg.norm(K0 - Ks, 2) / np.linalg.norm(Ks, 2)
+    assert err <= shallow_error_bound(s)
+    # no O(T/EA) term: tension strains up to 2 % leave the taut cases exact to 1e-5
+    if T >= 1000:
+        assert err < 1e-5
+
+
+def test_massless_limit_is_straight_spring():
+    """m -> 0: K = (EA/L0) u u^T + (T/L)(I - u u^T) at any frequency."""
+    cable = ds.Cable(1e-12, 1.4e5)
+    A, B = np.array([1.0, 2.0, 6.0]), np.array([-3.0, 0.5, 1.0])
+    L = np.linalg.norm(B - A)
+    s = ds.solve_catenary(A, B, 0.997 * L, cable)
+    u = (B - A) / L
+    T = s.tension_at_end
+    K_ref = cable.EA / s.unstretched_length * np.outer(u, u) + T / L * (np.eye(3) - np.outer(u, u))
+    K = ds.cable_dynamic_stiffness(s, [0.0, 10.0, 300.0])
+    np.testing.assert_allclose(K, np.broadcast_to(K_ref, K.shape), rtol=1e-9, atol=1e-9 * T / L)
+
+
+def test_rigid_translation_has_no_static_force(state300):
+    K = ds.cable_dynamic_stiffness(state300, 0.0, ends="both")[0]
+    for d in np.eye(3):
+        np.testing.assert_allclose(K @ np.concatenate([d, d]), 0, atol=1e-9 * np.abs(K).max())
+
+
+# ----------------------------------------------------------------------------- symmetry
+def test_symmetry_and_reciprocity(state300):
+    w = np.linspace(0.1, 80.0, 301)
+    K3 = ds.cable_dynamic_stiffness(state300, w)
+    K6 = ds.cable_dynamic_stiffness(state300, w, ends="both")
+    assert K3.dtype == np.float64 and K6.dtype == np.float64
+    np.testing.assert_allclose(K3, K3.transpose(0, 2, 1), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(K6, K6.transpose(0, 2, 1), rtol=1e-12, atol=1e-9)
+    # the end-B block of the two-end matrix is the clamped-A end matrix
+    np.testing.assert_allclose(K6[:, 3:, 3:], K3, rtol=1e-12, atol=1e-9)
+    # exchanging the ends of the chord: K_AA of one cable is K_BB of the reversed one? not in
+    # general (sag side is the same); but the two-end matrix is symmetric about the centre:
+    P = np.zeros((6, 6))
+    p = chord_parameters(state300)
+    Kl = local_two_end_stiffness(p, w)
+    flip = np.diag([-1.0, 1.0, 1.0])      # u -> -u when A and B are exchanged
+    P[:3, 3:] = P[3:, :3] = flip
+    np.testing.assert_allclose(P @ Kl @ P.T, Kl, rtol=1e-12, atol=1e-9)
+
+
+def test_damped_is_complex_symmetric(cable17):
+    for kw in [dict(loss_factor=0.02), dict(viscous_damping=0.05)]:
+        s = ds.unstretched_length_for_tension(A0, B0, 300.0, cogiro_cable(17e9, **kw))
+        w = np.linspace(0.0, 60.0, 50)
+        K = ds.cable_dynamic_stiffness(s, w, ends="both")
+        assert np.iscomplexobj(K)
+        np.testing.assert_allclose(K, K.transpose(0, 2, 1), rtol=1e-12, atol=1e-9)
+        assert np.all(np.isfinite(K))
+        # viscous damping removes every pole; hysteretic damping acts on EA only, so the
+        # string families (out-of-plane, antisymmetric) keep their real poles
+        modes = ds.cable_natural_frequencies(s, 4)
+        Kp = np.abs(ds.cable_dynamic_stiffness(s, TWO_PI * modes.freq_hz)).max(axis=(1, 2))
+        s0 = ds.solve_catenary(A0, B0, s.unstretched_length, cable17)
+        K_undamped = np.abs(ds.cable_dynamic_stiffness(
+            s0, TWO_PI * modes.freq_hz * (1 + 1e-9))).max(axis=(1, 2))
+        bounded = Kp < 1e-3 * K_undamped
+        if "viscous_damping" in kw:
+            assert np.all(bounded)
+        else:
+            sym = np.array([f == "in-plane symmetric" for f in modes.family])
+            np.testing.assert_array_equal(bounded, sym)
+
+
+def test_light_damping_converges_to_undamped(state300):
+    w = np.linspace(1.0, 50.0, 40)
+    K = ds.cable_dynamic_stiffness(state300, w)
+    for kw in [dict(loss_factor=1e-9), dict(viscous_damping=1e-10)]:
+        s = ds.solve_catenary(A0, B0, state300.unstretched_length, cogiro_cable(17e9, **kw))
+        Kd = ds.cable_dynamic_stiffness(s, w)
+        np.testing.assert_allclose(Kd.real, K, rtol=1e-6, atol=1e-6 * np.abs(K).max())
+
+
+# ----------------------------------------------------------------------------- poles & modes
+@pytest.mark.parametrize("lam2", [0.5, 1, 2, 5, 10, 20, 50, 100, 1000])
+def test_irvine_roots_reproduce_theory_table(lam2):
+    """theory.md §9.1 (Brent roots of the Irvine-Caughey equation, 7 significant digits)."""
+    table = {0.5: (3.205404, 9.427179, 15.708480), 1: (3.267886, 9.429603, 15.708999),
+             2: (3.389149, 9.434523, 15.710043), 5: (3.727496, 9.449882, 15.713225),
+             10: (4.225833, 9.477637, 15.718697), 20: (5.056508, 9.542616, 15.730323),
+             50: (6.793920, 9.850046, 15.771746), 100: (8.159296, 10.931722, 15.873408),
+             1000: (8.948084, 15.370464, 21.646868)}
+    np.testing.assert_allclose(irvine_symmetric_roots(lam2, 3), table[lam2], atol=6e-7)
+
+
+def test_irvine_crossovers_and_limits():
+    """Exact: lambda^2 = 4 n^2 pi^2 puts the n-th symmetric root on 2 n pi (theory.md §2.2);
+    lambda^2 -> 0 gives (2k-1) pi; lambda^2 -> inf gives 2 x roots of tan x = x."""
+    for n in (1, 2, 3):
+        roots = irvine_symmetric_roots(4 * n * n * np.pi**2, n)
+        assert roots[n - 1] == pytest.approx(2 * n * np.pi, rel=1e-12)
+    np.testing.assert_allclose(irvine_symmetric_roots(1e-12, 3), [np.pi, 3 * np.pi, 5 * np.pi],
+                               rtol=1e-12)
+    np.testing.assert_allclose(irvine_symmetric_roots(1e12, 3),
+                               2 * np.array([4.493409457909064, 7.725251836937707,
+                                             10.904121659428899]), rtol=1e-9)
+
+
+def test_string_families_are_exact(state300):
+    modes = ds.cable_natural_frequencies(state300, 12)
+    p = chord_parameters(state300)
+    for fam, mult in [("out-of-plane", np.pi), ("in-plane antisymmetric", TWO_PI)]:
+        sel = np.array([f == fam for f in modes.family])
+        np.testing.assert_allclose(modes.Omega[sel], mult * modes.order[sel], rtol=1e-15)
+    np.testing.assert_allclose(modes.freq_hz, modes.Omega / (TWO_PI * p.L) * np.sqrt(p.T / p.m),
+                               rtol=1e-15)
+    assert np.all(np.diff(modes.freq_hz) >= 0)
+    assert modes.labels[0] == "out-of-plane 1"
+
+
+def test_poles_sit_at_fixed_end_frequencies(state300):
+    """Each clamped-clamped frequency is a pole: the entry of its family flips sign and grows
+    like 1/(relative distance) across it."""
+    modes = ds.cable_natural_frequencies(state300, 8)
+    p = chord_parameters(state300)
+    entry = {"out-of-plane": (2, 2), "in-plane symmetric": (0, 0),
+             "in-plane antisymmetric": (1, 1)}
+    for f, fam in zip(modes.freq_hz, modes.family):
+        i, j = entry[fam]
+        w = TWO_PI * f * np.array([1 - 1e-7, 1 + 1e-7, 1 - 1e-5, 1 + 1e-5])
+        K = local_end_stiffness(p, w, chordwise_inertia=False)[:, i, j]
+        assert np.sign(K[0]) != np.sign(K[1]), fam
+        assert abs(K[0]) > 50 * abs(K[2]) and abs(K[1]) > 50 * abs(K[3]), fam
+
+
+def test_mode_count_steps_at_each_natural_frequency(state300):
+    modes = ds.cable_natural_frequencies(state300, 40)
+    f = modes.freq_hz[:30]
+    w = TWO_PI * f
+    # out-of-plane 2n and antisymmetric n coincide exactly (Omega = 2 n pi): count multiplicity
+    below = ds.cable_mode_count(state300, w * (1 - 1e-9))
+    above = ds.cable_mode_count(state300, w * (1 + 1e-9))
+    np.testing.assert_array_equal(below, [np.sum(modes.freq_hz < fk * (1 - 1e-12)) for fk in f])
+    np.testing.assert_array_equal(above, [np.sum(modes.freq_hz <= fk * (1 + 1e-12)) for fk in f])
+    multiplicity = [np.sum(np.isclose(modes.freq_hz, fk, rtol=1e-12)) for fk in f]
+    np.testing.assert_array_equal(above - below, multiplicity)
+    assert max(multiplicity) == 2
+
+
+@settings(max_examples=60, deadline=None)
+@given(lam2=st.floats(1e-6, 1e4), ratio=st.one_of(st.floats(0.0, 40.0), st.integers(0, 40)))
+def test_count_equals_number_of_roots_below(lam2, ratio):
+    """J0 from the branch rule equals the number of roots strictly below Omega (any lambda^2,
+    including Omega exactly on a string root or a branch end)."""
+    Om = float(ratio) * np.pi
+    sym = irvine_symmetric_roots(lam2, 25)
+    n = np.arange(1, 60)
+    expected = np.sum(n * np.pi < Om) + np.sum(2 * n * np.pi < Om) + np.sum(sym < Om)
+    assert ds.cable_dsm._mode_count_Omega(np.array([Om]), lam2)[0] == expected
+
+
+def test_eigenvalues_decrease_between_poles(state300):
+    """Wittrick-Williams needs dK/domega negative definite between poles (theory.md §5.1)."""
+    w = np.linspace(0.5, 120.0, 4001)
+    ev = np.linalg.eigvalsh(ds.cable_dynamic_stiffness(state300, w, ends="both"))
+    count = ds.cable_mode_count(state300, w)
+    same_interval = np.diff(count) == 0
+    assert np.all(np.diff(ev, axis=0)[same_interval] < 1e-9 * np.abs(ev).max())
+
+
+# ----------------------------------------------------------------------------- vertical, inputs
+def test_vertical_chord_is_a_string(cable17):
+    s = ds.solve_catenary((0, 0, 10), (0, 0, 0), 9.99, cable17)
+    p = chord_parameters(s)
+    assert p.lambda_sq == 0.0
+    modes = ds.cable_natural_frequencies(s, 6)
+    np.testing.assert_allclose(modes.Omega, np.pi * np.array([1, 1, 2, 2, 3, 3]), rtol=1e-12)
+    K = ds.cable_dynamic_stiffness(s, [0.0, 20.0])
+    assert np.all(np.isfinite(K))
+    np.testing.assert_allclose(K[:, 0, 0], K[:, 1, 1], rtol=1e-12)   # isotropic transverse
+
+
+@pytest.mark.parametrize("omega", [-1.0, float("nan"), float("inf"), [1.0, -2.0]])
+def test_bad_omega_raises(state300, omega):
+    with pytest.raises(InvalidParameterError, match="omega"):
+        ds.cable_dynamic_stiffness(state300, omega)
+
+
+def test_bad_options_raise(state300):
+    with pytest.raises(InvalidParameterError, match="ends"):
+        ds.cable_dynamic_stiffness(state300, 1.0, ends="B")
+    with pytest.raises(InvalidParameterError, match="tension"):
+        ds.cable_dynamic_stiffness(state300, 1.0, tension="max")
+    with pytest.raises(InvalidParameterError, match="n_modes"):
+        ds.cable_natural_frequencies(state300, 0)
+
+
+def test_shapes(state300):
+    assert ds.cable_dynamic_stiffness(state300, 3.0).shape == (1, 3, 3)
+    assert ds.cable_dynamic_stiffness(state300, np.arange(7.0), ends="both").shape == (7, 6, 6)
