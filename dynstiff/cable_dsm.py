@@ -349,18 +349,32 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     InvalidParameterError
         ``omega`` negative or not finite, or ``ends`` / ``tension`` unknown.
     """
+    if ends not in ("end", "both"):
+        raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
+    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(p, omega, chordwise_inertia)
+    # each 3x3 block is a combination of the dyads UU, UV, VU, VV, WW of R = [e_u e_v e_w],
+    # so R K R^T is one (n, 5) @ (5, 9) product (no batched 3x3 matmuls)
     R = p.rotation
+    dyads = np.stack([np.outer(R[:, i], R[:, j]).ravel()
+                      for i, j in [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)]])
+    zero = np.zeros_like(k_uu)
+    k_axial = k_uu + 2.0 * m_ax
+    # block B-B (also the clamped-A end matrix): uu, uv, vu, vv, ww
+    C_BB = np.stack([k_axial, -k_uv, -k_uv, k_vv, kw_s + zero], axis=1)
+    n = omega.size
     if ends == "end":
-        K = local_end_stiffness(p, omega, chordwise_inertia)
-        return R @ K @ R.T
-    if ends == "both":
-        K = local_two_end_stiffness(p, omega, chordwise_inertia)
-        R6 = np.zeros((6, 6))
-        R6[:3, :3] = R6[3:, 3:] = R
-        return R6 @ K @ R6.T
-    raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
+        return _real_if_undamped(p, (C_BB @ dyads).reshape(n, 3, 3))
+    C_AA = np.stack([k_axial, k_uv, k_uv, k_vv, kw_s + zero], axis=1)
+    C_AB = np.stack([-k_uu + m_ax, k_uv, -k_uv, k_vv_AB, kw_c + zero], axis=1)
+    K_AB = (C_AB @ dyads).reshape(n, 3, 3)
+    K = np.empty((n, 6, 6), dtype=K_AB.dtype)
+    K[:, :3, :3] = (C_AA @ dyads).reshape(n, 3, 3)
+    K[:, 3:, 3:] = (C_BB @ dyads).reshape(n, 3, 3)
+    K[:, :3, 3:] = K_AB
+    K[:, 3:, :3] = K_AB.transpose(0, 2, 1)
+    return _real_if_undamped(p, K)
 
 
 # --------------------------------------------------------------------------- fixed-end modes

@@ -1,0 +1,46 @@
+"""Package layering and the command-line main job."""
+
+import subprocess
+import sys
+
+import pytest
+
+
+def test_import_does_not_load_matplotlib_or_pandas():
+    code = ("import sys, dynstiff; "
+            "bad = [m for m in ('matplotlib', 'pandas', 'mpmath') if m in sys.modules]; "
+            "print(','.join(bad))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == ""
+
+
+def test_demo_writes_report(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--out", str(tmp_path),
+                          "--points", "400"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "in-plane symmetric 1" in out.stdout
+    for name in ["report.txt", "statics.csv", "modes.csv", "dynamic_stiffness.png"]:
+        assert (tmp_path / name).stat().st_size > 0
+    import pandas as pd
+    modes = pd.read_csv(tmp_path / "modes.csv")
+    assert list(modes.columns) == ["freq [Hz]", "Omega [-]", "family", "order"]
+    assert modes["freq [Hz]"].is_monotonic_increasing
+
+
+def test_report_figure_content():
+    import matplotlib
+    matplotlib.use("Agg")
+    from dynstiff.report import cable_report
+    rep = cable_report(fmax_hz=8.0, n_points=500)
+    fig = rep.plot()
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "frequency [Hz]"
+    assert "[N/m]" in ax.get_ylabel()
+    assert len(ax.get_lines()) == 3 + sum(rep.modes.freq_hz <= 8.0)   # curves + pole markers
+
+
+def test_cli_rejects_unknown_option():
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--bogus"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2
+    assert "--bogus" in out.stderr
