@@ -24,7 +24,11 @@ def test_chordwise_inertia_quick():
     assert df["K_uu err without"].abs().max() > 2e-2     # the effect is real (~4 % at 8 Hz)
     assert df["K_uu err with"].abs().max() < 1.5e-3
     assert df["matrix err with"].max() < 2e-3
-    assert (df["matrix err with"] < df["matrix err without"]).all()
+    # where the chordwise effect stands above the static shallow-cable floor (~1e-4 here),
+    # the correction removes most of it
+    visible = df["K_uu err without"].abs() > 1e-3
+    assert visible.sum() >= 4
+    assert (df["K_uu err with"].abs()[visible] * 5 < df["K_uu err without"].abs()[visible]).all()
 
 
 @pytest.mark.slow
