@@ -1,0 +1,136 @@
+"""Rigid platform: parameters, pose, and the Lagrangian rigid-body mass matrix.
+
+Notation (theory.md §4)
+-----------------------
+=========  ===============================================================  =======
+symbol     meaning                                                          unit
+=========  ===============================================================  =======
+P          reference point of the platform (origin of the platform frame)   m
+p          position of P in the base frame                                  m
+R_p        rotation of the platform frame into the base frame               --
+c_G        centre of mass G in the platform frame                           m
+I_G        inertia tensor about G, platform axes (tensor entries)           kg m^2
+x          small motion (dp, dtheta): translation of P, rotation vector     m, rad
+=========  ===============================================================  =======
+
+Inertia convention: ``inertia`` is the *tensor* I_G with diagonal entries int (y^2 + z^2) dm
+etc. and off-diagonal entries **I_xy = -int x y dm** (minus the product of inertia). A CAD
+table that prints products of inertia P_xy = int x y dm must be entered with the sign changed.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import positive_scalar
+from .errors import InvalidParameterError
+
+__all__ = ["Platform", "DOF_NAMES", "skew", "rotation_matrix", "platform_mass_matrix"]
+
+#: Names of the six platform degrees of freedom, in the order used everywhere.
+DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
+
+
+def skew(a):
+    """Cross-product matrix [a]x with [a]x b = a x b; a of shape (3,) -> (3, 3)."""
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def rotation_matrix(rotvec):
+    """Rotation matrix [-] of a rotation vector [rad] (axis * angle), shape (3,) -> (3, 3)."""
+    from scipy.spatial.transform import Rotation
+    return Rotation.from_rotvec(np.asarray(rotvec, dtype=float)).as_matrix()
+
+
+@dataclass(frozen=True)
+class Platform:
+    """Rigid platform of a cable robot.
+
+    Parameters
+    ----------
+    mass : float
+        Mass [kg], > 0.
+    center_of_mass : array_like, shape (3,)
+        Centre of mass G in the platform frame [m].
+    inertia : array_like, shape (3, 3)
+        Inertia tensor about G in platform axes [kg m^2]; symmetric positive definite,
+        off-diagonal entries are minus the products of inertia (see module notes). A point
+        mass has zero inertia: use ``inertia=0`` together with free translations only.
+    free_dofs : sequence of str, optional
+        Free degrees of freedom among ``DOF_NAMES`` (default all six). Held DOFs are fixed
+        (a pinned pendulum, a planar body, a point mass are the same model with some held).
+    """
+
+    mass: float
+    center_of_mass: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
+    free_dofs: tuple = DOF_NAMES
+
+    def __post_init__(self):
+        object.__setattr__(self, "mass", positive_scalar("mass", self.mass))
+        c = np.asarray(self.center_of_mass, dtype=float)
+        if c.shape != (3,) or not np.all(np.isfinite(c)):
+            raise InvalidParameterError(
+                f"center_of_mass must be 3 finite numbers [m], got {self.center_of_mass!r}")
+        I = np.asarray(self.inertia, dtype=float)
+        if I.shape == ():
+            I = np.eye(3) * float(I)
+        if I.shape != (3, 3) or not np.all(np.isfinite(I)):
+            raise InvalidParameterError(
+                f"inertia must be a finite 3x3 tensor [kg m^2], got shape {I.shape}")
+        if not np.allclose(I, I.T, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(I).max())):
+            raise InvalidParameterError(f"inertia must be symmetric, got {I.tolist()}")
+        dofs = tuple(self.free_dofs)
+        unknown = [d for d in dofs if d not in DOF_NAMES]
+        if unknown or len(set(dofs)) != len(dofs) or not dofs:
+            raise InvalidParameterError(
+                f"free_dofs must be distinct names from {DOF_NAMES}, got {self.free_dofs!r}")
+        dofs = tuple(d for d in DOF_NAMES if d in dofs)       # canonical order
+        ev = np.linalg.eigvalsh(I)
+        rotational = any(d in dofs for d in ("rx", "ry", "rz"))
+        if rotational and ev[0] <= 0:
+            raise InvalidParameterError(
+                f"inertia must be positive definite when a rotation is free, eigenvalues "
+                f"{ev.tolist()} [kg m^2]")
+        if ev[0] < -1e-12 * max(1.0, abs(ev[-1])):
+            raise InvalidParameterError(f"inertia must be positive semi-definite, eigenvalues "
+                                        f"{ev.tolist()} [kg m^2]")
+        if rotational and (ev[2] > ev[0] + ev[1] + 1e-9 * ev[2]):
+            raise InvalidParameterError(
+                f"inertia violates the triangle inequality of principal moments "
+                f"{ev.tolist()} [kg m^2]: not a physical body")
+        object.__setattr__(self, "center_of_mass", c)
+        object.__setattr__(self, "inertia", I)
+        object.__setattr__(self, "free_dofs", dofs)
+
+    @property
+    def free_index(self):
+        """Indices of the free DOFs in ``DOF_NAMES`` order, shape (n_free,)."""
+        return np.array([DOF_NAMES.index(d) for d in self.free_dofs])
+
+
+def platform_mass_matrix(platform, rotation):
+    """6x6 rigid-body mass matrix about the reference point P, base axes.
+
+    M_p = [[m I, -m [r_G]x], [m [r_G]x, I_G^w - m [r_G]x [r_G]x]], r_G = R_p c_G,
+    I_G^w = R_p I_G R_p^T (theory.md §4), for the motion x = (dp, dtheta).
+
+    Parameters
+    ----------
+    platform : Platform
+    rotation : ndarray, shape (3, 3)
+        R_p.
+
+    Returns
+    -------
+    ndarray, shape (6, 6) [kg, kg m, kg m^2]
+    """
+    m = platform.mass
+    rG = rotation @ platform.center_of_mass
+    S = skew(rG)
+    M = np.zeros((6, 6))
+    M[:3, :3] = m * np.eye(3)
+    M[:3, 3:] = -m * S
+    M[3:, :3] = m * S
+    M[3:, 3:] = rotation @ platform.inertia @ rotation.T - m * S @ S
+    return M

@@ -1,0 +1,304 @@
+"""Cable robot model and its statics with sagging cables.
+
+A robot is n cables, cable i running from its anchor A_i (base frame, the winch exit point,
+clamped) to the attachment point b_i on the platform (platform frame), plus a rigid platform.
+Its static equilibrium uses the exact elastic catenary of every cable (theory.md §1.1) and the
+platform's wrench balance; gravity is (0, 0, -g).
+
+Pose: ``position`` p [m] of the platform reference point P and ``rotation`` vector [rad]
+(axis * angle, base frame) of R_p. Small motions are x = (dp, dtheta), dtheta a small rotation
+vector in the base frame, so dB_i = dp + dtheta x r_i with r_i = R_p b_i.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._validate import positive_scalar
+from .catenary import solve_catenary
+from .constants import STANDARD_GRAVITY
+from .errors import InvalidParameterError
+from .params import Cable
+from .platform import Platform, rotation_matrix, skew
+
+__all__ = ["Robot", "Pose", "Equilibrium"]
+
+
+@dataclass(frozen=True)
+class Pose:
+    """Platform pose: position [m] of P and rotation vector [rad], both (3,)."""
+
+    position: np.ndarray
+    rotation: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+    def __post_init__(self):
+        for name in ("position", "rotation"):
+            v = np.asarray(getattr(self, name), dtype=float)
+            if v.shape != (3,) or not np.all(np.isfinite(v)):
+                raise InvalidParameterError(
+                    f"pose {name} must be 3 finite numbers, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, v)
+
+    @property
+    def matrix(self):
+        """Rotation matrix R_p, shape (3, 3)."""
+        return rotation_matrix(self.rotation)
+
+    def as_vector(self):
+        """(x, y, z, rx, ry, rz), shape (6,)."""
+        return np.concatenate([self.position, self.rotation])
+
+    def moved(self, dx):
+        """Pose after the small motion dx = (dp, dtheta) (dtheta in the base frame)."""
+        from scipy.spatial.transform import Rotation
+        R = Rotation.from_rotvec(dx[3:]) * Rotation.from_rotvec(self.rotation)
+        return Pose(self.position + dx[:3], R.as_rotvec())
+
+
+def _as_pose(pose):
+    if isinstance(pose, Pose):
+        return pose
+    v = np.asarray(pose, dtype=float)
+    if v.shape == (3,):
+        return Pose(v)
+    if v.shape == (6,):
+        return Pose(v[:3], v[3:])
+    if isinstance(pose, (tuple, list)) and len(pose) == 2:
+        return Pose(*pose)
+    raise InvalidParameterError(
+        f"pose must be a Pose, (position, rotation), 3 or 6 numbers, got {pose!r}")
+
+
+@dataclass(frozen=True)
+class Robot:
+    """Cable-driven parallel robot with heavy elastic cables.
+
+    Parameters
+    ----------
+    anchors : array_like, shape (n, 3)
+        Cable exit points A_i in the base frame [m].
+    attachments : array_like, shape (n, 3)
+        Attachment points b_i in the platform frame [m].
+    cables : Cable or sequence of n Cable
+    platform : Platform
+    g : float, optional
+        Gravity [m/s^2] (default :data:`STANDARD_GRAVITY`).
+    tension_limits : (float, float), optional
+        Admissible tension range [t_min, t_max] [N] for the tension distribution.
+    name : str, optional
+    """
+
+    anchors: np.ndarray
+    attachments: np.ndarray
+    cables: tuple
+    platform: Platform
+    g: float = STANDARD_GRAVITY
+    tension_limits: tuple = (1.0, np.inf)
+    name: str = ""
+
+    def __post_init__(self):
+        A = np.asarray(self.anchors, dtype=float)
+        b = np.asarray(self.attachments, dtype=float)
+        if A.ndim != 2 or A.shape[1] != 3 or not np.all(np.isfinite(A)):
+            raise InvalidParameterError(
+                f"anchors must be a finite (n, 3) array [m], got shape {A.shape}")
+        if b.shape != A.shape or not np.all(np.isfinite(b)):
+            raise InvalidParameterError(
+                f"attachments must be a finite array of shape {A.shape} like anchors, got "
+                f"shape {b.shape}")
+        n = A.shape[0]
+        cables = self.cables
+        if isinstance(cables, Cable):
+            cables = (cables,) * n
+        cables = tuple(cables)
+        if len(cables) != n or not all(isinstance(c, Cable) for c in cables):
+            raise InvalidParameterError(
+                f"cables must be one Cable or a sequence of {n} Cable, got {self.cables!r}")
+        if not isinstance(self.platform, Platform):
+            raise InvalidParameterError(
+                f"platform must be a dynstiff.Platform, got {type(self.platform).__name__}")
+        n_free = len(self.platform.free_dofs)
+        if n < n_free:
+            raise InvalidParameterError(
+                f"anchors: {n} cables cannot hold a platform with {n_free} free DOFs "
+                f"{self.platform.free_dofs}; at least {n_free} are needed")
+        d = np.linalg.norm(A[:, None, :] - A[None, :, :], axis=2) + np.eye(n)
+        i, j = np.unravel_index(np.argmin(d), d.shape)
+        if d[i, j] < 1e-9 * max(1.0, np.abs(A).max()):
+            raise InvalidParameterError(f"anchors {i} and {j} coincide at {A[i].tolist()}")
+        g = positive_scalar("g", self.g, allow_zero=True)
+        t_min, t_max = (float(t) for t in self.tension_limits)
+        if not (0 <= t_min < t_max):
+            raise InvalidParameterError(
+                f"tension_limits must satisfy 0 <= t_min < t_max [N], got {self.tension_limits!r}")
+        object.__setattr__(self, "anchors", A)
+        object.__setattr__(self, "attachments", b)
+        object.__setattr__(self, "cables", cables)
+        object.__setattr__(self, "g", g)
+        object.__setattr__(self, "tension_limits", (t_min, t_max))
+
+    @property
+    def n_cables(self):
+        """Number of cables."""
+        return self.anchors.shape[0]
+
+    @property
+    def gravity_vector(self):
+        """(0, 0, -g) [m/s^2]."""
+        return np.array([0.0, 0.0, -self.g])
+
+    # ------------------------------------------------------------------ geometry
+    def attachment_points(self, pose):
+        """Attachment points B_i in the base frame [m], shape (n, 3), and lever arms r_i."""
+        pose = _as_pose(pose)
+        r = self.attachments @ pose.matrix.T
+        return pose.position + r, r
+
+    def gravity_wrench(self, pose):
+        """Gravity wrench on the platform about P [N, N m], shape (6,)."""
+        pose = _as_pose(pose)
+        fg = self.platform.mass * self.gravity_vector
+        rG = pose.matrix @ self.platform.center_of_mass
+        return np.concatenate([fg, np.cross(rG, fg)])
+
+    def cable_states(self, pose, unstretched_lengths):
+        """Elastic-catenary state of every cable at a pose, list of CatenaryState."""
+        B, _ = self.attachment_points(pose)
+        L0 = _lengths(unstretched_lengths, self.n_cables)
+        return [solve_catenary(self.anchors[i], B[i], L0[i], self.cables[i], self.g)
+                for i in range(self.n_cables)]
+
+    def wrench(self, pose, states):
+        """Total wrench on the platform about P (cables + gravity), shape (6,)."""
+        _, r = self.attachment_points(pose)
+        f = np.array([s.force_on_end for s in states])
+        w = self.gravity_wrench(pose)
+        w[:3] += f.sum(axis=0)
+        w[3:] += np.cross(r, f).sum(axis=0)
+        return w
+
+    def static_stiffness(self, pose, states, symmetric_part=False):
+        """6x6 static stiffness -dW/dx of the platform about P [N/m, N, N m/rad].
+
+        K = sum_i J_i^T K_i J_i + K_geo, J_i = [I, -[r_i]x], K_geo = [[0, 0], [0,
+        -sum [f_i]x [r_i]x - [m g]x [r_G]x]] (theory.md §4), valid at any pose (not only at
+        equilibrium, where K_geo becomes symmetric).
+        """
+        pose = _as_pose(pose)
+        _, r = self.attachment_points(pose)
+        K = np.zeros((6, 6))
+        for ri, s in zip(r, states):
+            J = np.hstack([np.eye(3), -skew(ri)])
+            K += J.T @ s.static_stiffness @ J
+        K[3:, 3:] += geometric_stiffness(self, pose, states)
+        return 0.5 * (K + K.T) if symmetric_part else K
+
+    # ------------------------------------------------------------------ statics
+    def equilibrium(self, pose=None, unstretched_lengths=None, tension_reference=None,
+                    initial_pose=None, tol=1e-10, max_iter=50):
+        """Static equilibrium with sagging cables.
+
+        Give exactly one of:
+
+        ``pose``
+            Inverse statics: the tension distribution that balances the platform at this
+            pose (see :func:`tension_distribution`), with the cable directions at B taken from
+            the elastic catenary and iterated to convergence, then each cable's unstretched
+            length for its tension at B.
+        ``unstretched_lengths``
+            Forward statics: the pose of the free DOFs at which the platform is in
+            equilibrium (Newton with the analytic 6x6 stiffness), starting from the
+            straight-cable estimate (or ``initial_pose``).
+
+        Returns
+        -------
+        Equilibrium
+
+        Raises
+        ------
+        InvalidParameterError, SlackCableError, ConvergenceError
+        """
+        from .statics import forward_statics, inverse_statics
+        if (pose is None) == (unstretched_lengths is None):
+            raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
+        if pose is not None:
+            return inverse_statics(self, _as_pose(pose), tension_reference, tol, max_iter)
+        return forward_statics(self, _lengths(unstretched_lengths, self.n_cables),
+                               None if initial_pose is None else _as_pose(initial_pose), tol,
+                               max_iter)
+
+
+def geometric_stiffness(robot, pose, states):
+    """Rotational block of K_geo [N m/rad], shape (3, 3): -sum [f_i]x [r_i]x - [m g]x [r_G]x."""
+    pose = _as_pose(pose)
+    _, r = robot.attachment_points(pose)
+    Kg = np.zeros((3, 3))
+    for ri, s in zip(r, states):
+        Kg -= skew(s.force_on_end) @ skew(ri)
+    rG = pose.matrix @ robot.platform.center_of_mass
+    Kg -= skew(robot.platform.mass * robot.gravity_vector) @ skew(rG)
+    return Kg
+
+
+def _lengths(value, n):
+    L0 = np.asarray(value, dtype=float)
+    if L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
+        raise InvalidParameterError(
+            f"unstretched_lengths must be {n} finite positive lengths [m], got {value!r}")
+    return L0
+
+
+@dataclass(frozen=True)
+class Equilibrium:
+    """Static equilibrium of a robot.
+
+    Attributes
+    ----------
+    robot : Robot
+    pose : Pose
+    unstretched_lengths : ndarray, shape (n,) [m]
+    states : tuple of CatenaryState
+    residual : float
+        Norm of the free-DOF wrench residual relative to the platform weight [-].
+    """
+
+    robot: Robot
+    pose: Pose
+    unstretched_lengths: np.ndarray
+    states: tuple
+    residual: float
+
+    @property
+    def tensions(self):
+        """Tension at the platform end B of each cable [N], shape (n,)."""
+        return np.array([s.tension_at_end for s in self.states])
+
+    @property
+    def anchor_tensions(self):
+        """Tension at the anchor A of each cable [N], shape (n,)."""
+        return np.array([s.tension_at_anchor for s in self.states])
+
+    @property
+    def lever_arms(self):
+        """r_i = R_p b_i [m], shape (n, 3)."""
+        return self.robot.attachment_points(self.pose)[1]
+
+    def static_stiffness(self):
+        """6x6 static stiffness about P (all DOFs) [N/m, N, N m/rad]."""
+        return self.robot.static_stiffness(self.pose, self.states)
+
+    def to_frame(self):
+        """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2."""
+        import pandas as pd
+        return pd.DataFrame({
+            "cable": np.arange(self.robot.n_cables),
+            "tension at B [N]": self.tensions,
+            "tension at A [N]": self.anchor_tensions,
+            "unstretched length [m]": self.unstretched_lengths,
+            "chord length [m]": [s.chord_length for s in self.states],
+            "sag [m]": [s.sag for s in self.states],
+            "lambda^2 [-]": [s.lambda_sq for s in self.states],
+        })
+
+
+__all__ += ["geometric_stiffness"]

@@ -1,0 +1,199 @@
+"""Robot statics with sagging cables: tension distribution, inverse and forward statics.
+
+Inverse statics (pose given, redundant robot): the tensions t at the platform ends solve the
+wrench balance W t = -w_g on the free DOFs, W = [u_i; r_i x u_i] with u_i the unit force of
+cable i on the platform at B_i. With sag, u_i depends on t_i through the elastic catenary, so
+the distribution and the catenaries are iterated to a fixed point. Among the solutions of the
+balance, the one closest (2-norm) to a reference tension within [t_min, t_max] is chosen.
+
+Forward statics (unstretched lengths given): Newton's method on the free-DOF wrench residual
+with the analytic 6x6 stiffness (theory.md §4).
+"""
+
+import numpy as np
+
+from .catenary import unstretched_length_for_tension
+from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+
+__all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
+
+
+def tension_distribution(W, w, t_min, t_max, t_ref=None):
+    """Tensions t [N] with W t = w closest to t_ref in the 2-norm, t_min <= t <= t_max.
+
+    Parameters
+    ----------
+    W : ndarray, shape (k, n)
+        Structure matrix (columns: unit wrenches of the cables), k <= n.
+    w : ndarray, shape (k,)
+        Wrench the cables must supply.
+    t_min, t_max : float
+        Tension limits [N].
+    t_ref : float or ndarray, shape (n,), optional
+        Reference tensions (default t_min: the least tensions in the 2-norm sense).
+
+    Returns
+    -------
+    ndarray, shape (n,)
+
+    Raises
+    ------
+    SlackCableError
+        No admissible distribution exists (the message names the violated limit).
+    """
+    k, n = W.shape
+    t_ref = np.full(n, t_min if t_ref is None else 0.0) + (0.0 if t_ref is None else t_ref)
+    rank = np.linalg.matrix_rank(W)
+    if rank < k:
+        raise SlackCableError(
+            f"pose: the cable directions span only {rank} of the {k} free DOFs "
+            f"(singular configuration), no tension distribution balances the platform")
+    # minimum-distance solution of the equality, then bounds by a small QP in the null space
+    t = t_ref + np.linalg.lstsq(W, w - W @ t_ref, rcond=None)[0]
+    tol = 1e-9 * max(1.0, np.abs(t).max())
+    if np.all(t >= t_min - tol) and np.all(t <= t_max + tol):
+        return t
+    if n == k:
+        raise SlackCableError(
+            f"pose: the unique tension distribution {np.round(t, 6).tolist()} N violates the "
+            f"limits [{t_min}, {t_max}] N")
+    from scipy.linalg import null_space
+    from scipy.optimize import linprog, minimize
+    N = null_space(W)
+    ub = np.where(np.isfinite(t_max), t_max, 1e300)
+    # feasibility: find lambda with t_min <= t + N lambda <= t_max
+    A_ub = np.vstack([-N, N])
+    b_ub = np.concatenate([t - t_min, ub - t])
+    lp = linprog(np.zeros(N.shape[1]), A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * N.shape[1],
+                 method="highs")
+    if lp.status != 0:
+        raise SlackCableError(
+            f"pose: no tension distribution within [{t_min}, {t_max}] N balances the platform "
+            f"(the pose is outside the wrench-feasible workspace)")
+    cons = {"type": "ineq", "fun": lambda lam: b_ub - A_ub @ lam, "jac": lambda lam: -A_ub}
+    res = minimize(lambda lam: np.sum((t + N @ lam - t_ref) ** 2), lp.x,
+                   jac=lambda lam: 2 * N.T @ (t + N @ lam - t_ref), constraints=[cons],
+                   method="SLSQP", options={"ftol": 1e-14, "maxiter": 500})
+    lam = res.x if res.success and np.all(b_ub - A_ub @ res.x >= -tol) else lp.x
+    return t + N @ lam
+
+
+def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50):
+    """Tensions and unstretched lengths that hold the platform at ``pose`` (sag included).
+
+    Returns
+    -------
+    Equilibrium
+    """
+    from .robot import Equilibrium
+    fi = robot.platform.free_index
+    B, r = robot.attachment_points(pose)
+    u = robot.anchors - B
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    wg = robot.gravity_wrench(pose)
+    t_min, t_max = robot.tension_limits
+    states = None
+    for it in range(max_iter):
+        W = np.vstack([u.T, np.cross(r, u).T])[fi]
+        t = tension_distribution(W, -wg[fi], t_min, t_max, tension_reference)
+        try:
+            states = [unstretched_length_for_tension(robot.anchors[i], B[i], t[i],
+                                                     robot.cables[i], robot.g)
+                      for i in range(robot.n_cables)]
+        except SlackCableError as exc:
+            raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
+        u_new = np.array([s.force_on_end for s in states])
+        u_new /= np.linalg.norm(u_new, axis=1)[:, None]
+        change = np.abs(u_new - u).max()
+        u = u_new
+        if change < 1e-14:
+            break
+    else:
+        raise ConvergenceError(
+            f"inverse statics: cable directions still change by {change:.2e} after "
+            f"{max_iter} iterations", residual=change)
+    # final balance with these exact catenaries
+    resid = robot.wrench(pose, states)[fi]
+    scale = robot.platform.mass * max(robot.g, 1.0)
+    res = np.linalg.norm(resid) / scale
+    L0 = np.array([s.unstretched_length for s in states])
+    return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0, states=tuple(states),
+                       residual=float(res))
+
+
+def _kinematic_guess(robot, L0):
+    """Pose guess: free DOFs fitted so that straight chords match L0 (least squares)."""
+    from scipy.optimize import least_squares
+
+    from .robot import Pose
+    fi = robot.platform.free_index
+    x0 = np.zeros(6)
+    x0[:3] = robot.anchors.mean(axis=0) - [0.0, 0.0, 0.5 * np.ptp(robot.anchors[:, 2]) + 1.0]
+
+    def resid(xf):
+        x = x0.copy()
+        x[fi] = xf
+        B, _ = robot.attachment_points(Pose(x[:3], x[3:]))
+        return np.linalg.norm(robot.anchors - B, axis=1) - L0 * 0.999
+
+    sol = least_squares(resid, x0[fi])
+    x = x0.copy()
+    x[fi] = sol.x
+    return Pose(x[:3], x[3:])
+
+
+def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
+    """Pose of the free DOFs at which the platform is in equilibrium for lengths ``L0``.
+
+    Newton's method on the free-DOF wrench W(x) = 0 with the analytic stiffness K = -dW/dx,
+    with backtracking on |W|. Converged when |W_free| <= tol * m g.
+
+    Returns
+    -------
+    Equilibrium
+
+    Raises
+    ------
+    ConvergenceError
+        With the final residual, if Newton fails; :class:`SlackCableError` if a cable cannot
+        be in tension.
+    """
+    from .robot import Equilibrium
+    fi = robot.platform.free_index
+    pose = initial_pose if initial_pose is not None else _kinematic_guess(robot, L0)
+    scale = robot.platform.mass * max(robot.g, 1.0)
+
+    def evaluate(p):
+        st = robot.cable_states(p, L0)
+        return st, robot.wrench(p, st)[fi]
+
+    states, w = evaluate(pose)
+    res = np.linalg.norm(w) / scale
+    for it in range(max_iter):
+        if res <= tol:
+            return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0,
+                               states=tuple(states), residual=float(res))
+        K = robot.static_stiffness(pose, states)[np.ix_(fi, fi)]
+        try:
+            dxf = np.linalg.solve(K, w)
+        except np.linalg.LinAlgError:
+            break
+        step = 1.0
+        while step > 1e-4:
+            dx = np.zeros(6)
+            dx[fi] = step * dxf
+            trial = pose.moved(dx)
+            try:
+                st_t, w_t = evaluate(trial)
+                res_t = np.linalg.norm(w_t) / scale
+            except DynstiffError:
+                res_t = np.inf
+            if res_t < res:
+                break
+            step *= 0.5
+        else:
+            break
+        pose, states, w, res = trial, st_t, w_t, res_t
+    raise ConvergenceError(
+        f"forward statics did not converge: wrench residual {res:.3e} (relative to m g) > "
+        f"{tol:.0e} at pose {pose.as_vector().tolist()}", residual=res)
