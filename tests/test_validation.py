@@ -37,3 +37,15 @@ def test_chordwise_inertia_full():
     s = mod.summary(mod.run())
     assert (s["max |K_uu err| with"] < 2.5e-3).all()
     assert (s["max |K_uu err| with"] * 5 < s["max |K_uu err| without"]).all()
+
+
+def test_float64_matches_mpmath_quick():
+    """Stable float64 forms against the 50-digit naive forms (validation/float64_vs_mpmath.py):
+    <= 1e-9 away from poles (measured ~1e-13); near a pole the error is the pole's own
+    conditioning, eps / (relative distance)."""
+    df = load("float64_vs_mpmath").run(quick=True)
+    assert len(df) > 1000
+    assert df.loc[df["away"], "err_entry"].max() <= 1e-9
+    near = df[df["near_pole"]]
+    assert len(near) > 50
+    assert (near["err_entry"] * near["pole_dist"] / np.finfo(float).eps).max() <= 10
