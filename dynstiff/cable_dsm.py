@@ -59,6 +59,8 @@ __all__ = [
     "CableModes",
     "cable_natural_frequencies",
     "DEFAULT_CHORDWISE_INERTIA",
+    "dyad_basis",
+    "block_coefficients",
 ]
 
 #: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
@@ -353,28 +355,59 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
         raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
-    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(p, omega, chordwise_inertia)
-    # each 3x3 block is a combination of the dyads UU, UV, VU, VV, WW of R = [e_u e_v e_w],
-    # so R K R^T is one (n, 5) @ (5, 9) product (no batched 3x3 matmuls)
-    R = p.rotation
-    dyads = np.stack([np.outer(R[:, i], R[:, j]).ravel()
-                      for i, j in [(0, 0), (0, 1), (1, 0), (1, 1), (2, 2)]])
-    zero = np.zeros_like(k_uu)
-    k_axial = k_uu + 2.0 * m_ax
-    # block B-B (also the clamped-A end matrix): uu, uv, vu, vv, ww
-    C_BB = np.stack([k_axial, -k_uv, -k_uv, k_vv, kw_s + zero], axis=1)
+    dyads = dyad_basis(p.rotation)
     n = omega.size
+    coef = block_coefficients(p, omega, chordwise_inertia, blocks=ends)
     if ends == "end":
-        return _real_if_undamped(p, (C_BB @ dyads).reshape(n, 3, 3))
-    C_AA = np.stack([k_axial, k_uv, k_uv, k_vv, kw_s + zero], axis=1)
-    C_AB = np.stack([-k_uu + m_ax, k_uv, -k_uv, k_vv_AB, kw_c + zero], axis=1)
-    K_AB = (C_AB @ dyads).reshape(n, 3, 3)
+        return _real_if_undamped(p, (coef["BB"] @ dyads).reshape(n, 3, 3))
+    K_AB = (coef["AB"] @ dyads).reshape(n, 3, 3)
     K = np.empty((n, 6, 6), dtype=K_AB.dtype)
-    K[:, :3, :3] = (C_AA @ dyads).reshape(n, 3, 3)
-    K[:, 3:, 3:] = (C_BB @ dyads).reshape(n, 3, 3)
+    K[:, :3, :3] = (coef["AA"] @ dyads).reshape(n, 3, 3)
+    K[:, 3:, 3:] = (coef["BB"] @ dyads).reshape(n, 3, 3)
     K[:, :3, 3:] = K_AB
     K[:, 3:, :3] = K_AB.transpose(0, 2, 1)
     return _real_if_undamped(p, K)
+
+
+#: Local dyads (i, j) of the basis used by :func:`dyad_basis`: uu, uv, vu, vv, ww.
+DYAD_PAIRS = ((0, 0), (0, 1), (1, 0), (1, 1), (2, 2))
+
+
+def dyad_basis(rotation):
+    """Global dyads e_i e_j^T of the local pairs ``DYAD_PAIRS``, shape (5, 9).
+
+    Every 3x3 block of the cable DSM is a combination of these five dyads, so R K R^T is
+    one (n_omega, 5) @ (5, 9) product.
+    """
+    R = rotation
+    return np.stack([np.outer(R[:, i], R[:, j]).ravel() for i, j in DYAD_PAIRS])
+
+
+def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
+                       blocks="end"):
+    """Coefficients of the DSM blocks on the dyad basis, each shape (n_omega, 5).
+
+    Parameters
+    ----------
+    params : ChordParameters
+    omega : ndarray, shape (n_omega,)
+        [rad/s], validated.
+    blocks : {"end", "both"}
+        "end": only "BB" (the clamped-A end matrix); "both": "AA", "AB", "BB".
+
+    Returns
+    -------
+    dict of str -> ndarray, shape (n_omega, 5), real if undamped
+    """
+    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(params, omega,
+                                                                  chordwise_inertia)
+    zero = np.zeros_like(k_uu)
+    k_axial = k_uu + 2.0 * m_ax
+    out = {"BB": np.stack([k_axial, -k_uv, -k_uv, k_vv, kw_s + zero], axis=1)}
+    if blocks == "both":
+        out["AA"] = np.stack([k_axial, k_uv, k_uv, k_vv, kw_s + zero], axis=1)
+        out["AB"] = np.stack([-k_uu + m_ax, k_uv, -k_uv, k_vv_AB, kw_c + zero], axis=1)
+    return {k: _real_if_undamped(params, v) for k, v in out.items()}
 
 
 # --------------------------------------------------------------------------- fixed-end modes
