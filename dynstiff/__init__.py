@@ -5,6 +5,7 @@ Importing dynstiff loads numpy and scipy only; matplotlib and pandas are importe
 plot or a table is asked for.
 """
 
+from .assembly import FrequencyModel
 from .cable_dsm import (
     CableModes,
     cable_dynamic_stiffness,
@@ -21,13 +22,29 @@ from .errors import (
     PoleWarning,
     SlackCableError,
 )
+from .eigen import ModalResult
+from .frf import FRFResult
 from .params import Cable
+from .platform import Platform
+from .robot import Equilibrium, Pose, Robot
+from .scenes import Scene, SceneError, list_scenes, load_scene
 
 __version__ = "0.1.0"
 
 __all__ = [
     "Cable",
     "CableModes",
+    "Equilibrium",
+    "FRFResult",
+    "FrequencyModel",
+    "ModalResult",
+    "Platform",
+    "Pose",
+    "Robot",
+    "Scene",
+    "SceneError",
+    "list_scenes",
+    "load_scene",
     "CatenaryState",
     "ConvergenceError",
     "DynstiffError",

@@ -137,6 +137,12 @@ class Robot:
         object.__setattr__(self, "g", g)
         object.__setattr__(self, "tension_limits", (t_min, t_max))
 
+    @classmethod
+    def from_toml(cls, path):
+        """Robot of a scene TOML file (see :mod:`dynstiff.scenes` for the format)."""
+        from .scenes import read_scene
+        return read_scene(path).robot
+
     @property
     def n_cables(self):
         """Number of cables."""

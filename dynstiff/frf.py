@@ -1,0 +1,139 @@
+"""Frequency response functions of the robot platform, batched over frequency.
+
+Receptance H(omega) = K(omega)^-1 on the free DOFs (theory.md §4), between forces/moments on
+the platform (about P, base axes) and the motion of a platform point c (platform frame):
+d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
+"""
+
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import omega_array, point as _point
+from .errors import InvalidParameterError, PoleWarning
+from .platform import DOF_NAMES, skew
+
+__all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES"]
+
+#: Load channels: forces [N] and moments [N m] on the platform about P.
+INPUT_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")
+#: Response channels: translations [m] of the chosen point and rotations [rad].
+OUTPUT_NAMES = ("x", "y", "z", "rx", "ry", "rz")
+_KINDS = {"receptance": 0, "mobility": 1, "accelerance": 2}
+
+
+def _channels(names, allowed, arg):
+    if names is None:
+        return list(range(6))
+    if isinstance(names, str):
+        names = [names]
+    idx = []
+    for n in names:
+        if n not in allowed:
+            raise InvalidParameterError(f"{arg} must be among {allowed}, got {n!r}")
+        idx.append(allowed.index(n))
+    return idx
+
+
+@dataclass(frozen=True)
+class FRFResult:
+    """FRF matrix H[k, o, i] from input channel i to output channel o at freq_hz[k].
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (n,)
+    H : ndarray, shape (n, n_out, n_in), complex
+        Units: receptance [m/N, m/(N m), rad/N, rad/(N m)]; mobility per second; accelerance
+        per second squared. inf at an exact pole.
+    inputs, outputs : tuple of str
+    kind : str
+    """
+
+    freq_hz: np.ndarray
+    H: np.ndarray
+    inputs: tuple
+    outputs: tuple
+    kind: str
+
+    def to_frame(self):
+        """Tidy pandas DataFrame: freq [Hz], input, output, |H|, phase [deg], real, imag."""
+        import pandas as pd
+        n, no, ni = self.H.shape
+        f = np.repeat(self.freq_hz, no * ni)
+        out = np.tile(np.repeat(self.outputs, ni), n)
+        inp = np.tile(self.inputs, n * no)
+        h = self.H.reshape(-1)
+        with np.errstate(invalid="ignore"):
+            return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
+                                 "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
+                                 "real": h.real, "imag": h.imag, "kind": self.kind})
+
+
+def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
+    """FRFs of the robot platform.
+
+    Parameters
+    ----------
+    model : FrequencyModel
+    omega : array_like, shape (n,)
+        Angular frequencies [rad/s].
+    inputs : str or list of str, optional
+        Among ``INPUT_NAMES`` (default all six). Loads on held DOFs give no response.
+    outputs : str or list of str, optional
+        Among ``OUTPUT_NAMES`` (default all six).
+    point : array_like, shape (3,), optional
+        Platform point [m, platform frame] whose translation is output (default P).
+    kind : {"receptance", "mobility", "accelerance"}
+
+    Returns
+    -------
+    FRFResult
+
+    Warns
+    -----
+    PoleWarning
+        At a frequency where K(omega) is exactly singular: those entries are inf, never a
+        silently wrong finite number.
+    """
+    omega = omega_array(omega)
+    if kind not in _KINDS:
+        raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
+    ii = _channels(inputs, INPUT_NAMES, "inputs")
+    oo = _channels(outputs, OUTPUT_NAMES, "outputs")
+    c = np.zeros(3) if point is None else _point("point", point)
+    fi = model._fi
+    # input map: full 6 loads -> free DOFs; output map: free DOFs -> 6 outputs at the point
+    B = np.eye(6)[np.ix_(fi, ii)]                               # (nf, n_in)
+    rc = model.equilibrium.pose.matrix @ c
+    C6 = np.eye(6)
+    C6[:3, 3:] = -skew(rc)                                      # d_c = dp - [rc]x dtheta
+    C = C6[np.ix_(oo, fi)]                                      # (n_out, nf)
+    K = model.dynamic_stiffness(omega).astype(complex)
+    # a pole of a cable's K_B is a zero of H (anti-resonance), not a pole: evaluate exactly
+    # there by continuity, an ulp-scale step away
+    bad = ~np.all(np.isfinite(K), axis=(1, 2))
+    if np.any(bad):
+        K[bad] = model.dynamic_stiffness(omega[bad] * (1 + 4 * np.finfo(float).eps))
+    n = omega.size
+    H = np.empty((n, len(oo), len(ii)), dtype=complex)
+    ok = np.all(np.isfinite(K), axis=(1, 2))
+    cond = np.full(n, np.inf)
+    if np.any(ok):
+        sv = np.linalg.svd(K[ok], compute_uv=False)
+        cond[ok] = sv[:, 0] / np.maximum(sv[:, -1], np.finfo(float).tiny)
+    regular = cond < 1.0 / np.finfo(float).eps
+    if np.any(regular):
+        X = np.linalg.solve(K[regular], np.broadcast_to(B, (regular.sum(),) + B.shape))
+        H[regular] = C @ X
+    if np.any(~regular):
+        H[~regular] = np.inf
+        warnings.warn(
+            f"K(omega) is singular to machine precision at {np.sum(~regular)} frequencies "
+            f"(exact poles, e.g. {omega[~regular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
+            PoleWarning, stacklevel=3)
+    factor = (1j * omega) ** _KINDS[kind]
+    H = H * factor[:, None, None] if kind != "receptance" else H
+    return FRFResult(freq_hz=omega / (2 * np.pi), H=H,
+                     inputs=tuple(INPUT_NAMES[i] for i in ii),
+                     outputs=tuple(OUTPUT_NAMES[o] for o in oo), kind=kind)

@@ -1,0 +1,23 @@
+"""Scene files (TOML) and the built-in scenes.
+
+Format (all SI units; see ``cogiro.toml`` for a complete example)::
+
+    [scene]           name, description, g [m/s^2]
+    [platform]        mass [kg], center_of_mass [m], inertia [kg m^2] (tensor about G,
+                      off-diagonal = -product of inertia), free_dofs (subset of
+                      x y z rx ry rz)
+    [cable]           default cable: mass_per_length [kg/m], EA [N], viscous_damping
+                      [N s/m^2], loss_factor [-]
+    [tension_limits]  min, max [N]
+    [[cables]]        one table per cable: anchor [m, base], attachment [m, platform],
+                      optionally any [cable] key to override it for this cable
+    [pose]            optional: position [m], rotation [rad] (rotation vector), or
+                      unstretched_lengths [m] (one per cable)
+    [analysis]        optional: band_hz [Hz, Hz], n_modes
+
+Unknown keys, missing keys and bad values raise :class:`SceneError` naming the key and its line.
+"""
+
+from .loader import Scene, SceneError, list_scenes, load_scene, read_scene
+
+__all__ = ["Scene", "SceneError", "list_scenes", "load_scene", "read_scene"]

@@ -1,0 +1,210 @@
+"""TOML scene reader with schema checks that name the key and its line."""
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import DynstiffError, InvalidParameterError
+from ..params import Cable
+from ..platform import Platform
+from ..robot import Pose, Robot
+
+__all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
+
+_HERE = Path(__file__).resolve().parent
+
+_SCHEMA = {
+    "scene": {"name", "description", "g"},
+    "platform": {"mass", "center_of_mass", "inertia", "free_dofs"},
+    "cable": {"mass_per_length", "EA", "viscous_damping", "loss_factor"},
+    "tension_limits": {"min", "max"},
+    "cables": {"anchor", "attachment", "mass_per_length", "EA", "viscous_damping",
+               "loss_factor"},
+    "pose": {"position", "rotation", "unstretched_lengths"},
+    "analysis": {"band_hz", "n_modes"},
+}
+_REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
+
+
+class SceneError(DynstiffError, ValueError):
+    """A scene file is malformed; the message names the file, the key and its line."""
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A robot with the pose (or cable lengths) and analysis settings of a scene file.
+
+    Attributes
+    ----------
+    robot : Robot
+    pose : Pose or None
+    unstretched_lengths : ndarray or None, shape (n,) [m]
+    band_hz : (float, float) or None
+    n_modes : int or None
+    name, description : str
+    path : Path
+    """
+
+    robot: Robot
+    pose: object = None
+    unstretched_lengths: object = None
+    band_hz: object = None
+    n_modes: object = None
+    name: str = ""
+    description: str = ""
+    path: object = None
+
+    def equilibrium(self, **kw):
+        """Equilibrium at the scene's pose (inverse statics) or lengths (forward statics)."""
+        if self.pose is not None:
+            return self.robot.equilibrium(pose=self.pose, **kw)
+        if self.unstretched_lengths is not None:
+            return self.robot.equilibrium(unstretched_lengths=self.unstretched_lengths, **kw)
+        raise SceneError(f"scene {self.name!r} names neither a [pose] nor unstretched_lengths")
+
+
+def _line_of(text, key, section=None, occurrence=0):
+    """1-based line of ``key =`` (inside ``[section]`` or its ``[[section]]`` number
+    ``occurrence`` if given), or of the section header; None if not found."""
+    lines = text.splitlines()
+    start, count = 0, -1
+    if section is not None:
+        for i, ln in enumerate(lines):
+            if re.match(rf"^\s*\[\[?\s*{re.escape(section)}\s*\]\]?", ln):
+                count += 1
+                if count == occurrence:
+                    start = i
+                    break
+        else:
+            return None
+        if key is None:
+            return start + 1
+    for i in range(start, len(lines)):
+        if i > start and section is not None and re.match(r"^\s*\[", lines[i]):
+            break
+        if re.match(rf"^\s*{re.escape(str(key))}\s*=", lines[i]):
+            return i + 1
+    return None
+
+
+def read_scene(path):
+    """Read a scene TOML file.
+
+    Parameters
+    ----------
+    path : str or Path
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    SceneError
+        Syntax errors (with line), unknown or missing keys and invalid values (with key and
+        line). :class:`FileNotFoundError` if the file does not exist.
+    """
+    import tomllib
+    path = Path(path)
+    text = path.read_text()
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(f"{path}: TOML syntax error: {exc}") from None
+
+    def fail(msg, key=None, section=None, occurrence=0):
+        line = _line_of(text, key, section, occurrence)
+        where = f"line {line}: " if line else ""
+        raise SceneError(f"{path}: {where}{msg}")
+
+    for sec in data:
+        if sec not in _SCHEMA:
+            fail(f"unknown section [{sec}] (expected one of {sorted(_SCHEMA)})", None, sec)
+    for sec, keys in _SCHEMA.items():
+        tables = data.get(sec, [] if sec == "cables" else {})
+        tables = tables if isinstance(tables, list) else [tables]
+        for k, tab in enumerate(tables):
+            for key in tab:
+                if key not in keys:
+                    fail(f"unknown key {key!r} in [{sec}] (expected one of {sorted(keys)})",
+                         key, sec, k)
+            for key in _REQUIRED.get(sec, ()):
+                if key not in tab:
+                    fail(f"missing key {key!r} in [{sec}]", None, sec, k)
+    if not data.get("cables"):
+        fail("no [[cables]] table: a scene needs at least one cable")
+    if "platform" not in data:
+        fail("missing section [platform]")
+
+    def build(what, fn, key, section, occurrence=0):
+        try:
+            return fn()
+        except (InvalidParameterError, TypeError, ValueError) as exc:
+            fail(f"[{section}] {what}: {exc}", key, section, occurrence)
+
+    default = data.get("cable", {})
+    cables, anchors, attach = [], [], []
+    for k, tab in enumerate(data["cables"]):
+        spec = {**default, **{c: v for c, v in tab.items() if c not in ("anchor", "attachment")}}
+        if "mass_per_length" not in spec or "EA" not in spec:
+            fail(f"cable {k}: mass_per_length and EA must be given in [cable] or [[cables]]",
+                 None, "cables", k)
+        cables.append(build(f"cable {k}", lambda: Cable(**spec),
+                            next(iter(tab), None), "cables", k))
+        anchors.append(tab["anchor"])
+        attach.append(tab["attachment"])
+    pl = data["platform"]
+    platform = build("platform", lambda: Platform(
+        mass=pl["mass"], center_of_mass=pl.get("center_of_mass", [0, 0, 0]),
+        inertia=pl.get("inertia", 0.0),
+        free_dofs=tuple(pl.get("free_dofs", ("x", "y", "z", "rx", "ry", "rz")))),
+        "mass", "platform")
+    sc = data.get("scene", {})
+    lim = data.get("tension_limits", {})
+    robot = build("robot", lambda: Robot(
+        anchors=np.array(anchors, dtype=float), attachments=np.array(attach, dtype=float),
+        cables=cables, platform=platform, g=sc.get("g", 9.81),
+        tension_limits=(lim.get("min", 1.0), lim.get("max", np.inf)),
+        name=sc.get("name", path.stem)), "anchor", "cables")
+    pose = lengths = None
+    ps = data.get("pose", {})
+    if "unstretched_lengths" in ps:
+        lengths = build("unstretched_lengths", lambda: np.asarray(
+            ps["unstretched_lengths"], dtype=float), "unstretched_lengths", "pose")
+        if lengths.shape != (robot.n_cables,):
+            fail(f"unstretched_lengths needs {robot.n_cables} values", "unstretched_lengths",
+                 "pose")
+    if "position" in ps:
+        pose = build("pose", lambda: Pose(ps["position"], ps.get("rotation", [0, 0, 0])),
+                     "position", "pose")
+    an = data.get("analysis", {})
+    band = an.get("band_hz")
+    if band is not None and (len(band) != 2 or not 0 <= band[0] < band[1]):
+        fail(f"band_hz must be [low, high] with 0 <= low < high, got {band!r}", "band_hz",
+             "analysis")
+    return Scene(robot=robot, pose=pose, unstretched_lengths=lengths,
+                 band_hz=None if band is None else tuple(band), n_modes=an.get("n_modes"),
+                 name=sc.get("name", path.stem), description=sc.get("description", ""),
+                 path=path)
+
+
+def list_scenes():
+    """Names of the built-in scenes."""
+    return sorted(p.stem for p in _HERE.glob("*.toml"))
+
+
+def load_scene(name):
+    """Built-in scene by name (see :func:`list_scenes`) or a path to a TOML file.
+
+    Returns
+    -------
+    Scene
+    """
+    p = Path(name)
+    if p.suffix == ".toml" or p.exists():
+        return read_scene(p)
+    if name not in list_scenes():
+        raise SceneError(f"unknown scene {name!r}; built-in scenes: {list_scenes()}")
+    return read_scene(_HERE / f"{name}.toml")
