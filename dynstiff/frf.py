@@ -121,7 +121,8 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     cond = np.full(n, np.inf)
     if np.any(ok):
         sv = np.linalg.svd(K[ok], compute_uv=False)
-        cond[ok] = sv[:, 0] / np.maximum(sv[:, -1], np.finfo(float).tiny)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cond[ok] = np.where(sv[:, -1] > 0, sv[:, 0] / sv[:, -1], np.inf)
     regular = cond < 1.0 / np.finfo(float).eps
     if np.any(regular):
         X = np.linalg.solve(K[regular], np.broadcast_to(B, (regular.sum(),) + B.shape))

@@ -1,0 +1,267 @@
+"""Robot-level analysis (theory.md §4-§6): statics, K(omega), FRFs, complete eigenfrequencies."""
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.linalg
+import scipy.sparse
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError, PoleWarning, SlackCableError
+from dynstiff.lumped import chain_equilibrium, chain_matrices
+
+
+@pytest.fixture(scope="module")
+def cogiro():
+    return ds.load_scene("cogiro")
+
+
+@pytest.fixture(scope="module")
+def cogiro_eq(cogiro):
+    return cogiro.equilibrium()
+
+
+def skew(a):
+    return np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+
+
+def straight_cable_frequencies(eq):
+    """Independent massless straight-cable model: K = sum J^T (k u u^T + t/l (I - u u^T)) J
+    + K_geo, with k = EA/L0, mass matrix of the rigid body written out here (Hz)."""
+    rob, pose = eq.robot, eq.pose
+    R = pose.matrix
+    K = np.zeros((6, 6))
+    Kgeo = np.zeros((3, 3))
+    for i, s in enumerate(eq.states):
+        r = R @ rob.attachments[i]
+        B = pose.position + r
+        d = rob.anchors[i] - B
+        l = np.linalg.norm(d)
+        u = d / l
+        t = s.tension_at_end
+        Kc = rob.cables[i].EA / eq.unstretched_lengths[i] * np.outer(u, u) + t / l * (
+            np.eye(3) - np.outer(u, u))
+        J = np.hstack([np.eye(3), -skew(r)])
+        K += J.T @ Kc @ J
+        f = t * u
+        Kgeo += (r @ f) * np.eye(3) - np.outer(r, f)      # -[f]x[r]x = (f.r) I - r f^T
+    m = rob.platform.mass
+    rG = R @ rob.platform.center_of_mass
+    fg = m * np.array([0, 0, -rob.g])
+    Kgeo += (rG @ fg) * np.eye(3) - np.outer(rG, fg)
+    K[3:, 3:] += Kgeo
+    M = np.zeros((6, 6))
+    M[:3, :3] = m * np.eye(3)
+    M[:3, 3:] = -m * skew(rG)
+    M[3:, :3] = m * skew(rG)
+    M[3:, 3:] = R @ rob.platform.inertia @ R.T + m * (np.dot(rG, rG) * np.eye(3) - np.outer(rG, rG))
+    fi = rob.platform.free_index
+    lam = scipy.linalg.eigh(0.5 * (K + K.T)[np.ix_(fi, fi)], M[np.ix_(fi, fi)],
+                            eigvals_only=True)
+    return np.sqrt(lam) / (2 * np.pi)
+
+
+def test_massless_limit_matches_straight_cable_model(cogiro):
+    light = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments,
+                     ds.Cable(1e-7, cogiro.robot.cables[0].EA), cogiro.robot.platform,
+                     tension_limits=cogiro.robot.tension_limits)
+    eq = light.equilibrium(pose=cogiro.pose)
+    f = ds.FrequencyModel(eq).eigenfrequencies(6)
+    np.testing.assert_allclose(f, straight_cable_frequencies(eq), rtol=1e-6)
+
+
+def test_geometric_stiffness_symmetric_at_equilibrium(cogiro_eq):
+    Kg = ds.FrequencyModel(cogiro_eq).K_geo
+    assert np.abs(Kg).max() > 10          # not trivially zero
+    np.testing.assert_allclose(Kg, Kg.T, atol=1e-10 * np.abs(Kg).max())
+
+
+def test_inverse_then_forward_statics_round_trip(cogiro, cogiro_eq):
+    assert cogiro_eq.residual < 1e-10
+    fwd = cogiro.robot.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+    np.testing.assert_allclose(fwd.pose.position, cogiro.pose.position, atol=1e-9)
+    np.testing.assert_allclose(fwd.pose.rotation, cogiro.pose.rotation, atol=1e-9)
+    t_min, t_max = cogiro.robot.tension_limits
+    assert np.all(cogiro_eq.tensions >= t_min - 1e-9) and np.all(cogiro_eq.tensions <= t_max)
+
+
+def test_receptance_is_symmetric(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    H = m.frf(2 * np.pi * np.linspace(0.2, 10, 200)).H
+    np.testing.assert_allclose(H, H.transpose(0, 2, 1), rtol=1e-8, atol=1e-12 * np.abs(H).max())
+
+
+def rotated_robot(rob, pose, phi):
+    """The robot turned by phi about the vertical (gravity unchanged)."""
+    c, s = np.cos(phi), np.sin(phi)
+    Q = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+    from scipy.spatial.transform import Rotation
+    rot = (Rotation.from_matrix(Q) * Rotation.from_rotvec(pose.rotation)).as_rotvec()
+    return (ds.Robot(rob.anchors @ Q.T, rob.attachments, rob.cables, rob.platform,
+                     tension_limits=rob.tension_limits), ds.Pose(Q @ pose.position, rot))
+
+
+def test_rotating_robot_with_gravity_leaves_frequencies(cogiro, cogiro_eq):
+    f = ds.FrequencyModel(cogiro_eq).eigenfrequencies(12)
+    rob, pose = rotated_robot(cogiro.robot, cogiro.pose, 0.7)
+    eq = rob.equilibrium(pose=pose)
+    np.testing.assert_allclose(ds.FrequencyModel(eq).eigenfrequencies(12), f, rtol=1e-9)
+
+
+def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
+    Mx = np.diag([-1.0, 1, 1])
+    p = cogiro.robot.platform
+    pm = ds.Platform(p.mass, Mx @ p.center_of_mass, Mx @ p.inertia @ Mx)
+    rob = ds.Robot(cogiro.robot.anchors @ Mx, cogiro.robot.attachments @ Mx, cogiro.robot.cables,
+                   pm, tension_limits=cogiro.robot.tension_limits)
+    eq = rob.equilibrium(pose=Mx @ cogiro.pose.position)
+    a = ds.FrequencyModel(cogiro_eq).modes(8)
+    b = ds.FrequencyModel(eq).modes(8)
+    np.testing.assert_allclose(b.freq_hz, a.freq_hz, rtol=1e-9)
+    # translation mirrors with Mx, rotation (axial vector) with -Mx
+    T = np.diag([-1.0, 1, 1, 1, -1, -1])
+    for k in np.flatnonzero(np.array(a.kind) == "global"):
+        ma, mb = T @ a.platform_shapes[k], b.platform_shapes[k]
+        assert abs(ma @ mb) == pytest.approx(np.linalg.norm(ma) * np.linalg.norm(mb), rel=1e-6)
+
+
+# ------------------------------------------------------------------ W-W against lumped mass
+def point_mass_robot(E=17e9, mass=20.0):
+    anchors = np.array([[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]])
+    pl = ds.Platform(mass, free_dofs=("x", "y", "z"))
+    return ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 8.2051e-6 * E), pl)
+
+
+def lumped_frequencies(eq, n_seg, n_modes):
+    """Independent lumped-mass model of the whole point-mass robot (chains + point mass)."""
+    rob = eq.robot
+    blocks, masses = [], []
+    n_int = []
+    for i, s in enumerate(eq.states):
+        ch = chain_equilibrium(rob.anchors[i], s.end, s.unstretched_length, rob.cables[i], n_seg,
+                               rob.g)
+        K, m = chain_matrices(ch)
+        blocks.append((K.toarray(), m))
+    # DOFs: [platform xyz, interior nodes of cable 0, cable 1, ...]
+    sizes = [3 * (n_seg - 1)] * len(blocks)
+    N = 3 + sum(sizes)
+    Kt, Mt = np.zeros((N, N)), np.zeros(N)
+    Mt[:3] = rob.platform.mass
+    off = 3
+    for (K, m), sz in zip(blocks, sizes):
+        keep = np.arange(3, 3 * n_seg)              # interior nodes 1..N-1
+        end = np.arange(3 * n_seg, 3 * n_seg + 3)   # node N = platform
+        idx = np.concatenate([keep, end])
+        glob = np.concatenate([np.arange(off, off + sz), np.arange(3)])
+        Kt[np.ix_(glob, glob)] += K[np.ix_(idx, idx)]
+        Mt[glob] += m[idx]
+        off += sz
+    lam = scipy.linalg.eigh(Kt, np.diag(Mt), eigvals_only=True, subset_by_index=[0, n_modes - 1])
+    return np.sqrt(lam) / (2 * np.pi)
+
+
+def test_wittrick_williams_count_equals_lumped_model_count():
+    rob = point_mass_robot()
+    eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])
+    m = ds.FrequencyModel(eq)
+    f = m.eigenfrequencies(30)
+    f_lumped = lumped_frequencies(eq, 80, 30)
+    # same number of modes below every probe frequency away from any mode
+    probes = np.linspace(0.5, 0.97 * f[-1], 400)
+    gap = np.min(np.abs(probes[:, None] / np.concatenate([f, f_lumped])[None, :] - 1), axis=1)
+    probes = probes[gap > 0.004]
+    J = m.mode_count(2 * np.pi * probes)
+    J_lumped = np.searchsorted(f_lumped, probes)
+    np.testing.assert_array_equal(J, J_lumped)
+    np.testing.assert_allclose(f, f_lumped, rtol=3e-3)   # discretisation O((n pi/N)^2/24)
+
+
+def test_close_and_coincident_roots_are_found():
+    """A symmetric robot: three identical cables at 120 deg give double roots."""
+    ang = np.radians([90, 210, 330])
+    anchors = np.column_stack([5 * np.cos(ang), 5 * np.sin(ang), np.full(3, 5.0)])
+    rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(20.0, free_dofs=("x", "y", "z")))
+    eq = rob.equilibrium(pose=[0, 0, 1.0])
+    f = ds.FrequencyModel(eq).eigenfrequencies(26)
+    pairs = np.sum(np.abs(np.diff(f)) < 1e-6 * f[1:])
+    assert pairs >= 3                                      # coincident roots resolved
+    J = ds.FrequencyModel(eq).mode_count(2 * np.pi * f[:20] * (1 + 1e-7))
+    np.testing.assert_array_equal(J, [np.sum(f <= fk * (1 + 1e-9)) for fk in f[:20]])
+
+
+def test_frf_peaks_sit_at_eigenfrequencies(cogiro):
+    light = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments,
+                     ds.Cable(0.064, cogiro.robot.cables[0].EA, loss_factor=1e-4),
+                     cogiro.robot.platform, tension_limits=cogiro.robot.tension_limits)
+    eq = light.equilibrium(pose=cogiro.pose)
+    m = ds.FrequencyModel(eq)
+    modes = m.modes(3)
+    f1 = modes.freq_hz[0]
+    f = np.linspace(0.9 * f1, 1.1 * f1, 20001)
+    H = m.frf(2 * np.pi * f).H
+    amp = np.abs(H).max(axis=(1, 2))
+    assert f[np.argmax(amp)] == pytest.approx(f1, rel=2e-4)
+
+
+def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq, monkeypatch):
+    m = ds.FrequencyModel(cogiro_eq)
+    orig = m.dynamic_stiffness
+
+    def singular(omega):
+        K = orig(omega)
+        K[0] = 0.0            # an exactly singular K at the first frequency
+        return K
+
+    monkeypatch.setattr(m, "dynamic_stiffness", singular)
+    with pytest.warns(PoleWarning):
+        H = m.frf([1.0, 2.0]).H
+    assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
+
+
+# ------------------------------------------------------------------ bad inputs
+def test_bad_robot_inputs_raise_naming_field(cogiro):
+    r = cogiro.robot
+    with pytest.raises(InvalidParameterError, match="anchors"):
+        ds.Robot(r.anchors[:5], r.attachments[:5], r.cables[:5], r.platform)
+    A = r.anchors.copy()
+    A[3] = A[2]
+    with pytest.raises(InvalidParameterError, match="anchors 2 and 3"):
+        ds.Robot(A, r.attachments, r.cables, r.platform)
+    with pytest.raises(InvalidParameterError, match="inertia"):
+        ds.Platform(10.0, inertia=np.diag([1.0, 1.0, -1.0]))
+    with pytest.raises(InvalidParameterError, match="inertia"):
+        ds.Platform(10.0, inertia=np.diag([1.0, 1.0, 5.0]))      # triangle inequality
+    with pytest.raises(InvalidParameterError, match="free_dofs"):
+        ds.Platform(10.0, free_dofs=("x", "q"))
+
+
+def test_pose_outside_workspace_raises(cogiro):
+    with pytest.raises(SlackCableError, match="pose"):
+        cogiro.robot.equilibrium(pose=[9.0, 0.0, 1.0])
+
+
+@pytest.mark.parametrize("edit,key,line", [
+    (("mass = 91.058", "mas = 91.058"), "mas", 12),
+    (("EA = 139486.7", "EA = -1.0"), "EA", None),
+    (("[analysis]", "[analysys]"), "analysys", None),
+])
+def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
+    text = (ds.scenes.loader._HERE / "cogiro.toml").read_text().replace(*edit)
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(ds.SceneError, match=key) as exc:
+        ds.Robot.from_toml(p)
+    if line is not None:
+        assert f"line {line}" in str(exc.value)
+    else:
+        assert "line " in str(exc.value)
+
+
+def test_scene_loads_by_name_and_path(cogiro):
+    assert "cogiro" in ds.list_scenes()
+    r = ds.Robot.from_toml(ds.scenes.loader._HERE / "cogiro.toml")
+    np.testing.assert_array_equal(r.anchors, cogiro.robot.anchors)
+    with pytest.raises(ds.SceneError, match="unknown scene"):
+        ds.load_scene("nope")
