@@ -117,21 +117,20 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
         K[bad] = model.dynamic_stiffness(omega[bad] * (1 + 4 * np.finfo(float).eps))
     n = omega.size
     H = np.empty((n, len(oo), len(ii)), dtype=complex)
-    ok = np.all(np.isfinite(K), axis=(1, 2))
-    cond = np.full(n, np.inf)
-    if np.any(ok):
-        sv = np.linalg.svd(K[ok], compute_uv=False)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cond[ok] = np.where(sv[:, -1] > 0, sv[:, 0] / sv[:, -1], np.inf)
-    regular = cond < 1.0 / np.finfo(float).eps
-    if np.any(regular):
-        X = np.linalg.solve(K[regular], np.broadcast_to(B, (regular.sum(),) + B.shape))
-        H[regular] = C @ X
-    if np.any(~regular):
-        H[~regular] = np.inf
+    rhs = np.broadcast_to(B, (n,) + B.shape)
+    try:                                    # LU: raises only on an exactly singular K
+        H[:] = C @ np.linalg.solve(K, rhs)
+    except np.linalg.LinAlgError:
+        singular = np.zeros(n, dtype=bool)
+        for k in range(n):
+            try:
+                H[k] = C @ np.linalg.solve(K[k], B)
+            except np.linalg.LinAlgError:
+                singular[k] = True
+        H[singular] = np.inf
         warnings.warn(
-            f"K(omega) is singular to machine precision at {np.sum(~regular)} frequencies "
-            f"(exact poles, e.g. {omega[~regular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
+            f"K(omega) is exactly singular at {singular.sum()} frequencies (eigenfrequencies, "
+            f"e.g. {omega[singular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
             PoleWarning, stacklevel=3)
     factor = (1j * omega) ** _KINDS[kind]
     H = H * factor[:, None, None] if kind != "receptance" else H

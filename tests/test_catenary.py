@@ -36,7 +36,8 @@ def quadrature_solution(A, B, L0, cable, g=G):
         V = lambda s: Vb - w0 * (L0 - s)
         T = lambda s: np.hypot(H, V(s))
         xe = quad(lambda s: H / T(s) * (1 + T(s) / EA), 0, L0, epsabs=0, epsrel=1e-13, limit=200)[0]
-        ze = quad(lambda s: V(s) / T(s) * (1 + T(s) / EA), 0, L0, epsabs=0, epsrel=1e-13, limit=200)[0]
+        ze = quad(lambda s: V(s) / T(s) * (1 + T(s) / EA), 0, L0, epsabs=1e-14 * L0,
+                  epsrel=1e-13, limit=200)[0]    # z_B may be ~0: absolute floor
         return [xe / lh - 1.0, (ze - h) / L0]
 
     s0 = ds.solve_catenary(A, B, L0, cable, g)      # start nearby, converge independently
