@@ -49,3 +49,44 @@ def test_float64_matches_mpmath_quick():
     near = df[df["near_pole"]]
     assert len(near) > 50
     assert (near["err_entry"] * near["pole_dist"] / np.finfo(float).eps).max() <= 10
+
+
+@pytest.mark.parametrize("E", [17e9, 120e9])
+def test_cogiro_modes(E):
+    """CoGiRo, central pose, first 40 modes: none missed, statics round trip, and every
+    massless-cable mode below the band's top is continued by exactly one global mode."""
+    df = load("cogiro_modes").run(E)
+    assert len(df) == 40
+    assert (df["W-W count above"] >= df["mode"]).all()
+    assert df["statics round trip [m]"].iloc[0] < 1e-9
+    assert df["cable energy fraction [-]"].between(0, 1).all()
+    glob = df[df["kind"] == "global"]
+    massless = glob["massless freq [Hz]"].to_numpy()
+    assert len(np.unique(massless)) == len(massless)        # one-to-one continuation
+    import dynstiff as ds
+    scene = ds.load_scene("cogiro")
+    rob = ds.Robot(scene.robot.anchors, scene.robot.attachments,
+                   ds.Cable(0.064, 8.2051e-6 * E), scene.robot.platform,
+                   tension_limits=scene.robot.tension_limits)
+    m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose))
+    import scipy.linalg
+    f0 = np.sqrt(scipy.linalg.eigh(m.massless_stiffness(), m._M, eigvals_only=True)) / (2 * np.pi)
+    assert len(glob) == np.sum(f0 < df["freq [Hz]"].max())
+    assert glob["shift from massless [-]"].abs().max() < 0.1
+
+
+def test_frf_figure_marks_modes():
+    import matplotlib
+    matplotlib.use("Agg")
+    import dynstiff as ds
+    from dynstiff.plot import plot_frf
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    modes = m.modes(12)
+    res = m.frf(2 * np.pi * np.linspace(0.5, 4.0, 3000), inputs=["fz"], outputs=["z"])
+    fig = plot_frf(res, modes)
+    ax = fig.axes[0]
+    marked = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("mode-")]
+    assert len(marked) == np.sum((modes.freq_hz >= 0.5) & (modes.freq_hz <= 4.0))
+    assert sum(ln.get_gid() == "mode-global" for ln in marked) == sum(
+        k == "global" for f, k in zip(modes.freq_hz, modes.kind) if 0.5 <= f <= 4.0)
+    assert ax.get_xlabel() == "frequency [Hz]" and "receptance" in ax.get_ylabel()
