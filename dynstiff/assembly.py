@@ -97,6 +97,13 @@ class FrequencyModel:
         K = (self.cable_coefficients(omega) @ self._G).reshape(omega.size, nf, nf)
         return K + self._Kg - (omega**2)[:, None, None] * self._M
 
+    def _dynamic_stiffness_complex(self, omega):
+        """K(omega) for complex omega (no validation), shape (n, n_free, n_free)."""
+        omega = np.atleast_1d(np.asarray(omega, dtype=complex))
+        nf = self.n_free
+        K = (self.cable_coefficients(omega) @ self._G).reshape(omega.size, nf, nf)
+        return K + self._Kg - (omega**2)[:, None, None] * self._M
+
     def cable_mode_count(self, omega):
         """Sum over cables of the clamped-clamped mode counts J0 below omega, (n_omega,)."""
         omega = omega_array(omega)

@@ -250,18 +250,17 @@ def _local_entries(p, omega, chordwise_inertia):
         sinc2 = s_over_psi * c                       # sin(2 psi) / (2 psi)
         kw_s = TL * cos2 / sinc2
         kw_c = -TL / sinc2
-    if chordwise_inertia:
-        m_tilde = p.m - 1j * p.c / np.where(omega == 0, 1.0, omega) if p.c > 0 else p.m
-        m_axial = -(omega**2) * m_tilde * L / 6.0
-        if p.c > 0:
-            m_axial = np.where(omega == 0, 0.0, m_axial)
+    if chordwise_inertia:          # -omega^2 m~ L/6 with m~ = m - i c/omega
+        inertia = omega**2 * p.m - 1j * omega * p.c if p.c > 0 else omega**2 * p.m
+        m_axial = -inertia * L / 6.0
     else:
         m_axial = np.zeros_like(k_uu)
     return k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_axial
 
 
-def _real_if_undamped(p, K):
-    if p.c == 0 and np.isrealobj(p.EA):
+def _real_if_undamped(p, K, omega):
+    """Drop the zero imaginary part for an undamped cable at real frequencies."""
+    if p.c == 0 and np.isrealobj(p.EA) and np.isrealobj(omega):
         return np.real(K)
     return K
 
@@ -289,7 +288,7 @@ def local_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERT
     K[:, 0, 1] = K[:, 1, 0] = -k_uv
     K[:, 1, 1] = k_vv
     K[:, 2, 2] = kw_s
-    return _real_if_undamped(params, K)
+    return _real_if_undamped(params, K, omega)
 
 
 def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
@@ -318,7 +317,7 @@ def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_I
     K[:, vA, vB] = K[:, vB, vA] = k_vv_AB
     K[:, wA, wA] = K[:, wB, wB] = kw_s
     K[:, wA, wB] = K[:, wB, wA] = kw_c
-    return _real_if_undamped(params, K)
+    return _real_if_undamped(params, K, omega)
 
 
 def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
@@ -359,14 +358,14 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     n = omega.size
     coef = block_coefficients(p, omega, chordwise_inertia, blocks=ends)
     if ends == "end":
-        return _real_if_undamped(p, (coef["BB"] @ dyads).reshape(n, 3, 3))
+        return _real_if_undamped(p, (coef["BB"] @ dyads).reshape(n, 3, 3), omega)
     K_AB = (coef["AB"] @ dyads).reshape(n, 3, 3)
     K = np.empty((n, 6, 6), dtype=K_AB.dtype)
     K[:, :3, :3] = (coef["AA"] @ dyads).reshape(n, 3, 3)
     K[:, 3:, 3:] = (coef["BB"] @ dyads).reshape(n, 3, 3)
     K[:, :3, 3:] = K_AB
     K[:, 3:, :3] = K_AB.transpose(0, 2, 1)
-    return _real_if_undamped(p, K)
+    return _real_if_undamped(p, K, omega)
 
 
 #: Local dyads (i, j) of the basis used by :func:`dyad_basis`: uu, uv, vu, vv, ww.
@@ -391,7 +390,8 @@ def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTI
     ----------
     params : ChordParameters
     omega : ndarray, shape (n_omega,)
-        [rad/s], validated.
+        [rad/s], validated; may be complex (the kernel is analytic in omega), which is how
+        damped natural frequencies are found.
     blocks : {"end", "both"}
         "end": only "BB" (the clamped-A end matrix); "both": "AA", "AB", "BB".
 
@@ -407,7 +407,7 @@ def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTI
     if blocks == "both":
         out["AA"] = np.stack([k_axial, k_uv, k_uv, k_vv, kw_s + zero], axis=1)
         out["AB"] = np.stack([-k_uu + m_ax, k_uv, -k_uv, k_vv_AB, kw_c + zero], axis=1)
-    return {k: _real_if_undamped(params, v) for k, v in out.items()}
+    return {k: _real_if_undamped(params, v, omega) for k, v in out.items()}
 
 
 # --------------------------------------------------------------------------- fixed-end modes

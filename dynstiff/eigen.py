@@ -21,7 +21,8 @@ from .cable_dsm import _local_entries
 from .errors import ConvergenceError, InvalidParameterError
 from .platform import DOF_NAMES
 
-__all__ = ["eigenfrequencies", "modes", "ModalResult"]
+__all__ = ["eigenfrequencies", "modes", "ModalResult", "cable_fields", "damped_modes",
+           "DampedModes"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -145,25 +146,70 @@ class ModalResult:
         return df
 
 
-def _cable_kinetic(p, omega, d_local, chordwise_inertia, n_gauss=64):
-    """int m (|v|^2 + |w|^2) dx (+ m L/3 |u_B|^2) for end-B motion d_local (u, v, w) with A
-    clamped, from the closed-form fields (theory.md §5.3) [kg m^2 per unit amplitude^2]."""
+def _cable_field(p, omega, d_local, x):
+    """Closed-form displacement (u, v, w) [m] along cable chord at positions x [m], shape
+    (len(x), 3), for end-B motion d_local = (u_B, v_B, w_B) with A clamped (theory.md §5.3):
+    v = C1 cos(beta x) + C2 sin(beta x) + q h / (T beta)^2, w = w_B sin(beta x)/sin(beta L),
+    u = u_B x / L (quasi-static stretching)."""
     uB, vB, wB = d_local
     k_uu, k_uv, *_ = _local_entries(p, np.array([omega]), False)
     h = k_uu[0] * uB - k_uv[0] * vB                   # dynamic tension [N]
     beta = 2.0 * p.psi(np.array([omega]))[0] / p.L
     Om = beta * p.L
-    x, wts = np.polynomial.legendre.leggauss(n_gauss)
-    x = 0.5 * p.L * (x + 1.0)
-    wts = 0.5 * p.L * wts
-    vp = h * p.q / (p.T * beta) ** 2 if beta != 0 else 0.0
+    vp = h * p.q / (p.T * beta) ** 2
     C2 = (vB - vp + vp * np.cos(Om)) / np.sin(Om)
     v = -vp * np.cos(beta * x) + C2 * np.sin(beta * x) + vp
     w = wB * np.sin(beta * x) / np.sin(Om)
-    E = p.m * np.sum(wts * (np.abs(v) ** 2 + np.abs(w) ** 2))
+    return np.column_stack([uB * x / p.L, v, w])
+
+
+def _cable_kinetic(p, omega, d_local, chordwise_inertia, n_gauss=64):
+    """int m (|v|^2 + |w|^2) dx (+ m L/3 |u_B|^2) [kg m^2 per unit amplitude^2] of the
+    closed-form field (Gauss-Legendre quadrature)."""
+    x, wts = np.polynomial.legendre.leggauss(n_gauss)
+    x = 0.5 * p.L * (x + 1.0)
+    wts = 0.5 * p.L * wts
+    f = _cable_field(p, omega, d_local, x)
+    E = p.m * np.sum(wts * (np.abs(f[:, 1]) ** 2 + np.abs(f[:, 2]) ** 2))
     if chordwise_inertia:
-        E += p.m * p.L / 3.0 * abs(uB) ** 2
+        E += p.m * p.L / 3.0 * abs(d_local[0]) ** 2
     return float(E)
+
+
+def cable_fields(model, modes, k, n_points=41):
+    """Cable displacement fields of mode ``k`` (platform-moving modes), global frame.
+
+    Parameters
+    ----------
+    model : FrequencyModel
+    modes : ModalResult
+        From ``model.modes()``.
+    k : int
+        Mode index (0-based).
+    n_points : int
+        Points per cable, from anchor to attachment.
+
+    Returns
+    -------
+    positions : ndarray, shape (n_cables, n_points, 3)
+        Points on the chords [m].
+    displacements : ndarray, shape (n_cables, n_points, 3)
+        Mode displacement [m] for the platform shape ``modes.platform_shapes[k]``; zero for a
+        purely local mode (platform at rest), whose cable shape is the clamped-clamped one.
+    """
+    x6 = modes.platform_shapes[k]
+    w = _TWO_PI * modes.freq_hz[k]
+    eq = model.equilibrium
+    pos = np.zeros((len(model.params), n_points, 3))
+    disp = np.zeros_like(pos)
+    for i, (p, r, s) in enumerate(zip(model.params, model.lever_arms, eq.states)):
+        x = np.linspace(0.0, p.L, n_points)
+        pos[i] = s.anchor + np.outer(x / p.L, s.chord)
+        if not np.any(x6):
+            continue
+        dB = x6[:3] + np.cross(x6[3:], r)
+        disp[i] = np.real(_cable_field(p, w, p.rotation.T @ dB, x)) @ p.rotation.T
+    return pos, disp
 
 
 def modes(model, n_modes=None, fmax_hz=None):
@@ -226,3 +272,129 @@ def modes(model, n_modes=None, fmax_hz=None):
             kinds.append("local")
     return ModalResult(freq_hz=f, platform_shapes=shapes, cable_energy_fraction=frac,
                        cable_energy=E_cab, kind=tuple(kinds), massless_freq_hz=f_massless)
+
+
+# ------------------------------------------------------------------------- damped roots
+@dataclass(frozen=True)
+class DampedModes:
+    """Complex natural frequencies of the damped robot (convention e^{i omega t}).
+
+    Attributes
+    ----------
+    undamped_freq_hz : ndarray, shape (n,)
+        Seeds: undamped natural frequencies [Hz].
+    omega : ndarray, shape (n,), complex
+        Roots of det K(omega) = 0 [rad/s]; Im(omega) > 0 for a decaying mode. NaN where the
+        iteration did not converge (see ``residual``) or for purely local modes.
+    residual : ndarray, shape (n,)
+        |smallest eigenvalue of K(omega)| / ||K|| at the returned root [-].
+    """
+
+    undamped_freq_hz: np.ndarray
+    omega: np.ndarray
+    residual: np.ndarray
+
+    @property
+    def freq_hz(self):
+        """Damped natural frequency Re(omega) / 2 pi [Hz]."""
+        return self.omega.real / _TWO_PI
+
+    @property
+    def damping_ratio(self):
+        """zeta = Im(omega) / |omega| [-]."""
+        return self.omega.imag / np.abs(self.omega)
+
+    def to_frame(self):
+        """pandas DataFrame with units in column names."""
+        import pandas as pd
+        return pd.DataFrame({"undamped freq [Hz]": self.undamped_freq_hz,
+                             "damped freq [Hz]": self.freq_hz,
+                             "damping ratio [-]": self.damping_ratio,
+                             "residual [-]": self.residual})
+
+
+def _nearest_zero_eigenvalue(model, w):
+    with np.errstate(all="ignore"):
+        K = model._dynamic_stiffness_complex(w)[0]
+    if not np.all(np.isfinite(K)):
+        return np.inf, 1.0
+    mu = np.linalg.eigvals(K)
+    return mu[np.argmin(np.abs(mu))], np.linalg.norm(K, 2)
+
+
+def _perturbation_estimates(model, und):
+    """First-order damped roots omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T K_u' x
+    (x: undamped platform mode, K_u' = dK_u/domega by central differences)."""
+    mu = _undamped(model)
+    fi = model._fi
+    est = np.full(len(und), np.nan + 0j)
+    for k, f in enumerate(und.freq_hz):
+        x = und.platform_shapes[k][fi]
+        if not np.any(x):
+            continue
+        w = _TWO_PI * f
+        h = 1e-6 * w
+        dK = (mu.dynamic_stiffness([w + h])[0] - mu.dynamic_stiffness([w - h])[0]) / (2 * h)
+        delta = model._dynamic_stiffness_complex(w)[0] - mu.dynamic_stiffness([w])[0]
+        est[k] = w - (x @ delta @ x) / (x @ dK @ x)
+    return est
+
+
+def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
+    """Complex natural frequencies of the damped robot, seeded from the undamped ones.
+
+    Each undamped mode omega_r with platform motion x gives a first-order estimate
+    omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T dK_u/domega x (perturbation of the
+    real root by the damping part of K). From there a secant iteration in the complex plane
+    on det K(omega), deflated by the roots already found, converges to the damped root
+    (theory.md §5.4). The root is accepted only if the eigenvalue of K nearest zero is below
+    1e-8 ||K|| and the root is closer to its own estimate than to any other mode's (so a
+    root is never attributed to the wrong mode in a cluster of close local modes); otherwise,
+    and for purely local modes (platform at rest, not zeros of det K), it is NaN with its
+    ``residual`` recorded.
+
+    Returns
+    -------
+    DampedModes
+    """
+    und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
+    est = _perturbation_estimates(model, und)
+    out = np.full(len(und), np.nan + 1j * np.nan)
+    resid = np.full(len(und), np.nan)
+    found = []
+    for k in np.flatnonzero(np.isfinite(est)):
+        def g(w):
+            if abs(w - est[k]) > 0.2 * abs(est[k]):      # left the neighbourhood: give up
+                return np.nan
+            with np.errstate(all="ignore"):
+                K = model._dynamic_stiffness_complex(w)[0]
+            if not np.all(np.isfinite(K)):
+                return np.nan
+            d = np.linalg.det(K)
+            for wj in found:
+                d = d / (w - wj)
+            return d
+
+        w0 = est[k]
+        w1 = w0 * (1 + 1e-6 * (1 + 1j))
+        g0, g1 = g(w0), g(w1)
+        for _ in range(max_iter):
+            if g1 == g0 or not np.isfinite(g1) or not np.isfinite(g0):
+                break
+            w2 = w1 - g1 * (w1 - w0) / (g1 - g0)
+            w0, g0, w1 = w1, g1, w2
+            g1 = g(w1)
+            if abs(w1 - w0) <= tol * abs(w1):
+                break
+        if not np.isfinite(g1):
+            continue
+        mu, nK = _nearest_zero_eigenvalue(model, w1)
+        resid[k] = abs(mu) / nK
+        others = np.delete(est, k)
+        others = others[np.isfinite(others)]
+        own = abs(w1 - est[k]) < np.min(np.abs(w1 - others), initial=np.inf)
+        distinct = all(abs(w1 - wj) > 1e-8 * abs(w1) for wj in found)
+        if resid[k] < 1e-8 and own and distinct:
+            out[k] = w1
+            found.append(w1)
+    return DampedModes(undamped_freq_hz=und.freq_hz, omega=out, residual=resid)
