@@ -46,7 +46,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     rank = np.linalg.matrix_rank(W)
     if rank < k:
         raise SlackCableError(
-            f"pose: the cable directions span only {rank} of the {k} free DOFs "
+            f"the cable directions span only {rank} of the {k} free DOFs "
             f"(singular configuration), no tension distribution balances the platform")
     # minimum-distance solution of the equality, then bounds by a small QP in the null space
     t = t_ref + np.linalg.lstsq(W, w - W @ t_ref, rcond=None)[0]
@@ -55,7 +55,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         return t
     if n == k:
         raise SlackCableError(
-            f"pose: the unique tension distribution {np.round(t, 6).tolist()} N violates the "
+            f"the unique tension distribution {np.round(t, 6).tolist()} N violates the "
             f"limits [{t_min}, {t_max}] N")
     from scipy.linalg import null_space
     from scipy.optimize import linprog, minimize
@@ -68,7 +68,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
                  method="highs")
     if lp.status != 0:
         raise SlackCableError(
-            f"pose: no tension distribution within [{t_min}, {t_max}] N balances the platform "
+            f"no tension distribution within [{t_min}, {t_max}] N balances the platform "
             f"(the pose is outside the wrench-feasible workspace)")
     cons = {"type": "ineq", "fun": lambda lam: b_ub - A_ub @ lam, "jac": lambda lam: -A_ub}
     res = minimize(lambda lam: np.sum((t + N @ lam - t_ref) ** 2), lp.x,
@@ -95,7 +95,10 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     states = None
     for it in range(max_iter):
         W = np.vstack([u.T, np.cross(r, u).T])[fi]
-        t = tension_distribution(W, -wg[fi], t_min, t_max, tension_reference)
+        try:
+            t = tension_distribution(W, -wg[fi], t_min, t_max, tension_reference)
+        except SlackCableError as exc:
+            raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
         try:
             states = [unstretched_length_for_tension(robot.anchors[i], B[i], t[i],
                                                      robot.cables[i], robot.g)

@@ -44,3 +44,32 @@ def test_cli_rejects_unknown_option():
                          capture_output=True, text=True)
     assert out.returncode == 2
     assert "--bogus" in out.stderr
+
+
+def run_cli(*args):
+    return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
+                          text=True)
+
+
+def test_cli_modes_table_and_csv(tmp_path):
+    out = run_cli("modes", "cogiro", "-n", "6", "--csv", str(tmp_path / "m.csv"))
+    assert out.returncode == 0, out.stderr
+    assert "global" in out.stdout and "freq [Hz]" in out.stdout
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "m.csv")
+    assert len(df) == 6 and df["freq [Hz]"].is_monotonic_increasing
+    assert df["kind"].isin(["global", "local"]).all()
+
+
+def test_cli_errors_exit_nonzero_with_message(tmp_path):
+    out = run_cli("modes", "nope")
+    assert out.returncode == 2 and "unknown scene 'nope'" in out.stderr
+    out = run_cli("modes", "cogiro", "--pose", "9", "0", "1")
+    assert out.returncode == 2 and "pose [9.0" in out.stderr
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[platform]\nmass = 1.0\nbogus_key = 3\n[[cables]]\nanchor=[0,0,1]\n"
+                   "attachment=[0,0,0]\n")
+    out = run_cli("modes", str(bad))
+    assert out.returncode == 2 and "line 3" in out.stderr and "bogus_key" in out.stderr
+    out = run_cli("modes", str(tmp_path / "missing.toml"))
+    assert out.returncode == 2 and "missing.toml" in out.stderr
