@@ -14,8 +14,8 @@ single (n_omega, 5 n) @ (5 n, n_free^2) product: no loop over frequencies.
 import numpy as np
 
 from ._validate import omega_array
-from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, block_coefficients, chord_parameters,
-                        dyad_basis, _mode_count_Omega)
+from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, _local_entries, _mode_count_Omega,
+                        chord_parameters, dyad_basis, stack_parameters)
 from .platform import DOF_NAMES, platform_mass_matrix, skew
 from .robot import geometric_stiffness
 
@@ -54,6 +54,7 @@ class FrequencyModel:
         fi = robot.platform.free_index
         self._fi = fi
         self.params = [chord_parameters(s, tension) for s in equilibrium.states]
+        self._stack = stack_parameters(self.params)
         self.lever_arms = equilibrium.lever_arms
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
         blocks = []
@@ -76,9 +77,16 @@ class FrequencyModel:
         return len(self._fi)
 
     def cable_coefficients(self, omega):
-        """Dyad coefficients of all cables, shape (n_omega, 5 n_cables)."""
-        return np.hstack([block_coefficients(p, omega, self.chordwise_inertia)["BB"]
-                          for p in self.params])
+        """Dyad coefficients (uu, uv, vu, vv, ww) of every cable's end-B DSM, all cables in one
+        broadcast call, shape (n_omega, 5 n_cables), cable-major."""
+        omega = np.asarray(omega)
+        k_uu, k_uv, k_vv, _, kw_s, _, m_ax = _local_entries(self._stack, omega[:, None],
+                                                             self.chordwise_inertia)
+        C = np.stack([k_uu + 2.0 * m_ax, -k_uv, -k_uv, k_vv, kw_s + 0.0 * k_uu], axis=2)
+        C = C.reshape(omega.size, -1)
+        if not self.damped and np.isrealobj(omega):
+            C = np.real(C)
+        return C
 
     def dynamic_stiffness(self, omega):
         """K(omega) on the free DOFs, shape (n_omega, n_free, n_free).
@@ -107,10 +115,10 @@ class FrequencyModel:
     def cable_mode_count(self, omega):
         """Sum over cables of the clamped-clamped mode counts J0 below omega, (n_omega,)."""
         omega = omega_array(omega)
-        J0 = np.zeros(omega.size, dtype=int)
-        for p in self.params:
-            J0 += _mode_count_Omega(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
-        return J0
+        st = self._stack
+        lam2 = np.real((st.q * st.L / st.T) ** 2 * st.L * st.EA / (st.T * st.L_e))
+        Omega = omega[:, None] * st.L * np.sqrt(st.m / st.T)
+        return _mode_count_Omega(Omega, lam2).sum(axis=1)
 
     def mode_count(self, omega):
         """Wittrick-Williams count J(omega) = J0 + s{K(omega)}: eigenfrequencies below omega.

@@ -133,7 +133,7 @@ class ChordParameters:
 
     def psi(self, omega):
         """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
-        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if self.c > 0 \
+        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c > 0) \
             else omega**2 * self.m / self.T
         return 0.5 * self.L * np.sqrt(beta_sq)
 
@@ -228,6 +228,9 @@ def _psi_functions(psi):
 def _local_entries(p, omega, chordwise_inertia):
     """Independent entries of the local two-end DSM, each shape (n_omega,).
 
+    Elementwise: ``p`` may hold arrays of shape (n_cables,) with ``omega`` of shape
+    (n_omega, 1), giving entries of shape (n_omega, n_cables) for all cables at once.
+
     Returns (k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_axial) where, with the two-end
     in-plane matrix written as (K0/D) g g^T + string terms, g = [1, a_t, -1, a_t]:
     k_uu = K0/D, k_uv = alpha tau K0/D, k_vv = k_s + (alpha tau)^2 K0/D,
@@ -251,7 +254,7 @@ def _local_entries(p, omega, chordwise_inertia):
         kw_s = TL * cos2 / sinc2
         kw_c = -TL / sinc2
     if chordwise_inertia:          # -omega^2 m~ L/6 with m~ = m - i c/omega
-        inertia = omega**2 * p.m - 1j * omega * p.c if p.c > 0 else omega**2 * p.m
+        inertia = omega**2 * p.m - 1j * omega * p.c if np.any(p.c > 0) else omega**2 * p.m
         m_axial = -inertia * L / 6.0
     else:
         m_axial = np.zeros_like(k_uu)
@@ -552,3 +555,13 @@ def cable_natural_frequencies(state, n_modes, tension="mean"):
     to_hz = np.sqrt(p.T / p.m) / (2 * np.pi * p.L)
     return CableModes(freq_hz=Om[idx] * to_hz, Omega=Om[idx],
                       family=tuple(fam[i] for i in idx), order=order[idx])
+
+
+def stack_parameters(params):
+    """ChordParameters of several cables stacked into one with (n_cables,) array fields, for
+    evaluating all cables in one broadcast call (see :func:`_local_entries`)."""
+    def arr(name):
+        return np.array([getattr(p, name) for p in params])
+    return ChordParameters(L=arr("L"), T=arr("T"), m=arr("m"), c=arr("c"), EA=arr("EA"),
+                           q=arr("q"), L_e=arr("L_e"), cos_theta=arr("cos_theta"),
+                           rotation=None)

@@ -7,10 +7,12 @@ scan of det K finds poles as well as roots and misses close pairs. The Wittrick-
     J(omega) = J0(omega) + s{K(omega)}
 
 (J0: clamped-cable frequencies below omega, s: negative eigenvalues of K) is the exact number
-of natural frequencies below omega. The r-th frequency is found by bisection on J, all roots
-at once (one batched evaluation of K per step), to a relative bracket width of ``rtol``; this
-never misses a root, handles coincident roots, and finds purely local cable modes, which are
-not zeros of det K.
+of natural frequencies below omega. The r-th frequency is bracketed by bisection on J, all
+roots at once (one batched evaluation of K per step), until the bracket holds that root alone
+and no cable pole; the eigenvalue of K that crosses zero there is then refined by a vectorised
+Illinois (regula falsi) iteration to a relative bracket width of ``rtol``. Multiple roots and
+roots on a cable pole are bisected to ``rtol``. This never misses a root, handles coincident
+roots, and finds purely local cable modes, which are not zeros of det K.
 """
 
 from dataclasses import dataclass
@@ -34,7 +36,9 @@ def _undamped(model):
     import copy
     from dataclasses import replace
     m = copy.copy(model)
+    from .cable_dsm import stack_parameters
     m.params = [replace(p, c=0.0, EA=float(np.real(p.EA))) for p in model.params]
+    m._stack = stack_parameters(m.params)
     m.damped = False
     return m
 
@@ -81,15 +85,80 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12):
         return np.zeros(0)
     r = np.arange(1, N + 1)
     lo, hi = np.zeros(N), np.full(N, w_hi)
-    while np.max(hi - lo) > rtol * np.min(hi):
-        mid = 0.5 * (lo + hi)
-        # evaluate each distinct midpoint once
+    J_lo, J_hi = np.zeros(N, dtype=int), np.full(N, N)
+    # phase 1: bisection on the count until each bracket holds one simple root and no cable
+    # pole (then the eigenvalue of K that crosses zero is smooth and decreasing in it)
+    while True:
+        width = hi - lo
+        isolated = (J_lo == r - 1) & (J_hi == r) & (width < 1e-3 * hi)
+        if np.all(isolated | (width <= rtol * hi)):
+            break
+        act = ~isolated & (width > rtol * hi)
+        mid = 0.5 * (lo[act] + hi[act])
         u, inv = np.unique(mid, return_inverse=True)
         J = m.mode_count(u)[inv]
-        above = J >= r
-        hi = np.where(above, mid, hi)
-        lo = np.where(above, lo, mid)
-    return 0.5 * (lo + hi) / _TWO_PI
+        above = J >= r[act]
+        idx = np.flatnonzero(act)
+        hi[idx[above]], J_hi[idx[above]] = mid[above], J[above]
+        lo[idx[~above]], J_lo[idx[~above]] = mid[~above], J[~above]
+    refine = isolated & (m.cable_mode_count(lo) == m.cable_mode_count(hi))
+    # multiple roots and roots on a cable pole keep bisecting to rtol
+    while True:
+        act = ~refine & (hi - lo > rtol * hi)
+        if not np.any(act):
+            break
+        mid = 0.5 * (lo[act] + hi[act])
+        J = m.mode_count(mid)
+        above = J >= r[act]
+        idx = np.flatnonzero(act)
+        hi[idx[above]] = mid[above]
+        lo[idx[~above]] = mid[~above]
+    out = 0.5 * (lo + hi)
+    if np.any(refine):
+        out[refine] = _illinois(m, lo[refine], hi[refine], J_lo[refine], rtol)
+    return out / _TWO_PI
+
+
+def _crossing_eigenvalue(m, omega, index):
+    """Eigenvalue number ``index`` (ascending, minus the cable-count offset) of K(omega)."""
+    K = m.dynamic_stiffness(omega)
+    ev = np.linalg.eigvalsh(K.real if np.iscomplexobj(K) else K)
+    return ev[np.arange(len(omega)), index]
+
+
+def _illinois(m, lo, hi, J_lo, rtol, max_iter=100):
+    """Vectorised Illinois regula falsi on the eigenvalue of K that crosses zero in [lo, hi].
+
+    In an isolated bracket without cable poles, s{K} goes from s_lo = J_lo - J0 to s_lo + 1,
+    so eigenvalue number s_lo (ascending) goes from >= 0 to < 0, decreasing (W-W monotonicity).
+    Falls back to bisection where the update leaves the bracket. Returns roots [rad/s].
+    """
+    idx = J_lo - m.cable_mode_count(lo)
+    f_lo = _crossing_eigenvalue(m, lo, idx)
+    f_hi = _crossing_eigenvalue(m, hi, idx)
+    side = np.zeros(len(lo), dtype=int)
+    x = 0.5 * (lo + hi)
+    for _ in range(max_iter):
+        act = hi - lo > rtol * hi
+        if not np.any(act):
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = np.where(act, (lo * f_hi - hi * f_lo) / (f_hi - f_lo), x)
+        bad = ~np.isfinite(x) | (x <= lo) | (x >= hi)
+        x = np.where(bad, 0.5 * (lo + hi), x)
+        fx = _crossing_eigenvalue(m, x, idx)
+        pos = fx >= 0
+        # Illinois: halve the retained end's value when the same side is kept twice
+        lo_new = np.where(act & pos, x, lo)
+        hi_new = np.where(act & ~pos, x, hi)
+        f_hi = np.where(act & pos & (side == 1), 0.5 * f_hi, f_hi)
+        f_lo = np.where(act & ~pos & (side == -1), 0.5 * f_lo, f_lo)
+        f_lo = np.where(act & pos, fx, f_lo)
+        f_hi = np.where(act & ~pos, fx, f_hi)
+        side = np.where(act, np.where(pos, 1, -1), side)
+        converged = act & (np.abs(fx) == 0)
+        lo, hi = np.where(converged, x, lo_new), np.where(converged, x, hi_new)
+    return 0.5 * (lo + hi)
 
 
 # ------------------------------------------------------------------------- mode shapes
