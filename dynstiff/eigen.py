@@ -15,6 +15,7 @@ roots on a cable pole are bisected to ``rtol``. This never misses a root, handle
 roots, and finds purely local cable modes, which are not zeros of det K.
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -232,10 +233,16 @@ def _cable_field(p, omega, d_local, x):
     return np.column_stack([uB * x / p.L, v, w])
 
 
+@functools.lru_cache(maxsize=8)
+def _gauss(n):
+    """Gauss-Legendre nodes and weights on [-1, 1] (cached)."""
+    return np.polynomial.legendre.leggauss(n)
+
+
 def _cable_kinetic(p, omega, d_local, chordwise_inertia, n_gauss=64):
     """int m (|v|^2 + |w|^2) dx (+ m L/3 |u_B|^2) [kg m^2 per unit amplitude^2] of the
     closed-form field (Gauss-Legendre quadrature)."""
-    x, wts = np.polynomial.legendre.leggauss(n_gauss)
+    x, wts = _gauss(n_gauss)
     x = 0.5 * p.L * (x + 1.0)
     wts = 0.5 * p.L * wts
     f = _cable_field(p, omega, d_local, x)
@@ -302,7 +309,7 @@ def modes(model, n_modes=None, fmax_hz=None):
     Mf = m._M
     # massless model: generalized eigenproblem
     from scipy.linalg import eigh
-    lam0, X0 = eigh(m.massless_stiffness(), Mf)
+    lam0, X0 = eigh(m.massless_stiffness(), Mf)       # massless-cable model
     f0 = np.sqrt(np.maximum(lam0, 0.0)) / _TWO_PI
     shapes = np.zeros((len(f), 6))
     E_cab = np.zeros((len(f), len(m.params)))
@@ -311,11 +318,12 @@ def modes(model, n_modes=None, fmax_hz=None):
     K = m.dynamic_stiffness(w) if len(w) else np.zeros((0, nf, nf))
     J0_lo = m.cable_mode_count(w * (1 - 1e-9)) if len(w) else []
     J0_hi = m.cable_mode_count(w * (1 + 1e-9)) if len(w) else []
+    K_static = m.massless_stiffness()
+    scale = np.abs(np.linalg.eigvalsh(K_static)).max()
     for k in range(len(f)):
         Kk = K[k]
         finite = np.all(np.isfinite(Kk))
         ev, V = np.linalg.eigh(Kk) if finite else (None, None)
-        scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
         on_pole = J0_hi[k] > J0_lo[k]
         if on_pole and (not finite or np.abs(ev).min() > 1e-6 * scale):
             x = np.zeros(nf)             # purely local cable mode, platform at rest
