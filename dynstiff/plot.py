@@ -8,6 +8,14 @@ __all__ = ["plot_frf"]
 _COLORS = {"global": "tab:red", "local": "tab:blue"}
 
 
+def figure_axes(ax=None, figsize=(8, 4.5)):
+    """(figure, axes): a new figure when ``ax`` is None, else ``ax`` and its figure."""
+    if ax is None:
+        import matplotlib.pyplot as plt
+        return plt.subplots(figsize=figsize)
+    return ax.figure, ax
+
+
 def plot_frf(result, modes=None, pairs=None, ax=None):
     """Magnitude of FRFs against frequency, with the natural frequencies marked.
 
@@ -24,11 +32,7 @@ def plot_frf(result, modes=None, pairs=None, ax=None):
     -------
     matplotlib Figure
     """
-    import matplotlib.pyplot as plt
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(8, 4.5))
-    else:
-        fig = ax.figure
+    fig, ax = figure_axes(ax)
     if pairs is None:
         pairs = [(o, i) for o, i in zip(result.outputs, result.inputs)]
     for o, i in pairs:

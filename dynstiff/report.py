@@ -97,11 +97,8 @@ class CableReport:
         -------
         matplotlib Figure
         """
-        import matplotlib.pyplot as plt
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(8, 4.5))
-        else:
-            fig = ax.figure
+        from .plot import figure_axes
+        fig, ax = figure_axes(ax)
         names = {(0, 0): "K_uu (chord)", (1, 1): "K_vv (in-plane)", (2, 2): "K_ww (out-of-plane)"}
         for (i, j), name in names.items():
             ax.semilogy(self.freq_hz, np.abs(self.K[:, i, j]), label=name, lw=1.2)
