@@ -24,6 +24,7 @@ from .errors import (
 )
 from .eigen import ModalResult
 from .frf import FRFResult
+from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
 from .params import Cable
 from .platform import Platform
 from .robot import Equilibrium, Pose, Robot
@@ -38,6 +39,10 @@ __all__ = [
     "FRFResult",
     "FrequencyModel",
     "ModalResult",
+    "ProximityWarning",
+    "SweepResult",
+    "proximity_warnings",
+    "sweep",
     "Platform",
     "Pose",
     "Robot",

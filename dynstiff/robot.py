@@ -21,7 +21,7 @@ from .errors import InvalidParameterError
 from .params import Cable
 from .platform import Platform, rotation_matrix, skew
 
-__all__ = ["Robot", "Pose", "Equilibrium"]
+__all__ = ["Robot", "Pose", "Equilibrium", "as_pose"]
 
 
 @dataclass(frozen=True)
@@ -55,7 +55,8 @@ class Pose:
         return Pose(self.position + dx[:3], R.as_rotvec())
 
 
-def _as_pose(pose):
+def as_pose(pose):
+    """A :class:`Pose` from a Pose, (position, rotation), or 3 / 6 numbers."""
     if isinstance(pose, Pose):
         return pose
     v = np.asarray(pose, dtype=float)
@@ -156,13 +157,13 @@ class Robot:
     # ------------------------------------------------------------------ geometry
     def attachment_points(self, pose):
         """Attachment points B_i in the base frame [m], shape (n, 3), and lever arms r_i."""
-        pose = _as_pose(pose)
+        pose = as_pose(pose)
         r = self.attachments @ pose.matrix.T
         return pose.position + r, r
 
     def gravity_wrench(self, pose):
         """Gravity wrench on the platform about P [N, N m], shape (6,)."""
-        pose = _as_pose(pose)
+        pose = as_pose(pose)
         fg = self.platform.mass * self.gravity_vector
         rG = pose.matrix @ self.platform.center_of_mass
         return np.concatenate([fg, np.cross(rG, fg)])
@@ -190,7 +191,7 @@ class Robot:
         -sum [f_i]x [r_i]x - [m g]x [r_G]x]] (theory.md §4), valid at any pose (not only at
         equilibrium, where K_geo becomes symmetric).
         """
-        pose = _as_pose(pose)
+        pose = as_pose(pose)
         _, r = self.attachment_points(pose)
         K = np.zeros((6, 6))
         for ri, s in zip(r, states):
@@ -228,15 +229,15 @@ class Robot:
         if (pose is None) == (unstretched_lengths is None):
             raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
         if pose is not None:
-            return inverse_statics(self, _as_pose(pose), tension_reference, tol, max_iter)
+            return inverse_statics(self, as_pose(pose), tension_reference, tol, max_iter)
         return forward_statics(self, _lengths(unstretched_lengths, self.n_cables),
-                               None if initial_pose is None else _as_pose(initial_pose), tol,
+                               None if initial_pose is None else as_pose(initial_pose), tol,
                                max_iter)
 
 
 def geometric_stiffness(robot, pose, states):
     """Rotational block of K_geo [N m/rad], shape (3, 3): -sum [f_i]x [r_i]x - [m g]x [r_G]x."""
-    pose = _as_pose(pose)
+    pose = as_pose(pose)
     _, r = robot.attachment_points(pose)
     Kg = np.zeros((3, 3))
     for ri, s in zip(r, states):

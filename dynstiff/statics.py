@@ -93,6 +93,7 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     wg = robot.gravity_wrench(pose)
     t_min, t_max = robot.tension_limits
     states = None
+    previous = np.inf
     for it in range(max_iter):
         W = np.vstack([u.T, np.cross(r, u).T])[fi]
         try:
@@ -109,8 +110,10 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
         u_new /= np.linalg.norm(u_new, axis=1)[:, None]
         change = np.abs(u_new - u).max()
         u = u_new
-        if change < 1e-14:
+        # fixed point reached, or stalled at rounding level (judged by the residual below)
+        if change < 1e-15 or (change < 1e-12 and change >= 0.5 * previous):
             break
+        previous = change
     else:
         raise ConvergenceError(
             f"inverse statics: cable directions still change by {change:.2e} after "
@@ -119,6 +122,10 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     resid = robot.wrench(pose, states)[fi]
     scale = robot.platform.mass * max(robot.g, 1.0)
     res = np.linalg.norm(resid) / scale
+    if res > tol:
+        raise ConvergenceError(
+            f"inverse statics: wrench residual {res:.3e} (relative to m g) > {tol:.0e} at pose "
+            f"{pose.as_vector().tolist()}", residual=res)
     L0 = np.array([s.unstretched_length for s in states])
     return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0, states=tuple(states),
                        residual=float(res))

@@ -1,0 +1,471 @@
+"""Modal interaction of global platform modes and local cable modes; mode tracking in sweeps.
+
+Each cable acts on the platform like a set of tuned vibration absorbers, one per
+clamped-clamped cable frequency (theory.md §6): a global (platform) mode whose frequency is
+close to a local (cable) mode exchanges energy with it, and the two veer apart when a pose or
+parameter carries them through each other. This module
+
+* flags global/local pairs of close frequencies (:func:`proximity_warnings`), and
+* follows the modes along a path of poses or a parameter (:func:`sweep`), tracking the global
+  modes by the modal assurance criterion (MAC) of their platform shapes so that veering
+  diagrams can connect the points of one mode.
+
+Notation
+--------
+==================  =====================================================  ========
+symbol              meaning                                                unit
+==================  =====================================================  ========
+``f_g``, ``f_l``    frequency of a global / local mode                     Hz
+``relative_gap``    |f_l - f_g| / f_g                                      --
+``x``               platform shape (dp, dtheta) about P, shape (6,)        m, rad
+``M_p``             platform mass matrix about P, shape (6, 6)             kg, kg m,
+                                                                           kg m^2
+``MAC``             (x_a^T M x_b)^2 / ((x_a^T M x_a)(x_b^T M x_b))         --
+==================  =====================================================  ========
+
+No plotting here; pandas is imported only by the ``to_frame`` helpers.
+"""
+
+from dataclasses import dataclass
+from numbers import Integral
+
+import numpy as np
+
+from ._validate import positive_scalar
+from .assembly import FrequencyModel
+from .errors import DynstiffError, InvalidParameterError
+from .robot import Equilibrium, Robot, as_pose
+
+__all__ = ["ProximityWarning", "proximity_warnings", "to_frame", "SweepResult", "sweep"]
+
+#: Track id given to modes that are not tracked (local modes) in :class:`SweepResult`.
+UNTRACKED = -1
+
+
+# ------------------------------------------------------------------------ proximity
+@dataclass(frozen=True)
+class ProximityWarning:
+    """A local (cable) mode close in frequency to a global (platform) mode.
+
+    Attributes
+    ----------
+    global_mode, local_mode : int
+        Mode numbers, 1-based, as in the ``mode`` column of :meth:`ModalResult.to_frame`
+        (index ``mode - 1`` into the arrays of the :class:`ModalResult`).
+    freq_global_hz, freq_local_hz : float
+        Their frequencies [Hz].
+    relative_gap : float
+        |freq_local_hz - freq_global_hz| / freq_global_hz [-].
+    """
+
+    global_mode: int
+    local_mode: int
+    freq_global_hz: float
+    freq_local_hz: float
+    relative_gap: float
+
+
+def _check_modes(modes):
+    try:
+        f = np.asarray(modes.freq_hz, dtype=float)
+        kind = np.asarray(modes.kind)
+    except AttributeError:
+        raise InvalidParameterError(
+            f"modes must be a ModalResult (with freq_hz and kind), got "
+            f"{type(modes).__name__}") from None
+    if f.ndim != 1 or kind.shape != f.shape:
+        raise InvalidParameterError(
+            f"modes: freq_hz and kind must be 1-D of equal length, got shapes {f.shape} and "
+            f"{kind.shape}")
+    return f, kind
+
+
+def proximity_warnings(modes, rtol=0.05):
+    """Local modes within a relative frequency gap of a global mode.
+
+    A local cable mode near a global platform mode acts as a tuned absorber on it
+    (theory.md §6): the platform response splits into two peaks and the modes veer. Every
+    pair (global g, local l) with
+
+        |f_l - f_g| / f_g <= rtol
+
+    is reported; one local mode may be listed against several global modes and vice versa.
+    Only the modes in ``modes`` are compared: to see every partner of a global mode at f_g,
+    compute the modes up to at least (1 + rtol) f_g.
+
+    Parameters
+    ----------
+    modes : ModalResult
+        From :meth:`FrequencyModel.modes`.
+    rtol : float
+        Largest relative gap [-], > 0 (default 0.05).
+
+    Returns
+    -------
+    list of ProximityWarning
+        Sorted by global mode, then by gap (closest first). Empty when no pair is close.
+        See :func:`to_frame` for a table.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``rtol`` not finite and > 0, or ``modes`` not a modal result.
+    """
+    rtol = positive_scalar("rtol", rtol)
+    f, kind = _check_modes(modes)
+    ig = np.flatnonzero(kind == "global")
+    il = np.flatnonzero(kind == "local")
+    if ig.size == 0 or il.size == 0:
+        return []
+    gap = np.abs(f[il][None, :] - f[ig][:, None]) / f[ig][:, None]     # (n_global, n_local)
+    out = []
+    for a, b in zip(*np.nonzero(gap <= rtol)):
+        out.append(ProximityWarning(global_mode=int(ig[a]) + 1, local_mode=int(il[b]) + 1,
+                                    freq_global_hz=float(f[ig[a]]),
+                                    freq_local_hz=float(f[il[b]]),
+                                    relative_gap=float(gap[a, b])))
+    out.sort(key=lambda w: (w.global_mode, w.relative_gap, w.local_mode))
+    return out
+
+
+def to_frame(warnings):
+    """pandas DataFrame of proximity warnings, one row per pair, units in the column names.
+
+    Parameters
+    ----------
+    warnings : sequence of ProximityWarning
+        From :func:`proximity_warnings`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``global mode``, ``local mode``, ``freq global [Hz]``, ``freq local [Hz]``,
+        ``relative gap [-]`` (zero rows if ``warnings`` is empty).
+    """
+    import pandas as pd
+    warnings = list(warnings)
+    for w in warnings:
+        if not isinstance(w, ProximityWarning):
+            raise InvalidParameterError(
+                f"warnings must hold ProximityWarning items, got {type(w).__name__}")
+    return pd.DataFrame({
+        "global mode": np.array([w.global_mode for w in warnings], dtype=int),
+        "local mode": np.array([w.local_mode for w in warnings], dtype=int),
+        "freq global [Hz]": np.array([w.freq_global_hz for w in warnings], dtype=float),
+        "freq local [Hz]": np.array([w.freq_local_hz for w in warnings], dtype=float),
+        "relative gap [-]": np.array([w.relative_gap for w in warnings], dtype=float),
+    })
+
+
+# ------------------------------------------------------------------------ sweep
+@dataclass(frozen=True)
+class SweepResult:
+    """Modes along a path of poses or a parameter, with tracked global modes.
+
+    One row per mode and step (a tidy table); the arrays below are its columns, all of shape
+    (n_rows,).
+
+    Attributes
+    ----------
+    parameter : str
+        Name (with unit) of the swept quantity, e.g. ``"arc length [m]"``.
+    values : ndarray, shape (n_steps,)
+        Value of the swept quantity at each step (arc length along the path [m] for a sweep
+        of poses, unless values were given).
+    modal : tuple of ModalResult
+        The modes at each step, length n_steps.
+    equilibria : tuple of Equilibrium
+        The static equilibrium at each step, length n_steps.
+    step : ndarray of int
+        Step index, 0 .. n_steps - 1.
+    value : ndarray of float
+        ``values[step]``.
+    mode : ndarray of int
+        Mode number at its step, 1-based (as in :meth:`ModalResult.to_frame`).
+    track : ndarray of int
+        Track id of a global mode, 0, 1, ... in order of first appearance; the same id at
+        different steps is the same physical mode (matched by MAC). Local modes are not
+        tracked and hold :data:`UNTRACKED` (-1).
+    freq_hz : ndarray of float
+        Natural frequency [Hz].
+    kind : ndarray of str
+        "global" or "local".
+    cable_energy_fraction : ndarray of float
+        Cable kinetic energy / total kinetic energy [-].
+    massless_freq_hz : ndarray of float
+        Frequency of the matching massless-cable mode [Hz] (NaN for local modes).
+    """
+
+    parameter: str
+    values: np.ndarray
+    modal: tuple
+    equilibria: tuple
+    step: np.ndarray
+    value: np.ndarray
+    mode: np.ndarray
+    track: np.ndarray
+    freq_hz: np.ndarray
+    kind: np.ndarray
+    cable_energy_fraction: np.ndarray
+    massless_freq_hz: np.ndarray
+
+    def __len__(self):
+        return len(self.step)
+
+    @property
+    def n_steps(self):
+        """Number of steps."""
+        return len(self.values)
+
+    @property
+    def n_tracks(self):
+        """Number of global-mode tracks."""
+        t = self.track[self.track != UNTRACKED]
+        return int(t.max()) + 1 if t.size else 0
+
+    def to_frame(self):
+        """pandas DataFrame, one row per mode and step.
+
+        Columns ``step``, ``value``, ``mode``, ``track`` (nullable integer, <NA> for local
+        modes), ``freq [Hz]``, ``kind``, ``cable energy fraction [-]``, ``massless freq [Hz]``.
+        ``df.attrs["parameter"]`` names the quantity in ``value``.
+        """
+        import pandas as pd
+        track = pd.array(self.track, dtype="Int64")
+        track[self.track == UNTRACKED] = pd.NA
+        df = pd.DataFrame({
+            "step": self.step,
+            "value": self.value,
+            "mode": self.mode,
+            "track": track,
+            "freq [Hz]": self.freq_hz,
+            "kind": self.kind,
+            "cable energy fraction [-]": self.cable_energy_fraction,
+            "massless freq [Hz]": self.massless_freq_hz,
+        })
+        df.attrs["parameter"] = self.parameter
+        return df
+
+    def veering_table(self):
+        """Frequencies of the global tracks, one row per step and one column per track.
+
+        Returns
+        -------
+        pandas.DataFrame, shape (n_steps, n_tracks)
+            Frequencies [Hz]; index ``step`` (the abscissa is ``values[step]``), columns the
+            track ids. NaN where a track has no global mode at a step (outside the band, or
+            labelled local there because it shares its energy with a cable mode).
+        """
+        import pandas as pd
+        table = np.full((self.n_steps, self.n_tracks), np.nan)
+        sel = self.track != UNTRACKED
+        table[self.step[sel], self.track[sel]] = self.freq_hz[sel]
+        return pd.DataFrame(table, index=pd.RangeIndex(self.n_steps, name="step"),
+                            columns=pd.RangeIndex(self.n_tracks, name="track"))
+
+
+def _mac(X, Mx, Y, My):
+    """Mass-weighted MAC between the rows of X (n, 6) and Y (k, 6), shape (n, k) [-].
+
+    Uses the mean mass matrix of the two steps, M = (Mx + My)/2 (M_p changes with the pose).
+    MAC (Allemang & Brown 1982, Proc. 1st IMAC; cited from memory):
+    (x^T M y)^2 / ((x^T M x)(y^T M y)).
+    """
+    M = 0.5 * (Mx + My)
+    xy = X @ M @ Y.T
+    xx = np.einsum("ij,jk,ik->i", X, M, X)
+    yy = np.einsum("ij,jk,ik->i", Y, M, Y)
+    return xy**2 / np.outer(xx, yy)
+
+
+def _assign(candidates, X, M, mac_min):
+    """Match rows of X to the tracks ``candidates`` (list of (id, shape, M)) by largest total
+    MAC (Hungarian algorithm); returns {row: track id} for pairs with MAC >= mac_min."""
+    if not candidates or X.shape[0] == 0:
+        return {}
+    from scipy.optimize import linear_sum_assignment
+    mac = np.array([_mac(s[None, :], Ms, X, M)[0] for _, s, Ms in candidates])  # (n_t, n_x)
+    rows, cols = linear_sum_assignment(-mac)
+    return {int(c): candidates[r][0] for r, c in zip(rows, cols) if mac[r, c] >= mac_min}
+
+
+def _check_sweep_args(robot, poses, parameter, values, build, n_modes, fmax_hz, progress,
+                      mac_min):
+    if poses is None and build is None:
+        raise InvalidParameterError(
+            "give poses= (a path of poses for robot) or build= (a callable value -> "
+            "Equilibrium) with values=; got neither")
+    if poses is not None and build is not None:
+        raise InvalidParameterError("give poses= or build=, not both")
+    if n_modes is None and fmax_hz is None:
+        raise InvalidParameterError("give n_modes (number of modes per step) or fmax_hz "
+                                    "(band top [Hz]), got neither")
+    if n_modes is not None and (isinstance(n_modes, bool) or not isinstance(n_modes, Integral)
+                                or n_modes < 1):
+        raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
+    if fmax_hz is not None:
+        fmax_hz = positive_scalar("fmax_hz", fmax_hz)
+    if progress is not None and not callable(progress):
+        raise InvalidParameterError(
+            f"progress must be a callable (step, n_steps) or None, got {progress!r}")
+    mac_min = positive_scalar("mac_min", mac_min)
+    if mac_min > 1:
+        raise InvalidParameterError(f"mac_min must be in (0, 1], got {mac_min!r}")
+    if parameter is not None and not isinstance(parameter, str):
+        raise InvalidParameterError(f"parameter must be a str (name [unit]), got {parameter!r}")
+    if values is not None:
+        try:
+            values = np.asarray(values, dtype=float)
+        except (TypeError, ValueError):
+            raise InvalidParameterError(
+                f"values must be real numbers, got {values!r}") from None
+        if values.ndim != 1 or values.size == 0:
+            raise InvalidParameterError(
+                f"values must be a non-empty 1-D sequence, got shape {values.shape}")
+        if not np.all(np.isfinite(values)):
+            raise InvalidParameterError(f"values must be finite, got {values.tolist()}")
+    if build is not None:
+        if not callable(build):
+            raise InvalidParameterError(
+                f"build must be a callable value -> Equilibrium, got {build!r}")
+        if values is None:
+            raise InvalidParameterError("build= needs values= (the parameter values to sweep)")
+        return None, values, parameter or "value", fmax_hz, mac_min
+    if not isinstance(robot, Robot):
+        raise InvalidParameterError(
+            f"robot must be a dynstiff.Robot for a sweep of poses, got {type(robot).__name__}")
+    try:
+        poses = [as_pose(p) for p in poses]
+    except TypeError:
+        raise InvalidParameterError(
+            f"poses must be a sequence of poses, got {type(poses).__name__}") from None
+    if not poses:
+        raise InvalidParameterError("poses must hold at least one pose, got an empty sequence")
+    if values is None:
+        P = np.array([p.position for p in poses])
+        values = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(P, axis=0), axis=1))])
+        parameter = parameter or "arc length [m]"
+    elif values.size != len(poses):
+        raise InvalidParameterError(
+            f"values must give one value per pose ({len(poses)}), got {values.size}")
+    return poses, values, parameter or "value", fmax_hz, mac_min
+
+
+def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=None,
+          fmax_hz=None, progress=None, mac_min=0.5):
+    """Modes along a path of poses or a parameter, global modes tracked from step to step.
+
+    Two ways to call it:
+
+    (a) ``sweep(robot, poses=[...], ...)``: the robot at each pose of the path (inverse
+        statics, :meth:`Robot.equilibrium`); ``value`` is the arc length of the reference
+        point P along the path [m] (rotations not counted), or ``values`` if given.
+    (b) ``sweep(None, build=f, values=[...], parameter="E [Pa]", ...)``: ``f(value)`` returns
+        the :class:`Equilibrium` for each value (Young's modulus, tension level, platform
+        mass, ...); ``robot`` is not used.
+
+    At each step the modes come from ``FrequencyModel(eq).modes(n_modes, fmax_hz)`` (complete
+    by Wittrick-Williams counting). Global modes are tracked: the global modes of a step are
+    matched to the tracks of the previous step, then to older tracks missing at the previous
+    step, by the largest total mass-weighted MAC of the platform shapes (Hungarian
+    assignment), a pair counting only if MAC >= ``mac_min``; the rest start new tracks.
+    Tracking by shape follows a mode through a veering, so in a veering diagram the two
+    tracks cross while the frequencies stay apart. Local modes are listed with kind "local"
+    and are not tracked.
+
+    Parameters
+    ----------
+    robot : Robot or None
+        The robot for (a); not used (may be None) for (b).
+    poses : sequence of Pose, or of 3 or 6 numbers, optional
+        Path (a): positions [m] and rotation vectors [rad] of the platform.
+    parameter : str, optional
+        Name with unit of the swept quantity, e.g. ``"E [Pa]"`` (default ``"arc length [m]"``
+        for (a), ``"value"`` for (b)).
+    values : array_like, shape (n_steps,), optional
+        Parameter values for (b) (required); for (a), optional abscissa replacing the arc
+        length, one per pose.
+    build : callable, optional
+        ``build(value) -> Equilibrium`` for (b).
+    n_modes : int, optional
+        Number of lowest modes per step.
+    fmax_hz : float, optional
+        Band top [Hz]: all modes below it (the first ``n_modes`` of them if both are given).
+        Give ``n_modes`` or ``fmax_hz``.
+    progress : callable, optional
+        ``progress(done, n_steps)``, called after each step (e.g. a progress bar).
+    mac_min : float
+        Least MAC, in (0, 1], for a global mode to continue a track (default 0.5).
+
+    Returns
+    -------
+    SweepResult
+        Tidy table (``.to_frame()``) and ``.veering_table()`` of the global tracks.
+
+    Raises
+    ------
+    InvalidParameterError
+        Neither or both of ``poses`` and ``build``; ``build`` without ``values``; empty
+        ``poses`` or ``values``; neither ``n_modes`` nor ``fmax_hz``; ``build`` not returning
+        an Equilibrium. The message names the argument.
+    SlackCableError, ConvergenceError
+        From the statics at a step (the note on the exception names the step).
+    """
+    poses, values, parameter, fmax_hz, mac_min = _check_sweep_args(
+        robot, poses, parameter, values, build, n_modes, fmax_hz, progress, mac_min)
+    n_steps = values.size
+    tracks = {}                     # id -> (shape (6,), M_p (6, 6), last step seen)
+    rows = {k: [] for k in ("step", "value", "mode", "track", "freq", "kind", "frac", "f0")}
+    modal, equilibria = [], []
+    for k in range(n_steps):
+        try:
+            if build is not None:
+                eq = build(values[k])
+                if not isinstance(eq, Equilibrium):
+                    raise InvalidParameterError(
+                        f"build must return an Equilibrium, got {type(eq).__name__} for "
+                        f"value {values[k]!r}")
+            else:
+                eq = robot.equilibrium(pose=poses[k])
+            model = FrequencyModel(eq)
+            res = model.modes(n_modes=n_modes, fmax_hz=fmax_hz)
+        except DynstiffError as exc:
+            exc.add_note(f"in sweep step {k} ({parameter} = {values[k]:g})")
+            raise
+        M = model.M_p
+        ig = np.flatnonzero(np.asarray(res.kind) == "global")
+        X = res.platform_shapes[ig]
+        # previous step's tracks first, then older dormant ones, then new tracks
+        recent = [(t, s, Ms) for t, (s, Ms, last) in tracks.items() if last == k - 1]
+        match = _assign(recent, X, M, mac_min)
+        left = np.array([j for j in range(ig.size) if j not in match], dtype=int)
+        dormant = [(t, s, Ms) for t, (s, Ms, last) in tracks.items() if last < k - 1]
+        match.update({int(left[j]): t for j, t in
+                      _assign(dormant, X[left], M, mac_min).items()})
+        track = np.full(len(res), UNTRACKED, dtype=int)
+        for j in range(ig.size):
+            t = match.get(j)
+            if t is None:
+                t = len(tracks)
+            track[ig[j]] = t
+            tracks[t] = (X[j], M, k)
+        n = len(res)
+        rows["step"].append(np.full(n, k))
+        rows["value"].append(np.full(n, values[k]))
+        rows["mode"].append(np.arange(1, n + 1))
+        rows["track"].append(track)
+        rows["freq"].append(res.freq_hz)
+        rows["kind"].append(np.asarray(res.kind, dtype=object).reshape(n))
+        rows["frac"].append(res.cable_energy_fraction)
+        rows["f0"].append(res.massless_freq_hz)
+        modal.append(res)
+        equilibria.append(eq)
+        if progress is not None:
+            progress(k + 1, n_steps)
+    col = {key: np.concatenate(v) for key, v in rows.items()}
+    return SweepResult(parameter=parameter, values=values, modal=tuple(modal),
+                       equilibria=tuple(equilibria), step=col["step"].astype(int),
+                       value=col["value"].astype(float), mode=col["mode"].astype(int),
+                       track=col["track"].astype(int), freq_hz=col["freq"].astype(float),
+                       kind=col["kind"].astype(str), cable_energy_fraction=col["frac"],
+                       massless_freq_hz=col["f0"].astype(float))
