@@ -265,3 +265,29 @@ def test_scene_loads_by_name_and_path(cogiro):
     np.testing.assert_array_equal(r.anchors, cogiro.robot.anchors)
     with pytest.raises(ds.SceneError, match="unknown scene"):
         ds.load_scene("nope")
+
+
+def test_close_pairs_are_found():
+    """Break the symmetry slightly: each double root splits into a pair < 1e-4 apart
+    (relative); W-W finds both members and the count steps by one at each."""
+    ang = np.radians([90, 210, 330])
+    anchors = np.column_stack([5 * np.cos(ang), 5 * np.sin(ang), np.full(3, 5.0)])
+    anchors[0, 0] += 2e-5                                   # 20 micrometres
+    rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(20.0, free_dofs=("x", "y", "z")))
+    m = ds.FrequencyModel(rob.equilibrium(pose=[0, 0, 1.0]))
+    f = m.eigenfrequencies(32)
+    gaps = np.diff(f) / f[1:]
+    close = np.flatnonzero((gaps > 0) & (gaps < 1e-4))
+    close = close[close + 2 < len(f)]                      # the next mode up is known
+    assert len(close) >= 3
+    for k in close:
+        mid = 0.5 * (f[k] + f[k + 1])
+        lo, hi = f[k] - 0.25 * (f[k + 1] - f[k]), f[k + 1] + 0.25 * (f[k + 1] - f[k])
+        if hi >= f[k + 2] or (k > 0 and lo <= f[k - 1]):
+            continue                                       # a third close root: tested below
+        np.testing.assert_array_equal(m.mode_count(2 * np.pi * np.array([lo, mid, hi])),
+                                      [k, k + 1, k + 2])
+    # every computed root is a distinct step of the count, even in triplets 6e-7 apart
+    between = 0.5 * (f[1:] + f[:-1])
+    np.testing.assert_array_equal(m.mode_count(2 * np.pi * between), np.arange(1, len(f)))
