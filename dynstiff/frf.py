@@ -12,7 +12,7 @@ import numpy as np
 
 from ._validate import omega_array, point as _point
 from .errors import InvalidParameterError, PoleWarning
-from .platform import DOF_NAMES, skew
+from .platform import skew
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES"]
 

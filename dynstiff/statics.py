@@ -13,7 +13,7 @@ with the analytic 6x6 stiffness (theory.md §4).
 import numpy as np
 
 from .catenary import unstretched_length_for_tension
-from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from .errors import ConvergenceError, DynstiffError, SlackCableError
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
 

@@ -2,8 +2,10 @@
 
 import numpy as np
 import pytest
+import scipy.linalg
 
 import dynstiff as ds
+from dynstiff.lumped import chain_equilibrium, chain_matrices
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).
 COGIRO_AREA = 8.2051e-6
@@ -26,3 +28,28 @@ def cable17():
 def state300(cable17):
     """theory.md §9.2 cable at about 300 N."""
     return ds.unstretched_length_for_tension(A0, B0, 300.0, cable17)
+
+
+def lumped_point_mass_frequencies(eq, n_seg, n_modes=None, fmax_hz=None):
+    """Independent lumped-mass model of a whole point-mass robot: chains of ``n_seg`` segments
+    (own Newton statics, dynstiff.lumped) sharing their end node with the platform point mass.
+    Its lowest ``n_modes`` eigenfrequencies, or all below ``fmax_hz`` [Hz], ascending."""
+    rob = eq.robot
+    sz = 3 * (n_seg - 1)
+    N = 3 + sz * rob.n_cables
+    Kt, Mt = np.zeros((N, N)), np.zeros(N)
+    Mt[:3] = rob.platform.mass
+    off = 3
+    for i, s in enumerate(eq.states):
+        ch = chain_equilibrium(rob.anchors[i], s.end, s.unstretched_length, rob.cables[i], n_seg,
+                               rob.g)
+        K, m = chain_matrices(ch)
+        idx = np.arange(3, 3 * n_seg + 3)            # interior nodes 1..N-1, then node N
+        glob = np.concatenate([np.arange(off, off + sz), np.arange(3)])
+        Kt[np.ix_(glob, glob)] += K.toarray()[np.ix_(idx, idx)]
+        Mt[glob] += m[idx]
+        off += sz
+    kw = (dict(subset_by_index=[0, n_modes - 1]) if n_modes is not None
+          else dict(subset_by_value=[-np.inf, (2 * np.pi * fmax_hz) ** 2]))
+    lam = scipy.linalg.eigh(Kt, np.diag(Mt), eigvals_only=True, **kw)
+    return np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi)

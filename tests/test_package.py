@@ -3,7 +3,6 @@
 import subprocess
 import sys
 
-import pytest
 
 
 def test_import_does_not_load_matplotlib_or_pandas():

@@ -1,15 +1,13 @@
 """Robot-level analysis (theory.md §4-§6): statics, K(omega), FRFs, complete eigenfrequencies."""
 
-import warnings
 
 import numpy as np
 import pytest
 import scipy.linalg
-import scipy.sparse
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, PoleWarning, SlackCableError
-from dynstiff.lumped import chain_equilibrium, chain_matrices
+from conftest import lumped_point_mass_frequencies
 
 
 @pytest.fixture(scope="module")
@@ -133,40 +131,12 @@ def point_mass_robot(E=17e9, mass=20.0):
     return ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 8.2051e-6 * E), pl)
 
 
-def lumped_frequencies(eq, n_seg, n_modes):
-    """Independent lumped-mass model of the whole point-mass robot (chains + point mass)."""
-    rob = eq.robot
-    blocks, masses = [], []
-    n_int = []
-    for i, s in enumerate(eq.states):
-        ch = chain_equilibrium(rob.anchors[i], s.end, s.unstretched_length, rob.cables[i], n_seg,
-                               rob.g)
-        K, m = chain_matrices(ch)
-        blocks.append((K.toarray(), m))
-    # DOFs: [platform xyz, interior nodes of cable 0, cable 1, ...]
-    sizes = [3 * (n_seg - 1)] * len(blocks)
-    N = 3 + sum(sizes)
-    Kt, Mt = np.zeros((N, N)), np.zeros(N)
-    Mt[:3] = rob.platform.mass
-    off = 3
-    for (K, m), sz in zip(blocks, sizes):
-        keep = np.arange(3, 3 * n_seg)              # interior nodes 1..N-1
-        end = np.arange(3 * n_seg, 3 * n_seg + 3)   # node N = platform
-        idx = np.concatenate([keep, end])
-        glob = np.concatenate([np.arange(off, off + sz), np.arange(3)])
-        Kt[np.ix_(glob, glob)] += K[np.ix_(idx, idx)]
-        Mt[glob] += m[idx]
-        off += sz
-    lam = scipy.linalg.eigh(Kt, np.diag(Mt), eigvals_only=True, subset_by_index=[0, n_modes - 1])
-    return np.sqrt(lam) / (2 * np.pi)
-
-
 def test_wittrick_williams_count_equals_lumped_model_count():
     rob = point_mass_robot()
     eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])
     m = ds.FrequencyModel(eq)
     f = m.eigenfrequencies(30)
-    f_lumped = lumped_frequencies(eq, 80, 30)
+    f_lumped = lumped_point_mass_frequencies(eq, 80, n_modes=30)
     # same number of modes below every probe frequency away from any mode
     probes = np.linspace(0.5, 0.97 * f[-1], 400)
     gap = np.min(np.abs(probes[:, None] / np.concatenate([f, f_lumped])[None, :] - 1), axis=1)

@@ -3,49 +3,17 @@ point-mass robots against an independent lumped-mass model (theory.md §7), and 
 determinant scan that does miss the coincident roots of a symmetric robot."""
 
 import numpy as np
-import scipy.linalg
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff.errors import SlackCableError
-from dynstiff.lumped import chain_equilibrium, chain_matrices
+from conftest import lumped_point_mass_frequencies
 
 N_SEG = 40                    # lumped segments per cable
 M_CABLE = 0.064               # [kg/m], CoGiRo cable (theory.md §8.1)
 AREA = 8.2051e-6              # [m^2]
 N_COMPARED = 20               # lowest modes of the continuous model compared
-
-
-def lumped_frequencies(eq, n_seg, fmax_hz):
-    """Independent lumped-mass model of the whole point-mass robot: chains of n_seg segments
-    (own Newton statics, dynstiff.lumped) sharing their end node with the platform point mass.
-    All its eigenfrequencies below fmax_hz [Hz], ascending.
-
-    Copied from tests/test_robot.py::lumped_frequencies, returning the modes below a
-    frequency instead of a fixed number.
-    """
-    rob = eq.robot
-    blocks = []
-    for i, s in enumerate(eq.states):
-        ch = chain_equilibrium(rob.anchors[i], s.end, s.unstretched_length, rob.cables[i], n_seg,
-                               rob.g)
-        K, m = chain_matrices(ch)
-        blocks.append((K.toarray(), m))
-    sz = 3 * (n_seg - 1)
-    N = 3 + sz * len(blocks)
-    Kt, Mt = np.zeros((N, N)), np.zeros(N)
-    Mt[:3] = rob.platform.mass
-    off = 3
-    for K, m in blocks:
-        idx = np.arange(3, 3 * n_seg + 3)            # interior nodes 1..N-1, then node N
-        glob = np.concatenate([np.arange(off, off + sz), np.arange(3)])
-        Kt[np.ix_(glob, glob)] += K[np.ix_(idx, idx)]
-        Mt[glob] += m[idx]
-        off += sz
-    lam = scipy.linalg.eigh(Kt, np.diag(Mt), eigvals_only=True,
-                            subset_by_value=[-np.inf, (2 * np.pi * fmax_hz) ** 2])
-    return np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi)
 
 
 def highest_harmonic(eq, f_hz):
@@ -66,7 +34,7 @@ def count_check(eq):
     f = model.eigenfrequencies(N_COMPARED)
     fmax = f[-1]
     gap = probe_gap(eq, fmax, N_SEG)
-    fl = lumped_frequencies(eq, N_SEG, 1.5 * fmax)
+    fl = lumped_point_mass_frequencies(eq, N_SEG, fmax_hz=1.5 * fmax)
     allf = np.sort(np.concatenate([f, fl]))
     # midpoints between neighbouring modes of both models, plus a uniform grid
     cand = np.concatenate([0.5 * (allf[1:] + allf[:-1]), np.linspace(0.02, 1.0, 200) * fmax])

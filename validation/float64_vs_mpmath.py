@@ -44,15 +44,9 @@ Error measures (columns)
 
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
-
-try:
-    import dynstiff  # noqa: F401
-except ImportError:         # run as a script from a source checkout: use the repository copy
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from dynstiff.cable_dsm import ChordParameters, local_end_stiffness, local_two_end_stiffness
 from dynstiff.precision import (

@@ -1,7 +1,7 @@
 """TOML scene reader with schema checks that name the key and its line."""
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
