@@ -42,7 +42,8 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         No admissible distribution exists (the message names the violated limit).
     """
     k, n = W.shape
-    t_ref = np.full(n, t_min if t_ref is None else 0.0) + (0.0 if t_ref is None else t_ref)
+    t_ref = np.full(n, float(t_min)) if t_ref is None else np.broadcast_to(
+        np.asarray(t_ref, dtype=float), (n,)).copy()
     rank = np.linalg.matrix_rank(W)
     if rank < k:
         raise SlackCableError(
