@@ -28,12 +28,7 @@ def _cmd_modes(args):
     from .assembly import FrequencyModel
     from .scenes import load_scene
     scene = load_scene(args.scene)
-    if args.pose is not None:
-        eq = scene.robot.equilibrium(pose=args.pose)
-    elif args.lengths is not None:
-        eq = scene.robot.equilibrium(unstretched_lengths=args.lengths)
-    else:
-        eq = scene.equilibrium()
+    eq = _equilibrium(scene, args)
     n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
     df = FrequencyModel(eq).modes(n_modes=n, fmax_hz=args.fmax).to_frame()
     if args.csv:
@@ -45,6 +40,49 @@ def _cmd_modes(args):
     with np.printoptions(suppress=True):
         sys.stdout.write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     sys.stdout.write("\n")
+    return 0
+
+
+def _equilibrium(scene, args):
+    if getattr(args, "pose", None) is not None:
+        return scene.robot.equilibrium(pose=args.pose)
+    if getattr(args, "lengths", None) is not None:
+        return scene.robot.equilibrium(unstretched_lengths=args.lengths)
+    return scene.equilibrium()
+
+
+def _cmd_frf(args):
+    import numpy as np
+
+    from .assembly import FrequencyModel
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    model = FrequencyModel(_equilibrium(scene, args))
+    lo, hi = args.band if args.band else (scene.band_hz or (0.1, 20.0))
+    if not 0 <= lo < hi:
+        from .errors import InvalidParameterError
+        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got {lo} {hi}")
+    f = np.linspace(lo, hi, args.points)
+    res = model.frf(2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
+                    kind=args.kind)
+    df = res.to_frame()
+    if args.csv:
+        df.to_csv(args.csv, index=False)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        from .plot import plot_frf
+        modes = model.modes(fmax_hz=hi)
+        fig = plot_frf(res, modes, pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+    h = np.abs(res.H[:, 0, 0])
+    k = int(np.argmax(h))
+    sys.stdout.write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
+                     f"{lo:g}-{hi:g} Hz, largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n")
+    for name in (args.csv, args.plot):
+        if name:
+            sys.stdout.write(f"wrote {name}\n")
     return 0
 
 
@@ -76,6 +114,25 @@ def build_parser():
     mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
     mo.add_argument("--json", help="write the full table to this JSON file")
     mo.set_defaults(func=_cmd_modes)
+    fr = sub.add_parser("frf", help="frequency response functions of the platform")
+    fr.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    grp = fr.add_mutually_exclusive_group()
+    grp.add_argument("--pose", type=float, nargs="+", metavar="X")
+    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
+    fr.add_argument("--from", dest="source", nargs="+", default=["fz"],
+                    choices=["fx", "fy", "fz", "mx", "my", "mz"], help="load channel(s)")
+    fr.add_argument("--to", nargs="+", default=["z"], choices=["x", "y", "z", "rx", "ry", "rz"],
+                    help="response channel(s)")
+    fr.add_argument("--point", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="platform point whose translation is output [m, platform frame]")
+    fr.add_argument("--kind", default="receptance",
+                    choices=["receptance", "mobility", "accelerance"])
+    fr.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="frequency band [Hz] (default: the scene's band)")
+    fr.add_argument("--points", type=int, default=4000, help="number of frequencies")
+    fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
+    fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
+    fr.set_defaults(func=_cmd_frf)
     return parser
 
 

@@ -72,3 +72,22 @@ def test_cli_errors_exit_nonzero_with_message(tmp_path):
     assert out.returncode == 2 and "line 3" in out.stderr and "bogus_key" in out.stderr
     out = run_cli("modes", str(tmp_path / "missing.toml"))
     assert out.returncode == 2 and "missing.toml" in out.stderr
+
+
+def test_cli_frf_writes_table_and_figure(tmp_path):
+    out = run_cli("frf", "cogiro", "--from", "fz", "--to", "z", "--band", "1", "3", "--points",
+                  "400", "--csv", str(tmp_path / "f.csv"), "--plot", str(tmp_path / "f.png"))
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "f.csv")
+    assert len(df) == 400 and set(df["output"]) == {"z"} and set(df["input"]) == {"fz"}
+    # the largest response in 1-3 Hz is the first (vertical) global mode of CoGiRo
+    import dynstiff as ds
+    f1 = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()).eigenfrequencies(1)[0]
+    peak = df.loc[df["magnitude"].idxmax(), "freq [Hz]"]
+    assert abs(peak - f1) < 2.0 / 399 + 1e-9            # within one frequency step
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+    bad = run_cli("frf", "cogiro", "--band", "5", "1")
+    assert bad.returncode == 2 and "--band" in bad.stderr
+    bad = run_cli("frf", "cogiro", "--from", "fq")
+    assert bad.returncode == 2 and "fq" in bad.stderr
