@@ -86,6 +86,22 @@ def _cmd_frf(args):
     return 0
 
 
+def _cmd_check(args):
+    from .checks import design_checks
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    pose = args.pose if args.pose is not None else scene.pose
+    if pose is None:
+        pose = scene.equilibrium().pose
+    band = tuple(args.band) if args.band else scene.band_hz
+    res = design_checks(scene.robot, pose, band_hz=band, margin=args.margin,
+                        proximity_rtol=args.proximity, max_sag_ratio=args.max_sag)
+    sys.stdout.write(res.text())
+    if args.csv:
+        res.to_frame().to_csv(args.csv, index=False)
+    return 0 if res.passed else 1
+
+
 def build_parser():
     """The argument parser of the ``dynstiff`` command."""
     parser = argparse.ArgumentParser(
@@ -133,6 +149,20 @@ def build_parser():
     fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
     fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
     fr.set_defaults(func=_cmd_frf)
+    ck = sub.add_parser("check", help="design checks with a pass/fail report; exit code 1 if "
+                                      "any check fails")
+    ck.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    ck.add_argument("--pose", type=float, nargs="+", metavar="X")
+    ck.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="forbidden band for global modes [Hz] (default: the scene's band)")
+    ck.add_argument("--margin", type=float, default=0.05,
+                    help="relative margin of global modes to the band (default %(default)s)")
+    ck.add_argument("--proximity", type=float, default=0.03,
+                    help="relative distance local-global mode that fails (default %(default)s)")
+    ck.add_argument("--max-sag", type=float, default=0.02,
+                    help="largest admissible sag/chord (default %(default)s)")
+    ck.add_argument("--csv", help="write the checks table (CSV)")
+    ck.set_defaults(func=_cmd_check)
     return parser
 
 

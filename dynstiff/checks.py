@@ -1,0 +1,127 @@
+"""Design checks of a cable robot at a pose: tensions, sag, workspace, frequency margins and
+modal proximity. Each check gives a pass/fail row with the value and the limit it was held to.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .assembly import FrequencyModel
+from .errors import DynstiffError, InvalidParameterError
+from .interaction import proximity_warnings
+
+__all__ = ["CheckResult", "design_checks"]
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """Outcome of the design checks.
+
+    Attributes
+    ----------
+    rows : tuple of dict
+        One per check: ``check``, ``passed`` (bool), ``value``, ``limit``, ``detail``.
+    """
+
+    rows: tuple
+
+    @property
+    def passed(self):
+        """True when every check passed."""
+        return all(r["passed"] for r in self.rows)
+
+    def to_frame(self):
+        """pandas DataFrame, one row per check."""
+        import pandas as pd
+        return pd.DataFrame(list(self.rows))
+
+    def text(self):
+        """Plain-text report."""
+        out = []
+        for r in self.rows:
+            flag = "PASS" if r["passed"] else "FAIL"
+            out.append(f"{flag}  {r['check']:<34s} {r['detail']}")
+        out.append("all checks passed" if self.passed else "some checks FAILED")
+        return "\n".join(out) + "\n"
+
+
+def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
+                  max_sag_ratio=0.02, fmax_hz=None):
+    """Run the design checks at a pose.
+
+    Parameters
+    ----------
+    robot : Robot
+    pose : Pose or array_like
+        Platform pose (inverse statics).
+    band_hz : (float, float), optional
+        Forbidden excitation band [Hz]: every global mode must lie outside it by ``margin``.
+    margin : float
+        Relative frequency margin of the global modes to the band [-].
+    proximity_rtol : float
+        A local cable mode within this relative distance of a global mode fails [-].
+    max_sag_ratio : float
+        Largest admissible sag / chord of any cable [-].
+    fmax_hz : float, optional
+        Modes are computed up to this frequency [Hz] (default: 1.5 x the band's top, or
+        the 6th global mode).
+
+    Returns
+    -------
+    CheckResult
+    """
+    rows = []
+    t_min, t_max = robot.tension_limits
+    try:
+        eq = robot.equilibrium(pose=pose)
+    except DynstiffError as exc:
+        rows.append(dict(check="workspace (tension-feasible pose)", passed=False, value=np.nan,
+                         limit=np.nan, detail=str(exc)))
+        return CheckResult(rows=tuple(rows))
+    rows.append(dict(check="workspace (tension-feasible pose)", passed=True, value=eq.residual,
+                     limit=1e-10, detail=f"statics residual {eq.residual:.1e}"))
+    T = np.concatenate([eq.tensions, eq.anchor_tensions])
+    ok = bool(np.all(T >= t_min - 1e-9) and np.all(T <= t_max + 1e-9))
+    rows.append(dict(check="tension limits", passed=ok, value=float(T.max()), limit=t_max,
+                     detail=f"tensions {T.min():.1f}-{T.max():.1f} N within "
+                            f"[{t_min:g}, {t_max:g}] N"))
+    sag = np.array([s.sag / s.chord_length for s in eq.states])
+    rows.append(dict(check="sag / chord", passed=bool(sag.max() <= max_sag_ratio),
+                     value=float(sag.max()), limit=max_sag_ratio,
+                     detail=f"largest {sag.max():.2e} (cable {int(sag.argmax())}), "
+                            f"limit {max_sag_ratio:g}"))
+    model = FrequencyModel(eq)
+    if fmax_hz is None:
+        fmax_hz = 1.5 * band_hz[1] if band_hz is not None else None
+    if fmax_hz is None:
+        n = 40
+        while True:
+            modes = model.modes(n_modes=n)
+            if sum(k == "global" for k in modes.kind) >= model.n_free or n >= 320:
+                break
+            n *= 2
+    else:
+        # up to (1 + rtol) fmax so global modes near fmax see their local partners
+        modes = model.modes(fmax_hz=fmax_hz * (1 + proximity_rtol))
+    glob = np.array([k == "global" for k in modes.kind])
+    if band_hz is not None:
+        lo, hi = band_hz
+        if not 0 <= lo < hi:
+            raise InvalidParameterError(f"band_hz must be (low, high) with 0 <= low < high, "
+                                        f"got {band_hz!r}")
+        fg = modes.freq_hz[glob]
+        inside = fg[(fg > lo * (1 - margin)) & (fg < hi * (1 + margin))]
+        rows.append(dict(
+            check="global modes outside band", passed=inside.size == 0,
+            value=float(inside[0]) if inside.size else np.nan, limit=margin,
+            detail=(f"{inside.size} global mode(s) within {margin:.1%} of "
+                    f"[{lo:g}, {hi:g}] Hz: {np.round(inside, 4).tolist()}") if inside.size
+            else f"no global mode within {margin:.1%} of [{lo:g}, {hi:g}] Hz"))
+    warns = proximity_warnings(modes, rtol=proximity_rtol)
+    rows.append(dict(
+        check="local modes near global modes", passed=not warns,
+        value=min((w.relative_gap for w in warns), default=np.nan), limit=proximity_rtol,
+        detail=(f"{len(warns)} local mode(s) within {proximity_rtol:.2%} of a global mode, "
+                f"closest gap {min(w.relative_gap for w in warns):.2%}") if warns
+        else f"no local mode within {proximity_rtol:.2%} of a global mode"))
+    return CheckResult(rows=tuple(rows))

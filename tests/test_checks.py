@@ -1,0 +1,55 @@
+"""Design checks (dynstiff.checks) and the `dynstiff check` command."""
+
+import subprocess
+import sys
+
+import numpy as np
+
+import dynstiff as ds
+from dynstiff.checks import design_checks
+
+
+def rows_by_name(res):
+    return {r["check"]: r for r in res.rows}
+
+
+def test_checks_pass_and_fail_on_cogiro():
+    scene = ds.load_scene("cogiro")
+    f = ds.FrequencyModel(scene.equilibrium()).modes(40)
+    fg = f.freq_hz[np.array(f.kind) == "global"]
+    ok = design_checks(scene.robot, scene.pose, band_hz=(0.5, 0.9 * fg[0] / 1.05))
+    assert ok.passed
+    # a band around the 2nd global mode must fail exactly that check
+    bad = design_checks(scene.robot, scene.pose, band_hz=(fg[1] * 0.99, fg[1] * 1.01))
+    r = rows_by_name(bad)
+    assert not bad.passed and not r["global modes outside band"]["passed"]
+    # two root searches, each converged to 1e-12 relative
+    assert abs(r["global modes outside band"]["value"] / fg[1] - 1) < 1e-11
+    assert r["tension limits"]["passed"] and r["sag / chord"]["passed"]
+    # sag limit below the largest sag ratio fails
+    s = max(st.sag / st.chord_length for st in scene.equilibrium().states)
+    r = rows_by_name(design_checks(scene.robot, scene.pose, max_sag_ratio=0.99 * s))
+    assert not r["sag / chord"]["passed"] and abs(r["sag / chord"]["value"] - s) < 1e-12
+
+
+def test_proximity_check_at_stiff_cables():
+    """At E = 120 GPa CoGiRo's global modes sit among cable families (theory.md §9.2)."""
+    scene = ds.load_scene("cogiro")
+    r0 = scene.robot
+    rob = ds.Robot(r0.anchors, r0.attachments, ds.Cable(0.064, 8.2051e-6 * 120e9), r0.platform,
+                   tension_limits=r0.tension_limits)
+    m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose)).modes(40)
+    warns = ds.proximity_warnings(m, rtol=0.02)
+    res = rows_by_name(design_checks(rob, scene.pose, band_hz=(0.1, 7.0), proximity_rtol=0.02))
+    assert res["local modes near global modes"]["passed"] == (len(
+        [w for w in warns if w.freq_global_hz <= 10.5]) == 0)
+
+
+def test_cli_check_exit_codes():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    assert run("cogiro", "--band", "1", "2").returncode == 0
+    out = run("cogiro", "--band", "4", "5")
+    assert out.returncode == 1 and "FAIL  global modes outside band" in out.stdout
+    out = run("cogiro", "--pose", "9", "0", "1")
+    assert out.returncode == 1 and "FAIL  workspace" in out.stdout
