@@ -24,6 +24,7 @@ from .errors import (
 )
 from .eigen import ModalResult
 from .frf import FRFResult
+from .lumped import LumpedMassModel
 from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
 from .params import Cable
 from .platform import Platform
@@ -38,6 +39,7 @@ __all__ = [
     "Equilibrium",
     "FRFResult",
     "FrequencyModel",
+    "LumpedMassModel",
     "ModalResult",
     "ProximityWarning",
     "SweepResult",

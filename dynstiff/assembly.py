@@ -67,7 +67,12 @@ class FrequencyModel:
         K_geo[3:, 3:] = geometric_stiffness(robot, pose, equilibrium.states)
         self.K_geo = K_geo
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
-        self._Kg = K_geo[np.ix_(fi, fi)]
+        # With held rotations the reaction moment about a held axis makes the free block of
+        # K_geo non-symmetric by 1/2 [M_reaction]x, an artefact of the non-commuting rotation
+        # vector; the conservative (potential-energy Hessian) stiffness is its symmetric part.
+        # At a full 6-DOF equilibrium the block is already symmetric.
+        Kg = K_geo[np.ix_(fi, fi)]
+        self._Kg = 0.5 * (Kg + Kg.T)
         self._M = self.M_p[np.ix_(fi, fi)]
         self.damped = any(c.is_damped for c in robot.cables)
 

@@ -13,7 +13,7 @@ with the analytic 6x6 stiffness (theory.md §4).
 import numpy as np
 
 from .catenary import unstretched_length_for_tension
-from .errors import ConvergenceError, DynstiffError, SlackCableError
+from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
 
@@ -171,6 +171,13 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
     """
     from .robot import Equilibrium
     fi = robot.platform.free_index
+    held = set(range(6)) - set(fi.tolist())
+    rotations_matter = (np.any(robot.attachments != 0)
+                        or np.any(robot.platform.center_of_mass != 0))
+    if initial_pose is None and (held & {0, 1, 2} or (held & {3, 4, 5} and rotations_matter)):
+        raise InvalidParameterError(
+            f"initial_pose is required when DOFs are held (free_dofs="
+            f"{robot.platform.free_dofs}): it fixes the held coordinates")
     pose = initial_pose if initial_pose is not None else _kinematic_guess(robot, L0)
     scale = robot.platform.mass * max(robot.g, 1.0)
 

@@ -261,3 +261,18 @@ def test_close_pairs_are_found():
     # every computed root is a distinct step of the count, even in triplets 6e-7 apart
     between = 0.5 * (f[1:] + f[:-1])
     np.testing.assert_array_equal(m.mode_count(2 * np.pi * between), np.arange(1, len(f)))
+
+
+def test_forward_statics_with_held_dofs_needs_initial_pose(cogiro, cogiro_eq):
+    p = cogiro.robot.platform
+    planar = ds.Platform(p.mass, p.center_of_mass, p.inertia, free_dofs=("x", "z", "ry"))
+    rob = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments, cogiro.robot.cables, planar,
+                   tension_limits=cogiro.robot.tension_limits)
+    with pytest.raises(InvalidParameterError, match="initial_pose"):
+        rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+    eq = rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths,
+                         initial_pose=cogiro.pose)
+    np.testing.assert_allclose(eq.pose.position, cogiro.pose.position, atol=1e-9)
+    m = ds.FrequencyModel(eq)
+    K = m.dynamic_stiffness([0.0, 10.0])
+    np.testing.assert_allclose(K, K.transpose(0, 2, 1), atol=1e-9 * np.abs(K).max())

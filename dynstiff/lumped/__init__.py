@@ -8,8 +8,13 @@ from .chain import (
     chain_fixed_end_frequencies,
     chain_matrices,
 )
+from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult, compare_modes
 
 __all__ = [
+    "LumpedEquilibrium",
+    "LumpedMassModel",
+    "LumpedModalResult",
+    "compare_modes",
     "ChainState",
     "chain_end_dynamic_stiffness",
     "chain_equilibrium",

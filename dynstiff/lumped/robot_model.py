@@ -1,0 +1,883 @@
+"""Lumped-mass model of a whole cable robot: nonlinear statics, tangent stiffness, modes, FRFs.
+
+Every cable i is a chain of N_i straight, tension-only springs between point masses
+(theory.md §7.1); the platform is the rigid body of the same :class:`~dynstiff.Robot`, with
+any subset of free DOFs. This model uses no catenary closed form and no linear cable theory,
+so it is the independent cross-check of the closed-form dynamic-stiffness model
+(:class:`~dynstiff.FrequencyModel`, theory.md §4).
+
+Notation (theory.md §4, §7.1)
+-----------------------------
+=================  ==============================================================  =======
+symbol             meaning                                                         unit
+=================  ==============================================================  =======
+N_i                segments of cable i; nodes 0..N_i, node 0 = anchor A_i (fixed)  --
+L0_i, l0_i         unstretched length, segment length L0_i / N_i                   m
+m, EA              mass per unstretched length, axial stiffness                    kg/m, N
+T, n, l            segment tension EA (l / l0 - 1)_+, unit vector, length          N, --, m
+K_e                element tangent (EA/l0) n n^T + (T/l)(I - n n^T)                N/m
+p, R_p             position of P, rotation of the platform                         m, --
+b_i, r_i           attachment in the platform frame, lever arm R_p b_i              m
+B_i                attachment point p + R_p b_i = node N_i of cable i              m
+J_i                [I, -[r_i]x], maps x = (dp, dtheta) to dB_i                      --
+F_i                force on the platform at B_i: -T n of the last segment plus      N
+                   the weight of the half node mass m l0 / 2 carried there
+m_p, M_p           platform mass, 6x6 rigid-body mass matrix about P                kg, --
+=================  ==============================================================  =======
+
+Masses: m l0 at every interior node; of the two end half masses m l0 / 2, the anchor one is
+dropped (the anchor does not move) and the platform one is added to the platform as a point
+mass at B_i (mass J_i^T (m l0 / 2) J_i, weight at B_i). The weight is then the cable's whole
+weight m L0 g, as in the elastic catenary.
+
+Degrees of freedom: x = (x_f, u_0, u_1, ...): the free platform DOFs (``DOF_NAMES`` order,
+small motion (dp, dtheta) about P, dtheta a rotation vector in the base frame), then the
+interior nodes 1..N_i - 1 of cable 0 (node-major x, y, z), of cable 1, ...
+
+Conventions: the residual R(x) is the net *applied* force (zero at equilibrium) and the
+tangent stiffness is K = -dR/dx, so K u = f_applied, as in :mod:`dynstiff.lumped.chain`.
+Gravity is (0, 0, -g).
+"""
+
+from dataclasses import dataclass
+from numbers import Integral
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse
+import scipy.sparse.linalg
+
+from .._validate import omega_array, point as _point, positive_scalar
+from ..eigen import ModalResult
+from ..errors import ConvergenceError, InvalidParameterError, PoleWarning, SlackCableError
+from ..frf import _KINDS, INPUT_NAMES, OUTPUT_NAMES, FRFResult, _channels
+from ..platform import DOF_NAMES, platform_mass_matrix, skew
+from ..robot import Pose, Robot, as_pose
+from .chain import _block_tridiagonal_entries, _element_stiffness, chain_equilibrium
+
+__all__ = ["LumpedMassModel", "LumpedEquilibrium", "LumpedModalResult", "compare_modes"]
+
+_TWO_PI = 2.0 * np.pi
+#: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
+_DENSE_LIMIT = 400
+
+
+# ------------------------------------------------------------------------------ kernels
+def _segments(nodes, l0, EA):
+    """Segment geometry and tensions of one chain.
+
+    Parameters
+    ----------
+    nodes : ndarray, shape (N+1, 3)
+        Node positions [m], anchor first.
+    l0, EA : float
+        Unstretched segment length [m], axial stiffness [N].
+
+    Returns
+    -------
+    units : ndarray, shape (N, 3)
+        n_i [-].
+    lengths : ndarray, shape (N,)
+        l_i [m].
+    tensions : ndarray, shape (N,)
+        T_i = EA (l_i / l0 - 1)_+ [N].
+    """
+    d = np.diff(nodes, axis=0)
+    lengths = np.linalg.norm(d, axis=1)
+    return d / lengths[:, None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
+
+
+def _lever_map(r, fi):
+    """J_i = [I, -[r]x] restricted to the free columns, shape (3, n_free)."""
+    return np.hstack([np.eye(3), -skew(r)])[:, fi]
+
+
+def _validated_segments(segments, n):
+    if isinstance(segments, Integral) and not isinstance(segments, bool):
+        segments = [segments] * n
+    try:
+        segs = list(segments)
+    except TypeError:
+        raise InvalidParameterError(
+            f"segments must be an integer >= 1 or a sequence of {n} such integers, got "
+            f"{segments!r}") from None
+    if len(segs) != n or not all(isinstance(s, Integral) and not isinstance(s, bool)
+                                 for s in segs):
+        raise InvalidParameterError(
+            f"segments must be an integer >= 1 or a sequence of {n} integers (one per "
+            f"cable), got {segments!r}")
+    if min(segs) < 1:
+        raise InvalidParameterError(f"segments must be >= 1 for every cable, got {segs}")
+    return np.array(segs, dtype=int)
+
+
+def _validated_lengths(value, n):
+    try:
+        L0 = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(
+            f"unstretched_lengths must be {n} finite positive lengths [m], got {value!r}"
+        ) from None
+    if L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
+        raise InvalidParameterError(
+            f"unstretched_lengths must be {n} finite positive lengths [m] (one per cable), "
+            f"got {value!r}")
+    return L0
+
+
+# ----------------------------------------------------------------------- result types
+@dataclass(frozen=True)
+class LumpedEquilibrium:
+    """Static equilibrium of the lumped-mass robot.
+
+    Attributes
+    ----------
+    pose : Pose
+        Platform pose.
+    nodes : list of ndarray, shape (N_i + 1, 3)
+        Node positions of every cable [m], anchor A_i first, attachment point B_i last.
+    tensions : list of ndarray, shape (N_i,)
+        Segment tensions [N], from the anchor to the platform.
+    residual : float
+        Largest unbalanced force on a node or the platform (moments divided by the platform
+        size), relative to the force scale m_p g + sum m L0 g + max T [-].
+    iterations : int
+        Newton iterations taken from the start.
+    start_pose : Pose
+        Elastic-catenary equilibrium pose the iteration started from.
+    platform_forces : ndarray, shape (n, 3)
+        Force F_i of every cable on the platform at B_i [N]: the last segment's pull plus
+        the weight of the half node mass carried by the platform (comparable with the
+        elastic catenary's ``force_on_end``).
+    """
+
+    pose: Pose
+    nodes: list
+    tensions: list
+    residual: float
+    iterations: int
+    start_pose: Pose
+    platform_forces: np.ndarray
+
+    @property
+    def interior(self):
+        """Interior nodes of every cable, list of (N_i - 1, 3) arrays [m]."""
+        return [x[1:-1] for x in self.nodes]
+
+    @property
+    def end_tensions(self):
+        """Tension of the last segment of every cable (at the platform) [N], shape (n,)."""
+        return np.array([t[-1] for t in self.tensions])
+
+    @property
+    def anchor_tensions(self):
+        """Tension of the first segment of every cable (at the anchor) [N], shape (n,)."""
+        return np.array([t[0] for t in self.tensions])
+
+    def to_frame(self):
+        """pandas DataFrame, one row per cable: segments and end tensions [N]."""
+        import pandas as pd
+        return pd.DataFrame({
+            "cable": np.arange(len(self.nodes)),
+            "segments": [len(t) for t in self.tensions],
+            "tension at B [N]": self.end_tensions,
+            "tension at A [N]": self.anchor_tensions,
+        })
+
+
+@dataclass(frozen=True)
+class LumpedModalResult(ModalResult):
+    """Modes of the lumped-mass robot: a :class:`~dynstiff.ModalResult` plus node motions.
+
+    Attributes
+    ----------
+    node_shapes : list of ndarray, shape (n_modes, N_i + 1, 3)
+        Displacement of every node of cable i [m] (anchor 0, the last node moves with the
+        platform), for the mode vector normalised to unit total kinetic energy
+        phi^T M phi = 1 (not the platform normalisation of ``platform_shapes``).
+
+    Notes
+    -----
+    ``platform_shapes`` are normalised to x^T M_p x = 1 with M_p the rigid platform alone,
+    like the closed-form model; ``massless_freq_hz`` comes from the lumped cables condensed
+    statically onto the platform (their massless limit).
+    """
+
+    node_shapes: list = None
+
+
+# ------------------------------------------------------------------------------ model
+class LumpedMassModel:
+    """Lumped-mass (bead-and-spring) model of a whole cable robot (theory.md §7.1).
+
+    Parameters
+    ----------
+    robot : Robot
+        Anchors, attachments, cables, platform (its free DOFs), gravity.
+    unstretched_lengths : array_like, shape (n_cables,)
+        L0_i [m], > 0.
+    segments : int or sequence of int
+        N_i >= 1, the same for every cable or one per cable.
+
+    Attributes
+    ----------
+    free_dofs : tuple of str
+        Names of the free platform DOFs, the first rows of every matrix.
+    n_free, n_dof : int
+        Free platform DOFs; all DOFs (free platform + 3 (N_i - 1) per cable).
+    segment_lengths : ndarray, shape (n_cables,)
+        l0_i = L0_i / N_i [m].
+
+    Notes
+    -----
+    Methods that need the linearisation point (``matrices``, ``eigenfrequencies``, ``modes``,
+    ``frf``) use the last equilibrium computed by :meth:`equilibrium`, or compute it with the
+    default arguments on first use.
+    """
+
+    def __init__(self, robot, unstretched_lengths, segments=30):
+        if not isinstance(robot, Robot):
+            raise InvalidParameterError(
+                f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
+        n = robot.n_cables
+        self.robot = robot
+        self.unstretched_lengths = _validated_lengths(unstretched_lengths, n)
+        self.segments = _validated_segments(segments, n)
+        self.segment_lengths = self.unstretched_lengths / self.segments
+        self.free_dofs = robot.platform.free_dofs
+        self._fi = robot.platform.free_index
+        self.n_free = len(self._fi)
+        sizes = 3 * (self.segments - 1)
+        self._offsets = self.n_free + np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        self.n_dof = int(self.n_free + sizes.sum())
+        self._node_mass = np.array([c.mass_per_length for c in robot.cables]) * \
+            self.segment_lengths
+        size = max(np.linalg.norm(robot.attachments, axis=1).max(),
+                   np.linalg.norm(robot.platform.center_of_mass))
+        self._moment_arm = size if size > 0 else 1.0
+        self._state = None
+
+    # ---------------------------------------------------------------- configuration
+    def _full_nodes(self, pose, interior):
+        B, r = self.robot.attachment_points(pose)
+        nodes = [np.vstack((self.robot.anchors[i], interior[i], B[i]))
+                 for i in range(self.robot.n_cables)]
+        return nodes, r
+
+    def _check_config(self, pose, interior):
+        pose = as_pose(pose)
+        if len(interior) != self.robot.n_cables:
+            raise InvalidParameterError(
+                f"interior must hold {self.robot.n_cables} arrays (one per cable), got "
+                f"{len(interior)}")
+        out = []
+        for i, (x, N) in enumerate(zip(interior, self.segments)):
+            x = np.asarray(x, dtype=float).reshape(-1, 3) if np.size(x) else np.zeros((0, 3))
+            if x.shape != (N - 1, 3):
+                raise InvalidParameterError(
+                    f"interior[{i}] must have shape ({N - 1}, 3), got {np.shape(x)}")
+            out.append(x)
+        return pose, out
+
+    def displaced(self, pose, interior, dx):
+        """Configuration after the increment dx (platform by :meth:`Pose.moved`).
+
+        Parameters
+        ----------
+        pose : Pose
+        interior : list of ndarray, shape (N_i - 1, 3)
+            Interior node positions [m].
+        dx : ndarray, shape (n_dof,)
+            Increment in the DOF order of the model [m, rad].
+
+        Returns
+        -------
+        pose : Pose
+        interior : list of ndarray
+        """
+        pose, interior = self._check_config(pose, interior)
+        dx = np.asarray(dx, dtype=float)
+        if dx.shape != (self.n_dof,):
+            raise InvalidParameterError(
+                f"dx must have shape ({self.n_dof},) (n_dof), got {dx.shape}")
+        d6 = np.zeros(6)
+        d6[self._fi] = dx[:self.n_free]
+        new = [x + dx[o:o + x.size].reshape(-1, 3) for x, o in zip(interior, self._offsets)]
+        return pose.moved(d6), new
+
+    # ------------------------------------------------------------------- residual
+    def residual(self, pose, interior):
+        """Net applied force R(x) on the free platform DOFs and the interior nodes.
+
+        Node j of cable i: T_j n_j - T_{j-1} n_{j-1} + m l0 g_vec. Platform: the wrench about P
+        of gravity and of F_i = -T_{N-1} n_{N-1} + (m l0 / 2) g_vec at every B_i.
+
+        Parameters
+        ----------
+        pose : Pose or array_like
+        interior : list of ndarray, shape (N_i - 1, 3)
+            Interior node positions [m].
+
+        Returns
+        -------
+        ndarray, shape (n_dof,)
+            [N] on the translations and nodes, [N m] on the rotations; zero at equilibrium.
+        """
+        pose, interior = self._check_config(pose, interior)
+        return self._residual(pose, interior)[0]
+
+    def _residual(self, pose, interior):
+        rob = self.robot
+        gvec = rob.gravity_vector
+        nodes, r = self._full_nodes(pose, interior)
+        R = np.empty(self.n_dof)
+        W = rob.gravity_wrench(pose)
+        t_max = 0.0
+        for i, x in enumerate(nodes):
+            units, _, T = _segments(x, self.segment_lengths[i], rob.cables[i].EA)
+            f = T[:, None] * units
+            o = self._offsets[i]
+            R[o:o + 3 * (len(T) - 1)] = (f[1:] - f[:-1] + self._node_mass[i] * gvec).ravel()
+            F = -f[-1] + 0.5 * self._node_mass[i] * gvec
+            W[:3] += F
+            W[3:] += np.cross(r[i], F)
+            t_max = max(t_max, T.max())
+        R[:self.n_free] = W[self._fi]
+        return R, t_max
+
+    def _force_scale(self, t_max):
+        rob = self.robot
+        weight = rob.g * (rob.platform.mass + np.sum(
+            [c.mass_per_length for c in rob.cables] * self.unstretched_lengths))
+        return max(weight + t_max, np.finfo(float).tiny)
+
+    def _relative_residual(self, R, t_max):
+        scaled = np.abs(R)
+        rot = np.array([d in ("rx", "ry", "rz") for d in self.free_dofs])
+        scaled[:self.n_free][rot] /= self._moment_arm
+        return float(scaled.max(initial=0.0)) / self._force_scale(t_max)
+
+    # -------------------------------------------------------------------- tangent
+    def tangent_stiffness(self, pose, interior, axial_factor=1.0):
+        """Tangent stiffness K = -dR/dx, sparse, at any configuration.
+
+        Element tangents K_e = k_a n n^T + (T/l)(I - n n^T) (k_a = axial_factor EA / l0 where
+        the segment is stretched, 0 where slack) assembled as [[K_e, -K_e], [-K_e, K_e]];
+        the node B_i is slaved to the platform, dB_i = J_i x; the lever arms rotating under
+        fixed forces add -sum_i [F_i]x [r_i]x - [m_p g_vec]x [r_G]x to the rotation block
+        (theory.md §4, §7.1). Symmetric at an equilibrium.
+
+        Parameters
+        ----------
+        pose : Pose or array_like
+        interior : list of ndarray, shape (N_i - 1, 3)
+            Interior node positions [m].
+        axial_factor : float or complex
+            Multiplies EA in the axial term only, e.g. 1 + i eta for hysteretic damping.
+
+        Returns
+        -------
+        scipy.sparse.csr_matrix, shape (n_dof, n_dof)
+            [N/m, N, N m/rad]; complex when ``axial_factor`` is.
+        """
+        pose, interior = self._check_config(pose, interior)
+        return self._tangent(pose, interior, lambda i: axial_factor)
+
+    def _tangent(self, pose, interior, axial_of):
+        rob = self.robot
+        fi, nf = self._fi, self.n_free
+        gvec = rob.gravity_vector
+        nodes, r = self._full_nodes(pose, interior)
+        rows, cols, vals = [], [], []
+        dtype = np.result_type(*[axial_of(i) for i in range(rob.n_cables)], float)
+        Kpp = np.zeros((nf, nf), dtype=dtype)
+        Kgeo = np.zeros((3, 3))
+        for i, x in enumerate(nodes):
+            N = self.segments[i]
+            l0, EA = self.segment_lengths[i], rob.cables[i].EA
+            units, lengths, T = _segments(x, l0, EA)
+            axial = np.where(T > 0, axial_of(i) * EA / l0, 0.0)
+            ke = _element_stiffness(units, lengths, T, axial)
+            J = _lever_map(r[i], fi)
+            o = self._offsets[i]
+            if N > 1:
+                rr, cc, vv = _block_tridiagonal_entries(ke)
+                keep = (rr >= 3) & (rr < 3 * N) & (cc >= 3) & (cc < 3 * N)
+                rows.append(rr[keep] - 3 + o)
+                cols.append(cc[keep] - 3 + o)
+                vals.append(vv[keep])
+                kip = -ke[-1] @ J                                  # (3, nf)
+                ri = o + 3 * (N - 2) + np.arange(3)
+                ci = np.arange(nf)
+                rows += [np.repeat(ri, nf), np.tile(ci, 3)]
+                cols += [np.tile(ci, 3), np.repeat(ri, nf)]
+                vals += [kip.ravel(), kip.ravel()]        # K_pi = K_ip^T
+            Kpp += J.T @ ke[-1] @ J
+            F = -T[-1] * units[-1] + 0.5 * self._node_mass[i] * gvec
+            Kgeo -= skew(F) @ skew(r[i])
+        rG = pose.matrix @ rob.platform.center_of_mass
+        Kgeo -= skew(rob.platform.mass * gvec) @ skew(rG)
+        K6 = np.zeros((6, 6))
+        K6[3:, 3:] = Kgeo
+        Kpp += K6[np.ix_(fi, fi)]
+        ip, jp = np.meshgrid(np.arange(nf), np.arange(nf), indexing="ij")
+        rows.append(ip.ravel())
+        cols.append(jp.ravel())
+        vals.append(Kpp.ravel())
+        K = scipy.sparse.coo_matrix(
+            (np.concatenate(vals).astype(dtype), (np.concatenate(rows), np.concatenate(cols))),
+            shape=(self.n_dof, self.n_dof))
+        return K.tocsr()
+
+    def _node_matrix(self, pose, per_node, platform_block):
+        """Sparse matrix with ``per_node[i]`` on the interior nodes of cable i (diagonal) and
+        the free-DOF block ``platform_block`` + sum_i J_i^T (per_node[i] / 2) J_i."""
+        fi, nf = self._fi, self.n_free
+        _, r = self.robot.attachment_points(pose)
+        diag = np.zeros(self.n_dof)
+        block = np.array(platform_block, dtype=float)
+        for i in range(self.robot.n_cables):
+            o, size = self._offsets[i], 3 * (self.segments[i] - 1)
+            diag[o:o + size] = per_node[i]
+            J = _lever_map(r[i], fi)
+            block += 0.5 * per_node[i] * J.T @ J
+        ip, jp = np.meshgrid(np.arange(nf), np.arange(nf), indexing="ij")
+        idx = np.arange(nf, self.n_dof)
+        return scipy.sparse.coo_matrix(
+            (np.concatenate([block.ravel(), diag[nf:]]),
+             (np.concatenate([ip.ravel(), idx]), np.concatenate([jp.ravel(), idx]))),
+            shape=(self.n_dof, self.n_dof)).tocsr()
+
+    def mass_matrix(self, pose):
+        """Lumped mass matrix at a pose, sparse, shape (n_dof, n_dof) [kg, kg m, kg m^2].
+
+        Interior nodes m l0 (diagonal); platform block M_p + sum_i J_i^T (m l0 / 2) J_i.
+        """
+        pose = as_pose(pose)
+        fi = self._fi
+        Mp = platform_mass_matrix(self.robot.platform, pose.matrix)[np.ix_(fi, fi)]
+        return self._node_matrix(pose, self._node_mass, Mp)
+
+    def _damping_matrix(self, pose):
+        """Viscous damping C [N s/m]: c l0 at interior nodes, J^T (c l0 / 2) J at B_i."""
+        c = np.array([cb.viscous_damping for cb in self.robot.cables]) * self.segment_lengths
+        return self._node_matrix(pose, c, np.zeros((self.n_free, self.n_free)))
+
+    # -------------------------------------------------------------------- statics
+    def equilibrium(self, initial_pose=None, tol=1e-10, max_iter=50):
+        """Static equilibrium of all interior nodes and the free platform DOFs.
+
+        Newton's method with the analytic sparse tangent (:meth:`tangent_stiffness`) and a
+        backtracking line search on the residual. Start: the elastic-catenary equilibrium of
+        the robot for the same lengths (:meth:`Robot.equilibrium`, forward statics) gives the
+        pose, and :func:`~dynstiff.lumped.chain_equilibrium` of every cable at that pose
+        gives the nodes. The lumped nodes lie on the catenary (theory.md §1.1); only the
+        straight segments replacing the curved arcs change the end forces, by O(l0^2), so
+        one or two iterations suffice. The result becomes the model's linearisation point.
+
+        Parameters
+        ----------
+        initial_pose : Pose or array_like, optional
+            Start of the elastic-catenary forward statics (default: its straight-cable
+            guess). Held platform DOFs keep the values of this start pose, so give it
+            whenever some DOFs are held.
+        tol : float
+            Converged when the largest unbalanced force (node, platform force, or platform
+            moment / platform size) is <= tol (m_p g + sum m L0 g + max T).
+        max_iter : int
+            Maximum Newton iterations.
+
+        Returns
+        -------
+        LumpedEquilibrium
+
+        Raises
+        ------
+        ConvergenceError
+            Newton failed; the message and ``.residual`` give the relative residual.
+        SlackCableError
+            A cable has a zero-tension segment (at the start or at the solution).
+        """
+        tol = positive_scalar("tol", tol)
+        if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
+            raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+        rob = self.robot
+        start = rob.equilibrium(unstretched_lengths=self.unstretched_lengths,
+                                initial_pose=None if initial_pose is None
+                                else as_pose(initial_pose))
+        pose = start.pose
+        B, _ = rob.attachment_points(pose)
+        interior = [chain_equilibrium(rob.anchors[i], B[i], self.unstretched_lengths[i],
+                                      rob.cables[i], int(self.segments[i]), rob.g
+                                      ).nodes[1:-1].copy()
+                    for i in range(rob.n_cables)]
+        R, t_max = self._residual(pose, interior)
+        res = self._relative_residual(R, t_max)
+        iteration = 0
+        while res > tol:
+            if iteration == max_iter:
+                raise ConvergenceError(
+                    f"LumpedMassModel.equilibrium did not converge in {max_iter} Newton "
+                    f"iterations: relative residual {res:.3e} > tol {tol:g}", residual=res)
+            iteration += 1
+            K = self._tangent(pose, interior, lambda i: 1.0)
+            try:
+                with np.errstate(all="raise"):
+                    dx = scipy.sparse.linalg.splu(K.tocsc()).solve(R)
+            except (RuntimeError, FloatingPointError):
+                raise ConvergenceError(
+                    f"LumpedMassModel.equilibrium: singular tangent stiffness (slack "
+                    f"segments or an unstable pose), relative residual {res:.3e}",
+                    residual=res) from None
+            alpha = 1.0
+            while True:
+                trial = self.displaced(pose, interior, alpha * dx)
+                R_t, t_t = self._residual(*trial)
+                res_t = self._relative_residual(R_t, t_t)
+                if res_t < res or alpha < 1e-6:
+                    break
+                alpha *= 0.5
+            if not res_t < res:
+                raise ConvergenceError(
+                    f"LumpedMassModel.equilibrium: no step reduces the residual (stagnation "
+                    f"at rounding level or a wrong tangent), relative residual {res:.3e} > "
+                    f"tol {tol:g}", residual=res)
+            (pose, interior), R, t_max, res = trial, R_t, t_t, res_t
+        nodes, _ = self._full_nodes(pose, interior)
+        seg = [_segments(x, l0, c.EA) for x, l0, c in zip(nodes, self.segment_lengths,
+                                                          rob.cables)]
+        tensions = [T for _, _, T in seg]
+        forces = np.array([-T[-1] * n[-1] + 0.5 * mi * rob.gravity_vector
+                           for (n, _, T), mi in zip(seg, self._node_mass)])
+        slack = [i for i, t in enumerate(tensions) if np.any(t <= 0.0)]
+        if slack:
+            raise SlackCableError(
+                f"LumpedMassModel.equilibrium: cable(s) {slack} have zero-tension segments at "
+                f"equilibrium (pose {pose.as_vector().tolist()})")
+        for a in nodes + tensions + [forces]:
+            a.setflags(write=False)
+        self._state = LumpedEquilibrium(pose=pose, nodes=nodes, tensions=tensions,
+                                        residual=res, iterations=iteration,
+                                        start_pose=start.pose, platform_forces=forces)
+        return self._state
+
+    @property
+    def state(self):
+        """Linearisation point: the last :meth:`equilibrium` (computed on first use)."""
+        if self._state is None:
+            self.equilibrium()
+        return self._state
+
+    # ---------------------------------------------------------------- linear model
+    def matrices(self):
+        """Tangent stiffness and mass at the equilibrium (:attr:`state`).
+
+        Returns
+        -------
+        K : scipy.sparse.csr_matrix, shape (n_dof, n_dof)
+            Tangent stiffness [N/m, N, N m/rad], undamped; symmetric at the equilibrium up
+            to its residual (except for a platform with some rotations held while the moment
+            about a held axis is not balanced, where K_geo keeps that antisymmetric part).
+        M : scipy.sparse.csr_matrix, shape (n_dof, n_dof)
+            Mass [kg, kg m, kg m^2].
+        """
+        s = self.state
+        return self._tangent(s.pose, s.interior, lambda i: 1.0), self.mass_matrix(s.pose)
+
+    def _eig(self, n_modes):
+        if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or \
+                not 1 <= n_modes <= self.n_dof:
+            raise InvalidParameterError(
+                f"n_modes must be an integer in [1, {self.n_dof}] (the number of DOFs), got "
+                f"{n_modes!r}")
+        K, M = self.matrices()
+        K = 0.5 * (K + K.T)
+        if self.n_dof <= _DENSE_LIMIT or n_modes >= self.n_dof // 2:
+            lam, V = scipy.linalg.eigh(K.toarray(), M.toarray(),
+                                       subset_by_index=[0, n_modes - 1])
+        else:
+            # shift-invert about sigma < 0, below every eigenvalue of a stable equilibrium:
+            # the eigenvalues nearest sigma are then the lowest ones. min K_kk / M_kk bounds
+            # the lowest eigenvalue from above (Rayleigh quotient of a unit vector).
+            d = K.diagonal() / M.diagonal()
+            sigma = -0.1 * d[d > 0].min() if np.any(d > 0) else -1.0
+            lam, V = scipy.sparse.linalg.eigsh(K.tocsc(), k=n_modes, M=M.tocsc(),
+                                               sigma=sigma, which="LM")
+            order = np.argsort(lam)
+            lam, V = lam[order], V[:, order]
+            V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
+        return lam, V, K, M
+
+    def eigenfrequencies(self, n_modes):
+        """Lowest natural frequencies of K phi = omega^2 M phi [Hz], ascending.
+
+        Sparse shift-invert Lanczos (dense ``eigh`` for small models). An unstable
+        equilibrium (negative eigenvalue lambda) is reported as -sqrt(-lambda) / 2 pi.
+
+        Parameters
+        ----------
+        n_modes : int
+            Number of frequencies, 1 <= n_modes <= n_dof.
+
+        Returns
+        -------
+        ndarray, shape (n_modes,) [Hz]
+        """
+        lam = self._eig(n_modes)[0]
+        return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
+
+    def modes(self, n_modes):
+        """Modes with platform shapes, cable kinetic-energy fractions and labels.
+
+        Kinetic energies per unit omega^2 / 2: platform x^T M_p x (rigid body alone), cable i
+        sum of m l0 |phi_j|^2 over its interior nodes plus (m l0 / 2) |J_i x|^2 at B_i. A
+        mode is "global" when the cables hold less than half of the kinetic energy (as in
+        :func:`dynstiff.eigen.modes`). ``massless_freq_hz`` of a global mode is the frequency
+        of the mode of the statically condensed (massless-cable) lumped model with the
+        largest mass-weighted MAC.
+
+        Parameters
+        ----------
+        n_modes : int
+            Number of lowest modes.
+
+        Returns
+        -------
+        LumpedModalResult
+            Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
+            platform does not move at all).
+        """
+        lam, V, K, _ = self._eig(n_modes)
+        freq = np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
+        s = self.state
+        nf, fi = self.n_free, self._fi
+        rob = self.robot
+        Mp = platform_mass_matrix(rob.platform, s.pose.matrix)[np.ix_(fi, fi)]
+        X = V[:nf]                                               # (nf, n)
+        E_p = np.einsum("in,ij,jn->n", X, Mp, X)
+        _, r = rob.attachment_points(s.pose)
+        E_cab = np.zeros((n_modes, rob.n_cables))
+        node_shapes = []
+        for i in range(rob.n_cables):
+            o, size = self._offsets[i], 3 * (self.segments[i] - 1)
+            U = V[o:o + size].T.reshape(n_modes, -1, 3)
+            dB = (_lever_map(r[i], fi) @ X).T                    # (n, 3)
+            E_cab[:, i] = self._node_mass[i] * (np.sum(U ** 2, axis=(1, 2))
+                                                + 0.5 * np.sum(dB ** 2, axis=1))
+            node_shapes.append(np.concatenate(
+                [np.zeros((n_modes, 1, 3)), U, dB[:, None, :]], axis=1))
+        total = E_p + E_cab.sum(axis=1)
+        frac = E_cab.sum(axis=1) / total
+        moving = E_p > 1e-24 * total
+        shapes = np.zeros((n_modes, 6))
+        shapes[np.ix_(moving, fi)] = (X[:, moving] / np.sqrt(E_p[moving])).T
+        kinds = tuple("global" if f < 0.5 else "local" for f in frac)
+        # massless-cable (statically condensed) lumped model, for the shift of global modes
+        Kc = self._condensed(K)
+        lam0, X0 = scipy.linalg.eigh(Kc, Mp)
+        f0 = np.sign(lam0) * np.sqrt(np.abs(lam0)) / _TWO_PI
+        f_massless = np.full(n_modes, np.nan)
+        for k in np.flatnonzero(np.array(kinds) == "global"):
+            x = shapes[k, fi]
+            f_massless[k] = f0[int(np.argmax((X0.T @ Mp @ x) ** 2))]
+        for a in node_shapes:
+            a.setflags(write=False)
+        return LumpedModalResult(freq_hz=freq, platform_shapes=shapes,
+                                 cable_energy_fraction=frac,
+                                 cable_energy=E_cab / total[:, None], kind=kinds,
+                                 massless_freq_hz=f_massless, node_shapes=node_shapes)
+
+    def _condensed(self, K):
+        """Static condensation onto the free platform DOFs, K_pp - K_pi K_ii^-1 K_ip."""
+        nf = self.n_free
+        Kpp = K[:nf, :nf].toarray()
+        if self.n_dof == nf:
+            return Kpp
+        Kip = K[nf:, :nf].toarray()
+        sol = scipy.sparse.linalg.splu(K[nf:, nf:].tocsc()).solve(Kip)
+        return Kpp - K[:nf, nf:] @ sol
+
+    def static_stiffness(self):
+        """Static stiffness of the platform (free DOFs), interior nodes condensed out.
+
+        Returns
+        -------
+        ndarray, shape (n_free, n_free) [N/m, N, N m/rad]
+            Comparable with the elastic-catenary ``Equilibrium.static_stiffness()``.
+        """
+        return self._condensed(self.matrices()[0])
+
+    # ------------------------------------------------------------------------ FRF
+    def frf(self, omega, inputs=None, outputs=None, point=None, kind="receptance"):
+        """Platform FRFs by a direct sparse solve of (K - omega^2 M + i omega C) X = F.
+
+        Same channels and result as :func:`dynstiff.frf.frf`. Damping as in
+        :func:`~dynstiff.lumped.chain_end_dynamic_stiffness`: EA (1 + i eta) in the axial
+        term of K, viscous c l0 at every node (c l0 / 2 at B_i), none on the platform.
+
+        Parameters
+        ----------
+        omega : array_like, shape (n,)
+            Angular frequencies [rad/s], >= 0.
+        inputs : str or list of str, optional
+            Among ``INPUT_NAMES`` (default all six); loads on held DOFs give no response.
+        outputs : str or list of str, optional
+            Among ``OUTPUT_NAMES`` (default all six).
+        point : array_like, shape (3,), optional
+            Platform point [m, platform frame] whose translation is output (default P).
+        kind : {"receptance", "mobility", "accelerance"}
+
+        Returns
+        -------
+        FRFResult
+            H of shape (n, n_out, n_in).
+
+        Warns
+        -----
+        PoleWarning
+            At a frequency where the dynamic stiffness is exactly singular (entries inf).
+        """
+        import warnings
+        omega = omega_array(omega)
+        if kind not in _KINDS:
+            raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
+        ii = _channels(inputs, INPUT_NAMES, "inputs")
+        oo = _channels(outputs, OUTPUT_NAMES, "outputs")
+        c = np.zeros(3) if point is None else _point("point", point)
+        s = self.state
+        fi, nf = self._fi, self.n_free
+        rob = self.robot
+        eta = [cb.loss_factor for cb in rob.cables]
+        K = self._tangent(s.pose, s.interior,
+                          lambda i: 1.0 + 1j * eta[i] if eta[i] > 0 else 1.0)
+        M = self.mass_matrix(s.pose)
+        damped = any(cb.viscous_damping > 0 for cb in rob.cables)
+        C = self._damping_matrix(s.pose) if damped else None
+        F = np.zeros((self.n_dof, len(ii)))
+        F[:nf] = np.eye(6)[np.ix_(fi, ii)]
+        C6 = np.eye(6)
+        C6[:3, 3:] = -skew(s.pose.matrix @ c)
+        out_map = C6[np.ix_(oo, fi)]
+        H = np.empty((omega.size, len(oo), len(ii)), dtype=complex)
+        singular = []
+        for k, w in enumerate(omega):
+            D = K - w * w * M
+            if damped:
+                D = D + 1j * w * C
+            try:
+                X = scipy.sparse.linalg.splu(D.tocsc()).solve(F.astype(D.dtype))
+            except RuntimeError:
+                H[k] = np.inf
+                singular.append(k)
+                continue
+            H[k] = out_map @ X[:nf]
+        if singular:
+            warnings.warn(
+                f"LumpedMassModel.frf: the dynamic stiffness is exactly singular at "
+                f"{len(singular)} frequencies (eigenfrequencies, e.g. "
+                f"{omega[singular[0]] / _TWO_PI:.9g} Hz): FRF set to inf",
+                PoleWarning, stacklevel=2)
+        if kind != "receptance":
+            H = H * ((1j * omega) ** _KINDS[kind])[:, None, None]
+        return FRFResult(freq_hz=omega / _TWO_PI, H=H,
+                         inputs=tuple(INPUT_NAMES[i] for i in ii),
+                         outputs=tuple(OUTPUT_NAMES[o] for o in oo), kind=kind)
+
+    def dof_names(self):
+        """Names of the free platform DOFs."""
+        return tuple(DOF_NAMES[i] for i in self._fi)
+
+
+# ------------------------------------------------------------------------- comparison
+def compare_modes(closed_form_modes, lumped_modes, mass_matrix=None):
+    """Mode-by-mode table of two modal results, matched by shape, not by index.
+
+    Global modes (kind "global" in both results) are paired by the MAC of their platform
+    shapes, MAC = (a^T W b)^2 / ((a^T W a)(b^T W b)), with an optimal one-to-one assignment
+    (Hungarian algorithm, largest total MAC). The remaining modes (local cable modes, and
+    global modes left unpaired) are paired by frequency, minimising the sum of |ln(f_b/f_a)|;
+    modes left over in either result get a row with the other side empty.
+
+    Parameters
+    ----------
+    closed_form_modes : ModalResult
+        E.g. ``FrequencyModel(eq).modes(n)``.
+    lumped_modes : ModalResult
+        E.g. ``LumpedMassModel(...).modes(n)``.
+    mass_matrix : array_like, shape (6, 6), optional
+        Weight W of the MAC, e.g. the platform mass matrix ``FrequencyModel.M_p``
+        (default identity, which mixes metres and radians).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per pair, sorted by closed-form mode: "closed-form mode", "lumped mode"
+        (1-based), "kind (closed form)", "kind (lumped)", "closed-form freq [Hz]",
+        "lumped freq [Hz]", "relative difference [-]" (f_lumped / f_closed - 1), "MAC [-]"
+        (NaN where a platform shape is zero), "matched by" ("MAC" or "frequency"), and
+        "match quality [-]": the MAC for MAC pairs; for frequency pairs
+        1 - |ln(f_b/f_a)| / |ln(f_b'/f_a)|, f_b' the nearest other unpaired lumped frequency
+        (1: unambiguous, 0: another mode is as close).
+    """
+    import pandas as pd
+    from scipy.optimize import linear_sum_assignment
+
+    a, b = closed_form_modes, lumped_modes
+    for name, m in (("closed_form_modes", a), ("lumped_modes", b)):
+        if not isinstance(m, ModalResult):
+            raise InvalidParameterError(
+                f"{name} must be a ModalResult, got {type(m).__name__}")
+    W = np.eye(6) if mass_matrix is None else np.asarray(mass_matrix, dtype=float)
+    if W.shape != (6, 6) or not np.all(np.isfinite(W)):
+        raise InvalidParameterError(
+            f"mass_matrix must be a finite 6x6 matrix, got shape {W.shape}")
+    Xa, Xb = a.platform_shapes, b.platform_shapes
+    na = np.einsum("ij,jk,ik->i", Xa, W, Xa)
+    nb = np.einsum("ij,jk,ik->i", Xb, W, Xb)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mac = (Xa @ W @ Xb.T) ** 2 / np.outer(na, nb)
+    mac[~np.isfinite(mac)] = np.nan
+    ga = np.flatnonzero((np.array(a.kind) == "global") & (na > 0))
+    gb = np.flatnonzero((np.array(b.kind) == "global") & (nb > 0))
+    pairs = []                                      # (i, j, how, quality)
+    if ga.size and gb.size:
+        ri, ci = linear_sum_assignment(np.nan_to_num(mac[np.ix_(ga, gb)]), maximize=True)
+        pairs += [(ga[p], gb[q], "MAC", mac[ga[p], gb[q]]) for p, q in zip(ri, ci)]
+    rest_a = np.setdiff1d(np.arange(len(a)), [p[0] for p in pairs])
+    rest_b = np.setdiff1d(np.arange(len(b)), [p[1] for p in pairs])
+    if rest_a.size and rest_b.size:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cost = np.log(b.freq_hz[rest_b][None, :] / a.freq_hz[rest_a][:, None]) ** 2
+        cost = np.nan_to_num(cost, nan=1e300, posinf=1e300)
+        ri, ci = linear_sum_assignment(cost)
+        for p, q in zip(ri, ci):
+            others = np.delete(cost[p], q)
+            if others.size == 0:
+                quality = 1.0
+            elif others.min() > 0:
+                quality = float(np.clip(1.0 - cost[p, q] / others.min(), 0.0, 1.0))
+            else:
+                quality = 0.0
+            pairs.append((rest_a[p], rest_b[q], "frequency", quality))
+    done_a = {p[0] for p in pairs}
+    done_b = {p[1] for p in pairs}
+    pairs += [(i, None, None, np.nan) for i in range(len(a)) if i not in done_a]
+    pairs += [(None, j, None, np.nan) for j in range(len(b)) if j not in done_b]
+    pairs.sort(key=lambda p: (p[0] is None, p[0] if p[0] is not None else p[1]))
+    fa = np.array([a.freq_hz[i] if i is not None else np.nan for i, *_ in pairs])
+    fb = np.array([b.freq_hz[j] if j is not None else np.nan for _, j, *_ in pairs])
+    return pd.DataFrame({
+        "closed-form mode": pd.array([i + 1 if i is not None else None
+                                      for i, *_ in pairs], dtype="Int64"),
+        "lumped mode": pd.array([j + 1 if j is not None else None
+                                 for _, j, *_ in pairs], dtype="Int64"),
+        "kind (closed form)": [a.kind[i] if i is not None else None for i, *_ in pairs],
+        "kind (lumped)": [b.kind[j] if j is not None else None for _, j, *_ in pairs],
+        "closed-form freq [Hz]": fa,
+        "lumped freq [Hz]": fb,
+        "relative difference [-]": fb / fa - 1.0,
+        "MAC [-]": [mac[i, j] if i is not None and j is not None else np.nan
+                    for i, j, *_ in pairs],
+        "matched by": [p[2] for p in pairs],
+        "match quality [-]": [p[3] for p in pairs],
+    })
