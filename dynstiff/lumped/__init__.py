@@ -8,7 +8,8 @@ from .chain import (
     chain_fixed_end_frequencies,
     chain_matrices,
 )
-from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult, compare_modes
+from .compare import compare_modes
+from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult
 
 __all__ = [
     "LumpedEquilibrium",
