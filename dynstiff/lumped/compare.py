@@ -3,6 +3,7 @@ global modes paired by mass-weighted MAC of the platform shapes, the others by f
 
 import numpy as np
 
+from ..eigen import ModalResult
 from ..errors import InvalidParameterError
 
 __all__ = ["compare_modes"]
