@@ -24,7 +24,9 @@ from .errors import (
 )
 from .eigen import ModalResult
 from .frf import FRFResult
+from .ladder import RUNGS, build_model
 from .lumped import LumpedMassModel
+from .recommend import Recommendation, recommend_model
 from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
 from .params import Cable
 from .platform import Platform
@@ -40,6 +42,10 @@ __all__ = [
     "FRFResult",
     "FrequencyModel",
     "LumpedMassModel",
+    "RUNGS",
+    "Recommendation",
+    "build_model",
+    "recommend_model",
     "ModalResult",
     "ProximityWarning",
     "SweepResult",

@@ -608,7 +608,7 @@ class LumpedMassModel:
             V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
         return lam, V, K, M
 
-    def eigenfrequencies(self, n_modes):
+    def eigenfrequencies(self, n_modes=None, fmax_hz=None):
         """Lowest natural frequencies of K phi = omega^2 M phi [Hz], ascending.
 
         Sparse shift-invert Lanczos (dense ``eigh`` for small models). An unstable
@@ -616,15 +616,27 @@ class LumpedMassModel:
 
         Parameters
         ----------
-        n_modes : int
+        n_modes : int, optional
             Number of frequencies, 1 <= n_modes <= n_dof.
+        fmax_hz : float, optional
+            All frequencies below this [Hz] (the first ``n_modes`` of them if both are given).
 
         Returns
         -------
-        ndarray, shape (n_modes,) [Hz]
+        ndarray, shape (n,) [Hz]
         """
-        lam = self._eig(n_modes)[0]
-        return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
+        if fmax_hz is None:
+            if n_modes is None:
+                raise InvalidParameterError("give n_modes or fmax_hz")
+            lam = self._eig(n_modes)[0]
+            return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
+        n = 12 if n_modes is None else int(n_modes)
+        while True:                      # grow the count until the band is covered
+            f = self.eigenfrequencies(min(n, self.n_dof))
+            if n >= self.n_dof or f[-1] >= fmax_hz:
+                f = f[f < fmax_hz]
+                return f if n_modes is None else f[:n_modes]
+            n *= 2
 
     def modes(self, n_modes):
         """Modes with platform shapes, cable kinetic-energy fractions and labels.

@@ -1,0 +1,189 @@
+"""Model selection: the cheapest rung of the model ladder expected to meet a tolerance.
+
+"Model no more than a scene needs": from cheap estimates (cable fixed-end frequencies
+against the band, sag ratio, along-chord weight, a first-order perturbation of the
+massless-cable modes by the cables' real dynamic stiffness) predict the frequency error of
+each rung of :mod:`dynstiff.ladder` in the band, and return the cheapest one whose
+prediction meets ``rtol``.
+
+Error estimates (relative frequency error, all modes in the band)
+-----------------------------------------------------------------
+* "spring" / "catenary" have no cable modes: if any clamped-cable frequency lies below the
+  band's top they miss modes (error inf). Otherwise the "catenary" error is the first-order
+  shift of each massless mode x at omega by the cables' inertia,
+  |x^T (K_dsm(omega) - K_cat) x| / (2 omega^2 x^T M x), with K_dsm the closed-form
+  robot dynamic stiffness; "spring" adds its measured gap to "catenary" (the sag effect).
+* "dsm": the measured envelope of the shallow-cable error (tests/test_cable_dsm.py),
+  15 delta^2 + 2 delta eps (1 + 40 eps), delta = d/L, eps = W sin(theta) / T, worst cable; when
+  cable modes lie in the band, also eps^2 / 4 for the tension variation along the cable that
+  the mean-tension theory ignores (second order in eps).
+* "lumped": the beaded-string error (n pi / N)^2 / 24 of the highest cable harmonic n in the
+  band (theory.md §7.2), with N chosen so that it stays below rtol / 2.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .assembly import FrequencyModel
+from .cable_dsm import cable_mode_count, chord_parameters
+from .errors import InvalidParameterError
+from .ladder import RUNGS, StaticCableModel
+
+__all__ = ["Recommendation", "recommend_model", "predicted_errors"]
+
+_COST_ORDER = {r: i for i, r in enumerate(RUNGS)}
+
+
+@dataclass(frozen=True)
+class Recommendation:
+    """Cheapest adequate model.
+
+    Attributes
+    ----------
+    rung : str
+        One of :data:`dynstiff.ladder.RUNGS`.
+    segments : int or None
+        Segments per cable when ``rung == "lumped"``.
+    predicted_error : float
+        Predicted relative frequency error of that rung in the band [-].
+    errors : dict
+        Predicted error of every rung [-] (inf: misses modes).
+    estimates : dict
+        The quantities the choice relied on.
+    """
+
+    rung: str
+    segments: object
+    predicted_error: float
+    errors: dict = field(default_factory=dict)
+    estimates: dict = field(default_factory=dict)
+
+    def text(self):
+        """One-paragraph explanation."""
+        e = self.estimates
+        seg = f" with N = {self.segments} segments per cable" if self.segments else ""
+        lines = [f"recommended model: {self.rung}{seg} (predicted error "
+                 f"{self.predicted_error:.2e})",
+                 f"  lowest clamped-cable frequency {e['cable_f1_hz']:.4g} Hz; cable modes in "
+                 f"band: {e['cable_modes_in_band']}",
+                 f"  max sag/chord {e['sag_ratio_max']:.2e}, max lambda^2 "
+                 f"{e['lambda_sq_max']:.3g}, max W sin(theta)/T {e['weight_ratio_max']:.3g}, "
+                 f"cable/platform mass {e['mass_ratio']:.3g}",
+                 "  predicted errors: " + ", ".join(
+                     f"{k} {v:.2e}" for k, v in self.errors.items())]
+        return "\n".join(lines) + "\n"
+
+
+def _dsm_static_envelope(states):
+    env = 0.0
+    eps_max = 0.0
+    for s in states:
+        p = chord_parameters(s)
+        delta = p.sag / p.L
+        eps = s.total_weight * abs(s.chord[2]) / s.chord_length / p.T
+        env = max(env, 15 * delta**2 + 2 * delta * eps * (1 + 40 * eps))
+        eps_max = max(eps_max, eps)
+    return env, eps_max
+
+
+def predicted_errors(equilibrium, band_hz, rtol=1e-2):
+    """Predicted relative frequency error of each rung in the band, and the estimates.
+
+    Parameters
+    ----------
+    equilibrium : Equilibrium
+    band_hz : (float, float)
+        Frequency band of interest [Hz].
+    rtol : float
+        Tolerance used to choose the lumped rung's segment count.
+
+    Returns
+    -------
+    errors : dict rung -> float
+    estimates : dict
+    segments : int
+        Segments per cable for the lumped rung.
+    """
+    lo, hi = (float(b) for b in band_hz)
+    if not (0 <= lo < hi and np.isfinite(hi)):
+        raise InvalidParameterError(f"band_hz must be (low, high) with 0 <= low < high [Hz], "
+                                    f"got {band_hz!r}")
+    if not (np.isfinite(rtol) and rtol > 0):
+        raise InvalidParameterError(f"rtol must be finite and > 0, got {rtol!r}")
+    states = equilibrium.states
+    w_hi = 2 * np.pi * hi
+    n_cable = int(sum(cable_mode_count(s, w_hi)[0] for s in states))
+    f1 = []
+    harm = []
+    for s in states:
+        p = chord_parameters(s)
+        f1.append(np.sqrt(p.T / p.m) / (2 * p.L))
+        harm.append(2 * hi * p.L * np.sqrt(p.m / p.T))          # Omega / pi at the band top
+    env, eps_max = _dsm_static_envelope(states)
+    cable_mass = sum(s.cable.mass_per_length * s.unstretched_length for s in states)
+    estimates = dict(
+        cable_f1_hz=float(min(f1)), cable_modes_in_band=n_cable,
+        sag_ratio_max=float(max(chord_parameters(s).sag / s.chord_length for s in states)),
+        lambda_sq_max=float(max(s.lambda_sq for s in states)),
+        weight_ratio_max=float(eps_max),
+        mass_ratio=float(cable_mass / equilibrium.robot.platform.mass),
+        highest_harmonic=float(max(harm)))
+    errors = {}
+    if n_cable > 0:
+        errors["spring"] = errors["catenary"] = np.inf
+    else:
+        cat = StaticCableModel(equilibrium, "catenary")
+        spr = StaticCableModel(equilibrium, "spring")
+        import scipy.linalg
+        lam, X = scipy.linalg.eigh(cat.K, cat.M)
+        w = np.sqrt(np.maximum(lam, 0.0))
+        # first-order shift of every massless mode below 1.5 x the band top; a mode counts if
+        # its shifted frequency lies in the band (heavy cables can pull one into it)
+        sel = w <= w_hi * 1.5
+        if np.any(sel):
+            dsm = FrequencyModel(equilibrium)
+            # cable part of the DSM robot matrix (it includes -omega^2 M_p) minus the static one
+            Kd = dsm.dynamic_stiffness(w[sel]).real + (w[sel] ** 2)[:, None, None] * cat.M
+            dK = Kd - cat.K[None]
+            Xs = X[:, sel]
+            shift = (np.einsum("ik,kij,jk->k", Xs, dK, Xs)
+                     / (2 * w[sel] ** 2 * np.einsum("ik,ij,jk->k", Xs, cat.M, Xs)))
+            inband = w[sel] * (1 + np.minimum(shift, 0.0)) <= w_hi
+        if np.any(sel) and np.any(inband):
+            errors["catenary"] = float(np.abs(shift[inband]).max())
+            fs = spr.eigenfrequencies()[sel][inband]
+            fc = (w[sel] / (2 * np.pi))[inband]
+            errors["spring"] = float(np.max(np.abs(fs / fc - 1))) + errors["catenary"]
+        else:
+            errors["catenary"] = errors["spring"] = 0.0
+    errors["dsm"] = float(env + (eps_max**2 / 4 if n_cable > 0 else 0.0))
+    n_harm = max(1.0, estimates["highest_harmonic"])
+    segments = int(np.ceil(n_harm * np.pi / np.sqrt(12.0 * rtol)))
+    segments = max(segments, 4)
+    errors["lumped"] = float((n_harm * np.pi / segments) ** 2 / 24)
+    return errors, estimates, segments
+
+
+def recommend_model(equilibrium, band_hz, rtol=1e-2):
+    """The cheapest model on the ladder expected to meet ``rtol`` in the band.
+
+    Parameters
+    ----------
+    equilibrium : Equilibrium
+        From :meth:`Robot.equilibrium`.
+    band_hz : (float, float)
+        Frequency band of interest [Hz]; every mode in it counts.
+    rtol : float
+        Admissible relative error of the natural frequencies [-].
+
+    Returns
+    -------
+    Recommendation
+    """
+    errors, estimates, segments = predicted_errors(equilibrium, band_hz, rtol)
+    for rung in RUNGS:
+        if errors[rung] <= rtol:
+            break
+    return Recommendation(rung=rung, segments=segments if rung == "lumped" else None,
+                          predicted_error=errors[rung], errors=errors, estimates=estimates)

@@ -1,0 +1,122 @@
+"""Model ladder and recommend_model: a case where each rung is the right answer, checked
+against a converged lumped-mass reference (Richardson, N = 20 and 40), and the validation
+study's headline numbers."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+
+spec = importlib.util.spec_from_file_location(
+    "model_selection", Path(__file__).resolve().parents[1] / "validation" / "model_selection.py")
+ms = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(ms)
+
+
+def three_cable(R, H, mass, E, m, pose=(0.3, -0.2, 1.0)):
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([R * np.cos(ang), R * np.sin(ang), np.full(3, H)])
+    rob = ds.Robot(A, np.zeros((3, 3)), ds.Cable(m, 8.2e-6 * E),
+                   ds.Platform(mass, free_dofs=("x", "y", "z")), tension_limits=(1, 1e7))
+    return rob.equilibrium(pose=list(pose))
+
+
+def cable_f1(eq):
+    return min(ds.cable_natural_frequencies(s, 1).freq_hz[0] for s in eq.states)
+
+
+def actual_errors(eq, band, segments=None):
+    ref = ms.reference_frequencies(eq, band[1] * 1.5)
+    out = {r: ms.band_error(ds.build_model(eq, r).eigenfrequencies(fmax_hz=band[1] * 1.5), ref,
+                            band) for r in ("spring", "catenary", "dsm")}
+    if segments:
+        out["lumped"] = ms.band_error(
+            ds.build_model(eq, "lumped", segments).eigenfrequencies(fmax_hz=band[1] * 1.5), ref,
+            band)
+    return out
+
+
+def test_spring_is_enough_for_a_stiff_taut_robot():
+    eq = three_cable(5, 5, 1000, 120e9, 0.064)
+    band = (0.01, 0.8 * cable_f1(eq))
+    rec = ds.recommend_model(eq, band, 1e-2)
+    assert rec.rung == "spring"
+    assert actual_errors(eq, band)["spring"] <= 1e-2
+
+
+def test_catenary_when_sag_matters_but_cable_inertia_does_not():
+    eq = three_cable(12, 8, 50, 17e9, 0.064)
+    band = (0.01, 0.8 * cable_f1(eq))
+    rec = ds.recommend_model(eq, band, 1e-2)
+    assert rec.rung == "catenary"
+    err = actual_errors(eq, band)
+    assert err["spring"] > 1e-2 >= err["catenary"]        # spring too crude, catenary enough
+    assert rec.errors["spring"] == pytest.approx(err["spring"], rel=0.1)
+    assert rec.errors["catenary"] == pytest.approx(err["catenary"], rel=0.1)
+
+
+def test_dsm_when_cable_modes_are_in_the_band():
+    eq = ds.load_scene("cogiro").equilibrium()
+    band = (0.1, 6.0)
+    rec = ds.recommend_model(eq, band, 1e-2)
+    assert rec.rung == "dsm" and rec.estimates["cable_modes_in_band"] > 0
+    err = actual_errors(eq, band)
+    assert np.isinf(err["spring"]) and np.isinf(err["catenary"]) and err["dsm"] <= 1e-2
+
+
+def test_lumped_when_the_tolerance_is_below_the_closed_form_error():
+    eq = ds.load_scene("cogiro").equilibrium()
+    band = (0.1, 3.0)
+    rec = ds.recommend_model(eq, band, 1e-4)
+    assert rec.rung == "lumped" and rec.segments >= 40
+    err = actual_errors(eq, band, rec.segments)
+    assert err["dsm"] > 1e-4 >= err["lumped"]             # the closed form is not enough
+
+
+def test_bad_inputs():
+    eq = ds.load_scene("cogiro").equilibrium()
+    with pytest.raises(ds.InvalidParameterError, match="band_hz"):
+        ds.recommend_model(eq, (5.0, 1.0), 1e-2)
+    with pytest.raises(ds.InvalidParameterError, match="rtol"):
+        ds.recommend_model(eq, (0.1, 1.0), -1.0)
+    with pytest.raises(ds.InvalidParameterError, match="rung"):
+        ds.build_model(eq, "fem")
+
+
+def test_model_selection_study_quick():
+    """validation/model_selection.py, quick suite: the choice meets rtol in >= 95 % of cases
+    and is never more than one rung too expensive (issue acceptance)."""
+    df = ms.run(quick=True)
+    assert len(df) == 12                                  # 3 cases x 2 bands x 2 rtol
+    assert df["meets rtol"].mean() >= 0.95
+    assert df["rungs too expensive"].max() <= 1
+    assert set(df["recommended"]) >= {"spring", "catenary", "dsm"}
+
+
+@pytest.mark.slow
+def test_model_selection_study_full_and_random_robots():
+    df = ms.run()
+    assert df["meets rtol"].mean() >= 0.95 and df["rungs too expensive"].max() <= 1
+    rng = np.random.default_rng(7)
+    hits, too_costly, n = 0, 0, 0
+    for _ in range(20):
+        R, H = rng.uniform(4, 14), rng.uniform(4, 10)
+        mass, E, m = rng.uniform(10, 1000), rng.uniform(17e9, 120e9), rng.uniform(0.03, 0.5)
+        try:
+            eq = three_cable(R, H, mass, E, m, pose=(rng.uniform(-.5, .5), rng.uniform(-.5, .5),
+                                                    rng.uniform(0.5, 2.0)))
+        except ds.DynstiffError:
+            continue
+        band = (0.01, rng.uniform(0.5, 2.0) * cable_f1(eq))
+        for rtol in (3e-2, 1e-3):
+            rec = ds.recommend_model(eq, band, rtol)
+            err = actual_errors(eq, band, rec.segments if rec.rung == "lumped" else None)
+            n += 1
+            hits += err[rec.rung] <= rtol
+            adequate = [r for r in ds.RUNGS if err.get(r, np.inf) <= rtol]
+            if adequate:
+                too_costly += ds.RUNGS.index(rec.rung) - ds.RUNGS.index(adequate[0]) > 1
+    assert n >= 20 and hits / n >= 0.95 and too_costly == 0
