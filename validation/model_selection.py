@@ -74,7 +74,7 @@ def run(quick=False):
     pandas.DataFrame
     """
     rows = []
-    rtols = (3e-2, 1e-3) if quick else (3e-2, 1e-2, 1e-3)
+    rtols = (3e-2, 1e-2, 1e-3)
     for name, eq in suite(quick):
         cf1 = min(ds.cable_natural_frequencies(s, 1).freq_hz[0] for s in eq.states)
         bands = [(0.01, 0.8 * cf1), (0.01, 1.8 * cf1)]
