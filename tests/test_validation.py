@@ -90,3 +90,21 @@ def test_frf_figure_marks_modes():
     assert sum(ln.get_gid() == "mode-global" for ln in marked) == sum(
         k == "global" for f, k in zip(modes.freq_hz, modes.kind) if 0.5 <= f <= 4.0)
     assert ax.get_xlabel() == "frequency [Hz]" and "receptance" in ax.get_ylabel()
+
+
+def test_speed_accuracy_quick():
+    """validation/speed_accuracy.py (quick: central pose, E = 17 and 120 GPa): the massless
+    models miss the cable modes, the lumped model converges at O(N^-2), and the closed form
+    is both cheaper and more accurate than the lumped model at N = 10."""
+    df = load("speed_accuracy").run(quick=True)
+    for E, d in df.groupby("E [GPa]"):
+        d = d.set_index("model")
+        assert np.isinf(d.loc["spring", "err first 10"]) and np.isinf(
+            d.loc["catenary", "err first 10"])
+        ratio = d.loc["lumped N=5", "err first 20"] / d.loc["lumped N=10", "err first 20"]
+        assert 3.0 < ratio < 5.0                               # (n pi/N)^2/24: halving N -> x4
+        assert d.loc["dsm", "err first 20"] < d.loc["lumped N=10", "err first 20"] / 5
+        assert (d.loc["dsm", "40 modes [s]"] + d.loc["dsm", "build [s]"]
+                < d.loc["lumped N=10", "40 modes [s]"] + d.loc["lumped N=10", "build [s]"])
+        assert d.loc["dsm", "err global modes"] < 1e-3
+        assert d.loc["dsm", "FRF log error [dec]"] < 1e-3
