@@ -108,3 +108,28 @@ def test_speed_accuracy_quick():
                 < d.loc["lumped N=10", "40 modes [s]"] + d.loc["lumped N=10", "build [s]"])
         assert d.loc["dsm", "err global modes"] < 1e-3
         assert d.loc["dsm", "FRF log error [dec]"] < 1e-3
+
+
+def test_shallow_cable_limits():
+    """validation/shallow_cable_limits.py: the closed-form fixed-end frequencies against a
+    converged lumped chain degrade as (d/L)^2 on horizontal cables and much faster on steep
+    ones (neglected along-chord weight, theory.md §2.3)."""
+    mod = load("shallow_cable_limits")
+    df = pd_concat([pd_frame(mod.case(d, 0)) for d in (0.002, 0.01, 0.05)])
+    err = df.groupby("sag/chord")["rel error"].apply(lambda s: s.abs().max())
+    slope = np.polyfit(np.log(err.index.to_numpy()), np.log(err.to_numpy()), 1)[0]
+    assert 1.7 < slope < 2.3
+    assert err.loc[0.002] < 5e-5
+    steep = pd_frame(mod.case(0.01, 80)).iloc[:, :]
+    assert steep["rel error"].abs().max() > 1e-2              # where the method fails
+    assert pd_frame(mod.case(0.005, 60))["rel error"].abs().max() < 5e-4
+
+
+def pd_frame(rows):
+    import pandas as pd
+    return pd.DataFrame(rows)
+
+
+def pd_concat(frames):
+    import pandas as pd
+    return pd.concat(frames, ignore_index=True)
