@@ -202,7 +202,7 @@ class Robot:
 
     # ------------------------------------------------------------------ statics
     def equilibrium(self, pose=None, unstretched_lengths=None, tension_reference=None,
-                    initial_pose=None, tol=1e-10, max_iter=50):
+                    initial_pose=None, tol=1e-10, max_iter=None):
         """Static equilibrium with sagging cables.
 
         Give exactly one of:
@@ -217,6 +217,10 @@ class Robot:
             equilibrium (Newton with the analytic 6x6 stiffness), starting from the
             straight-cable estimate (or ``initial_pose``).
 
+        ``max_iter`` defaults to 500 fixed-point iterations for inverse statics (they contract
+        slowly when the cables are light or nearly slack, since the direction at B then
+        depends strongly on the tension) and 50 Newton iterations for forward statics.
+
         Returns
         -------
         Equilibrium
@@ -229,10 +233,11 @@ class Robot:
         if (pose is None) == (unstretched_lengths is None):
             raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
         if pose is not None:
-            return inverse_statics(self, as_pose(pose), tension_reference, tol, max_iter)
+            return inverse_statics(self, as_pose(pose), tension_reference, tol,
+                                   500 if max_iter is None else max_iter)
         return forward_statics(self, _lengths(unstretched_lengths, self.n_cables),
                                None if initial_pose is None else as_pose(initial_pose), tol,
-                               max_iter)
+                               50 if max_iter is None else max_iter)
 
 
 def geometric_stiffness(robot, pose, states):

@@ -120,3 +120,25 @@ def test_model_selection_study_full_and_random_robots():
             if adequate:
                 too_costly += ds.RUNGS.index(rec.rung) - ds.RUNGS.index(adequate[0]) > 1
     assert n >= 20 and hits / n >= 0.95 and too_costly == 0
+
+
+@pytest.mark.parametrize("mass", [50.0, 5.0, 1.0, 0.3])
+def test_near_slack_cables_answer_or_raise(mass):
+    """As the platform gets lighter the cables approach slack (tension ~ cable weight): every
+    model still answers, with recommend_model's predicted closed-form error covering the
+    actual one, or statics raises SlackCableError with the pose and the tension."""
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    rob = ds.Robot(A, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(mass, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
+    if mass < 0.5:
+        with pytest.raises(ds.SlackCableError, match="not reachable"):
+            rob.equilibrium(pose=[0.3, -0.2, 1.0])
+        return
+    eq = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    assert eq.residual < 1e-10
+    band = (0.01, 1.5 * cable_f1(eq))
+    rec = ds.recommend_model(eq, band, 1e-2)
+    err = actual_errors(eq, band)
+    assert np.isinf(err["spring"]) and np.isinf(err["catenary"])   # cable modes in the band
+    assert err["dsm"] <= rec.errors["dsm"]                           # prediction is an upper bound
