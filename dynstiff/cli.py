@@ -175,6 +175,10 @@ def main(argv=None):
     except (DynstiffError, FileNotFoundError) as exc:
         sys.stderr.write(f"dynstiff: error: {exc}\n")
         return 2
+    except BrokenPipeError:             # output piped into e.g. `head`: stop quietly
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":

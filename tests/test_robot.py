@@ -276,3 +276,28 @@ def test_forward_statics_with_held_dofs_needs_initial_pose(cogiro, cogiro_eq):
     m = ds.FrequencyModel(eq)
     K = m.dynamic_stiffness([0.0, 10.0])
     np.testing.assert_allclose(K, K.transpose(0, 2, 1), atol=1e-9 * np.abs(K).max())
+
+
+@pytest.mark.parametrize("name", ["cogiro", "planar2", "sixcable", "fourcable"])
+def test_builtin_scenes_load_and_equilibrate(name):
+    scene = ds.load_scene(name)
+    same = ds.Robot.from_toml(ds.scenes.loader._HERE / f"{name}.toml")
+    np.testing.assert_array_equal(same.anchors, scene.robot.anchors)
+    eq = scene.equilibrium()
+    assert eq.residual < 1e-9
+    lo, hi = scene.band_hz
+    assert np.all(eq.tensions >= scene.robot.tension_limits[0])
+    f = ds.FrequencyModel(eq).eigenfrequencies(fmax_hz=hi)
+    assert len(f) >= 1 and np.all(np.diff(f) >= 0)
+
+
+def test_fourcable_needs_only_the_light_model():
+    """Seed paper 002's small robot: the cable modes sit above 28 Hz, sag/chord ~1e-4 and the
+    cables weigh 0.1 % of the platform, so straight massless springs meet 1 % up to 20 Hz."""
+    eq = ds.load_scene("fourcable").equilibrium()
+    rec = ds.recommend_model(eq, (0.1, 20.0), 1e-2)
+    assert rec.rung == "spring"
+    assert rec.estimates["cable_f1_hz"] > 20.0 and rec.estimates["mass_ratio"] < 0.01
+    f_spring = ds.build_model(eq, "spring").eigenfrequencies(fmax_hz=20.0)
+    f_dsm = ds.build_model(eq, "dsm").eigenfrequencies(fmax_hz=20.0)
+    np.testing.assert_allclose(f_spring, f_dsm, rtol=1e-2)
