@@ -10,6 +10,17 @@ from .chain import (
 )
 from .compare import compare_modes
 from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult
+from .time_domain import (
+    EnergyBalance,
+    IntegrationError,
+    SlackSegmentWarning,
+    Spectrum,
+    TimeDamping,
+    TimeResponse,
+    TimeStepWarning,
+    explicit_step_limit,
+    simulate,
+)
 
 __all__ = [
     "LumpedEquilibrium",
@@ -21,4 +32,13 @@ __all__ = [
     "chain_equilibrium",
     "chain_fixed_end_frequencies",
     "chain_matrices",
+    "EnergyBalance",
+    "IntegrationError",
+    "SlackSegmentWarning",
+    "Spectrum",
+    "TimeDamping",
+    "TimeResponse",
+    "TimeStepWarning",
+    "explicit_step_limit",
+    "simulate",
 ]

@@ -608,6 +608,11 @@ class LumpedMassModel:
             V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
         return lam, V, K, M
 
+    def simulate(self, t_end, dt, **kwargs):
+        """Nonlinear time-domain simulation; see :func:`dynstiff.lumped.time_domain.simulate`."""
+        from .time_domain import simulate
+        return simulate(self, t_end, dt, **kwargs)
+
     def eigenfrequencies(self, n_modes=None, fmax_hz=None):
         """Lowest natural frequencies of K phi = omega^2 M phi [Hz], ascending.
 
