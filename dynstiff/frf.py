@@ -14,7 +14,7 @@ from ._validate import omega_array, point as _point
 from .errors import InvalidParameterError, PoleWarning
 from .platform import skew
 
-__all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES"]
+__all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
 
 #: Load channels: forces [N] and moments [N m] on the platform about P.
 INPUT_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")
@@ -34,6 +34,37 @@ def _channels(names, allowed, arg):
             raise InvalidParameterError(f"{arg} must be among {allowed}, got {n!r}")
         idx.append(allowed.index(n))
     return idx
+
+
+def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
+    """Maps between named channels and the free DOFs.
+
+    Parameters
+    ----------
+    free_index : ndarray of int, shape (n_free,)
+        Free DOFs among (x, y, z, rx, ry, rz).
+    rotation : ndarray, shape (3, 3)
+        Platform rotation R_p.
+    inputs, outputs : str or list of str, optional
+        Among ``INPUT_NAMES`` / ``OUTPUT_NAMES`` (default all six).
+    point : array_like, shape (3,), optional
+        Platform point [m, platform frame] whose translation is output (default P).
+
+    Returns
+    -------
+    B : ndarray, shape (n_free, n_in)
+        Loads (about P) -> generalized forces on the free DOFs.
+    C : ndarray, shape (n_out, n_free)
+        Free-DOF motion -> output channels, d_c = dp - [R_p c]x dtheta.
+    input_names, output_names : tuple of str
+    """
+    ii = _channels(inputs, INPUT_NAMES, "inputs")
+    oo = _channels(outputs, OUTPUT_NAMES, "outputs")
+    c = np.zeros(3) if point is None else _point("point", point)
+    C6 = np.eye(6)
+    C6[:3, 3:] = -skew(rotation @ c)
+    return (np.eye(6)[np.ix_(free_index, ii)], C6[np.ix_(oo, free_index)],
+            tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
 
 
 @dataclass(frozen=True)
@@ -99,16 +130,8 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     omega = omega_array(omega)
     if kind not in _KINDS:
         raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
-    ii = _channels(inputs, INPUT_NAMES, "inputs")
-    oo = _channels(outputs, OUTPUT_NAMES, "outputs")
-    c = np.zeros(3) if point is None else _point("point", point)
-    fi = model._fi
-    # input map: full 6 loads -> free DOFs; output map: free DOFs -> 6 outputs at the point
-    B = np.eye(6)[np.ix_(fi, ii)]                               # (nf, n_in)
-    rc = model.equilibrium.pose.matrix @ c
-    C6 = np.eye(6)
-    C6[:3, 3:] = -skew(rc)                                      # d_c = dp - [rc]x dtheta
-    C = C6[np.ix_(oo, fi)]                                      # (n_out, nf)
+    B, C, in_names, out_names = channel_maps(model._fi, model.equilibrium.pose.matrix,
+                                             inputs, outputs, point)
     K = model.dynamic_stiffness(omega).astype(complex)
     # a pole of a cable's K_B is a zero of H (anti-resonance), not a pole: evaluate exactly
     # there by continuity, an ulp-scale step away
@@ -116,7 +139,7 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     if np.any(bad):
         K[bad] = model.dynamic_stiffness(omega[bad] * (1 + 4 * np.finfo(float).eps))
     n = omega.size
-    H = np.empty((n, len(oo), len(ii)), dtype=complex)
+    H = np.empty((n, C.shape[0], B.shape[1]), dtype=complex)
     rhs = np.broadcast_to(B, (n,) + B.shape)
     try:                                    # LU: raises only on an exactly singular K
         H[:] = C @ np.linalg.solve(K, rhs)
@@ -134,6 +157,5 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
             PoleWarning, stacklevel=3)
     factor = (1j * omega) ** _KINDS[kind]
     H = H * factor[:, None, None] if kind != "receptance" else H
-    return FRFResult(freq_hz=omega / (2 * np.pi), H=H,
-                     inputs=tuple(INPUT_NAMES[i] for i in ii),
-                     outputs=tuple(OUTPUT_NAMES[o] for o in oo), kind=kind)
+    return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
+                     kind=kind)

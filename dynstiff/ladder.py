@@ -20,7 +20,7 @@ import scipy.linalg
 from ._validate import omega_array
 from .assembly import FrequencyModel
 from .errors import InvalidParameterError
-from .frf import FRFResult, INPUT_NAMES, OUTPUT_NAMES, _channels
+from .frf import FRFResult, channel_maps
 from .platform import platform_mass_matrix, skew
 from .robot import geometric_stiffness
 
@@ -75,18 +75,16 @@ class StaticCableModel:
             f = f[f < fmax_hz]
         return f if n_modes is None else f[:n_modes]
 
-    def frf(self, omega, inputs=None, outputs=None):
-        """Receptance of the platform about P, shape (n, n_out, n_in)."""
+    def frf(self, omega, inputs=None, outputs=None, point=None):
+        """Receptance of the platform (see :func:`dynstiff.frf.frf` for the channels),
+        H of shape (n, n_out, n_in)."""
         omega = omega_array(omega)
-        ii = _channels(inputs, INPUT_NAMES, "inputs")
-        oo = _channels(outputs, OUTPUT_NAMES, "outputs")
-        B = np.eye(6)[np.ix_(self._fi, ii)]
-        C = np.eye(6)[np.ix_(oo, self._fi)]
+        B, C, in_names, out_names = channel_maps(self._fi, self.equilibrium.pose.matrix,
+                                                 inputs, outputs, point)
         D = self.K[None] - (omega**2)[:, None, None] * self.M[None]
         H = C @ np.linalg.solve(D.astype(complex), np.broadcast_to(B, (omega.size,) + B.shape))
-        return FRFResult(freq_hz=omega / (2 * np.pi), H=H,
-                         inputs=tuple(INPUT_NAMES[i] for i in ii),
-                         outputs=tuple(OUTPUT_NAMES[o] for o in oo), kind="receptance")
+        return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
+                         kind="receptance")
 
 
 class _DSMRung(FrequencyModel):

@@ -19,6 +19,23 @@ def cogiro_cable(E=17e9, **kw):
     return ds.Cable(COGIRO_MASS, COGIRO_AREA * E, **kw)
 
 
+def point_mass_robot(E=17e9, mass=20.0):
+    """3-cable suspended point-mass robot shared by the robot, lumped and time-domain tests."""
+    anchors = np.array([[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]])
+    pl = ds.Platform(mass, free_dofs=("x", "y", "z"))
+    return ds.Robot(anchors, np.zeros((3, 3)), cogiro_cable(E), pl)
+
+
+@pytest.fixture(scope="module")
+def cogiro():
+    return ds.load_scene("cogiro")
+
+
+@pytest.fixture(scope="module")
+def cogiro_eq(cogiro):
+    return cogiro.equilibrium()
+
+
 @pytest.fixture
 def cable17():
     return cogiro_cable(17e9)

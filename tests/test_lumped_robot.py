@@ -16,26 +16,9 @@ import dynstiff as ds
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.lumped import LumpedMassModel, LumpedModalResult, compare_modes
 from dynstiff.lumped import robot_model
-from conftest import lumped_point_mass_frequencies
+from conftest import lumped_point_mass_frequencies, point_mass_robot
 
 E17 = 8.2051e-6 * 17e9          # CoGiRo cable EA [N] (theory.md §8.1)
-
-
-def point_mass_robot(mass=20.0):
-    """Same robot as tests/test_robot.py::point_mass_robot."""
-    anchors = np.array([[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]])
-    pl = ds.Platform(mass, free_dofs=("x", "y", "z"))
-    return ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, E17), pl)
-
-
-@pytest.fixture(scope="module")
-def cogiro():
-    return ds.load_scene("cogiro")
-
-
-@pytest.fixture(scope="module")
-def cogiro_eq(cogiro):
-    return cogiro.equilibrium()
 
 
 @pytest.fixture(scope="module")

@@ -7,17 +7,7 @@ import scipy.linalg
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, PoleWarning, SlackCableError
-from conftest import lumped_point_mass_frequencies
-
-
-@pytest.fixture(scope="module")
-def cogiro():
-    return ds.load_scene("cogiro")
-
-
-@pytest.fixture(scope="module")
-def cogiro_eq(cogiro):
-    return cogiro.equilibrium()
+from conftest import lumped_point_mass_frequencies, point_mass_robot
 
 
 def skew(a):
@@ -125,12 +115,6 @@ def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
 
 
 # ------------------------------------------------------------------ W-W against lumped mass
-def point_mass_robot(E=17e9, mass=20.0):
-    anchors = np.array([[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]])
-    pl = ds.Platform(mass, free_dofs=("x", "y", "z"))
-    return ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 8.2051e-6 * E), pl)
-
-
 def test_wittrick_williams_count_equals_lumped_model_count():
     rob = point_mass_robot()
     eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])

@@ -15,6 +15,7 @@ import pytest
 import scipy.special
 
 import dynstiff as ds
+from conftest import point_mass_robot
 from dynstiff.errors import InvalidParameterError, SlackCableError
 from dynstiff.lumped import (
     IntegrationError,
@@ -28,13 +29,6 @@ from dynstiff.lumped import (
 )
 
 E17 = 8.2051e-6 * 17e9          # CoGiRo cable EA [N] (theory.md §8.1)
-
-
-def point_mass_robot(mass=20.0):
-    """Same robot as tests/test_robot.py::point_mass_robot."""
-    anchors = np.array([[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]])
-    pl = ds.Platform(mass, free_dofs=("x", "y", "z"))
-    return ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, E17), pl)
 
 
 @pytest.fixture(scope="module")

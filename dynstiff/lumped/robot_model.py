@@ -47,10 +47,10 @@ import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-from .._validate import omega_array, point as _point, positive_scalar
+from .._validate import omega_array, positive_scalar
 from ..eigen import ModalResult
 from ..errors import ConvergenceError, InvalidParameterError, PoleWarning, SlackCableError
-from ..frf import _KINDS, INPUT_NAMES, OUTPUT_NAMES, FRFResult, _channels
+from ..frf import _KINDS, FRFResult, channel_maps
 from ..platform import DOF_NAMES, platform_mass_matrix, skew
 from ..robot import Pose, Robot, as_pose
 from .chain import _block_tridiagonal_entries, _element_stiffness, chain_equilibrium
@@ -758,11 +758,10 @@ class LumpedMassModel:
         omega = omega_array(omega)
         if kind not in _KINDS:
             raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
-        ii = _channels(inputs, INPUT_NAMES, "inputs")
-        oo = _channels(outputs, OUTPUT_NAMES, "outputs")
-        c = np.zeros(3) if point is None else _point("point", point)
         s = self.state
-        fi, nf = self._fi, self.n_free
+        B, out_map, in_names, out_names = channel_maps(self._fi, s.pose.matrix, inputs,
+                                                       outputs, point)
+        nf = self.n_free
         rob = self.robot
         eta = [cb.loss_factor for cb in rob.cables]
         K = self._tangent(s.pose, s.interior,
@@ -770,12 +769,9 @@ class LumpedMassModel:
         M = self.mass_matrix(s.pose)
         damped = any(cb.viscous_damping > 0 for cb in rob.cables)
         C = self._damping_matrix(s.pose) if damped else None
-        F = np.zeros((self.n_dof, len(ii)))
-        F[:nf] = np.eye(6)[np.ix_(fi, ii)]
-        C6 = np.eye(6)
-        C6[:3, 3:] = -skew(s.pose.matrix @ c)
-        out_map = C6[np.ix_(oo, fi)]
-        H = np.empty((omega.size, len(oo), len(ii)), dtype=complex)
+        F = np.zeros((self.n_dof, B.shape[1]))
+        F[:nf] = B
+        H = np.empty((omega.size, out_map.shape[0], B.shape[1]), dtype=complex)
         singular = []
         for k, w in enumerate(omega):
             D = K - w * w * M
@@ -796,9 +792,8 @@ class LumpedMassModel:
                 PoleWarning, stacklevel=2)
         if kind != "receptance":
             H = H * ((1j * omega) ** _KINDS[kind])[:, None, None]
-        return FRFResult(freq_hz=omega / _TWO_PI, H=H,
-                         inputs=tuple(INPUT_NAMES[i] for i in ii),
-                         outputs=tuple(OUTPUT_NAMES[o] for o in oo), kind=kind)
+        return FRFResult(freq_hz=omega / _TWO_PI, H=H, inputs=in_names, outputs=out_names,
+                         kind=kind)
 
     def dof_names(self):
         """Names of the free platform DOFs."""
