@@ -14,6 +14,8 @@ Format (all SI units; see ``cogiro.toml`` for a complete example)::
     [pose]            optional: position [m], rotation [rad] (rotation vector), or
                       unstretched_lengths [m] (one per cable)
     [analysis]        optional: band_hz [Hz, Hz], n_modes
+    [study]           optional, free-form: parameters of the scene's validation study
+                      (trajectory, excitation, drums ...), as ``Scene.study`` (a dict)
 
 Unknown keys, missing keys and bad values raise :class:`SceneError` naming the key and its line.
 """

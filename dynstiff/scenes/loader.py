@@ -24,6 +24,7 @@ _SCHEMA = {
                "loss_factor"},
     "pose": {"position", "rotation", "unstretched_lengths"},
     "analysis": {"band_hz", "n_modes"},
+    "study": None,                  # free-form: parameters of the scene's validation study
 }
 _REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
 
@@ -43,6 +44,10 @@ class Scene:
     unstretched_lengths : ndarray or None, shape (n,) [m]
     band_hz : (float, float) or None
     n_modes : int or None
+    study : dict
+        The free-form ``[study]`` table: parameters of the scene's validation study
+        (trajectory, excitation, drums ...), with units in the file's comments; not read
+        by the analysis itself.
     name, description : str
     path : Path
     """
@@ -52,6 +57,7 @@ class Scene:
     unstretched_lengths: object = None
     band_hz: object = None
     n_modes: object = None
+    study: object = None
     name: str = ""
     description: str = ""
     path: object = None
@@ -123,6 +129,8 @@ def read_scene(path):
         if sec not in _SCHEMA:
             fail(f"unknown section [{sec}] (expected one of {sorted(_SCHEMA)})", None, sec)
     for sec, keys in _SCHEMA.items():
+        if keys is None:
+            continue
         tables = data.get(sec, [] if sec == "cables" else {})
         tables = tables if isinstance(tables, list) else [tables]
         for k, tab in enumerate(tables):
@@ -179,6 +187,9 @@ def read_scene(path):
     if "position" in ps:
         pose = build("pose", lambda: Pose(ps["position"], ps.get("rotation", [0, 0, 0])),
                      "position", "pose")
+    study = data.get("study", {})
+    if not isinstance(study, dict):
+        fail("[study] must be a table", None, "study")
     an = data.get("analysis", {})
     band = an.get("band_hz")
     if band is not None and (len(band) != 2 or not 0 <= band[0] < band[1]):
@@ -186,7 +197,8 @@ def read_scene(path):
              "analysis")
     return Scene(robot=robot, pose=pose, unstretched_lengths=lengths,
                  band_hz=None if band is None else tuple(band), n_modes=an.get("n_modes"),
-                 name=sc.get("name", path.stem), description=sc.get("description", ""),
+                 study=study, name=sc.get("name", path.stem),
+                 description=sc.get("description", ""),
                  path=path)
 
 
