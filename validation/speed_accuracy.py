@@ -120,22 +120,21 @@ if __name__ == "__main__":
     for k in ("global modes", "first 10", "first 20", "first 40"):
         print(f"\nPareto, {k}")
         print(pareto(df, f"err {k}").to_string(float_format=lambda x: f"{x:.3g}"))
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
-    for ax, (err, cost, label) in zip(axes, [
-            ("err global modes", "40 modes [s]", "max relative error, global modes"),
-            ("err first 20", "40 modes [s]", "max relative error, first 20 modes"),
-            ("FRF log error [dec]", "FRF [s]", "FRF RMS log error [decades]")]):
-        g = df.groupby("model").agg({err: "max", cost: "median", "build [s]": "median"})
-        for name, r in g.iterrows():
-            e = r[err] if np.isfinite(r[err]) else 1.0
-            ax.loglog(r[cost] + r["build [s]"], max(e, 1e-7), "o")
-            ax.annotate(name + ("" if np.isfinite(r[err]) else " (misses modes)"),
-                        (r[cost] + r["build [s]"], max(e, 1e-7)), fontsize=8,
-                        xytext=(4, 4), textcoords="offset points")
-        ax.set_xlabel("wall time: build + solve [s]")
+    from dynstiff.plot import plot_speed_accuracy
+    measures = [("err global modes", "40 modes [s]", "max relative error, global modes"),
+                ("err first 10", "40 modes [s]", "max relative error, first 10 modes"),
+                ("err first 20", "40 modes [s]", "max relative error, first 20 modes"),
+                ("err first 40", "40 modes [s]", "max relative error, first 40 modes"),
+                ("FRF log error [dec]", "FRF [s]", "FRF RMS log error [decades]")]
+    fig, axes = plt.subplots(2, 3, figsize=(16, 9))
+    for ax, (err, cost, label) in zip(axes.flat, measures):
+        plot_speed_accuracy(df, error=err, cost=cost, ax=ax)
         ax.set_ylabel(label)
-        ax.grid(True, which="both", alpha=0.3)
-    fig.suptitle("CoGiRo, 6 poses x E in {17, 120} GPa: cost against accuracy (worst case)")
+    for ax in axes.flat[len(measures):]:
+        ax.remove()
+    n_cases = df.groupby(["E [GPa]", "pose"]).ngroups
+    fig.suptitle(f"CoGiRo, {n_cases} cases (poses x E in {{17, 120}} GPa): cost against "
+                 "accuracy (worst case)")
     fig.tight_layout()
     fig.savefig("speed_accuracy.png", dpi=120)
     print("wrote speed_accuracy.png")

@@ -1,0 +1,516 @@
+"""3-D views of a robot at equilibrium and of its mode shapes (matplotlib imported here).
+
+:func:`plot_robot` draws the anchors, the sagging cable profiles (elastic catenaries of the
+:class:`~dynstiff.robot.Equilibrium`) and the platform as the hull of its attachment points,
+with the point P marked; given a mode, also the exaggerated deformed shape. The platform moves
+by the small motion x = scale * (dp, dtheta), so an attachment point moves by
+
+    dB_i = scale * (dp + dtheta x r_i),      r_i = R_p b_i,
+
+and, with the :class:`~dynstiff.assembly.FrequencyModel` given, each cable by its closed-form
+displacement field (:func:`dynstiff.eigen.cable_fields`, theory.md §5.3) times the same scale.
+:func:`animate_mode` writes the oscillation shape * sin(2 pi t / T) over one period as a GIF.
+
+Artists carry a ``gid``: ``anchors``, ``P``, ``cable-<i>`` (static cable i), ``platform``
+(platform edges), ``platform-faces``; with a mode ``cable-<i>-mode``, ``platform-mode``,
+``platform-mode-faces`` and ``P-mode``.
+"""
+
+from numbers import Integral
+from pathlib import Path
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+__all__ = ["plot_robot", "animate_mode"]
+
+_STATIC = "0.15"           # cables without a mode
+_GHOST = "0.65"            # static shape under a mode shape
+_MODE = {"global": "tab:red", "local": "tab:blue"}
+_PLATFORM = "tab:orange"
+_SCALE_FRACTION = 0.05     # default: largest displacement 5 % of the bounding-box diagonal
+
+
+# ------------------------------------------------------------------------ geometry
+def _hull(points):
+    """Outline of the platform from its attachment points, shape (n, 3) [m].
+
+    Returns ``(path, faces)``: ``path`` a list of point indices, -1 separating the pieces of
+    the polyline of the hull's edges (edges between coplanar facets left out); ``faces`` a
+    list of index lists, one polygon each. Coincident points give an empty outline, collinear
+    ones a segment, coplanar ones one polygon.
+    """
+    from scipy.spatial import ConvexHull, QhullError
+    uniq = np.unique(np.round(points, 12), axis=0, return_index=True)[1]
+    uniq = np.sort(uniq)
+    if uniq.size < 2:
+        return [], []
+    c = points[uniq] - points[uniq].mean(axis=0)
+    _, sv, Vt = np.linalg.svd(c, full_matrices=False)
+    tol = 1e-9 * max(sv[0], 1e-300)
+    rank = int(np.sum(sv > tol))
+    if rank == 1 or uniq.size == 2:
+        t = c @ Vt[0]
+        return [int(uniq[np.argmin(t)]), int(uniq[np.argmax(t)])], []
+    if rank == 3:
+        try:
+            h = ConvexHull(points[uniq])
+        except QhullError:                             # nearly flat: draw it as a polygon
+            rank = 2
+    if rank == 2:
+        try:
+            h = ConvexHull(c @ Vt[:2].T)
+        except QhullError:
+            return [], []
+        loop = [int(uniq[v]) for v in h.vertices]         # counter-clockwise order
+        return loop + loop[:1], [loop]
+    # facets of one plane together (normals within 1 degree, vertices within 1 % of the
+    # size of the plane: a platform face measured with millimetre scatter stays one polygon)
+    P = points[uniq]
+    size = float(np.ptp(P, axis=0).max())
+    planes, groups = [], []
+    for simplex, eqn in zip(h.simplices, h.equations):
+        eqn = eqn / np.linalg.norm(eqn[:3])
+        for j, q in enumerate(planes):
+            if (eqn[:3] @ q[:3] > np.cos(np.radians(1.0))
+                    and np.abs(P[simplex] @ q[:3] + q[3]).max() < 1e-2 * size):
+                groups[j].append(simplex)
+                break
+        else:
+            planes.append(eqn)
+            groups.append([simplex])
+    path, faces, seen = [], [], set()
+    for tris in groups:
+        count = {}
+        for tri in tris:
+            for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+                e = (min(a, b), max(a, b))
+                count[e] = count.get(e, 0) + 1
+        boundary = [e for e, n in count.items() if n == 1]
+        faces.append(_chain(boundary, uniq))
+        for a, b in boundary:
+            if (a, b) not in seen:
+                seen.add((a, b))
+                path += [int(uniq[a]), int(uniq[b]), -1]
+    return path[:-1], faces
+
+
+def _chain(edges, uniq):
+    """Vertex loop (original indices) of a polygon given by its boundary edges."""
+    nxt = {}
+    for a, b in edges:
+        nxt.setdefault(a, []).append(b)
+        nxt.setdefault(b, []).append(a)
+    start = edges[0][0]
+    loop, prev, cur = [start], None, start
+    while True:
+        cand = [v for v in nxt[cur] if v != prev]
+        if not cand or cand[0] == start:
+            break
+        prev, cur = cur, cand[0]
+        loop.append(cur)
+        if len(loop) > len(nxt):
+            break
+    return [int(uniq[v]) for v in loop]
+
+
+def _path_points(B, path):
+    """Polyline of the hull outline, shape (len(path), 3), NaN rows between pieces."""
+    out = np.full((len(path), 3), np.nan)
+    idx = np.asarray(path, dtype=int)
+    ok = idx >= 0
+    out[ok] = B[idx[ok]]
+    return out
+
+
+def _check_eq(eq):
+    for a in ("robot", "pose", "states", "lever_arms"):
+        if not hasattr(eq, a):
+            raise InvalidParameterError(
+                f"eq must be a dynstiff.Equilibrium, got {type(eq).__name__} (no {a!r})")
+
+
+def _check_mode(modes, mode):
+    from .eigen import ModalResult
+    if not isinstance(modes, ModalResult):
+        raise InvalidParameterError(
+            f"modes must be a dynstiff.ModalResult (from FrequencyModel.modes()), got "
+            f"{type(modes).__name__}")
+    if mode is None:
+        raise InvalidParameterError(
+            f"mode must be given with modes= (0-based index below {len(modes)}), got None")
+    if isinstance(mode, bool) or not isinstance(mode, Integral):
+        raise InvalidParameterError(f"mode must be an integer index, got {mode!r}")
+    if not 0 <= mode < len(modes):
+        raise InvalidParameterError(
+            f"mode must be a 0-based index in [0, {len(modes) - 1}] ({len(modes)} modes), "
+            f"got {mode!r}")
+    return int(mode)
+
+
+def _check_model(model, eq, modes):
+    from .assembly import FrequencyModel
+    if not isinstance(model, FrequencyModel):
+        raise InvalidParameterError(
+            f"model must be the dynstiff.FrequencyModel of the modes, got "
+            f"{type(model).__name__}")
+    ends = np.array([s.end for s in model.equilibrium.states])
+    if (ends.shape != (len(eq.states), 3)
+            or not np.allclose(ends, [s.end for s in eq.states], rtol=0.0, atol=1e-9)):
+        raise InvalidParameterError(
+            "model must be built on the equilibrium eq (FrequencyModel(eq)); its cable ends "
+            "differ from eq's")
+    if modes is not None and modes.platform_shapes.shape[1] != 6:
+        raise InvalidParameterError(
+            f"modes: platform_shapes must have shape (n, 6), got "
+            f"{modes.platform_shapes.shape}")
+
+
+def _positive_int(name, value, least):
+    if isinstance(value, bool) or not isinstance(value, Integral) or value < least:
+        raise InvalidParameterError(f"{name} must be an integer >= {least}, got {value!r}")
+    return int(value)
+
+
+def _nonnegative(name, value):
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}") from None
+    if not np.isfinite(x) or x < 0:
+        raise InvalidParameterError(f"{name} must be finite and >= 0, got {value!r}")
+    return x
+
+
+def _geometry(eq, modes, k, model, n_points, sag_scale):
+    """Static points and unit mode displacements of everything drawn.
+
+    Returns a dict: ``cables`` (n_cables, n_points, 3) profiles [m], ``cable_disp`` the same
+    shape per unit scale (None without a mode), ``B`` (n, 3) attachment points and ``dB``
+    their displacement, ``P`` and ``dP`` (3,), ``anchors`` (n, 3), ``path`` and ``faces``
+    of the platform outline, ``kind`` and ``freq_hz`` of the mode, ``dynamic`` (cable fields
+    from the model, not the quasi-static straight-line interpolation).
+    """
+    robot = eq.robot
+    anchors = np.asarray(robot.anchors, dtype=float)
+    B = np.array([s.end for s in eq.states])
+    r = np.asarray(eq.lever_arms, dtype=float)
+    P = np.asarray(eq.pose.position, dtype=float)
+    cables = np.empty((len(eq.states), n_points, 3))
+    chord_t = np.empty((len(eq.states), n_points))
+    for i, s in enumerate(eq.states):
+        prof = s.profile(n_points)
+        prof[0], prof[-1] = s.anchor, s.end          # exact ends (solver residual ~1e-12)
+        e = s.chord / s.chord_length
+        t = (prof - s.anchor) @ e
+        if sag_scale != 1.0:
+            along = s.anchor + np.outer(t, e)
+            prof = along + sag_scale * (prof - along)
+        cables[i] = prof
+        chord_t[i] = np.clip(t / s.chord_length, 0.0, 1.0)
+    path, faces = _hull(B)
+    geo = dict(cables=cables, cable_disp=None, B=B, dB=None, P=P, dP=None, anchors=anchors,
+               path=path, faces=faces, kind=None, freq_hz=None, dynamic=False)
+    if modes is None:
+        return geo
+    x6 = np.asarray(modes.platform_shapes[k], dtype=float)
+    dB = x6[:3] + np.cross(x6[3:], r)
+    disp = np.zeros_like(cables)
+    if model is not None:
+        from .eigen import cable_fields
+        _, field = cable_fields(model, modes, k, n_points)
+        grid = np.linspace(0.0, 1.0, n_points)
+        for i in range(len(eq.states)):
+            for c in range(3):
+                disp[i, :, c] = np.interp(chord_t[i], grid, field[i, :, c])
+    else:                                            # quasi-static: straight-line motion
+        disp = chord_t[:, :, None] * dB[:, None, :]
+    geo.update(cable_disp=disp, dB=dB, dP=x6[:3].copy(), kind=modes.kind[k],
+               freq_hz=float(modes.freq_hz[k]), dynamic=model is not None)
+    return geo
+
+
+def _default_scale(geo):
+    """Scale that makes the largest displacement 5 % of the bounding-box diagonal; 1.0 when
+    nothing moves (a purely local mode drawn without its cable field)."""
+    pts = np.vstack([geo["anchors"], geo["B"], geo["P"][None, :]])
+    size = float(np.linalg.norm(pts.max(axis=0) - pts.min(axis=0)))
+    largest = max(float(np.linalg.norm(geo["dB"], axis=1).max(initial=0.0)),
+                  float(np.linalg.norm(geo["dP"])),
+                  float(np.linalg.norm(geo["cable_disp"], axis=2).max(initial=0.0)))
+    return _SCALE_FRACTION * size / largest if largest > 0 else 1.0
+
+
+# ------------------------------------------------------------------------- drawing
+def _draw(ax, geo, factor):
+    """Draw the static robot and, with a mode, its shape at ``factor`` * unit displacement.
+    Returns the artists that move, for the animation."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    moving = {}
+    with_mode = geo["dB"] is not None
+    a = geo["anchors"]
+    ax.scatter(a[:, 0], a[:, 1], a[:, 2], marker="s", s=22, color="k", depthshade=False,
+               gid="anchors", label="anchors")
+    for i, c in enumerate(geo["cables"]):
+        ax.plot(c[:, 0], c[:, 1], c[:, 2], color=_GHOST if with_mode else _STATIC,
+                lw=0.9 if with_mode else 1.2, gid=f"cable-{i}",
+                label="cables (static)" if i == 0 else None)
+    B, P = geo["B"], geo["P"]
+    color = _GHOST if with_mode else _PLATFORM
+    if geo["faces"]:
+        ax.add_collection3d(Poly3DCollection([B[f] for f in geo["faces"]], facecolor=color,
+                                             alpha=0.25, edgecolor="none",
+                                             gid="platform-faces"))
+    if geo["path"]:
+        pp = _path_points(B, geo["path"])
+        ax.plot(pp[:, 0], pp[:, 1], pp[:, 2], color=color, lw=1.5, gid="platform",
+                label="platform" if not with_mode else "platform (static)")
+    ax.scatter([P[0]], [P[1]], [P[2]], marker="o", s=20, color="k" if not with_mode
+               else _GHOST, depthshade=False, gid="P", label="P")
+    if not with_mode:
+        return moving
+    col = _MODE.get(geo["kind"], "tab:red")
+    moving["cables"] = []
+    for i, c in enumerate(geo["cables"] + factor * geo["cable_disp"]):
+        (ln,) = ax.plot(c[:, 0], c[:, 1], c[:, 2], color=col, lw=1.3, gid=f"cable-{i}-mode",
+                        label="mode shape" if i == 0 else None)
+        moving["cables"].append(ln)
+    Bd = B + factor * geo["dB"]
+    if geo["faces"]:
+        moving["faces"] = Poly3DCollection([Bd[f] for f in geo["faces"]],
+                                           facecolor=_PLATFORM, alpha=0.35, edgecolor="none",
+                                           gid="platform-mode-faces")
+        ax.add_collection3d(moving["faces"])
+    if geo["path"]:
+        pp = _path_points(Bd, geo["path"])
+        (moving["platform"],) = ax.plot(pp[:, 0], pp[:, 1], pp[:, 2], color=_PLATFORM,
+                                        lw=2.0, gid="platform-mode")
+    Pd = P + factor * geo["dP"]
+    moving["P"] = ax.scatter([Pd[0]], [Pd[1]], [Pd[2]], marker="o", s=24, color="k",
+                             depthshade=False, gid="P-mode")
+    return moving
+
+
+def _update(moving, geo, factor):
+    """Move the mode-shape artists to ``factor`` * unit displacement."""
+    for ln, c in zip(moving["cables"], geo["cables"] + factor * geo["cable_disp"]):
+        ln.set_data_3d(c[:, 0], c[:, 1], c[:, 2])
+    Bd = geo["B"] + factor * geo["dB"]
+    if "faces" in moving:
+        moving["faces"].set_verts([Bd[f] for f in geo["faces"]])
+    if "platform" in moving:
+        pp = _path_points(Bd, geo["path"])
+        moving["platform"].set_data_3d(pp[:, 0], pp[:, 1], pp[:, 2])
+    Pd = geo["P"] + factor * geo["dP"]
+    moving["P"]._offsets3d = ([Pd[0]], [Pd[1]], [Pd[2]])
+
+
+def _set_limits(ax, geo, factors):
+    """Equal-aspect limits enclosing the robot at every factor of the mode shape."""
+    pts = [geo["anchors"], geo["B"], geo["P"][None, :], geo["cables"].reshape(-1, 3)]
+    if geo["dB"] is not None:
+        for f in factors:
+            pts += [geo["B"] + f * geo["dB"], geo["P"][None, :] + f * geo["dP"][None, :],
+                    (geo["cables"] + f * geo["cable_disp"]).reshape(-1, 3)]
+    pts = np.vstack(pts)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    span = hi - lo
+    span = np.maximum(span, 0.15 * span.max()) * 1.06
+    mid = 0.5 * (lo + hi)
+    ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
+    ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
+    ax.set_zlim(mid[2] - span[2] / 2, mid[2] + span[2] / 2)
+    ax.set_box_aspect(span, zoom=0.95)
+    from matplotlib.ticker import MaxNLocator
+    for axis, length in zip((ax.xaxis, ax.yaxis, ax.zaxis), span):
+        axis.set_major_locator(MaxNLocator(int(np.clip(round(8 * length / span.max()), 3, 8))))
+
+
+def _title(eq, geo, k, n_modes, scale, sag_scale):
+    name = getattr(eq.robot, "name", "") or "robot"
+    if geo["dB"] is None:
+        t = f"{name} at equilibrium, P = {np.round(geo['P'], 3).tolist()} m"
+    else:
+        t = f"{name}: mode {k + 1} of {n_modes}, {geo['freq_hz']:.4g} Hz, {geo['kind']}"
+        if not np.any(geo["dB"]) and not np.any(geo["cable_disp"]):
+            t += "\nplatform at rest (purely local cable mode; shape not drawn)"
+        else:
+            t += f"\ndisplacements x {scale:.3g}"
+            if not geo["dynamic"]:
+                t += ", cables quasi-static (give model= for their fields)"
+    if sag_scale != 1.0:
+        t += f"; sag x {sag_scale:g}"
+    return t
+
+
+def _prepare(eq, modes, mode, scale, n_points, model, sag_scale):
+    _check_eq(eq)
+    n_points = _positive_int("n_points", n_points, 2)
+    sag_scale = _nonnegative("sag_scale", sag_scale)
+    k = None
+    if modes is not None:
+        k = _check_mode(modes, mode)
+    elif mode is not None:
+        raise InvalidParameterError(f"mode={mode!r} needs modes= (a ModalResult), got None")
+    if model is not None:
+        _check_model(model, eq, modes)
+    if scale is not None:
+        scale = _nonnegative("scale", scale)
+    geo = _geometry(eq, modes, k, model, n_points, sag_scale)
+    if modes is not None and scale is None:
+        scale = _default_scale(geo)
+    return geo, k, scale, sag_scale
+
+
+def _axes3d(ax, figsize=(8.0, 6.0)):
+    if ax is None:
+        import matplotlib.pyplot as plt
+        fig = plt.figure(figsize=figsize)
+        ax = fig.add_subplot(projection="3d")
+        fig.subplots_adjust(left=0.0, right=1.0, bottom=0.04, top=0.92)
+        return fig, ax
+    if getattr(ax, "name", "") != "3d":
+        raise InvalidParameterError(
+            f"ax must be a 3-D Axes (add_subplot(projection='3d')), got "
+            f"{type(ax).__name__}")
+    return ax.figure, ax
+
+
+def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, model=None,
+               sag_scale=1.0):
+    """3-D view of the robot at equilibrium, optionally with an exaggerated mode shape.
+
+    Draws the anchors A_i (squares), the sagging cables (elastic-catenary profiles of
+    ``eq.states``, anchor to attachment point), the platform as the convex hull of its
+    attachment points B_i (a polygon when they are coplanar, nothing when they coincide, as
+    for a point mass) and P (dot). With a mode, the static shape is drawn in grey and the
+    deformed one in colour: attachment points at B_i + scale (dp + dtheta x r_i), P at
+    P + scale dp, cables at their profile + scale * their displacement field.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        Static equilibrium of the robot (``robot.equilibrium(...)``).
+    modes : ModalResult, optional
+        From ``FrequencyModel(eq).modes(...)``; ``platform_shapes`` shape (n_modes, 6)
+        [m, rad].
+    mode : int, optional
+        0-based index of the mode to draw (required with ``modes``); the title numbers modes
+        from 1, as :meth:`ModalResult.to_frame` does.
+    scale : float, optional
+        Displacement magnification [-], >= 0. Default: the largest displacement drawn is
+        5 % of the diagonal of the bounding box of the anchors and attachment points.
+    ax : mpl_toolkits.mplot3d.Axes3D, optional
+    n_points : int
+        Points per cable profile (>= 2, default 41).
+    model : FrequencyModel, optional
+        The model that computed ``modes``. When given, the cables move by their closed-form
+        fields (:func:`dynstiff.eigen.cable_fields`); otherwise each cable point moves by the
+        straight-line (quasi-static) interpolation t * dB_i, t the chordwise position in
+        [0, 1].
+    sag_scale : float
+        Magnification of each cable's deviation from its chord, for display only (>= 0,
+        default 1: true geometry). Cable ends are unchanged.
+
+    Returns
+    -------
+    matplotlib Figure
+        Axes with equal scales, labels ``x [m]``, ``y [m]``, ``z [m]``; gids ``anchors``,
+        ``P``, ``cable-<i>``, ``platform``, ``platform-faces`` and, with a mode,
+        ``cable-<i>-mode``, ``platform-mode``, ``platform-mode-faces``, ``P-mode``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``eq`` not an equilibrium, ``modes`` not a ModalResult, ``mode`` missing or out of
+        range, ``scale`` or ``sag_scale`` negative, ``n_points`` < 2, ``model`` not the
+        FrequencyModel of ``eq``, ``ax`` not 3-D.
+    """
+    geo, k, scale, sag_scale = _prepare(eq, modes, mode, scale, n_points, model, sag_scale)
+    fig, ax = _axes3d(ax)
+    _draw(ax, geo, scale if modes is not None else 0.0)
+    _set_limits(ax, geo, [scale] if modes is not None else [])
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.set_title(_title(eq, geo, k, None if modes is None else len(modes), scale, sag_scale),
+                 fontsize=10)
+    ax.legend(loc="upper left", fontsize=8)
+    return fig
+
+
+def animate_mode(eq, modes, mode, path, model=None, frames=24, scale=None, fps=12,
+                 sag_scale=1.0, dpi=80):
+    """Write a GIF of a mode oscillating over one period: shape * sin(2 pi j / frames).
+
+    Parameters
+    ----------
+    eq : Equilibrium
+    modes : ModalResult
+        From ``FrequencyModel(eq).modes(...)``.
+    mode : int
+        0-based index of the mode.
+    path : str or path-like
+        Output file, ending in ``.gif``.
+    model : FrequencyModel, optional
+        The model of ``modes``, for the cable displacement fields (see :func:`plot_robot`).
+    frames : int
+        Frames per period (>= 2, default 24); frame j shows the shape times
+        sin(2 pi j / frames).
+    scale : float, optional
+        Displacement magnification [-] at the peak (default as in :func:`plot_robot`).
+    fps : float
+        Frames per second of the file (> 0, default 12).
+    sag_scale : float
+        Display magnification of the cable sag (default 1).
+    dpi : float
+        Resolution of the frames [dots per inch] (default 80: 600 x 480 pixels).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    InvalidParameterError
+        Bad argument (as :func:`plot_robot`), ``path`` not ending in ``.gif``,
+        ``frames`` < 2, ``fps`` not > 0, or pillow not installed.
+    """
+    import importlib.util
+    if importlib.util.find_spec("PIL") is None:        # matplotlib's PillowWriter needs it
+        raise InvalidParameterError(
+            "animate_mode writes GIFs with matplotlib's PillowWriter, which needs the "
+            "'pillow' package; install it (pip install pillow)")
+    path = Path(path)
+    if path.suffix.lower() != ".gif":
+        raise InvalidParameterError(f"path must end in .gif, got {str(path)!r}")
+    frames = _positive_int("frames", frames, 2)
+    fps = _nonnegative("fps", fps)
+    if fps == 0:
+        raise InvalidParameterError(f"fps must be > 0, got {fps!r}")
+    if modes is None:
+        raise InvalidParameterError("modes must be a dynstiff.ModalResult, got None")
+    geo, k, scale, sag_scale = _prepare(eq, modes, mode, scale, 41, model, sag_scale)
+    from matplotlib.animation import PillowWriter
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(8.0, 6.0), dpi=dpi)
+    ax = fig.add_subplot(projection="3d")
+    fig.subplots_adjust(left=0.0, right=1.0, bottom=0.04, top=0.92)
+    moving = _draw(ax, geo, 0.0)
+    _set_limits(ax, geo, [scale, -scale])
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.legend(loc="upper left", fontsize=8)
+    ax.set_title(_title(eq, geo, k, len(modes), scale, sag_scale), fontsize=10)
+    clock = fig.text(0.02, 0.03, "", fontsize=10)
+    writer = PillowWriter(fps=fps)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with writer.saving(fig, str(path), dpi):
+        for j in range(frames):
+            _update(moving, geo, scale * np.sin(2.0 * np.pi * j / frames))
+            clock.set_text(f"t = {j}/{frames} T")       # also keeps every frame distinct
+            writer.grab_frame()
+    return path

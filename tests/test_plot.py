@@ -1,0 +1,355 @@
+"""Plotting layer (dynstiff.plot, dynstiff.plot3d): the figures hold the data they claim to.
+
+Every test reads the artists back (axis labels, line data, gids) and compares them with the
+results that were plotted; none only checks that a figure exists.
+"""
+
+import numpy as np
+import pandas as pd
+import pytest
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.text import Annotation  # noqa: E402
+
+import dynstiff as ds  # noqa: E402
+from dynstiff.errors import InvalidParameterError  # noqa: E402
+from dynstiff.eigen import cable_fields  # noqa: E402
+from dynstiff.lumped.time_response import Spectrum  # noqa: E402
+from dynstiff.plot import (  # noqa: E402
+    plot_frf,
+    plot_spectrum,
+    plot_speed_accuracy,
+    plot_veering,
+)
+from dynstiff.plot3d import animate_mode, plot_robot  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    yield
+    plt.close("all")
+
+
+@pytest.fixture(scope="module")
+def cogiro_model(cogiro_eq):
+    return ds.FrequencyModel(cogiro_eq)
+
+
+@pytest.fixture(scope="module")
+def cogiro_modes(cogiro_model):
+    return cogiro_model.modes(8)
+
+
+@pytest.fixture(scope="module")
+def small_sweep(cogiro):
+    return ds.sweep(cogiro.robot, poses=[[-1.5, 0.0, 1.0], [0.0, 0.0, 1.0], [1.5, 0.0, 1.0]],
+                    n_modes=8)
+
+
+def by_gid(ax, prefix):
+    return [a for a in ax.get_children() if (a.get_gid() or "").startswith(prefix)]
+
+
+def line(ax, gid):
+    (ln,) = [a for a in ax.get_lines() if a.get_gid() == gid]
+    return np.column_stack(ln.get_data_3d())
+
+
+# ------------------------------------------------------------------------------- FRF
+def test_frf_marks_band_modes_and_draws_phase(cogiro_model, cogiro_modes):
+    band = (0.5, 3.3)
+    res = cogiro_model.frf(2 * np.pi * np.linspace(*band, 600), inputs=["fz", "fx"],
+                           outputs=["z", "x"])
+    fig = plot_frf(res, cogiro_modes, phase=True)
+    mag, ph = fig.axes
+    in_band = (cogiro_modes.freq_hz >= band[0]) & (cogiro_modes.freq_hz <= band[1])
+    assert 0 < in_band.sum() < len(cogiro_modes)          # the band cuts the mode list
+    for ax in (mag, ph):
+        marks = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("mode-")]
+        assert len(marks) == in_band.sum()
+        np.testing.assert_allclose(sorted(ln.get_xdata()[0] for ln in marks),
+                                   cogiro_modes.freq_hz[in_band])
+        n_global = sum(k == "global" for k, b in zip(cogiro_modes.kind, in_band) if b)
+        assert sum(ln.get_gid() == "mode-global" for ln in marks) == n_global
+    curves = [ln for ln in mag.get_lines() if ln.get_gid() is None]
+    assert [c.get_label() for c in curves] == ["z / fz", "x / fx"]
+    np.testing.assert_allclose(curves[0].get_ydata(), np.abs(res.H[:, 0, 0]))
+    assert mag.get_yscale() == "log" and "receptance" in mag.get_ylabel()
+    assert ph.get_xlabel() == "frequency [Hz]" and ph.get_ylabel() == "phase [deg]"
+    phase = np.concatenate([ln.get_ydata() for ln in ph.get_lines() if ln.get_gid() is None])
+    np.testing.assert_allclose(phase[:5], np.degrees(np.angle(res.H[:5, 0, 0])))
+    assert np.nanmax(np.abs(phase)) <= 180.0
+
+
+def test_frf_honours_ax_and_rejects_bad_input(cogiro_model, cogiro_modes):
+    res = cogiro_model.frf(2 * np.pi * np.linspace(1.0, 2.0, 50), inputs=["fz"],
+                           outputs=["z"])
+    fig0, ax = plt.subplots()
+    fig = plot_frf(res, cogiro_modes, ax=ax, phase=True)      # ax given: magnitude only
+    assert fig is ax.figure and fig.axes == [ax]
+    with pytest.raises(InvalidParameterError, match="result must be a FRFResult"):
+        plot_frf(cogiro_modes)
+    with pytest.raises(InvalidParameterError, match=r"pairs.*\('q', 'fz'\)"):
+        plot_frf(res, pairs=[("q", "fz")])
+    with pytest.raises(InvalidParameterError, match="modes must be a ModalResult"):
+        plot_frf(res, modes=[1.0, 2.0])
+
+
+# --------------------------------------------------------------------------- veering
+def test_veering_one_line_per_track_and_local_dots(small_sweep):
+    fig0, ax = plt.subplots()
+    fig = plot_veering(small_sweep, ax=ax)
+    assert fig is ax.figure
+    assert ax.get_xlabel() == small_sweep.parameter == "arc length [m]"
+    assert ax.get_ylabel() == "frequency [Hz]"
+    tracks = by_gid(ax, "track-")
+    assert small_sweep.n_tracks >= 1 and len(tracks) == small_sweep.n_tracks
+    table = small_sweep.veering_table()
+    for ln in tracks:
+        t = int(ln.get_gid().split("-")[1])
+        np.testing.assert_allclose(ln.get_xdata(), small_sweep.values)
+        np.testing.assert_allclose(ln.get_ydata(), table[t].to_numpy())   # NaN where absent
+    (dots,) = by_gid(ax, "local-modes")
+    local = small_sweep.kind == "local"
+    pts = dots.get_offsets()
+    assert len(pts) == local.sum() > 0
+    np.testing.assert_allclose(np.sort(pts[:, 1]), np.sort(small_sweep.freq_hz[local]))
+    fig = plot_veering(small_sweep, show_local=False)
+    assert by_gid(fig.axes[0], "local-modes") == []
+    with pytest.raises(InvalidParameterError, match="sweep_result must be a SweepResult"):
+        plot_veering(small_sweep.to_frame())
+
+
+# -------------------------------------------------------------------------- spectrum
+def synthetic_spectrum(channel, f_peaks, amps):
+    f = np.linspace(0.0, 10.0, 401)
+    a = 1e-7 + sum(A * np.exp(-0.5 * ((f - fp) / 0.05) ** 2) for fp, A in zip(f_peaks, amps))
+    return Spectrum(freq_hz=f, amplitude=a, peaks_hz=np.asarray(f_peaks, dtype=float),
+                    peak_amplitudes=np.asarray(amps, dtype=float), channel=channel,
+                    window="hann", resolution_hz=0.025)
+
+
+def test_spectrum_log_amplitude_and_mode_markers():
+    sz = synthetic_spectrum("z", [2.2, 3.0], [1e-3, 2e-4])
+    srx = synthetic_spectrum("rx", [2.4], [5e-4])
+    fig0, ax = plt.subplots()
+    fig = plot_spectrum([sz, srx], ax=ax, channels=["z"], modes=[2.2, 3.0, 7.5, 12.0],
+                        band_hz=(0.0, 8.0))
+    assert fig is ax.figure
+    assert ax.get_yscale() == "log" and ax.get_xlabel() == "frequency [Hz]"
+    (curve,) = by_gid(ax, "spectrum-")
+    assert curve.get_gid() == "spectrum-z"                     # channels= filters
+    x, y = curve.get_data()
+    assert x.min() > 0 and x.max() <= 8.0                      # the band, without 0 Hz
+    np.testing.assert_allclose(y, sz.amplitude[(sz.freq_hz > 0) & (sz.freq_hz <= 8.0)])
+    marks = by_gid(ax, "mode-marker")
+    assert sorted(m.get_xdata()[0] for m in marks) == [2.2, 3.0, 7.5]   # 12 Hz is outside
+    with pytest.raises(InvalidParameterError, match="channels: 'y'"):
+        plot_spectrum(sz, channels=["y"])
+    with pytest.raises(InvalidParameterError, match="band_hz"):
+        plot_spectrum(sz, band_hz=(5.0, 1.0))
+
+
+def test_spectrum_of_a_simulation_marks_model_modes():
+    """A short lumped-mass run of the point-mass robot: its z spectrum peaks near a
+    frequency-domain eigenfrequency, which the figure marks (coloured by kind)."""
+    from conftest import point_mass_robot
+    from dynstiff.lumped import LumpedMassModel
+    from dynstiff.lumped.time_domain import simulate
+    rob = point_mass_robot()
+    eq = rob.equilibrium(pose=[0.0, 0.0, 1.0])
+    m = LumpedMassModel(rob, eq.unstretched_lengths, segments=3)
+    m.equilibrium()
+    run = simulate(m, 2.0, 0.01, initial=[1e-3, 0.0, 2e-3, 0.0, 0.0, 0.0])
+    modes = ds.FrequencyModel(eq).modes(4)
+    fig = plot_spectrum(run, channels=["z"], modes=modes, band_hz=(0.0, 10.0))
+    ax = fig.axes[0]
+    assert [c.get_gid() for c in by_gid(ax, "spectrum-")] == ["spectrum-z"]
+    marks = by_gid(ax, "mode-marker")
+    assert len(marks) == np.sum(modes.freq_hz <= 10.0)
+    colours = {matplotlib.colors.to_hex(m.get_color()) for m in marks}
+    assert colours <= {matplotlib.colors.to_hex(c) for c in ("tab:red", "tab:blue")}
+
+
+# -------------------------------------------------------------------- speed-accuracy
+def speed_table():
+    """Synthetic run() output: 3 cases x 6 models; two massless models miss modes."""
+    models = {"spring": (np.inf, 1e-3), "catenary": (np.inf, 2e-3), "dsm": (2e-6, 2e-2),
+              "lumped N=5": (3e-2, 5e-3), "lumped N=10": (8e-3, 1.2e-2),
+              "lumped N=20": (2e-3, 5e-2)}
+    rows = [{"model": name, "err first 20": e * (1 + 0.1 * case),
+             "40 modes [s]": c * (1 + 0.2 * case), "FRF [s]": 10 * c, "build [s]": 1e-3,
+             "E [GPa]": 17.0, "pose": str(case)}
+            for name, (e, c) in models.items() for case in range(3)]
+    return pd.DataFrame(rows)
+
+
+def test_speed_accuracy_annotations_and_pareto_front():
+    df = speed_table()
+    fig0, ax = plt.subplots()
+    fig = plot_speed_accuracy(df, ax=ax)
+    assert fig is ax.figure
+    assert ax.get_xscale() == "log" and ax.get_yscale() == "log"
+    notes = [t for t in ax.texts if isinstance(t, Annotation)]
+    assert sorted(t.get_gid() for t in notes) == sorted(f"model-{m}" for m in
+                                                        df["model"].unique())
+    missing = {t.get_text() for t in notes if "misses modes" in t.get_text()}
+    assert missing == {"spring (misses modes)", "catenary (misses modes)"}
+    # worst error over the cases, median cost + median build
+    g = df.groupby("model").agg({"err first 20": "max", "40 modes [s]": "median",
+                                 "build [s]": "median"})
+    cost = g["40 modes [s]"] + g["build [s]"]
+    dsm = [a for a in ax.get_lines() if a.get_gid() == "model-dsm"][0]
+    np.testing.assert_allclose([dsm.get_xdata()[0], dsm.get_ydata()[0]],
+                               [cost["dsm"], g.loc["dsm", "err first 20"]])
+    (front,) = by_gid(ax, "pareto")
+    fx, fy = front.get_data()
+    finite = np.isfinite(g["err first 20"].to_numpy())
+    pts = np.column_stack([cost.to_numpy(), g["err first 20"].to_numpy()])[finite]
+
+    def dominated(p):
+        return np.any(np.all(pts <= p, axis=1) & np.any(pts < p, axis=1))
+
+    on_front = [tuple(p) for p in np.column_stack([fx, fy])]
+    assert len(on_front) == 3                      # lumped N=5, lumped N=10, dsm
+    assert not any(dominated(np.array(p)) for p in on_front)
+    for p in pts:                                   # every other model is dominated
+        assert tuple(p) in on_front or dominated(p)
+    assert np.all(np.diff(fx) > 0) and np.all(np.diff(fy) < 0)
+
+
+def test_speed_accuracy_rejects_missing_column():
+    with pytest.raises(InvalidParameterError, match="'FRF log error"):
+        plot_speed_accuracy(speed_table(), error="FRF log error [dec]", cost="FRF [s]")
+    with pytest.raises(InvalidParameterError, match="df must be a pandas DataFrame"):
+        plot_speed_accuracy([1, 2, 3])
+
+
+# ------------------------------------------------------------------------------ 3-D
+def test_robot_static_cables_end_at_anchors_and_attachments(cogiro_eq):
+    fig = plot_robot(cogiro_eq)
+    ax = fig.axes[0]
+    rob = cogiro_eq.robot
+    B, _ = rob.attachment_points(cogiro_eq.pose)
+    cables = [a for a in ax.get_lines() if (a.get_gid() or "").startswith("cable-")]
+    assert len(cables) == rob.n_cables == 8
+    for i, s in enumerate(cogiro_eq.states):
+        c = line(ax, f"cable-{i}")
+        assert c.shape == (41, 3)
+        np.testing.assert_allclose(c[0], rob.anchors[i], atol=1e-9)
+        np.testing.assert_allclose(c[-1], B[i], atol=1e-9)
+        # the drawn profile sags below its chord by the catenary's sag
+        e = s.chord / s.chord_length
+        rel = c - s.anchor
+        dev = np.linalg.norm(rel - np.outer(rel @ e, e), axis=1)
+        assert dev.max() == pytest.approx(s.sag, rel=0.02)
+        assert np.all(c[1:-1, 2] < s.anchor[2] + (rel[1:-1] @ e) * e[2])   # below the chord
+    anchors = np.column_stack(by_gid(ax, "anchors")[0]._offsets3d)
+    np.testing.assert_allclose(anchors, rob.anchors)
+    platform = line(ax, "platform")
+    platform = platform[np.all(np.isfinite(platform), axis=1)]
+    assert np.min(np.linalg.norm(platform[:, None] - B[None], axis=2), axis=1).max() < 1e-12
+    assert {tuple(np.round(p, 9)) for p in platform} == {tuple(np.round(b, 9)) for b in B}
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("x [m]", "y [m]", "z [m]")
+    lims = np.array([ax.get_xlim(), ax.get_ylim(), ax.get_zlim()])
+    box = ax.get_box_aspect()
+    np.testing.assert_allclose(box / box[0], np.ptp(lims, axis=1) / np.ptp(lims[0]))  # equal
+
+
+def test_robot_mode_shape_moves_platform_by_scale_times_shape(cogiro_eq, cogiro_model,
+                                                             cogiro_modes):
+    k, scale = 2, 3.0
+    fig0 = plt.figure()
+    ax = fig0.add_subplot(projection="3d")
+    fig = plot_robot(cogiro_eq, cogiro_modes, k, scale=scale, ax=ax, model=cogiro_model)
+    assert fig is ax.figure
+    x6 = cogiro_modes.platform_shapes[k]
+    r = cogiro_eq.lever_arms
+    dB = x6[:3] + np.cross(x6[3:], r)
+    B, _ = cogiro_eq.robot.attachment_points(cogiro_eq.pose)
+    static, moved = line(ax, "platform"), line(ax, "platform-mode")
+    ok = np.all(np.isfinite(static), axis=1)
+    for p, q in zip(static[ok], moved[ok]):
+        i = int(np.argmin(np.linalg.norm(B - p, axis=1)))
+        np.testing.assert_allclose(q - p, scale * dB[i], rtol=0, atol=1e-12)
+    P_mode = np.ravel(by_gid(ax, "P-mode")[0]._offsets3d)
+    np.testing.assert_allclose(P_mode, cogiro_eq.pose.position + scale * x6[:3], atol=1e-12)
+    _, field = cable_fields(cogiro_model, cogiro_modes, k, 41)
+    for i in range(8):
+        c0, c1 = line(ax, f"cable-{i}"), line(ax, f"cable-{i}-mode")
+        np.testing.assert_allclose(c1[0], c0[0], atol=1e-12)                  # clamped at A
+        np.testing.assert_allclose(c1[-1], B[i] + scale * dB[i], atol=1e-9)   # moves with B
+        d = np.linalg.norm(c1 - c0, axis=1) / scale
+        assert d.max() == pytest.approx(np.linalg.norm(field[i], axis=1).max(), rel=0.02)
+    title = ax.get_title()
+    assert f"{cogiro_modes.freq_hz[k]:.4g} Hz" in title and cogiro_modes.kind[k] in title
+
+
+def test_robot_default_scale_and_quasi_static_cables(cogiro_eq, cogiro_modes):
+    fig = plot_robot(cogiro_eq, cogiro_modes, 0)          # no model: straight-line motion
+    ax = fig.axes[0]
+    B, _ = cogiro_eq.robot.attachment_points(cogiro_eq.pose)
+    pts = np.vstack([cogiro_eq.robot.anchors, B, cogiro_eq.pose.position])
+    size = np.linalg.norm(pts.max(axis=0) - pts.min(axis=0))
+    moves = [np.linalg.norm(line(ax, f"cable-{i}-mode") - line(ax, f"cable-{i}"), axis=1)
+             for i in range(8)]
+    assert max(m.max() for m in moves) == pytest.approx(0.05 * size, rel=1e-9)
+    for m in moves:                        # zero at A, growing along the chord to B
+        assert m[0] == 0.0 and np.all(np.diff(m) >= -1e-12)
+    assert "quasi-static" in ax.get_title()
+
+
+def test_robot_degenerate_platforms():
+    """Point-mass platform: no outline. Coplanar attachments: one closed polygon."""
+    four = ds.load_scene("fourcable").equilibrium()
+    ax = plot_robot(four).axes[0]
+    assert by_gid(ax, "platform") == [] and len(by_gid(ax, "cable-")) == 4
+    six = ds.load_scene("sixcable").equilibrium()
+    ax = plot_robot(six, sag_scale=1.0).axes[0]
+    loop = line(ax, "platform")
+    B, _ = six.robot.attachment_points(six.pose)
+    assert loop.shape == (7, 3) and np.array_equal(loop[0], loop[-1])
+    assert {tuple(p) for p in loop} == {tuple(b) for b in B}
+
+
+def test_robot_rejects_bad_arguments(cogiro_eq, cogiro_modes):
+    with pytest.raises(InvalidParameterError, match=r"mode must be a 0-based index .* got 8"):
+        plot_robot(cogiro_eq, cogiro_modes, 8)
+    with pytest.raises(InvalidParameterError, match=r"scale must be finite and >= 0, got -1"):
+        plot_robot(cogiro_eq, cogiro_modes, 0, scale=-1.0)
+    with pytest.raises(InvalidParameterError, match="modes must be a dynstiff.ModalResult"):
+        plot_robot(cogiro_eq, cogiro_modes.freq_hz, 0)
+    with pytest.raises(InvalidParameterError, match="mode must be given with modes"):
+        plot_robot(cogiro_eq, cogiro_modes)
+    with pytest.raises(InvalidParameterError, match="eq must be a dynstiff.Equilibrium"):
+        plot_robot(cogiro_eq.robot)
+    fig, ax2d = plt.subplots()
+    with pytest.raises(InvalidParameterError, match="ax must be a 3-D Axes"):
+        plot_robot(cogiro_eq, ax=ax2d)
+    other = ds.FrequencyModel(cogiro_eq.robot.equilibrium(pose=[1.0, 0.0, 1.0]))
+    with pytest.raises(InvalidParameterError, match="model must be built on the equilibrium"):
+        plot_robot(cogiro_eq, cogiro_modes, 0, model=other)
+
+
+def test_animation_writes_every_frame(tmp_path, cogiro_eq, cogiro_model, cogiro_modes):
+    from PIL import Image
+    before = plt.get_fignums()
+    # 6 frames: sin is equal at frames 1 and 2 (60 and 120 deg); they must stay two frames
+    path = animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.gif", model=cogiro_model,
+                        frames=6)
+    assert path == tmp_path / "m.gif" and plt.get_fignums() == before
+    with Image.open(path) as im:
+        assert im.n_frames == 6 and im.size == (640, 480)
+    with pytest.raises(InvalidParameterError, match=r"path must end in \.gif"):
+        animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.mp4")
+    with pytest.raises(InvalidParameterError, match="frames must be an integer >= 2, got 1"):
+        animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.gif", frames=1)
+
+
+def test_animation_without_pillow_says_so(tmp_path, cogiro_eq, cogiro_modes, monkeypatch):
+    import sys
+    monkeypatch.setitem(sys.modules, "PIL", None)            # import PIL -> ImportError
+    with pytest.raises(InvalidParameterError, match="pillow"):
+        animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.gif")
