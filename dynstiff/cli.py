@@ -7,11 +7,172 @@ from .errors import DynstiffError
 
 
 def _cmd_demo(args):
-    from .report import cable_report, write_report
-    rep = cable_report(fmax_hz=args.fmax, n_points=args.points)
-    files = write_report(rep, args.out)
-    sys.stdout.write(rep.text())
+    if args.cable:
+        from .report import cable_report, write_report
+        rep = cable_report(fmax_hz=args.fmax, n_points=args.points)
+        files = write_report(rep, args.out)
+        sys.stdout.write(rep.text())
+    else:
+        from .demo import robot_report
+        from .scenes import load_scene
+        text, files = robot_report(load_scene(args.scene), args.out,
+                                   band_hz=(0.1, args.fmax), n_points=args.points)
+        sys.stdout.write(text)
     sys.stdout.write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
+    return 0
+
+
+class _ProgressBar:
+    """A text progress bar on standard error: ``[#####.....] 5/10``."""
+
+    def __init__(self, label, width=30, stream=None):
+        self.label, self.width = label, width
+        self.stream = stream or sys.stderr
+
+    def __call__(self, done, total):
+        n = int(round(self.width * done / total))
+        self.stream.write(f"\r{self.label} [{'#' * n}{'.' * (self.width - n)}] {done}/{total}")
+        if done == total:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+def _with_parameter(robot, name, value):
+    """The robot with one parameter changed: EA [N] of every cable, platform mass [kg], or
+    the minimum tension t_min [N] of the tension distribution."""
+    from dataclasses import replace
+
+    from .robot import Robot
+    cables, platform, limits = robot.cables, robot.platform, robot.tension_limits
+    if name == "EA":
+        cables = [replace(c, EA=value) for c in cables]
+    elif name == "mass":
+        platform = replace(platform, mass=value)
+    elif name == "t_min":
+        limits = (value, limits[1])
+    return Robot(robot.anchors, robot.attachments, cables, platform, g=robot.g,
+                 tension_limits=limits, name=robot.name)
+
+
+def _cmd_sweep(args):
+    import numpy as np
+
+    from .errors import InvalidParameterError
+    from .interaction import sweep
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    robot = scene.robot
+    bar = None if args.quiet else _ProgressBar(f"sweep {scene.name}")
+    n_modes = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
+    if (args.line is None) == (args.parameter is None):
+        raise InvalidParameterError("give exactly one of --line or --parameter")
+    if args.line is not None:
+        if args.steps < 2:
+            raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
+        rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
+        pts = np.linspace(args.line[:3], args.line[3:], args.steps)
+        res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar)
+    else:
+        if not args.values:
+            raise InvalidParameterError("--parameter needs --values V1 V2 ...")
+        pose = scene.pose if scene.pose is not None else scene.equilibrium().pose
+        units = {"EA": "N", "mass": "kg", "t_min": "N"}
+
+        def build(v):
+            return _with_parameter(robot, args.parameter, v).equilibrium(pose=pose)
+        res = sweep(None, build=build, values=args.values, n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar,
+                    parameter=f"{args.parameter} [{units[args.parameter]}]")
+    df = res.to_frame()
+    if args.csv:
+        df.to_csv(args.csv, index=False)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        from .plot import plot_veering
+        fig = plot_veering(res)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+    vt = res.veering_table()
+    vt.insert(0, res.parameter, res.values)
+    vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
+    sys.stdout.write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
+                     f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
+    sys.stdout.write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
+    for name in (args.csv, args.plot):
+        if name:
+            sys.stdout.write(f"wrote {name}\n")
+    return 0
+
+
+def _cmd_simulate(args):
+    import warnings
+
+    import numpy as np
+
+    from .errors import InvalidParameterError
+    from .lumped import LumpedMassModel, SlackSegmentWarning, simulate
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    eq = _equilibrium(scene, args)
+    if args.to is not None:
+        from .trajectory import line, track
+        traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
+                    ramp=args.ramp)
+        bar = None if args.quiet else _ProgressBar("quasi-static lengths")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SlackSegmentWarning)
+            tr = track(scene.robot, traj, segments=args.segments, dt=args.dt,
+                       settle=args.time, progress=bar)
+        resp = tr.response
+        df = tr.to_frame()
+        sys.stdout.write(
+            f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
+            f"{args.speed:g} m/s (ramp {args.ramp:g} s), {args.segments} segments per "
+            f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
+            f"{tr.max_deviation:.4g} m ({100 * tr.relative_max_deviation:.3g} % of the mean "
+            f"cable length)\n")
+    else:
+        offset = np.zeros(6)
+        fd = [k for k, n in enumerate(("x", "y", "z", "rx", "ry", "rz"))
+              if n in scene.robot.platform.free_dofs]
+        if args.offset is not None:
+            if len(args.offset) != 6:
+                raise InvalidParameterError(
+                    f"--offset needs 6 values dx dy dz [m] drx dry drz [rad], got "
+                    f"{len(args.offset)}")
+            offset = np.array(args.offset)
+        else:
+            offset[fd[0]] = 1e-3
+        model = LumpedMassModel(scene.robot, eq.unstretched_lengths, args.segments)
+        model.equilibrium(initial_pose=eq.pose)
+        resp = simulate(model, args.time, args.dt, initial=offset)
+        df = resp.to_frame().reset_index()
+        ch = args.channel or ("x", "y", "z", "rx", "ry", "rz")[fd[0]]
+        sp = resp.spectrum(ch)
+        f_model = model.eigenfrequencies(fmax_hz=sp.freq_hz[-1] * 0.5)
+        sys.stdout.write(
+            f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
+            f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
+            f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
+        order = np.argsort(sp.peaks_hz[:8])
+        sys.stdout.write(f"spectrum peaks of {ch} [Hz] (resolution {sp.resolution_hz:.3g} Hz): "
+                         + ", ".join(f"{f:.4g}" for f in sp.peaks_hz[:8][order]) + "\n")
+        sys.stdout.write("linearised lumped-model frequencies [Hz]: "
+                         + ", ".join(f"{f:.4g}" for f in f_model[:8]) + "\n")
+        if args.plot:
+            import matplotlib
+            matplotlib.use("Agg")
+            from .plot import plot_spectrum
+            fig = plot_spectrum(sp, modes=f_model)
+            fig.tight_layout()
+            fig.savefig(args.plot, dpi=120)
+    if args.csv:
+        df.to_csv(args.csv, index=False)
+    for name in (args.csv, args.plot):
+        if name:
+            sys.stdout.write(f"wrote {name}\n")
     return 0
 
 
@@ -109,11 +270,15 @@ def build_parser():
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
     sub = parser.add_subparsers(dest="command", required=True)
     demo = sub.add_parser(
-        "demo", help="single-cable report on the built-in CoGiRo cable: statics, fixed-end "
-                     "frequencies, dynamic stiffness plot")
+        "demo", help="main job on a scene (default: CoGiRo): statics, modes, model choice, "
+                     "design checks, FRF and mode-shape figures, CSV tables")
+    demo.add_argument("--scene", default="cogiro", help="scene (default %(default)s)")
+    demo.add_argument("--cable", action="store_true",
+                      help="single-cable report instead (CoGiRo cable 0: statics, fixed-end "
+                           "frequencies, dynamic stiffness plot)")
     demo.add_argument("--out", default="dynstiff-demo", help="output folder (default %(default)s)")
     demo.add_argument("--fmax", type=float, default=12.0, help="band upper end [Hz]")
-    demo.add_argument("--points", type=int, default=4000, help="number of frequencies")
+    demo.add_argument("--points", type=int, default=3000, help="number of frequencies")
     demo.set_defaults(func=_cmd_demo)
     sc = sub.add_parser("scenes", help="list the built-in scenes")
     sc.set_defaults(func=_cmd_scenes)
@@ -163,6 +328,46 @@ def build_parser():
                     help="largest admissible sag/chord (default %(default)s)")
     ck.add_argument("--csv", help="write the checks table (CSV)")
     ck.set_defaults(func=_cmd_check)
+    sw = sub.add_parser("sweep", help="modes along a straight path or over a parameter, global "
+                                      "modes tracked; table and veering diagram")
+    sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
+                    help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
+    sw.add_argument("--steps", type=int, default=11, help="poses along --line (default %(default)s)")
+    sw.add_argument("--parameter", choices=["EA", "mass", "t_min"],
+                    help="sweep a parameter at the scene's pose: EA of every cable [N], "
+                         "platform mass [kg], minimum tension [N]")
+    sw.add_argument("--values", type=float, nargs="+", metavar="V", help="parameter values")
+    sw.add_argument("-n", type=int, help="modes per step (default: the scene's n_modes)")
+    sw.add_argument("--fmax", type=float, help="all modes below this frequency [Hz]")
+    sw.add_argument("--csv", help="write the tidy table (one row per mode and step)")
+    sw.add_argument("--plot", help="write the veering diagram (PNG)")
+    sw.add_argument("--quiet", action="store_true", help="no progress bar")
+    sw.set_defaults(func=_cmd_sweep)
+    si = sub.add_parser("simulate", help="time domain (lumped-mass cables): free vibration "
+                                         "from an offset, or a line commanded through "
+                                         "quasi-static cable lengths")
+    si.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    grp = si.add_mutually_exclusive_group()
+    grp.add_argument("--pose", type=float, nargs="+", metavar="X")
+    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
+    si.add_argument("--time", type=float, default=5.0,
+                    help="duration [s] (after the path's end with --to; default %(default)s)")
+    si.add_argument("--dt", type=float, default=2e-3, help="time step [s] (default %(default)s)")
+    si.add_argument("--segments", type=int, default=10, help="segments per cable")
+    si.add_argument("--offset", type=float, nargs="+", metavar="D",
+                    help="initial platform offset dx dy dz [m] drx dry drz [rad] (default "
+                         "1 mm along the first free DOF)")
+    si.add_argument("--channel", choices=["x", "y", "z", "rx", "ry", "rz"],
+                    help="channel of the spectrum (default: the first free DOF)")
+    si.add_argument("--to", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="move P in a straight line to this point [m] instead")
+    si.add_argument("--speed", type=float, default=0.5, help="path speed [m/s]")
+    si.add_argument("--ramp", type=float, default=1.0, help="speed ramp duration [s]")
+    si.add_argument("--csv", help="write the time history (CSV)")
+    si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
+    si.add_argument("--quiet", action="store_true", help="no progress bar")
+    si.set_defaults(func=_cmd_simulate)
     return parser
 
 

@@ -13,9 +13,31 @@ def test_import_does_not_load_matplotlib_or_pandas():
     assert out.stdout.strip() == ""
 
 
-def test_demo_writes_report(tmp_path):
+def test_demo_main_job_on_cogiro(tmp_path):
     out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--out", str(tmp_path),
                           "--points", "400"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+
+    import dynstiff as ds
+    modes = pd.read_csv(tmp_path / "modes.csv")
+    ref = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()).eigenfrequencies(40)
+    assert len(modes) == 40
+    assert abs(modes["freq [Hz]"] / ref - 1).max() < 1e-9
+    statics = pd.read_csv(tmp_path / "statics.csv")
+    assert len(statics) == 8 and (statics["tension at B [N]"] >= 100 - 1e-6).all()
+    checks = pd.read_csv(tmp_path / "checks.csv")
+    assert len(checks) == 5
+    frf = pd.read_csv(tmp_path / "frf.csv")
+    assert set(frf["input"]) == {"fx", "fz"} and frf["freq [Hz]"].nunique() == 400
+    for name in ("frf.png", "mode_shape.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    assert "recommended model: dsm" in out.stdout
+
+
+def test_demo_cable_report(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--cable", "--out",
+                          str(tmp_path), "--points", "400"], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     assert "in-plane symmetric 1" in out.stdout
     for name in ["report.txt", "statics.csv", "modes.csv", "dynamic_stiffness.png"]:
@@ -91,3 +113,58 @@ def test_cli_frf_writes_table_and_figure(tmp_path):
     assert bad.returncode == 2 and "--band" in bad.stderr
     bad = run_cli("frf", "cogiro", "--from", "fq")
     assert bad.returncode == 2 and "fq" in bad.stderr
+
+
+def test_cli_sweep_line_and_parameter(tmp_path):
+    out = run_cli("sweep", "cogiro", "--line", "0", "0", "1", "2", "1", "1.5", "--steps", "3",
+                  "-n", "8", "--csv", str(tmp_path / "s.csv"), "--plot", str(tmp_path / "v.png"))
+    assert out.returncode == 0, out.stderr
+    assert "3/3" in out.stderr                              # the progress bar ran to the end
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "s.csv")
+    assert len(df) == 24 and sorted(df["step"].unique()) == [0, 1, 2]
+    assert abs(df["value"].max() - (4 + 1 + 0.25) ** 0.5) < 1e-9     # arc length [m]
+    assert (tmp_path / "v.png").stat().st_size > 10_000
+    out = run_cli("sweep", "cogiro", "--parameter", "EA", "--values", "1.4e5", "9.8e5",
+                  "-n", "6", "--quiet")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr == ""                                  # --quiet: no progress bar
+    assert "EA [N]" in out.stdout
+    bad = run_cli("sweep", "cogiro")
+    assert bad.returncode == 2 and "--line or --parameter" in bad.stderr
+    bad = run_cli("sweep", "cogiro", "--parameter", "colour", "--values", "1")
+    assert bad.returncode == 2 and "colour" in bad.stderr
+
+
+def test_cli_simulate_free_vibration_and_line(tmp_path):
+    out = run_cli("simulate", "fourcable", "--time", "2", "--segments", "1", "--csv",
+                  str(tmp_path / "t.csv"), "--plot", str(tmp_path / "s.png"))
+    assert out.returncode == 0, out.stderr
+    import re
+    peaks = [float(x) for x in re.search(r"spectrum peaks of x \[Hz\][^:]*: (.*)",
+                                         out.stdout).group(1).split(",")]
+    import dynstiff as ds
+    f1 = ds.FrequencyModel(ds.load_scene("fourcable").equilibrium()).eigenfrequencies(1)[0]
+    assert min(abs(p - f1) for p in peaks) < 0.5                       # resolution 0.5 Hz
+    import pandas as pd
+    assert len(pd.read_csv(tmp_path / "t.csv")) == 1001
+    out = run_cli("simulate", "planar2", "--to", "1", "0", "-10", "--speed", "1", "--ramp",
+                  "0.5", "--time", "0.2", "--segments", "2", "--quiet")
+    assert out.returncode == 0, out.stderr
+    dev = float(re.search(r"quasi-static path ([0-9.e-]+) m", out.stdout).group(1))
+    assert 0 < dev < 0.01
+    bad = run_cli("simulate", "cogiro", "--offset", "1", "2")
+    assert bad.returncode == 2 and "--offset needs 6 values" in bad.stderr
+    bad = run_cli("simulate", "cogiro", "--dt", "-1")
+    assert bad.returncode == 2 and "dt" in bad.stderr
+
+
+def test_cli_malformed_toml_and_unknown_options(tmp_path):
+    bad = tmp_path / "broken.toml"
+    bad.write_text("[platform\nmass = 1\n")
+    for cmd in ("modes", "check", "sweep", "simulate", "frf"):
+        out = run_cli(cmd, str(bad))
+        assert out.returncode == 2, cmd
+        assert "TOML syntax error" in out.stderr and "broken.toml" in out.stderr, cmd
+        out = run_cli(cmd, "cogiro", "--no-such-option")
+        assert out.returncode == 2 and "--no-such-option" in out.stderr, cmd
