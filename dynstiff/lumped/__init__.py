@@ -12,6 +12,7 @@ from .compare import compare_modes
 from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult
 from .time_domain import (
     EnergyBalance,
+    EnergyBalanceWarning,
     IntegrationError,
     SlackSegmentWarning,
     Spectrum,
@@ -33,6 +34,7 @@ __all__ = [
     "chain_fixed_end_frequencies",
     "chain_matrices",
     "EnergyBalance",
+    "EnergyBalanceWarning",
     "IntegrationError",
     "SlackSegmentWarning",
     "Spectrum",
