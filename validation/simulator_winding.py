@@ -8,7 +8,7 @@ kinetic energy 1/2 m_d r_d^2 theta'^2; it gives no numbers. Here the platform mo
 x at 1 m/s (1 s speed ramps); the winches follow the quasi-static cable lengths
 (:func:`dynstiff.trajectory.track`), which winds about 2.8 m onto four drums and pays as much
 off the other four (a quarter of the cable mass changes hands). The balance of the
-lumped-mass model (8 segments per cable; see :mod:`dynstiff.lumped.time_domain`)::
+lumped-mass model (4 segments per cable; see :mod:`dynstiff.lumped.time_domain`)::
 
     E(t) - E(0) = W_winch + E_carried - D + residual
 
@@ -16,8 +16,10 @@ lumped-mass model (8 segments per cable; see :mod:`dynstiff.lumped.time_domain`)
 on the cables, E_carried the kinetic energy the paid-out mass brings). The drums, driven
 kinematically (theta' = L0' / r_d), store 1/2 m_d L0'^2 each, so the motors supply
 W_motor = W_winch + E_drums(t) - E_drums(0). The residual, relative to the energy scale of
-the run, is the headline; it converges as dt^2 (the trapezoidal quadrature of the winch
-work).
+the run, is the headline. It measures the trapezoidal quadrature of the winch work, which
+is accurate only once dt resolves the axial chain modes (period about 1.4 ms here, EA = 1e7 N
+on 1.5 m segments of 1.4 kg): 0.12 at dt = 1 ms, 1.6e-4 at 0.5 ms on the first 1.5 m of the
+path; the motion itself is the same at both.
 
 Eigenfrequencies along the motion: the closed-form model at poses along the path, global
 modes tracked (:func:`dynstiff.sweep`), and the lumped model at the path's end as a check.
@@ -32,7 +34,7 @@ import dynstiff as ds
 from dynstiff.trajectory import line, track
 
 
-def winding_run(dt=1e-3, segments=8, quick=False):
+def winding_run(dt=5e-4, segments=4, quick=False):
     """Simulate the winding motion.
 
     Returns
@@ -47,7 +49,7 @@ def winding_run(dt=1e-3, segments=8, quick=False):
     end = np.array(st["path_end"], dtype=float)
     start = np.array(st["path_start"], dtype=float)
     if quick:
-        end = start + np.array([1.5, 0.0, 0.0])
+        end = start + np.array([1.0, 0.0, 0.0])
     traj = line(start, end, st["speed"], ramp=st["ramp"])
     res = track(scene.robot, traj, segments=segments, dt=dt, settle=0.5)
     r = res.response
@@ -122,7 +124,11 @@ def run(quick=False):
     check : dict
         Lumped-model check at the end pose (:func:`frequencies_along`).
     """
-    rows = [winding_run(dt, quick=quick)[0] for dt in ((2e-3,) if quick else (2e-3, 1e-3))]
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.lumped.EnergyBalanceWarning)
+        rows = [winding_run(dt, quick=quick)[0]
+                for dt in ((5e-4,) if quick else (1e-3, 5e-4))]
     sw, check = frequencies_along(steps=3 if quick else 6, n_modes=20 if quick else 30)
     vt = sw.veering_table()
     vt.insert(0, sw.parameter, sw.values)
@@ -140,7 +146,7 @@ if __name__ == "__main__":
     print(energy.T.to_string())
     print(modes.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
     print(check)
-    _, frame = winding_run(1e-3)
+    _, frame = winding_run(5e-4)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
     t = frame["time [s]"]
     for col in ("kinetic [J]", "winch work [J]", "drums [J]", "motor work [J]",
