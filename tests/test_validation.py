@@ -124,3 +124,68 @@ def test_shallow_cable_limits():
     steep = pd.DataFrame(mod.case(0.01, 80))
     assert steep["rel error"].abs().max() > 1e-2              # where the method fails
     assert pd.DataFrame(mod.case(0.005, 60))["rel error"].abs().max() < 5e-4
+
+
+def test_cogiro_across_poses_and_moduli_quick():
+    """Closed form against the independent lumped-mass model (N = 20, 40, Richardson) at two
+    poses and E = 17, 120 GPa: the first 20 frequencies agree to better than 5e-4, well
+    inside the lumped model's own discretisation error at N = 40."""
+    df = load("cogiro_modes").poses_and_moduli(quick=True)
+    assert len(df) == 4
+    assert df["max rel. diff. to lumped, all [-]"].max() < 5e-4
+    assert (df["lumped N=40 vs ref [-]"] > df["max rel. diff. to lumped, all [-]"]).all()
+    # the stiff cable (120 GPa) lifts the global modes: fewer of them among the first 20
+    soft, stiff = df[df["E [GPa]"] == 17.0], df[df["E [GPa]"] == 120.0]
+    assert soft["n global"].sum() > stiff["n global"].sum()
+
+
+def test_planar2_trajectory_quick():
+    """Seed paper 000: 0.13 % of the mean cable length at EA = 1e7 N and 1 m/s. The linear
+    velocity-step estimate lands within a factor 2 of it; the smooth start deviates far
+    less; stiffer cables deviate less; and the step's tension swing exceeds the preload
+    (the paying-out cable goes slack, which the paper's comparison does not mention)."""
+    df = load("planar2_trajectory").run(quick=True).set_index("EA [N]")
+    step = df.loc[1e7, "relative, step estimate [-]"]
+    assert 0.5 < step / 0.0013 < 2.0
+    assert df.loc[1e7, "relative, smooth start [-]"] < 0.2 * step
+    assert df.loc[1e6, "max deviation, smooth start [m]"] > \
+        3 * df.loc[1e7, "max deviation, smooth start [m]"]
+    assert df["step slackens a cable"].all()
+    assert (df["static offset N=10 [m]"] < 1e-4).all()
+
+
+def test_fourcable_circle_quick():
+    """Seed paper 002: half the circle. Commanded with rigid (chord) lengths, the mass hangs
+    lower by the cables' stretch (z error ~ 1.8 mm); with the elastic-catenary lengths the
+    z error is the dynamics' only (< 0.2 mm). The light model suffices: the massless
+    spring model's frequencies are within 1e-3 of the sagging-cable model's."""
+    summary, path, model = load("fourcable_circle").run(quick=True)
+    s = summary.set_index("commanded lengths")
+    assert s.loc["rigid (chord)", "max |z error| [m]"] > 1e-3
+    assert s.loc["elastic catenary", "max |z error| [m]"] < 2e-4
+    assert s.loc["elastic catenary", "max error, 3 s to the stop [m]"] < 1e-3
+    assert (model["relative difference [-]"].abs() < 1e-3).all()
+    T = path[[c for c in path.columns if c.startswith("T ")]].to_numpy()
+    assert T.min() > 10.0 and T.max() < 60.0                  # taut along the whole circle
+
+
+@pytest.mark.slow
+def test_sixcable_paths_quick():
+    """Seed paper 000 (six cables): the line at 1 m/s deviates by centimetres (the paper:
+    0.052 m at 3 m/s on its own, unknown, path)."""
+    dev, modes = load("sixcable_paths").run(quick=True)
+    assert 0.005 < dev.loc[0, "max deviation [m]"] < 0.1
+    assert modes["step"].nunique() == 3
+
+
+@pytest.mark.slow
+def test_simulator_winding_quick():
+    """Seed paper 001: winding 1 m of path; the energy balance closes to 1e-3 of the run's
+    energy scale with dt resolving the axial chain modes, and the cable mass is 3/4 of
+    the platform's."""
+    energy, modes, check = load("simulator_winding").run(quick=True)
+    row = energy.iloc[0]
+    assert abs(row["cable mass / platform mass [-]"] - 0.75) < 2e-3
+    assert row["max |residual| / scale [-]"] < 1e-3
+    assert row["cable mass moved [kg]"] > 1.0
+    assert check["max relative difference [-]"] < 1e-2
