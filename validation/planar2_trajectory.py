@@ -87,6 +87,7 @@ def case(EA, speed=1.0, ramp=0.5, quick=False, segments=10, dt=2e-3):
     robot = robot_with(EA)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ds.lumped.SlackSegmentWarning)
+        warnings.simplefilter("ignore", ds.lumped.EnergyBalanceWarning)   # reported below
         res = track(robot, line(start, end, speed, ramp=ramp), segments=segments, dt=dt,
                     settle=1.0)
     step_dev, swing, f = step_estimate(robot, start, end, speed)

@@ -16,6 +16,11 @@ of the platform below the anchor plane, nor how the speed is reached. Choices (s
   horizontal stiffness is of order m g / 20 m; a velocity step would swing it by about
   v / omega ~ 1.4 m per m/s, not centimetres.
 
+Results (dt = 1 ms): line 0.025 m at 1 m/s and 0.18 m at 3 m/s; circle 0.097 m and 0.81 m
+(cables go briefly slack at 3 m/s). The paper's 0.052 / 0.027 m at 3 m/s imply a much
+stiffer geometry than this 20 m suspension, whose horizontal stiffness is set by gravity:
+the deviation scales as (speed / ramp) / omega_1^2.
+
 The lumped-mass model has 4 segments per cable (its local cable modes start at 0.5 Hz);
 the implicit step is 1 ms. The energy-balance residual is reported: it measures the
 quadrature of the winch work, which converges as dt^2 (0.37, 0.03, 3e-6 at dt = 2, 1,
@@ -23,6 +28,8 @@ quadrature of the winch work, which converges as dt^2 (0.37, 0.03, 3e-6 at dt = 
 
 Run ``python validation/sixcable_paths.py`` for the tables and ``sixcable_paths.png``.
 """
+
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -35,15 +42,16 @@ DEPTH = -20.0
 
 
 def paths(speed, scene=None):
-    """The line and the circle at ``speed`` [m/s] with the scene's fixed orientation."""
+    """The line and the circle at ``speed`` [m/s] with the scene's fixed orientation, each
+    as (Trajectory, ramp [s])."""
     scene = scene or ds.load_scene("sixcable")
     rot = scene.pose.rotation
     a, b = np.array([-3.0, 0.0, DEPTH]), np.array([1.0, 1.0, DEPTH])
-    t_line = np.linalg.norm(b - a) / speed
-    t_circle = 2 * np.pi * 1.2 / speed
-    return {"line": line(a, b, speed, rotation=rot, ramp=min(2.0, 0.95 * t_line)),
-            "circle": circle([-1.2, 0.5, DEPTH], 1.2, speed, start_angle=np.pi,
-                             rotation=rot, ramp=min(2.0, 0.95 * t_circle))}
+    r_line = min(2.0, 0.95 * np.linalg.norm(b - a) / speed)
+    r_circle = min(2.0, 0.95 * 2 * np.pi * 1.2 / speed)
+    return {"line": (line(a, b, speed, rotation=rot, ramp=r_line), r_line),
+            "circle": (circle([-1.2, 0.5, DEPTH], 1.2, speed, start_angle=np.pi,
+                              rotation=rot, ramp=r_circle), r_circle)}
 
 
 def run(quick=False, dt=1e-3, segments=4):
@@ -61,18 +69,22 @@ def run(quick=False, dt=1e-3, segments=4):
     rows = []
     speeds = (1.0,) if quick else (1.0, 3.0)
     for v in speeds:
-        for name, traj in paths(v, scene).items():
+        for name, (traj, ramp) in paths(v, scene).items():
             if quick and name == "circle":
                 continue
-            res = track(scene.robot, traj, segments=segments, dt=dt, settle=2.0,
-                        record_every=10)
+            with warnings.catch_warnings():     # counted in "slack steps"
+                warnings.simplefilter("ignore", ds.lumped.SlackSegmentWarning)
+                warnings.simplefilter("ignore", ds.lumped.EnergyBalanceWarning)
+                res = track(scene.robot, traj, segments=segments, dt=dt, settle=2.0,
+                            record_every=10)
             rows.append({
-                "path": name, "speed [m/s]": v, "ramp [s]": min(2.0, traj.duration / 2),
+                "path": name, "speed [m/s]": v, "ramp [s]": ramp,
                 "max deviation [m]": res.max_deviation,
                 "relative [-]": res.relative_max_deviation,
                 "paper at 3 m/s [m]": PAPER[name],
                 "min quasi-static tension [N]": float(res.tensions.min()),
                 "energy residual [-]": float(np.abs(res.response.energy.relative_residual).max()),
+                "slack steps": res.response.slack_steps,
                 "wall time [s]": res.response.wall_time})
     poses = [np.concatenate([p, scene.pose.rotation]) for p in np.linspace(
         [-3.0, 0.0, DEPTH], [1.0, 1.0, DEPTH], 3 if quick else 9)]
