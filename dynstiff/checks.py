@@ -103,7 +103,7 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     else:
         # up to (1 + rtol) fmax so global modes near fmax see their local partners
         modes = model.modes(fmax_hz=fmax_hz * (1 + proximity_rtol))
-    glob = np.array([k == "global" for k in modes.kind])
+    glob = np.array([k == "global" for k in modes.kind], dtype=bool)
     if band_hz is not None:
         lo, hi = band_hz
         if not 0 <= lo < hi:

@@ -53,3 +53,15 @@ def test_cli_check_exit_codes():
     assert out.returncode == 1 and "FAIL  global modes outside band" in out.stdout
     out = run("cogiro", "--pose", "9", "0", "1")
     assert out.returncode == 1 and "FAIL  workspace" in out.stdout
+
+
+def test_band_below_every_mode_passes(cogiro):
+    """A forbidden band whose 1.5x top is below the first natural frequency: no mode is
+    computed below fmax, and the check passes (it used to fail on the empty mode list)."""
+    rob = cogiro.robot
+    stiff = ds.Robot(rob.anchors, rob.attachments, ds.Cable(0.064, 8.2051e-6 * 120e9),
+                     rob.platform, tension_limits=rob.tension_limits)
+    f1 = ds.FrequencyModel(stiff.equilibrium(pose=cogiro.pose)).eigenfrequencies(1)[0]
+    res = rows_by_name(design_checks(stiff, cogiro.pose, band_hz=(0.4 * f1, 0.6 * f1)))
+    assert res["global modes outside band"]["passed"]
+    assert res["local modes near global modes"]["passed"]
