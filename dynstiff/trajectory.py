@@ -328,7 +328,10 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
 
     model = LumpedMassModel(robot, L[0], segments)
     start = np.concatenate([trajectory.positions[0], trajectory.rotations[0]])
-    eq0 = model.equilibrium(initial_pose=start)
+    # relative force tolerance no finer than the rounding of the stiffest cable's spring force
+    EA = max(c.EA for c in robot.cables)
+    tol = max(1e-10, 50 * np.finfo(float).eps * EA / max(float(T.min()), 1e-300))
+    eq0 = model.equilibrium(initial_pose=start, tol=tol)
     resp = simulate(model, trajectory.duration + settle, dt, lengths=commanded,
                     scheme=scheme, damping=damping, record_every=record_every)
     P, R = trajectory.at(resp.times)
