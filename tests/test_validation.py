@@ -167,6 +167,10 @@ def test_fourcable_circle_quick():
     assert s.loc["elastic catenary", "max |z error| [m]"] < 2e-4
     assert s.loc["elastic catenary", "max error, 3 s to the stop [m]"] < 1e-3
     assert (model["relative difference [-]"].abs() < 1e-3).all()
+    assert (model["recommended, band to 20 Hz (rtol 1e-3)"] == "spring").all()
+    # the predicted spring error matches the actual difference to 10 %
+    assert np.allclose(model["predicted spring error [-]"],
+                       model["relative difference [-]"].abs().max(), rtol=0.1)
     ramped = summary[summary["commanded lengths"] == "elastic catenary, ramped start"]
     light, chain = ramped.set_index("segments")["max error [m]"].loc[[1, 4]]
     assert abs(light - chain) < 1e-6          # [m]: the cable mass moves it < 1 micrometre
