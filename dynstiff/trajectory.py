@@ -333,6 +333,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     tol = max(1e-10, 50 * np.finfo(float).eps * EA / max(float(T.min()), 1e-300))
     eq0 = model.equilibrium(initial_pose=start, tol=tol)
     resp = simulate(model, trajectory.duration + settle, dt, lengths=commanded,
+                    tol=max(1e-9, tol),
                     scheme=scheme, damping=damping, record_every=record_every)
     P, R = trajectory.at(resp.times)
     desired = np.hstack([P, R])

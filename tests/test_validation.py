@@ -197,4 +197,7 @@ def test_simulator_winding_quick():
     assert abs(row["cable mass / platform mass [-]"] - 0.75) < 2e-3
     assert row["max |residual| / scale [-]"] < 1e-3
     assert row["cable mass moved [kg]"] > 1.0
-    assert check["max relative difference [-]"] < 1e-2
+    assert check["largest platform share [-]"] < 0.5           # no global mode survives
+    # the lumped model converges on the closed form (second order in 1/N)
+    e16, e32 = (check[f"lumped N={n}, max relative difference [-]"] for n in (16, 32))
+    assert e32 < e16 / 3 and e32 < 1e-2
