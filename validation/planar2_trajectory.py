@@ -97,7 +97,7 @@ def case(EA, speed=1.0, ramp=0.5, quick=False, segments=10, dt=2e-3, simulate=Tr
         eq = robot.equilibrium(pose=start)
         chords = [s.chord_length for s in eq.states]
         L = float(np.mean(chords))
-        return {"EA [N]": EA, "speed [m/s]": speed, "ramp [s]": np.nan,
+        return {"EA [N]": EA, "speed [m/s]": speed, "ramp [s]": ramp,
                 "mean cable length [m]": L, "global modes [Hz]": np.round(f, 3).tolist(),
                 "step estimate [m]": step_dev, "relative, step estimate [-]": step_dev / L,
                 "step tension swing [N]": swing, "min static tension [N]": float(
@@ -144,10 +144,14 @@ def run(quick=False):
     for EA in ((1e6, 1e7) if quick else (1e6, 1e7, 1e8, 1e9)):
         rows.append({"sweep": "EA", **case(EA, quick=quick, simulate=EA < 1e9)})
     if not quick:
-        for v in (0.5, 2.0):
-            rows.append({"sweep": "speed", **case(1e7, speed=v)})
-        for r in (0.25, 1.0):
-            rows.append({"sweep": "ramp", **case(1e7, ramp=r)})
+        for sweep, kw in (("speed", {"speed": 0.5}), ("speed", {"speed": 2.0}),
+                          ("ramp", {"ramp": 0.25}), ("ramp", {"ramp": 1.0})):
+            try:
+                rows.append({"sweep": sweep, **case(1e7, **kw)})
+            except (ds.ConvergenceError, ds.lumped.IntegrationError) as exc:
+                # a sharper start snaps the paying-out cable slack (module notes)
+                rows.append({"sweep": sweep, **case(1e7, simulate=False, **kw),
+                             "time domain": f"stopped: {str(exc)[:90]}"})
     return pd.DataFrame(rows)
 
 
