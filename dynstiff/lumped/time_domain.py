@@ -841,7 +841,8 @@ def _check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
             f"simulate: at step {k} (t = {t1:g} s) the energy balance residual {residual:.3g} "
             f"J is {abs(residual) / ledger.scale():.2g} of the energy scale "
             f"{ledger.scale():.3g} J: the energy ledger is inaccurate at dt = {dt:g} s "
-            f"(typically winches with axial chain modes faster than 1 / dt); halve dt to "
+            f"(axial chain modes faster than 1 / dt, typically with winches, or an unstable "
+            f"explicit step); halve dt to "
             f"check the motion", EnergyBalanceWarning, stacklevel=3)
     if strain <= _STRAIN_LIMIT and abs(residual) <= _BLOW_UP * ledger.limit():
         return
