@@ -285,3 +285,22 @@ def test_fourcable_needs_only_the_light_model():
     f_spring = ds.build_model(eq, "spring").eigenfrequencies(fmax_hz=20.0)
     f_dsm = ds.build_model(eq, "dsm").eigenfrequencies(fmax_hz=20.0)
     np.testing.assert_allclose(f_spring, f_dsm, rtol=1e-2)
+
+
+SEED_SCENES = ("cogiro", "planar2", "sixcable", "fourcable", "pendulum", "simulator")
+
+
+@pytest.mark.parametrize("name", SEED_SCENES)
+def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
+    """Every robot of the seed papers is a built-in scene: by name and from its TOML file
+    it gives the same robot, and its pose is a static equilibrium with sane tensions."""
+    assert name in ds.list_scenes()
+    by_name = ds.load_scene(name)
+    by_path = ds.load_scene(str(ds.scenes.loader._HERE / f"{name}.toml"))
+    np.testing.assert_array_equal(by_name.robot.anchors, by_path.robot.anchors)
+    eq = by_name.equilibrium()
+    assert eq.residual < 1e-8
+    lo, hi = by_name.robot.tension_limits
+    assert np.all(eq.tensions >= lo - 1e-6) and np.all(eq.tensions <= hi + 1e-6)
+    f = ds.FrequencyModel(eq).eigenfrequencies(2)
+    assert np.all(np.isfinite(f)) and np.all(f > 0)

@@ -72,21 +72,26 @@ def _grids(quick, n_masses, phase):
 
 
 def _growth(model, f, x0, phase, mu, t_max):
-    """Nonlinear check at one frequency: growth of a phi0 disturbance over the run (last
-    period / first period; for non-symmetric excitation of the difference from the run
-    without disturbance), the largest |phi| and the wall time."""
+    """Nonlinear check at one frequency, from phi0 = PHI0: the growth of the disturbance,
+    max |phi| over the last period / PHI0 (for non-symmetric excitation, of the difference
+    from the run without disturbance), the growth Floquet predicts for that time, the
+    largest |phi| [rad] and the wall time [s]."""
     n_per = int(np.clip(np.ceil(np.log(1e6) / np.log(max(mu, 1.0 + 1e-3))), 8, 2000))
-    t_end = min(n_per / f, t_max)
-    t_end = max(t_end, 8.0 / f)
+    t_end = max(min(n_per / f, t_max), 8.0 / f)
     start = time.perf_counter()
     r = pdl.simulate(model, f, x0, t_end, phase=phase, phi0=PHI0)
     phi = r.phi
     if phase != 0.0:
         phi = phi - pdl.simulate(model, f, x0, t_end, phase=phase, phi0=0.0).phi
-    T = 1.0 / f
-    first = np.abs(phi[r.t <= T]).max()
-    last = np.abs(phi[r.t >= r.t[-1] - T]).max()
-    return last / max(first, 1e-300), float(np.abs(r.phi).max()), time.perf_counter() - start
+    last = np.abs(phi[r.t >= r.t[-1] - 1.0 / f]).max()
+    return (last / PHI0, mu ** (t_end * f), float(np.abs(r.phi).max()),
+            time.perf_counter() - start)
+
+
+def _confirmed(growth, predicted, max_phi):
+    """The disturbance grew by at least the square root of the Floquet prediction, or left
+    the linear range (|phi| >= 0.01 rad from 1e-6 rad)."""
+    return growth > 1.0 and (np.log(growth) >= 0.5 * np.log(predicted) or max_phi >= 0.01)
 
 
 def _outcome(growth, max_phi):
@@ -111,9 +116,11 @@ def run(quick=False):
         "cable mass [kg]", "phase [deg]", "model"), the frequency grid, the unstable
         intervals [Hz] (a list of (first, last) unstable grid frequencies), the unstable
         fraction of the grid, the largest pendulum multiplier and its frequency, the share of
-        periodic responses, the nonlinear checks (simulated growth and largest |phi| [rad]
-        at the worst frequency of each unstable interval, outcome "falls" / "grows,
-        bounded", and at the most stable frequency), and the map's wall time [s].
+        periodic responses, the nonlinear checks at the worst frequency of each unstable
+        interval (simulated growth max |phi(last period)| / phi0, the growth mu^n Floquet
+        predicts for that run, largest |phi| [rad], outcome "falls" / "grows, bounded" /
+        "decays", and how many intervals that confirms) and at the most stable frequency
+        (its growth must stay below 1), and the wall times [s].
         ``attrs["maps"]``: all grid points (see :func:`dynstiff.pendulum.stability_map`);
         ``attrs["comparison"]``: the paper's statements against dynstiff's findings;
         ``attrs["constants"]``: natural frequency, slack thresholds, damping ratio.
@@ -140,7 +147,7 @@ def run(quick=False):
             df = pdl.stability_map(model, f, [x0], phase=phase, **opts)
             if n:
                 ref = pdl.floquet(replace(model, n_masses=0), f, x0, phase, **opts)
-                df["massless |multiplier| [-]"] = ref.pendulum_max_abs
+                df["massless |multiplier| [-]"] = ref.pendulum_abs
             df.insert(0, "study", study)
             df.insert(1, "model", "point-mass" if n else "massless")
             maps.append(df)
@@ -170,15 +177,16 @@ def run(quick=False):
                 "max pendulum |multiplier| [-]": float(mu[k]), "f at max [Hz]": float(f[k]),
                 "periodic fraction [-]": float(df["periodic orbit"].mean()),
                 "checked intervals": len(checks),
-                "confirmed intervals": sum(g > 10.0 for _, g, _, _ in checks),
-                "sim growth [-]": [float(g) for _, g, _, _ in checks],
-                "sim max |phi| [rad]": [float(p) for _, _, p, _ in checks],
-                "sim outcome": [_outcome(g, p) for _, g, p, _ in checks],
+                "confirmed intervals": sum(_confirmed(g, q, p) for _, g, q, p, _ in checks),
+                "sim growth [-]": [float(g) for _, g, _, _, _ in checks],
+                "Floquet growth [-]": [float(q) for _, _, q, _, _ in checks],
+                "sim max |phi| [rad]": [float(p) for _, _, _, p, _ in checks],
+                "sim outcome": [_outcome(g, p) for _, g, _, p, _ in checks],
                 "stable check f [Hz]": None if stable_check is None else stable_check[0],
                 "stable check growth [-]": None if stable_check is None else stable_check[1],
                 "map wall time [s]": float(df["wall time [s]"].iloc[0]),
                 "sim wall time [s]": float(sum(w for *_, w in checks)
-                                           + (0.0 if stable_check is None else stable_check[3])),
+                                           + (0.0 if stable_check is None else stable_check[4])),
             })
     table = pd.DataFrame(rows)
     table.attrs["maps"] = pd.concat(maps, ignore_index=True)
@@ -197,15 +205,10 @@ def run(quick=False):
     return table
 
 
-def _frac(table, **sel):
-    m = np.ones(len(table), dtype=bool)
-    for k, v in sel.items():
-        m &= table[k].to_numpy() == v
-    return table.loc[m, "unstable fraction [-]"].to_numpy()
-
-
 def _compare(table, base, st):
-    """The paper's conclusions (Sec. 4) against this study."""
+    """The paper's conclusions (Sec. 4) against this study. A factor "causes instability"
+    in dynstiff's reading when it makes more than 5 % of the frequency grid unstable that is
+    stable without it."""
     x0, P0 = st["amplitude"], st["preload"]
     slack = base.stiffness * x0 * base.half_span / base.chord_length
     out = []
@@ -226,17 +229,20 @@ def _compare(table, base, st):
                     zip(amp["x0 [m]"], amp["unstable fraction [-]"]))))
     maps = table.attrs["maps"]
     tol = 1e-6
-    base_ml = _frac(table, study="preload", model="massless", **{"preload [N]": P0})
-    base_u = float(base_ml[0]) if base_ml.size else np.nan
+    sel = ((table["study"] == "preload") & (table["model"] == "massless")
+           & (table["preload [N]"] == P0))
+    base_row = table[sel].iloc[0]
+    base_u = float(base_row["unstable fraction [-]"])
+    band = f"{base_row['f min [Hz]']:g}-{base_row['f max [Hz]']:g} Hz"
     # new instability: frequencies where the point-mass model is unstable and the massless
     # one (same frequency, same case) is stable
     g = maps[(maps["model"] == "point-mass") & (maps["phase [deg]"] == 0.0)
              & (maps["preload [N]"] == P0) & (maps["x0 [m]"] == x0)]
     new = (g["pendulum |multiplier| [-]"] > 1 + tol) & (g["massless |multiplier| [-]"] <= 1 + tol)
     per_mass = g.assign(new=new).groupby("cable mass [kg]")["new"].mean()
-    out.append(("adding cable mass causes instability", False, bool(new.any()),
+    out.append(("adding cable mass causes instability", False, bool(new.mean() > 0.05),
                 f"zero preload, x0 = {x0:g} m: the massless baseline is already unstable on "
-                f"{base_u:.2f} of 0.1-200 Hz; share of the point-mass grid unstable where the "
+                f"{base_u:.2f} of {band}; share of the point-mass grid unstable where the "
                 f"massless model is stable: " + ", ".join(
                     f"{m * 1e3:g} g: {v:.2f}" for m, v in per_mass.items())))
     g = maps[(maps["model"] == "massless") & (maps["study"] == "phase")]
@@ -247,8 +253,8 @@ def _compare(table, base, st):
                   f"{g['f [Hz]'].max():g} Hz: unstable on {np.mean(~g['stable']):.2f} with the "
                   f"shift, {np.mean(~ref.stable):.2f} without; unstable only with the shift: "
                   f"{np.mean(new):.2f}")
-        out.append(("the 30 deg phase shift causes instability", False, bool(new.any()),
-                    detail))
+        out.append(("the 30 deg phase shift causes instability", False,
+                    bool(np.mean(new) > 0.05), detail))
     diffs = {}
     pm = maps[maps["model"] == "point-mass"]
     for study, g in pm.groupby("study"):
@@ -265,27 +271,32 @@ def _compare(table, base, st):
 
 
 def plot(table):
-    """Figure: pendulum |multiplier| against frequency, one panel per study."""
+    """Figure: pendulum |multiplier| against frequency, one panel per study (lines: massless
+    cables, dots: point-mass cables, one colour per value; above 1: unstable)."""
     import matplotlib.pyplot as plt
     maps = table.attrs["maps"]
-    studies = ["preload", "amplitude", "cable mass", "phase"]
-    fig, axes = plt.subplots(2, 2, figsize=(12, 8), sharex=True)
-    for ax, study in zip(axes.ravel(), studies):
-        g = maps[maps["study"].isin([study] + (["preload"] if study != "preload" else []))]
-        if study != "preload":
-            g = g[(g["study"] == study) | ((g["preload [N]"] == 0.0)
-                                           & (g["phase [deg]"] == 0.0))]
-        key = {"preload": "preload [N]", "amplitude": "x0 [m]",
-               "cable mass": "cable mass [kg]", "phase": "phase [deg]"}[study]
-        for (val, model), h in g.groupby([key, "model"]):
-            h = h.sort_values("f [Hz]")
-            style = dict(marker="o", ls="none", ms=4) if model == "point-mass" else dict(lw=1)
-            ax.loglog(h["f [Hz]"], h["pendulum |multiplier| [-]"], label=f"{key} {val:g}, "
-                      f"{model}", **style)
+    keys = {"preload": "preload [N]", "amplitude": "x0 [m]", "cable mass": "cable mass [kg]",
+            "phase": "phase [deg]"}
+    baseline = (maps["study"] == "preload") & (maps["preload [N]"] == 0.0)
+    fig, axes = plt.subplots(2, 2, figsize=(12, 8), sharex=True, sharey=True)
+    for ax, (study, key) in zip(axes.ravel(), keys.items()):
+        g = maps[(maps["study"] == study) | (baseline if study != "preload" else False)]
+        for i, (val, h) in enumerate(g.groupby(key)):
+            colour = f"C{i}"
+            for model, hm in h.groupby("model"):
+                hm = hm.sort_values("f [Hz]")
+                mu = np.clip(hm["pendulum |multiplier| [-]"], 1e-2, None)
+                if model == "massless":
+                    ax.loglog(hm["f [Hz]"], mu, color=colour, lw=1, label=f"{val:g} massless")
+                else:
+                    ax.loglog(hm["f [Hz]"], mu, "o", color=colour, ms=4,
+                              label=f"{val:g} point-mass")
         ax.axhline(1.0, color="k", lw=0.8)
-        ax.set_title(study)
+        ax.set_ylim(1e-2, 30.0)
+        ax.set_title(f"{study} ({key})")
+        ax.legend(fontsize=7, loc="lower right")
+    for ax in axes[:, 0]:
         ax.set_ylabel("pendulum |multiplier| [-]")
-        ax.legend(fontsize=7)
     for ax in axes[1]:
         ax.set_xlabel("excitation frequency [Hz]")
     return fig
