@@ -194,6 +194,20 @@ class CatenaryState:
         return float(np.hypot(self.H, self.V0))
 
     @property
+    def min_tension(self):
+        """Least tension along the cable [N]: H where the cable has its lowest point between
+        A and B (V changes sign), else the smaller end tension (T = sqrt(H^2 + V^2), V
+        linear in the arc length)."""
+        if self.V0 < 0.0 < self.Vb:
+            return float(self.H)
+        return float(np.hypot(self.H, min(abs(self.V0), abs(self.Vb))))
+
+    @property
+    def max_tension(self):
+        """Largest tension along the cable [N], at the higher-tension end."""
+        return max(self.tension_at_end, self.tension_at_anchor)
+
+    @property
     def mean_tension(self):
         """Tension averaged over the unstretched length [N]."""
         return float(_mean_tension(self.H, self.V0, self.unstretched_length,

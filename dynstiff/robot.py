@@ -291,6 +291,17 @@ class Equilibrium:
         return np.array([s.tension_at_anchor for s in self.states])
 
     @property
+    def min_tensions(self):
+        """Least tension along each cable [N], shape (n,) (the lower end, or H where the
+        cable's lowest point lies between its ends)."""
+        return np.array([s.min_tension for s in self.states])
+
+    @property
+    def max_tensions(self):
+        """Largest tension along each cable [N], shape (n,)."""
+        return np.array([s.max_tension for s in self.states])
+
+    @property
     def lever_arms(self):
         """r_i = R_p b_i [m], shape (n, 3)."""
         return self.robot.attachment_points(self.pose)[1]

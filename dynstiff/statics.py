@@ -4,7 +4,9 @@ Inverse statics (pose given, redundant robot): the tensions t at the platform en
 wrench balance W t = -w_g on the free DOFs, W = [u_i; r_i x u_i] with u_i the unit force of
 cable i on the platform at B_i. With sag, u_i depends on t_i through the elastic catenary, so
 the distribution and the catenaries are iterated to a fixed point. Among the solutions of the
-balance, the one closest (2-norm) to a reference tension within [t_min, t_max] is chosen.
+balance, the one closest (2-norm) to a reference tension within [t_min, t_max] is chosen; the
+limits hold along the whole cable (a cable running down to its anchor is least tensioned
+there, one whose lowest point lies between its ends has the tension H there).
 
 Forward statics (unstretched lengths given): Newton's method on the free-DOF wrench residual
 with the analytic 6x6 stiffness (theory.md §4).
@@ -27,8 +29,8 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         Structure matrix (columns: unit wrenches of the cables), k <= n.
     w : ndarray, shape (k,)
         Wrench the cables must supply.
-    t_min, t_max : float
-        Tension limits [N].
+    t_min, t_max : float or ndarray, shape (n,)
+        Tension limits [N] (per cable where arrays).
     t_ref : float or ndarray, shape (n,), optional
         Reference tensions (default t_min: the least tensions in the 2-norm sense).
 
@@ -42,7 +44,9 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         No admissible distribution exists (the message names the violated limit).
     """
     k, n = W.shape
-    t_ref = np.full(n, float(t_min)) if t_ref is None else np.broadcast_to(
+    t_min = np.broadcast_to(np.asarray(t_min, dtype=float), (n,))
+    t_max = np.broadcast_to(np.asarray(t_max, dtype=float), (n,))
+    t_ref = t_min.copy() if t_ref is None else np.broadcast_to(
         np.asarray(t_ref, dtype=float), (n,)).copy()
     rank = np.linalg.matrix_rank(W)
     if rank < k:
@@ -57,7 +61,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     if n == k:
         raise SlackCableError(
             f"the unique tension distribution {np.round(t, 6).tolist()} N violates the "
-            f"limits [{t_min}, {t_max}] N")
+            f"limits {_limits(t_min, t_max)} N")
     from scipy.linalg import null_space
     from scipy.optimize import linprog, minimize
     N = null_space(W)
@@ -69,7 +73,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
                  method="highs")
     if lp.status != 0:
         raise SlackCableError(
-            f"no tension distribution within [{t_min}, {t_max}] N balances the platform "
+            f"no tension distribution within {_limits(t_min, t_max)} N balances the platform "
             f"(the pose is outside the wrench-feasible workspace)")
     cons = {"type": "ineq", "fun": lambda lam: b_ub - A_ub @ lam, "jac": lambda lam: -A_ub}
     res = minimize(lambda lam: np.sum((t + N @ lam - t_ref) ** 2), lp.x,
@@ -79,8 +83,16 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     return t + N @ lam
 
 
+def _limits(t_min, t_max):
+    """The limits as text: [lo, hi] when equal for all cables, else per cable."""
+    if np.ptp(t_min) == 0 and np.ptp(t_max) == 0:
+        return f"[{t_min[0]:g}, {t_max[0]:g}]"
+    return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
+
+
 def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50):
-    """Tensions and unstretched lengths that hold the platform at ``pose`` (sag included).
+    """Tensions and unstretched lengths that hold the platform at ``pose`` (sag included),
+    with every cable's tension within the robot's limits all along its length.
 
     Returns
     -------
@@ -93,12 +105,18 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     u /= np.linalg.norm(u, axis=1)[:, None]
     wg = robot.gravity_wrench(pose)
     t_min, t_max = robot.tension_limits
+    # the limits hold along the whole cable: the platform-end tension t_i is bounded by
+    # [t_min + lo_i, t_max - hi_i], lo_i = T_B - min T, hi_i = max T - T_B of the last
+    # catenaries (a cable going down to its anchor is least tensioned there)
+    lo = np.zeros(robot.n_cables)
+    hi = np.zeros(robot.n_cables)
     states = None
     best, since_best = np.inf, 0
     for it in range(max_iter):
         W = np.vstack([u.T, np.cross(r, u).T])[fi]
         try:
-            t = tension_distribution(W, -wg[fi], t_min, t_max, tension_reference)
+            t = tension_distribution(W, -wg[fi], t_min + lo, t_max - hi,
+                                     tension_reference)
         except SlackCableError as exc:
             raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
         try:
@@ -109,8 +127,11 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
             raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
         u_new = np.array([s.force_on_end for s in states])
         u_new /= np.linalg.norm(u_new, axis=1)[:, None]
-        change = np.abs(u_new - u).max()
-        u = u_new
+        lo_new = np.array([s.tension_at_end - s.min_tension for s in states])
+        hi_new = np.array([s.max_tension - s.tension_at_end for s in states])
+        change = max(np.abs(u_new - u).max(),
+                     np.abs(np.concatenate([lo_new - lo, hi_new - hi])).max() / t.max())
+        u, lo, hi = u_new, lo_new, hi_new
         # fixed point reached, or stalled at rounding level: below 1e-9 and no new smallest
         # change for 10 iterations (slow but steady contraction near slack keeps going; the
         # wrench residual below decides whether the result is good)

@@ -58,6 +58,20 @@ def test_matches_independent_quadrature_solution(name, A, B, ratio):
     np.testing.assert_allclose(s.force_on_end, f_ref, rtol=1e-8, atol=1e-8 * np.linalg.norm(f_ref))
 
 
+@pytest.mark.parametrize("name,A,B,ratio", CASES + [
+    ("lowest point inside", (0, 0, 0), (10, 0, 0.5), 1.05),
+    ("falling to B", (0, 0, 6), (3, 0, 0), 1.001)], ids=lambda c: c if isinstance(c, str) else "")
+def test_least_and_largest_tension_along_the_cable(name, A, B, ratio):
+    """min_tension / max_tension against T(s) sampled densely along the cable."""
+    cable = cogiro_cable(17e9)
+    st = ds.solve_catenary(A, B, ratio * np.linalg.norm(np.subtract(B, A)), cable)
+    T = st.tension(np.linspace(0.0, st.unstretched_length, 200001))
+    assert st.min_tension == pytest.approx(T.min(), rel=1e-9)
+    assert st.max_tension == pytest.approx(T.max(), rel=1e-12)
+    if name == "lowest point inside":
+        assert st.V0 < 0 < st.Vb and st.min_tension == st.H < min(T[0], T[-1])
+
+
 # MoorPy treats the near-vertical chord (l_h = 1e-4 m) as exactly vertical (H = 0, V off by
 # 5e-8); the quadrature test above confirms H = 1.4e-3 N = lateral stiffness * l_h there.
 MOORPY_CASES = [c for c in CASES if c[0] != "near vertical"]
