@@ -63,8 +63,23 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     c = np.zeros(3) if point is None else _point("point", point)
     C6 = np.eye(6)
     C6[:3, 3:] = -skew(rotation @ c)
-    return (np.eye(6)[np.ix_(free_index, ii)], C6[np.ix_(oo, free_index)],
-            tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
+    B = np.eye(6)[np.ix_(free_index, ii)]
+    C = C6[np.ix_(oo, free_index)]
+    # a channel named explicitly that touches no free DOF would give an FRF identically 0
+    free = tuple(OUTPUT_NAMES[k] for k in free_index)
+    for names, allowed, mat, axis, arg in ((inputs, INPUT_NAMES, B, 0, "inputs"),
+                                           (outputs, OUTPUT_NAMES, C, 1, "outputs")):
+        if names is None:
+            continue
+        dead = [allowed[k] for k, col in zip(ii if axis == 0 else oo,
+                                             np.moveaxis(mat, axis, -1))
+                if not np.any(col)]
+        if dead:
+            raise InvalidParameterError(
+                f"{arg} {dead} {'act on' if arg == 'inputs' else 'move with'} held DOFs only "
+                f"(free DOFs: {free}{'' if arg == 'inputs' else f', point {c.tolist()}'}): "
+                f"their FRFs are identically 0")
+    return (B, C, tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
 
 
 @dataclass(frozen=True)
@@ -110,7 +125,8 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     omega : array_like, shape (n,)
         Angular frequencies [rad/s].
     inputs : str or list of str, optional
-        Among ``INPUT_NAMES`` (default all six). Loads on held DOFs give no response.
+        Among ``INPUT_NAMES`` (default all six). Loads on held DOFs give no response: in
+        the default they are zero columns, named explicitly they raise.
     outputs : str or list of str, optional
         Among ``OUTPUT_NAMES`` (default all six).
     point : array_like, shape (3,), optional

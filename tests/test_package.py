@@ -3,6 +3,7 @@
 import subprocess
 import sys
 
+import pytest
 
 
 def test_import_does_not_load_matplotlib_or_pandas():
@@ -113,6 +114,24 @@ def test_cli_frf_writes_table_and_figure(tmp_path):
     assert bad.returncode == 2 and "--band" in bad.stderr
     bad = run_cli("frf", "cogiro", "--from", "fq")
     assert bad.returncode == 2 and "fq" in bad.stderr
+
+
+def test_frf_of_a_held_dof_is_refused_not_zero():
+    """The pendulum has one free DOF (ry): naming fx or the output y would give an FRF that
+    is identically 0; that is an error naming the channel, and x of D = (0, 0, d) is not."""
+    import dynstiff as ds
+    from dynstiff.errors import InvalidParameterError
+    model = ds.FrequencyModel(ds.load_scene("pendulum").equilibrium())
+    with pytest.raises(InvalidParameterError, match=r"inputs \['fx'\].*\('ry',\)"):
+        model.frf([1.0], inputs="fx", outputs="x")
+    with pytest.raises(InvalidParameterError, match=r"outputs \['y'\]"):
+        model.frf([1.0], inputs="my", outputs=["x", "y"], point=[0, 0, 0.75])
+    # x of D moves by d dphi: H_x,my = d H_ry,my
+    h = model.frf([1.0], inputs="my", outputs=["x", "ry"], point=[0, 0, 0.75]).H[0, :, 0]
+    assert h[0] == pytest.approx(0.75 * h[1], rel=1e-12) and abs(h[1]) > 0
+    assert model.frf([1.0]).H.shape == (1, 6, 6)           # the default keeps zero channels
+    bad = run_cli("frf", "pendulum", "--from", "fx", "--to", "x")
+    assert bad.returncode == 2 and "held DOFs only" in bad.stderr and "fx" in bad.stderr
 
 
 def test_cli_sweep_line_and_parameter(tmp_path):
