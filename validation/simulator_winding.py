@@ -66,8 +66,12 @@ def winding_run(dt=5e-4, segments=4, quick=False):
         "path [m]": float(np.linalg.norm(end - start)),
         "largest length change [m]": float(moved.max()),
         "cable mass moved [kg]": float(np.sum(mu * moved)),
-        "cable mass / platform mass [-]": float(np.sum(mu * r.unstretched_lengths[0])
-                                                / scene.robot.platform.mass),
+        # the scene's definition: at the central pose (at the path's start, 2.5 m off
+        # centre, the cables are 2.4 m longer in all)
+        "cable mass / platform mass [-]": float(
+            np.sum(mu * scene.equilibrium().unstretched_lengths) / scene.robot.platform.mass),
+        "same, path start [-]": float(np.sum(mu * r.unstretched_lengths[0])
+                                      / scene.robot.platform.mass),
         "winch work [J]": float(e.winch_work[-1]),
         "peak drum kinetic energy [J]": float(drums.max()),
         "peak motor work [J]": float(np.abs(motor).max()),
