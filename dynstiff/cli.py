@@ -185,19 +185,43 @@ def _cmd_scenes(args):
 
 def _cmd_modes(args):
     import numpy as np
+    import pandas as pd
 
     from .assembly import FrequencyModel
+    from .errors import InvalidParameterError
     from .scenes import load_scene
+    if args.segments < 1:
+        raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
     n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    df = FrequencyModel(eq).modes(n_modes=n, fmax_hz=args.fmax).to_frame()
+    if args.model == "dsm":
+        df = FrequencyModel(eq).modes(n_modes=n, fmax_hz=args.fmax).to_frame()
+    elif args.model == "lumped":
+        from .ladder import build_model
+        lm = build_model(eq, "lumped", segments=args.segments)
+        if n is None:
+            n = len(lm.eigenfrequencies(fmax_hz=args.fmax))
+        elif args.fmax:
+            n = min(n, len(lm.eigenfrequencies(n_modes=n, fmax_hz=args.fmax)))
+        if n == 0:
+            raise InvalidParameterError(f"no lumped-model mode below --fmax {args.fmax} Hz")
+        df = lm.modes(n).to_frame()
+    else:
+        # massless cables: only the platform's modes, all global
+        from .ladder import build_model
+        f = build_model(eq, args.model).eigenfrequencies(n_modes=n, fmax_hz=args.fmax)
+        df = pd.DataFrame({"mode": np.arange(1, f.size + 1), "freq [Hz]": f,
+                           "kind": "global", "cable energy fraction [-]": 0.0})
+    sys.stdout.write(f"{args.model} model")
+    sys.stdout.write(f", {args.segments} segments per cable:\n" if args.model == "lumped"
+                     else ":\n")
     if args.csv:
         df.to_csv(args.csv, index=False)
     if args.json:
         df.to_json(args.json, orient="records", indent=1)
-    cols = ["mode", "freq [Hz]", "kind", "cable energy fraction [-]", "massless freq [Hz]",
-            "shift from massless [-]"]
+    cols = [c for c in ("mode", "freq [Hz]", "kind", "cable energy fraction [-]",
+                        "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
     with np.printoptions(suppress=True):
         sys.stdout.write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
     sys.stdout.write("\n")
@@ -294,6 +318,12 @@ def build_parser():
     mo.add_argument("-n", type=int, help="number of modes (default: the scene's n_modes)")
     mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
     mo.add_argument("--json", help="write the full table to this JSON file")
+    mo.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
+                    help="cable model: closed-form dynamic stiffness (default), lumped masses "
+                         "(--segments), or massless cables with the catenary's or the "
+                         "straight spring's stiffness (platform modes only)")
+    mo.add_argument("--segments", type=int, default=30,
+                    help="segments per cable of the lumped model (default 30)")
     mo.set_defaults(func=_cmd_modes)
     fr = sub.add_parser("frf", help="frequency response functions of the platform")
     fr.add_argument("scene", help="built-in scene name or path to a TOML scene file")
