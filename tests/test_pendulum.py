@@ -44,7 +44,13 @@ def scene():
 def test_scene_modes_match_the_analytic_natural_frequency(scene):
     eq = scene.equilibrium()
     P = scene.robot.tension_limits[0]
-    np.testing.assert_allclose(eq.tensions, P, rtol=1e-9)          # inverse statics = preload
+    # inverse statics: the least tension (at the lower end B, C) is the preload; at D it
+    # carries the cable's weight on top: elastic catenary dT = w0 dz / (1 + T/EA), with w0
+    # = m_c g / L0 per unstretched length: 0.0200 N
+    np.testing.assert_allclose(eq.min_tensions, P, rtol=1e-12)
+    EA = scene.robot.cables[0].EA
+    np.testing.assert_allclose(eq.tensions - P, 3.846e-3 * G * D / eq.unstretched_lengths[0]
+                               / (1 + P / EA), rtol=1e-5)
     f_analytic = np.sqrt(analytic_stiffness(P) / I_A) / (2 * np.pi)
     f1 = ds.FrequencyModel(eq).modes(2).freq_hz[0]
     assert abs(f1 / f_analytic - 1) < 1e-3            # 3.8 g cables shift it by 2e-4
