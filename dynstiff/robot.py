@@ -85,7 +85,8 @@ class Robot:
     g : float, optional
         Gravity [m/s^2] (default :data:`STANDARD_GRAVITY`).
     tension_limits : (float, float), optional
-        Admissible tension range [t_min, t_max] [N] for the tension distribution.
+        Admissible tension range [t_min, t_max] [N] of the tension distribution, held all
+        along each cable (inverse statics, design checks).
     name : str, optional
     """
 
