@@ -74,6 +74,20 @@ class Recommendation:
                      f"{k} {v:.2e}" for k, v in self.errors.items())]
         return "\n".join(lines) + "\n"
 
+    def to_frame(self):
+        """pandas DataFrame, one row per rung, cheapest first: "rung", "segments" (the
+        lumped rung's count for the tolerance), "predicted error [-]" (inf: misses modes)
+        and "recommended"."""
+        import pandas as pd
+        rungs = [r for r in RUNGS if r in self.errors]
+        return pd.DataFrame({
+            "rung": rungs,
+            "segments": [self.estimates.get("lumped_segments") if r == "lumped" else None
+                         for r in rungs],
+            "predicted error [-]": [float(self.errors[r]) for r in rungs],
+            "recommended": [r == self.rung for r in rungs],
+        })
+
 
 def _dsm_static_envelope(states):
     env = 0.0
@@ -162,6 +176,7 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
     segments = int(np.ceil(n_harm * np.pi / np.sqrt(12.0 * rtol)))
     segments = max(segments, 4)
     errors["lumped"] = float((n_harm * np.pi / segments) ** 2 / 24)
+    estimates["lumped_segments"] = segments
     return errors, estimates, segments
 
 

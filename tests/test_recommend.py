@@ -74,6 +74,11 @@ def test_lumped_when_the_tolerance_is_below_the_closed_form_error():
     assert rec.rung == "lumped" and rec.segments >= 40
     err = actual_errors(eq, band, rec.segments)
     assert err["dsm"] > 1e-4 >= err["lumped"]             # the closed form is not enough
+    df = rec.to_frame().set_index("rung")
+    assert list(df.index) == ["spring", "catenary", "dsm", "lumped"]
+    assert df["recommended"].sum() == 1 and df.loc["lumped", "recommended"]
+    assert df.loc["lumped", "segments"] == rec.segments
+    assert (df.loc[["spring", "catenary", "dsm"], "predicted error [-]"] > 1e-4).all()
 
 
 def test_bad_inputs():
