@@ -1,0 +1,264 @@
+"""Kernels of the lumped-mass time-domain model (theory.md §7.3): configuration updates
+with exactly composed rotations, the pose-dependent platform terms, damping forces, the
+potential energy and the :class:`_Dynamics` that assembles forces, mass and the Newton
+matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
+
+import functools
+
+import numpy as np
+import scipy.sparse
+
+from ..errors import InvalidParameterError
+from ..platform import platform_mass_matrix, skew
+from ..robot import Pose
+from .robot_model import LumpedMassModel, _lever_map, _segments
+
+
+def _model_at(model, L0):
+    """The model with other unstretched lengths (same robot and segments)."""
+    if np.array_equal(L0, model.unstretched_lengths):
+        return model
+    return LumpedMassModel(model.robot, L0, [int(s) for s in model.segments])
+
+
+def _interior(model, X):
+    """Views of the flat interior-node vector X as the model's list of (N_i - 1, 3)."""
+    nf = model.n_free
+    return [X[o - nf:o - nf + 3 * (N - 1)].reshape(-1, 3)
+            for o, N in zip(model._offsets, model.segments)]
+
+
+class _Pose(Pose):
+    """A :class:`Pose` that computes its rotation matrix once (the model's residual, its
+    tangent and the platform terms all ask for it)."""
+
+    @functools.cached_property
+    def matrix(self):
+        """Rotation matrix R_p, shape (3, 3)."""
+        return super().matrix
+
+
+def _advance(model, pose, X, dx):
+    """Configuration after the increment dx (rotation composed exactly)."""
+    d6 = np.zeros(6)
+    d6[model._fi] = dx[:model.n_free]
+    if np.any(d6[3:]):
+        moved = pose.moved(d6)
+        pose = _Pose(moved.position, moved.rotation)
+    else:
+        new = _Pose(pose.position + d6[:3], pose.rotation)
+        if "matrix" in pose.__dict__:                      # same rotation: keep R_p
+            new.__dict__["matrix"] = pose.__dict__["matrix"]
+        pose = new
+    return pose, X + dx[model.n_free:]
+
+
+def _twist(model, v):
+    """Full platform twist (v_P, w), shape (6,), from the free-DOF velocities."""
+    t = np.zeros(6)
+    t[model._fi] = v[:model.n_free]
+    return t
+
+
+class _Frame:
+    """Pose-dependent platform quantities of one model at one pose.
+
+    The rotation-dependent part is copied from ``like`` when the rotation and the model
+    are the same (always so for a platform without free rotations).
+    """
+
+    def __init__(self, model, pose, like=None):
+        rob = model.robot
+        if like is not None and like.model is model and \
+                np.array_equal(like.rotation, pose.rotation):
+            self.__dict__.update(like.__dict__)
+            self.B = pose.position + self.r
+            self.zG = pose.position[2] + self.rG[2]
+            return
+        self.model, self.rotation = model, pose.rotation
+        self.R = pose.matrix
+        self.r = rob.attachments @ self.R.T
+        self.B = pose.position + self.r
+        self._fi = fi = model._fi
+        half = 0.5 * model._node_mass
+        Mp = platform_mass_matrix(rob.platform, self.R)
+        hr = half @ self.r                                  # sum (m l0 / 2) r_i
+        S = skew(hr)
+        Mp[:3, :3] += half.sum() * np.eye(3)
+        Mp[:3, 3:] -= S
+        Mp[3:, :3] += S
+        # - sum h [r]x [r]x = sum h (|r|^2 I - r r^T)
+        Mp[3:, 3:] += (half @ np.sum(self.r ** 2, axis=1)) * np.eye(3) \
+            - np.einsum("i,ij,ik->jk", half, self.r, self.r)
+        self.M6 = Mp                                   # body + half node masses about P
+        self.Mff = Mp[np.ix_(fi, fi)]
+        self.rG = rG = self.R @ rob.platform.center_of_mass
+        self.first_moment = rob.platform.mass * rG + hr
+        self.zG = pose.position[2] + rG[2]
+
+    @property
+    def J(self):
+        """Lever maps J_i restricted to the free DOFs, list of (3, n_free)."""
+        return [_lever_map(ri, self._fi) for ri in self.r]
+
+
+def _node_mass_vector(model):
+    """Diagonal of the interior-node mass, shape (n_dof - n_free,) [kg]."""
+    return np.repeat(model._node_mass, 3 * (model.segments - 1))
+
+
+def _gyroscopic(model, frame, tw):
+    """Centripetal / gyroscopic terms g(q, v) on the free DOFs [N, N m].
+
+    [w x (w x S); w x (I_P w)] with S the first moment and I_P the inertia about P of the
+    body and the half node masses (the M6 rotation block); zero without rotation.
+    """
+    w = tw[3:]
+    if not np.any(w):
+        return np.zeros(model.n_free)
+    g6 = np.concatenate([np.cross(w, np.cross(w, frame.first_moment)),
+                         np.cross(w, frame.M6[3:, 3:] @ w)])
+    return g6[model._fi]
+
+
+def _axial_dashpot(model, frame, X, v, tw, c_ax):
+    """Generalised force of the axial dashpots c_ax d(epsilon)/dt (taut segments only)."""
+    F = np.zeros(model.n_dof)
+    nf = model.n_free
+    rob = model.robot
+    interior = _interior(model, X)
+    vint = [v[o:o + 3 * (N - 1)].reshape(-1, 3) for o, N in zip(model._offsets,
+                                                                  model.segments)]
+    W = np.zeros(6)
+    for i, (xi, vi) in enumerate(zip(interior, vint)):
+        if c_ax[i] == 0.0:
+            continue
+        l0 = model.segment_lengths[i]
+        nodes = np.vstack((rob.anchors[i], xi, frame.B[i]))
+        vB = tw[:3] + np.cross(tw[3:], frame.r[i])
+        vel = np.vstack((np.zeros(3), vi, vB))
+        units, lengths, _ = _segments(nodes, l0, rob.cables[i].EA)
+        rate = np.einsum("ij,ij->i", units, np.diff(vel, axis=0)) / l0
+        f = (np.where(lengths > l0, c_ax[i] * rate, 0.0))[:, None] * units
+        o = model._offsets[i]
+        F[o:o + xi.size] = (f[1:] - f[:-1]).ravel()
+        W[:3] -= f[-1]
+        W[3:] -= np.cross(frame.r[i], f[-1])
+    F[:nf] = W[model._fi]
+    return F
+
+
+def _potential(model, frame, X):
+    """Elastic and gravity energy [J], end tensions [N], slack segments, largest strain."""
+    rob = model.robot
+    g = rob.g
+    elastic = 0.0
+    gravity = rob.platform.mass * g * frame.zG
+    t_end, t_anchor = np.empty(rob.n_cables), np.empty(rob.n_cables)
+    slack, strain = [], 0.0
+    for i, xi in enumerate(_interior(model, X)):
+        l0, EA = model.segment_lengths[i], rob.cables[i].EA
+        nodes = np.vstack((rob.anchors[i], xi, frame.B[i]))
+        _, lengths, T = _segments(nodes, l0, EA)
+        stretch = np.maximum(lengths - l0, 0.0)
+        elastic += 0.5 * EA / l0 * np.dot(stretch, stretch)
+        gravity += model._node_mass[i] * g * (xi[:, 2].sum() + 0.5 * frame.B[i, 2])
+        t_end[i], t_anchor[i] = T[-1], T[0]
+        strain = max(strain, float(np.max(lengths)) / l0 - 1.0)
+        if np.any(T <= 0.0):
+            slack.append((i, int(np.argmax(T <= 0.0))))
+    return elastic, gravity, t_end, t_anchor, slack, strain
+
+
+class _Dynamics:
+    """Forces, mass and Newton matrix of the lumped robot at given lengths (internal)."""
+
+    def __init__(self, model, damping, K0, excitation):
+        self.model = model
+        n = model.robot.n_cables
+        self.damping = damping
+        self.alpha = damping.alpha
+        self.beta = damping.beta
+        self.c_ax = damping.axial_per_cable(n)
+        self.K0 = K0
+        self.excitation = excitation
+        self.c_visc = np.array([cb.viscous_damping for cb in model.robot.cables])
+        self._last = None
+        self.set_model(model)
+
+    def set_model(self, model):
+        self.model = model
+        self.mu = _node_mass_vector(model)
+        self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
+
+    def load(self, t):
+        F = np.zeros(self.model.n_dof)
+        if self.excitation is not None:
+            F[:self.model.n_free] = _load(self.excitation, t)[self.model._fi]
+        return F
+
+    def mass_times(self, frame, a):
+        nf = self.model.n_free
+        return np.concatenate([frame.Mff @ a[:nf], self.mu * a[nf:]])
+
+    def platform_viscous(self, frame):
+        m = self.model
+        Cb = np.zeros((m.n_free, m.n_free))
+        for i, J in enumerate(frame.J):
+            Cb += 0.5 * self.c_visc[i] * m.segment_lengths[i] * J.T @ J
+        return Cb
+
+    def forces(self, pose, X, v, t):
+        """Total generalised force F and its external and damping parts, max tension."""
+        m = self.model
+        frame = self._last = _Frame(m, pose, self._last)
+        R, t_max = m._residual(pose, _interior(m, X))
+        fe = self.load(t)
+        tw = _twist(m, v)
+        nf = m.n_free
+        fd = np.zeros(m.n_dof)
+        if self.alpha:
+            fd -= self.alpha * self.mass_times(frame, v)
+        if self.beta:
+            fd -= self.beta * (self.K0 @ v)
+        if np.any(self.c_visc):
+            fd[:nf] -= self.platform_viscous(frame) @ v[:nf]
+            fd[nf:] -= self.cv * v[nf:]
+        if np.any(self.c_ax):
+            fd += _axial_dashpot(m, frame, X, v, tw, self.c_ax)
+        F = R + fe + fd - np.concatenate([_gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
+        return F, fe, fd, t_max, frame
+
+    def newton_matrix(self, pose, X, dt):
+        """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
+        m = self.model
+        frame = _Frame(m, pose, self._last)
+        EA = np.array([cb.EA for cb in m.robot.cables])
+        extra = 2.0 * self.c_ax / (dt * EA)
+        K = m._tangent(pose, _interior(m, X), lambda i: 1.0 + extra[i])
+        c_mass = 4.0 / dt ** 2 + 2.0 * self.alpha / dt
+        block = c_mass * frame.Mff + (2.0 / dt) * self.platform_viscous(frame)
+        diag = c_mass * self.mu + (2.0 / dt) * self.cv
+        D = scipy.sparse.block_diag([scipy.sparse.csr_matrix(block),
+                                     scipy.sparse.diags(diag)], format="csr")
+        J = K + D
+        if self.beta:
+            J = J + (2.0 * self.beta / dt) * self.K0
+        return J.tocsc()
+
+    def accelerations(self, frame, F):
+        nf = self.model.n_free
+        return np.concatenate([np.linalg.solve(frame.Mff, F[:nf]) if nf else np.zeros(0),
+                               F[nf:] / self.mu])
+
+    def kinetic(self, frame, v):
+        return 0.5 * float(v @ self.mass_times(frame, v))
+
+
+def _load(excitation, t):
+    f = np.asarray(excitation(t), dtype=float)
+    if f.shape != (6,) or not np.all(np.isfinite(f)):
+        raise InvalidParameterError(
+            f"excitation(t) must return 6 finite loads (fx, fy, fz [N], mx, my, mz [N m]), "
+            f"got {f!r} at t = {t:g} s")
+    return f
