@@ -1,10 +1,9 @@
 """Lumped-mass (bead-and-spring) cable models, the independent cross-check of the
 closed-form dynamic stiffness (theory.md §7)."""
 
-from .chain import (
-    ChainState,
+from .chain import ChainState, chain_equilibrium
+from .chain_dynamics import (
     chain_end_dynamic_stiffness,
-    chain_equilibrium,
     chain_fixed_end_frequencies,
     chain_matrices,
 )
