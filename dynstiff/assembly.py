@@ -16,7 +16,7 @@ import numpy as np
 from ._validate import omega_array
 from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, _local_entries, _mode_count_Omega,
                         chord_parameters, dyad_basis, stack_parameters)
-from .platform import DOF_NAMES, platform_mass_matrix, skew
+from .platform import DOF_NAMES, lever_map, platform_mass_matrix
 from .robot import geometric_stiffness
 
 __all__ = ["FrequencyModel"]
@@ -59,7 +59,7 @@ class FrequencyModel:
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
         blocks = []
         for p, r in zip(self.params, self.lever_arms):
-            J = np.hstack([np.eye(3), -skew(r)])[:, fi]            # (3, nf)
+            J = lever_map(r, fi)                                   # (3, nf)
             D = dyad_basis(p.rotation).reshape(5, 3, 3)
             blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
         self._G = np.vstack(blocks)

@@ -21,7 +21,7 @@ from ._validate import omega_array
 from .assembly import FrequencyModel
 from .errors import InvalidParameterError
 from .frf import FRFResult, channel_maps
-from .platform import platform_mass_matrix, skew
+from .platform import lever_map, platform_mass_matrix
 from .robot import geometric_stiffness
 
 __all__ = ["RUNGS", "StaticCableModel", "build_model"]
@@ -59,7 +59,7 @@ class StaticCableModel:
                       + s.tension_at_end / L * (np.eye(3) - np.outer(u, u)))
             else:
                 Ki = s.static_stiffness
-            J = np.hstack([np.eye(3), -skew(r)])
+            J = lever_map(r)
             K += J.T @ Ki @ J
         K[3:, 3:] += geometric_stiffness(robot, pose, equilibrium.states)
         K = K[np.ix_(fi, fi)]

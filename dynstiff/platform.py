@@ -25,7 +25,7 @@ import numpy as np
 from ._validate import positive_scalar
 from .errors import InvalidParameterError
 
-__all__ = ["Platform", "DOF_NAMES", "skew", "rotation_matrix", "platform_mass_matrix"]
+__all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "rotation_matrix", "platform_mass_matrix"]
 
 #: Names of the six platform degrees of freedom, in the order used everywhere.
 DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
@@ -34,6 +34,17 @@ DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
 def skew(a):
     """Cross-product matrix [a]x with [a]x b = a x b; a of shape (3,) -> (3, 3)."""
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+def lever_map(r, free_index=None):
+    """J = [I, -[r]x] [-, m], shape (3, 6), or (3, n_free) restricted to ``free_index``.
+
+    Maps a small platform motion x = (dp, dtheta) about P (base frame) to the motion
+    dp + dtheta x r of the point at lever arm r [m] (theory.md §4); J^T f is the wrench about
+    P of a force f applied there.
+    """
+    J = np.hstack([np.eye(3), -skew(r)])
+    return J if free_index is None else J[:, free_index]
 
 
 def rotation_matrix(rotvec):

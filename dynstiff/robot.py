@@ -19,7 +19,7 @@ from .catenary import solve_catenary
 from .constants import STANDARD_GRAVITY
 from .errors import InvalidParameterError
 from .params import Cable
-from .platform import Platform, rotation_matrix, skew
+from .platform import Platform, lever_map, rotation_matrix, skew
 
 __all__ = ["Robot", "Pose", "Equilibrium", "as_pose"]
 
@@ -196,7 +196,7 @@ class Robot:
         _, r = self.attachment_points(pose)
         K = np.zeros((6, 6))
         for ri, s in zip(r, states):
-            J = np.hstack([np.eye(3), -skew(ri)])
+            J = lever_map(ri)
             K += J.T @ s.static_stiffness @ J
         K[3:, 3:] += geometric_stiffness(self, pose, states)
         return 0.5 * (K + K.T) if symmetric_part else K

@@ -15,7 +15,7 @@ import pytest
 import dynstiff as ds
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.lumped import LumpedMassModel, LumpedModalResult, compare_modes
-from dynstiff.lumped import robot_model
+from dynstiff.lumped import robot_modal
 from conftest import lumped_point_mass_frequencies, point_mass_robot
 
 E17 = 8.2051e-6 * 17e9          # CoGiRo cable EA [N] (theory.md §8.1)
@@ -230,9 +230,9 @@ def test_cogiro_local_mode_gap_is_the_beaded_string_error(cogiro_eq, closed_form
 
 def test_sparse_shift_invert_equals_dense(lumped, monkeypatch):
     model = lumped(20)
-    assert model.n_dof > robot_model._DENSE_LIMIT
+    assert model.n_dof > robot_modal._DENSE_LIMIT
     f_sparse = model.eigenfrequencies(12)
-    monkeypatch.setattr(robot_model, "_DENSE_LIMIT", 10**6)
+    monkeypatch.setattr(robot_modal, "_DENSE_LIMIT", 10**6)
     np.testing.assert_allclose(model.eigenfrequencies(12), f_sparse, rtol=1e-10)
 
 

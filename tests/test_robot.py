@@ -14,6 +14,21 @@ def skew(a):
     return np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
 
 
+def test_lever_map_moves_a_point_by_dp_plus_dtheta_cross_r():
+    rng = np.random.default_rng(3)
+    r, dp, dth = rng.normal(size=(3, 3))
+    x = np.concatenate([dp, dth])
+    np.testing.assert_allclose(ds.platform.lever_map(r) @ x, dp + np.cross(dth, r),
+                               rtol=1e-14, atol=1e-15)
+    # J^T f is the wrench about P of a force f at r
+    f = rng.normal(size=3)
+    np.testing.assert_allclose(ds.platform.lever_map(r).T @ f,
+                               np.concatenate([f, np.cross(r, f)]), rtol=1e-14, atol=1e-15)
+    fi = [0, 2, 5]
+    np.testing.assert_array_equal(ds.platform.lever_map(r, fi),
+                                  ds.platform.lever_map(r)[:, fi])
+
+
 def straight_cable_frequencies(eq):
     """Independent massless straight-cable model: K = sum J^T (k u u^T + t/l (I - u u^T)) J
     + K_geo, with k = EA/L0, mass matrix of the rigid body written out here (Hz)."""

@@ -1,4 +1,5 @@
-"""Lumped-mass model of a whole cable robot: nonlinear statics, tangent stiffness, modes, FRFs.
+"""Lumped-mass model of a whole cable robot: nonlinear statics, tangent stiffness and mass
+(its modes and FRFs are computed in :mod:`dynstiff.lumped.robot_modal`).
 
 Every cable i is a chain of N_i straight, tension-only springs between point masses
 (theory.md §7.1); the platform is the rigid body of the same :class:`~dynstiff.Robot`, with
@@ -43,23 +44,18 @@ from dataclasses import dataclass
 from numbers import Integral
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-from .._validate import omega_array, positive_scalar
-from ..eigen import ModalResult
-from ..errors import ConvergenceError, InvalidParameterError, PoleWarning, SlackCableError
-from ..frf import _KINDS, FRFResult, channel_maps
-from ..platform import DOF_NAMES, platform_mass_matrix, skew
+from .._validate import positive_scalar
+from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
+from ..platform import DOF_NAMES, lever_map, platform_mass_matrix, skew
 from ..robot import Pose, Robot, as_pose
+from . import robot_modal as _modal
 from .chain import _block_tridiagonal_entries, _element_stiffness, chain_equilibrium
+from .robot_modal import LumpedModalResult
 
 __all__ = ["LumpedMassModel", "LumpedEquilibrium", "LumpedModalResult"]
-
-_TWO_PI = 2.0 * np.pi
-#: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
-_DENSE_LIMIT = 400
 
 
 # ------------------------------------------------------------------------------ kernels
@@ -85,11 +81,6 @@ def _segments(nodes, l0, EA):
     d = np.diff(nodes, axis=0)
     lengths = np.linalg.norm(d, axis=1)
     return d / lengths[:, None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
-
-
-def _lever_map(r, fi):
-    """J_i = [I, -[r]x] restricted to the free columns, shape (3, n_free)."""
-    return np.hstack([np.eye(3), -skew(r)])[:, fi]
 
 
 def _validated_segments(segments, n):
@@ -183,27 +174,6 @@ class LumpedEquilibrium:
             "tension at B [N]": self.end_tensions,
             "tension at A [N]": self.anchor_tensions,
         })
-
-
-@dataclass(frozen=True)
-class LumpedModalResult(ModalResult):
-    """Modes of the lumped-mass robot: a :class:`~dynstiff.ModalResult` plus node motions.
-
-    Attributes
-    ----------
-    node_shapes : list of ndarray, shape (n_modes, N_i + 1, 3)
-        Displacement of every node of cable i [m] (anchor 0, the last node moves with the
-        platform), for the mode vector normalised to unit total kinetic energy
-        phi^T M phi = 1 (not the platform normalisation of ``platform_shapes``).
-
-    Notes
-    -----
-    ``platform_shapes`` are normalised to x^T M_p x = 1 with M_p the rigid platform alone,
-    like the closed-form model; ``massless_freq_hz`` comes from the lumped cables condensed
-    statically onto the platform (their massless limit).
-    """
-
-    node_shapes: list = None
 
 
 # ------------------------------------------------------------------------------ model
@@ -398,7 +368,7 @@ class LumpedMassModel:
             units, lengths, T = _segments(x, l0, EA)
             axial = np.where(T > 0, axial_of(i) * EA / l0, 0.0)
             ke = _element_stiffness(units, lengths, T, axial)
-            J = _lever_map(r[i], fi)
+            J = lever_map(r[i], fi)
             o = self._offsets[i]
             if N > 1:
                 rr, cc, vv = _block_tridiagonal_entries(ke)
@@ -439,7 +409,7 @@ class LumpedMassModel:
         for i in range(self.robot.n_cables):
             o, size = self._offsets[i], 3 * (self.segments[i] - 1)
             diag[o:o + size] = per_node[i]
-            J = _lever_map(r[i], fi)
+            J = lever_map(r[i], fi)
             block += 0.5 * per_node[i] * J.T @ J
         ip, jp = np.meshgrid(np.arange(nf), np.arange(nf), indexing="ij")
         idx = np.arange(nf, self.n_dof)
@@ -584,216 +554,29 @@ class LumpedMassModel:
         s = self.state
         return self._tangent(s.pose, s.interior, lambda i: 1.0), self.mass_matrix(s.pose)
 
-    def _eig(self, n_modes):
-        if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or \
-                not 1 <= n_modes <= self.n_dof:
-            raise InvalidParameterError(
-                f"n_modes must be an integer in [1, {self.n_dof}] (the number of DOFs), got "
-                f"{n_modes!r}")
-        K, M = self.matrices()
-        K = 0.5 * (K + K.T)
-        if self.n_dof <= _DENSE_LIMIT or n_modes >= self.n_dof // 2:
-            lam, V = scipy.linalg.eigh(K.toarray(), M.toarray(),
-                                       subset_by_index=[0, n_modes - 1])
-        else:
-            # shift-invert about sigma < 0, below every eigenvalue of a stable equilibrium:
-            # the eigenvalues nearest sigma are then the lowest ones. min K_kk / M_kk bounds
-            # the lowest eigenvalue from above (Rayleigh quotient of a unit vector).
-            d = K.diagonal() / M.diagonal()
-            sigma = -0.1 * d[d > 0].min() if np.any(d > 0) else -1.0
-            lam, V = scipy.sparse.linalg.eigsh(K.tocsc(), k=n_modes, M=M.tocsc(),
-                                               sigma=sigma, which="LM")
-            order = np.argsort(lam)
-            lam, V = lam[order], V[:, order]
-            V = V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
-        return lam, V, K, M
-
     def simulate(self, t_end, dt, **kwargs):
         """Nonlinear time-domain simulation; see :func:`dynstiff.lumped.time_domain.simulate`."""
         from .time_domain import simulate
         return simulate(self, t_end, dt, **kwargs)
 
     def eigenfrequencies(self, n_modes=None, fmax_hz=None):
-        """Lowest natural frequencies of K phi = omega^2 M phi [Hz], ascending.
-
-        Sparse shift-invert Lanczos (dense ``eigh`` for small models). An unstable
-        equilibrium (negative eigenvalue lambda) is reported as -sqrt(-lambda) / 2 pi.
-
-        Parameters
-        ----------
-        n_modes : int, optional
-            Number of frequencies, 1 <= n_modes <= n_dof.
-        fmax_hz : float, optional
-            All frequencies below this [Hz] (the first ``n_modes`` of them if both are given).
-
-        Returns
-        -------
-        ndarray, shape (n,) [Hz]
-        """
-        if fmax_hz is None:
-            if n_modes is None:
-                raise InvalidParameterError("give n_modes or fmax_hz")
-            lam = self._eig(n_modes)[0]
-            return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
-        n = 12 if n_modes is None else int(n_modes)
-        while True:                      # grow the count until the band is covered
-            f = self.eigenfrequencies(min(n, self.n_dof))
-            if n >= self.n_dof or f[-1] >= fmax_hz:
-                f = f[f < fmax_hz]
-                return f if n_modes is None else f[:n_modes]
-            n *= 2
+        """Lowest natural frequencies [Hz]: :func:`dynstiff.lumped.robot_modal.eigenfrequencies`."""
+        return _modal.eigenfrequencies(self, n_modes, fmax_hz)
 
     def modes(self, n_modes):
-        """Modes with platform shapes, cable kinetic-energy fractions and labels.
-
-        Kinetic energies per unit omega^2 / 2: platform x^T M_p x (rigid body alone), cable i
-        sum of m l0 |phi_j|^2 over its interior nodes plus (m l0 / 2) |J_i x|^2 at B_i. A
-        mode is "global" when the cables hold less than half of the kinetic energy (as in
-        :func:`dynstiff.eigen.modes`). ``massless_freq_hz`` of a global mode is the frequency
-        of the mode of the statically condensed (massless-cable) lumped model with the
-        largest mass-weighted MAC.
-
-        Parameters
-        ----------
-        n_modes : int
-            Number of lowest modes.
-
-        Returns
-        -------
-        LumpedModalResult
-            Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
-            platform does not move at all).
-        """
-        lam, V, K, _ = self._eig(n_modes)
-        freq = np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
-        s = self.state
-        nf, fi = self.n_free, self._fi
-        rob = self.robot
-        Mp = platform_mass_matrix(rob.platform, s.pose.matrix)[np.ix_(fi, fi)]
-        X = V[:nf]                                               # (nf, n)
-        E_p = np.einsum("in,ij,jn->n", X, Mp, X)
-        _, r = rob.attachment_points(s.pose)
-        E_cab = np.zeros((n_modes, rob.n_cables))
-        node_shapes = []
-        for i in range(rob.n_cables):
-            o, size = self._offsets[i], 3 * (self.segments[i] - 1)
-            U = V[o:o + size].T.reshape(n_modes, -1, 3)
-            dB = (_lever_map(r[i], fi) @ X).T                    # (n, 3)
-            E_cab[:, i] = self._node_mass[i] * (np.sum(U ** 2, axis=(1, 2))
-                                                + 0.5 * np.sum(dB ** 2, axis=1))
-            node_shapes.append(np.concatenate(
-                [np.zeros((n_modes, 1, 3)), U, dB[:, None, :]], axis=1))
-        total = E_p + E_cab.sum(axis=1)
-        frac = E_cab.sum(axis=1) / total
-        moving = E_p > 1e-24 * total
-        shapes = np.zeros((n_modes, 6))
-        shapes[np.ix_(moving, fi)] = (X[:, moving] / np.sqrt(E_p[moving])).T
-        kinds = tuple("global" if f < 0.5 else "local" for f in frac)
-        # massless-cable (statically condensed) lumped model, for the shift of global modes
-        Kc = self._condensed(K)
-        lam0, X0 = scipy.linalg.eigh(Kc, Mp)
-        f0 = np.sign(lam0) * np.sqrt(np.abs(lam0)) / _TWO_PI
-        f_massless = np.full(n_modes, np.nan)
-        for k in np.flatnonzero(np.array(kinds) == "global"):
-            x = shapes[k, fi]
-            f_massless[k] = f0[int(np.argmax((X0.T @ Mp @ x) ** 2))]
-        for a in node_shapes:
-            a.setflags(write=False)
-        return LumpedModalResult(freq_hz=freq, platform_shapes=shapes,
-                                 cable_energy_fraction=frac,
-                                 cable_energy=E_cab / total[:, None], kind=kinds,
-                                 massless_freq_hz=f_massless, node_shapes=node_shapes)
-
-    def _condensed(self, K):
-        """Static condensation onto the free platform DOFs, K_pp - K_pi K_ii^-1 K_ip."""
-        nf = self.n_free
-        Kpp = K[:nf, :nf].toarray()
-        if self.n_dof == nf:
-            return Kpp
-        Kip = K[nf:, :nf].toarray()
-        sol = scipy.sparse.linalg.splu(K[nf:, nf:].tocsc()).solve(Kip)
-        return Kpp - K[:nf, nf:] @ sol
+        """Modes with platform shapes, cable energy fractions and labels
+        (:class:`LumpedModalResult`): :func:`dynstiff.lumped.robot_modal.modes`."""
+        return _modal.modes(self, n_modes)
 
     def static_stiffness(self):
-        """Static stiffness of the platform (free DOFs), interior nodes condensed out.
+        """Platform static stiffness, cable nodes condensed out, shape (n_free, n_free):
+        :func:`dynstiff.lumped.robot_modal.static_stiffness`."""
+        return _modal.static_stiffness(self)
 
-        Returns
-        -------
-        ndarray, shape (n_free, n_free) [N/m, N, N m/rad]
-            Comparable with the elastic-catenary ``Equilibrium.static_stiffness()``.
-        """
-        return self._condensed(self.matrices()[0])
-
-    # ------------------------------------------------------------------------ FRF
     def frf(self, omega, inputs=None, outputs=None, point=None, kind="receptance"):
-        """Platform FRFs by a direct sparse solve of (K - omega^2 M + i omega C) X = F.
-
-        Same channels and result as :func:`dynstiff.frf.frf`. Damping as in
-        :func:`~dynstiff.lumped.chain_end_dynamic_stiffness`: EA (1 + i eta) in the axial
-        term of K, viscous c l0 at every node (c l0 / 2 at B_i), none on the platform.
-
-        Parameters
-        ----------
-        omega : array_like, shape (n,)
-            Angular frequencies [rad/s], >= 0.
-        inputs : str or list of str, optional
-            Among ``INPUT_NAMES`` (default all six); loads on held DOFs give no response.
-        outputs : str or list of str, optional
-            Among ``OUTPUT_NAMES`` (default all six).
-        point : array_like, shape (3,), optional
-            Platform point [m, platform frame] whose translation is output (default P).
-        kind : {"receptance", "mobility", "accelerance"}
-
-        Returns
-        -------
-        FRFResult
-            H of shape (n, n_out, n_in).
-
-        Warns
-        -----
-        PoleWarning
-            At a frequency where the dynamic stiffness is exactly singular (entries inf).
-        """
-        import warnings
-        omega = omega_array(omega)
-        if kind not in _KINDS:
-            raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
-        s = self.state
-        B, out_map, in_names, out_names = channel_maps(self._fi, s.pose.matrix, inputs,
-                                                       outputs, point)
-        nf = self.n_free
-        rob = self.robot
-        eta = [cb.loss_factor for cb in rob.cables]
-        K = self._tangent(s.pose, s.interior,
-                          lambda i: 1.0 + 1j * eta[i] if eta[i] > 0 else 1.0)
-        M = self.mass_matrix(s.pose)
-        damped = any(cb.viscous_damping > 0 for cb in rob.cables)
-        C = self._damping_matrix(s.pose) if damped else None
-        F = np.zeros((self.n_dof, B.shape[1]))
-        F[:nf] = B
-        H = np.empty((omega.size, out_map.shape[0], B.shape[1]), dtype=complex)
-        singular = []
-        for k, w in enumerate(omega):
-            D = K - w * w * M
-            if damped:
-                D = D + 1j * w * C
-            try:
-                X = scipy.sparse.linalg.splu(D.tocsc()).solve(F.astype(D.dtype))
-            except RuntimeError:
-                H[k] = np.inf
-                singular.append(k)
-                continue
-            H[k] = out_map @ X[:nf]
-        if singular:
-            warnings.warn(
-                f"LumpedMassModel.frf: the dynamic stiffness is exactly singular at "
-                f"{len(singular)} frequencies (eigenfrequencies, e.g. "
-                f"{omega[singular[0]] / _TWO_PI:.9g} Hz): FRF set to inf",
-                PoleWarning, stacklevel=2)
-        if kind != "receptance":
-            H = H * ((1j * omega) ** _KINDS[kind])[:, None, None]
-        return FRFResult(freq_hz=omega / _TWO_PI, H=H, inputs=in_names, outputs=out_names,
-                         kind=kind)
+        """Platform FRFs (:class:`~dynstiff.FRFResult`) by direct sparse solves:
+        :func:`dynstiff.lumped.robot_modal.frf`."""
+        return _modal.frf(self, omega, inputs, outputs, point, kind)
 
     def dof_names(self):
         """Names of the free platform DOFs."""

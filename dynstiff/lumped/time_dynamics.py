@@ -9,9 +9,9 @@ import numpy as np
 import scipy.sparse
 
 from ..errors import InvalidParameterError
-from ..platform import platform_mass_matrix, skew
+from ..platform import lever_map, platform_mass_matrix, skew
 from ..robot import Pose
-from .robot_model import LumpedMassModel, _lever_map, _segments
+from .robot_model import LumpedMassModel, _segments
 
 
 def _model_at(model, L0):
@@ -99,7 +99,7 @@ class _Frame:
     @property
     def J(self):
         """Lever maps J_i restricted to the free DOFs, list of (3, n_free)."""
-        return [_lever_map(ri, self._fi) for ri in self.r]
+        return [lever_map(ri, self._fi) for ri in self.r]
 
 
 def _node_mass_vector(model):
