@@ -366,3 +366,16 @@ def test_convergence_error_reports_residual(cogiro, cogiro_eq):
     with pytest.raises(ConvergenceError, match="residual") as exc:
         model.equilibrium(tol=1e-22)                 # below rounding: must stop, not loop
     assert 0 < exc.value.residual < 1e-12
+
+
+def test_frf_channel_on_held_dofs_only_raises_like_closed_form():
+    """The point-mass four-cable robot has x, y, z free: a moment input or a rotation
+    output named explicitly would give an FRF identically 0, so both models refuse it."""
+    eq = ds.load_scene("fourcable").equilibrium()
+    lumped = LumpedMassModel(eq.robot, eq.unstretched_lengths, 2)
+    for model in (lumped, ds.FrequencyModel(eq)):
+        with pytest.raises(InvalidParameterError, match=r"inputs \['mx'\]"):
+            model.frf([1.0], inputs="mx")
+        with pytest.raises(InvalidParameterError, match=r"outputs \['rz'\]"):
+            model.frf([1.0], outputs="rz")
+        assert model.frf([1.0], inputs="fz", outputs="z").H.shape == (1, 1, 1)

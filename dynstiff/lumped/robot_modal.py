@@ -206,7 +206,9 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     omega : array_like, shape (n,)
         Angular frequencies [rad/s], >= 0.
     inputs : str or list of str, optional
-        Among ``INPUT_NAMES`` (default all six); loads on held DOFs give no response.
+        Among ``INPUT_NAMES`` (default all six). Loads on held DOFs give no response: in
+        the default they are zero columns, named explicitly they raise (as
+        :func:`dynstiff.frf.frf`).
     outputs : str or list of str, optional
         Among ``OUTPUT_NAMES`` (default all six).
     point : array_like, shape (3,), optional
