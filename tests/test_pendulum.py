@@ -189,16 +189,31 @@ def energy(m, y):
     return E
 
 
-@pytest.mark.parametrize("n, t_end, phi0", [(0, 0.5, 0.03), (10, 0.01, 1e-3)])
-def test_undamped_motion_conserves_energy(n, t_end, phi0):
+@pytest.mark.parametrize("n, t_end, phi0, rtol", [(0, 0.5, 0.01, 1e-9), (0, 0.5, 0.03, 1e-11),
+                                                 (10, 0.01, 1e-3, 1e-9)])
+def test_undamped_motion_conserves_energy(n, t_end, phi0, rtol):
     """No damping, ends at rest: the energy written out above is constant (the forces of the
-    model derive from that potential). Undamped, the chain is not stiff: DOP853."""
+    model derive from that potential). Undamped, the chain is not stiff: DOP853.
+
+    At phi0 = 0.03 a cable goes slack (stretch a d / L phi0 = 0.019 m > P / k = 0.012 m):
+    the tension-only force has a kink there, which the error estimator of DOP853 does not
+    see, so that case needs a tighter rtol for the same energy error (1.2e-5 at 1e-9,
+    3.4e-8 at 1e-11); the drift is the integrator's, and it falls with rtol."""
     m = pendulum(damping=0.0, preload=1000.0, cable_mass=0.01, n_masses=n)
-    r = pdl.simulate(m, 1.0, 0.0, t_end, phi0=phi0, rtol=1e-9, method="DOP853", n_out=50)
-    E = np.array([energy(m, y) for y in r.y]) - energy(m, pdl.rest_state(m))
-    assert E[0] > 0
-    assert np.ptp(E) < 1e-5 * E[0]
-    assert abs(r.phi).max() > 0.5 * phi0 and abs(r.phi).min() < 0.5 * phi0   # it moved
+
+    def drift(tol):
+        r = pdl.simulate(m, 1.0, 0.0, t_end, phi0=phi0, rtol=tol, method="DOP853", n_out=50)
+        E = np.array([energy(m, y) for y in r.y]) - energy(m, pdl.rest_state(m))
+        assert E[0] > 0
+        assert abs(r.phi).max() > 0.5 * phi0 and abs(r.phi).min() < 0.5 * phi0   # it moved
+        return np.ptp(E) / E[0], r
+
+    rel, r = drift(rtol)
+    assert rel < 1e-6
+    if phi0 == 0.03:
+        seg = _segments(m, r.t, r.y, _excitation(1.0, 0.0, 0.0).repeat(r.t.size))[-2]
+        assert seg.min() < 0.0                                  # the slack case indeed
+        assert drift(100 * rtol)[0] > 30 * rel                  # integrator error, converging
 
 
 def test_point_mass_cables_tend_to_massless_cables():
