@@ -75,7 +75,9 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=(0.0, 1.5)
     outputs = [c[1] for c in inputs]
     frf = model.frf(2 * np.pi * f, inputs=inputs or None, outputs=outputs or None)
     save_csv(frf.to_frame(), "frf.csv")
-    fig = plot_frf(frf, modes, phase=True)
+    # mark every mode of the FRF band, also those beyond the table's n_modes
+    marks = modes if modes.freq_hz[-1] >= band[1] else model.modes(fmax_hz=band[1])
+    fig = plot_frf(frf, marks, phase=True)
     fig.savefig(out / "frf.png", dpi=120, bbox_inches="tight")
     plt.close(fig)
     files.append(out / "frf.png")
