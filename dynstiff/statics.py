@@ -63,7 +63,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
             f"the unique tension distribution {np.round(t, 6).tolist()} N violates the "
             f"limits {_limits(t_min, t_max)} N")
     from scipy.linalg import null_space
-    from scipy.optimize import linprog, minimize
+    from scipy.optimize import linprog
     N = null_space(W)
     ub = np.where(np.isfinite(t_max), t_max, 1e300)
     # feasibility: find lambda with t_min <= t + N lambda <= t_max
@@ -75,12 +75,77 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         raise SlackCableError(
             f"no tension distribution within {_limits(t_min, t_max)} N balances the platform "
             f"(the pose is outside the wrench-feasible workspace)")
-    cons = {"type": "ineq", "fun": lambda lam: b_ub - A_ub @ lam, "jac": lambda lam: -A_ub}
-    res = minimize(lambda lam: np.sum((t + N @ lam - t_ref) ** 2), lp.x,
-                   jac=lambda lam: 2 * N.T @ (t + N @ lam - t_ref), constraints=[cons],
-                   method="SLSQP", options={"ftol": 1e-14, "maxiter": 500})
-    lam = res.x if res.success and np.all(b_ub - A_ub @ res.x >= -tol) else lp.x
-    return t + N @ lam
+    return _closest_in_box(W, w, t_min, np.where(np.isfinite(t_max), t_max, np.inf), t_ref,
+                           lp.x @ N.T + t, tol)
+
+
+def _closest_in_box(W, w, lb, ub, r, t, tol):
+    """min ||t - r||^2 subject to W t = w, lb <= t <= ub, by a primal active-set method
+    (Nocedal & Wright, Numerical Optimization, 2nd ed., Alg. 16.3) from the feasible t.
+
+    Each step holds the active tensions at their bounds exactly and gives the free ones the
+    minimum-distance solution of the balance; a step that would leave the box stops at the
+    first bound, which joins the active set; at the subproblem's optimum the bound with the
+    most negative multiplier leaves it. The optimum is unique (strictly convex objective),
+    so the result does not depend on the start: the inverse-statics fixed point it feeds is
+    well defined (a general NLP solver stopped at varying points and stalled that iteration).
+
+    Parameters
+    ----------
+    W : ndarray, shape (k, n); w : ndarray, shape (k,)
+    lb, ub : ndarray, shape (n,)
+        Bounds [N] (ub may be inf).
+    r : ndarray, shape (n,)
+        Reference tensions [N].
+    t : ndarray, shape (n,)
+        A feasible start [N].
+    tol : float
+        Feasibility and multiplier tolerance [N].
+
+    Returns
+    -------
+    ndarray, shape (n,)
+    """
+    n = t.size
+    t = t.copy()
+    bound = np.full(n, np.nan)            # the bound an active tension is held at, else nan
+    scale = max(1.0, np.abs(t).max(), np.abs(r).max())
+    for _ in range(10 * n + 10):
+        act = ~np.isnan(bound)
+        free = ~act
+        target = np.where(act, bound, 0.0)
+        b = w - W[:, act] @ bound[act]
+        Wf = W[:, free]
+        if np.any(free):
+            target[free] = r[free] + np.linalg.lstsq(Wf, b - Wf @ r[free], rcond=None)[0]
+        p = target - t
+        if np.abs(p).max() > 1e-12 * scale:
+            # largest step in [0, 1] that keeps the free tensions in the box
+            with np.errstate(divide="ignore", invalid="ignore"):
+                room = np.where(p < 0, (t - lb) / -p, np.where(p > 0, (ub - t) / p, np.inf))
+            room = np.where(free & (np.abs(p) > 1e-12 * scale), room, np.inf)
+            j = int(np.argmin(room))
+            if room[j] < 1.0:
+                t += max(room[j], 0.0) * p
+                bound[j] = lb[j] if p[j] < 0 else ub[j]
+                t[j] = bound[j]
+                continue
+        t = target
+        if not np.any(act):
+            return t
+        nu = (np.linalg.lstsq(Wf.T, -(t - r)[free], rcond=None)[0] if np.any(free)
+              else np.zeros(W.shape[0]))
+        g = (t - r) + W.T @ nu                # = mu_lower - mu_upper
+        mu = np.where(bound == lb, g, -g)
+        mu[free] = np.inf
+        i = int(np.argmin(mu))
+        if mu[i] >= -tol:
+            return t
+        bound[i] = np.nan
+    raise ConvergenceError(
+        f"tension distribution: the active-set method did not settle in {10 * n + 10} "
+        f"steps (balance residual {np.linalg.norm(W @ t - w):.3e} N)",
+        residual=float(np.linalg.norm(W @ t - w)))
 
 
 def _limits(t_min, t_max):
