@@ -252,6 +252,16 @@ class CatenaryState:
         return (self.anchor + np.outer(xz[:, 0], self.horizontal_direction)
                 + np.outer(xz[:, 1], _EZ))
 
+    def to_frame(self, n=50):
+        """pandas DataFrame of the profile: unstretched arc length s from A [m], the point
+        (x, y, z) [m] in the base frame and the tension T(s) [N], ``n`` rows equally spaced
+        in s (theory.md §1.1)."""
+        import pandas as pd
+        pts = self.profile(n)
+        s = np.linspace(0.0, self.unstretched_length, pts.shape[0])
+        return pd.DataFrame({"s [m]": s, "x [m]": pts[:, 0], "y [m]": pts[:, 1],
+                             "z [m]": pts[:, 2], "tension [N]": self.tension(s)})
+
     @property
     def sag(self):
         """Largest distance of the cable from its chord [m] (from a 401-point profile)."""

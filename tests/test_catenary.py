@@ -234,3 +234,21 @@ def test_bad_gravity_and_profile_count(cable17):
     s = ds.solve_catenary((0, 0, 1), (1, 0, 0), 1.4, cable17)
     with pytest.raises(InvalidParameterError, match="n must"):
         s.profile(1)
+
+
+def test_profile_table_runs_from_anchor_to_end():
+    """to_frame: s from 0 to L0, the first point at A, the last at B, T(0) and T(L0) the
+    anchor and end tensions, stretched arc length between the points >= the chord."""
+    cable = ds.Cable(0.064, 8.2051e-6 * 17e9)
+    A, B = np.array([-7.1775, -5.4361, 5.3911]), np.array([0.5032, -0.4928, 1.0])
+    st = ds.unstretched_length_for_tension(A, B, 100.0, cable)
+    df = st.to_frame(41)
+    assert list(df.columns) == ["s [m]", "x [m]", "y [m]", "z [m]", "tension [N]"]
+    xyz = df[["x [m]", "y [m]", "z [m]"]].to_numpy()
+    np.testing.assert_allclose(xyz[0], A, atol=1e-12)
+    np.testing.assert_allclose(xyz[-1], B, atol=1e-9)
+    assert df["s [m]"].iloc[-1] == pytest.approx(st.unstretched_length, rel=1e-14)
+    assert df["tension [N]"].iloc[0] == pytest.approx(st.tension_at_anchor, rel=1e-12)
+    assert df["tension [N]"].iloc[-1] == pytest.approx(st.tension_at_end, rel=1e-12)
+    arc = np.linalg.norm(np.diff(xyz, axis=0), axis=1).sum()
+    assert np.linalg.norm(B - A) < arc < st.stretched_length + 1e-12

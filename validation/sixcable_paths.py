@@ -41,16 +41,16 @@ PAPER = {"line": 0.052, "circle": 0.027}          # [m] at 3 m/s
 DEPTH = -20.0
 
 
-def paths(speed, scene=None):
-    """The line and the circle at ``speed`` [m/s] with the scene's fixed orientation, each
-    as (Trajectory, ramp [s])."""
+def paths(speed, scene=None, depth=DEPTH):
+    """The line and the circle at ``speed`` [m/s] with the scene's fixed orientation, at
+    height ``depth`` [m] (< 0: below the anchor plane), each as (Trajectory, ramp [s])."""
     scene = scene or ds.load_scene("sixcable")
     rot = scene.pose.rotation
-    a, b = np.array([-3.0, 0.0, DEPTH]), np.array([1.0, 1.0, DEPTH])
+    a, b = np.array([-3.0, 0.0, depth]), np.array([1.0, 1.0, depth])
     r_line = min(2.0, 0.95 * np.linalg.norm(b - a) / speed)
     r_circle = min(2.0, 0.95 * 2 * np.pi * 1.2 / speed)
     return {"line": (line(a, b, speed, rotation=rot, ramp=r_line), r_line),
-            "circle": (circle([-1.2, 0.5, DEPTH], 1.2, speed, start_angle=np.pi,
+            "circle": (circle([-1.2, 0.5, depth], 1.2, speed, start_angle=np.pi,
                               rotation=rot, ramp=r_circle), r_circle)}
 
 
@@ -92,6 +92,58 @@ def run(quick=False, dt=1e-3, segments=4):
     return pd.DataFrame(rows), sw.to_frame()
 
 
+def depth_sensitivity(depths=(-10.0, -15.0, -20.0, -30.0), speed=1.0, dt=1e-3, segments=4,
+                      simulate=True):
+    """How the line's deviation depends on the depth of the platform below the anchor plane,
+    which the paper does not give.
+
+    At each depth: the lowest tension and the first global mode along the line (inverse
+    statics and Wittrick-Williams at 5 poses), the deviation the linear scaling predicts
+    from the scene's depth (deviation ~ acceleration / omega_1^2, omega_1 the lowest first
+    mode along the line) and, with ``simulate``, the deviation of the lumped time domain on
+    the line at ``speed`` [m/s] (as :func:`run`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per depth [m].
+    """
+    scene = ds.load_scene("sixcable")
+    rot = scene.pose.rotation
+    rows = []
+    for depth in depths:
+        poses = [np.concatenate([p, rot]) for p in np.linspace(
+            [-3.0, 0.0, depth], [1.0, 1.0, depth], 5)]
+        row = {"depth [m]": depth}
+        try:
+            eqs = [scene.robot.equilibrium(pose=p) for p in poses]
+        except ds.SlackCableError:
+            row["tension-feasible line"] = False
+            rows.append(row)
+            continue
+        row["tension-feasible line"] = True
+        row["min tension [N]"] = min(float(eq.min_tensions.min()) for eq in eqs)
+        row["lowest first mode [Hz]"] = min(
+            float(ds.FrequencyModel(eq).eigenfrequencies(1)[0]) for eq in eqs)
+        if simulate:
+            traj, _ = paths(speed, scene, depth)["line"]
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", ds.lumped.SlackSegmentWarning)
+                warnings.simplefilter("ignore", ds.lumped.EnergyBalanceWarning)
+                res = track(scene.robot, traj, segments=segments, dt=dt, settle=2.0,
+                            record_every=10)
+            row["max deviation [m]"] = res.max_deviation
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    ref = df.loc[df["depth [m]"] == DEPTH, "lowest first mode [Hz]"]
+    if ref.size:
+        df["predicted / scene depth's [-]"] = (ref.iloc[0] / df["lowest first mode [Hz]"]) ** 2
+        if simulate:
+            dref = df.loc[df["depth [m]"] == DEPTH, "max deviation [m]"].iloc[0]
+            df["simulated / scene depth's [-]"] = df["max deviation [m]"] / dref
+    return df
+
+
 if __name__ == "__main__":
     import matplotlib
     matplotlib.use("Agg")
@@ -101,6 +153,7 @@ if __name__ == "__main__":
     pd.set_option("display.width", 200)
     dev, modes = run()
     print(dev.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    print(depth_sensitivity().to_string(index=False, float_format=lambda x: f"{x:.4g}"))
     scene = ds.load_scene("sixcable")
     poses = [np.concatenate([p, scene.pose.rotation]) for p in np.linspace(
         [-3.0, 0.0, DEPTH], [1.0, 1.0, DEPTH], 9)]
