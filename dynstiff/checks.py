@@ -1,5 +1,5 @@
-"""Design checks of a cable robot at a pose: tensions, sag, workspace, frequency margins and
-modal proximity. Each check gives a pass/fail row with the value and the limit it was held to.
+"""Design checks of a cable robot at a pose: tensions, sag, workspace, frequency margins,
+modal proximity and the accuracy of the cable model the checks use. Each check gives a pass/fail row with the value and the limit it was held to.
 """
 
 from dataclasses import dataclass
@@ -46,7 +46,7 @@ class CheckResult:
 
 
 def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
-                  max_sag_ratio=0.02, fmax_hz=None):
+                  max_sag_ratio=0.02, fmax_hz=None, model_rtol=1e-2):
     """Run the design checks at a pose.
 
     Parameters
@@ -65,6 +65,11 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     fmax_hz : float, optional
         Modes are computed up to this frequency [Hz] (default: 1.5 x the band's top, or
         the 6th global mode).
+    model_rtol : float
+        Admissible relative frequency error of the cable model the checks use (the
+        closed-form dynamic stiffness) up to the highest mode checked [-]: the "cable model"
+        row fails when :func:`dynstiff.recommend_model` predicts a larger error, and names
+        the cheapest model that meets it.
 
     Returns
     -------
@@ -118,6 +123,18 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
             detail=(f"{inside.size} global mode(s) within {margin:.1%} of "
                     f"[{lo:g}, {hi:g}] Hz: {np.round(inside, 4).tolist()}") if inside.size
             else f"no global mode within {margin:.1%} of [{lo:g}, {hi:g}] Hz"))
+    from .recommend import recommend_model
+    top = float(fmax_hz * (1 + proximity_rtol) if fmax_hz is not None else modes.freq_hz.max())
+    rec = recommend_model(eq, band_hz=(0.0, top), rtol=model_rtol)
+    err = rec.errors["dsm"]
+    need = rec.rung if rec.predicted_error <= model_rtol else "none on the ladder"
+    rows.append(dict(
+        check="cable model", passed=bool(err <= model_rtol), value=float(err),
+        limit=model_rtol,
+        detail=(f"closed-form DSM used here, predicted error {err:.1e} to {top:.3g} Hz "
+                f"(limit {model_rtol:g}); cheapest adequate model: {need}"
+                + ("" if err <= model_rtol else
+                   f" ({rec.segments} segments per cable)" if rec.rung == "lumped" else ""))))
     warns = proximity_warnings(modes, rtol=proximity_rtol)
     rows.append(dict(
         check="local modes near global modes", passed=not warns,

@@ -278,9 +278,13 @@ def _cmd_check(args):
     pose = args.pose if args.pose is not None else scene.pose
     if pose is None:
         pose = scene.equilibrium().pose
-    band = tuple(args.band) if args.band else scene.band_hz
+    band = tuple(args.band) if args.band else scene.forbidden_band_hz
     res = design_checks(scene.robot, pose, band_hz=band, margin=args.margin,
-                        proximity_rtol=args.proximity, max_sag_ratio=args.max_sag)
+                        proximity_rtol=args.proximity, max_sag_ratio=args.max_sag,
+                        model_rtol=args.rtol)
+    if band is None:
+        sys.stdout.write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
+                         "scene's [analysis])\n")
     sys.stdout.write(res.text())
     if args.csv:
         res.to_frame().to_csv(args.csv, index=False)
@@ -349,7 +353,10 @@ def build_parser():
     ck.add_argument("scene", help="built-in scene name or path to a TOML scene file")
     ck.add_argument("--pose", type=float, nargs="+", metavar="X")
     ck.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
-                    help="forbidden band for global modes [Hz] (default: the scene's band)")
+                    help="forbidden band for global modes [Hz] (default: the scene's "
+                         "forbidden_band_hz)")
+    ck.add_argument("--rtol", type=float, default=1e-2,
+                    help="admissible frequency error of the cable model (default %(default)s)")
     ck.add_argument("--margin", type=float, default=0.05,
                     help="relative margin of global modes to the band (default %(default)s)")
     ck.add_argument("--proximity", type=float, default=0.03,

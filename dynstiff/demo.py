@@ -12,7 +12,7 @@ import numpy as np
 __all__ = ["robot_report"]
 
 
-def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=(0.0, 1.5),
+def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
                  n_points=3000):
     """Run the main analysis of ``scene`` and write its tables and figures into ``out``.
 
@@ -27,8 +27,9 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=(0.0, 1.5)
     band_hz : (float, float), optional
         Band of the FRFs, the checks and the model recommendation [Hz] (default: the
         scene's band or 0.1-12 Hz).
-    forbidden_hz : (float, float)
-        Band no global mode may enter (design check) [Hz]; default below 1.5 Hz.
+    forbidden_hz : (float, float), optional
+        Band no global mode may enter (design check) [Hz]; default the scene's
+        ``forbidden_band_hz``, else below 1.5 Hz.
     n_points : int
         Frequencies of the FRFs.
 
@@ -53,6 +54,7 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=(0.0, 1.5)
     out.mkdir(parents=True, exist_ok=True)
     n_modes = n_modes or scene.n_modes or 20
     band = tuple(band_hz or scene.band_hz or (0.1, 12.0))
+    forbidden_hz = tuple(forbidden_hz or scene.forbidden_band_hz or (0.0, 1.5))
     eq = scene.equilibrium()
     model = FrequencyModel(eq)
     modes = model.modes(n_modes)

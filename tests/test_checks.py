@@ -65,3 +65,32 @@ def test_band_below_every_mode_passes(cogiro):
     res = rows_by_name(design_checks(stiff, cogiro.pose, band_hz=(0.4 * f1, 0.6 * f1)))
     assert res["global modes outside band"]["passed"]
     assert res["local modes near global modes"]["passed"]
+
+
+def test_cable_model_row_names_the_model_the_checks_need():
+    """CoGiRo: the closed-form DSM meets 1 % up to the checked modes (its predicted error is
+    recommend_model's); sixcable (20 m heavy cables, sag 2.4 %): it does not, and the row
+    names the lumped model."""
+    from dynstiff.recommend import recommend_model
+    scene = ds.load_scene("cogiro")
+    res = design_checks(scene.robot, scene.pose, band_hz=(0.0, 1.5))
+    r = rows_by_name(res)["cable model"]
+    rec = recommend_model(scene.equilibrium(), band_hz=(0.0, 1.5 * 1.5 * 1.03), rtol=1e-2)
+    assert r["passed"] and r["value"] == rec.errors["dsm"] and r["value"] < 1e-3
+    six = ds.load_scene("sixcable")
+    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-2))["cable model"]
+    assert not r["passed"] and r["value"] > 1e-2 and "lumped" in r["detail"]
+    # a looser tolerance lets the DSM pass there
+    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=0.1))["cable model"]
+    assert r["passed"]
+
+
+def test_cli_check_defaults_to_the_scenes_forbidden_band():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    out = run("cogiro")                                    # forbidden_band_hz = [0, 1.5]
+    assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
+    out = run("sixcable")                                  # no forbidden band in the scene
+    assert out.returncode == 1 and "no forbidden band" in out.stdout
+    assert "FAIL  cable model" in out.stdout
+    assert "global modes outside band" not in out.stdout

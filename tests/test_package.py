@@ -28,7 +28,7 @@ def test_demo_main_job_on_cogiro(tmp_path):
     statics = pd.read_csv(tmp_path / "statics.csv")
     assert len(statics) == 8 and (statics["tension at B [N]"] >= 100 - 1e-6).all()
     checks = pd.read_csv(tmp_path / "checks.csv")
-    assert len(checks) == 5
+    assert len(checks) == 6 and checks["passed"].all()
     frf = pd.read_csv(tmp_path / "frf.csv")
     assert set(frf["input"]) == {"fx", "fz"} and frf["freq [Hz]"].nunique() == 400
     for name in ("frf.png", "mode_shape.png"):

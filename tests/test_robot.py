@@ -215,6 +215,8 @@ def test_pose_outside_workspace_raises(cogiro):
     (("mass = 91.058", "mas = 91.058"), "mas", 12),
     (("EA = 139486.7", "EA = -1.0"), "EA", None),
     (("[analysis]", "[analysys]"), "analysys", None),
+    (("forbidden_band_hz = [0.0, 1.5]", "forbidden_band_hz = [1.5, 0.0]"), "forbidden_band_hz",
+     None),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     text = (ds.scenes.loader._HERE / "cogiro.toml").read_text().replace(*edit)

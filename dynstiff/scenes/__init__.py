@@ -13,7 +13,8 @@ Format (all SI units; see ``cogiro.toml`` for a complete example)::
                       optionally any [cable] key to override it for this cable
     [pose]            optional: position [m], rotation [rad] (rotation vector), or
                       unstretched_lengths [m] (one per cable)
-    [analysis]        optional: band_hz [Hz, Hz], n_modes
+    [analysis]        optional: band_hz [Hz, Hz] (band of interest), n_modes,
+                      forbidden_band_hz [Hz, Hz] (no global mode in it: design checks)
     [study]           optional, free-form: parameters of the scene's validation study
                       (trajectory, excitation, drums ...), as ``Scene.study`` (a dict)
 

@@ -23,7 +23,7 @@ _SCHEMA = {
     "cables": {"anchor", "attachment", "mass_per_length", "EA", "viscous_damping",
                "loss_factor"},
     "pose": {"position", "rotation", "unstretched_lengths"},
-    "analysis": {"band_hz", "n_modes"},
+    "analysis": {"band_hz", "n_modes", "forbidden_band_hz"},
     "study": None,                  # free-form: parameters of the scene's validation study
 }
 _REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
@@ -43,7 +43,10 @@ class Scene:
     pose : Pose or None
     unstretched_lengths : ndarray or None, shape (n,) [m]
     band_hz : (float, float) or None
+        Band of interest of the analysis [Hz].
     n_modes : int or None
+    forbidden_band_hz : (float, float) or None
+        Band no global mode may enter, with its margin (the design checks) [Hz].
     study : dict
         The free-form ``[study]`` table: parameters of the scene's validation study
         (trajectory, excitation, drums ...), with units in the file's comments; not read
@@ -57,6 +60,7 @@ class Scene:
     unstretched_lengths: object = None
     band_hz: object = None
     n_modes: object = None
+    forbidden_band_hz: object = None
     study: object = None
     name: str = ""
     description: str = ""
@@ -191,12 +195,18 @@ def read_scene(path):
     if not isinstance(study, dict):
         fail("[study] must be a table", None, "study")
     an = data.get("analysis", {})
-    band = an.get("band_hz")
-    if band is not None and (len(band) != 2 or not 0 <= band[0] < band[1]):
-        fail(f"band_hz must be [low, high] with 0 <= low < high, got {band!r}", "band_hz",
-             "analysis")
+    bands = {}
+    for key in ("band_hz", "forbidden_band_hz"):
+        band = an.get(key)
+        if band is not None and (not isinstance(band, list) or len(band) != 2
+                                 or not all(isinstance(b, (int, float)) for b in band)
+                                 or not 0 <= band[0] < band[1]):
+            fail(f"{key} must be [low, high] with 0 <= low < high, got {band!r}", key,
+                 "analysis")
+        bands[key] = None if band is None else tuple(float(b) for b in band)
     return Scene(robot=robot, pose=pose, unstretched_lengths=lengths,
-                 band_hz=None if band is None else tuple(band), n_modes=an.get("n_modes"),
+                 band_hz=bands["band_hz"], n_modes=an.get("n_modes"),
+                 forbidden_band_hz=bands["forbidden_band_hz"],
                  study=study, name=sc.get("name", path.stem),
                  description=sc.get("description", ""),
                  path=path)
