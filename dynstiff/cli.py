@@ -37,6 +37,37 @@ class _ProgressBar:
         self.stream.flush()
 
 
+def _read_path(path, rotation):
+    """Poses of a path file: one pose a line, ``x y z`` [m] (the scene's rotation) or
+    ``x y z rx ry rz`` [m, rad], separated by spaces or commas; blank lines, lines starting
+    with ``#`` and a first line that is not numeric (a header) are skipped."""
+    import numpy as np
+
+    from .errors import InvalidParameterError
+    poses = []
+    with open(path) as fh:
+        lines = fh.read().splitlines()
+    for k, line in enumerate(lines, start=1):
+        text = line.split("#", 1)[0].replace(",", " ").split()
+        if not text:
+            continue
+        try:
+            vals = [float(v) for v in text]
+        except ValueError:
+            if not poses and k == next(j for j, ln in enumerate(lines, 1) if ln.strip()):
+                continue                                    # a header line
+            raise InvalidParameterError(
+                f"--path {path}: line {k}: expected numbers, got {line.strip()!r}") from None
+        if len(vals) not in (3, 6) or not np.all(np.isfinite(vals)):
+            raise InvalidParameterError(
+                f"--path {path}: line {k}: expected 3 (x y z [m]) or 6 (x y z rx ry rz) "
+                f"finite numbers, got {line.strip()!r}")
+        poses.append(np.concatenate([vals, rotation]) if len(vals) == 3 else np.array(vals))
+    if len(poses) < 2:
+        raise InvalidParameterError(f"--path {path}: needs at least 2 poses, got {len(poses)}")
+    return poses
+
+
 def _with_parameter(robot, name, value):
     """The robot with one parameter changed: EA [N] of every cable, platform mass [kg], or
     the minimum tension t_min [N] of the tension distribution."""
@@ -64,14 +95,19 @@ def _cmd_sweep(args):
     robot = scene.robot
     bar = None if args.quiet else _ProgressBar(f"sweep {scene.name}")
     n_modes = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    if (args.line is None) == (args.parameter is None):
-        raise InvalidParameterError("give exactly one of --line or --parameter")
+    given = [name for name in ("line", "path", "parameter") if getattr(args, name) is not None]
+    if len(given) != 1:
+        raise InvalidParameterError(
+            f"give exactly one of --line, --path or --parameter, got {given or 'none'}")
+    rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
     if args.line is not None:
         if args.steps < 2:
             raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
-        rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
         pts = np.linspace(args.line[:3], args.line[3:], args.steps)
         res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar)
+    elif args.path is not None:
+        res = sweep(robot, poses=_read_path(args.path, rot), n_modes=n_modes,
                     fmax_hz=args.fmax, progress=bar)
     else:
         if not args.values:
@@ -371,6 +407,9 @@ def build_parser():
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
     sw.add_argument("--steps", type=int, default=11, help="poses along --line (default %(default)s)")
+    sw.add_argument("--path", metavar="FILE",
+                    help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
+                         "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
     sw.add_argument("--parameter", choices=["EA", "mass", "t_min"],
                     help="sweep a parameter at the scene's pose: EA of every cable [N], "
                          "platform mass [kg], minimum tension [N]")

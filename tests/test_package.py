@@ -193,9 +193,31 @@ def test_cli_sweep_line_and_parameter(tmp_path):
     assert out.stderr == ""                                  # --quiet: no progress bar
     assert "EA [N]" in out.stdout
     bad = run_cli("sweep", "cogiro")
-    assert bad.returncode == 2 and "--line or --parameter" in bad.stderr
+    assert bad.returncode == 2 and "--line, --path or --parameter" in bad.stderr
     bad = run_cli("sweep", "cogiro", "--parameter", "colour", "--values", "1")
     assert bad.returncode == 2 and "colour" in bad.stderr
+
+
+def test_cli_sweep_path_file(tmp_path):
+    """--path: a CSV with a header, a comment and a blank line gives the same frequencies as
+    the closed-form model at each pose; a malformed line is an error naming file and line."""
+    import numpy as np
+    import pandas as pd
+
+    import dynstiff as ds
+    f = tmp_path / "path.csv"
+    f.write_text("x,y,z\n0,0,1\n0.5,0.2,1.1  # comment\n\n1,0.4,1.2,0,0,0.05\n")
+    out = run_cli("sweep", "cogiro", "--path", str(f), "-n", "6", "--quiet", "--csv",
+                  str(tmp_path / "s.csv"))
+    assert out.returncode == 0, out.stderr
+    df = pd.read_csv(tmp_path / "s.csv")
+    rob = ds.load_scene("cogiro").robot
+    for k, pose in enumerate([[0, 0, 1], [0.5, 0.2, 1.1], [1, 0.4, 1.2, 0, 0, 0.05]]):
+        ref = ds.FrequencyModel(rob.equilibrium(pose=pose)).eigenfrequencies(6)
+        np.testing.assert_allclose(df.loc[df["step"] == k, "freq [Hz]"], ref, rtol=1e-12)
+    f.write_text("0 0 1\n0 0 1.1\n0 0\n")
+    bad = run_cli("sweep", "cogiro", "--path", str(f), "-n", "6")
+    assert bad.returncode == 2 and "line 3" in bad.stderr and str(f) in bad.stderr
 
 
 def test_cli_simulate_free_vibration_and_line(tmp_path):
