@@ -146,12 +146,27 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
 
 
 # --------------------------------------------------------------------------- veering
+def _gap_bridges(x, y):
+    """Segments bridging each interior run of NaN in y between its finite neighbours, as
+    one polyline with NaN separators: (xs, ys), empty when there is no such gap."""
+    ok = np.flatnonzero(np.isfinite(y))
+    xs, ys = [], []
+    for a, b in zip(ok[:-1], ok[1:]):
+        if b > a + 1:
+            xs += [x[a], x[b], np.nan]
+            ys += [y[a], y[b], np.nan]
+    return np.array(xs, dtype=float), np.array(ys, dtype=float)
+
+
 def plot_veering(sweep_result, ax=None, show_local=True):
     """Veering diagram: natural frequencies against the swept quantity.
 
     Each global track (a platform mode followed by MAC, :meth:`SweepResult.veering_table`)
     is one coloured line with markers (gid ``track-<id>``, broken where the track has no
-    global mode); the local (cable) modes are small grey dots (gid ``local-modes``).
+    global mode); where the track is found again after such a gap (its mode shared its
+    energy with cable modes and was labelled local in between), a dotted line of its colour
+    bridges the gap (gid ``gap-<id>``); the local (cable) modes are small grey dots (gid
+    ``local-modes``).
 
     Parameters
     ----------
@@ -181,10 +196,16 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     n = sweep_result.n_tracks
     import matplotlib.pyplot as plt
     cmap = plt.get_cmap("tab10" if n <= 10 else "turbo")
+    any_gap = False
     for t in range(n):
         color = cmap(t % 10) if n <= 10 else cmap(t / max(n - 1, 1))
-        ax.plot(x, table[t].to_numpy(), "-o", ms=3.5, lw=1.4, color=color, gid=f"track-{t}",
+        y = table[t].to_numpy()
+        ax.plot(x, y, "-o", ms=3.5, lw=1.4, color=color, gid=f"track-{t}",
                 label=f"track {t}")
+        gx, gy = _gap_bridges(x, y)
+        if gx.size:
+            any_gap = True
+            ax.plot(gx, gy, ":", lw=1.0, color=color, gid=f"gap-{t}")
     if show_local:
         loc = np.asarray(sweep_result.kind) == "local"
         ax.scatter(np.asarray(sweep_result.value)[loc], np.asarray(sweep_result.freq_hz)[loc],
@@ -192,7 +213,9 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     ax.set_xlabel(sweep_result.parameter)
     ax.set_ylabel("frequency [Hz]")
     ax.set_title(f"Modes along the sweep: {n} global tracks"
-                 + (", grey dots local modes" if show_local else ""))
+                 + (", grey dots local modes" if show_local else "")
+                 + ("\ndotted: a track through cable modes (its mode labelled local there)"
+                    if any_gap else ""))
     if n <= 12:
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
     ax.grid(True, alpha=0.3)

@@ -122,6 +122,34 @@ def test_veering_one_line_per_track_and_local_dots(small_sweep):
         plot_veering(small_sweep.to_frame())
 
 
+def test_veering_bridges_interior_gaps_only():
+    """A track missing between two hits is bridged by a dotted line of its colour from the
+    last hit to the next; a track that ends (or starts late) is not extended."""
+    import pandas as pd
+
+    class Stub:
+        parameter = "E [Pa]"
+        values = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+        n_tracks = 2
+        value = np.array([2.0, 3.0])
+        freq_hz = np.array([3.0, 3.1])
+        kind = np.array(["local", "local"])
+
+        def veering_table(self):
+            return pd.DataFrame({0: [2.0, np.nan, np.nan, 2.6, 2.8],
+                                 1: [np.nan, 3.5, 3.6, np.nan, np.nan]})
+
+    fig = plot_veering(Stub())
+    ax = fig.axes[0]
+    (gap,) = by_gid(ax, "gap-")
+    assert gap.get_gid() == "gap-0"
+    np.testing.assert_array_equal(gap.get_xdata()[:2], [1.0, 4.0])
+    np.testing.assert_array_equal(gap.get_ydata()[:2], [2.0, 2.6])
+    (track0,) = [ln for ln in by_gid(ax, "track-") if ln.get_gid() == "track-0"]
+    assert gap.get_color() == track0.get_color()
+    assert "dotted" in ax.get_title()
+
+
 # -------------------------------------------------------------------------- spectrum
 def synthetic_spectrum(channel, f_peaks, amps):
     f = np.linspace(0.0, 10.0, 401)
