@@ -182,9 +182,19 @@ def test_fourcable_circle_quick():
 def test_sixcable_paths_quick():
     """Seed paper 000 (six cables): the line at 1 m/s deviates by centimetres (the paper:
     0.052 m at 3 m/s on its own, unknown, path)."""
-    dev, modes = load("sixcable_paths").run(quick=True)
+    mod = load("sixcable_paths")
+    dev, modes = mod.run(quick=True)
     assert 0.005 < dev.loc[0, "max deviation [m]"] < 0.1
     assert modes["step"].nunique() == 3
+    # depth, which the paper leaves out: at 8 m the line leaves the workspace; the deeper the
+    # platform, the softer the suspension (first mode) and the larger the deviation
+    sens = mod.depth_sensitivity((-8.0, -10.0, -20.0), speed=1.0)
+    assert list(sens["tension-feasible line"]) == [False, True, True]
+    ok = sens[sens["tension-feasible line"]]
+    assert ok["lowest first mode [Hz]"].is_monotonic_decreasing
+    assert ok["max deviation [m]"].iloc[0] < 0.3 * ok["max deviation [m]"].iloc[1]
+    assert ok["max deviation [m]"].iloc[1] == pytest.approx(dev.loc[0, "max deviation [m]"],
+                                                            rel=1e-9)
 
 
 @pytest.mark.slow
