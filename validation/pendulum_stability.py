@@ -20,6 +20,9 @@ Results of the full run (1894 s on one core; the tables below are its output):
 * cable mass (point-mass model, 3.8, 30, 269 g): 73, 86, 77 % of the grid unstable against
   59 % massless; 27-36 % of the grid is unstable only with point-mass cables (the paper
   says cable mass does not destabilise: the one disagreement, see ``attrs["comparison"]``);
+  slack point-mass cables move aperiodically (27, 9 and 0 % of these responses are
+  periodic), so there the multiplier is the finite-time growth per period along the
+  aperiodic response (:func:`dynstiff.pendulum.floquet`);
 * 30 deg phase shift: unstable on 50 % with, 62 % without; 3 % only with it (agrees);
 * taut cables (8264 N, x0 = 0.1 m): only the Mathieu tongue at twice the natural
   frequency is left, |mu| = 1.010 at 43.7 Hz undamped, 0.998 with b = 5e-5 s x k, 0.901
