@@ -188,20 +188,30 @@ def _cmd_simulate(args):
         ch = args.channel or ("x", "y", "z", "rx", "ry", "rz")[fd[0]]
         sp = resp.spectrum(ch)
         f_model = model.eigenfrequencies(fmax_hz=sp.freq_hz[-1] * 0.5)
+        if args.band is not None:
+            band = tuple(args.band)
+            if not 0 <= band[0] < band[1]:
+                raise InvalidParameterError(
+                    f"--band must be LO HI with 0 <= LO < HI [Hz], got {list(args.band)}")
+        else:
+            band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
         sys.stdout.write(
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
             f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
             f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
-        order = np.argsort(sp.peaks_hz[:8])
-        sys.stdout.write(f"spectrum peaks of {ch} [Hz] (resolution {sp.resolution_hz:.3g} Hz): "
-                         + ", ".join(f"{f:.4g}" for f in sp.peaks_hz[:8][order]) + "\n")
-        sys.stdout.write("linearised lumped-model frequencies [Hz]: "
-                         + ", ".join(f"{f:.4g}" for f in f_model[:8]) + "\n")
+        peaks = sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8]
+        inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
+        sys.stdout.write(f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz [Hz] "
+                         f"(resolution {sp.resolution_hz:.3g} Hz): "
+                         + ", ".join(f"{f:.4g}" for f in np.sort(peaks)) + "\n")
+        sys.stdout.write(f"linearised lumped-model frequencies in the band [Hz] "
+                         f"({inband.size}): " + ", ".join(f"{f:.4g}" for f in inband[:8])
+                         + (", ..." if inband.size > 8 else "") + "\n")
         if args.plot:
             import matplotlib
             matplotlib.use("Agg")
             from .plot import plot_spectrum
-            fig = plot_spectrum(sp, modes=f_model)
+            fig = plot_spectrum(sp, modes=f_model, band_hz=band)
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
@@ -434,6 +444,8 @@ def build_parser():
     si.add_argument("--offset", type=float, nargs="+", metavar="D",
                     help="initial platform offset dx dy dz [m] drx dry drz [rad] (default "
                          "1 mm along the first free DOF)")
+    si.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="band of the spectrum [Hz] (default: the scene's band)")
     si.add_argument("--channel", choices=["x", "y", "z", "rx", "ry", "rz"],
                     help="channel of the spectrum (default: the first free DOF)")
     si.add_argument("--to", type=float, nargs=3, metavar=("X", "Y", "Z"),
