@@ -102,18 +102,34 @@ class FRFResult:
     outputs: tuple
     kind: str
 
+    def unit(self, output, input):
+        """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
+        e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
+        (accelerance)."""
+        if output not in OUTPUT_NAMES or input not in INPUT_NAMES:
+            raise InvalidParameterError(
+                f"unit needs an output among {OUTPUT_NAMES} and an input among "
+                f"{INPUT_NAMES}, got {output!r}, {input!r}")
+        num = "m" if output in OUTPUT_NAMES[:3] else "rad"
+        den = ["N"] if input in INPUT_NAMES[:3] else ["N", "m"]
+        den += {"receptance": [], "mobility": ["s"], "accelerance": ["s^2"]}[self.kind]
+        return f"{num}/{den[0]}" if len(den) == 1 else f"{num}/({' '.join(den)})"
+
     def to_frame(self):
-        """Tidy pandas DataFrame: freq [Hz], input, output, |H|, phase [deg], real, imag."""
+        """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
+        real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""
         import pandas as pd
         n, no, ni = self.H.shape
         f = np.repeat(self.freq_hz, no * ni)
         out = np.tile(np.repeat(self.outputs, ni), n)
         inp = np.tile(self.inputs, n * no)
+        units = np.tile([self.unit(o, i) for o in self.outputs for i in self.inputs], n)
         h = self.H.reshape(-1)
         with np.errstate(invalid="ignore"):
             return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
                                  "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
-                                 "real": h.real, "imag": h.imag, "kind": self.kind})
+                                 "real": h.real, "imag": h.imag, "unit": units,
+                                 "kind": self.kind})
 
 
 def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):

@@ -115,9 +115,13 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
         fig, ax = figure_axes(ax)
         ax_ph = None
     f = np.asarray(result.freq_hz)
+    unit = getattr(result, "unit", None)
+    units = {(o, i): unit(o, i) for o, i, _, _ in idx} if callable(unit) else {}
+    one_unit = len(set(units.values())) == 1
     for o, i, ko, ki in idx:
         h = result.H[:, ko, ki]
-        ax.semilogy(f, np.abs(h), lw=1.0, label=f"{o} / {i}")
+        tag = "" if one_unit or not units else f" [{units[(o, i)]}]"
+        ax.semilogy(f, np.abs(h), lw=1.0, label=f"{o} / {i}{tag}")
         if ax_ph is not None:
             with np.errstate(invalid="ignore"):
                 ax_ph.plot(f, np.degrees(np.angle(h)), lw=1.0)
@@ -129,7 +133,8 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
                 if f[0] <= fm <= f[-1]:
                     a.axvline(fm, color=_COLORS[kind], lw=0.6, alpha=0.6, ls="--",
                               gid=f"mode-{kind}")
-    ax.set_ylabel(f"|{result.kind}|")
+    ax.set_ylabel(f"|{result.kind}|" + (f" [{next(iter(units.values()))}]" if one_unit
+                                         else " [units in the legend]" if units else ""))
     ax.set_title(f"FRF ({result.kind}); dashed: modes, red global, blue local")
     ax.legend(loc="upper right", fontsize=8)
     ax.set_xlim(f[0], f[-1])

@@ -381,3 +381,28 @@ def test_animation_without_pillow_says_so(tmp_path, cogiro_eq, cogiro_modes, mon
     monkeypatch.setitem(sys.modules, "PIL", None)            # import PIL -> ImportError
     with pytest.raises(InvalidParameterError, match="pillow"):
         animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.gif")
+
+
+def test_frf_units_on_axis_and_in_the_table():
+    """One unit for all curves goes on the axis label; mixed units go into the legend; the
+    tidy table carries the unit of every row."""
+    from dynstiff.frf import FRFResult
+    H = np.ones((3, 2, 2), dtype=complex)
+    f = np.array([1.0, 2.0, 3.0])
+    res = FRFResult(freq_hz=f, H=H, inputs=("fz", "mx"), outputs=("z", "rx"), kind="mobility")
+    assert res.unit("z", "fz") == "m/(N s)" and res.unit("rx", "mx") == "rad/(N m s)"
+    assert FRFResult(f, H, ("fx",), ("x",), "receptance").unit("x", "fx") == "m/N"
+    assert FRFResult(f, H, ("fx",), ("x",), "accelerance").unit("ry", "fx") == "rad/(N s^2)"
+    fig = plot_frf(res)                                    # pairs (z, fz), (rx, mx)
+    ax = fig.axes[0]
+    assert ax.get_ylabel() == "|mobility| [units in the legend]"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["z / fz [m/(N s)]", "rx / mx [rad/(N m s)]"]
+    fig = plot_frf(res, pairs=[("z", "fz")])
+    assert fig.axes[0].get_ylabel() == "|mobility| [m/(N s)]"
+    df = res.to_frame()
+    assert set(zip(df["output"], df["input"], df["unit"])) == {
+        ("z", "fz", "m/(N s)"), ("z", "mx", "m/(N m s)"), ("rx", "fz", "rad/(N s)"),
+        ("rx", "mx", "rad/(N m s)")}
+    with pytest.raises(InvalidParameterError, match="unit needs"):
+        res.unit("q", "fz")
