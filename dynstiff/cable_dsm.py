@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import omega_array
+from ._vec import cross
 from .errors import InvalidParameterError
 
 __all__ = [
@@ -166,7 +167,7 @@ def chord_parameters(state, tension="mean"):
     else:                                 # vertical chord (or g = 0): any transverse pair
         e_v = state.horizontal_direction - (state.horizontal_direction @ e_u) * e_u
         e_v /= np.linalg.norm(e_v)
-    e_w = np.cross(e_u, e_v)
+    e_w = cross(e_u, e_v)
     cos_theta = state.cos_theta
     if tension == "chord" and cos_theta > 1e-12:
         T = state.H / cos_theta

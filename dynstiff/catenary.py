@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import point, positive_scalar
+from ._vec import cross
 from .constants import STANDARD_GRAVITY
 from .errors import ConvergenceError, InvalidParameterError, SlackCableError
 from .params import Cable
@@ -320,7 +321,7 @@ class CatenaryState:
         Symmetric positive definite for a taut cable.
         """
         e_h = self.horizontal_direction
-        e_p = np.cross(_EZ, e_h)
+        e_p = cross(_EZ, e_h)
         K2 = np.linalg.inv(self.in_plane_flexibility)
         B = np.column_stack([e_h, _EZ])
         K = B @ K2 @ B.T + self.out_of_plane_stiffness * np.outer(e_p, e_p)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._vec import cross
 from .cable_dsm import _local_entries
 from .errors import ConvergenceError, InvalidParameterError
 from .platform import DOF_NAMES
@@ -283,7 +284,7 @@ def cable_fields(model, modes, k, n_points=41):
         pos[i] = s.anchor + np.outer(x / p.L, s.chord)
         if not np.any(x6):
             continue
-        dB = x6[:3] + np.cross(x6[3:], r)
+        dB = x6[:3] + cross(x6[3:], r)
         disp[i] = np.real(_cable_field(p, w, p.rotation.T @ dB, x)) @ p.rotation.T
     return pos, disp
 
@@ -336,7 +337,7 @@ def modes(model, n_modes=None, fmax_hz=None):
         full[fi] = x
         shapes[k] = full
         for i, (p, r) in enumerate(zip(m.params, m.lever_arms)):
-            dB = full[:3] + np.cross(full[3:], r)
+            dB = full[:3] + cross(full[3:], r)
             E_cab[k, i] = _cable_kinetic(p, w[k], p.rotation.T @ dB, m.chordwise_inertia)
         total = 1.0 + E_cab[k].sum()
         frac[k] = E_cab[k].sum() / total

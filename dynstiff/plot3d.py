@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._vec import cross
 from .errors import InvalidParameterError
 
 __all__ = ["plot_robot", "animate_mode"]
@@ -215,7 +216,7 @@ def _geometry(eq, modes, k, model, n_points, sag_scale):
     if modes is None:
         return geo
     x6 = np.asarray(modes.platform_shapes[k], dtype=float)
-    dB = x6[:3] + np.cross(x6[3:], r)
+    dB = x6[:3] + cross(x6[3:], r)
     disp = np.zeros_like(cables)
     if model is not None:
         from .eigen import cable_fields

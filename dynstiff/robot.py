@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import positive_scalar
+from ._vec import cross
 from .catenary import solve_catenary
 from .constants import STANDARD_GRAVITY
 from .errors import InvalidParameterError
@@ -167,7 +168,7 @@ class Robot:
         pose = as_pose(pose)
         fg = self.platform.mass * self.gravity_vector
         rG = pose.matrix @ self.platform.center_of_mass
-        return np.concatenate([fg, np.cross(rG, fg)])
+        return np.concatenate([fg, cross(rG, fg)])
 
     def cable_states(self, pose, unstretched_lengths):
         """Elastic-catenary state of every cable at a pose, list of CatenaryState."""
@@ -182,7 +183,7 @@ class Robot:
         f = np.array([s.force_on_end for s in states])
         w = self.gravity_wrench(pose)
         w[:3] += f.sum(axis=0)
-        w[3:] += np.cross(r, f).sum(axis=0)
+        w[3:] += cross(r, f).sum(axis=0)
         return w
 
     def static_stiffness(self, pose, states, symmetric_part=False):

@@ -14,6 +14,7 @@ with the analytic 6x6 stiffness (theory.md §4).
 
 import numpy as np
 
+from ._vec import cross
 from .catenary import unstretched_length_for_tension
 from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 
@@ -178,7 +179,7 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     states = None
     best, since_best = np.inf, 0
     for it in range(max_iter):
-        W = np.vstack([u.T, np.cross(r, u).T])[fi]
+        W = np.vstack([u.T, cross(r, u).T])[fi]
         try:
             t = tension_distribution(W, -wg[fi], t_min + lo, t_max - hi,
                                      tension_reference)

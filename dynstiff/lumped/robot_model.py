@@ -48,6 +48,7 @@ import scipy.sparse
 import scipy.sparse.linalg
 
 from .._validate import positive_scalar
+from .._vec import cross
 from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
 from ..platform import DOF_NAMES, lever_map, platform_mass_matrix, skew
 from ..robot import Pose, Robot, as_pose
@@ -310,7 +311,7 @@ class LumpedMassModel:
             R[o:o + 3 * (len(T) - 1)] = (f[1:] - f[:-1] + self._node_mass[i] * gvec).ravel()
             F = -f[-1] + 0.5 * self._node_mass[i] * gvec
             W[:3] += F
-            W[3:] += np.cross(r[i], F)
+            W[3:] += cross(r[i], F)
             t_max = max(t_max, T.max())
         R[:self.n_free] = W[self._fi]
         return R, t_max

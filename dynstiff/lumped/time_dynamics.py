@@ -8,6 +8,7 @@ import functools
 import numpy as np
 import scipy.sparse
 
+from .._vec import cross
 from ..errors import InvalidParameterError
 from ..platform import lever_map, platform_mass_matrix, skew
 from ..robot import Pose
@@ -116,8 +117,8 @@ def _gyroscopic(model, frame, tw):
     w = tw[3:]
     if not np.any(w):
         return np.zeros(model.n_free)
-    g6 = np.concatenate([np.cross(w, np.cross(w, frame.first_moment)),
-                         np.cross(w, frame.M6[3:, 3:] @ w)])
+    g6 = np.concatenate([cross(w, cross(w, frame.first_moment)),
+                         cross(w, frame.M6[3:, 3:] @ w)])
     return g6[model._fi]
 
 
@@ -135,7 +136,7 @@ def _axial_dashpot(model, frame, X, v, tw, c_ax):
             continue
         l0 = model.segment_lengths[i]
         nodes = np.vstack((rob.anchors[i], xi, frame.B[i]))
-        vB = tw[:3] + np.cross(tw[3:], frame.r[i])
+        vB = tw[:3] + cross(tw[3:], frame.r[i])
         vel = np.vstack((np.zeros(3), vi, vB))
         units, lengths, _ = _segments(nodes, l0, rob.cables[i].EA)
         rate = np.einsum("ij,ij->i", units, np.diff(vel, axis=0)) / l0
@@ -143,7 +144,7 @@ def _axial_dashpot(model, frame, X, v, tw, c_ax):
         o = model._offsets[i]
         F[o:o + xi.size] = (f[1:] - f[:-1]).ravel()
         W[:3] -= f[-1]
-        W[3:] -= np.cross(frame.r[i], f[-1])
+        W[3:] -= cross(frame.r[i], f[-1])
     F[:nf] = W[model._fi]
     return F
 

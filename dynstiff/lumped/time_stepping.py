@@ -8,6 +8,7 @@ import warnings
 import numpy as np
 import scipy.sparse.linalg
 
+from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
 from .time_dynamics import _advance, _interior, _twist
@@ -139,7 +140,7 @@ def _carried(m, m_prev, frame, v, dmu):
     nf = m.n_free
     tw = _twist(m, v)
     dhalf = 0.5 * (m._node_mass - m_prev._node_mass)
-    vB = tw[:3] + np.cross(tw[3:], frame.r)
+    vB = tw[:3] + cross(tw[3:], frame.r)
     return float(dmu @ v[nf:] ** 2 + dhalf @ np.sum(vB ** 2, axis=1))
 
 
