@@ -379,3 +379,22 @@ def test_frf_channel_on_held_dofs_only_raises_like_closed_form():
         with pytest.raises(InvalidParameterError, match=r"outputs \['rz'\]"):
             model.frf([1.0], outputs="rz")
         assert model.frf([1.0], inputs="fz", outputs="z").H.shape == (1, 1, 1)
+
+
+def test_stacked_residual_equals_the_per_cable_loop(cogiro, cogiro_eq):
+    """All chains at once (equal N) and cable by cable (any N) give the same forces, off
+    equilibrium and with slack segments."""
+    model = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=6)
+    st = model.equilibrium(initial_pose=cogiro.pose)
+    rng = np.random.default_rng(7)
+    pose, interior = model.displaced(st.pose, st.interior,
+                                     2e-2 * rng.standard_normal(model.n_dof))
+    R1, t1 = model._residual_stacked(pose, interior)
+    R2, t2 = model._residual_loop(pose, interior)
+    assert np.abs(R1 - R2).max() < 1e-12 * np.abs(R1).max()
+    assert t1 == t2
+    from dynstiff.lumped.robot_model import _segments
+    nodes, _ = model._full_nodes(pose, interior)
+    T = [_segments(x, model.segment_lengths[i], cogiro.robot.cables[i].EA)[2]
+         for i, x in enumerate(nodes)]
+    assert any(np.any(t == 0.0) for t in T)                     # slack segments among them

@@ -298,6 +298,32 @@ class LumpedMassModel:
         return self._residual(pose, interior)[0]
 
     def _residual(self, pose, interior):
+        """Free-DOF wrench and interior-node forces [N, N m], shape (n_dof,), and the
+        largest tension [N]; all chains at once when they have the same N."""
+        if np.all(self.segments == self.segments[0]):
+            return self._residual_stacked(pose, interior)
+        return self._residual_loop(pose, interior)
+
+    def _residual_stacked(self, pose, interior):
+        rob = self.robot
+        gvec = rob.gravity_vector
+        nodes, r = self._full_nodes(pose, interior)
+        R = np.empty(self.n_dof)
+        W = rob.gravity_wrench(pose)
+        d = np.diff(np.stack(nodes), axis=1)                       # (n, N, 3)
+        lengths = np.sqrt(np.sum(d * d, axis=-1))
+        T = np.array([c.EA for c in rob.cables])[:, None] * np.maximum(
+            lengths / self.segment_lengths[:, None] - 1.0, 0.0)
+        f = T[..., None] * (d / lengths[..., None])
+        mg = self._node_mass[:, None] * gvec
+        R[self.n_free:] = (f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel()
+        F = -f[:, -1] + 0.5 * mg
+        W[:3] += F.sum(axis=0)
+        W[3:] += cross(r, F).sum(axis=0)
+        R[:self.n_free] = W[self._fi]
+        return R, float(T.max())
+
+    def _residual_loop(self, pose, interior):
         rob = self.robot
         gvec = rob.gravity_vector
         nodes, r = self._full_nodes(pose, interior)
