@@ -299,48 +299,44 @@ class LumpedMassModel:
 
     def _residual(self, pose, interior):
         """Free-DOF wrench and interior-node forces [N, N m], shape (n_dof,), and the
-        largest tension [N]; all chains at once when they have the same N."""
-        if np.all(self.segments == self.segments[0]):
-            return self._residual_stacked(pose, interior)
-        return self._residual_loop(pose, interior)
-
-    def _residual_stacked(self, pose, interior):
-        rob = self.robot
-        gvec = rob.gravity_vector
+        largest tension [N]."""
         nodes, r = self._full_nodes(pose, interior)
+        uniform = np.all(self.segments == self.segments[0])
+        inner, F, t_max = (self._chain_forces_stacked if uniform
+                           else self._chain_forces_loop)(nodes)
         R = np.empty(self.n_dof)
-        W = rob.gravity_wrench(pose)
-        d = np.diff(np.stack(nodes), axis=1)                       # (n, N, 3)
-        lengths = np.sqrt(np.sum(d * d, axis=-1))
-        T = np.array([c.EA for c in rob.cables])[:, None] * np.maximum(
-            lengths / self.segment_lengths[:, None] - 1.0, 0.0)
-        f = T[..., None] * (d / lengths[..., None])
-        mg = self._node_mass[:, None] * gvec
-        R[self.n_free:] = (f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel()
-        F = -f[:, -1] + 0.5 * mg
+        R[self.n_free:] = inner
+        W = self.robot.gravity_wrench(pose)
         W[:3] += F.sum(axis=0)
         W[3:] += cross(r, F).sum(axis=0)
         R[:self.n_free] = W[self._fi]
-        return R, float(T.max())
-
-    def _residual_loop(self, pose, interior):
-        rob = self.robot
-        gvec = rob.gravity_vector
-        nodes, r = self._full_nodes(pose, interior)
-        R = np.empty(self.n_dof)
-        W = rob.gravity_wrench(pose)
-        t_max = 0.0
-        for i, x in enumerate(nodes):
-            units, _, T = _segments(x, self.segment_lengths[i], rob.cables[i].EA)
-            f = T[:, None] * units
-            o = self._offsets[i]
-            R[o:o + 3 * (len(T) - 1)] = (f[1:] - f[:-1] + self._node_mass[i] * gvec).ravel()
-            F = -f[-1] + 0.5 * self._node_mass[i] * gvec
-            W[:3] += F
-            W[3:] += cross(r[i], F)
-            t_max = max(t_max, T.max())
-        R[:self.n_free] = W[self._fi]
         return R, t_max
+
+    def _chain_forces_stacked(self, nodes):
+        """Forces of every chain with the same N at once, from nodes (n, N + 1, 3) [m]:
+        interior-node forces (flat, 3 n (N - 1)), forces on the platform at each B_i
+        (n, 3) (the last segment and the half node weight) [N], the largest tension [N]."""
+        gvec = self.robot.gravity_vector
+        d = np.diff(np.stack(nodes), axis=1)                       # (n, N, 3)
+        lengths = np.sqrt(np.sum(d * d, axis=-1))
+        T = np.array([c.EA for c in self.robot.cables])[:, None] * np.maximum(
+            lengths / self.segment_lengths[:, None] - 1.0, 0.0)
+        f = T[..., None] * (d / lengths[..., None])
+        mg = self._node_mass[:, None] * gvec
+        return ((f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel(), -f[:, -1] + 0.5 * mg,
+                float(T.max()))
+
+    def _chain_forces_loop(self, nodes):
+        """As :meth:`_chain_forces_stacked`, cable by cable (any N per cable)."""
+        gvec = self.robot.gravity_vector
+        inner, F, t_max = [], np.empty((len(nodes), 3)), 0.0
+        for i, x in enumerate(nodes):
+            units, _, T = _segments(x, self.segment_lengths[i], self.robot.cables[i].EA)
+            f = T[:, None] * units
+            inner.append((f[1:] - f[:-1] + self._node_mass[i] * gvec).ravel())
+            F[i] = -f[-1] + 0.5 * self._node_mass[i] * gvec
+            t_max = max(t_max, float(T.max()))
+        return np.concatenate(inner), F, t_max
 
     def _force_scale(self, t_max):
         rob = self.robot
