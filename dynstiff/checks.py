@@ -1,5 +1,6 @@
 """Design checks of a cable robot at a pose: tensions, sag, workspace, frequency margins,
-modal proximity and the accuracy of the cable model the checks use. Each check gives a pass/fail row with the value and the limit it was held to.
+modal proximity and the accuracy of the cable model the checks use. Each check gives a
+pass/fail row with the value and the limit it was held to.
 """
 
 from dataclasses import dataclass

@@ -54,7 +54,8 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
         raise SlackCableError(
             f"the cable directions span only {rank} of the {k} free DOFs "
             f"(singular configuration), no tension distribution balances the platform")
-    # minimum-distance solution of the equality, then bounds by a small QP in the null space
+    # minimum-distance solution of the equality; if it leaves the limits, a feasible point
+    # (LP in the null space of W), then the exact closest one (active set)
     t = t_ref + np.linalg.lstsq(W, w - W @ t_ref, rcond=None)[0]
     tol = 1e-9 * max(1.0, np.abs(t).max())
     if np.all(t >= t_min - tol) and np.all(t <= t_max + tol):
