@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._validate import positive_scalar
 from .assembly import FrequencyModel
 from .errors import DynstiffError, InvalidParameterError
 from .interaction import proximity_warnings
@@ -76,6 +77,7 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     -------
     CheckResult
     """
+    model_rtol = positive_scalar("model_rtol", model_rtol)
     rows = []
     t_min, t_max = robot.tension_limits
     try:

@@ -4,9 +4,11 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 import dynstiff as ds
 from dynstiff.checks import design_checks
+from dynstiff.errors import InvalidParameterError
 
 
 def rows_by_name(res):
@@ -80,6 +82,8 @@ def test_cable_model_row_names_the_model_the_checks_need():
     six = ds.load_scene("sixcable")
     r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-2))["cable model"]
     assert not r["passed"] and r["value"] > 1e-2 and "lumped" in r["detail"]
+    with pytest.raises(InvalidParameterError, match="model_rtol"):
+        design_checks(six.robot, six.pose, model_rtol=-1.0)
     # a looser tolerance lets the DSM pass there
     r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=0.1))["cable model"]
     assert r["passed"]
