@@ -44,7 +44,7 @@ def _read_path(path, rotation):
     import numpy as np
 
     from .errors import InvalidParameterError
-    poses = []
+    poses, header = [], False
     with open(path) as fh:
         lines = fh.read().splitlines()
     for k, line in enumerate(lines, start=1):
@@ -54,8 +54,9 @@ def _read_path(path, rotation):
         try:
             vals = [float(v) for v in text]
         except ValueError:
-            if not poses and k == next(j for j, ln in enumerate(lines, 1) if ln.strip()):
-                continue                                    # a header line
+            if not poses and not header:                    # one header line, first
+                header = True
+                continue
             raise InvalidParameterError(
                 f"--path {path}: line {k}: expected numbers, got {line.strip()!r}") from None
         if len(vals) not in (3, 6) or not np.all(np.isfinite(vals)):

@@ -206,7 +206,7 @@ def test_cli_sweep_path_file(tmp_path):
 
     import dynstiff as ds
     f = tmp_path / "path.csv"
-    f.write_text("x,y,z\n0,0,1\n0.5,0.2,1.1  # comment\n\n1,0.4,1.2,0,0,0.05\n")
+    f.write_text("# a path\nx,y,z\n0,0,1\n0.5,0.2,1.1  # comment\n\n1,0.4,1.2,0,0,0.05\n")
     out = run_cli("sweep", "cogiro", "--path", str(f), "-n", "6", "--quiet", "--csv",
                   str(tmp_path / "s.csv"))
     assert out.returncode == 0, out.stderr

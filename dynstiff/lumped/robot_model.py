@@ -61,27 +61,27 @@ __all__ = ["LumpedMassModel", "LumpedEquilibrium", "LumpedModalResult"]
 
 # ------------------------------------------------------------------------------ kernels
 def _segments(nodes, l0, EA):
-    """Segment geometry and tensions of one chain.
+    """Segment geometry and tensions of one chain, or of a stack of chains.
 
     Parameters
     ----------
-    nodes : ndarray, shape (N+1, 3)
+    nodes : ndarray, shape (..., N+1, 3)
         Node positions [m], anchor first.
-    l0, EA : float
+    l0, EA : float or ndarray broadcasting against shape (..., N)
         Unstretched segment length [m], axial stiffness [N].
 
     Returns
     -------
-    units : ndarray, shape (N, 3)
+    units : ndarray, shape (..., N, 3)
         n_i [-].
-    lengths : ndarray, shape (N,)
+    lengths : ndarray, shape (..., N)
         l_i [m].
-    tensions : ndarray, shape (N,)
+    tensions : ndarray, shape (..., N)
         T_i = EA (l_i / l0 - 1)_+ [N].
     """
-    d = np.diff(nodes, axis=0)
-    lengths = np.linalg.norm(d, axis=1)
-    return d / lengths[:, None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
+    d = np.diff(nodes, axis=-2)
+    lengths = np.sqrt(np.sum(d * d, axis=-1))
+    return d / lengths[..., None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
 
 
 def _validated_segments(segments, n):
@@ -317,11 +317,9 @@ class LumpedMassModel:
         interior-node forces (flat, 3 n (N - 1)), forces on the platform at each B_i
         (n, 3) (the last segment and the half node weight) [N], the largest tension [N]."""
         gvec = self.robot.gravity_vector
-        d = np.diff(np.stack(nodes), axis=1)                       # (n, N, 3)
-        lengths = np.sqrt(np.sum(d * d, axis=-1))
-        T = np.array([c.EA for c in self.robot.cables])[:, None] * np.maximum(
-            lengths / self.segment_lengths[:, None] - 1.0, 0.0)
-        f = T[..., None] * (d / lengths[..., None])
+        EA = np.array([c.EA for c in self.robot.cables])
+        units, _, T = _segments(np.stack(nodes), self.segment_lengths[:, None], EA[:, None])
+        f = T[..., None] * units                                   # (n, N, 3)
         mg = self._node_mass[:, None] * gvec
         return ((f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel(), -f[:, -1] + 0.5 * mg,
                 float(T.max()))
