@@ -23,7 +23,7 @@ def main():
     for rung, N in [("spring", None), ("catenary", None), ("dsm", None), ("lumped", 10),
                     ("lumped", 20), ("lumped", 40), ("lumped", 80)]:
         n = 40 if rung in ("dsm", "lumped") else None
-        t = best(lambda: build_model(eq, rung, N or 30).eigenfrequencies(n))
+        t = best(lambda: ds.eigenfrequencies(build_model(eq, rung, N or 30), n))
         base = base or t
         print(f"  {rung + (f' N={N}' if N else ''):<14s} {1e3 * t:9.2f}   x{t / base:8.1f}")
     print("\nFRF fz->z against the number of frequencies [ms]")
@@ -31,8 +31,8 @@ def main():
     lum = build_model(eq, "lumped", 10)
     for nf in (100, 1000, 10000):
         w = 2 * np.pi * np.linspace(0.5, 8, nf)
-        td = best(lambda: dsm.frf(w, "fz", "z"))
-        tl = best(lambda: lum.frf(w, "fz", "z"), repeat=1) if nf <= 1000 else np.nan
+        td = best(lambda: ds.frf(dsm, w, "fz", "z"))
+        tl = best(lambda: ds.frf(lum, w, "fz", "z"), repeat=1) if nf <= 1000 else np.nan
         print(f"  n = {nf:6d}: dsm {1e3 * td:9.2f}   lumped N=10 {1e3 * tl:9.2f}   "
               f"ratio {tl / td:7.1f}")
     print("\nCables: 3-cable point mass vs 8-cable CoGiRo, dsm, first 20 frequencies [ms]")
@@ -41,8 +41,8 @@ def main():
     rob3 = ds.Robot(A, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
                     ds.Platform(50, free_dofs=("x", "y", "z")))
     eq3 = rob3.equilibrium(pose=[0, 0, 1.0])
-    t3 = best(lambda: ds.FrequencyModel(eq3).eigenfrequencies(20))
-    t8 = best(lambda: ds.FrequencyModel(eq).eigenfrequencies(20))
+    t3 = best(lambda: ds.eigenfrequencies(ds.FrequencyModel(eq3), 20))
+    t8 = best(lambda: ds.eigenfrequencies(ds.FrequencyModel(eq), 20))
     print(f"  3 cables {1e3 * t3:8.2f}   8 cables {1e3 * t8:8.2f}   ratio {t8 / t3:5.2f}")
 
 

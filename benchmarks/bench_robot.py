@@ -19,10 +19,10 @@ def main(repeat=5):
     w = 2 * np.pi * np.linspace(0.1, 12.0, 10_000)
     cases = {
         "K(omega), 10k freqs, 6x6": (lambda: m.dynamic_stiffness(w), 5),
-        "FRF 6x6, 10k freqs": (lambda: m.frf(w), 3),
-        "FRF fz->z, 10k freqs": (lambda: m.frf(w, inputs="fz", outputs="z"), 3),
-        "40 eigenfrequencies (W-W)": (lambda: m.eigenfrequencies(40), 3),
-        "40 modes + energy fractions": (lambda: m.modes(40), 1),
+        "FRF 6x6, 10k freqs": (lambda: ds.frf(m, w), 3),
+        "FRF fz->z, 10k freqs": (lambda: ds.frf(m, w, inputs="fz", outputs="z"), 3),
+        "40 eigenfrequencies (W-W)": (lambda: ds.eigenfrequencies(m, 40), 3),
+        "40 modes + energy fractions": (lambda: ds.modes(m, 40), 1),
         "inverse statics (pose -> L0)": (lambda: scene.equilibrium(), 1),
         "forward statics (L0 -> pose)": (
             lambda: scene.robot.equilibrium(unstretched_lengths=eq.unstretched_lengths), 3),

@@ -42,14 +42,15 @@ MOORDYN_DTM = 3e-4                                 # MoorDyn RK2 internal step [
 def cogiro_cases(N=20, t_impl=1.0, t_expl=0.2):
     scene = ds.load_scene("cogiro")
     m = LumpedMassModel(scene.robot, scene.equilibrium().unstretched_lengths, segments=N)
-    m.equilibrium()
+    start = m.equilibrium()
     offset = [1e-4, -1e-4, 1e-4, 1e-4, -1e-4, 1e-4]
     rows = []
-    r = simulate(m, t_impl, 1e-3, initial=offset, record_every=10)
+    r = simulate(m, t_impl, 1e-3, initial=offset, record_every=10, start=start)
     rows.append((f"CoGiRo N={N}", "dynstiff implicit", 1e-3, r.speed_ratio,
                  np.abs(r.energy.relative_residual).max(), np.nan))
     dt = 0.9 * explicit_step_limit(m)
-    r = simulate(m, t_expl, dt, scheme="explicit", initial=offset, record_every=50)
+    r = simulate(m, t_expl, dt, scheme="explicit", initial=offset, record_every=50,
+                 start=start)
     rows.append((f"CoGiRo N={N}", "dynstiff explicit", dt, r.speed_ratio,
                  np.abs(r.energy.relative_residual).max(), np.nan))
     return rows
@@ -60,8 +61,7 @@ def line_model(N=20):
     slider = ds.Platform(st.force_on_end[2] / ds.STANDARD_GRAVITY, free_dofs=("z",))
     robot = ds.Robot(A0[None, :], np.zeros((1, 3)), CABLE, slider)
     m = LumpedMassModel(robot, [st.unstretched_length], segments=N)
-    m.equilibrium(initial_pose=B0)
-    return m
+    return m, m.equilibrium(initial_pose=B0)
 
 
 def _force(t):
@@ -147,15 +147,16 @@ def _tension_diff(r, times, tension):
 
 
 def line_cases(N=20, t_end=5.0):
-    m = line_model(N)
+    m, start = line_model(N)
     damping = TimeDamping(axial=C_AX)
     rows = []
     runs = []
     for dt in (1e-3, 2.5e-3, 5e-3):
-        r = simulate(m, t_end, dt, excitation=_force, damping=damping)
+        r = simulate(m, t_end, dt, excitation=_force, damping=damping, start=start)
         runs.append(("dynstiff implicit", dt, r))
     dt = 0.9 * explicit_step_limit(m, damping=damping)
-    r = simulate(m, t_end, dt, excitation=_force, damping=damping, record_every=3)
+    r = simulate(m, t_end, dt, excitation=_force, damping=damping, record_every=3,
+                 start=start)
     runs.append(("dynstiff explicit", dt, r))
     md = None
     for name, dt, r in runs:

@@ -3,6 +3,12 @@ heavy, elastic, sagging cables.
 
 Importing dynstiff loads numpy and scipy only; matplotlib and pandas are imported when a
 plot or a table is asked for.
+
+The workflow: a :class:`Robot` (or a built-in scene, :func:`load_scene`), its static
+:class:`Equilibrium` (``robot.equilibrium(pose=...)``), a model of one rung of the ladder
+(:func:`build_model`: "spring", "catenary", "dsm", "lumped"), and the analyses, plain
+functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
+:func:`damped_modes`.
 """
 
 from .assembly import FrequencyModel
@@ -21,11 +27,14 @@ from .errors import (
     InvalidParameterError,
     PoleWarning,
     SlackCableError,
+    UnsupportedAnalysisError,
 )
-from .eigen import ModalResult
-from .frf import FRFResult
-from .ladder import RUNGS, build_model
-from .lumped import LumpedMassModel
+from .damped import DampedModes, damped_modes
+from .eigen import ModalResult, cable_fields, eigenfrequencies, mode_count, modes
+from .frf import FRFResult, frf
+from .ladder import RUNGS, StaticCableModel, build_model
+from .lumped import LumpedLinearModel, LumpedMassModel
+from .results import LumpedModalResult
 from .recommend import Recommendation, recommend_model
 from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
 from .params import Cable
@@ -36,6 +45,17 @@ from .scenes import Scene, SceneError, list_scenes, load_scene
 __version__ = "0.1.0"
 
 __all__ = [
+    "frf",
+    "eigenfrequencies",
+    "modes",
+    "mode_count",
+    "damped_modes",
+    "cable_fields",
+    "DampedModes",
+    "LumpedLinearModel",
+    "LumpedModalResult",
+    "StaticCableModel",
+    "UnsupportedAnalysisError",
     "Cable",
     "CableModes",
     "Equilibrium",

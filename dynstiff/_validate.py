@@ -35,22 +35,39 @@ def point(name, value, dim=3):
     return arr
 
 
-def omega_array(value, name="omega"):
-    """Return angular frequencies as a 1-D float array; raise if negative or not finite.
+def omega_array(value, name="omega", complex_ok=False):
+    """Return angular frequencies as a 1-D array; raise if negative or not finite.
 
-    A scalar becomes shape ``(1,)``.
+    A scalar becomes shape ``(1,)``. With ``complex_ok`` a complex input stays complex (any
+    finite value: the damped roots lie off the real axis); otherwise the array is float and
+    must be >= 0.
     """
+    dtype = complex if complex_ok and np.iscomplexobj(value) else float
     try:
-        arr = np.atleast_1d(np.asarray(value, dtype=float))
+        arr = np.atleast_1d(np.asarray(value, dtype=dtype))
     except (TypeError, ValueError):
         raise InvalidParameterError(
             f"{name} must be real angular frequencies [rad/s], got {value!r}") from None
     if arr.ndim != 1:
         raise InvalidParameterError(
             f"{name} must be a scalar or 1-D array, got shape {arr.shape}")
-    bad = ~np.isfinite(arr) | (arr < 0)
+    bad = ~np.isfinite(arr) if dtype is complex else ~np.isfinite(arr) | (arr < 0)
     if np.any(bad):
         raise InvalidParameterError(
-            f"{name} must be finite and >= 0 [rad/s], got {arr[bad][0]!r} "
-            f"at index {int(np.flatnonzero(bad)[0])}")
+            f"{name} must be finite{'' if dtype is complex else ' and >= 0'} [rad/s], got "
+            f"{arr[bad][0]!r} at index {int(np.flatnonzero(bad)[0])}")
     return arr
+
+
+def unstretched_lengths(value, n):
+    """Return ``n`` unstretched cable lengths [m] as a float array of shape (n,), or raise
+    naming ``unstretched_lengths`` if they are not n finite positive numbers."""
+    try:
+        L0 = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        L0 = None
+    if L0 is None or L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
+        raise InvalidParameterError(
+            f"unstretched_lengths must be {n} finite positive lengths [m] (one per cable), "
+            f"got {value!r}")
+    return L0

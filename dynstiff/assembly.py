@@ -11,58 +11,75 @@ Each K_B,i is a combination of five dyads of its chord frame, so the whole sum o
 single (n_omega, 5 n) @ (5 n, n_free^2) product: no loop over frequencies.
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from ._validate import omega_array
-from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, _local_entries, _mode_count_Omega,
-                        chord_parameters, dyad_basis, stack_parameters)
-from .platform import DOF_NAMES, lever_map, platform_mass_matrix
+from ._vec import cross
+from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_field, cable_kinetic_energy,
+                        chord_parameters, dyad_basis, end_block_coefficients,
+                        mode_count_nondimensional, stack_parameters)
+from .model_base import PlatformModel
+from .platform import lever_map, platform_mass_matrix
 from .robot import geometric_stiffness
 
 __all__ = ["FrequencyModel"]
 
 
-class FrequencyModel:
-    """Frequency-domain model of a cable robot at a static equilibrium.
+class FrequencyModel(PlatformModel):
+    """The "dsm" rung: closed-form dynamic stiffness of every cable, assembled (theory.md §4).
+
+    Immutable; the interface of every model is described in :mod:`dynstiff.model_base`.
 
     Parameters
     ----------
     equilibrium : Equilibrium
         From :meth:`Robot.equilibrium`.
     tension : {"mean", "chord"}
-        Tension of the cables' linear theory (see :func:`dynstiff.cable_dsm.chord_parameters`).
+        Tension of the cables' linear theory (see :func:`dynstiff.chord.chord_parameters`).
     chordwise_inertia : bool
         Include the consistent chordwise mass of the cables (theory.md §3.6).
+    damping : bool
+        Keep the cables' damping (default); False builds the undamped model.
 
     Attributes
     ----------
-    free_dofs : tuple of str
-        Names of the free DOFs, the order of every matrix this model returns.
+    rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
+        As every model (:mod:`dynstiff.model_base`).
+    params : tuple of ChordParameters
+        Chord-frame parameters of every cable.
+    lever_arms : ndarray, shape (n_cables, 3)
+        r_i = R_p b_i [m].
     K_geo : ndarray, shape (6, 6)
-        Geometric stiffness [N m/rad] (all DOFs).
+        Geometric stiffness [N m/rad] (all DOFs; only the rotation block is non-zero).
     M_p : ndarray, shape (6, 6)
         Platform mass matrix about P (all DOFs).
     """
 
-    def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
-        self.equilibrium = equilibrium
+    rung = "dsm"
+
+    def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
+                 damping=True):
+        robot, pose = equilibrium.robot, equilibrium.pose
+        self._init_platform(robot, equilibrium, pose)
         self.tension = tension
         self.chordwise_inertia = bool(chordwise_inertia)
-        robot = equilibrium.robot
-        pose = equilibrium.pose
-        self.free_dofs = robot.platform.free_dofs
-        fi = robot.platform.free_index
-        self._fi = fi
-        self.params = [chord_parameters(s, tension) for s in equilibrium.states]
-        self._stack = stack_parameters(self.params)
-        self.lever_arms = equilibrium.lever_arms
+        params = [chord_parameters(s, tension) for s in equilibrium.states]
+        if not damping:
+            params = [replace(p, c=0.0, EA=float(np.real(p.EA))) for p in params]
+            self.damped = False
+        self.params = tuple(params)
+        self.stacked_params = stack_parameters(self.params)
+        self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
+        fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
         blocks = []
         for p, r in zip(self.params, self.lever_arms):
             J = lever_map(r, fi)                                   # (3, nf)
             D = dyad_basis(p.rotation).reshape(5, 3, 3)
             blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
-        self._G = np.vstack(blocks)
+        self._assembly = np.vstack(blocks)
         K_geo = np.zeros((6, 6))
         K_geo[3:, 3:] = geometric_stiffness(robot, pose, equilibrium.states)
         self.K_geo = K_geo
@@ -72,92 +89,87 @@ class FrequencyModel:
         # vector; the conservative (potential-energy Hessian) stiffness is its symmetric part.
         # At a full 6-DOF equilibrium the block is already symmetric.
         Kg = K_geo[np.ix_(fi, fi)]
-        self._Kg = 0.5 * (Kg + Kg.T)
-        self._M = self.M_p[np.ix_(fi, fi)]
-        self.damped = any(c.is_damped for c in robot.cables)
-
-    @property
-    def n_free(self):
-        """Number of free DOFs."""
-        return len(self._fi)
+        self._K_geo_free = 0.5 * (Kg + Kg.T)
+        self._freeze()
 
     def cable_coefficients(self, omega):
         """Dyad coefficients (uu, uv, vu, vv, ww) of every cable's end-B DSM, all cables in one
-        broadcast call, shape (n_omega, 5 n_cables), cable-major."""
-        omega = np.asarray(omega)
-        k_uu, k_uv, k_vv, _, kw_s, _, m_ax = _local_entries(self._stack, omega[:, None],
-                                                             self.chordwise_inertia)
-        C = np.stack([k_uu + 2.0 * m_ax, -k_uv, -k_uv, k_vv, kw_s + 0.0 * k_uu], axis=2)
+        broadcast call, shape (n_omega, 5 n_cables), cable-major [N/m].
+
+        ``omega`` [rad/s], shape (n_omega,), validated, real or complex."""
+        C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
         C = C.reshape(omega.size, -1)
         if not self.damped and np.isrealobj(omega):
             C = np.real(C)
         return C
 
     def dynamic_stiffness(self, omega):
-        """K(omega) on the free DOFs, shape (n_omega, n_free, n_free).
+        """K(omega) on the free DOFs, shape (n_omega, n_free, n_free) (theory.md §4).
 
         Parameters
         ----------
         omega : float or array_like, shape (n_omega,)
-            Angular frequencies [rad/s], >= 0.
+            Angular frequencies [rad/s]: real >= 0, or complex (finite) for damped roots.
 
         Returns
         -------
-        ndarray [N/m, N, N m/rad]; real when no cable is damped, complex otherwise.
+        ndarray [N/m, N, N m/rad]; real when no cable is damped and omega is real, complex
+        otherwise. Entries are inf/NaN exactly on a clamped-cable pole.
         """
-        omega = omega_array(omega)
+        omega = omega_array(omega, complex_ok=True)
         nf = self.n_free
-        K = (self.cable_coefficients(omega) @ self._G).reshape(omega.size, nf, nf)
-        return K + self._Kg - (omega**2)[:, None, None] * self._M
-
-    def _dynamic_stiffness_complex(self, omega):
-        """K(omega) for complex omega (no validation), shape (n, n_free, n_free)."""
-        omega = np.atleast_1d(np.asarray(omega, dtype=complex))
-        nf = self.n_free
-        K = (self.cable_coefficients(omega) @ self._G).reshape(omega.size, nf, nf)
-        return K + self._Kg - (omega**2)[:, None, None] * self._M
+        K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
+        return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
 
     def cable_mode_count(self, omega):
-        """Sum over cables of the clamped-clamped mode counts J0 below omega, (n_omega,)."""
+        """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],
+        shape (n_omega,) (theory.md §5.2); the damping is ignored."""
         omega = omega_array(omega)
-        st = self._stack
-        lam2 = np.real((st.q * st.L / st.T) ** 2 * st.L * st.EA / (st.T * st.L_e))
+        st = self.stacked_params
         Omega = omega[:, None] * st.L * np.sqrt(st.m / st.T)
-        return _mode_count_Omega(Omega, lam2).sum(axis=1)
-
-    def mode_count(self, omega):
-        """Wittrick-Williams count J(omega) = J0 + s{K(omega)}: eigenfrequencies below omega.
-
-        Requires undamped cables (real symmetric K). Shape (n_omega,).
-        """
-        K = self.dynamic_stiffness(omega)
-        if np.iscomplexobj(K):
-            K = K.real
-        with np.errstate(invalid="ignore"):
-            ev = np.linalg.eigvalsh(K)
-        return self.cable_mode_count(omega) + np.sum(ev < 0, axis=1)
+        return mode_count_nondimensional(Omega, st.lambda_sq).sum(axis=1)
 
     def massless_stiffness(self):
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
-        shape (n_free, n_free)."""
+        shape (n_free, n_free) [N/m, N, N m/rad]."""
         return self.dynamic_stiffness(0.0)[0].real
 
-    def dof_names(self):
-        """Names of the free DOFs."""
-        return tuple(DOF_NAMES[i] for i in self._fi)
+    def undamped(self):
+        """The same model with the cables' damping removed (itself when undamped)."""
+        if not self.damped:
+            return self
+        return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+                              damping=False)
 
-    # thin wrappers over the analysis modules
-    def frf(self, omega, inputs=None, outputs=None, point=None, kind="receptance"):
-        """Frequency response functions; see :func:`dynstiff.frf.frf`."""
-        from .frf import frf
-        return frf(self, omega, inputs=inputs, outputs=outputs, point=point, kind=kind)
+    def cable_kinetic_energies(self, omega, x):
+        """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
+        shape (n_cables,), for the platform motion x (6,) (dp [m], dtheta [rad]) at the
+        natural frequency omega [rad/s] (closed-form fields, theory.md §5.3, §6)."""
+        out = np.empty(len(self.params))
+        for i, (p, r) in enumerate(zip(self.params, self.lever_arms)):
+            dB = x[:3] + cross(x[3:], r)
+            out[i] = cable_kinetic_energy(p, omega, p.rotation.T @ dB, self.chordwise_inertia)
+        return out
 
-    def eigenfrequencies(self, n_modes=None, fmax_hz=None):
-        """Natural frequencies [Hz], ascending; see :func:`dynstiff.eigen.eigenfrequencies`."""
-        from .eigen import eigenfrequencies
-        return eigenfrequencies(self, n_modes=n_modes, fmax_hz=fmax_hz)
+    def cable_displacements(self, omega, x, n_points=41):
+        """Cable displacement fields for the platform motion x (6,) at omega [rad/s].
 
-    def modes(self, n_modes=None, fmax_hz=None):
-        """Modes with shapes, labels and energy fractions; see :func:`dynstiff.eigen.modes`."""
-        from .eigen import modes
-        return modes(self, n_modes=n_modes, fmax_hz=fmax_hz)
+        Returns
+        -------
+        positions : ndarray, shape (n_cables, n_points, 3)
+            Points on the chords from anchor to attachment [m].
+        displacements : ndarray, shape (n_cables, n_points, 3)
+            Real part of the closed-form field (theory.md §5.3) [m], global frame; zero when
+            x is zero.
+        """
+        pos = np.zeros((len(self.params), n_points, 3))
+        disp = np.zeros_like(pos)
+        for i, (p, r, s) in enumerate(zip(self.params, self.lever_arms,
+                                          self.equilibrium.states)):
+            xs = np.linspace(0.0, p.L, n_points)
+            pos[i] = s.anchor + np.outer(xs / p.L, s.chord)
+            if not np.any(x):
+                continue
+            dB = x[:3] + cross(x[3:], r)
+            disp[i] = np.real(cable_field(p, omega, p.rotation.T @ dB, xs)) @ p.rotation.T
+        return pos, disp

@@ -42,17 +42,24 @@ Conventions chosen (and why)
 All matrices give the forces applied **to** the cable ends per unit end displacement.
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
 
 from ._validate import omega_array
-from ._vec import cross
+from .chord import ChordParameters, chord_parameters, stack_parameters
 from .errors import InvalidParameterError
 
 __all__ = [
     "ChordParameters",
     "chord_parameters",
+    "stack_parameters",
+    "local_entries",
+    "end_block_coefficients",
+    "mode_count_nondimensional",
+    "cable_field",
+    "cable_kinetic_energy",
     "local_end_stiffness",
     "local_two_end_stiffness",
     "cable_dynamic_stiffness",
@@ -69,119 +76,6 @@ DEFAULT_CHORDWISE_INERTIA = True
 
 _SERIES_RADIUS = 1.0
 _N_TERMS = 16
-
-
-# --------------------------------------------------------------------------- chord frame
-@dataclass(frozen=True)
-class ChordParameters:
-    """Chord-frame parameters of the linear theory for one cable equilibrium.
-
-    Attributes
-    ----------
-    L : float
-        Chord length [m].
-    T : float
-        Tension used by the linear theory [N].
-    m : float
-        Mass per unit chord length [kg/m].
-    c : float
-        Viscous damping per unit chord length [N s/m^2].
-    EA : complex or float
-        Axial stiffness [N], EA (1 + i eta) with hysteretic damping.
-    q : float
-        Weight per chord length perpendicular to the chord [N/m].
-    L_e : float
-        Compliance length L0 (1 + 8 (d/L)^2) [m].
-    cos_theta : float
-        Cosine of the chord inclination [-].
-    rotation : ndarray, shape (3, 3)
-        R = [e_u e_v e_w] (columns): chord direction A -> B, sag direction, out of plane.
-    """
-
-    L: float
-    T: float
-    m: float
-    c: float
-    EA: complex
-    q: float
-    L_e: float
-    cos_theta: float
-    rotation: np.ndarray
-
-    @property
-    def sag(self):
-        """Mid-span sag perpendicular to the chord, d = q L^2 / (8 T) [m]."""
-        return self.q * self.L**2 / (8.0 * self.T)
-
-    @property
-    def K0(self):
-        """EA / L_e [N/m] (complex with hysteretic damping)."""
-        return self.EA / self.L_e
-
-    @property
-    def alpha(self):
-        """Static end slope relative to the chord, q L / (2 T) [-]."""
-        return self.q * self.L / (2.0 * self.T)
-
-    @property
-    def lambda_sq(self):
-        """Irvine parameter lambda^2 = (q L / T)^2 L / (T L_e / EA) [-] (real part if damped)."""
-        return float(np.real(self._lambda_sq_complex))
-
-    @property
-    def _lambda_sq_complex(self):
-        return (self.q * self.L / self.T) ** 2 * self.L * self.EA / (self.T * self.L_e)
-
-    def psi(self, omega):
-        """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
-        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c > 0) \
-            else omega**2 * self.m / self.T
-        return 0.5 * self.L * np.sqrt(beta_sq)
-
-
-def chord_parameters(state, tension="mean"):
-    """Chord-frame parameters of the linear theory from an elastic-catenary equilibrium.
-
-    Parameters
-    ----------
-    state : CatenaryState
-        Static equilibrium from :func:`dynstiff.solve_catenary`.
-    tension : {"mean", "chord"}
-        "mean": tension averaged over the cable (default); "chord": H / cos(theta)
-        (Irvine's H*). A vertical chord always uses the mean tension.
-
-    Returns
-    -------
-    ChordParameters
-    """
-    if tension not in ("mean", "chord"):
-        raise InvalidParameterError(f"tension must be 'mean' or 'chord', got {tension!r}")
-    cable, g = state.cable, state.g
-    L = state.chord_length
-    e_u = state.chord / L
-    g_vec = np.array([0.0, 0.0, -g])
-    g_perp = g_vec - (g_vec @ e_u) * e_u
-    gp = np.linalg.norm(g_perp)
-    if gp > 1e-12 * max(g, 1e-300):
-        e_v = g_perp / gp
-    else:                                 # vertical chord (or g = 0): any transverse pair
-        e_v = state.horizontal_direction - (state.horizontal_direction @ e_u) * e_u
-        e_v /= np.linalg.norm(e_v)
-    e_w = cross(e_u, e_v)
-    cos_theta = state.cos_theta
-    if tension == "chord" and cos_theta > 1e-12:
-        T = state.H / cos_theta
-    else:
-        T = state.mean_tension
-    L0 = state.unstretched_length
-    m = cable.mass_per_length * L0 / L
-    c = cable.viscous_damping * L0 / L
-    q = m * g * cos_theta
-    d_over_L = q * L / (8.0 * T)
-    L_e = L0 * (1.0 + 8.0 * d_over_L**2)
-    EA = cable.EA * (1.0 + 1j * cable.loss_factor) if cable.loss_factor > 0 else cable.EA
-    return ChordParameters(L=L, T=T, m=m, c=c, EA=EA, q=q, L_e=L_e, cos_theta=cos_theta,
-                           rotation=np.column_stack([e_u, e_v, e_w]))
 
 
 # --------------------------------------------------------------------------- psi kernels
@@ -226,7 +120,7 @@ def _psi_functions(psi):
     return c, s_over_psi, cos2, E, Pt, Qt
 
 
-def _local_entries(p, omega, chordwise_inertia):
+def local_entries(p, omega, chordwise_inertia):
     """Independent entries of the local two-end DSM, each shape (n_omega,).
 
     Elementwise: ``p`` may hold arrays of shape (n_cables,) with ``omega`` of shape
@@ -241,7 +135,7 @@ def _local_entries(p, omega, chordwise_inertia):
     (den = 4 cos psi - lambda^2 E = Delta / psi^3).
     """
     psi = np.asarray(p.psi(omega))
-    lam2 = p._lambda_sq_complex
+    lam2 = p.lambda_sq_complex
     K0, T, L = p.K0, p.T, p.L
     c, s_over_psi, cos2, E, Pt, Qt = _psi_functions(psi)
     den = 4.0 * c - lam2 * E
@@ -286,7 +180,7 @@ def local_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERT
     -------
     ndarray, shape (n_omega, 3, 3) [N/m]; real if undamped, complex otherwise.
     """
-    k_uu, k_uv, k_vv, _, kw_s, _, m_ax = _local_entries(params, omega, chordwise_inertia)
+    k_uu, k_uv, k_vv, _, kw_s, _, m_ax = local_entries(params, omega, chordwise_inertia)
     K = np.zeros((omega.size, 3, 3), dtype=np.result_type(k_uu, k_vv, kw_s, m_ax))
     K[:, 0, 0] = k_uu + 2.0 * m_ax
     K[:, 0, 1] = K[:, 1, 0] = -k_uv
@@ -307,7 +201,7 @@ def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_I
     -------
     ndarray, shape (n_omega, 6, 6) [N/m].
     """
-    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(
+    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = local_entries(
         params, omega, chordwise_inertia)
     K = np.zeros((omega.size, 6, 6), dtype=np.result_type(k_uu, k_vv, kw_s, m_ax))
     uA, vA, wA, uB, vB, wB = range(6)
@@ -386,6 +280,34 @@ def dyad_basis(rotation):
     return np.stack([np.outer(R[:, i], R[:, j]).ravel() for i, j in DYAD_PAIRS])
 
 
+def _end_block(entries, axis):
+    """Dyad coefficients (uu, uv, vu, vv, ww) of K_B from :func:`local_entries`, stacked
+    on a new ``axis`` (theory.md §3.4): k_uu + 2 m_axial, -k_uv, -k_uv, k_vv, kw_s."""
+    k_uu, k_uv, k_vv, _, kw_s, _, m_ax = entries
+    return np.stack([k_uu + 2.0 * m_ax, -k_uv, -k_uv, k_vv, kw_s + 0.0 * k_uu], axis=axis)
+
+
+def end_block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+    """Dyad coefficients of the clamped-A end matrix K_B of one or several cables.
+
+    Parameters
+    ----------
+    params : ChordParameters
+        One cable, or several stacked by :func:`stack_parameters` ((n_cables,) fields).
+    omega : ndarray, shape (n_omega,)
+        [rad/s], validated; real or complex (the kernel is analytic in omega).
+    chordwise_inertia : bool
+
+    Returns
+    -------
+    ndarray, shape (n_omega, 5) for one cable or (n_omega, n_cables, 5) for a stack [N/m]
+        Coefficients of the dyads :func:`dyad_basis` (``DYAD_PAIRS`` order); complex where
+        a cable is damped or omega is complex.
+    """
+    om = omega if np.ndim(params.L) == 0 else omega[:, None]
+    return _end_block(local_entries(params, om, chordwise_inertia), axis=-1)
+
+
 def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
                        blocks="end"):
     """Coefficients of the DSM blocks on the dyad basis, each shape (n_omega, 5).
@@ -403,12 +325,12 @@ def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTI
     -------
     dict of str -> ndarray, shape (n_omega, 5), real if undamped
     """
-    k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = _local_entries(params, omega,
-                                                                  chordwise_inertia)
-    zero = np.zeros_like(k_uu)
-    k_axial = k_uu + 2.0 * m_ax
-    out = {"BB": np.stack([k_axial, -k_uv, -k_uv, k_vv, kw_s + zero], axis=1)}
+    entries = local_entries(params, omega, chordwise_inertia)
+    out = {"BB": _end_block(entries, axis=1)}
     if blocks == "both":
+        k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_ax = entries
+        zero = np.zeros_like(k_uu)
+        k_axial = k_uu + 2.0 * m_ax
         out["AA"] = np.stack([k_axial, k_uv, k_uv, k_vv, kw_s + zero], axis=1)
         out["AB"] = np.stack([-k_uu + m_ax, k_uv, -k_uv, k_vv_AB, kw_c + zero], axis=1)
     return {k: _real_if_undamped(params, v, omega) for k, v in out.items()}
@@ -438,10 +360,10 @@ def cable_mode_count(state, omega, tension="mean"):
     """
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
-    return _mode_count_Omega(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
+    return mode_count_nondimensional(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
 
 
-def _mode_count_Omega(Omega, lambda_sq):
+def mode_count_nondimensional(Omega, lambda_sq):
     """J0 as a function of the nondimensional frequency Omega >= 0 (see cable_mode_count)."""
     psi = 0.5 * Omega
     c, _, _, E, _, _ = _psi_functions(psi)
@@ -519,6 +441,17 @@ class CableModes:
     def __len__(self):
         return len(self.freq_hz)
 
+    def __repr__(self):
+        f = self.freq_hz
+        span = f"{f.min():.4g}-{f.max():.4g} Hz" if len(f) else "none"
+        return f"CableModes({len(self)} modes {span}: {', '.join(self.labels[:3])}, ...)"
+
+    def plot(self, ax=None):
+        """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
+        matplotlib Figure."""
+        from .plot import plot_cable_modes
+        return plot_cable_modes(self, ax=ax)
+
     def to_frame(self):
         """pandas DataFrame with columns freq [Hz], Omega [-], family, order."""
         import pandas as pd
@@ -558,11 +491,40 @@ def cable_natural_frequencies(state, n_modes, tension="mean"):
                       family=tuple(fam[i] for i in idx), order=order[idx])
 
 
-def stack_parameters(params):
-    """ChordParameters of several cables stacked into one with (n_cables,) array fields, for
-    evaluating all cables in one broadcast call (see :func:`_local_entries`)."""
-    def arr(name):
-        return np.array([getattr(p, name) for p in params])
-    return ChordParameters(L=arr("L"), T=arr("T"), m=arr("m"), c=arr("c"), EA=arr("EA"),
-                           q=arr("q"), L_e=arr("L_e"), cos_theta=arr("cos_theta"),
-                           rotation=None)
+# --------------------------------------------------------------------------- fields
+def cable_field(p, omega, d_local, x):
+    """Closed-form displacement (u, v, w) [m] along the chord at positions x [m], shape
+    (len(x), 3), for the end-B motion d_local = (u_B, v_B, w_B) [m, chord frame] at omega
+    [rad/s] with A clamped (theory.md §5.3); ``p`` the cable's :class:`ChordParameters`:
+    v = C1 cos(beta x) + C2 sin(beta x) + q h / (T beta)^2, w = w_B sin(beta x)/sin(beta L),
+    u = u_B x / L (quasi-static stretching)."""
+    uB, vB, wB = d_local
+    k_uu, k_uv, *_ = local_entries(p, np.array([omega]), False)
+    h = k_uu[0] * uB - k_uv[0] * vB                   # dynamic tension [N]
+    beta = 2.0 * p.psi(np.array([omega]))[0] / p.L
+    Om = beta * p.L
+    vp = h * p.q / (p.T * beta) ** 2
+    C2 = (vB - vp + vp * np.cos(Om)) / np.sin(Om)
+    v = -vp * np.cos(beta * x) + C2 * np.sin(beta * x) + vp
+    w = wB * np.sin(beta * x) / np.sin(Om)
+    return np.column_stack([uB * x / p.L, v, w])
+
+
+@functools.lru_cache(maxsize=8)
+def _gauss(n):
+    """Gauss-Legendre nodes and weights on [-1, 1] (cached)."""
+    return np.polynomial.legendre.leggauss(n)
+
+
+def cable_kinetic_energy(p, omega, d_local, chordwise_inertia, n_gauss=64):
+    """Kinetic energy per unit omega^2 / 2 of the closed-form field, int m (|v|^2 + |w|^2) dx
+    (+ m L/3 |u_B|^2 with ``chordwise_inertia``) [kg m^2 per unit amplitude^2], by
+    ``n_gauss``-point Gauss-Legendre quadrature (theory.md §6)."""
+    x, wts = _gauss(n_gauss)
+    x = 0.5 * p.L * (x + 1.0)
+    wts = 0.5 * p.L * wts
+    f = cable_field(p, omega, d_local, x)
+    E = p.m * np.sum(wts * (np.abs(f[:, 1]) ** 2 + np.abs(f[:, 2]) ** 2))
+    if chordwise_inertia:
+        E += p.m * p.L / 3.0 * abs(d_local[0]) ** 2
+    return float(E)

@@ -30,6 +30,7 @@ import numpy as np
 
 from ._validate import point, positive_scalar
 from ._vec import cross
+from .chord import chord_parameters
 from .constants import STANDARD_GRAVITY
 from .errors import ConvergenceError, InvalidParameterError, SlackCableError
 from .params import Cable
@@ -279,8 +280,7 @@ class CatenaryState:
 
     @property
     def lambda_sq(self):
-        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.cable_dsm.chord_parameters`)."""
-        from .cable_dsm import chord_parameters
+        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.chord.chord_parameters`)."""
         return chord_parameters(self).lambda_sq
 
     # ---- stiffness
@@ -313,7 +313,7 @@ class CatenaryState:
         return float(self.H / self.horizontal_span)
 
     @property
-    def static_stiffness(self):
+    def end_stiffness(self):
         """Static 3x3 stiffness of the end B [N/m] in the global frame, A fixed.
 
         K = -d f_B / d r_B: in-plane block from the inverse of the flexibility

@@ -9,8 +9,10 @@ import numpy as np
 
 from ._validate import positive_scalar
 from .assembly import FrequencyModel
+from .eigen import modes as modal
 from .errors import DynstiffError, InvalidParameterError
 from .interaction import proximity_warnings
+from .recommend import recommend_model
 
 __all__ = ["CheckResult", "design_checks"]
 
@@ -26,6 +28,11 @@ class CheckResult:
     """
 
     rows: tuple
+
+    def __repr__(self):
+        failed = [r["check"] for r in self.rows if not r["passed"]]
+        return (f"CheckResult({'passed' if not failed else 'FAILED: ' + ', '.join(failed)}; "
+                f"{len(self.rows)} checks)")
 
     @property
     def passed(self):
@@ -105,13 +112,13 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     if fmax_hz is None:
         n = 40
         while True:
-            modes = model.modes(n_modes=n)
+            modes = modal(model, n_modes=n)
             if sum(k == "global" for k in modes.kind) >= model.n_free or n >= 320:
                 break
             n *= 2
     else:
         # up to (1 + rtol) fmax so global modes near fmax see their local partners
-        modes = model.modes(fmax_hz=fmax_hz * (1 + proximity_rtol))
+        modes = modal(model, fmax_hz=fmax_hz * (1 + proximity_rtol))
     glob = np.array([k == "global" for k in modes.kind], dtype=bool)
     if band_hz is not None:
         lo, hi = band_hz
@@ -126,7 +133,6 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
             detail=(f"{inside.size} global mode(s) within {margin:.1%} of "
                     f"[{lo:g}, {hi:g}] Hz: {np.round(inside, 4).tolist()}") if inside.size
             else f"no global mode within {margin:.1%} of [{lo:g}, {hi:g}] Hz"))
-    from .recommend import recommend_model
     top = float(fmax_hz * (1 + proximity_rtol) if fmax_hz is not None else modes.freq_hz.max())
     rec = recommend_model(eq, band_hz=(0.0, top), rtol=model_rtol)
     err = rec.errors["dsm"]

@@ -148,8 +148,11 @@ def _cmd_simulate(args):
 
     import numpy as np
 
+    from .constants import DOF_NAMES
     from .errors import InvalidParameterError
-    from .lumped import LumpedMassModel, SlackSegmentWarning, simulate
+    from .eigen import eigenfrequencies
+    from .ladder import build_model
+    from .lumped import SlackSegmentWarning, simulate
     from .scenes import load_scene
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
@@ -172,8 +175,7 @@ def _cmd_simulate(args):
             f"cable length)\n")
     else:
         offset = np.zeros(6)
-        fd = [k for k, n in enumerate(("x", "y", "z", "rx", "ry", "rz"))
-              if n in scene.robot.platform.free_dofs]
+        fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
         if args.offset is not None:
             if len(args.offset) != 6:
                 raise InvalidParameterError(
@@ -182,13 +184,12 @@ def _cmd_simulate(args):
             offset = np.array(args.offset)
         else:
             offset[fd[0]] = 1e-3
-        model = LumpedMassModel(scene.robot, eq.unstretched_lengths, args.segments)
-        model.equilibrium(initial_pose=eq.pose)
+        model = build_model(eq, "lumped", segments=args.segments)
         resp = simulate(model, args.time, args.dt, initial=offset)
         df = resp.to_frame().reset_index()
-        ch = args.channel or ("x", "y", "z", "rx", "ry", "rz")[fd[0]]
+        ch = args.channel or DOF_NAMES[fd[0]]
         sp = resp.spectrum(ch)
-        f_model = model.eigenfrequencies(fmax_hz=sp.freq_hz[-1] * 0.5)
+        f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
         if args.band is not None:
             band = tuple(args.band)
             if not 0 <= band[0] < band[1]:
@@ -232,37 +233,29 @@ def _cmd_scenes(args):
 
 def _cmd_modes(args):
     import numpy as np
-    import pandas as pd
 
-    from .assembly import FrequencyModel
+    from .eigen import modes
     from .errors import InvalidParameterError
+    from .ladder import build_model
     from .scenes import load_scene
     if args.segments < 1:
         raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
     n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    if args.model == "dsm":
-        df = FrequencyModel(eq).modes(n_modes=n, fmax_hz=args.fmax).to_frame()
-    elif args.model == "lumped":
-        from .ladder import build_model
-        lm = build_model(eq, "lumped", segments=args.segments)
-        if n is None:
-            n = len(lm.eigenfrequencies(fmax_hz=args.fmax))
-        elif args.fmax:
-            n = min(n, len(lm.eigenfrequencies(n_modes=n, fmax_hz=args.fmax)))
-        if n == 0:
-            raise InvalidParameterError(f"no lumped-model mode below --fmax {args.fmax} Hz")
-        df = lm.modes(n).to_frame()
-    else:
-        # massless cables: only the platform's modes, all global
-        from .ladder import build_model
-        f = build_model(eq, args.model).eigenfrequencies(n_modes=n, fmax_hz=args.fmax)
-        df = pd.DataFrame({"mode": np.arange(1, f.size + 1), "freq [Hz]": f,
-                           "kind": "global", "cable energy fraction [-]": 0.0})
+    model = build_model(eq, args.model, segments=args.segments)
+    note = ""
+    if hasattr(model, "matrices") and n is not None and n > model.n_dof:
+        note = f" (it has {model.n_dof} modes; {n} asked)"
+        n = model.n_dof
+    res = modes(model, n_modes=n, fmax_hz=args.fmax)
+    if len(res) == 0:
+        raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
+    df = res.to_frame()
     sys.stdout.write(f"{args.model} model")
-    sys.stdout.write(f", {args.segments} segments per cable:\n" if args.model == "lumped"
-                     else ":\n")
+    sys.stdout.write(f", {args.segments} segments per cable" if args.model == "lumped"
+                     else "")
+    sys.stdout.write(f"{note}:\n")
     if args.csv:
         df.to_csv(args.csv, index=False)
     if args.json:
@@ -287,6 +280,8 @@ def _cmd_frf(args):
     import numpy as np
 
     from .assembly import FrequencyModel
+    from .eigen import modes
+    from .frf import frf
     from .scenes import load_scene
     scene = load_scene(args.scene)
     model = FrequencyModel(_equilibrium(scene, args))
@@ -295,8 +290,8 @@ def _cmd_frf(args):
         from .errors import InvalidParameterError
         raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got {lo} {hi}")
     f = np.linspace(lo, hi, args.points)
-    res = model.frf(2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
-                    kind=args.kind)
+    res = frf(model, 2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
+              kind=args.kind)
     df = res.to_frame()
     if args.csv:
         df.to_csv(args.csv, index=False)
@@ -304,8 +299,7 @@ def _cmd_frf(args):
         import matplotlib
         matplotlib.use("Agg")
         from .plot import plot_frf
-        modes = model.modes(fmax_hz=hi)
-        fig = plot_frf(res, modes, pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig = plot_frf(res, modes(model, fmax_hz=hi), pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])

@@ -2,3 +2,11 @@
 
 #: Standard gravity [m/s^2]. Passed explicitly to every function that needs gravity.
 STANDARD_GRAVITY = 9.81
+
+#: Names of the six platform degrees of freedom, in the order used everywhere: translations
+#: of the reference point P [m], then the small rotation vector [rad] (base axes).
+DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
+
+#: Load channels on the platform, paired with ``DOF_NAMES``: forces [N] and moments [N m]
+#: about P (base axes).
+LOAD_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")

@@ -46,6 +46,8 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
 
     from .assembly import FrequencyModel
     from .checks import design_checks
+    from .eigen import modes as modal
+    from .frf import frf
     from .plot import plot_frf
     from .plot3d import plot_robot
     from .recommend import recommend_model
@@ -57,7 +59,7 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
     forbidden_hz = tuple(forbidden_hz or scene.forbidden_band_hz or (0.0, 1.5))
     eq = scene.equilibrium()
     model = FrequencyModel(eq)
-    modes = model.modes(n_modes)
+    modes = modal(model, n_modes=n_modes)
     files = []
 
     def save_csv(df, name):
@@ -75,11 +77,11 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
     f = np.linspace(band[0], band[1], n_points)
     inputs = [c for c in ("fx", "fz") if c[1] in eq.robot.platform.free_dofs]
     outputs = [c[1] for c in inputs]
-    frf = model.frf(2 * np.pi * f, inputs=inputs or None, outputs=outputs or None)
-    save_csv(frf.to_frame(), "frf.csv")
+    response = frf(model, 2 * np.pi * f, inputs=inputs or None, outputs=outputs or None)
+    save_csv(response.to_frame(), "frf.csv")
     # mark every mode of the FRF band, also those beyond the table's n_modes
-    marks = modes if modes.freq_hz[-1] >= band[1] else model.modes(fmax_hz=band[1])
-    fig = plot_frf(frf, marks, phase=True)
+    marks = modes if modes.freq_hz[-1] >= band[1] else modal(model, fmax_hz=band[1])
+    fig = plot_frf(response, marks, phase=True)
     fig.savefig(out / "frf.png", dpi=120, bbox_inches="tight")
     plt.close(fig)
     files.append(out / "frf.png")

@@ -9,6 +9,7 @@ __all__ = [
     "InvalidParameterError",
     "ConvergenceError",
     "SlackCableError",
+    "UnsupportedAnalysisError",
     "PoleWarning",
 ]
 
@@ -31,6 +32,11 @@ class ConvergenceError(DynstiffError, RuntimeError):
 
 class SlackCableError(DynstiffError, ValueError):
     """A cable has no tensile equilibrium (it would be slack or compressed)."""
+
+
+class UnsupportedAnalysisError(DynstiffError, TypeError):
+    """The model's rung cannot answer this question (e.g. the cable displacement field of a
+    massless-cable model); the message names the rung and one that can."""
 
 
 class PoleWarning(RuntimeWarning):

@@ -6,21 +6,16 @@ d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
 """
 
 import warnings
-from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import omega_array, point as _point
+from ._validate import omega_array, point as validated_point
 from .errors import InvalidParameterError, PoleWarning
+from .model_base import require_model
 from .platform import skew
+from .results import INPUT_NAMES, OUTPUT_NAMES, RESPONSE_KINDS, FRFResult, response_factor
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
-
-#: Load channels: forces [N] and moments [N m] on the platform about P.
-INPUT_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")
-#: Response channels: translations [m] of the chosen point and rotations [rad].
-OUTPUT_NAMES = ("x", "y", "z", "rx", "ry", "rz")
-_KINDS = {"receptance": 0, "mobility": 1, "accelerance": 2}
 
 
 def _channels(names, allowed, arg):
@@ -60,7 +55,7 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     """
     ii = _channels(inputs, INPUT_NAMES, "inputs")
     oo = _channels(outputs, OUTPUT_NAMES, "outputs")
-    c = np.zeros(3) if point is None else _point("point", point)
+    c = np.zeros(3) if point is None else validated_point("point", point)
     C6 = np.eye(6)
     C6[:3, 3:] = -skew(rotation @ c)
     B = np.eye(6)[np.ix_(free_index, ii)]
@@ -82,64 +77,17 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     return (B, C, tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
 
 
-@dataclass(frozen=True)
-class FRFResult:
-    """FRF matrix H[k, o, i] from input channel i to output channel o at freq_hz[k].
-
-    Attributes
-    ----------
-    freq_hz : ndarray, shape (n,)
-    H : ndarray, shape (n, n_out, n_in), complex
-        Units: receptance [m/N, m/(N m), rad/N, rad/(N m)]; mobility per second; accelerance
-        per second squared. inf at an exact pole.
-    inputs, outputs : tuple of str
-    kind : str
-    """
-
-    freq_hz: np.ndarray
-    H: np.ndarray
-    inputs: tuple
-    outputs: tuple
-    kind: str
-
-    def unit(self, output, input):
-        """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
-        e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
-        (accelerance)."""
-        if output not in OUTPUT_NAMES or input not in INPUT_NAMES:
-            raise InvalidParameterError(
-                f"unit needs an output among {OUTPUT_NAMES} and an input among "
-                f"{INPUT_NAMES}, got {output!r}, {input!r}")
-        num = "m" if output in OUTPUT_NAMES[:3] else "rad"
-        den = ["N"] if input in INPUT_NAMES[:3] else ["N", "m"]
-        den += {"receptance": [], "mobility": ["s"], "accelerance": ["s^2"]}[self.kind]
-        return f"{num}/{den[0]}" if len(den) == 1 else f"{num}/({' '.join(den)})"
-
-    def to_frame(self):
-        """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
-        real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""
-        import pandas as pd
-        n, no, ni = self.H.shape
-        f = np.repeat(self.freq_hz, no * ni)
-        out = np.tile(np.repeat(self.outputs, ni), n)
-        inp = np.tile(self.inputs, n * no)
-        units = np.tile([self.unit(o, i) for o in self.outputs for i in self.inputs], n)
-        h = self.H.reshape(-1)
-        with np.errstate(invalid="ignore"):
-            return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
-                                 "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
-                                 "real": h.real, "imag": h.imag, "unit": units,
-                                 "kind": self.kind})
-
-
 def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
-    """FRFs of the robot platform.
+    """FRFs of the robot platform, for a model of any rung.
+
+    H(omega) = C K(omega)^-1 B with K(omega) = ``model.dynamic_stiffness(omega)`` on the free
+    DOFs (theory.md §4), batched over frequency.
 
     Parameters
     ----------
-    model : FrequencyModel
+    model : model of any rung (:mod:`dynstiff.model_base`)
     omega : array_like, shape (n,)
-        Angular frequencies [rad/s].
+        Angular frequencies [rad/s], >= 0.
     inputs : str or list of str, optional
         Among ``INPUT_NAMES`` (default all six). Loads on held DOFs give no response: in
         the default they are zero columns, named explicitly they raise.
@@ -148,6 +96,7 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     point : array_like, shape (3,), optional
         Platform point [m, platform frame] whose translation is output (default P).
     kind : {"receptance", "mobility", "accelerance"}
+        Mobility = i omega H, accelerance = -omega^2 H.
 
     Returns
     -------
@@ -159,10 +108,10 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
         At a frequency where K(omega) is exactly singular: those entries are inf, never a
         silently wrong finite number.
     """
+    require_model(model)
     omega = omega_array(omega)
-    if kind not in _KINDS:
-        raise InvalidParameterError(f"kind must be one of {tuple(_KINDS)}, got {kind!r}")
-    B, C, in_names, out_names = channel_maps(model._fi, model.equilibrium.pose.matrix,
+    factor = response_factor(omega, kind)
+    B, C, in_names, out_names = channel_maps(model.free_index, model.pose.matrix,
                                              inputs, outputs, point)
     K = model.dynamic_stiffness(omega).astype(complex)
     # a pole of a cable's K_B is a zero of H (anti-resonance), not a pole: evaluate exactly
@@ -186,8 +135,8 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
         warnings.warn(
             f"K(omega) is exactly singular at {singular.sum()} frequencies (eigenfrequencies, "
             f"e.g. {omega[singular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
-            PoleWarning, stacklevel=3)
-    factor = (1j * omega) ** _KINDS[kind]
-    H = H * factor[:, None, None] if kind != "receptance" else H
+            PoleWarning, stacklevel=2)
+    if kind != "receptance":
+        H = H * factor[:, None, None]
     return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
                      kind=kind)

@@ -32,9 +32,12 @@ from numbers import Integral
 import numpy as np
 
 from ._validate import positive_scalar
-from .assembly import FrequencyModel
+from .eigen import modes
 from .errors import DynstiffError, InvalidParameterError
-from .robot import Equilibrium, Robot, as_pose
+from .equilibrium import Equilibrium
+from .ladder import build_model
+from .pose import as_pose
+from .robot import Robot
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame", "SweepResult", "sweep"]
 
@@ -43,9 +46,12 @@ UNTRACKED = -1
 
 
 # ------------------------------------------------------------------------ proximity
-@dataclass(frozen=True)
-class ProximityWarning:
+class ProximityWarning(UserWarning):
     """A local (cable) mode close in frequency to a global (platform) mode.
+
+    A real :class:`Warning` (``warnings.warn(w)`` issues it; ``proximity_warnings(...,
+    warn=True)`` does so for every pair) that is also the record of the pair: equal when its
+    fields are.
 
     Attributes
     ----------
@@ -58,11 +64,30 @@ class ProximityWarning:
         |freq_local_hz - freq_global_hz| / freq_global_hz [-].
     """
 
-    global_mode: int
-    local_mode: int
-    freq_global_hz: float
-    freq_local_hz: float
-    relative_gap: float
+    _FIELDS = ("global_mode", "local_mode", "freq_global_hz", "freq_local_hz", "relative_gap")
+
+    def __init__(self, global_mode, local_mode, freq_global_hz, freq_local_hz, relative_gap):
+        super().__init__(
+            f"local mode {local_mode} ({freq_local_hz:.6g} Hz) is within "
+            f"{100 * relative_gap:.3g} % of global mode {global_mode} ({freq_global_hz:.6g} Hz)")
+        self.global_mode = int(global_mode)
+        self.local_mode = int(local_mode)
+        self.freq_global_hz = float(freq_global_hz)
+        self.freq_local_hz = float(freq_local_hz)
+        self.relative_gap = float(relative_gap)
+
+    def _key(self):
+        return tuple(getattr(self, f) for f in self._FIELDS)
+
+    def __eq__(self, other):
+        return isinstance(other, ProximityWarning) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
+    def __repr__(self):
+        return ("ProximityWarning(" + ", ".join(f"{f}={getattr(self, f)!r}" for f in self._FIELDS)
+                + ")")
 
 
 def _check_modes(modes):
@@ -80,7 +105,7 @@ def _check_modes(modes):
     return f, kind
 
 
-def proximity_warnings(modes, rtol=0.05):
+def proximity_warnings(modes, rtol=0.05, warn=False):
     """Local modes within a relative frequency gap of a global mode.
 
     A local cable mode near a global platform mode acts as a tuned absorber on it
@@ -96,9 +121,11 @@ def proximity_warnings(modes, rtol=0.05):
     Parameters
     ----------
     modes : ModalResult
-        From :meth:`FrequencyModel.modes`.
+        From :func:`dynstiff.eigen.modes`.
     rtol : float
         Largest relative gap [-], > 0 (default 0.05).
+    warn : bool
+        Also issue each pair as a :class:`ProximityWarning` (``warnings.warn``).
 
     Returns
     -------
@@ -125,6 +152,10 @@ def proximity_warnings(modes, rtol=0.05):
                                     freq_local_hz=float(f[il[b]]),
                                     relative_gap=float(gap[a, b])))
     out.sort(key=lambda w: (w.global_mode, w.relative_gap, w.local_mode))
+    if warn:
+        import warnings
+        for w in out:
+            warnings.warn(w, stacklevel=2)
     return out
 
 
@@ -211,6 +242,16 @@ class SweepResult:
 
     def __len__(self):
         return len(self.step)
+
+    def __repr__(self):
+        v = self.values
+        return (f"SweepResult({self.parameter} {v.min():.4g}..{v.max():.4g}, {self.n_steps} "
+                f"steps, {len(self)} modes, {self.n_tracks} global tracks)")
+
+    def plot(self, ax=None, show_local=True):
+        """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure."""
+        from .plot import plot_veering
+        return plot_veering(self, ax=ax, show_local=show_local)
 
     @property
     def n_steps(self):
@@ -352,7 +393,7 @@ def _check_sweep_args(robot, poses, parameter, values, build, n_modes, fmax_hz, 
 
 
 def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=None,
-          fmax_hz=None, progress=None, mac_min=0.5):
+          fmax_hz=None, progress=None, mac_min=0.5, rung="dsm", **model_options):
     """Modes along a path of poses or a parameter, global modes tracked from step to step.
 
     Two ways to call it:
@@ -364,8 +405,8 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         the :class:`Equilibrium` for each value (Young's modulus, tension level, platform
         mass, ...); ``robot`` is not used.
 
-    At each step the modes come from ``FrequencyModel(eq).modes(n_modes, fmax_hz)`` (complete
-    by Wittrick-Williams counting). Global modes are tracked: the global modes of a step are
+    At each step the modes come from ``modes(build_model(eq, rung, **model_options),
+    n_modes, fmax_hz)`` (for the default "dsm" rung, complete by Wittrick-Williams counting). Global modes are tracked: the global modes of a step are
     matched to the tracks of the previous step, then to older tracks missing at the previous
     step, by the largest total mass-weighted MAC of the platform shapes (Hungarian
     assignment), a pair counting only if MAC >= ``mac_min``; the rest start new tracks.
@@ -396,6 +437,10 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         ``progress(done, n_steps)``, called after each step (e.g. a progress bar).
     mac_min : float
         Least MAC, in (0, 1], for a global mode to continue a track (default 0.5).
+    rung : str
+        Model of every step, one of :data:`dynstiff.ladder.RUNGS` (default "dsm").
+    **model_options
+        Passed to :func:`dynstiff.ladder.build_model` (e.g. ``segments`` of "lumped").
 
     Returns
     -------
@@ -427,12 +472,13 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
                         f"value {values[k]!r}")
             else:
                 eq = robot.equilibrium(pose=poses[k])
-            model = FrequencyModel(eq)
-            res = model.modes(n_modes=n_modes, fmax_hz=fmax_hz)
+            model = build_model(eq, rung, **model_options)
+            res = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
         except DynstiffError as exc:
             exc.add_note(f"in sweep step {k} ({parameter} = {values[k]:g})")
             raise
-        M = model.M_p
+        M = np.zeros((6, 6))                     # M_p on all six DOFs (held ones 0)
+        M[np.ix_(model.free_index, model.free_index)] = model.platform_mass
         ig = np.flatnonzero(np.asarray(res.kind) == "global")
         X = res.platform_shapes[ig]
         # previous step's tracks first, then older dormant ones, then new tracks

@@ -9,19 +9,24 @@ rung        cable model                                                        m
 "lumped"    (d) lumped-mass chains with N segments per cable (theory.md §7)     global + local
 ==========  =================================================================  ==============
 
-Every model built by :func:`build_model` answers ``eigenfrequencies(n_modes=None,
-fmax_hz=None)`` [Hz] and ``frf(omega, inputs, outputs)`` (a :class:`dynstiff.frf.FRFResult`),
-and carries ``rung``. All share the platform, the geometric stiffness K_geo and gravity.
+:func:`build_model` returns the model of a rung: an immutable object with the fields and
+methods of :mod:`dynstiff.model_base`. The analyses are plain functions of a model, the same
+for every rung: :func:`dynstiff.frf.frf`, :func:`dynstiff.eigen.eigenfrequencies`,
+:func:`dynstiff.eigen.modes`, :func:`dynstiff.eigen.damped_modes`. All rungs share the
+platform, the geometric stiffness K_geo and gravity.
 """
 
+from numbers import Integral
+
 import numpy as np
-import scipy.linalg
 
 from ._validate import omega_array
 from .assembly import FrequencyModel
 from .errors import InvalidParameterError
-from .frf import FRFResult, channel_maps
-from .platform import lever_map, platform_mass_matrix
+from .lumped.linear_model import LumpedLinearModel
+from .lumped.robot_model import LumpedMassModel
+from .model_base import PlatformModel
+from .platform import lever_map
 from .robot import geometric_stiffness
 
 __all__ = ["RUNGS", "StaticCableModel", "build_model"]
@@ -30,7 +35,7 @@ __all__ = ["RUNGS", "StaticCableModel", "build_model"]
 RUNGS = ("spring", "catenary", "dsm", "lumped")
 
 
-class StaticCableModel:
+class StaticCableModel(PlatformModel):
     """Robot with massless cables: constant stiffness K = sum J^T K_i J + K_geo and mass M_p.
 
     Parameters
@@ -39,17 +44,28 @@ class StaticCableModel:
     stiffness : {"spring", "catenary"}
         "spring": straight elastic springs, K_i = (EA/L0) u u^T + (T/L)(I - u u^T) with u the
         chord direction and T the tension at B; "catenary": the exact elastic-catenary static
-        end stiffness of each cable (:attr:`CatenaryState.static_stiffness`).
+        end stiffness of each cable (:attr:`CatenaryState.end_stiffness`).
+
+    Attributes
+    ----------
+    rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
+        As every model (:mod:`dynstiff.model_base`); massless cables carry no damping, so
+        ``damped`` is False.
+    K : ndarray, shape (n_free, n_free)
+        Stiffness [N/m, N, N m/rad] (symmetric part).
+    n_dof : int
+        n_free: the platform is the only mass.
     """
 
     def __init__(self, equilibrium, stiffness="catenary"):
         if stiffness not in ("spring", "catenary"):
             raise InvalidParameterError(
                 f"stiffness must be 'spring' or 'catenary', got {stiffness!r}")
-        self.rung = stiffness
-        self.equilibrium = equilibrium
         robot, pose = equilibrium.robot, equilibrium.pose
-        fi = robot.platform.free_index
+        self._init_platform(robot, equilibrium, pose)
+        self.rung = stiffness
+        self.damped = False
+        fi = self.free_index
         K = np.zeros((6, 6))
         for i, (s, r) in enumerate(zip(equilibrium.states, equilibrium.lever_arms)):
             if stiffness == "spring":
@@ -58,40 +74,35 @@ class StaticCableModel:
                 Ki = (robot.cables[i].EA / s.unstretched_length * np.outer(u, u)
                       + s.tension_at_end / L * (np.eye(3) - np.outer(u, u)))
             else:
-                Ki = s.static_stiffness
+                Ki = s.end_stiffness
             J = lever_map(r)
             K += J.T @ Ki @ J
         K[3:, 3:] += geometric_stiffness(robot, pose, equilibrium.states)
         K = K[np.ix_(fi, fi)]
         self.K = 0.5 * (K + K.T)
-        self.M = platform_mass_matrix(robot.platform, pose.matrix)[np.ix_(fi, fi)]
-        self._fi = fi
+        self.n_dof = self.n_free
+        self._freeze()
 
-    def eigenfrequencies(self, n_modes=None, fmax_hz=None):
-        """Natural frequencies [Hz] (at most n_free), ascending."""
-        lam = scipy.linalg.eigh(self.K, self.M, eigvals_only=True)
-        f = np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi)
-        if fmax_hz is not None:
-            f = f[f < fmax_hz]
-        return f if n_modes is None else f[:n_modes]
+    def matrices(self):
+        """Stiffness and mass on the free DOFs, (K, M), each (n_free, n_free)."""
+        return self.K, self.platform_mass
 
-    def frf(self, omega, inputs=None, outputs=None, point=None):
-        """Receptance of the platform (see :func:`dynstiff.frf.frf` for the channels),
-        H of shape (n, n_out, n_in)."""
-        omega = omega_array(omega)
-        B, C, in_names, out_names = channel_maps(self._fi, self.equilibrium.pose.matrix,
-                                                 inputs, outputs, point)
-        D = self.K[None] - (omega**2)[:, None, None] * self.M[None]
-        H = C @ np.linalg.solve(D.astype(complex), np.broadcast_to(B, (omega.size,) + B.shape))
-        return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
-                         kind="receptance")
+    def dynamic_stiffness(self, omega):
+        """K - omega^2 M_p, shape (n_omega, n_free, n_free) [N/m, N, N m/rad]; omega [rad/s]
+        real >= 0 or complex."""
+        omega = omega_array(omega, complex_ok=True)
+        return self.K[None] - (omega**2)[:, None, None] * self.platform_mass[None]
 
+    def massless_stiffness(self):
+        """K itself (the cables are massless), shape (n_free, n_free)."""
+        return self.K.copy()
 
-class _DSMRung(FrequencyModel):
-    rung = "dsm"
+    def cable_energies(self, V):
+        """Massless cables hold no kinetic energy: zeros of shape (n_modes, n_cables)."""
+        return np.zeros((np.shape(V)[1], self.robot.n_cables))
 
 
-def build_model(equilibrium, rung, segments=30):
+def build_model(equilibrium, rung, segments=30, **options):
     """The model of rung ``rung`` for this equilibrium.
 
     Parameters
@@ -100,21 +111,32 @@ def build_model(equilibrium, rung, segments=30):
         From :meth:`Robot.equilibrium`.
     rung : {"spring", "catenary", "dsm", "lumped"}
     segments : int or sequence of int
-        Segments per cable of the "lumped" rung.
+        Segments per cable of the "lumped" rung (ignored by the others).
+    **options
+        "dsm": ``tension``, ``chordwise_inertia`` (:class:`FrequencyModel`); "lumped":
+        ``tol``, ``max_iter`` of its equilibrium (:meth:`LumpedMassModel.equilibrium`).
 
     Returns
     -------
-    StaticCableModel, FrequencyModel or LumpedMassModel (equilibrated), with ``.rung``.
+    StaticCableModel, FrequencyModel or LumpedLinearModel
+        Immutable, with ``.rung``. The lumped model is linearised about its own
+        equilibrium for the same unstretched lengths, started from ``equilibrium.pose``.
     """
+    allowed = {"dsm": ("tension", "chordwise_inertia"), "lumped": ("tol", "max_iter")}
+    unknown = sorted(set(options) - set(allowed.get(rung, ())))
+    if rung not in RUNGS:
+        raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
+    if unknown:
+        raise InvalidParameterError(
+            f"options {unknown} do not apply to rung {rung!r} (it takes "
+            f"{list(allowed.get(rung, ())) or 'none'})")
     if rung in ("spring", "catenary"):
         return StaticCableModel(equilibrium, rung)
     if rung == "dsm":
-        return _DSMRung(equilibrium)
-    if rung == "lumped":
-        from .lumped import LumpedMassModel
-        m = LumpedMassModel(equilibrium.robot, equilibrium.unstretched_lengths,
-                            segments=segments)
-        m.equilibrium(initial_pose=equilibrium.pose)
-        m.rung = "lumped"
-        return m
-    raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
+        return FrequencyModel(equilibrium, **options)
+    if isinstance(segments, Integral) and not isinstance(segments, bool) and segments < 1:
+        raise InvalidParameterError(f"segments must be >= 1, got {segments!r}")
+    mass_model = LumpedMassModel(equilibrium.robot, equilibrium.unstretched_lengths,
+                                 segments=segments)
+    state = mass_model.equilibrium(initial_pose=equilibrium.pose, **options)
+    return LumpedLinearModel(mass_model, state)

@@ -23,12 +23,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import positive_scalar
+from .constants import DOF_NAMES
 from .errors import InvalidParameterError
 
 __all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "rotation_matrix", "platform_mass_matrix"]
 
-#: Names of the six platform degrees of freedom, in the order used everywhere.
-DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
 
 
 def skew(a):

@@ -14,6 +14,9 @@ gid                 artist
 ``spectrum-<ch>``   amplitude of channel ``ch``, :func:`plot_spectrum`
 ``model-<name>``    point and annotation of a model, :func:`plot_speed_accuracy`
 ``pareto``          Pareto front (step line), :func:`plot_speed_accuracy`
+``modes-<kind>``    stems of the global / local modes, :func:`plot_modes`
+``damped-modes``    scatter of the damped roots, :func:`plot_damped_modes`
+``cable-<family>``  stems of one family of cable modes, :func:`plot_cable_modes`
 ==================  ===========================================================
 """
 
@@ -21,7 +24,8 @@ import numpy as np
 
 from .errors import InvalidParameterError
 
-__all__ = ["plot_frf", "plot_veering", "plot_spectrum", "plot_speed_accuracy"]
+__all__ = ["plot_frf", "plot_veering", "plot_spectrum", "plot_speed_accuracy", "plot_modes",
+           "plot_damped_modes", "plot_cable_modes"]
 
 _COLORS = {"global": "tab:red", "local": "tab:blue"}
 
@@ -147,6 +151,105 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
         ax_ph.set_yticks([-180, -90, 0, 90, 180])
         ax_ph.grid(True, alpha=0.3)
         fig.tight_layout()
+    return fig
+
+
+# ----------------------------------------------------------------------------- modes
+def plot_modes(modes, ax=None):
+    """Natural frequencies against the cables' share of the kinetic energy.
+
+    Parameters
+    ----------
+    modes : ModalResult
+        ``freq_hz`` (n,) [Hz], ``cable_energy_fraction`` (n,) [-], ``kind`` (n,).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Figure
+        One stem per mode, red (gid ``modes-global``) for global and blue (``modes-local``)
+        for local modes; the dashed line at 0.5 is the global/local threshold.
+    """
+    _require(modes, "modes", ("freq_hz", "cable_energy_fraction", "kind"), "ModalResult")
+    fig, ax = figure_axes(ax)
+    f = np.asarray(modes.freq_hz, dtype=float)
+    frac = np.asarray(modes.cable_energy_fraction, dtype=float)
+    kind = np.asarray(modes.kind)
+    for k in ("global", "local"):
+        sel = kind == k
+        if np.any(sel):
+            ax.vlines(f[sel], 0.0, frac[sel], color=_COLORS[k], lw=1.2, gid=f"modes-{k}",
+                      label=f"{k} ({int(sel.sum())})")
+            ax.plot(f[sel], frac[sel], "o", color=_COLORS[k], ms=3)
+    ax.axhline(0.5, color="0.5", lw=0.8, ls="--")
+    ax.set_ylim(0.0, 1.05)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("cable share of kinetic energy [-]")
+    ax.set_title(f"{len(f)} modes: global (platform holds most energy) and local")
+    if len(f):
+        ax.legend(loc="center right", fontsize=8)
+    return fig
+
+
+def plot_damped_modes(damped, ax=None):
+    """Damping ratio against damped natural frequency of the roots found.
+
+    Parameters
+    ----------
+    damped : DampedModes
+        ``freq_hz`` (n,) [Hz] and ``damping_ratio`` (n,) [-]; NaN entries (no root) are
+        left out.
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Figure
+        Scatter with gid ``damped-modes``.
+    """
+    _require(damped, "damped", ("freq_hz", "damping_ratio"), "DampedModes")
+    fig, ax = figure_axes(ax)
+    f = np.asarray(damped.freq_hz, dtype=float)
+    z = np.asarray(damped.damping_ratio, dtype=float)
+    ok = np.isfinite(f) & np.isfinite(z)
+    ax.plot(f[ok], 100.0 * z[ok], "o", color="tab:red", gid="damped-modes")
+    ax.set_xlabel("damped frequency [Hz]")
+    ax.set_ylabel("damping ratio [%]")
+    ax.set_title(f"damped roots: {int(ok.sum())} of {f.size} modes")
+    ax.grid(True, alpha=0.3)
+    return fig
+
+
+def plot_cable_modes(cable_modes, ax=None):
+    """Clamped-clamped natural frequencies of one cable, one row per family.
+
+    Parameters
+    ----------
+    cable_modes : CableModes
+        ``freq_hz`` (n,) [Hz], ``family`` (n,), ``order`` (n,).
+    ax : matplotlib Axes, optional
+
+    Returns
+    -------
+    matplotlib Figure
+        Stems per family (gid ``cable-<family>``, spaces as dashes), labelled by order.
+    """
+    _require(cable_modes, "cable_modes", ("freq_hz", "family", "order"), "CableModes")
+    fig, ax = figure_axes(ax, figsize=(8, 3))
+    f = np.asarray(cable_modes.freq_hz, dtype=float)
+    fam = np.asarray(cable_modes.family)
+    names = list(dict.fromkeys(fam.tolist()))
+    for row, name in enumerate(names):
+        sel = fam == name
+        ax.vlines(f[sel], row, row + 0.8, lw=1.5, color=f"C{row}",
+                  gid=f"cable-{name.replace(' ', '-')}", label=name)
+        for x, k in zip(f[sel], np.asarray(cable_modes.order)[sel]):
+            ax.annotate(str(k), (x, row + 0.82), ha="center", fontsize=7)
+    ax.set_yticks([])
+    ax.set_ylim(0.0, max(len(names), 1) + 0.2)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_title("clamped-clamped cable modes (the poles of its dynamic stiffness)")
+    if names:
+        ax.legend(loc="upper left", fontsize=8)
     return fig
 
 

@@ -22,7 +22,10 @@ from pathlib import Path
 import numpy as np
 
 from ._vec import cross
+from .assembly import FrequencyModel
+from .eigen import cable_fields
 from .errors import InvalidParameterError
+from .results import ModalResult
 
 __all__ = ["plot_robot", "animate_mode"]
 
@@ -133,10 +136,9 @@ def _check_eq(eq):
 
 
 def _check_mode(modes, mode):
-    from .eigen import ModalResult
     if not isinstance(modes, ModalResult):
         raise InvalidParameterError(
-            f"modes must be a dynstiff.ModalResult (from FrequencyModel.modes()), got "
+            f"modes must be a dynstiff.ModalResult (from dynstiff.modes(model)), got "
             f"{type(modes).__name__}")
     if mode is None:
         raise InvalidParameterError(
@@ -151,7 +153,6 @@ def _check_mode(modes, mode):
 
 
 def _check_model(model, eq, modes):
-    from .assembly import FrequencyModel
     if not isinstance(model, FrequencyModel):
         raise InvalidParameterError(
             f"model must be the dynstiff.FrequencyModel of the modes, got "
@@ -219,7 +220,6 @@ def _geometry(eq, modes, k, model, n_points, sag_scale):
     dB = x6[:3] + cross(x6[3:], r)
     disp = np.zeros_like(cables)
     if model is not None:
-        from .eigen import cable_fields
         _, field = cable_fields(model, modes, k, n_points)
         grid = np.linspace(0.0, 1.0, n_points)
         for i in range(len(eq.states)):
@@ -394,7 +394,7 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
     eq : Equilibrium
         Static equilibrium of the robot (``robot.equilibrium(...)``).
     modes : ModalResult, optional
-        From ``FrequencyModel(eq).modes(...)``; ``platform_shapes`` shape (n_modes, 6)
+        From ``dynstiff.modes(FrequencyModel(eq), ...)``; ``platform_shapes`` shape (n_modes, 6)
         [m, rad].
     mode : int, optional
         0-based index of the mode to draw (required with ``modes``); the title numbers modes
@@ -449,7 +449,7 @@ def animate_mode(eq, modes, mode, path, model=None, frames=24, scale=None, fps=1
     ----------
     eq : Equilibrium
     modes : ModalResult
-        From ``FrequencyModel(eq).modes(...)``.
+        From ``dynstiff.modes(FrequencyModel(eq), ...)``.
     mode : int
         0-based index of the mode.
     path : str or path-like

@@ -27,6 +27,7 @@ import numpy as np
 
 from .assembly import FrequencyModel
 from .cable_dsm import cable_mode_count, chord_parameters
+from .eigen import eigenfrequencies
 from .errors import InvalidParameterError
 from .ladder import RUNGS, StaticCableModel
 
@@ -58,6 +59,10 @@ class Recommendation:
     predicted_error: float
     errors: dict = field(default_factory=dict)
     estimates: dict = field(default_factory=dict)
+
+    def __repr__(self):
+        seg = f", {self.segments} segments" if self.segments else ""
+        return f"Recommendation({self.rung!r}{seg}, predicted error {self.predicted_error:.2e})"
 
     def text(self):
         """One-paragraph explanation."""
@@ -150,7 +155,7 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
         cat = StaticCableModel(equilibrium, "catenary")
         spr = StaticCableModel(equilibrium, "spring")
         import scipy.linalg
-        lam, X = scipy.linalg.eigh(cat.K, cat.M)
+        lam, X = scipy.linalg.eigh(cat.K, cat.platform_mass)
         w = np.sqrt(np.maximum(lam, 0.0))
         # first-order shift of every massless mode below 1.5 x the band top; a mode counts if
         # its shifted frequency lies in the band (heavy cables can pull one into it)
@@ -158,15 +163,15 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
         if np.any(sel):
             dsm = FrequencyModel(equilibrium)
             # cable part of the DSM robot matrix (it includes -omega^2 M_p) minus the static one
-            Kd = dsm.dynamic_stiffness(w[sel]).real + (w[sel] ** 2)[:, None, None] * cat.M
+            Kd = dsm.dynamic_stiffness(w[sel]).real + (w[sel] ** 2)[:, None, None] * cat.platform_mass
             dK = Kd - cat.K[None]
             Xs = X[:, sel]
             shift = (np.einsum("ik,kij,jk->k", Xs, dK, Xs)
-                     / (2 * w[sel] ** 2 * np.einsum("ik,ij,jk->k", Xs, cat.M, Xs)))
+                     / (2 * w[sel] ** 2 * np.einsum("ik,ij,jk->k", Xs, cat.platform_mass, Xs)))
             inband = w[sel] * (1 + np.minimum(shift, 0.0)) <= w_hi
         if np.any(sel) and np.any(inband):
             errors["catenary"] = float(np.abs(shift[inband]).max())
-            fs = spr.eigenfrequencies()[sel][inband]
+            fs = eigenfrequencies(spr, n_modes=spr.n_free)[sel][inband]
             fc = (w[sel] / (2 * np.pi))[inband]
             errors["spring"] = float(np.max(np.abs(fs / fc - 1))) + errors["catenary"]
         else:

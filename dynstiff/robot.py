@@ -10,65 +10,23 @@ Pose: ``position`` p [m] of the platform reference point P and ``rotation`` vect
 vector in the base frame, so dB_i = dp + dtheta x r_i with r_i = R_p b_i.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
+from . import _validate
 from ._validate import positive_scalar
 from ._vec import cross
 from .catenary import solve_catenary
 from .constants import STANDARD_GRAVITY
+from .equilibrium import Equilibrium
 from .errors import InvalidParameterError
 from .params import Cable
-from .platform import Platform, lever_map, rotation_matrix, skew
+from .platform import Platform, lever_map, skew
+from .pose import Pose, as_pose
+from .statics import forward_statics, inverse_statics
 
-__all__ = ["Robot", "Pose", "Equilibrium", "as_pose"]
-
-
-@dataclass(frozen=True)
-class Pose:
-    """Platform pose: position [m] of P and rotation vector [rad], both (3,)."""
-
-    position: np.ndarray
-    rotation: np.ndarray = field(default_factory=lambda: np.zeros(3))
-
-    def __post_init__(self):
-        for name in ("position", "rotation"):
-            v = np.asarray(getattr(self, name), dtype=float)
-            if v.shape != (3,) or not np.all(np.isfinite(v)):
-                raise InvalidParameterError(
-                    f"pose {name} must be 3 finite numbers, got {getattr(self, name)!r}")
-            object.__setattr__(self, name, v)
-
-    @property
-    def matrix(self):
-        """Rotation matrix R_p, shape (3, 3)."""
-        return rotation_matrix(self.rotation)
-
-    def as_vector(self):
-        """(x, y, z, rx, ry, rz), shape (6,)."""
-        return np.concatenate([self.position, self.rotation])
-
-    def moved(self, dx):
-        """Pose after the small motion dx = (dp, dtheta) (dtheta in the base frame)."""
-        from scipy.spatial.transform import Rotation
-        R = Rotation.from_rotvec(dx[3:]) * Rotation.from_rotvec(self.rotation)
-        return Pose(self.position + dx[:3], R.as_rotvec())
-
-
-def as_pose(pose):
-    """A :class:`Pose` from a Pose, (position, rotation), or 3 / 6 numbers."""
-    if isinstance(pose, Pose):
-        return pose
-    v = np.asarray(pose, dtype=float)
-    if v.shape == (3,):
-        return Pose(v)
-    if v.shape == (6,):
-        return Pose(v[:3], v[3:])
-    if isinstance(pose, (tuple, list)) and len(pose) == 2:
-        return Pose(*pose)
-    raise InvalidParameterError(
-        f"pose must be a Pose, (position, rotation), 3 or 6 numbers, got {pose!r}")
+__all__ = ["Robot", "Pose", "Equilibrium", "as_pose", "geometric_stiffness"]
 
 
 @dataclass(frozen=True)
@@ -140,12 +98,6 @@ class Robot:
         object.__setattr__(self, "g", g)
         object.__setattr__(self, "tension_limits", (t_min, t_max))
 
-    @classmethod
-    def from_toml(cls, path):
-        """Robot of a scene TOML file (see :mod:`dynstiff.scenes` for the format)."""
-        from .scenes import read_scene
-        return read_scene(path).robot
-
     @property
     def n_cables(self):
         """Number of cables."""
@@ -173,7 +125,7 @@ class Robot:
     def cable_states(self, pose, unstretched_lengths):
         """Elastic-catenary state of every cable at a pose, list of CatenaryState."""
         B, _ = self.attachment_points(pose)
-        L0 = _lengths(unstretched_lengths, self.n_cables)
+        L0 = _validate.unstretched_lengths(unstretched_lengths, self.n_cables)
         return [solve_catenary(self.anchors[i], B[i], L0[i], self.cables[i], self.g)
                 for i in range(self.n_cables)]
 
@@ -186,7 +138,7 @@ class Robot:
         w[3:] += cross(r, f).sum(axis=0)
         return w
 
-    def static_stiffness(self, pose, states, symmetric_part=False):
+    def platform_stiffness(self, pose, states, symmetric_part=False):
         """6x6 static stiffness -dW/dx of the platform about P [N/m, N, N m/rad].
 
         K = sum_i J_i^T K_i J_i + K_geo, J_i = [I, -[r_i]x], K_geo = [[0, 0], [0,
@@ -198,7 +150,7 @@ class Robot:
         K = np.zeros((6, 6))
         for ri, s in zip(r, states):
             J = lever_map(ri)
-            K += J.T @ s.static_stiffness @ J
+            K += J.T @ s.end_stiffness @ J
         K[3:, 3:] += geometric_stiffness(self, pose, states)
         return 0.5 * (K + K.T) if symmetric_part else K
 
@@ -231,13 +183,13 @@ class Robot:
         ------
         InvalidParameterError, SlackCableError, ConvergenceError
         """
-        from .statics import forward_statics, inverse_statics
         if (pose is None) == (unstretched_lengths is None):
             raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
         if pose is not None:
             return inverse_statics(self, as_pose(pose), tension_reference, tol,
                                    500 if max_iter is None else max_iter)
-        return forward_statics(self, _lengths(unstretched_lengths, self.n_cables),
+        return forward_statics(self, _validate.unstretched_lengths(unstretched_lengths,
+                                                                   self.n_cables),
                                None if initial_pose is None else as_pose(initial_pose), tol,
                                50 if max_iter is None else max_iter)
 
@@ -252,78 +204,3 @@ def geometric_stiffness(robot, pose, states):
     rG = pose.matrix @ robot.platform.center_of_mass
     Kg -= skew(robot.platform.mass * robot.gravity_vector) @ skew(rG)
     return Kg
-
-
-def _lengths(value, n):
-    L0 = np.asarray(value, dtype=float)
-    if L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
-        raise InvalidParameterError(
-            f"unstretched_lengths must be {n} finite positive lengths [m], got {value!r}")
-    return L0
-
-
-@dataclass(frozen=True)
-class Equilibrium:
-    """Static equilibrium of a robot.
-
-    Attributes
-    ----------
-    robot : Robot
-    pose : Pose
-    unstretched_lengths : ndarray, shape (n,) [m]
-    states : tuple of CatenaryState
-    residual : float
-        Norm of the free-DOF wrench residual relative to the platform weight [-].
-    """
-
-    robot: Robot
-    pose: Pose
-    unstretched_lengths: np.ndarray
-    states: tuple
-    residual: float
-
-    @property
-    def tensions(self):
-        """Tension at the platform end B of each cable [N], shape (n,)."""
-        return np.array([s.tension_at_end for s in self.states])
-
-    @property
-    def anchor_tensions(self):
-        """Tension at the anchor A of each cable [N], shape (n,)."""
-        return np.array([s.tension_at_anchor for s in self.states])
-
-    @property
-    def min_tensions(self):
-        """Least tension along each cable [N], shape (n,) (the lower end, or H where the
-        cable's lowest point lies between its ends)."""
-        return np.array([s.min_tension for s in self.states])
-
-    @property
-    def max_tensions(self):
-        """Largest tension along each cable [N], shape (n,)."""
-        return np.array([s.max_tension for s in self.states])
-
-    @property
-    def lever_arms(self):
-        """r_i = R_p b_i [m], shape (n, 3)."""
-        return self.robot.attachment_points(self.pose)[1]
-
-    def static_stiffness(self):
-        """6x6 static stiffness about P (all DOFs) [N/m, N, N m/rad]."""
-        return self.robot.static_stiffness(self.pose, self.states)
-
-    def to_frame(self):
-        """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2."""
-        import pandas as pd
-        return pd.DataFrame({
-            "cable": np.arange(self.robot.n_cables),
-            "tension at B [N]": self.tensions,
-            "tension at A [N]": self.anchor_tensions,
-            "unstretched length [m]": self.unstretched_lengths,
-            "chord length [m]": [s.chord_length for s in self.states],
-            "sag [m]": [s.sag for s in self.states],
-            "lambda^2 [-]": [s.lambda_sq for s in self.states],
-        })
-
-
-__all__ += ["geometric_stiffness"]

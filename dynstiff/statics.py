@@ -16,6 +16,8 @@ import numpy as np
 
 from ._vec import cross
 from .catenary import unstretched_length_for_tension
+from .equilibrium import Equilibrium
+from .pose import Pose
 from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
@@ -165,7 +167,6 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     -------
     Equilibrium
     """
-    from .robot import Equilibrium
     fi = robot.platform.free_index
     B, r = robot.attachment_points(pose)
     u = robot.anchors - B
@@ -226,7 +227,6 @@ def _kinematic_guess(robot, L0):
     """Pose guess: free DOFs fitted so that straight chords match L0 (least squares)."""
     from scipy.optimize import least_squares
 
-    from .robot import Pose
     fi = robot.platform.free_index
     x0 = np.zeros(6)
     x0[:3] = robot.anchors.mean(axis=0) - [0.0, 0.0, 0.5 * np.ptp(robot.anchors[:, 2]) + 1.0]
@@ -259,7 +259,6 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
         With the final residual, if Newton fails; :class:`SlackCableError` if a cable cannot
         be in tension.
     """
-    from .robot import Equilibrium
     fi = robot.platform.free_index
     held = set(range(6)) - set(fi.tolist())
     rotations_matter = (np.any(robot.attachments != 0)
@@ -281,7 +280,7 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
         if res <= tol:
             return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0,
                                states=tuple(states), residual=float(res))
-        K = robot.static_stiffness(pose, states)[np.ix_(fi, fi)]
+        K = robot.platform_stiffness(pose, states)[np.ix_(fi, fi)]
         try:
             dxf = np.linalg.solve(K, w)
         except np.linalg.LinAlgError:

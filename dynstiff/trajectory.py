@@ -20,7 +20,8 @@ import numpy as np
 
 from ._validate import positive_scalar
 from .errors import InvalidParameterError
-from .robot import Robot, as_pose
+from .pose import as_pose
+from .robot import Robot
 
 __all__ = ["Trajectory", "line", "circle", "quasi_static_lengths", "TrackingResult", "track"]
 
@@ -306,7 +307,8 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     -------
     TrackingResult
     """
-    from .lumped import LumpedMassModel, simulate
+    from .lumped.robot_model import LumpedMassModel
+    from .lumped.time_domain import simulate
     if not isinstance(trajectory, Trajectory):
         raise InvalidParameterError(
             f"trajectory must be a Trajectory, got {type(trajectory).__name__}")
@@ -333,7 +335,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     tol = max(1e-10, 50 * np.finfo(float).eps * EA / max(float(T.min()), 1e-300))
     eq0 = model.equilibrium(initial_pose=start, tol=tol)
     resp = simulate(model, trajectory.duration + settle, dt, lengths=commanded,
-                    tol=max(1e-9, tol),
+                    tol=max(1e-9, tol), start=eq0,
                     scheme=scheme, damping=damping, record_every=record_every)
     P, R = trajectory.at(resp.times)
     desired = np.hstack([P, R])

@@ -5,7 +5,7 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.lumped import chain_equilibrium, chain_matrices
+from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).
 COGIRO_AREA = 8.2051e-6
@@ -70,3 +70,10 @@ def lumped_point_mass_frequencies(eq, n_seg, n_modes=None, fmax_hz=None):
           else dict(subset_by_value=[-np.inf, (2 * np.pi * fmax_hz) ** 2]))
     lam = scipy.linalg.eigh(Kt, np.diag(Mt), eigvals_only=True, **kw)
     return np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi)
+
+
+def linearised(robot, unstretched_lengths, segments, **kw):
+    """The "lumped" rung: the lumped-mass robot linearised about its own equilibrium
+    (``kw`` go to :meth:`LumpedMassModel.equilibrium`)."""
+    m = LumpedMassModel(robot, unstretched_lengths, segments=segments)
+    return LumpedLinearModel(m, m.equilibrium(**kw))

@@ -89,7 +89,7 @@ def test_matches_moorpy(name, A, B, ratio):
                                         CB=-1e3, Tol=1e-12, MaxIter=500)
     # MoorPy: (fAH, fAV) force on A, (fBH, fBV) force on B in its plane
     np.testing.assert_allclose([s.H, s.V0, -s.Vb], [fAH, fAV, fBV], rtol=1e-8)
-    K = s.static_stiffness
+    K = s.end_stiffness
     if True:
         e_h = s.horizontal_direction
     K2 = np.array([[e_h @ K @ e_h, e_h @ K[:, 2]], [K[2] @ e_h, K[2, 2]]])
@@ -124,7 +124,7 @@ def test_mirror_symmetry():
     s1 = ds.solve_catenary(A, B, L0, cable)
     s2 = ds.solve_catenary(M @ A, M @ B, L0, cable)
     np.testing.assert_allclose(s2.force_on_end, M @ s1.force_on_end, rtol=1e-12, atol=1e-9)
-    np.testing.assert_allclose(s2.static_stiffness, M @ s1.static_stiffness @ M, rtol=1e-10,
+    np.testing.assert_allclose(s2.end_stiffness, M @ s1.end_stiffness @ M, rtol=1e-10,
                                atol=1e-9)
 
 
@@ -134,7 +134,7 @@ def test_static_stiffness_is_derivative_of_end_force(name, A, B, ratio):
     A, B = np.asarray(A, float), np.asarray(B, float)
     L0 = ratio * np.linalg.norm(B - A)
     s = ds.solve_catenary(A, B, L0, cable)
-    K = s.static_stiffness
+    K = s.end_stiffness
     assert np.allclose(K, K.T)
     assert np.all(np.linalg.eigvalsh(K) > 0)
     h = 1e-7 * np.linalg.norm(B - A)     # central differences, truncation error O(h^2)
@@ -156,16 +156,16 @@ def test_vertical_limit_is_continuous():
         sv = ds.solve_catenary(A, B, L0, cable)
         sn = ds.solve_catenary(A, B + [1e-7, 0, 0], L0, cable)
         assert sv.H == 0.0
-        np.testing.assert_allclose(sn.static_stiffness, sv.static_stiffness, rtol=1e-6,
-                                   atol=1e-6 * sv.static_stiffness.max())
+        np.testing.assert_allclose(sn.end_stiffness, sv.end_stiffness, rtol=1e-6,
+                                   atol=1e-6 * sv.end_stiffness.max())
         np.testing.assert_allclose(sn.force_on_end, sv.force_on_end, rtol=1e-6, atol=1e-3)
         # straight hanging cable: lateral stiffness 1 / int ds/T (exact), vertical EA/L0
         w0 = cable.mass_per_length * G
         Ts = np.linspace(sv.tension_at_anchor, sv.tension_at_end, 20001)
         lateral = 1.0 / (L0 / cable.EA + np.trapezoid(1.0 / Ts, Ts) / w0 * np.sign(
             sv.tension_at_end - sv.tension_at_anchor))
-        assert sv.static_stiffness[0, 0] == pytest.approx(lateral, rel=1e-7)
-        assert sv.static_stiffness[2, 2] == pytest.approx(cable.EA / L0, rel=1e-12)
+        assert sv.end_stiffness[0, 0] == pytest.approx(lateral, rel=1e-7)
+        assert sv.end_stiffness[2, 2] == pytest.approx(cable.EA / L0, rel=1e-12)
 
 
 def test_weightless_cable_is_straight_spring():
@@ -176,7 +176,7 @@ def test_weightless_cable_is_straight_spring():
     np.testing.assert_allclose(s.force_on_end, -T * B / 5.0, rtol=1e-13)
     u = B / 5
     np.testing.assert_allclose(
-        s.static_stiffness, cable.EA / 4.99 * np.outer(u, u) + T / 5.0 * (np.eye(3) - np.outer(u, u)),
+        s.end_stiffness, cable.EA / 4.99 * np.outer(u, u) + T / 5.0 * (np.eye(3) - np.outer(u, u)),
         rtol=1e-12, atol=1e-9)
 
 

@@ -17,7 +17,7 @@ def rows_by_name(res):
 
 def test_checks_pass_and_fail_on_cogiro():
     scene = ds.load_scene("cogiro")
-    f = ds.FrequencyModel(scene.equilibrium()).modes(40)
+    f = ds.modes(ds.FrequencyModel(scene.equilibrium()), 40)
     fg = f.freq_hz[np.array(f.kind) == "global"]
     ok = design_checks(scene.robot, scene.pose, band_hz=(0.5, 0.9 * fg[0] / 1.05))
     assert ok.passed
@@ -40,7 +40,7 @@ def test_proximity_check_at_stiff_cables():
     r0 = scene.robot
     rob = ds.Robot(r0.anchors, r0.attachments, ds.Cable(0.064, 8.2051e-6 * 120e9), r0.platform,
                    tension_limits=r0.tension_limits)
-    m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose)).modes(40)
+    m = ds.modes(ds.FrequencyModel(rob.equilibrium(pose=scene.pose)), 40)
     warns = ds.proximity_warnings(m, rtol=0.02)
     res = rows_by_name(design_checks(rob, scene.pose, band_hz=(0.1, 7.0), proximity_rtol=0.02))
     assert res["local modes near global modes"]["passed"] == (len(
@@ -63,7 +63,7 @@ def test_band_below_every_mode_passes(cogiro):
     rob = cogiro.robot
     stiff = ds.Robot(rob.anchors, rob.attachments, ds.Cable(0.064, 8.2051e-6 * 120e9),
                      rob.platform, tension_limits=rob.tension_limits)
-    f1 = ds.FrequencyModel(stiff.equilibrium(pose=cogiro.pose)).eigenfrequencies(1)[0]
+    f1 = ds.eigenfrequencies(ds.FrequencyModel(stiff.equilibrium(pose=cogiro.pose)), 1)[0]
     res = rows_by_name(design_checks(stiff, cogiro.pose, band_hz=(0.4 * f1, 0.6 * f1)))
     assert res["global modes outside band"]["passed"]
     assert res["local modes near global modes"]["passed"]

@@ -5,7 +5,8 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.eigen import cable_fields, damped_modes
+from dynstiff.damped import damped_modes
+from dynstiff.eigen import cable_fields
 
 
 @pytest.fixture(scope="module")
@@ -61,7 +62,7 @@ def test_viscous_damping_gives_decaying_modes(scene):
     m = ds.FrequencyModel(robot_with(scene, viscous_damping=0.02).equilibrium(pose=scene.pose))
     d = damped_modes(m, 24)
     ok = np.isfinite(d.omega)
-    glob = np.array(m.modes(24).kind) == "global"
+    glob = np.array(ds.modes(m, 24).kind) == "global"
     assert glob.sum() == 6 and np.all(ok[glob])      # every global mode is found
     # overlapping local modes (spacing ~ their damping) are NaN, never a wrong root
     assert len(set(np.round(d.omega[ok], 9))) == ok.sum()
@@ -72,7 +73,7 @@ def test_viscous_damping_gives_decaying_modes(scene):
 
 def test_cable_fields_are_continuous_with_the_platform(scene):
     m = ds.FrequencyModel(scene.equilibrium())
-    modes = m.modes(6)
+    modes = ds.modes(m, 6)
     for k in np.flatnonzero(np.array(modes.kind) == "global")[:2]:
         pos, disp = cable_fields(m, modes, k)
         x6 = modes.platform_shapes[k]

@@ -30,13 +30,13 @@ def cogiro_with_E(scene, E):
 @pytest.fixture(scope="module")
 def modes120(scene):
     rob = cogiro_with_E(scene, 120e9)
-    return ds.FrequencyModel(rob.equilibrium(pose=scene.pose)).modes(40)
+    return ds.modes(ds.FrequencyModel(rob.equilibrium(pose=scene.pose)), 40)
 
 
 def massless_frequencies(eq):
     """The 6 frequencies [Hz] of the massless-cable model K_0 (theory.md §6), ascending."""
     m = ds.FrequencyModel(eq)
-    lam = scipy.linalg.eigh(m.massless_stiffness(), m._M, eigvals_only=True)
+    lam = scipy.linalg.eigh(m.massless_stiffness(), m.platform_mass, eigvals_only=True)
     return np.sqrt(lam) / (2 * np.pi)
 
 
@@ -132,7 +132,7 @@ def test_path_sweep_table(scene, path_sweep):
         assert (rows["value"] == res.values[k]).all()
         assert list(rows["mode"]) == list(range(1, len(rows) + 1))
         eq = scene.robot.equilibrium(pose=pose)
-        f = ds.FrequencyModel(eq).eigenfrequencies(fmax_hz=5.5)
+        f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=5.5)
         np.testing.assert_allclose(rows["freq [Hz]"].to_numpy(), f, rtol=1e-12)
         np.testing.assert_array_equal(res.modal[k].freq_hz, rows["freq [Hz]"].to_numpy())
     # local modes carry no track, global ones do, one mode per track and step
@@ -254,3 +254,20 @@ def test_sweep_names_the_failing_step():
     with pytest.raises(SlackCableError) as exc:
         sweep(small_robot(), poses=[[0, 0, 1.0], [9.0, 0, 1.0]], n_modes=3)
     assert any("sweep step 1" in note for note in exc.value.__notes__)
+
+
+def test_proximity_warnings_are_real_warnings(modes120):
+    """Each pair is a UserWarning (it can be issued, filtered, turned into an error) that
+    still compares by value as a record."""
+    import warnings
+    pairs = proximity_warnings(modes120, rtol=0.01)
+    assert pairs and all(isinstance(w, UserWarning) for w in pairs)
+    again = proximity_warnings(modes120, rtol=0.01)
+    assert pairs == again and len(set(pairs) | set(again)) == len(pairs)
+    with pytest.warns(ProximityWarning, match="local mode") as record:
+        proximity_warnings(modes120, rtol=0.01, warn=True)
+    assert [r.message for r in record] == pairs
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ProximityWarning)
+        with pytest.raises(ProximityWarning):
+            proximity_warnings(modes120, rtol=0.01, warn=True)

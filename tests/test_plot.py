@@ -39,7 +39,7 @@ def cogiro_model(cogiro_eq):
 
 @pytest.fixture(scope="module")
 def cogiro_modes(cogiro_model):
-    return cogiro_model.modes(8)
+    return ds.modes(cogiro_model, 8)
 
 
 @pytest.fixture(scope="module")
@@ -60,7 +60,7 @@ def line(ax, gid):
 # ------------------------------------------------------------------------------- FRF
 def test_frf_marks_band_modes_and_draws_phase(cogiro_model, cogiro_modes):
     band = (0.5, 3.3)
-    res = cogiro_model.frf(2 * np.pi * np.linspace(*band, 600), inputs=["fz", "fx"],
+    res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(*band, 600), inputs=["fz", "fx"],
                            outputs=["z", "x"])
     fig = plot_frf(res, cogiro_modes, phase=True)
     mag, ph = fig.axes
@@ -84,7 +84,7 @@ def test_frf_marks_band_modes_and_draws_phase(cogiro_model, cogiro_modes):
 
 
 def test_frf_honours_ax_and_rejects_bad_input(cogiro_model, cogiro_modes):
-    res = cogiro_model.frf(2 * np.pi * np.linspace(1.0, 2.0, 50), inputs=["fz"],
+    res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(1.0, 2.0, 50), inputs=["fz"],
                            outputs=["z"])
     fig0, ax = plt.subplots()
     fig = plot_frf(res, cogiro_modes, ax=ax, phase=True)      # ax given: magnitude only
@@ -191,7 +191,7 @@ def test_spectrum_of_a_simulation_marks_model_modes():
     m = LumpedMassModel(rob, eq.unstretched_lengths, segments=3)
     m.equilibrium()
     run = simulate(m, 2.0, 0.01, initial=[1e-3, 0.0, 2e-3, 0.0, 0.0, 0.0])
-    modes = ds.FrequencyModel(eq).modes(4)
+    modes = ds.modes(ds.FrequencyModel(eq), 4)
     fig = plot_spectrum(run, channels=["z"], modes=modes, band_hz=(0.0, 10.0))
     ax = fig.axes[0]
     assert [c.get_gid() for c in by_gid(ax, "spectrum-")] == ["spectrum-z"]

@@ -30,11 +30,11 @@ def cable_f1(eq):
 
 def actual_errors(eq, band, segments=None):
     ref = ms.reference_frequencies(eq, band[1] * 1.5)
-    out = {r: ms.band_error(ds.build_model(eq, r).eigenfrequencies(fmax_hz=band[1] * 1.5), ref,
+    out = {r: ms.band_error(ds.eigenfrequencies(ds.build_model(eq, r), fmax_hz=band[1] * 1.5), ref,
                             band) for r in ("spring", "catenary", "dsm")}
     if segments:
         out["lumped"] = ms.band_error(
-            ds.build_model(eq, "lumped", segments).eigenfrequencies(fmax_hz=band[1] * 1.5), ref,
+            ds.eigenfrequencies(ds.build_model(eq, "lumped", segments), fmax_hz=band[1] * 1.5), ref,
             band)
     return out
 

@@ -70,7 +70,7 @@ def test_massless_limit_matches_straight_cable_model(cogiro):
                      ds.Cable(1e-7, cogiro.robot.cables[0].EA), cogiro.robot.platform,
                      tension_limits=cogiro.robot.tension_limits)
     eq = light.equilibrium(pose=cogiro.pose)
-    f = ds.FrequencyModel(eq).eigenfrequencies(6)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 6)
     np.testing.assert_allclose(f, straight_cable_frequencies(eq), rtol=1e-6)
 
 
@@ -91,7 +91,7 @@ def test_inverse_then_forward_statics_round_trip(cogiro, cogiro_eq):
 
 def test_receptance_is_symmetric(cogiro_eq):
     m = ds.FrequencyModel(cogiro_eq)
-    H = m.frf(2 * np.pi * np.linspace(0.2, 10, 200)).H
+    H = ds.frf(m, 2 * np.pi * np.linspace(0.2, 10, 200)).H
     np.testing.assert_allclose(H, H.transpose(0, 2, 1), rtol=1e-8, atol=1e-12 * np.abs(H).max())
 
 
@@ -106,10 +106,10 @@ def rotated_robot(rob, pose, phi):
 
 
 def test_rotating_robot_with_gravity_leaves_frequencies(cogiro, cogiro_eq):
-    f = ds.FrequencyModel(cogiro_eq).eigenfrequencies(12)
+    f = ds.eigenfrequencies(ds.FrequencyModel(cogiro_eq), 12)
     rob, pose = rotated_robot(cogiro.robot, cogiro.pose, 0.7)
     eq = rob.equilibrium(pose=pose)
-    np.testing.assert_allclose(ds.FrequencyModel(eq).eigenfrequencies(12), f, rtol=1e-9)
+    np.testing.assert_allclose(ds.eigenfrequencies(ds.FrequencyModel(eq), 12), f, rtol=1e-9)
 
 
 def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
@@ -119,8 +119,8 @@ def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
     rob = ds.Robot(cogiro.robot.anchors @ Mx, cogiro.robot.attachments @ Mx, cogiro.robot.cables,
                    pm, tension_limits=cogiro.robot.tension_limits)
     eq = rob.equilibrium(pose=Mx @ cogiro.pose.position)
-    a = ds.FrequencyModel(cogiro_eq).modes(8)
-    b = ds.FrequencyModel(eq).modes(8)
+    a = ds.modes(ds.FrequencyModel(cogiro_eq), 8)
+    b = ds.modes(ds.FrequencyModel(eq), 8)
     np.testing.assert_allclose(b.freq_hz, a.freq_hz, rtol=1e-9)
     # translation mirrors with Mx, rotation (axial vector) with -Mx
     T = np.diag([-1.0, 1, 1, 1, -1, -1])
@@ -134,13 +134,13 @@ def test_wittrick_williams_count_equals_lumped_model_count():
     rob = point_mass_robot()
     eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])
     m = ds.FrequencyModel(eq)
-    f = m.eigenfrequencies(30)
+    f = ds.eigenfrequencies(m, 30)
     f_lumped = lumped_point_mass_frequencies(eq, 80, n_modes=30)
     # same number of modes below every probe frequency away from any mode
     probes = np.linspace(0.5, 0.97 * f[-1], 400)
     gap = np.min(np.abs(probes[:, None] / np.concatenate([f, f_lumped])[None, :] - 1), axis=1)
     probes = probes[gap > 0.004]
-    J = m.mode_count(2 * np.pi * probes)
+    J = ds.mode_count(m, 2 * np.pi * probes)
     J_lumped = np.searchsorted(f_lumped, probes)
     np.testing.assert_array_equal(J, J_lumped)
     np.testing.assert_allclose(f, f_lumped, rtol=3e-3)   # discretisation O((n pi/N)^2/24)
@@ -153,10 +153,10 @@ def test_close_and_coincident_roots_are_found():
     rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
                    ds.Platform(20.0, free_dofs=("x", "y", "z")))
     eq = rob.equilibrium(pose=[0, 0, 1.0])
-    f = ds.FrequencyModel(eq).eigenfrequencies(26)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 26)
     pairs = np.sum(np.abs(np.diff(f)) < 1e-6 * f[1:])
     assert pairs >= 3                                      # coincident roots resolved
-    J = ds.FrequencyModel(eq).mode_count(2 * np.pi * f[:20] * (1 + 1e-7))
+    J = ds.mode_count(ds.FrequencyModel(eq), 2 * np.pi * f[:20] * (1 + 1e-7))
     np.testing.assert_array_equal(J, [np.sum(f <= fk * (1 + 1e-9)) for fk in f[:20]])
 
 
@@ -166,26 +166,31 @@ def test_frf_peaks_sit_at_eigenfrequencies(cogiro):
                      cogiro.robot.platform, tension_limits=cogiro.robot.tension_limits)
     eq = light.equilibrium(pose=cogiro.pose)
     m = ds.FrequencyModel(eq)
-    modes = m.modes(3)
+    modes = ds.modes(m, 3)
     f1 = modes.freq_hz[0]
     f = np.linspace(0.9 * f1, 1.1 * f1, 20001)
-    H = m.frf(2 * np.pi * f).H
+    H = ds.frf(m, 2 * np.pi * f).H
     amp = np.abs(H).max(axis=(1, 2))
     assert f[np.argmax(amp)] == pytest.approx(f1, rel=2e-4)
 
 
-def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq, monkeypatch):
-    m = ds.FrequencyModel(cogiro_eq)
-    orig = m.dynamic_stiffness
+def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq):
+    class Singular:
+        """The closed-form model with an exactly singular K at the first frequency."""
 
-    def singular(omega):
-        K = orig(omega)
-        K[0] = 0.0            # an exactly singular K at the first frequency
-        return K
+        def __init__(self, model):
+            self.model = model
 
-    monkeypatch.setattr(m, "dynamic_stiffness", singular)
+        def __getattr__(self, name):
+            return getattr(self.model, name)
+
+        def dynamic_stiffness(self, omega):
+            K = self.model.dynamic_stiffness(omega)
+            K[0] = 0.0
+            return K
+
     with pytest.warns(PoleWarning):
-        H = m.frf([1.0, 2.0]).H
+        H = ds.frf(Singular(ds.FrequencyModel(cogiro_eq)), [1.0, 2.0]).H
     assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
 
 
@@ -219,11 +224,11 @@ def test_pose_outside_workspace_raises(cogiro):
      None),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
-    text = (ds.scenes.loader._HERE / "cogiro.toml").read_text().replace(*edit)
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)
     p = tmp_path / "bad.toml"
     p.write_text(text)
     with pytest.raises(ds.SceneError, match=key) as exc:
-        ds.Robot.from_toml(p)
+        ds.load_scene(p).robot
     if line is not None:
         assert f"line {line}" in str(exc.value)
     else:
@@ -232,7 +237,7 @@ def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
 
 def test_scene_loads_by_name_and_path(cogiro):
     assert "cogiro" in ds.list_scenes()
-    r = ds.Robot.from_toml(ds.scenes.loader._HERE / "cogiro.toml")
+    r = ds.load_scene(ds.scenes.loader.SCENE_DIR / "cogiro.toml").robot
     np.testing.assert_array_equal(r.anchors, cogiro.robot.anchors)
     with pytest.raises(ds.SceneError, match="unknown scene"):
         ds.load_scene("nope")
@@ -247,7 +252,7 @@ def test_close_pairs_are_found():
     rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
                    ds.Platform(20.0, free_dofs=("x", "y", "z")))
     m = ds.FrequencyModel(rob.equilibrium(pose=[0, 0, 1.0]))
-    f = m.eigenfrequencies(32)
+    f = ds.eigenfrequencies(m, 32)
     gaps = np.diff(f) / f[1:]
     close = np.flatnonzero((gaps > 0) & (gaps < 1e-4))
     close = close[close + 2 < len(f)]                      # the next mode up is known
@@ -257,11 +262,11 @@ def test_close_pairs_are_found():
         lo, hi = f[k] - 0.25 * (f[k + 1] - f[k]), f[k + 1] + 0.25 * (f[k + 1] - f[k])
         if hi >= f[k + 2] or (k > 0 and lo <= f[k - 1]):
             continue                                       # a third close root: tested below
-        np.testing.assert_array_equal(m.mode_count(2 * np.pi * np.array([lo, mid, hi])),
+        np.testing.assert_array_equal(ds.mode_count(m, 2 * np.pi * np.array([lo, mid, hi])),
                                       [k, k + 1, k + 2])
     # every computed root is a distinct step of the count, even in triplets 6e-7 apart
     between = 0.5 * (f[1:] + f[:-1])
-    np.testing.assert_array_equal(m.mode_count(2 * np.pi * between), np.arange(1, len(f)))
+    np.testing.assert_array_equal(ds.mode_count(m, 2 * np.pi * between), np.arange(1, len(f)))
 
 
 def test_forward_statics_with_held_dofs_needs_initial_pose(cogiro, cogiro_eq):
@@ -282,13 +287,13 @@ def test_forward_statics_with_held_dofs_needs_initial_pose(cogiro, cogiro_eq):
 @pytest.mark.parametrize("name", ["cogiro", "planar2", "sixcable", "fourcable"])
 def test_builtin_scenes_load_and_equilibrate(name):
     scene = ds.load_scene(name)
-    same = ds.Robot.from_toml(ds.scenes.loader._HERE / f"{name}.toml")
+    same = ds.load_scene(ds.scenes.loader.SCENE_DIR / f"{name}.toml").robot
     np.testing.assert_array_equal(same.anchors, scene.robot.anchors)
     eq = scene.equilibrium()
     assert eq.residual < 1e-9
     lo, hi = scene.band_hz
     assert np.all(eq.tensions >= scene.robot.tension_limits[0])
-    f = ds.FrequencyModel(eq).eigenfrequencies(fmax_hz=hi)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=hi)
     assert len(f) >= 1 and np.all(np.diff(f) >= 0)
 
 
@@ -299,8 +304,8 @@ def test_fourcable_needs_only_the_light_model():
     rec = ds.recommend_model(eq, (0.1, 20.0), 1e-2)
     assert rec.rung == "spring"
     assert rec.estimates["cable_f1_hz"] > 20.0 and rec.estimates["mass_ratio"] < 0.01
-    f_spring = ds.build_model(eq, "spring").eigenfrequencies(fmax_hz=20.0)
-    f_dsm = ds.build_model(eq, "dsm").eigenfrequencies(fmax_hz=20.0)
+    f_spring = ds.eigenfrequencies(ds.build_model(eq, "spring"), fmax_hz=20.0)
+    f_dsm = ds.eigenfrequencies(ds.build_model(eq, "dsm"), fmax_hz=20.0)
     np.testing.assert_allclose(f_spring, f_dsm, rtol=1e-2)
 
 
@@ -313,7 +318,7 @@ def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
     it gives the same robot, and its pose is a static equilibrium with sane tensions."""
     assert name in ds.list_scenes()
     by_name = ds.load_scene(name)
-    by_path = ds.load_scene(str(ds.scenes.loader._HERE / f"{name}.toml"))
+    by_path = ds.load_scene(str(ds.scenes.loader.SCENE_DIR / f"{name}.toml"))
     np.testing.assert_array_equal(by_name.robot.anchors, by_path.robot.anchors)
     eq = by_name.equilibrium()
     assert eq.residual < 1e-8
@@ -327,5 +332,21 @@ def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
         # (not at the platform end, which carries t_min + the hanging weight)
         assert eq.min_tensions.min() == pytest.approx(lo, rel=1e-9)
         assert eq.tensions.min() > lo + 10.0
-    f = ds.FrequencyModel(eq).eigenfrequencies(2)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 2)
     assert np.all(np.isfinite(f)) and np.all(f > 0)
+
+
+def test_each_stiffness_has_its_own_name(cogiro_eq):
+    """One name per quantity: the 3x3 end stiffness of one cable (CatenaryState.end_stiffness),
+    the 6x6 platform stiffness at a pose (Robot/Equilibrium.platform_stiffness) and a
+    model's massless_stiffness on its free DOFs; the catenary rung assembles the first
+    into the second."""
+    s = cogiro_eq.states[0]
+    assert s.end_stiffness.shape == (3, 3)
+    K6 = cogiro_eq.platform_stiffness()
+    np.testing.assert_allclose(
+        K6, cogiro_eq.robot.platform_stiffness(cogiro_eq.pose, cogiro_eq.states), rtol=0)
+    cat = ds.build_model(cogiro_eq, "catenary")
+    np.testing.assert_allclose(cat.massless_stiffness(), 0.5 * (K6 + K6.T), rtol=1e-12)
+    for obj in (s, cogiro_eq, cogiro_eq.robot, cat):
+        assert not hasattr(obj, "static_stiffness") and not hasattr(obj, "dof_names")

@@ -15,7 +15,7 @@ import pytest
 import scipy.special
 
 import dynstiff as ds
-from conftest import point_mass_robot
+from conftest import linearised, point_mass_robot
 from dynstiff.errors import InvalidParameterError, SlackCableError
 from dynstiff.lumped import (
     EnergyBalanceWarning,
@@ -44,8 +44,7 @@ def robot_model(lengths0):
 
     def get(N):
         if N not in cache:
-            m = LumpedMassModel(point_mass_robot(), lengths0, segments=N)
-            m.equilibrium()
+            m = linearised(point_mass_robot(), lengths0, N)
             cache[N] = m
         return cache[N]
     return get
@@ -57,8 +56,7 @@ def pendulum(free_dofs):
     pl = ds.Platform(10.0, center_of_mass=[0.0, 0.0, -0.5], inertia=np.diag([0.8, 0.6, 0.3]),
                      free_dofs=free_dofs)
     rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5), pl)
-    m = LumpedMassModel(rob, 0.999 * np.linalg.norm(anchors, axis=1), segments=2)
-    m.equilibrium(initial_pose=np.zeros(6))
+    m = linearised(rob, 0.999 * np.linalg.norm(anchors, axis=1), 2, initial_pose=np.zeros(6))
     return m
 
 
@@ -72,7 +70,7 @@ def test_free_vibration_peaks_land_on_the_eigenfrequencies(robot_model):
     r = simulate(m, T, dt, initial=[1e-4, -0.5e-4, 0.75e-4, 0, 0, 0],
                  damping=TimeDamping.rayleigh(0.005, 3.0, 6.0))
     assert isinstance(r, TimeResponse) and r.slack_steps == 0
-    modes = m.modes(40)
+    modes = ds.modes(m, 40)
     f = modes.freq_hz
     global_f = f[np.array(modes.kind) == "global"]
     global_f = global_f[global_f < 7.0]                       # 4.950, 5.288, 6.288 Hz
@@ -90,8 +88,8 @@ def test_free_vibration_peaks_land_on_the_eigenfrequencies(robot_model):
     found = np.concatenate(found)
     err_global = np.min(np.abs(global_f[:, None] - found[None, :]), axis=1)
     assert np.all(err_global < res)                         # measured <= 0.033 Hz
-    closed = ds.FrequencyModel(point_mass_robot().equilibrium(
-        unstretched_lengths=m.unstretched_lengths)).eigenfrequencies(12)
+    closed = ds.eigenfrequencies(ds.FrequencyModel(point_mass_robot().equilibrium(
+        unstretched_lengths=m.unstretched_lengths)), 12)
     err_closed = np.min(np.abs(global_f[:, None] - closed[None, :]), axis=1)
     assert np.all(err_closed < 0.1 * res)                   # the two models: <= 0.01 Hz
 
@@ -100,12 +98,11 @@ def test_cogiro_six_dof_spectrum_matches_global_modes():
     """6-DOF platform with rotations (CoGiRo, N = 4): the translation and rotation spectra
     peak on the lumped eigenfrequencies within 1/T."""
     scene = ds.load_scene("cogiro")
-    m = LumpedMassModel(scene.robot, scene.equilibrium().unstretched_lengths, segments=4)
-    m.equilibrium()
+    m = linearised(scene.robot, scene.equilibrium().unstretched_lengths, 4)
     T = 5.0
     r = simulate(m, T, 0.01, initial=[1e-4, -1e-4, 1e-4, 2e-4, -3e-4, 4e-4],
                  damping=TimeDamping.rayleigh(0.005, 2.0, 4.0))
-    modes = m.modes(40)
+    modes = ds.modes(m, 40)
     f = modes.freq_hz
     g = f[(np.array(modes.kind) == "global") & (f < 5.5)]   # 2.21 2.36 2.97 3.81 4.96 Hz
     peaks = np.concatenate([r.spectrum(c, threshold=0.05).peaks_hz
@@ -119,7 +116,7 @@ def test_cogiro_six_dof_spectrum_matches_global_modes():
 
 # ---------------------------------------------------------------------- energy
 def _energy_run(m, periods):
-    f1 = m.eigenfrequencies(1)[0]
+    f1 = ds.eigenfrequencies(m, 1)[0]
     T1 = 1.0 / f1
     return simulate(m, periods * T1, T1 / 20, initial=[1e-4, -0.5e-4, 0.75e-4, 0, 0, 0],
                     record_every=10)
@@ -168,8 +165,7 @@ def test_energy_balance_with_loads_and_damping(robot_model):
     robot = m.robot
     damped = ds.Robot(robot.anchors, robot.attachments,
                       ds.Cable(0.064, E17, viscous_damping=0.05), robot.platform)
-    md = LumpedMassModel(damped, m.unstretched_lengths, segments=5)
-    md.equilibrium()
+    md = linearised(damped, m.unstretched_lengths, 5)
 
     def push(t):
         return np.array([5.0 * np.sin(2 * np.pi * 3.0 * t), 0.0, 3.0 * np.cos(7.0 * t),
@@ -288,12 +284,12 @@ def test_winch_pay_out_then_reel_in(robot_model):
     assert np.max(np.abs(e.relative_residual)) < 1e-6
     assert e.winch_work.min() < -5.0                         # paying out gives energy back
     assert e.winch_work[-1] == pytest.approx(e.dissipated[-1], rel=1e-3)
-    z0 = m.state.pose.position[2]
+    z0 = m.pose.position[2]
     low = LumpedMassModel(m.robot, L0 + 0.02, segments=5).equilibrium().pose.position
     k = np.argmin(np.abs(r.times - 3.0))
     np.testing.assert_allclose(r.pose[k, :3], low, atol=1e-4)   # measured 6e-6 m
     assert low[2] < z0 - 0.03                                # 30.5 mm lower
-    np.testing.assert_allclose(r.pose[-1, :3], m.state.pose.position, atol=1e-4)
+    np.testing.assert_allclose(r.pose[-1, :3], m.pose.position, atol=1e-4)
     np.testing.assert_allclose(r.unstretched_lengths[k], L0 + 0.02, rtol=1e-12)
     # the winch work is, to O(l0), the anchor tension times the paid-out length plus the
     # weight of the paid-out mass at the anchor height (module notes): measured 0.6 % at N=5
@@ -397,7 +393,7 @@ def test_bad_inputs_raise_typed_errors_naming_the_argument(robot_model, lengths0
         simulate(m, 1.0, 1e-3, lengths=lambda t: lengths0 + [20.0, 0.0, 0.0])
     weightless = ds.Robot(m.robot.anchors, m.robot.attachments, m.robot.cables,
                           m.robot.platform, g=0.0)
-    chords = np.linalg.norm(m.robot.anchors - m.state.pose.position, axis=1)
+    chords = np.linalg.norm(m.robot.anchors - m.pose.position, axis=1)
     with pytest.raises(SlackCableError, match="lengths"):         # longer than the chord
         simulate(LumpedMassModel(weightless, 0.99 * chords, segments=3), 1.0, 1e-3,
                  lengths=lambda t: 1.01 * chords)

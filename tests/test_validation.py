@@ -71,7 +71,7 @@ def test_cogiro_modes(E):
                    tension_limits=scene.robot.tension_limits)
     m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose))
     import scipy.linalg
-    f0 = np.sqrt(scipy.linalg.eigh(m.massless_stiffness(), m._M, eigvals_only=True)) / (2 * np.pi)
+    f0 = np.sqrt(scipy.linalg.eigh(m.massless_stiffness(), m.platform_mass, eigvals_only=True)) / (2 * np.pi)
     assert len(glob) == np.sum(f0 < df["freq [Hz]"].max())
     assert glob["shift from massless [-]"].abs().max() < 0.1
 
@@ -82,8 +82,8 @@ def test_frf_figure_marks_modes():
     import dynstiff as ds
     from dynstiff.plot import plot_frf
     m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-    modes = m.modes(12)
-    res = m.frf(2 * np.pi * np.linspace(0.5, 4.0, 3000), inputs=["fz"], outputs=["z"])
+    modes = ds.modes(m, 12)
+    res = ds.frf(m, 2 * np.pi * np.linspace(0.5, 4.0, 3000), inputs=["fz"], outputs=["z"])
     fig = plot_frf(res, modes)
     ax = fig.axes[0]
     marked = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("mode-")]

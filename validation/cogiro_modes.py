@@ -51,12 +51,10 @@ def poses_and_moduli(quick=False, n_modes=20):
         rob = robot_with_E(E)
         for p in poses:
             eq = rob.equilibrium(pose=p)
-            modes = ds.FrequencyModel(eq).modes(n_modes)
-            fa = ds.LumpedMassModel(rob, eq.unstretched_lengths, 20)
-            fa.equilibrium(initial_pose=eq.pose)
-            fb = ds.LumpedMassModel(rob, eq.unstretched_lengths, 40)
-            fb.equilibrium(initial_pose=eq.pose)
-            a, b = fa.eigenfrequencies(n_modes), fb.eigenfrequencies(n_modes)
+            modes = ds.modes(ds.FrequencyModel(eq), n_modes)
+            fa = ds.build_model(eq, "lumped", segments=20)
+            fb = ds.build_model(eq, "lumped", segments=40)
+            a, b = ds.eigenfrequencies(fa, n_modes), ds.eigenfrequencies(fb, n_modes)
             ref = b + (b - a) / 3.0                      # O(1/N^2) Richardson
             err = np.abs(modes.freq_hz / ref - 1)
             glob = np.array(modes.kind) == "global"
@@ -106,9 +104,9 @@ def run(E=17e9, n_modes=40):
     eq = rob.equilibrium(pose=scene.pose)
     fwd = rob.equilibrium(unstretched_lengths=eq.unstretched_lengths)
     model = ds.FrequencyModel(eq)
-    modes = model.modes(n_modes)
+    modes = ds.modes(model, n_modes)
     df = modes.to_frame()
-    df.insert(2, "W-W count above", model.mode_count(2 * np.pi * modes.freq_hz * (1 + 1e-9)))
+    df.insert(2, "W-W count above", ds.mode_count(model, 2 * np.pi * modes.freq_hz * (1 + 1e-9)))
     df["statics round trip [m]"] = np.linalg.norm(fwd.pose.position - scene.pose.position)
     df["E [GPa]"] = E / 1e9
     return df
@@ -127,8 +125,8 @@ if __name__ == "__main__":
                   "massless freq [Hz]", "shift from massless [-]"]].to_string(index=False))
     scene = ds.load_scene("cogiro")
     model = ds.FrequencyModel(scene.equilibrium())
-    modes = model.modes(40)
-    res = model.frf(2 * np.pi * np.linspace(0.5, 10.0, 20000), inputs=["fx", "fy", "fz", "mz"],
+    modes = ds.modes(model, 40)
+    res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 10.0, 20000), inputs=["fx", "fy", "fz", "mz"],
                     outputs=["x", "y", "z", "rz"])
     fig = plot_frf(res, modes)
     fig.tight_layout()

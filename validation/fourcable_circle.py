@@ -132,8 +132,9 @@ def run(quick=False, dt=2e-3):
 
     eq = scene.equilibrium()
     band = scene.band_hz
-    f_dsm = ds.FrequencyModel(eq).eigenfrequencies(3)
-    f_spring = np.sort(ds.build_model(eq, "spring").eigenfrequencies())[:3]
+    f_dsm = ds.eigenfrequencies(ds.FrequencyModel(eq), 3)
+    spring = ds.build_model(eq, "spring")
+    f_spring = ds.eigenfrequencies(spring, spring.n_dof)[:3]
     rec = ds.recommend_model(eq, band_hz=band, rtol=1e-3)
     rec20 = ds.recommend_model(eq, band_hz=(0.1, 20.0), rtol=1e-3)
     model = pd.DataFrame({

@@ -20,8 +20,8 @@ from dynstiff.recommend import recommend_model
 
 def reference_frequencies(eq, fmax_hz, segments=(20, 40)):
     """Richardson-extrapolated lumped-mass frequencies below fmax_hz [Hz]."""
-    fa = build_model(eq, "lumped", segments[0]).eigenfrequencies(fmax_hz=fmax_hz * 1.02)
-    fb = build_model(eq, "lumped", segments[1]).eigenfrequencies(fmax_hz=fmax_hz * 1.02)
+    fa = ds.eigenfrequencies(build_model(eq, "lumped", segments[0]), fmax_hz=fmax_hz * 1.02)
+    fb = ds.eigenfrequencies(build_model(eq, "lumped", segments[1]), fmax_hz=fmax_hz * 1.02)
     n = min(len(fa), len(fb))
     r = (segments[1] / segments[0]) ** 2
     f = fb[:n] + (fb[:n] - fa[:n]) / (r - 1)
@@ -79,14 +79,14 @@ def run(quick=False):
         cf1 = min(ds.cable_natural_frequencies(s, 1).freq_hz[0] for s in eq.states)
         bands = [(0.01, 0.8 * cf1), (0.01, 1.8 * cf1)]
         ref = reference_frequencies(eq, max(b[1] for b in bands))
-        f_rung = {r: build_model(eq, r).eigenfrequencies(fmax_hz=bands[-1][1] * 1.5)
+        f_rung = {r: ds.eigenfrequencies(build_model(eq, r), fmax_hz=bands[-1][1] * 1.5)
                   for r in ("spring", "catenary", "dsm")}
         for band in bands:
             for rtol in rtols:
                 rec = recommend_model(eq, band, rtol)
                 actual = {r: band_error(f_rung[r], ref, band) for r in f_rung}
                 if rec.rung == "lumped" and rec.segments <= 400:
-                    fl = build_model(eq, "lumped", rec.segments).eigenfrequencies(
+                    fl = ds.eigenfrequencies(build_model(eq, "lumped", rec.segments), 
                         fmax_hz=band[1] * 1.5)
                     actual["lumped"] = band_error(fl, ref, band)
                 else:

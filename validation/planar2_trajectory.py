@@ -72,7 +72,7 @@ def step_estimate(robot, start, end, speed, t_end=5.0):
         Natural frequencies of the two-DOF model [Hz].
     """
     eq = robot.equilibrium(pose=start)
-    K = eq.static_stiffness()[np.ix_([0, 2], [0, 2])]
+    K = eq.platform_stiffness()[np.ix_([0, 2], [0, 2])]
     K = 0.5 * (K + K.T)
     m = robot.platform.mass
     lam, phi = np.linalg.eigh(K / m)

@@ -120,10 +120,9 @@ def frequencies_along(steps=6, fmax_hz=24.0, n_check=20):
     check = {"largest platform share [-]": float(max(r["platform energy share [-]"]
                                                    for r in rows))}
     for N in (16, 32):
-        lm = ds.LumpedMassModel(scene.robot, eq.unstretched_lengths, N)
-        lm.equilibrium(initial_pose=eq.pose)
+        lm = ds.build_model(eq, "lumped", segments=N)
         check[f"lumped N={N}, max relative difference [-]"] = float(
-            np.max(np.abs(lm.eigenfrequencies(n_check) / f - 1)))
+            np.max(np.abs(ds.eigenfrequencies(lm, n_check) / f - 1)))
     return pd.DataFrame(rows), check
 
 

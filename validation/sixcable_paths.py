@@ -134,7 +134,7 @@ def depth_sensitivity(depths=(-10.0, -15.0, -20.0, -30.0), speed=1.0, dt=1e-3, s
         row["tension-feasible line"] = True
         row["min tension [N]"] = min(float(eq.min_tensions.min()) for eq in eqs)
         row["lowest first mode [Hz]"] = min(
-            float(ds.FrequencyModel(eq).eigenfrequencies(1)[0]) for eq in eqs)
+            float(ds.eigenfrequencies(ds.FrequencyModel(eq), 1)[0]) for eq in eqs)
         if simulate:
             traj, _ = paths(speed, scene, depth)["line"]
             try:
@@ -182,7 +182,7 @@ if __name__ == "__main__":
     eq = scene.robot.equilibrium(pose=poses[4])
     model = ds.FrequencyModel(eq)
     w = 2 * np.pi * np.linspace(0.05, 1.5, 3000)
-    plot_frf(model.frf(w, inputs=["fx", "fz"], outputs=["x", "z"]), model.modes(12),
+    plot_frf(ds.frf(model, w, inputs=["fx", "fz"], outputs=["x", "z"]), ds.modes(model, 12),
              ax=axes[1])
     fig.tight_layout()
     fig.savefig("sixcable_paths.png", dpi=120)

@@ -62,21 +62,21 @@ def run(quick=False, band_hz=(0.5, 8.0), n_freq=2000):
     ladder = LADDER[:5] if quick else LADDER
     for E, pose, eq in cogiro_equilibria(quick):
         n_ref = (20, 40) if quick else (40, 80)
-        fa = build_model(eq, "lumped", n_ref[0]).eigenfrequencies(40)
-        fb = build_model(eq, "lumped", n_ref[1]).eigenfrequencies(40)
+        fa = ds.eigenfrequencies(build_model(eq, "lumped", n_ref[0]), 40)
+        fb = ds.eigenfrequencies(build_model(eq, "lumped", n_ref[1]), 40)
         ref = fb + (fb - fa) / 3.0
-        H_ref = np.abs(build_model(eq, "lumped", n_ref[1]).frf(w, "fz", "z").H[:, 0, 0])
-        ref_all = build_model(eq, "lumped", n_ref[1]).eigenfrequencies(fmax_hz=band_hz[1] * 1.1)
+        H_ref = np.abs(ds.frf(build_model(eq, "lumped", n_ref[1]), w, "fz", "z").H[:, 0, 0])
+        ref_all = ds.eigenfrequencies(build_model(eq, "lumped", n_ref[1]), fmax_hz=band_hz[1] * 1.1)
         away = np.min(np.abs(f[:, None] / ref_all[None, :] - 1), axis=1) > 0.02
-        dsm_modes = ds.FrequencyModel(eq).modes(40)
+        dsm_modes = ds.modes(ds.FrequencyModel(eq), 40)
         glob = np.array(dsm_modes.kind) == "global"
         # reference frequency of each global mode: the nearest reference root
         ref_glob = ref[np.argmin(np.abs(ref[None, :] - dsm_modes.freq_hz[glob][:, None]), axis=1)]
         for rung, N in ladder:
             m, t_build = _timed(lambda: build_model(eq, rung, N or 30), repeat=1)
-            fr, t_eig = _timed(lambda: m.eigenfrequencies(40) if rung in ("dsm", "lumped")
-                               else m.eigenfrequencies())
-            res, t_frf = _timed(lambda: m.frf(w, "fz", "z"))
+            fr, t_eig = _timed(lambda: ds.eigenfrequencies(m, 40) if rung in ("dsm", "lumped")
+                               else ds.eigenfrequencies(m, m.n_dof))
+            res, t_frf = _timed(lambda: ds.frf(m, w, "fz", "z"))
             H = np.abs(res.H[:, 0, 0])[away]
             row = {"E [GPa]": E / 1e9, "pose": str(pose), "model": rung if N is None
                    else f"lumped N={N}", "rung": rung, "segments": N or 0,

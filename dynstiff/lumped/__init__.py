@@ -1,5 +1,7 @@
 """Lumped-mass (bead-and-spring) cable models, the independent cross-check of the
-closed-form dynamic stiffness (theory.md §7)."""
+closed-form dynamic stiffness (theory.md §7): one chain, the nonlinear robot
+(:class:`LumpedMassModel`), its linearisation (:class:`LumpedLinearModel`, the "lumped" rung)
+and its time-domain simulation."""
 
 from .chain import ChainState, chain_equilibrium
 from .chain_dynamics import (
@@ -8,7 +10,9 @@ from .chain_dynamics import (
     chain_matrices,
 )
 from .compare import compare_modes
-from .robot_model import LumpedEquilibrium, LumpedMassModel, LumpedModalResult
+from ..results import LumpedModalResult
+from .linear_model import LumpedLinearModel
+from .robot_model import LumpedEquilibrium, LumpedMassModel
 from .time_domain import (
     EnergyBalance,
     EnergyBalanceWarning,
@@ -24,6 +28,7 @@ from .time_domain import (
 
 __all__ = [
     "LumpedEquilibrium",
+    "LumpedLinearModel",
     "LumpedMassModel",
     "LumpedModalResult",
     "compare_modes",

@@ -46,7 +46,7 @@ from ..params import Cable
 __all__ = ["ChainState", "chain_equilibrium"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
-_BW = 5          # half bandwidth of a node-major 3-DOF block-tridiagonal matrix
+BANDWIDTH = 5          # half bandwidth of a node-major 3-DOF block-tridiagonal matrix
 
 
 # ------------------------------------------------------------------------------ kernels
@@ -121,7 +121,7 @@ def _potential_energy(strain, units, l0, EA, node_weight):
     return 0.5 * EA * l0 * np.dot(stretch, stretch) + node_weight * np.sum(heights)
 
 
-def _element_stiffness(units, lengths, tensions, axial):
+def element_stiffness(units, lengths, tensions, axial):
     """Element tangent stiffness K_e = k_a n n^T + (T / l)(I - n n^T) (theory.md §7.1).
 
     This is the exact derivative of the element force T n with respect to the segment
@@ -146,7 +146,7 @@ def _element_stiffness(units, lengths, tensions, axial):
     return axial * nn + geometric * (np.eye(3) - nn)
 
 
-def _block_tridiagonal_entries(ke):
+def block_tridiagonal_entries(ke):
     """Row, column and value arrays of the assembled stiffness of a chain of elements.
 
     Parameters
@@ -170,7 +170,7 @@ def _block_tridiagonal_entries(ke):
     return np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
 
 
-def _interior_banded(ke, diag_extra=0.0, symmetric=True):
+def interior_banded(ke, diag_extra=0.0, symmetric=True):
     """Banded storage of the interior block K_II (nodes 1..N-1) of the chain stiffness.
 
     Parameters
@@ -191,19 +191,19 @@ def _interior_banded(ke, diag_extra=0.0, symmetric=True):
     """
     n_el = ke.shape[0]
     n = 3 * (n_el - 1)
-    rows, cols, vals = _block_tridiagonal_entries(ke)
+    rows, cols, vals = block_tridiagonal_entries(ke)
     # drop the end nodes 0 and N, shift to interior numbering
     keep = (rows >= 3) & (rows < 3 * n_el) & (cols >= 3) & (cols < 3 * n_el)
     rows, cols, vals = rows[keep] - 3, cols[keep] - 3, vals[keep]
     if symmetric:
         upper = rows <= cols
-        ab = np.zeros((_BW + 1, n), dtype=np.result_type(ke, diag_extra))
-        np.add.at(ab, (_BW + rows[upper] - cols[upper], cols[upper]), vals[upper])
-        ab[_BW] += diag_extra
+        ab = np.zeros((BANDWIDTH + 1, n), dtype=np.result_type(ke, diag_extra))
+        np.add.at(ab, (BANDWIDTH + rows[upper] - cols[upper], cols[upper]), vals[upper])
+        ab[BANDWIDTH] += diag_extra
     else:
-        ab = np.zeros((2 * _BW + 1, n), dtype=np.result_type(ke, diag_extra))
-        np.add.at(ab, (_BW + rows - cols, cols), vals)
-        ab[_BW] += diag_extra
+        ab = np.zeros((2 * BANDWIDTH + 1, n), dtype=np.result_type(ke, diag_extra))
+        np.add.at(ab, (BANDWIDTH + rows - cols, cols), vals)
+        ab[BANDWIDTH] += diag_extra
     return ab
 
 
@@ -401,7 +401,7 @@ class ChainState:
 
 
 # ------------------------------------------------------------------------------- analyses
-def _integer(name, value, minimum):
+def checked_integer(name, value, minimum):
     if isinstance(value, bool) or not isinstance(value, Integral):
         raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
     if value < minimum:
@@ -464,10 +464,10 @@ def chain_equilibrium(anchor, end, unstretched_length, cable, n_segments,
     L0 = positive_scalar("unstretched_length", unstretched_length)
     if not isinstance(cable, Cable):
         raise InvalidParameterError(f"cable must be a Cable, got {type(cable).__name__}")
-    n_segments = _integer("n_segments", n_segments, 1)
+    n_segments = checked_integer("n_segments", n_segments, 1)
     g = positive_scalar("g", g, allow_zero=True)
     tol = positive_scalar("tol", tol)
-    max_iter = _integer("max_iter", max_iter, 1)
+    max_iter = checked_integer("max_iter", max_iter, 1)
     chord = np.linalg.norm(end - anchor)
     if chord == 0.0:
         raise InvalidParameterError(
@@ -553,9 +553,9 @@ def _newton(nodes, l0, EA, total_weight, node_weight, tol, max_iter):
         if iteration == max_iter:
             return strain, units, res, max_iter + 1
         iteration += 1
-        ke = _element_stiffness(units, l0 * (1.0 + strain), EA * np.maximum(strain, 0.0),
+        ke = element_stiffness(units, l0 * (1.0 + strain), EA * np.maximum(strain, 0.0),
                                 np.where(strain > 0, EA / l0, 0.0))
-        step = _regularised_solve(_interior_banded(ke), forces.ravel())
+        step = _regularised_solve(interior_banded(ke), forces.ravel())
         if step is None:
             return strain, units, res, -1
         step = step.reshape(-1, 3)
@@ -588,10 +588,10 @@ def _regularised_solve(ab, rhs):
     if ab.shape[1] == 0:
         return rhs
     shift = 0.0
-    scale = np.max(np.abs(ab[_BW]))
+    scale = np.max(np.abs(ab[BANDWIDTH]))
     for _ in range(20):
         shifted = ab.copy()
-        shifted[_BW] += shift
+        shifted[BANDWIDTH] += shift
         try:
             return scipy.linalg.solveh_banded(shifted, rhs, check_finite=False)
         except np.linalg.LinAlgError:
@@ -599,7 +599,7 @@ def _regularised_solve(ab, rhs):
     return None
 
 
-def _check_state(state):
+def check_chain_state(state):
     if not isinstance(state, ChainState):
         raise InvalidParameterError(
             f"state must be a ChainState, got {type(state).__name__}")

@@ -11,12 +11,12 @@ import scipy.sparse
 from .._validate import omega_array
 from ..errors import InvalidParameterError, PoleWarning
 from .chain import (
-    _BW,
-    _block_tridiagonal_entries,
-    _check_state,
-    _element_stiffness,
-    _integer,
-    _interior_banded,
+    BANDWIDTH,
+    block_tridiagonal_entries,
+    check_chain_state,
+    element_stiffness,
+    checked_integer,
+    interior_banded,
 )
 
 __all__ = ["chain_matrices", "chain_end_dynamic_stiffness", "chain_fixed_end_frequencies"]
@@ -25,7 +25,7 @@ __all__ = ["chain_matrices", "chain_end_dynamic_stiffness", "chain_fixed_end_fre
 def _stiffness_elements(state, axial_factor=1.0):
     """Element stiffnesses of a converged chain, shape (N, 3, 3) [N/m]."""
     axial = axial_factor * state.cable.EA / state.segment_length
-    return _element_stiffness(state.units, state.lengths, state.tensions, axial)
+    return element_stiffness(state.units, state.lengths, state.tensions, axial)
 
 
 def chain_matrices(state):
@@ -46,9 +46,9 @@ def chain_matrices(state):
     M : ndarray, shape (3(N+1),)
         Diagonal of the lumped mass matrix [kg].
     """
-    _check_state(state)
+    check_chain_state(state)
     n_dof = 3 * (state.n_segments + 1)
-    rows, cols, vals = _block_tridiagonal_entries(_stiffness_elements(state))
+    rows, cols, vals = block_tridiagonal_entries(_stiffness_elements(state))
     K = scipy.sparse.coo_matrix((vals, (rows, cols)), shape=(n_dof, n_dof)).tocsr()
     node_mass = state.cable.mass_per_length * state.segment_length
     M = np.full(n_dof, node_mass)
@@ -87,7 +87,7 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
     PoleWarning
         If an omega makes the interior block exactly singular.
     """
-    _check_state(state)
+    check_chain_state(state)
     omega = omega_array(omega)
     if ends not in ("end", "both"):
         raise InvalidParameterError(f'ends must be "end" or "both", got {ends!r}')
@@ -113,7 +113,7 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
     cols = np.concatenate([np.arange(3 * b, 3 * b + 3) for b in boundary])
     coupling = coupling[:, cols]
     if n_el > 1:
-        ab0 = _interior_banded(ke, symmetric=False)
+        ab0 = interior_banded(ke, symmetric=False)
     for k, w in enumerate(omega):
         inertia = -w ** 2 * node_mass + (1j * w * node_damp if cable.is_damped else 0.0)
         direct = np.zeros((6, 6), dtype=dtype)
@@ -124,9 +124,9 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
         s = direct[np.ix_(cols, cols)]
         if n_el > 1:
             ab = ab0.copy()
-            ab[_BW] += inertia
+            ab[BANDWIDTH] += inertia
             try:
-                x = scipy.linalg.solve_banded((_BW, _BW), ab, coupling, check_finite=False)
+                x = scipy.linalg.solve_banded((BANDWIDTH, BANDWIDTH), ab, coupling, check_finite=False)
             except np.linalg.LinAlgError:
                 warnings.warn(f"chain_end_dynamic_stiffness: omega = {w!r} rad/s is a "
                               f"fixed-end natural frequency (pole); returning inf",
@@ -157,17 +157,17 @@ def chain_fixed_end_frequencies(state, n_modes):
     ndarray, shape (n_modes,)
         Natural frequencies [Hz], ascending.
     """
-    _check_state(state)
+    check_chain_state(state)
     n_int = 3 * (state.n_segments - 1)
     if n_int == 0:
         raise InvalidParameterError(
             "state must have n_segments >= 2 for fixed-end frequencies, got 1")
-    n_modes = _integer("n_modes", n_modes, 1)
+    n_modes = checked_integer("n_modes", n_modes, 1)
     if n_modes > n_int:
         raise InvalidParameterError(
             f"n_modes must be <= 3(N-1) = {n_int}, got {n_modes}")
     node_mass = state.cable.mass_per_length * state.segment_length
-    ab = _interior_banded(_stiffness_elements(state)) / node_mass
+    ab = interior_banded(_stiffness_elements(state)) / node_mass
     eig = scipy.linalg.eig_banded(ab, lower=False, eigvals_only=True, select="i",
                                   select_range=(0, n_modes - 1), check_finite=False)
     return np.sqrt(eig) / (2.0 * np.pi)

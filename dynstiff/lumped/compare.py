@@ -3,7 +3,7 @@ global modes paired by mass-weighted MAC of the platform shapes, the others by f
 
 import numpy as np
 
-from ..eigen import ModalResult
+from ..results import ModalResult
 from ..errors import InvalidParameterError
 
 __all__ = ["compare_modes"]
@@ -21,9 +21,9 @@ def compare_modes(closed_form_modes, lumped_modes, mass_matrix=None):
     Parameters
     ----------
     closed_form_modes : ModalResult
-        E.g. ``FrequencyModel(eq).modes(n)``.
+        E.g. ``modes(FrequencyModel(eq), n)``.
     lumped_modes : ModalResult
-        E.g. ``LumpedMassModel(...).modes(n)``.
+        E.g. ``modes(build_model(eq, "lumped"), n)``.
     mass_matrix : array_like, shape (6, 6), optional
         Weight W of the MAC, e.g. the platform mass matrix ``FrequencyModel.M_p``
         (default identity, which mixes metres and radians).

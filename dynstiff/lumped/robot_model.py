@@ -47,20 +47,20 @@ import numpy as np
 import scipy.sparse
 import scipy.sparse.linalg
 
+from .. import _validate
 from .._validate import positive_scalar
 from .._vec import cross
 from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
-from ..platform import DOF_NAMES, lever_map, platform_mass_matrix, skew
-from ..robot import Pose, Robot, as_pose
-from . import robot_modal as _modal
-from .chain import _block_tridiagonal_entries, _element_stiffness, chain_equilibrium
-from .robot_modal import LumpedModalResult
+from ..platform import lever_map, platform_mass_matrix, skew
+from ..pose import Pose, as_pose
+from ..robot import Robot
+from .chain import block_tridiagonal_entries, chain_equilibrium, element_stiffness
 
-__all__ = ["LumpedMassModel", "LumpedEquilibrium", "LumpedModalResult"]
+__all__ = ["LumpedMassModel", "LumpedEquilibrium", "segment_forces"]
 
 
 # ------------------------------------------------------------------------------ kernels
-def _segments(nodes, l0, EA):
+def segment_forces(nodes, l0, EA):
     """Segment geometry and tensions of one chain, or of a stack of chains.
 
     Parameters
@@ -84,7 +84,7 @@ def _segments(nodes, l0, EA):
     return d / lengths[..., None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
 
 
-def _validated_segments(segments, n):
+def _validatedsegment_forces(segments, n):
     if isinstance(segments, Integral) and not isinstance(segments, bool):
         segments = [segments] * n
     try:
@@ -101,20 +101,6 @@ def _validated_segments(segments, n):
     if min(segs) < 1:
         raise InvalidParameterError(f"segments must be >= 1 for every cable, got {segs}")
     return np.array(segs, dtype=int)
-
-
-def _validated_lengths(value, n):
-    try:
-        L0 = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"unstretched_lengths must be {n} finite positive lengths [m], got {value!r}"
-        ) from None
-    if L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
-        raise InvalidParameterError(
-            f"unstretched_lengths must be {n} finite positive lengths [m] (one per cable), "
-            f"got {value!r}")
-    return L0
 
 
 # ----------------------------------------------------------------------- result types
@@ -150,6 +136,11 @@ class LumpedEquilibrium:
     iterations: int
     start_pose: Pose
     platform_forces: np.ndarray
+
+    def __repr__(self):
+        t = self.end_tensions
+        return (f"LumpedEquilibrium({len(self.nodes)} chains, {self.pose!r}, tensions at B "
+                f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
     @property
     def interior(self):
@@ -198,12 +189,18 @@ class LumpedMassModel:
         Free platform DOFs; all DOFs (free platform + 3 (N_i - 1) per cable).
     segment_lengths : ndarray, shape (n_cables,)
         l0_i = L0_i / N_i [m].
+    free_index : ndarray of int, shape (n_free,)
+        Indices of the free platform DOFs in ``DOF_NAMES``.
+    offsets : ndarray of int, shape (n_cables,)
+        Index of the first interior DOF of every cable in the DOF vector.
+    node_masses : ndarray, shape (n_cables,)
+        m l0_i of an interior node [kg].
 
     Notes
     -----
-    Methods that need the linearisation point (``matrices``, ``eigenfrequencies``, ``modes``,
-    ``frf``) use the last equilibrium computed by :meth:`equilibrium`, or compute it with the
-    default arguments on first use.
+    This model holds no state: :meth:`equilibrium` returns an equilibrium and changes
+    nothing. Its linearisation about one is the "lumped" rung,
+    :class:`~dynstiff.lumped.LumpedLinearModel` (``build_model(eq, "lumped")``).
     """
 
     def __init__(self, robot, unstretched_lengths, segments=30):
@@ -212,21 +209,25 @@ class LumpedMassModel:
                 f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
         n = robot.n_cables
         self.robot = robot
-        self.unstretched_lengths = _validated_lengths(unstretched_lengths, n)
-        self.segments = _validated_segments(segments, n)
+        self.unstretched_lengths = _validate.unstretched_lengths(unstretched_lengths, n)
+        self.segments = _validatedsegment_forces(segments, n)
         self.segment_lengths = self.unstretched_lengths / self.segments
         self.free_dofs = robot.platform.free_dofs
-        self._fi = robot.platform.free_index
-        self.n_free = len(self._fi)
+        self.free_index = robot.platform.free_index
+        self.n_free = len(self.free_index)
         sizes = 3 * (self.segments - 1)
-        self._offsets = self.n_free + np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        self.offsets = self.n_free + np.concatenate([[0], np.cumsum(sizes)[:-1]])
         self.n_dof = int(self.n_free + sizes.sum())
-        self._node_mass = np.array([c.mass_per_length for c in robot.cables]) * \
+        self.node_masses = np.array([c.mass_per_length for c in robot.cables]) * \
             self.segment_lengths
         size = max(np.linalg.norm(robot.attachments, axis=1).max(),
                    np.linalg.norm(robot.platform.center_of_mass))
         self._moment_arm = size if size > 0 else 1.0
-        self._state = None
+
+    def __repr__(self):
+        return (f"LumpedMassModel({self.robot.n_cables} cables, segments "
+                f"{self.segments.tolist()}, unstretched lengths "
+                f"{np.round(self.unstretched_lengths, 6).tolist()} m)")
 
     # ---------------------------------------------------------------- configuration
     def _full_nodes(self, pose, interior):
@@ -272,8 +273,8 @@ class LumpedMassModel:
             raise InvalidParameterError(
                 f"dx must have shape ({self.n_dof},) (n_dof), got {dx.shape}")
         d6 = np.zeros(6)
-        d6[self._fi] = dx[:self.n_free]
-        new = [x + dx[o:o + x.size].reshape(-1, 3) for x, o in zip(interior, self._offsets)]
+        d6[self.free_index] = dx[:self.n_free]
+        new = [x + dx[o:o + x.size].reshape(-1, 3) for x, o in zip(interior, self.offsets)]
         return pose.moved(d6), new
 
     # ------------------------------------------------------------------- residual
@@ -295,11 +296,11 @@ class LumpedMassModel:
             [N] on the translations and nodes, [N m] on the rotations; zero at equilibrium.
         """
         pose, interior = self._check_config(pose, interior)
-        return self._residual(pose, interior)[0]
+        return self.residual_unchecked(pose, interior)[0]
 
-    def _residual(self, pose, interior):
-        """Free-DOF wrench and interior-node forces [N, N m], shape (n_dof,), and the
-        largest tension [N]."""
+    def residual_unchecked(self, pose, interior):
+        """:meth:`residual` without the argument checks (for solvers and time stepping), and
+        the largest tension [N]: (R, shape (n_dof,) [N, N m]; t_max)."""
         nodes, r = self._full_nodes(pose, interior)
         uniform = np.all(self.segments == self.segments[0])
         inner, F, t_max = (self._chain_forces_stacked if uniform
@@ -309,7 +310,7 @@ class LumpedMassModel:
         W = self.robot.gravity_wrench(pose)
         W[:3] += F.sum(axis=0)
         W[3:] += cross(r, F).sum(axis=0)
-        R[:self.n_free] = W[self._fi]
+        R[:self.n_free] = W[self.free_index]
         return R, t_max
 
     def _chain_forces_stacked(self, nodes):
@@ -318,9 +319,9 @@ class LumpedMassModel:
         (n, 3) (the last segment and the half node weight) [N], the largest tension [N]."""
         gvec = self.robot.gravity_vector
         EA = np.array([c.EA for c in self.robot.cables])
-        units, _, T = _segments(np.stack(nodes), self.segment_lengths[:, None], EA[:, None])
+        units, _, T = segment_forces(np.stack(nodes), self.segment_lengths[:, None], EA[:, None])
         f = T[..., None] * units                                   # (n, N, 3)
-        mg = self._node_mass[:, None] * gvec
+        mg = self.node_masses[:, None] * gvec
         return ((f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel(), -f[:, -1] + 0.5 * mg,
                 float(T.max()))
 
@@ -329,10 +330,10 @@ class LumpedMassModel:
         gvec = self.robot.gravity_vector
         inner, F, t_max = [], np.empty((len(nodes), 3)), 0.0
         for i, x in enumerate(nodes):
-            units, _, T = _segments(x, self.segment_lengths[i], self.robot.cables[i].EA)
+            units, _, T = segment_forces(x, self.segment_lengths[i], self.robot.cables[i].EA)
             f = T[:, None] * units
-            inner.append((f[1:] - f[:-1] + self._node_mass[i] * gvec).ravel())
-            F[i] = -f[-1] + 0.5 * self._node_mass[i] * gvec
+            inner.append((f[1:] - f[:-1] + self.node_masses[i] * gvec).ravel())
+            F[i] = -f[-1] + 0.5 * self.node_masses[i] * gvec
             t_max = max(t_max, float(T.max()))
         return np.concatenate(inner), F, t_max
 
@@ -342,7 +343,9 @@ class LumpedMassModel:
             [c.mass_per_length for c in rob.cables] * self.unstretched_lengths))
         return max(weight + t_max, np.finfo(float).tiny)
 
-    def _relative_residual(self, R, t_max):
+    def relative_residual(self, R, t_max):
+        """Largest unbalanced force of R (moments divided by the platform size) over the
+        force scale m_p g + sum m L0 g + t_max [-]: the measure of ``equilibrium(tol=)``."""
         scaled = np.abs(R)
         rot = np.array([d in ("rx", "ry", "rz") for d in self.free_dofs])
         scaled[:self.n_free][rot] /= self._moment_arm
@@ -363,8 +366,9 @@ class LumpedMassModel:
         pose : Pose or array_like
         interior : list of ndarray, shape (N_i - 1, 3)
             Interior node positions [m].
-        axial_factor : float or complex
-            Multiplies EA in the axial term only, e.g. 1 + i eta for hysteretic damping.
+        axial_factor : float or complex, or sequence of n_cables of them
+            Multiplies EA in the axial term only, e.g. 1 + i eta for hysteretic damping
+            (one value for every cable, or one per cable).
 
         Returns
         -------
@@ -372,11 +376,17 @@ class LumpedMassModel:
             [N/m, N, N m/rad]; complex when ``axial_factor`` is.
         """
         pose, interior = self._check_config(pose, interior)
-        return self._tangent(pose, interior, lambda i: axial_factor)
+        factors = np.broadcast_to(np.asarray(axial_factor), (self.robot.n_cables,))
+        if not np.all(np.isfinite(factors)):
+            raise InvalidParameterError(
+                f"axial_factor must be finite, one value or one per cable, got {axial_factor!r}")
+        return self.tangent_unchecked(pose, interior, lambda i: factors[i])
 
-    def _tangent(self, pose, interior, axial_of):
+    def tangent_unchecked(self, pose, interior, axial_of):
+        """:meth:`tangent_stiffness` without the argument checks, with ``axial_of(i)`` the
+        axial factor of cable i (for solvers and time stepping)."""
         rob = self.robot
-        fi, nf = self._fi, self.n_free
+        fi, nf = self.free_index, self.n_free
         gvec = rob.gravity_vector
         nodes, r = self._full_nodes(pose, interior)
         rows, cols, vals = [], [], []
@@ -386,13 +396,13 @@ class LumpedMassModel:
         for i, x in enumerate(nodes):
             N = self.segments[i]
             l0, EA = self.segment_lengths[i], rob.cables[i].EA
-            units, lengths, T = _segments(x, l0, EA)
+            units, lengths, T = segment_forces(x, l0, EA)
             axial = np.where(T > 0, axial_of(i) * EA / l0, 0.0)
-            ke = _element_stiffness(units, lengths, T, axial)
+            ke = element_stiffness(units, lengths, T, axial)
             J = lever_map(r[i], fi)
-            o = self._offsets[i]
+            o = self.offsets[i]
             if N > 1:
-                rr, cc, vv = _block_tridiagonal_entries(ke)
+                rr, cc, vv = block_tridiagonal_entries(ke)
                 keep = (rr >= 3) & (rr < 3 * N) & (cc >= 3) & (cc < 3 * N)
                 rows.append(rr[keep] - 3 + o)
                 cols.append(cc[keep] - 3 + o)
@@ -404,7 +414,7 @@ class LumpedMassModel:
                 cols += [np.tile(ci, 3), np.repeat(ri, nf)]
                 vals += [kip.ravel(), kip.ravel()]        # K_pi = K_ip^T
             Kpp += J.T @ ke[-1] @ J
-            F = -T[-1] * units[-1] + 0.5 * self._node_mass[i] * gvec
+            F = -T[-1] * units[-1] + 0.5 * self.node_masses[i] * gvec
             Kgeo -= skew(F) @ skew(r[i])
         rG = pose.matrix @ rob.platform.center_of_mass
         Kgeo -= skew(rob.platform.mass * gvec) @ skew(rG)
@@ -423,12 +433,12 @@ class LumpedMassModel:
     def _node_matrix(self, pose, per_node, platform_block):
         """Sparse matrix with ``per_node[i]`` on the interior nodes of cable i (diagonal) and
         the free-DOF block ``platform_block`` + sum_i J_i^T (per_node[i] / 2) J_i."""
-        fi, nf = self._fi, self.n_free
+        fi, nf = self.free_index, self.n_free
         _, r = self.robot.attachment_points(pose)
         diag = np.zeros(self.n_dof)
         block = np.array(platform_block, dtype=float)
         for i in range(self.robot.n_cables):
-            o, size = self._offsets[i], 3 * (self.segments[i] - 1)
+            o, size = self.offsets[i], 3 * (self.segments[i] - 1)
             diag[o:o + size] = per_node[i]
             J = lever_map(r[i], fi)
             block += 0.5 * per_node[i] * J.T @ J
@@ -445,12 +455,14 @@ class LumpedMassModel:
         Interior nodes m l0 (diagonal); platform block M_p + sum_i J_i^T (m l0 / 2) J_i.
         """
         pose = as_pose(pose)
-        fi = self._fi
+        fi = self.free_index
         Mp = platform_mass_matrix(self.robot.platform, pose.matrix)[np.ix_(fi, fi)]
-        return self._node_matrix(pose, self._node_mass, Mp)
+        return self._node_matrix(pose, self.node_masses, Mp)
 
-    def _damping_matrix(self, pose):
-        """Viscous damping C [N s/m]: c l0 at interior nodes, J^T (c l0 / 2) J at B_i."""
+    def damping_matrix(self, pose):
+        """Viscous damping C at a pose, sparse, shape (n_dof, n_dof) [N s/m]: c l0 at the
+        interior nodes, J^T (c l0 / 2) J at B_i, none on the platform."""
+        pose = as_pose(pose)
         c = np.array([cb.viscous_damping for cb in self.robot.cables]) * self.segment_lengths
         return self._node_matrix(pose, c, np.zeros((self.n_free, self.n_free)))
 
@@ -464,7 +476,8 @@ class LumpedMassModel:
         pose, and :func:`~dynstiff.lumped.chain_equilibrium` of every cable at that pose
         gives the nodes. The lumped nodes lie on the catenary (theory.md §1.1); only the
         straight segments replacing the curved arcs change the end forces, by O(l0^2), so
-        one or two iterations suffice. The result becomes the model's linearisation point.
+        one or two iterations suffice. Nothing in the model changes: linearise about the result
+        with :class:`~dynstiff.lumped.LumpedLinearModel`.
 
         Parameters
         ----------
@@ -502,8 +515,8 @@ class LumpedMassModel:
                                       rob.cables[i], int(self.segments[i]), rob.g
                                       ).nodes[1:-1].copy()
                     for i in range(rob.n_cables)]
-        R, t_max = self._residual(pose, interior)
-        res = self._relative_residual(R, t_max)
+        R, t_max = self.residual_unchecked(pose, interior)
+        res = self.relative_residual(R, t_max)
         iteration = 0
         while res > tol:
             if iteration == max_iter:
@@ -511,7 +524,7 @@ class LumpedMassModel:
                     f"LumpedMassModel.equilibrium did not converge in {max_iter} Newton "
                     f"iterations: relative residual {res:.3e} > tol {tol:g}", residual=res)
             iteration += 1
-            K = self._tangent(pose, interior, lambda i: 1.0)
+            K = self.tangent_unchecked(pose, interior, lambda i: 1.0)
             try:
                 with np.errstate(all="raise"):
                     dx = scipy.sparse.linalg.splu(K.tocsc()).solve(R)
@@ -523,8 +536,8 @@ class LumpedMassModel:
             alpha = 1.0
             while True:
                 trial = self.displaced(pose, interior, alpha * dx)
-                R_t, t_t = self._residual(*trial)
-                res_t = self._relative_residual(R_t, t_t)
+                R_t, t_t = self.residual_unchecked(*trial)
+                res_t = self.relative_residual(R_t, t_t)
                 if res_t < res or alpha < 1e-6:
                     break
                 alpha *= 0.5
@@ -535,11 +548,11 @@ class LumpedMassModel:
                     f"tol {tol:g}", residual=res)
             (pose, interior), R, t_max, res = trial, R_t, t_t, res_t
         nodes, _ = self._full_nodes(pose, interior)
-        seg = [_segments(x, l0, c.EA) for x, l0, c in zip(nodes, self.segment_lengths,
+        seg = [segment_forces(x, l0, c.EA) for x, l0, c in zip(nodes, self.segment_lengths,
                                                           rob.cables)]
         tensions = [T for _, _, T in seg]
         forces = np.array([-T[-1] * n[-1] + 0.5 * mi * rob.gravity_vector
-                           for (n, _, T), mi in zip(seg, self._node_mass)])
+                           for (n, _, T), mi in zip(seg, self.node_masses)])
         slack = [i for i, t in enumerate(tensions) if np.any(t <= 0.0)]
         if slack:
             raise SlackCableError(
@@ -547,61 +560,6 @@ class LumpedMassModel:
                 f"equilibrium (pose {pose.as_vector().tolist()})")
         for a in nodes + tensions + [forces]:
             a.setflags(write=False)
-        self._state = LumpedEquilibrium(pose=pose, nodes=nodes, tensions=tensions,
-                                        residual=res, iterations=iteration,
-                                        start_pose=start.pose, platform_forces=forces)
-        return self._state
-
-    @property
-    def state(self):
-        """Linearisation point: the last :meth:`equilibrium` (computed on first use)."""
-        if self._state is None:
-            self.equilibrium()
-        return self._state
-
-    # ---------------------------------------------------------------- linear model
-    def matrices(self):
-        """Tangent stiffness and mass at the equilibrium (:attr:`state`).
-
-        Returns
-        -------
-        K : scipy.sparse.csr_matrix, shape (n_dof, n_dof)
-            Tangent stiffness [N/m, N, N m/rad], undamped; symmetric at the equilibrium up
-            to its residual (except for a platform with some rotations held while the moment
-            about a held axis is not balanced, where K_geo keeps that antisymmetric part).
-        M : scipy.sparse.csr_matrix, shape (n_dof, n_dof)
-            Mass [kg, kg m, kg m^2].
-        """
-        s = self.state
-        return self._tangent(s.pose, s.interior, lambda i: 1.0), self.mass_matrix(s.pose)
-
-    def simulate(self, t_end, dt, **kwargs):
-        """Nonlinear time-domain simulation; see :func:`dynstiff.lumped.time_domain.simulate`."""
-        from .time_domain import simulate
-        return simulate(self, t_end, dt, **kwargs)
-
-    def eigenfrequencies(self, n_modes=None, fmax_hz=None):
-        """Lowest natural frequencies [Hz]: :func:`dynstiff.lumped.robot_modal.eigenfrequencies`."""
-        return _modal.eigenfrequencies(self, n_modes, fmax_hz)
-
-    def modes(self, n_modes):
-        """Modes with platform shapes, cable energy fractions and labels
-        (:class:`LumpedModalResult`): :func:`dynstiff.lumped.robot_modal.modes`."""
-        return _modal.modes(self, n_modes)
-
-    def static_stiffness(self):
-        """Platform static stiffness, cable nodes condensed out, shape (n_free, n_free):
-        :func:`dynstiff.lumped.robot_modal.static_stiffness`."""
-        return _modal.static_stiffness(self)
-
-    def frf(self, omega, inputs=None, outputs=None, point=None, kind="receptance"):
-        """Platform FRFs (:class:`~dynstiff.FRFResult`) by direct sparse solves:
-        :func:`dynstiff.lumped.robot_modal.frf`."""
-        return _modal.frf(self, omega, inputs, outputs, point, kind)
-
-    def dof_names(self):
-        """Names of the free platform DOFs."""
-        return tuple(DOF_NAMES[i] for i in self._fi)
-
-
-# ------------------------------------------------------------------------- comparison
+        return LumpedEquilibrium(pose=pose, nodes=nodes, tensions=tensions, residual=res,
+                                 iterations=iteration, start_pose=start.pose,
+                                 platform_forces=forces)

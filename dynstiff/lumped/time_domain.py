@@ -8,8 +8,8 @@ rotations) carrying the half node masses m l0 / 2 at the attachment points B_i::
 
     M(q) a = R(q) + f_ext(t) + f_d(q, v) - g(q, v)
 
-R is the model's own residual (``LumpedMassModel._residual``: spring forces, gravity, the
-platform wrench about P) and its tangent K = -dR/dx (``LumpedMassModel._tangent``) drives the
+R is the model's own residual (``LumpedMassModel.residual_unchecked``: spring forces, gravity, the
+platform wrench about P) and its tangent K = -dR/dx (``LumpedMassModel.tangent_unchecked``) drives the
 Newton iterations; no second force assembly is written here.
 
 Notation (theory.md §4, §7.1)
@@ -89,31 +89,32 @@ from numbers import Integral
 import numpy as np
 
 from .._validate import positive_scalar
+from ..constants import DOF_NAMES as OUTPUT_NAMES
 from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
-from ..frf import OUTPUT_NAMES
 from .chain import chain_equilibrium
-from .robot_model import LumpedMassModel
+from .linear_model import LumpedLinearModel
+from .robot_model import LumpedEquilibrium, LumpedMassModel
 from .time_damping import TimeDamping, explicit_step_limit
 from .time_dynamics import (
-    _Dynamics,
-    _Frame,
-    _load,
-    _model_at,
-    _node_mass_vector,
-    _Pose,
-    _potential,
+    Dynamics,
+    Frame,
+    load_at,
+    model_at,
+    node_mass_vector,
+    FastPose,
+    potential_energy,
 )
 from .time_response import EnergyBalance, Spectrum, TimeResponse
 from .time_stepping import (
     EnergyBalanceWarning,
     IntegrationError,
-    _carried,
-    _check_blow_up,
-    _explicit_step,
-    _implicit_step,
-    _Ledger,
-    _Newton,
-    _Recorder,
+    carried_energy,
+    check_blow_up,
+    explicit_step,
+    implicit_step,
+    Ledger,
+    StepNewton,
+    Recorder,
 )
 
 __all__ = [
@@ -197,7 +198,7 @@ def _initial(initial, model):
             raise InvalidParameterError(
                 f"initial must be a platform offset (6,) [m, rad] or (offset, velocity) with "
                 f"velocity (6,) [m/s, rad/s]; the {name} is {parts[len(out)]!r}")
-        held = [k for k in range(6) if k not in model._fi and p[k] != 0]
+        held = [k for k in range(6) if k not in model.free_index and p[k] != 0]
         if held:
             raise InvalidParameterError(
                 f"initial: the {name} is nonzero on held DOF(s) "
@@ -213,17 +214,19 @@ def _step_count(t_end, dt):
 # -------------------------------------------------------------------------- simulate
 def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
              initial=None, damping=None, record_every=1, *, record_nodes=False, tol=1e-9,
-             max_iter=25):
+             max_iter=25, start=None):
     """Integrate the nonlinear equations of motion of the lumped-mass robot.
 
-    Starts from the static equilibrium of the model (its last :meth:`equilibrium`, or the
-    equilibrium for ``lengths(0)``), optionally displaced by ``initial``, and steps with a
+    Starts from a static equilibrium (``start``, or the equilibrium for ``lengths(0)``),
+    optionally displaced by ``initial``, and steps with a
     constant ``dt``. See the module notes for the equations, schemes, winch model and
     energy bookkeeping.
 
     Parameters
     ----------
-    model : LumpedMassModel
+    model : LumpedMassModel or LumpedLinearModel
+        The lumped-mass robot; a linearised one (the "lumped" rung) also gives the default
+        ``start``, its own equilibrium.
     t_end : float
         Duration [s], > 0; ``ceil(t_end / dt)`` steps are taken.
     dt : float
@@ -254,6 +257,10 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         (as :meth:`LumpedMassModel.equilibrium`).
     max_iter : int
         Newton iterations per step before a :class:`ConvergenceError`.
+    start : LumpedEquilibrium, optional
+        Equilibrium of ``model`` to start from (default: that of a LumpedLinearModel,
+        otherwise ``model.equilibrium()``). With ``lengths``, its pose starts the search
+        for the equilibrium at ``lengths(0)``.
 
     Returns
     -------
@@ -284,9 +291,17 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         inaccurate ledger, e.g. winch work with unresolved axial chain modes).
     """
     wall0 = _time.perf_counter()
+    if isinstance(model, LumpedLinearModel):
+        start = model.equilibrium if start is None else start
+        model = model.mass_model
     if not isinstance(model, LumpedMassModel):
         raise InvalidParameterError(
-            f"model must be a LumpedMassModel, got {type(model).__name__}")
+            f"model must be a LumpedMassModel or LumpedLinearModel, got "
+            f"{type(model).__name__}")
+    if start is not None and not isinstance(start, LumpedEquilibrium):
+        raise InvalidParameterError(
+            f"start must be a LumpedEquilibrium (from model.equilibrium()), got "
+            f"{type(start).__name__}")
     t_end = positive_scalar("t_end", t_end)
     dt = positive_scalar("dt", dt)
     if dt > t_end:
@@ -301,7 +316,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         raise InvalidParameterError(
             f"excitation must be a callable t -> (6,) load or None, got {excitation!r}")
     if excitation is not None:
-        _load(excitation, 0.0)
+        load_at(excitation, 0.0)
     if damping is None:
         damping = TimeDamping()
     if not isinstance(damping, TimeDamping):
@@ -314,20 +329,19 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
 
     # ---- start: static equilibrium at L0(0), then the offset
     L_prev = model.unstretched_lengths if length_fn is None else length_fn(0.0)
-    m = _model_at(model, L_prev)
+    m = model_at(model, L_prev)
     try:
         if m is model:
-            eq = model.state
+            eq = model.equilibrium() if start is None else start
         else:
-            start = model._state.pose if model._state is not None else None
-            eq = m.equilibrium(initial_pose=start)
+            eq = m.equilibrium(initial_pose=None if start is None else start.pose)
     except (SlackCableError, ConvergenceError) as exc:
         what = "lengths(0)" if length_fn is not None else "the model's unstretched_lengths"
         raise SlackCableError(
             f"simulate: no taut static equilibrium for {what} = {L_prev.tolist()} m: "
             f"{exc}") from None
     pose = eq.pose.moved(offset) if np.any(offset) else eq.pose
-    pose = _Pose(pose.position, pose.rotation)
+    pose = FastPose(pose.position, pose.rotation)
     rob = m.robot
     if np.any(offset):
         B, _ = rob.attachment_points(pose)
@@ -342,17 +356,17 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     else:
         X = np.concatenate([x.ravel() for x in eq.interior])
     v = np.zeros(m.n_dof)
-    v[:m.n_free] = velocity[m._fi]
+    v[:m.n_free] = velocity[m.free_index]
 
     K0 = None
     if damping.beta:
-        K0 = m._tangent(eq.pose, eq.interior, lambda i: 1.0)
+        K0 = m.tangent_unchecked(eq.pose, eq.interior, lambda i: 1.0)
         K0 = (0.5 * (K0 + K0.T)).tocsr()
-    dyn = _Dynamics(m, damping, K0, excitation)
-    V_eq = _potential(m, _Frame(m, eq.pose), np.concatenate(
+    dyn = Dynamics(m, damping, K0, excitation)
+    V_eq = potential_energy(m, Frame(m, eq.pose), np.concatenate(
         [x.ravel() for x in eq.interior]))
     F, fe, fd, t_max, frame = dyn.forces(pose, X, v, 0.0)
-    pot = _potential(m, frame, X)
+    pot = potential_energy(m, frame, X)
     if pot[4]:
         i, s = pot[4][0]
         raise SlackCableError(
@@ -369,32 +383,32 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
 
     # ---- stepping
     n_steps = _step_count(t_end, dt)
-    rec = _Recorder(n_steps // record_every + 1, n, m, record_nodes)
-    ledger = _Ledger(dyn.kinetic(frame, v) + pot[0] + pot[1], V_eq[0] + V_eq[1], pot[0])
+    rec = Recorder(n_steps // record_every + 1, n, m, record_nodes)
+    ledger = Ledger(dyn.kinetic(frame, v) + pot[0] + pot[1], V_eq[0] + V_eq[1], pot[0])
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
-    newton = _Newton(tol, max_iter)
+    newton = StepNewton(tol, max_iter)
     slack_steps = 0
     for k in range(1, n_steps + 1):
         t1 = k * dt
         m_prev = m
         if length_fn is not None:
-            m = _model_at(model, length_fn(t1))
+            m = model_at(model, length_fn(t1))
             dyn.set_model(m)
-        step = _implicit_step if scheme == "implicit" else _explicit_step
+        step = implicit_step if scheme == "implicit" else explicit_step
         d, pose1, X1, v1, a1, fe1, fd1, frame1 = step(dyn, pose, X, v, a, t1, dt, k, newton)
         # ---- bookkeeping and checks
-        pot1 = _potential(m, frame1, X1)
+        pot1 = potential_energy(m, frame1, X1)
         ledger.ext += 0.5 * d @ (fe + fe1)
         ledger.diss -= 0.5 * d @ (fd + fd1)
         if m is not m_prev:
             ledger.winch += 0.5 * (
-                sum(_potential(m, frame, X)[:2]) - pot[0] - pot[1]
-                + pot1[0] + pot1[1] - sum(_potential(m_prev, frame1, X1)[:2]))
-            dmu = _node_mass_vector(m) - _node_mass_vector(m_prev)
-            ledger.carried += 0.25 * (_carried(m, m_prev, frame, v, dmu)
-                                      + _carried(m, m_prev, frame1, v1, dmu))
+                sum(potential_energy(m, frame, X)[:2]) - pot[0] - pot[1]
+                + pot1[0] + pot1[1] - sum(potential_energy(m_prev, frame1, X1)[:2]))
+            dmu = node_mass_vector(m) - node_mass_vector(m_prev)
+            ledger.carried += 0.25 * (carried_energy(m, m_prev, frame, v, dmu)
+                                      + carried_energy(m, m_prev, frame1, v1, dmu))
         row = ledger.row(dyn.kinetic(frame1, v1), pot1)
-        _check_blow_up(pot1[5], row[-1], ledger, scheme, dt, k, t1, m, damping)
+        check_blow_up(pot1[5], row[-1], ledger, scheme, dt, k, t1, m, damping)
         if pot1[4]:
             slack_steps += 1
             if slack_steps == 1:

@@ -1,6 +1,6 @@
 """Kernels of the lumped-mass time-domain model (theory.md §7.3): configuration updates
 with exactly composed rotations, the pose-dependent platform terms, damping forces, the
-potential energy and the :class:`_Dynamics` that assembles forces, mass and the Newton
+potential energy and the :class:`Dynamics` that assembles forces, mass and the Newton
 matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
 
 import functools
@@ -12,24 +12,24 @@ from .._vec import cross
 from ..errors import InvalidParameterError
 from ..platform import lever_map, platform_mass_matrix, skew
 from ..robot import Pose
-from .robot_model import LumpedMassModel, _segments
+from .robot_model import LumpedMassModel, segment_forces
 
 
-def _model_at(model, L0):
+def model_at(model, L0):
     """The model with other unstretched lengths (same robot and segments)."""
     if np.array_equal(L0, model.unstretched_lengths):
         return model
     return LumpedMassModel(model.robot, L0, [int(s) for s in model.segments])
 
 
-def _interior(model, X):
+def interior_views(model, X):
     """Views of the flat interior-node vector X as the model's list of (N_i - 1, 3)."""
     nf = model.n_free
     return [X[o - nf:o - nf + 3 * (N - 1)].reshape(-1, 3)
-            for o, N in zip(model._offsets, model.segments)]
+            for o, N in zip(model.offsets, model.segments)]
 
 
-class _Pose(Pose):
+class FastPose(Pose):
     """A :class:`Pose` that computes its rotation matrix once (the model's residual, its
     tangent and the platform terms all ask for it)."""
 
@@ -39,29 +39,29 @@ class _Pose(Pose):
         return super().matrix
 
 
-def _advance(model, pose, X, dx):
+def advance(model, pose, X, dx):
     """Configuration after the increment dx (rotation composed exactly)."""
     d6 = np.zeros(6)
-    d6[model._fi] = dx[:model.n_free]
+    d6[model.free_index] = dx[:model.n_free]
     if np.any(d6[3:]):
         moved = pose.moved(d6)
-        pose = _Pose(moved.position, moved.rotation)
+        pose = FastPose(moved.position, moved.rotation)
     else:
-        new = _Pose(pose.position + d6[:3], pose.rotation)
+        new = FastPose(pose.position + d6[:3], pose.rotation)
         if "matrix" in pose.__dict__:                      # same rotation: keep R_p
             new.__dict__["matrix"] = pose.__dict__["matrix"]
         pose = new
     return pose, X + dx[model.n_free:]
 
 
-def _twist(model, v):
+def twist_of(model, v):
     """Full platform twist (v_P, w), shape (6,), from the free-DOF velocities."""
     t = np.zeros(6)
-    t[model._fi] = v[:model.n_free]
+    t[model.free_index] = v[:model.n_free]
     return t
 
 
-class _Frame:
+class Frame:
     """Pose-dependent platform quantities of one model at one pose.
 
     The rotation-dependent part is copied from ``like`` when the rotation and the model
@@ -80,8 +80,8 @@ class _Frame:
         self.R = pose.matrix
         self.r = rob.attachments @ self.R.T
         self.B = pose.position + self.r
-        self._fi = fi = model._fi
-        half = 0.5 * model._node_mass
+        self._fi = fi = model.free_index
+        half = 0.5 * model.node_masses
         Mp = platform_mass_matrix(rob.platform, self.R)
         hr = half @ self.r                                  # sum (m l0 / 2) r_i
         S = skew(hr)
@@ -103,9 +103,9 @@ class _Frame:
         return [lever_map(ri, self._fi) for ri in self.r]
 
 
-def _node_mass_vector(model):
+def node_mass_vector(model):
     """Diagonal of the interior-node mass, shape (n_dof - n_free,) [kg]."""
-    return np.repeat(model._node_mass, 3 * (model.segments - 1))
+    return np.repeat(model.node_masses, 3 * (model.segments - 1))
 
 
 def _gyroscopic(model, frame, tw):
@@ -119,7 +119,7 @@ def _gyroscopic(model, frame, tw):
         return np.zeros(model.n_free)
     g6 = np.concatenate([cross(w, cross(w, frame.first_moment)),
                          cross(w, frame.M6[3:, 3:] @ w)])
-    return g6[model._fi]
+    return g6[model.free_index]
 
 
 def _axial_dashpot(model, frame, X, v, tw, c_ax):
@@ -127,8 +127,8 @@ def _axial_dashpot(model, frame, X, v, tw, c_ax):
     F = np.zeros(model.n_dof)
     nf = model.n_free
     rob = model.robot
-    interior = _interior(model, X)
-    vint = [v[o:o + 3 * (N - 1)].reshape(-1, 3) for o, N in zip(model._offsets,
+    interior = interior_views(model, X)
+    vint = [v[o:o + 3 * (N - 1)].reshape(-1, 3) for o, N in zip(model.offsets,
                                                                   model.segments)]
     W = np.zeros(6)
     for i, (xi, vi) in enumerate(zip(interior, vint)):
@@ -138,18 +138,18 @@ def _axial_dashpot(model, frame, X, v, tw, c_ax):
         nodes = np.vstack((rob.anchors[i], xi, frame.B[i]))
         vB = tw[:3] + cross(tw[3:], frame.r[i])
         vel = np.vstack((np.zeros(3), vi, vB))
-        units, lengths, _ = _segments(nodes, l0, rob.cables[i].EA)
+        units, lengths, _ = segment_forces(nodes, l0, rob.cables[i].EA)
         rate = np.einsum("ij,ij->i", units, np.diff(vel, axis=0)) / l0
         f = (np.where(lengths > l0, c_ax[i] * rate, 0.0))[:, None] * units
-        o = model._offsets[i]
+        o = model.offsets[i]
         F[o:o + xi.size] = (f[1:] - f[:-1]).ravel()
         W[:3] -= f[-1]
         W[3:] -= cross(frame.r[i], f[-1])
-    F[:nf] = W[model._fi]
+    F[:nf] = W[model.free_index]
     return F
 
 
-def _potential(model, frame, X):
+def potential_energy(model, frame, X):
     """Elastic and gravity energy [J], end tensions [N], slack segments, largest strain."""
     rob = model.robot
     g = rob.g
@@ -157,13 +157,13 @@ def _potential(model, frame, X):
     gravity = rob.platform.mass * g * frame.zG
     t_end, t_anchor = np.empty(rob.n_cables), np.empty(rob.n_cables)
     slack, strain = [], 0.0
-    for i, xi in enumerate(_interior(model, X)):
+    for i, xi in enumerate(interior_views(model, X)):
         l0, EA = model.segment_lengths[i], rob.cables[i].EA
         nodes = np.vstack((rob.anchors[i], xi, frame.B[i]))
-        _, lengths, T = _segments(nodes, l0, EA)
+        _, lengths, T = segment_forces(nodes, l0, EA)
         stretch = np.maximum(lengths - l0, 0.0)
         elastic += 0.5 * EA / l0 * np.dot(stretch, stretch)
-        gravity += model._node_mass[i] * g * (xi[:, 2].sum() + 0.5 * frame.B[i, 2])
+        gravity += model.node_masses[i] * g * (xi[:, 2].sum() + 0.5 * frame.B[i, 2])
         t_end[i], t_anchor[i] = T[-1], T[0]
         strain = max(strain, float(np.max(lengths)) / l0 - 1.0)
         if np.any(T <= 0.0):
@@ -171,7 +171,7 @@ def _potential(model, frame, X):
     return elastic, gravity, t_end, t_anchor, slack, strain
 
 
-class _Dynamics:
+class Dynamics:
     """Forces, mass and Newton matrix of the lumped robot at given lengths (internal)."""
 
     def __init__(self, model, damping, K0, excitation):
@@ -189,13 +189,13 @@ class _Dynamics:
 
     def set_model(self, model):
         self.model = model
-        self.mu = _node_mass_vector(model)
+        self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
     def load(self, t):
         F = np.zeros(self.model.n_dof)
         if self.excitation is not None:
-            F[:self.model.n_free] = _load(self.excitation, t)[self.model._fi]
+            F[:self.model.n_free] = load_at(self.excitation, t)[self.model.free_index]
         return F
 
     def mass_times(self, frame, a):
@@ -212,10 +212,10 @@ class _Dynamics:
     def forces(self, pose, X, v, t):
         """Total generalised force F and its external and damping parts, max tension."""
         m = self.model
-        frame = self._last = _Frame(m, pose, self._last)
-        R, t_max = m._residual(pose, _interior(m, X))
+        frame = self._last = Frame(m, pose, self._last)
+        R, t_max = m.residual_unchecked(pose, interior_views(m, X))
         fe = self.load(t)
-        tw = _twist(m, v)
+        tw = twist_of(m, v)
         nf = m.n_free
         fd = np.zeros(m.n_dof)
         if self.alpha:
@@ -233,10 +233,10 @@ class _Dynamics:
     def newton_matrix(self, pose, X, dt):
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
         m = self.model
-        frame = _Frame(m, pose, self._last)
+        frame = Frame(m, pose, self._last)
         EA = np.array([cb.EA for cb in m.robot.cables])
         extra = 2.0 * self.c_ax / (dt * EA)
-        K = m._tangent(pose, _interior(m, X), lambda i: 1.0 + extra[i])
+        K = m.tangent_unchecked(pose, interior_views(m, X), lambda i: 1.0 + extra[i])
         c_mass = 4.0 / dt ** 2 + 2.0 * self.alpha / dt
         block = c_mass * frame.Mff + (2.0 / dt) * self.platform_viscous(frame)
         diag = c_mass * self.mu + (2.0 / dt) * self.cv
@@ -256,7 +256,7 @@ class _Dynamics:
         return 0.5 * float(v @ self.mass_times(frame, v))
 
 
-def _load(excitation, t):
+def load_at(excitation, t):
     f = np.asarray(excitation(t), dtype=float)
     if f.shape != (6,) or not np.all(np.isfinite(f)):
         raise InvalidParameterError(

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InvalidParameterError
-from ..frf import OUTPUT_NAMES
+from ..constants import DOF_NAMES as OUTPUT_NAMES
 
 __all__ = ["EnergyBalance", "TimeResponse", "Spectrum"]
 
@@ -117,6 +117,10 @@ class TimeResponse:
     wall_time: float = 0.0
 
     @property
+    def __repr__(self):
+        return (f"TimeResponse({self.scheme}, {self.times[-1]:.4g} s in {self.n_steps} steps of "
+                f"{self.dt:.3g} s, {self.times.size} records, free {self.free_dofs})")
+
     def displacement(self):
         """Pose minus the starting equilibrium pose [m, rad], shape (n_t, 6)."""
         return self.pose - self.equilibrium_pose
@@ -251,6 +255,11 @@ class Spectrum:
     channel: str
     window: str
     resolution_hz: float
+
+    def __repr__(self):
+        peaks = ", ".join(f"{f:.4g}" for f in self.peaks_hz[:4])
+        return (f"Spectrum({self.channel}, {self.freq_hz.size} bins of {self.resolution_hz:.3g} "
+                f"Hz, peaks [{peaks}{', ...' if self.peaks_hz.size > 4 else ''}] Hz)")
 
     def to_frame(self):
         """pandas DataFrame: freq [Hz], amplitude, and a ``peak`` flag."""

@@ -11,7 +11,7 @@ import scipy.sparse.linalg
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
-from .time_dynamics import _advance, _interior, _twist
+from .time_dynamics import advance, interior_views, twist_of
 from .time_response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
@@ -39,7 +39,7 @@ class EnergyBalanceWarning(RuntimeWarning):
     necessarily the motion) is inaccurate at this dt; halve dt to check."""
 
 
-class _Newton:
+class StepNewton:
     """Newton options, the kept LU factors and the iteration counters of a run."""
 
     def __init__(self, tol, max_iter):
@@ -48,7 +48,7 @@ class _Newton:
         self.iterations = self.updates = 0
 
 
-def _implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
+def implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     """One Newmark average-acceleration step solved by (modified) Newton iterations.
 
     Unknown: the increment d = x_{n+1} - x_n; a_{n+1} = 4 (d - dt v_n) / dt^2 - a_n and
@@ -61,7 +61,7 @@ def _implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     d = dt * v + 0.5 * dt ** 2 * a                    # predictor: a_{n+1} = a_n
     prev = np.inf
     for it in range(newton.max_iter + 1):
-        pose1, X1 = _advance(m, pose, X, d)
+        pose1, X1 = advance(m, pose, X, d)
         a1 = c0 * (d - dt * v) - a
         v1 = v + 0.5 * dt * (a + a1)
         F1, fe1, fd1, t_max, frame1 = dyn.forces(pose1, X1, v1, t1)
@@ -70,7 +70,7 @@ def _implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
             raise IntegrationError(
                 f"simulate: non-finite state at step {k} (t = {t1:g} s) with implicit dt = "
                 f"{dt:g} s", step=k, time=t1, dt=dt)
-        res = m._relative_residual(G, t_max)
+        res = m.relative_residual(G, t_max)
         if res <= newton.tol:
             break
         if it == newton.max_iter:
@@ -87,12 +87,12 @@ def _implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def _explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
+def explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     """One velocity-Verlet step (velocity-dependent forces at the half-step velocity)."""
     m = dyn.model
     vh = v + 0.5 * dt * a
     d = dt * vh
-    pose1, X1 = _advance(m, pose, X, d)
+    pose1, X1 = advance(m, pose, X, d)
     F1, fe1, fd1, _, frame1 = dyn.forces(pose1, X1, vh, t1)
     a1 = dyn.accelerations(frame1, F1)
     v1 = vh + 0.5 * dt * a1
@@ -105,7 +105,7 @@ def _explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def _check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
+def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
     """IntegrationError when a strain exceeds 1 or the energy balance residual exceeds
     ``_BLOW_UP`` times the energy scale of the run (plus 1e-3 of the initial strain
     energy); an :class:`EnergyBalanceWarning`, once, when it passes ``_LEDGER_WARN`` of it.
@@ -135,16 +135,16 @@ def _check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
         f"{why}{hint}", step=k, time=t1, dt=dt)
 
 
-def _carried(m, m_prev, frame, v, dmu):
+def carried_energy(m, m_prev, frame, v, dmu):
     """sum dmu |v|^2 of the interior nodes and the half masses at B_i [J * 2]."""
     nf = m.n_free
-    tw = _twist(m, v)
-    dhalf = 0.5 * (m._node_mass - m_prev._node_mass)
+    tw = twist_of(m, v)
+    dhalf = 0.5 * (m.node_masses - m_prev.node_masses)
     vB = tw[:3] + cross(tw[3:], frame.r)
     return float(dmu @ v[nf:] ** 2 + dhalf @ np.sum(vB ** 2, axis=1))
 
 
-class _Ledger:
+class Ledger:
     """Running energy balance E - E0 = W_ext - D + W_w + E_c + residual (module notes)."""
 
     def __init__(self, E0, V_eq, elastic0):
@@ -172,7 +172,7 @@ class _Ledger:
         return self.scale() + self.floor
 
 
-class _Recorder:
+class Recorder:
     def __init__(self, n_rec, n, model, nodes):
         self.t = np.empty(n_rec)
         self.pose = np.empty((n_rec, 6))
@@ -186,13 +186,13 @@ class _Recorder:
     def store(self, j, t, pose, v, model, pot, row, X):
         self.t[j] = t
         self.pose[j] = pose.as_vector()
-        self.vel[j] = _twist(model, v)
+        self.vel[j] = twist_of(model, v)
         self.t_end[j], self.t_anchor[j] = pot[2], pot[3]
         self.L[j] = model.unstretched_lengths
         self.E[j] = row
         if self.nodes is not None:
             B, _ = model.robot.attachment_points(pose)
-            for i, xi in enumerate(_interior(model, X)):
+            for i, xi in enumerate(interior_views(model, X)):
                 self.nodes[i][j] = np.vstack((model.robot.anchors[i], xi, B[i]))
 
     def result(self, model, eq_pose, static_energy, **info):

@@ -28,7 +28,7 @@ class _Excitation:
                            np.tile(self.phase, r))
 
 
-def _excitation(freq_hz, amplitude, phase):
+def excitation_at(freq_hz, amplitude, phase):
     f, x0, ph = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float))
                                       for v in (freq_hz, amplitude, phase)))
     for name, v, zero in (("freq_hz", f, False), ("amplitude", x0, True)):
@@ -56,7 +56,7 @@ def _ends(model, t, exc):
     return E, V
 
 
-def _segments(model, t, y, exc):
+def segment_geometry(model, t, y, exc):
     """Geometry and tensions of all cable segments, batched over c cases.
 
     Returns D, tD = dD/dphi (c, 2); the segment vectors r, their rates w and unit vectors e
@@ -85,7 +85,7 @@ def _segments(model, t, y, exc):
     return D, tD, r, w, e, length, s, np.maximum(s, 0.0)
 
 
-def _evaluate(model, t, y, exc, jac):
+def evaluate_rhs(model, t, y, exc, jac):
     """Right-hand side (and Jacobian) of the first-order system, batched over c cases.
 
     Returns
@@ -98,17 +98,17 @@ def _evaluate(model, t, y, exc, jac):
     ks = (n + 1) * model.stiffness
     bs = (n + 1) * model.damping
     dphi = y[:, nq]
-    D, tD, r, w, e, length, s, T = _segments(model, t, y, exc)
+    D, tD, r, w, e, length, s, T = segment_geometry(model, t, y, exc)
     sn, cs = D[:, 0] / model.attach_distance, D[:, 1] / model.attach_distance
     F = T[..., None] * e                                 # force on a segment's first point
     fD = -F[:, :, n].sum(axis=1)                         # on D, both cables
     Q = np.empty((c, nq))
-    Q[:, 0] = np.sum(tD * fD, axis=1) + model._gravity_moment() * sn
+    Q[:, 0] = np.sum(tD * fD, axis=1) + model.gravity_moment() * sn
     if n:
         fn = F[:, :, 1:] - F[:, :, :-1]
         fn[..., 1] -= model.node_mass * model.g
         Q[:, 1:] = fn.reshape(c, 4 * n)
-    Minv = 1.0 / model._mass_diagonal()
+    Minv = 1.0 / model.mass_diagonal()
     ydot = np.concatenate([y[:, nq:], Q * Minv], axis=1)
     if not jac:
         return ydot, None
@@ -151,7 +151,7 @@ def _evaluate(model, t, y, exc, jac):
     dQdv[:, 0, 1:] = np.einsum("ci,cij->cj", tD, Cp[:, dd, nn])
     dQdq[:, 0, 0] = (np.einsum("ci,cij,cj->c", tD, Kp[:, dd, dd], tD)
                      + np.einsum("ci,cij,cj->c", tD, Cp[:, dd, dd], vD)
-                     - np.sum(D * fD, axis=1) + model._gravity_moment() * cs)
+                     - np.sum(D * fD, axis=1) + model.gravity_moment() * cs)
     dQdv[:, 0, 0] = np.einsum("ci,cij,cj->c", tD, Cp[:, dd, dd], tD)
     J = np.zeros((c, 2 * nq, 2 * nq))
     J[:, :nq, nq:] = np.eye(nq)
@@ -161,7 +161,7 @@ def _evaluate(model, t, y, exc, jac):
 
 
 def _batch_args(model, t, y, freq_hz, amplitude, phase):
-    exc = _excitation(freq_hz, amplitude, phase)
+    exc = excitation_at(freq_hz, amplitude, phase)
     y = np.atleast_2d(np.asarray(y, dtype=float))
     if y.shape[-1] != 2 * model.n_dof:
         raise InvalidParameterError(
@@ -179,7 +179,7 @@ def _batch_args(model, t, y, freq_hz, amplitude, phase):
         raise InvalidParameterError(
             f"t, y and the excitation must broadcast to one number of cases, got {t.size}, "
             f"{y.shape[0]}, {exc.omega.size}") from None
-    return t, y, _excitation(f, np.broadcast_to(exc.amplitude, (c,)),
+    return t, y, excitation_at(f, np.broadcast_to(exc.amplitude, (c,)),
                              np.broadcast_to(exc.phase, (c,)))
 
 
@@ -201,7 +201,7 @@ def rhs(model, t, y, freq_hz, amplitude, phase=0.0):
     ndarray, shape (c, 2 n_dof)
     """
     t, y, exc = _batch_args(model, t, y, freq_hz, amplitude, phase)
-    return _evaluate(model, t, y, exc, False)[0]
+    return evaluate_rhs(model, t, y, exc, False)[0]
 
 
 def jacobian(model, t, y, freq_hz, amplitude, phase=0.0):
@@ -217,7 +217,7 @@ def jacobian(model, t, y, freq_hz, amplitude, phase=0.0):
     ndarray, shape (c, 2 n_dof, 2 n_dof)
     """
     t, y, exc = _batch_args(model, t, y, freq_hz, amplitude, phase)
-    return _evaluate(model, t, y, exc, True)[1]
+    return evaluate_rhs(model, t, y, exc, True)[1]
 
 
 def rest_state(model, phi=0.0):
@@ -234,7 +234,7 @@ def rest_state(model, phi=0.0):
     y[0] = phi
     n = model.n_masses
     if n:
-        from ..lumped import chain_equilibrium
+        from ..lumped.chain import chain_equilibrium
         from ..params import Cable
         L0 = model.unstretched_length
         cable = Cable(model.cable_mass / L0, model.stiffness * L0)
@@ -247,7 +247,7 @@ def rest_state(model, phi=0.0):
 
 
 
-def _start_state(model, exc):
+def start_state(model, exc):
     """Rest state whose point masses move with the ends as at t = 0 (velocity interpolated
     along each cable), so that a start from rest does not jolt the stiff cable, (c, n_y)."""
     c, n, nq = exc.omega.size, model.n_masses, model.n_dof

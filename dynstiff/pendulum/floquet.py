@@ -7,9 +7,9 @@ import numpy as np
 
 from .._validate import positive_scalar
 from ..errors import ConvergenceError
-from .dynamics import _evaluate, _excitation, _start_state
-from .model import _integer
-from .radau import _RADAU_C, _mirror_bases, _period_map, _stage_matrix, _steps_per_period
+from .dynamics import evaluate_rhs, excitation_at, start_state
+from .model import checked_integer
+from .radau import RADAU_C, mirror_bases, period_map, stage_matrix, steps_per_period_of
 
 
 @dataclass(frozen=True)
@@ -143,18 +143,18 @@ def floquet(model, freq_hz, amplitude, phase=0.0, steps_min=64, steps_per_cycle=
         A time step whose Newton iteration failed even after four halvings, or a
         non-finite monodromy matrix.
     """
-    exc = _excitation(freq_hz, amplitude, phase)
-    steps_min = _integer("steps_min", steps_min, 4)
-    steps_per_cycle = _integer("steps_per_cycle", steps_per_cycle, 4)
-    max_shooting = _integer("max_shooting", max_shooting, 1)
-    average_periods = _integer("average_periods", average_periods, 1)
+    exc = excitation_at(freq_hz, amplitude, phase)
+    steps_min = checked_integer("steps_min", steps_min, 4)
+    steps_per_cycle = checked_integer("steps_per_cycle", steps_per_cycle, 4)
+    max_shooting = checked_integer("max_shooting", max_shooting, 1)
+    average_periods = checked_integer("average_periods", average_periods, 1)
     symmetric = bool(np.all(exc.phase == 0.0))
     if transient_periods is None:
         transient_periods = 0 if symmetric and model.n_masses == 0 else 20
-    transient_periods = _integer("transient_periods", transient_periods, 0)
+    transient_periods = checked_integer("transient_periods", transient_periods, 0)
     tol = positive_scalar("tol", tol)
     orbit_tol = positive_scalar("orbit_tol", orbit_tol)
-    n_steps = _steps_per_period(model, exc, steps_min, steps_per_cycle)
+    n_steps = steps_per_period_of(model, exc, steps_min, steps_per_cycle)
     c, ny = exc.omega.size, 2 * model.n_dof
     mult = np.empty((c, ny), dtype=complex)
     pend = np.empty(c, dtype=complex)
@@ -182,10 +182,10 @@ def _rest_monodromy(model, exc, n_steps, block=2048):
     for start in range(0, n_steps, block):
         k = np.arange(start, min(n_steps, start + block))
         nb = k.size
-        t = ((k[None, :, None] + _RADAU_C[None, None, :]) * h[:, None, None]).ravel()
+        t = ((k[None, :, None] + RADAU_C[None, None, :]) * h[:, None, None]).ravel()
         rep = np.repeat(np.arange(c), 2 * nb)
-        J = _evaluate(model, t, np.zeros((t.size, ny)), exc.take(rep), True)[1]
-        Mat, rhs = _stage_matrix(np.repeat(h, nb), J.reshape(c * nb, 2, ny, ny))
+        J = evaluate_rhs(model, t, np.zeros((t.size, ny)), exc.take(rep), True)[1]
+        Mat, rhs = stage_matrix(np.repeat(h, nb), J.reshape(c * nb, 2, ny, ny))
         S = (np.eye(ny) + np.linalg.solve(Mat, rhs)[:, ny:]).reshape(c, nb, ny, ny)
         while S.shape[1] > 1:                          # S_{nb-1} ... S_1 S_0, pairwise
             if S.shape[1] % 2:
@@ -202,7 +202,7 @@ def _by_modulus(mu):
 def _shooting_step(model, exc, n_steps, scale, U, bases, v):
     """One period from v: y(T_e), the monodromy matrices, the scaled residual and the Newton
     step, limited so that no node moves by more than 5 % of the chord (phi by 0.05 rad)."""
-    vT, M = _period_map(model, v, exc, n_steps, scale, U, bases)
+    vT, M = period_map(model, v, exc, n_steps, scale, U, bases)
     r = vT - v
     W = bases[0]
     step = np.linalg.solve(M[0] - np.eye(W.shape[1]), -(r @ W)[..., None])[..., 0] @ W.T
@@ -219,16 +219,16 @@ def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_s
         mu = _by_modulus(np.linalg.eigvals(_rest_monodromy(model, exc, n_steps))
                          .astype(complex))
         return mu, mu[:, 0], np.ones(c), np.ones(c, dtype=bool), np.zeros(c)
-    scale = model._scale(exc.omega)
-    y = _start_state(model, exc)
+    scale = model.state_scale(exc.omega)
+    y = start_state(model, exc)
     if symmetric:
-        U, Ua = _mirror_bases(model)
+        U, Ua = mirror_bases(model)
         bases = (U, Ua)
         y = (y @ U) @ U.T
     else:
         U, bases = None, (np.eye(2 * model.n_dof),)
     for _ in range(n_transient):
-        y = _period_map(model, y, exc, n_steps, scale, U)[0]
+        y = period_map(model, y, exc, n_steps, scale, U)[0]
 
     def evaluate(v):
         return _shooting_step(model, exc, n_steps, scale, U, bases, v)
@@ -284,7 +284,7 @@ def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_s
                 for B in bases]
         for _ in range(n_average):
             v_prev = v
-            v, Mk = _period_map(model, v, exc.take(idx), n_steps, scale[idx], U, bases)
+            v, Mk = period_map(model, v, exc.take(idx), n_steps, scale[idx], U, bases)
             for b in range(len(bases)):
                 p = Mk[b] @ prod[b]
                 nrm = np.linalg.norm(p, axis=(1, 2))
@@ -319,7 +319,7 @@ def _pendulum_share(model, V):
     |dq_i|^2) of state vectors V, shape (c, n_y, k) -> (c, k)."""
     nq = model.n_dof
     w2 = (2 * np.pi * max(model.natural_frequency_hz(), 1.0)) ** 2
-    m = model._mass_diagonal()[None, :, None]
+    m = model.mass_diagonal()[None, :, None]
     e = m * (np.abs(V[:, nq:]) ** 2 + w2 * np.abs(V[:, :nq]) ** 2)
     return e[:, 0] / np.sum(e, axis=1)
 

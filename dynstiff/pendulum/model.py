@@ -144,14 +144,15 @@ class CablePendulum:
         return self.preload * self.chord_length / (self.stiffness * self.half_span)
 
     # ------------------------------------------------------------------ kernels
-    def _gravity_moment(self):
+    def gravity_moment(self):
         """Coefficient of sin(phi) in the gravity moment about A [N m]."""
         return (self.mass * self.com_distance + self.node_mass * self.attach_distance) * self.g
 
-    def _mass_diagonal(self):
+    def mass_diagonal(self):
+        """Diagonal of the mass matrix: pin inertia [kg m^2], then the node masses [kg]."""
         return np.concatenate([[self.pin_inertia], np.full(4 * self.n_masses, self.node_mass)])
 
-    def _scale(self, omega):
+    def state_scale(self, omega):
         """Per-component scale of the state (rad, m, rad/s, m/s), shape (c, 2 n_dof)."""
         w = np.maximum(np.asarray(omega, dtype=float), 2 * np.pi * self.natural_frequency_hz())
         q = np.concatenate([[1.0], np.full(4 * self.n_masses, self.chord_length)])
@@ -160,7 +161,7 @@ class CablePendulum:
 
 
 
-def _integer(name, value, minimum):
+def checked_integer(name, value, minimum):
     if isinstance(value, bool) or not isinstance(value, Integral) or value < minimum:
         raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return int(value)

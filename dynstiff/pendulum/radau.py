@@ -4,10 +4,10 @@ the exact derivative of the discrete period map (the monodromy matrix)."""
 import numpy as np
 
 from ..errors import ConvergenceError
-from .dynamics import _evaluate
+from .dynamics import evaluate_rhs
 
 # two-stage Radau IIA (order 3, stiffly accurate)
-_RADAU_C = np.array([1.0 / 3.0, 1.0])
+RADAU_C = np.array([1.0 / 3.0, 1.0])
 _RADAU_A = np.array([[5.0 / 12.0, -1.0 / 12.0], [3.0 / 4.0, 1.0 / 4.0]])
 
 
@@ -16,7 +16,7 @@ def _project(J, U):
     return J if U is None else U.T @ J @ U
 
 
-def _stage_matrix(h, Js):
+def stage_matrix(h, Js):
     """I - h (A kron J) for stage Jacobians Js of shape (c, 2, m, m) -> (c, 2m, 2m), and
     h sum_j a_ij J_j stacked over i, shape (c, 2m, m)."""
     c, _, m, _ = Js.shape
@@ -34,24 +34,24 @@ def _radau_step(model, t, y, h, exc, scale, U=None, derivative=(), tol=1e-10, ma
     basis, W^T (dy_new/dy) W, from the Newton matrix at the converged stages.
     """
     c, ny = y.shape
-    tt = np.concatenate([t + _RADAU_C[0] * h, t + _RADAU_C[1] * h])
+    tt = np.concatenate([t + RADAU_C[0] * h, t + RADAU_C[1] * h])
     exc2 = exc.repeat(2)
-    f0 = _evaluate(model, t, y, exc, False)[0]
+    f0 = evaluate_rhs(model, t, y, exc, False)[0]
     if U is not None:
         f0 = f0 @ U
-    Z = _RADAU_C[None, :, None] * h[:, None, None] * f0[:, None, :]
+    Z = RADAU_C[None, :, None] * h[:, None, None] * f0[:, None, :]
     m = Z.shape[2]
     err = np.inf
     for it in range(max_iter):
         dY = Z if U is None else Z @ U.T
         Y = (y[:, None, :] + dY).transpose(1, 0, 2).reshape(2 * c, ny)
-        F, J = _evaluate(model, tt, Y, exc2, True)
+        F, J = evaluate_rhs(model, tt, Y, exc2, True)
         F = F.reshape(2, c, ny).transpose(1, 0, 2)
         J = J.reshape(2, c, ny, ny).transpose(1, 0, 2, 3)
         if U is not None:
             F = F @ U
         G = Z - h[:, None, None] * np.einsum("ij,cjn->cin", _RADAU_A, F)
-        Mat, _ = _stage_matrix(h, _project(J, U))
+        Mat, _ = stage_matrix(h, _project(J, U))
         dZ = np.linalg.solve(Mat, -G.reshape(c, 2 * m, 1))[..., 0].reshape(c, 2, m)
         Z += dZ
         err = np.max(np.abs(dZ if U is None else dZ @ U.T) / scale[:, None, :])
@@ -66,7 +66,7 @@ def _radau_step(model, t, y, h, exc, scale, U=None, derivative=(), tol=1e-10, ma
     y_new = y + (Z[:, 1] if U is None else Z[:, 1] @ U.T)
     out = []
     for W in derivative:
-        Mw, rw = _stage_matrix(h, _project(J, W))
+        Mw, rw = stage_matrix(h, _project(J, W))
         k = rw.shape[2]
         out.append(np.eye(k) + np.linalg.solve(Mw, rw)[:, k:])
     return y_new, out
@@ -86,14 +86,14 @@ def _robust_step(model, t, y, h, exc, scale, U, derivative, depth=0):
     return y2, [b @ a for a, b in zip(S1, S2)]
 
 
-def _steps_per_period(model, exc, steps_min, steps_per_cycle):
+def steps_per_period_of(model, exc, steps_min, steps_per_cycle):
     f = exc.freq_hz
     fn = max(model.natural_frequency_hz(), 1.0)
     n = np.maximum(steps_min, np.ceil(steps_per_cycle * fn / f))
     return (2 ** np.ceil(np.log2(n))).astype(int)       # powers of two: few distinct groups
 
 
-def _period_map(model, y, exc, n_steps, scale, U=None, derivative=(), t0=0.0):
+def period_map(model, y, exc, n_steps, scale, U=None, derivative=(), t0=0.0):
     """Integrate one excitation period from t0: y(T_e), and the monodromy matrix in each basis
     of ``derivative``."""
     c, ny = y.shape
@@ -107,7 +107,7 @@ def _period_map(model, y, exc, n_steps, scale, U=None, derivative=(), t0=0.0):
     return y, M
 
 
-def _mirror_bases(model):
+def mirror_bases(model):
     """Orthonormal bases (U_sym, U_anti) of the states that the mirror x -> -x keeps,
     resp. reverses; shapes (n_y, 4 n) and (n_y, 4 n + 2)."""
     n, nq = model.n_masses, model.n_dof

@@ -6,8 +6,8 @@ import numpy as np
 
 from .._validate import positive_scalar
 from ..errors import ConvergenceError, InvalidParameterError
-from .dynamics import _evaluate, _excitation, _segments, _start_state
-from .model import CablePendulum, _integer
+from .dynamics import evaluate_rhs, excitation_at, segment_geometry, start_state
+from .model import CablePendulum, checked_integer
 
 
 @dataclass(frozen=True)
@@ -49,8 +49,8 @@ class PendulumResponse:
 
     def tensions(self):
         """Tension of the segment at D of cable 1 (end B) and 2 (end C) [N], (n_t, 2)."""
-        exc = _excitation(self.freq_hz, self.amplitude, self.phase).repeat(self.t.size)
-        return _segments(self.model, self.t, self.y, exc)[-1][:, :, -1]
+        exc = excitation_at(self.freq_hz, self.amplitude, self.phase).repeat(self.t.size)
+        return segment_geometry(self.model, self.t, self.y, exc)[-1][:, :, -1]
 
     def amplitude_growth(self, periods=2):
         """max |phi| over the last ``periods`` excitation periods / max |phi| over the first
@@ -110,7 +110,7 @@ def simulate(model, freq_hz, amplitude, t_end, phase=0.0, phi0=1e-4, method=None
     import time
 
     from scipy.integrate import solve_ivp
-    exc = _excitation(freq_hz, amplitude, phase)
+    exc = excitation_at(freq_hz, amplitude, phase)
     if exc.omega.size != 1:
         raise InvalidParameterError(
             f"simulate takes one excitation case, got {exc.omega.size} (freq_hz, amplitude, "
@@ -123,26 +123,26 @@ def simulate(model, freq_hz, amplitude, t_end, phase=0.0, phi0=1e-4, method=None
     max_step = positive_scalar("max_step", max_step)
     if n_out is None:
         n_out = int(min(64 * t_end * f, 200000)) + 1
-    n_out = _integer("n_out", n_out, 2)
+    n_out = checked_integer("n_out", n_out, 2)
     if method is None:
         method = "DOP853" if model.n_masses == 0 else "LSODA"
-    y0 = _start_state(model, exc)[0]
+    y0 = start_state(model, exc)[0]
     y0[0] = float(phi0)
     if not np.isfinite(y0[0]):
         raise InvalidParameterError(f"phi0 must be finite [rad], got {phi0!r}")
 
     def fun(t, y):
-        return _evaluate(model, np.array([t]), y[None], exc, False)[0][0]
+        return evaluate_rhs(model, np.array([t]), y[None], exc, False)[0][0]
 
     def jac(t, y):
-        return _evaluate(model, np.array([t]), y[None], exc, True)[1][0]
+        return evaluate_rhs(model, np.array([t]), y[None], exc, True)[1][0]
 
     kw = {} if method in ("RK23", "RK45", "DOP853") else {"jac": jac}
     t_eval = np.linspace(0.0, t_end, n_out)
     start = time.perf_counter()
     try:
         sol = solve_ivp(fun, (0.0, t_end), y0, method=method, t_eval=t_eval, rtol=rtol,
-                        atol=rtol * model._scale(exc.omega)[0], max_step=max_step, **kw)
+                        atol=rtol * model.state_scale(exc.omega)[0], max_step=max_step, **kw)
     except ValueError as exc_:
         raise InvalidParameterError(f"method {method!r}: {exc_}") from None
     wall = time.perf_counter() - start

@@ -6,14 +6,17 @@ from pathlib import Path
 
 import numpy as np
 
+from ..constants import DOF_NAMES, STANDARD_GRAVITY
 from ..errors import DynstiffError, InvalidParameterError
 from ..params import Cable
 from ..platform import Platform
-from ..robot import Pose, Robot
+from ..pose import Pose
+from ..robot import Robot
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 
-_HERE = Path(__file__).resolve().parent
+#: Folder of the built-in scene files.
+SCENE_DIR = Path(__file__).resolve().parent
 
 _SCHEMA = {
     "scene": {"name", "description", "g"},
@@ -66,13 +69,27 @@ class Scene:
     description: str = ""
     path: object = None
 
-    def equilibrium(self, **kw):
-        """Equilibrium at the scene's pose (inverse statics) or lengths (forward statics)."""
+    def equilibrium(self, pose=None, unstretched_lengths=None, **kw):
+        """Static equilibrium of the scene's robot (:meth:`Robot.equilibrium`).
+
+        At ``pose`` (inverse statics) or for ``unstretched_lengths`` [m] (forward statics)
+        when one is given (at most one), otherwise at the scene's own pose or lengths.
+        Other keywords go to :meth:`Robot.equilibrium` (``tol``, ``initial_pose``, ...).
+        """
+        if pose is not None and unstretched_lengths is not None:
+            raise InvalidParameterError(
+                "give at most one of pose= or unstretched_lengths= (with neither, the scene's "
+                "own is used)")
+        if pose is not None:
+            return self.robot.equilibrium(pose=pose, **kw)
+        if unstretched_lengths is not None:
+            return self.robot.equilibrium(unstretched_lengths=unstretched_lengths, **kw)
         if self.pose is not None:
             return self.robot.equilibrium(pose=self.pose, **kw)
         if self.unstretched_lengths is not None:
             return self.robot.equilibrium(unstretched_lengths=self.unstretched_lengths, **kw)
-        raise SceneError(f"scene {self.name!r} names neither a [pose] nor unstretched_lengths")
+        raise SceneError(f"scene {self.name!r} names neither a [pose] nor unstretched_lengths; "
+                         f"give pose= or unstretched_lengths=")
 
 
 def _line_of(text, key, section=None, occurrence=0):
@@ -171,13 +188,13 @@ def read_scene(path):
     platform = build("platform", lambda: Platform(
         mass=pl["mass"], center_of_mass=pl.get("center_of_mass", [0, 0, 0]),
         inertia=pl.get("inertia", 0.0),
-        free_dofs=tuple(pl.get("free_dofs", ("x", "y", "z", "rx", "ry", "rz")))),
+        free_dofs=tuple(pl.get("free_dofs", DOF_NAMES))),
         "mass", "platform")
     sc = data.get("scene", {})
     lim = data.get("tension_limits", {})
     robot = build("robot", lambda: Robot(
         anchors=np.array(anchors, dtype=float), attachments=np.array(attach, dtype=float),
-        cables=cables, platform=platform, g=sc.get("g", 9.81),
+        cables=cables, platform=platform, g=sc.get("g", STANDARD_GRAVITY),
         tension_limits=(lim.get("min", 1.0), lim.get("max", np.inf)),
         name=sc.get("name", path.stem)), "anchor", "cables")
     pose = lengths = None
@@ -214,7 +231,7 @@ def read_scene(path):
 
 def list_scenes():
     """Names of the built-in scenes."""
-    return sorted(p.stem for p in _HERE.glob("*.toml"))
+    return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
 
 
 def load_scene(name):
@@ -229,4 +246,4 @@ def load_scene(name):
         return read_scene(p)
     if name not in list_scenes():
         raise SceneError(f"unknown scene {name!r}; built-in scenes: {list_scenes()}")
-    return read_scene(_HERE / f"{name}.toml")
+    return read_scene(SCENE_DIR / f"{name}.toml")

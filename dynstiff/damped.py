@@ -1,0 +1,111 @@
+"""Complex natural frequencies of the damped robot (convention e^{i omega t}, theory.md §5.4).
+
+Seeded by the undamped modes of :func:`dynstiff.eigen.modes`, for a model of any rung whose
+``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.model_base`).
+"""
+
+import numpy as np
+
+from .eigen import modes
+from .results import DampedModes
+
+__all__ = ["damped_modes", "DampedModes"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def _nearest_zero_eigenvalue(model, w):
+    with np.errstate(all="ignore"):
+        K = model.dynamic_stiffness(w)[0]
+    if not np.all(np.isfinite(K)):
+        return np.inf, 1.0
+    mu = np.linalg.eigvals(K)
+    return mu[np.argmin(np.abs(mu))], np.linalg.norm(K, 2)
+
+
+def _perturbation_estimates(model, und):
+    """First-order damped roots omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T K_u' x
+    (x: undamped platform mode, K_u' = dK_u/domega by central differences)."""
+    mu = model.undamped()
+    fi = model.free_index
+    est = np.full(len(und), np.nan + 0j)
+    for k, f in enumerate(und.freq_hz):
+        x = und.platform_shapes[k][fi]
+        if not np.any(x):
+            continue
+        w = _TWO_PI * f
+        h = 1e-6 * w
+        dK = (mu.dynamic_stiffness([w + h])[0] - mu.dynamic_stiffness([w - h])[0]) / (2 * h)
+        delta = model.dynamic_stiffness(w)[0] - mu.dynamic_stiffness([w])[0]
+        est[k] = w - (x @ delta @ x) / (x @ dK @ x)
+    return est
+
+
+def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
+    """Complex natural frequencies of the damped robot, seeded from the undamped ones.
+
+    Each undamped mode omega_r with platform motion x gives a first-order estimate
+    omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T dK_u/domega x (perturbation of the
+    real root by the damping part of K). From there a secant iteration in the complex plane
+    on det K(omega), deflated by the roots already found, converges to the damped root
+    (theory.md §5.4). The root is accepted only if the eigenvalue of K nearest zero is below
+    1e-8 ||K|| and the root is closer to its own estimate than to any other mode's (so a
+    root is never attributed to the wrong mode in a cluster of close local modes); otherwise,
+    and for purely local modes (platform at rest, not zeros of det K), it is NaN with its
+    ``residual`` recorded.
+
+    Parameters
+    ----------
+    model : model of any rung (:mod:`dynstiff.model_base`); its ``dynamic_stiffness``
+        must accept complex omega.
+    n_modes, fmax_hz : as :func:`dynstiff.eigen.eigenfrequencies`
+    tol : float
+        Relative step at which the secant iteration stops.
+    max_iter : int
+        Secant iterations per mode.
+
+    Returns
+    -------
+    DampedModes
+    """
+    und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
+    est = _perturbation_estimates(model, und)
+    out = np.full(len(und), np.nan + 1j * np.nan)
+    resid = np.full(len(und), np.nan)
+    found = []
+    for k in np.flatnonzero(np.isfinite(est)):
+        def g(w):
+            if not np.isfinite(w) or abs(w - est[k]) > 0.2 * abs(est[k]):   # left: give up
+                return np.nan
+            with np.errstate(all="ignore"):
+                K = model.dynamic_stiffness(w)[0]
+            if not np.all(np.isfinite(K)):
+                return np.nan
+            d = np.linalg.det(K)
+            for wj in found:
+                d = d / (w - wj)
+            return d
+
+        w0 = est[k]
+        w1 = w0 * (1 + 1e-6 * (1 + 1j))
+        g0, g1 = g(w0), g(w1)
+        for _ in range(max_iter):
+            if g1 == g0 or not np.isfinite(g1) or not np.isfinite(g0):
+                break
+            w2 = w1 - g1 * (w1 - w0) / (g1 - g0)
+            w0, g0, w1 = w1, g1, w2
+            g1 = g(w1)
+            if abs(w1 - w0) <= tol * abs(w1):
+                break
+        if not np.isfinite(g1):
+            continue
+        mu, nK = _nearest_zero_eigenvalue(model, w1)
+        resid[k] = abs(mu) / nK
+        others = np.delete(est, k)
+        others = others[np.isfinite(others)]
+        own = abs(w1 - est[k]) < np.min(np.abs(w1 - others), initial=np.inf)
+        distinct = all(abs(w1 - wj) > 1e-8 * abs(w1) for wj in found)
+        if resid[k] < 1e-8 and own and distinct:
+            out[k] = w1
+            found.append(w1)
+    return DampedModes(undamped_freq_hz=und.freq_hz, omega=out, residual=resid)

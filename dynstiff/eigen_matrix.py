@@ -1,0 +1,129 @@
+"""Modes of a discrete rung: the finite eigenproblem K phi = omega^2 M phi.
+
+For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.model_base`):
+dense ``eigh`` for small models, sparse shift-invert Lanczos otherwise (theory.md §7.1-§7.2).
+Reached through :func:`dynstiff.eigen.eigenfrequencies` and :func:`dynstiff.eigen.modes`.
+"""
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse
+import scipy.sparse.linalg
+
+from .errors import InvalidParameterError
+from .results import LumpedModalResult, ModalResult
+
+__all__ = ["eig", "eigenfrequencies", "modes"]
+
+_TWO_PI = 2.0 * np.pi
+#: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
+DENSE_LIMIT = 400
+
+
+def _dense(A):
+    return A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)
+
+
+def eig(model, n_modes):
+    """Lowest ``n_modes`` eigenpairs of K phi = omega^2 M phi (K symmetrised).
+
+    Returns
+    -------
+    lam : ndarray, shape (n_modes,)
+        Eigenvalues omega^2 [rad^2/s^2], ascending.
+    V : ndarray, shape (n_dof, n_modes)
+        Mass-normalised vectors, phi^T M phi = 1.
+    """
+    if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or \
+            not 1 <= n_modes <= model.n_dof:
+        raise InvalidParameterError(
+            f"n_modes must be an integer in [1, {model.n_dof}] (the number of DOFs of the "
+            f"{model.rung!r} model), got {n_modes!r}")
+    K, M = model.matrices()
+    K = 0.5 * (K + K.T)
+    if model.n_dof <= DENSE_LIMIT or n_modes >= model.n_dof // 2:
+        return scipy.linalg.eigh(_dense(K), _dense(M), subset_by_index=[0, n_modes - 1])
+    # shift-invert about sigma < 0, below every eigenvalue of a stable equilibrium: the
+    # eigenvalues nearest sigma are then the lowest ones. min K_kk / M_kk bounds the lowest
+    # eigenvalue from above (Rayleigh quotient of a unit vector).
+    d = K.diagonal() / M.diagonal()
+    sigma = -0.1 * d[d > 0].min() if np.any(d > 0) else -1.0
+    lam, V = scipy.sparse.linalg.eigsh(scipy.sparse.csc_matrix(K), k=n_modes,
+                                       M=scipy.sparse.csc_matrix(M), sigma=sigma, which="LM")
+    order = np.argsort(lam)
+    lam, V = lam[order], V[:, order]
+    return lam, V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
+
+
+def _to_hz(lam):
+    return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
+
+
+def _count(model, n_modes, fmax_hz):
+    """Number of modes the request (n_modes and/or fmax_hz) asks for, with their
+    frequencies when fmax_hz decided it."""
+    if fmax_hz is None:
+        return n_modes
+    n = 12 if n_modes is None else n_modes
+    while True:                      # grow the count until the band is covered
+        f = _to_hz(eig(model, min(n, model.n_dof))[0])
+        if n >= model.n_dof or f[-1] >= fmax_hz:
+            k = int(np.sum(f < fmax_hz))
+            return k if n_modes is None else min(k, n_modes)
+        n *= 2
+
+
+def eigenfrequencies(model, n_modes=None, fmax_hz=None):
+    """Lowest natural frequencies [Hz], ascending (validated request, see
+    :func:`dynstiff.eigen.eigenfrequencies`); an unstable equilibrium's negative eigenvalue
+    lambda is reported as -sqrt(-lambda) / 2 pi."""
+    n = _count(model, n_modes, fmax_hz)
+    return _to_hz(eig(model, n)[0]) if n else np.zeros(0)
+
+
+def modes(model, n_modes=None, fmax_hz=None):
+    """Modes with platform shapes, cable kinetic-energy fractions and labels.
+
+    Kinetic energies per unit omega^2 / 2: platform x^T M_p x (rigid body alone), cables
+    ``model.cable_energies(V)`` (for the lumped rung: m l0 |phi_j|^2 over the interior nodes
+    plus (m l0 / 2) |J_i x|^2 at B_i). A mode is "global" when the cables hold less than
+    half of the kinetic energy. ``massless_freq_hz`` of a global mode is the frequency of
+    the mode of the massless-cable stiffness (``model.massless_stiffness()``, the cable
+    nodes condensed statically) with the largest mass-weighted MAC.
+
+    Returns
+    -------
+    ModalResult, or LumpedModalResult (with ``node_shapes``) where the model has nodes.
+        Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
+        platform does not move at all).
+    """
+    n = _count(model, n_modes, fmax_hz)
+    nf, fi = model.n_free, model.free_index
+    if n == 0:
+        lam, V = np.zeros(0), np.zeros((model.n_dof, 0))
+    else:
+        lam, V = eig(model, n)
+    freq = _to_hz(lam)
+    Mp = model.platform_mass
+    X = V[:nf]                                               # (nf, n)
+    E_p = np.einsum("in,ij,jn->n", X, Mp, X)
+    E_cab = model.cable_energies(V)
+    total = E_p + E_cab.sum(axis=1)
+    frac = E_cab.sum(axis=1) / total
+    moving = E_p > 1e-24 * total
+    shapes = np.zeros((n, 6))
+    shapes[np.ix_(moving, fi)] = (X[:, moving] / np.sqrt(E_p[moving])).T
+    kinds = tuple("global" if f < 0.5 else "local" for f in frac)
+    lam0, X0 = scipy.linalg.eigh(model.massless_stiffness(), Mp)
+    f0 = _to_hz(lam0)
+    f_massless = np.full(n, np.nan)
+    for k in np.flatnonzero(np.array(kinds) == "global"):
+        f_massless[k] = f0[int(np.argmax((X0.T @ Mp @ shapes[k, fi]) ** 2))]
+    fields = dict(freq_hz=freq, platform_shapes=shapes, cable_energy_fraction=frac,
+                  cable_energy=E_cab / total[:, None], kind=kinds, massless_freq_hz=f_massless)
+    if not hasattr(model, "node_shapes"):
+        return ModalResult(**fields)
+    node_shapes = model.node_shapes(V)
+    for a in node_shapes:
+        a.setflags(write=False)
+    return LumpedModalResult(**fields, node_shapes=node_shapes)

@@ -1,0 +1,74 @@
+"""Platform pose: position of the reference point P and rotation vector.
+
+Small motions about a pose are x = (dp, dtheta), dtheta a small rotation vector in the base
+frame (docs/theory.md §4).
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import InvalidParameterError
+from .platform import rotation_matrix
+
+__all__ = ["Pose", "as_pose"]
+
+
+@dataclass(frozen=True, eq=False)
+class Pose:
+    """Platform pose: position [m] of P and rotation vector [rad], both (3,)."""
+
+    position: np.ndarray
+    rotation: np.ndarray = field(default_factory=lambda: np.zeros(3))
+
+    def __post_init__(self):
+        for name in ("position", "rotation"):
+            v = np.asarray(getattr(self, name), dtype=float)
+            if v.shape != (3,) or not np.all(np.isfinite(v)):
+                raise InvalidParameterError(
+                    f"pose {name} must be 3 finite numbers, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, v)
+
+    def __eq__(self, other):
+        if not isinstance(other, Pose):
+            return NotImplemented
+        return (np.array_equal(self.position, other.position)
+                and np.array_equal(self.rotation, other.rotation))
+
+    def __hash__(self):
+        return hash((tuple(self.position.tolist()), tuple(self.rotation.tolist())))
+
+    def __repr__(self):
+        p = ", ".join(f"{v:.5g}" for v in self.position)
+        r = ", ".join(f"{v:.3g}" for v in self.rotation)
+        return f"Pose(position=[{p}] m, rotation=[{r}] rad)"
+
+    @property
+    def matrix(self):
+        """Rotation matrix R_p, shape (3, 3)."""
+        return rotation_matrix(self.rotation)
+
+    def as_vector(self):
+        """(x, y, z, rx, ry, rz), shape (6,)."""
+        return np.concatenate([self.position, self.rotation])
+
+    def moved(self, dx):
+        """Pose after the small motion dx = (dp, dtheta) (dtheta in the base frame)."""
+        from scipy.spatial.transform import Rotation
+        R = Rotation.from_rotvec(dx[3:]) * Rotation.from_rotvec(self.rotation)
+        return Pose(self.position + dx[:3], R.as_rotvec())
+
+
+def as_pose(pose):
+    """A :class:`Pose` from a Pose, (position, rotation), or 3 / 6 numbers."""
+    if isinstance(pose, Pose):
+        return pose
+    v = np.asarray(pose, dtype=float)
+    if v.shape == (3,):
+        return Pose(v)
+    if v.shape == (6,):
+        return Pose(v[:3], v[3:])
+    if isinstance(pose, (tuple, list)) and len(pose) == 2:
+        return Pose(*pose)
+    raise InvalidParameterError(
+        f"pose must be a Pose, (position, rotation), 3 or 6 numbers, got {pose!r}")

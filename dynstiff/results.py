@@ -1,0 +1,247 @@
+"""Result types of the analyses: plain data that can make a table and a figure.
+
+Every result holds its numbers in public fields, with units in the docstrings; ``to_frame()``
+gives a pandas DataFrame with units in the column names and ``plot(ax=None)`` draws it
+(:mod:`dynstiff.plot`); pandas and matplotlib are imported only then.
+
+Channels of an FRF: inputs ``LOAD_NAMES`` (forces [N] and moments [N m] on the platform about
+P), outputs ``DOF_NAMES`` (translations [m] of a platform point, rotations [rad]).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import DOF_NAMES, LOAD_NAMES
+from .errors import InvalidParameterError
+
+__all__ = ["FRFResult", "ModalResult", "LumpedModalResult", "DampedModes", "INPUT_NAMES",
+           "OUTPUT_NAMES", "RESPONSE_KINDS", "response_factor"]
+
+_TWO_PI = 2.0 * np.pi
+
+#: Load channels: forces [N] and moments [N m] on the platform about P.
+INPUT_NAMES = LOAD_NAMES
+#: Response channels: translations [m] of the chosen point and rotations [rad].
+OUTPUT_NAMES = DOF_NAMES
+#: FRF kinds and the power of (i omega) that turns a receptance into each.
+RESPONSE_KINDS = {"receptance": 0, "mobility": 1, "accelerance": 2}
+
+
+def response_factor(omega, kind):
+    """(i omega)^k turning a receptance into ``kind`` (k = 0, 1, 2 for receptance, mobility,
+    accelerance), shape of ``omega`` [rad/s] (theory.md §4).
+
+    Raises
+    ------
+    InvalidParameterError
+        ``kind`` unknown.
+    """
+    if kind not in RESPONSE_KINDS:
+        raise InvalidParameterError(
+            f"kind must be one of {tuple(RESPONSE_KINDS)}, got {kind!r}")
+    return (1j * np.asarray(omega)) ** RESPONSE_KINDS[kind]
+
+
+def _span(freq_hz):
+    f = np.asarray(freq_hz)
+    return f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
+
+
+@dataclass(frozen=True)
+class FRFResult:
+    """FRF matrix H[k, o, i] from input channel i to output channel o at freq_hz[k].
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (n,)
+    H : ndarray, shape (n, n_out, n_in), complex
+        Units: receptance [m/N, m/(N m), rad/N, rad/(N m)]; mobility per second; accelerance
+        per second squared. inf at an exact pole.
+    inputs, outputs : tuple of str
+    kind : str
+    """
+
+    freq_hz: np.ndarray
+    H: np.ndarray
+    inputs: tuple
+    outputs: tuple
+    kind: str
+
+    def unit(self, output, input):
+        """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
+        e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
+        (accelerance)."""
+        if output not in OUTPUT_NAMES or input not in INPUT_NAMES:
+            raise InvalidParameterError(
+                f"unit needs an output among {OUTPUT_NAMES} and an input among "
+                f"{INPUT_NAMES}, got {output!r}, {input!r}")
+        num = "m" if output in OUTPUT_NAMES[:3] else "rad"
+        den = ["N"] if input in INPUT_NAMES[:3] else ["N", "m"]
+        den += [[], ["s"], ["s^2"]][RESPONSE_KINDS[self.kind]]
+        return f"{num}/{den[0]}" if len(den) == 1 else f"{num}/({' '.join(den)})"
+
+    def __repr__(self):
+        return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
+                f"outputs {self.outputs}, inputs {self.inputs})")
+
+    def plot(self, ax=None, modes=None, pairs=None, phase=False):
+        """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
+        Returns the matplotlib Figure."""
+        from .plot import plot_frf
+        return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
+
+    def to_frame(self):
+        """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
+        real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""
+        import pandas as pd
+        n, no, ni = self.H.shape
+        f = np.repeat(self.freq_hz, no * ni)
+        out = np.tile(np.repeat(self.outputs, ni), n)
+        inp = np.tile(self.inputs, n * no)
+        units = np.tile([self.unit(o, i) for o in self.outputs for i in self.inputs], n)
+        h = self.H.reshape(-1)
+        with np.errstate(invalid="ignore"):
+            return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
+                                 "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
+                                 "real": h.real, "imag": h.imag, "unit": units,
+                                 "kind": self.kind})
+
+
+@dataclass(frozen=True)
+class ModalResult:
+    """Modes of the robot.
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (n,)
+        Natural frequencies [Hz].
+    platform_shapes : ndarray, shape (n, 6)
+        Platform motion (dp [m], dtheta [rad]) about P, held DOFs 0, normalised to unit
+        platform kinetic energy x^T M_p x = 1 (zero for a purely local mode).
+    cable_energy_fraction : ndarray, shape (n,)
+        Kinetic energy in the cables / total kinetic energy [-].
+    cable_energy : ndarray, shape (n, n_cables)
+        Kinetic-energy share of each cable [-] (sums to cable_energy_fraction).
+    kind : tuple of str
+        "global" (platform holds most kinetic energy) or "local" (cables do).
+    massless_freq_hz : ndarray, shape (n,)
+        Frequency of the matching mode of the massless-cable model (NaN for local modes).
+    """
+
+    freq_hz: np.ndarray
+    platform_shapes: np.ndarray
+    cable_energy_fraction: np.ndarray
+    cable_energy: np.ndarray
+    kind: tuple
+    massless_freq_hz: np.ndarray
+
+    @property
+    def shift_from_massless(self):
+        """Relative shift of each global frequency from the massless-cable model [-]."""
+        return self.freq_hz / self.massless_freq_hz - 1.0
+
+    def __len__(self):
+        return len(self.freq_hz)
+
+    def __repr__(self):
+        n_glob = sum(k == "global" for k in self.kind)
+        return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: {n_glob} "
+                f"global, {len(self) - n_glob} local)")
+
+    def plot(self, ax=None):
+        """Frequencies against cable energy fraction, global and local modes coloured:
+        :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure."""
+        from .plot import plot_modes
+        return plot_modes(self, ax=ax)
+
+    def to_frame(self):
+        """pandas DataFrame, one row per mode, units in the column names."""
+        import pandas as pd
+        df = pd.DataFrame({
+            "mode": np.arange(1, len(self) + 1),
+            "freq [Hz]": self.freq_hz,
+            "kind": list(self.kind),
+            "cable energy fraction [-]": self.cable_energy_fraction,
+            "massless freq [Hz]": self.massless_freq_hz,
+            "shift from massless [-]": self.shift_from_massless,
+        })
+        for k, name in enumerate(DOF_NAMES):
+            unit = "m" if k < 3 else "rad"
+            df[f"{name} [{unit}]"] = self.platform_shapes[:, k]
+        return df
+
+
+@dataclass(frozen=True, repr=False)
+class LumpedModalResult(ModalResult):
+    """Modes of the lumped-mass robot: a :class:`~dynstiff.ModalResult` plus node motions.
+
+    Attributes
+    ----------
+    node_shapes : list of ndarray, shape (n_modes, N_i + 1, 3)
+        Displacement of every node of cable i [m] (anchor 0, the last node moves with the
+        platform), for the mode vector normalised to unit total kinetic energy
+        phi^T M phi = 1 (not the platform normalisation of ``platform_shapes``).
+
+    Notes
+    -----
+    ``platform_shapes`` are normalised to x^T M_p x = 1 with M_p the rigid platform alone,
+    like the closed-form model; ``massless_freq_hz`` comes from the lumped cables condensed
+    statically onto the platform (their massless limit).
+    """
+
+    node_shapes: list = None
+
+
+@dataclass(frozen=True)
+class DampedModes:
+    """Complex natural frequencies of the damped robot (convention e^{i omega t}).
+
+    Attributes
+    ----------
+    undamped_freq_hz : ndarray, shape (n,)
+        Seeds: undamped natural frequencies [Hz].
+    omega : ndarray, shape (n,), complex
+        Roots of det K(omega) = 0 [rad/s]; Im(omega) > 0 for a decaying mode. NaN where the
+        iteration did not converge (see ``residual``) or for purely local modes.
+    residual : ndarray, shape (n,)
+        |smallest eigenvalue of K(omega)| / ||K|| at the returned root [-].
+    """
+
+    undamped_freq_hz: np.ndarray
+    omega: np.ndarray
+    residual: np.ndarray
+
+    @property
+    def freq_hz(self):
+        """Damped natural frequency Re(omega) / 2 pi [Hz]."""
+        return self.omega.real / _TWO_PI
+
+    @property
+    def damping_ratio(self):
+        """zeta = Im(omega) / |omega| [-]."""
+        return self.omega.imag / np.abs(self.omega)
+
+    def __len__(self):
+        return len(self.omega)
+
+    def __repr__(self):
+        ok = np.isfinite(self.omega)
+        return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
+                f"damping ratio {np.nanmin(self.damping_ratio, initial=np.nan):.3g}.."
+                f"{np.nanmax(self.damping_ratio, initial=np.nan):.3g})" if ok.any()
+                else f"DampedModes({len(self)} modes, no damped root found)")
+
+    def plot(self, ax=None):
+        """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.
+        Returns the matplotlib Figure."""
+        from .plot import plot_damped_modes
+        return plot_damped_modes(self, ax=ax)
+
+    def to_frame(self):
+        """pandas DataFrame with units in column names."""
+        import pandas as pd
+        return pd.DataFrame({"undamped freq [Hz]": self.undamped_freq_hz,
+                             "damped freq [Hz]": self.freq_hz,
+                             "damping ratio [-]": self.damping_ratio,
+                             "residual [-]": self.residual})

@@ -1,0 +1,38 @@
+"""Pose (dynstiff/pose.py): value semantics, validation, small motions."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
+from dynstiff.pose import as_pose
+
+
+def test_poses_compare_and_hash_by_value():
+    a = ds.Pose([1.0, 2.0, 3.0], [0.0, 0.1, 0.0])
+    b = ds.Pose(np.array([1, 2, 3]), (0.0, 0.1, 0.0))
+    c = ds.Pose([1.0, 2.0, 3.0])
+    assert a == b and hash(a) == hash(b)
+    assert a != c and c == ds.Pose([1, 2, 3], [0, 0, 0])
+    assert len({a, b, c}) == 2
+    assert a != (1.0, 2.0, 3.0)                    # another type is never equal
+    assert "position=[1, 2, 3] m" in repr(a)
+
+
+def test_as_pose_accepts_the_documented_forms_and_names_the_rest():
+    ref = ds.Pose([1.0, 2.0, 3.0], [0.1, 0.0, 0.0])
+    assert as_pose(ref) is ref
+    assert as_pose([1, 2, 3, 0.1, 0, 0]) == ref
+    assert as_pose(([1, 2, 3], [0.1, 0, 0])) == ref
+    assert as_pose([1, 2, 3]) == ds.Pose([1, 2, 3])
+    with pytest.raises(InvalidParameterError, match="pose"):
+        as_pose([1, 2])
+    with pytest.raises(InvalidParameterError, match="position"):
+        ds.Pose([1.0, np.nan, 0.0])
+
+
+def test_moved_composes_rotations_in_the_base_frame():
+    """A quarter turn about z then a quarter turn about x (base axes) maps the platform's
+    x axis to the base z axis."""
+    p = ds.Pose([0, 0, 0], [0, 0, np.pi / 2]).moved(np.array([0, 0, 0, np.pi / 2, 0, 0]))
+    np.testing.assert_allclose(p.matrix @ [1, 0, 0], [0, 0, 1], atol=1e-12)
