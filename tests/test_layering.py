@@ -1,0 +1,66 @@
+"""The package's structure: no module imports another module's private (underscore) names,
+and the import-linter contracts of pyproject.toml hold (layers, no cycles)."""
+
+import ast
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "dynstiff"
+
+
+def _private_imports(path):
+    """(line, text) of every ``from <dynstiff module> import _name`` in ``path``, where
+    ``_name`` is not itself a package-private module (``_validate``, ``_vec``)."""
+    out = []
+    tree = ast.parse(path.read_text())
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        internal = node.level > 0 or (node.module or "").split(".")[0] == "dynstiff"
+        if not internal:
+            continue
+        base = path.parent
+        for _ in range(max(node.level - 1, 0)):
+            base = base.parent
+        if node.level == 0:
+            base = ROOT
+        target = base.joinpath(*(node.module or "").split(".")) if node.module else base
+        for alias in node.names:
+            name = alias.name
+            if not name.startswith("_") or name.startswith("__"):
+                continue
+            if (target / f"{name}.py").exists() or (target / name).is_dir():
+                continue                                  # a package-private module
+            out.append((node.lineno, f"from {'.' * node.level}{node.module or ''} import {name}"))
+    return out
+
+
+def test_no_module_imports_another_modules_private_names():
+    found = [f"{p.relative_to(ROOT)}:{line}: {text}"
+             for p in sorted(PACKAGE.rglob("*.py")) for line, text in _private_imports(p)]
+    assert not found, "private names imported across modules:\n" + "\n".join(found)
+
+
+def test_the_private_import_check_can_fail(tmp_path):
+    """The check above finds a planted private import (so its silence means something)."""
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "a.py").write_text("def _helper():\n    return 1\n")
+    (pkg / "_kernel.py").write_text("x = 1\n")
+    bad = pkg / "b.py"
+    bad.write_text("from .a import _helper\nfrom . import _kernel\nfrom .a import public\n")
+    assert [text for _, text in _private_imports(bad)] == ["from .a import _helper"]
+
+
+def test_import_linter_contracts_hold():
+    """The contracts of pyproject.toml (layers, no cycles, private modules) hold."""
+    run = subprocess.run([sys.executable, "-c",
+                          "import sys; from importlinter.cli import lint_imports; "
+                          "sys.exit(lint_imports())"],
+                         cwd=ROOT, capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-2000:]
+    assert "0 broken" in run.stdout
