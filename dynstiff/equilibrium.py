@@ -69,6 +69,12 @@ class Equilibrium:
         return (f"Equilibrium({self.robot.n_cables} cables, {self.pose!r}, tensions "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
+    def plot(self, ax=None):
+        """Cable tensions at B and A with the robot's limits:
+        :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure."""
+        from .plot import plot_tensions
+        return plot_tensions(self, ax=ax)
+
     def to_frame(self):
         """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2."""
         import pandas as pd

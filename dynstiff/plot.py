@@ -17,6 +17,10 @@ gid                 artist
 ``modes-<kind>``    stems of the global / local modes, :func:`plot_modes`
 ``damped-modes``    scatter of the damped roots, :func:`plot_damped_modes`
 ``cable-<family>``  stems of one family of cable modes, :func:`plot_cable_modes`
+``tension-<end>``   bars of the tensions at B / A, :func:`plot_tensions`
+``limit-<name>``    horizontal line at a limit, :func:`plot_tensions`,
+                    :func:`plot_model_errors`
+``rung-errors``     bars of the predicted errors, :func:`plot_model_errors`
 ==================  ===========================================================
 """
 
@@ -25,7 +29,7 @@ import numpy as np
 from .errors import InvalidParameterError
 
 __all__ = ["plot_frf", "plot_veering", "plot_spectrum", "plot_speed_accuracy", "plot_modes",
-           "plot_damped_modes", "plot_cable_modes"]
+           "plot_damped_modes", "plot_cable_modes", "plot_tensions", "plot_model_errors"]
 
 _COLORS = {"global": "tab:red", "local": "tab:blue"}
 
@@ -234,7 +238,7 @@ def plot_cable_modes(cable_modes, ax=None):
         Stems per family (gid ``cable-<family>``, spaces as dashes), labelled by order.
     """
     _require(cable_modes, "cable_modes", ("freq_hz", "family", "order"), "CableModes")
-    fig, ax = figure_axes(ax, figsize=(8, 3))
+    fig, ax = figure_axes(ax, figsize=(8, 4))
     f = np.asarray(cable_modes.freq_hz, dtype=float)
     fam = np.asarray(cable_modes.family)
     names = list(dict.fromkeys(fam.tolist()))
@@ -245,11 +249,98 @@ def plot_cable_modes(cable_modes, ax=None):
         for x, k in zip(f[sel], np.asarray(cable_modes.order)[sel]):
             ax.annotate(str(k), (x, row + 0.82), ha="center", fontsize=7)
     ax.set_yticks([])
-    ax.set_ylim(0.0, max(len(names), 1) + 0.2)
+    ax.set_ylim(0.0, max(len(names), 1) + 0.9)
     ax.set_xlabel("frequency [Hz]")
     ax.set_title("clamped-clamped cable modes (the poles of its dynamic stiffness)")
     if names:
-        ax.legend(loc="upper left", fontsize=8)
+        ax.legend(loc="upper center", fontsize=8, ncol=len(names), framealpha=0.9)
+    return fig
+
+
+# --------------------------------------------------------------------------- statics
+def plot_tensions(equilibrium, ax=None, limits=None):
+    """Tension of every cable at the platform end B and at the anchor A.
+
+    Parameters
+    ----------
+    equilibrium : Equilibrium or LumpedEquilibrium
+        ``tensions`` or ``end_tensions`` (n,) and ``anchor_tensions`` (n,) [N].
+    ax : matplotlib Axes, optional
+    limits : (float, float), optional
+        Admissible [t_min, t_max] [N], drawn as dashed lines (default: the robot's
+        ``tension_limits`` when the equilibrium carries its robot).
+
+    Returns
+    -------
+    matplotlib Figure
+        Grouped bars (gids ``tension-B``, ``tension-A``), limits ``limit-t_min``,
+        ``limit-t_max``.
+    """
+    tB = getattr(equilibrium, "end_tensions", None)
+    if tB is None:
+        tB = getattr(equilibrium, "tensions", None)
+    _require(equilibrium, "equilibrium", ("anchor_tensions",), "Equilibrium")
+    if tB is None:
+        raise InvalidParameterError(
+            f"equilibrium must be an Equilibrium, got {type(equilibrium).__name__}")
+    tB = np.asarray(tB, dtype=float)
+    tA = np.asarray(equilibrium.anchor_tensions, dtype=float)
+    if limits is None and hasattr(equilibrium, "robot"):
+        limits = equilibrium.robot.tension_limits
+    fig, ax = figure_axes(ax)
+    k = np.arange(tB.size)
+    ax.bar(k - 0.2, tB, 0.4, label="at B (platform)", gid="tension-B", color="tab:red")
+    ax.bar(k + 0.2, tA, 0.4, label="at A (anchor)", gid="tension-A", color="tab:blue")
+    if limits is not None:
+        for name, value in zip(("t_min", "t_max"), limits):
+            if np.isfinite(value):
+                ax.axhline(value, color="0.3", ls="--", lw=0.8, gid=f"limit-{name}")
+    ax.set_xticks(k)
+    ax.set_xlabel("cable")
+    ax.set_ylabel("tension [N]")
+    ax.set_title("static cable tensions (dashed: admissible limits)")
+    ax.legend(loc="best", fontsize=8, framealpha=0.9)
+    return fig
+
+
+def plot_model_errors(recommendation, ax=None, rtol=None):
+    """Predicted relative frequency error of every rung of the ladder, cheapest first.
+
+    Parameters
+    ----------
+    recommendation : Recommendation
+        ``errors`` (rung -> error [-], inf where a rung misses modes) and ``rung``.
+    ax : matplotlib Axes, optional
+    rtol : float, optional
+        Admissible error [-], drawn as a dashed line.
+
+    Returns
+    -------
+    matplotlib Figure
+        Bars (gid ``rung-errors``) on a log scale; a rung that misses modes is drawn at the
+        top with the label "misses modes"; the recommended rung is outlined.
+    """
+    _require(recommendation, "recommendation", ("errors", "rung"), "Recommendation")
+    names = list(recommendation.errors)
+    err = np.array([float(recommendation.errors[r]) for r in names])
+    finite = np.isfinite(err) & (err > 0)
+    top = 10 * err[finite].max() if np.any(finite) else 1.0
+    shown = np.where(np.isfinite(err), np.maximum(err, 1e-16), top)
+    fig, ax = figure_axes(ax)
+    bars = ax.bar(names, shown, color=["0.7" if not np.isfinite(e) else "tab:blue" for e in err],
+                  gid="rung-errors")
+    for b, r, e in zip(bars, names, err):
+        if r == recommendation.rung:
+            b.set_edgecolor("k")
+            b.set_linewidth(2.0)
+        if not np.isfinite(e):
+            ax.annotate("misses modes", (b.get_x() + b.get_width() / 2, top), ha="center",
+                        va="bottom", fontsize=8)
+    if rtol is not None:
+        ax.axhline(rtol, color="tab:red", ls="--", lw=0.8, gid="limit-rtol")
+    ax.set_yscale("log")
+    ax.set_ylabel("predicted relative frequency error [-]")
+    ax.set_title(f"cable models, cheapest first; recommended: {recommendation.rung}")
     return fig
 
 

@@ -64,6 +64,12 @@ class Recommendation:
         seg = f", {self.segments} segments" if self.segments else ""
         return f"Recommendation({self.rung!r}{seg}, predicted error {self.predicted_error:.2e})"
 
+    def plot(self, ax=None, rtol=None):
+        """Predicted error of every rung: :func:`dynstiff.plot.plot_model_errors`. Returns
+        the matplotlib Figure."""
+        from .plot import plot_model_errors
+        return plot_model_errors(self, ax=ax, rtol=rtol)
+
     def text(self):
         """One-paragraph explanation."""
         e = self.estimates

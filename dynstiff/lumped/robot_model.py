@@ -142,6 +142,12 @@ class LumpedEquilibrium:
         return (f"LumpedEquilibrium({len(self.nodes)} chains, {self.pose!r}, tensions at B "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
+    def plot(self, ax=None):
+        """Tensions of the end segments at B and A: :func:`dynstiff.plot.plot_tensions`.
+        Returns the matplotlib Figure."""
+        from ..plot import plot_tensions
+        return plot_tensions(self, ax=ax)
+
     @property
     def interior(self):
         """Interior nodes of every cable, list of (N_i - 1, 3) arrays [m]."""
