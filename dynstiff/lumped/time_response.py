@@ -116,11 +116,11 @@ class TimeResponse:
     explicit_limit: float = 0.0
     wall_time: float = 0.0
 
-    @property
     def __repr__(self):
         return (f"TimeResponse({self.scheme}, {self.times[-1]:.4g} s in {self.n_steps} steps of "
                 f"{self.dt:.3g} s, {self.times.size} records, free {self.free_dofs})")
 
+    @property
     def displacement(self):
         """Pose minus the starting equilibrium pose [m, rad], shape (n_t, 6)."""
         return self.pose - self.equilibrium_pose
