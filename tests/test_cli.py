@@ -7,6 +7,8 @@ import sys
 
 import pytest
 
+pytestmark = pytest.mark.integration
+
 
 # --------------------------------------------------------------------------------- demo
 def test_demo_main_job_on_cogiro(tmp_path):

@@ -4,6 +4,10 @@ a fresh interpreter."""
 import subprocess
 import sys
 
+import pytest
+
+pytestmark = pytest.mark.integration
+
 
 def test_import_does_not_load_matplotlib_or_pandas():
     code = ("import sys, dynstiff; "
