@@ -1,4 +1,6 @@
-"""Shared fixtures: CoGiRo-like cables (theory.md §8.1, §9.2)."""
+"""Shared fixtures and helpers: CoGiRo-like cables and robots (theory.md §8.1, §9.2), lumped
+models built once per module, and the test cables of the lumped chain tests (theory.md
+§1.1, §7.2, §9.2)."""
 
 import numpy as np
 import pytest
@@ -6,6 +8,7 @@ import scipy.linalg
 
 import dynstiff as ds
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
+from dynstiff.params import Cable
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).
 COGIRO_AREA = 8.2051e-6
@@ -77,3 +80,66 @@ def linearised(robot, unstretched_lengths, segments, **kw):
     (``kw`` go to :meth:`LumpedMassModel.equilibrium`)."""
     m = LumpedMassModel(robot, unstretched_lengths, segments=segments)
     return LumpedLinearModel(m, m.equilibrium(**kw))
+
+
+# ---------------------------------------------------- frequency-domain models of CoGiRo
+@pytest.fixture(scope="module")
+def cogiro_model(cogiro_eq):
+    return ds.FrequencyModel(cogiro_eq)
+
+
+@pytest.fixture(scope="module")
+def cogiro_modes(cogiro_model):
+    return ds.modes(cogiro_model, 8)
+
+
+@pytest.fixture(scope="module")
+def lumped(cogiro, cogiro_eq):
+    """Lumped CoGiRo models by segment count, built once."""
+    cache = {}
+
+    def get(N):
+        if N not in cache:
+            cache[N] = linearised(cogiro.robot, cogiro_eq.unstretched_lengths, N)
+        return cache[N]
+    return get
+
+
+# -------------------------------------------------- point-mass robot in the time domain
+@pytest.fixture(scope="module")
+def lengths0():
+    return point_mass_robot().equilibrium(pose=[0.2, -0.1, 1.0]).unstretched_lengths
+
+
+@pytest.fixture(scope="module")
+def robot_model(lengths0):
+    """Point-mass robot models by segment count, at their equilibrium."""
+    cache = {}
+
+    def get(N):
+        if N not in cache:
+            m = linearised(point_mass_robot(), lengths0, N)
+            cache[N] = m
+        return cache[N]
+    return get
+
+
+# ------------------------------------------------------ test cables of the lumped chain
+# theory.md §1.1 test cable: 7 m horizontal, 5 m drop, L0 = 8.5 m
+CABLE_11 = Cable(mass_per_length=0.064, EA=1.39e5)
+A_11, B_11, L0_11 = np.zeros(3), np.array([7.0, 0.0, -5.0]), 8.5
+
+# theory.md §9.2 cable (CoGiRo a0, b0 + (0, 0, 1))
+A_92 = np.array([-7.1775, -5.4361, 5.3911])
+B_92 = np.array([0.5032, -0.4928, 1.0])
+CABLE_92 = Cable(mass_per_length=0.064, EA=8.2051e-6 * 17e9)
+
+# beaded string: a taut chain without gravity (g = 0)
+BEAD = Cable(mass_per_length=0.5, EA=2.0e4)
+BEAD_L, BEAD_L0 = 3.0, 2.97
+
+
+def beaded_string(n_segments, cable=BEAD):
+    state = chain_equilibrium([0, 0, 0], [BEAD_L, 0, 0], BEAD_L0, cable, n_segments, g=0)
+    tension = cable.EA * (BEAD_L / BEAD_L0 - 1)
+    return state, tension

@@ -199,21 +199,6 @@ def test_slack_vertical_cable_raises(cable17):
         ds.solve_catenary((0, 0, 10), (0, 0, 0), 12.0, cable17)
 
 
-@pytest.mark.parametrize("kwargs,name", [
-    (dict(mass_per_length=0.0, EA=1e5), "mass_per_length"),
-    (dict(mass_per_length=-1.0, EA=1e5), "mass_per_length"),
-    (dict(mass_per_length=0.1, EA=0.0), "EA"),
-    (dict(mass_per_length=0.1, EA=-5.0), "EA"),
-    (dict(mass_per_length=float("nan"), EA=1e5), "mass_per_length"),
-    (dict(mass_per_length=0.1, EA=float("inf")), "EA"),
-    (dict(mass_per_length=0.1, EA=1e5, loss_factor=-0.1), "loss_factor"),
-    (dict(mass_per_length=0.1, EA=1e5, viscous_damping=float("nan")), "viscous_damping"),
-])
-def test_bad_cable_raises_naming_field(kwargs, name):
-    with pytest.raises(InvalidParameterError, match=name):
-        ds.Cable(**kwargs)
-
-
 @pytest.mark.parametrize("args,name", [
     (((0, 0, 0), (0, 0, 0), 1.0), "anchor and end"),
     (((0, 0, 0), (1, 0, 0), 0.0), "unstretched_length"),

@@ -1,7 +1,4 @@
-"""Design checks (dynstiff.checks) and the `dynstiff check` command."""
-
-import subprocess
-import sys
+"""Design checks (dynstiff/checks.py); the `dynstiff check` command is run in test_cli.py."""
 
 import numpy as np
 import pytest
@@ -47,16 +44,6 @@ def test_proximity_check_at_stiff_cables():
         [w for w in warns if w.freq_global_hz <= 10.5]) == 0)
 
 
-def test_cli_check_exit_codes():
-    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
-                                    capture_output=True, text=True)
-    assert run("cogiro", "--band", "1", "2").returncode == 0
-    out = run("cogiro", "--band", "4", "5")
-    assert out.returncode == 1 and "FAIL  global modes outside band" in out.stdout
-    out = run("cogiro", "--pose", "9", "0", "1")
-    assert out.returncode == 1 and "FAIL  workspace" in out.stdout
-
-
 def test_band_below_every_mode_passes(cogiro):
     """A forbidden band whose 1.5x top is below the first natural frequency: no mode is
     computed below fmax, and the check passes (it used to fail on the empty mode list)."""
@@ -87,14 +74,3 @@ def test_cable_model_row_names_the_model_the_checks_need():
     # a looser tolerance lets the DSM pass there
     r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=0.1))["cable model"]
     assert r["passed"]
-
-
-def test_cli_check_defaults_to_the_scenes_forbidden_band():
-    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
-                                    capture_output=True, text=True)
-    out = run("cogiro")                                    # forbidden_band_hz = [0, 1.5]
-    assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
-    out = run("sixcable")                                  # no forbidden band in the scene
-    assert out.returncode == 1 and "no forbidden band" in out.stdout
-    assert "FAIL  cable model" in out.stdout
-    assert "global modes outside band" not in out.stdout

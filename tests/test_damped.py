@@ -1,4 +1,4 @@
-"""Damped complex natural frequencies (theory.md §5.4) and cable displacement fields."""
+"""Damped complex natural frequencies (dynstiff/damped.py, theory.md §5.4)."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,6 @@ import scipy.linalg
 
 import dynstiff as ds
 from dynstiff.damped import damped_modes
-from dynstiff.eigen import cable_fields
 
 
 @pytest.fixture(scope="module")
@@ -69,16 +68,3 @@ def test_viscous_damping_gives_decaying_modes(scene):
     assert np.all(d.damping_ratio[ok] > 0)
     assert np.all(d.residual[ok] < 1e-8)
     np.testing.assert_allclose(d.freq_hz[ok], d.undamped_freq_hz[ok], rtol=5e-3)
-
-
-def test_cable_fields_are_continuous_with_the_platform(scene):
-    m = ds.FrequencyModel(scene.equilibrium())
-    modes = ds.modes(m, 6)
-    for k in np.flatnonzero(np.array(modes.kind) == "global")[:2]:
-        pos, disp = cable_fields(m, modes, k)
-        x6 = modes.platform_shapes[k]
-        np.testing.assert_allclose(disp[:, 0], 0.0, atol=1e-12)       # anchors clamped
-        for i, r in enumerate(m.lever_arms):
-            np.testing.assert_allclose(disp[i, -1], x6[:3] + np.cross(x6[3:], r), rtol=1e-9,
-                                       atol=1e-12)
-        np.testing.assert_allclose(pos[:, -1], [s.end for s in m.equilibrium.states], atol=1e-12)

@@ -56,6 +56,7 @@ def test_the_private_import_check_can_fail(tmp_path):
     assert [text for _, text in _private_imports(bad)] == ["from .a import _helper"]
 
 
+@pytest.mark.integration
 def test_import_linter_contracts_hold():
     """The contracts of pyproject.toml (layers, no cycles, private modules) hold."""
     run = subprocess.run([sys.executable, "-c",

@@ -167,6 +167,7 @@ def test_params_to_mp_args_round_trip():
     assert isinstance(params_to_mp_args(V.chord_params_for(10.0))[4], float)
 
 
+@pytest.mark.integration
 def test_dynstiff_does_not_import_mpmath_reference():
     code = "import sys, dynstiff; print('dynstiff.precision' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

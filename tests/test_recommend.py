@@ -147,3 +147,15 @@ def test_near_slack_cables_answer_or_raise(mass):
     err = actual_errors(eq, band)
     assert np.isinf(err["spring"]) and np.isinf(err["catenary"])   # cable modes in the band
     assert err["dsm"] <= rec.errors["dsm"]                           # prediction is an upper bound
+
+
+def test_fourcable_needs_only_the_light_model():
+    """Seed paper 002's small robot: the cable modes sit above 28 Hz, sag/chord ~1e-4 and the
+    cables weigh 0.1 % of the platform, so straight massless springs meet 1 % up to 20 Hz."""
+    eq = ds.load_scene("fourcable").equilibrium()
+    rec = ds.recommend_model(eq, (0.1, 20.0), 1e-2)
+    assert rec.rung == "spring"
+    assert rec.estimates["cable_f1_hz"] > 20.0 and rec.estimates["mass_ratio"] < 0.01
+    f_spring = ds.eigenfrequencies(ds.build_model(eq, "spring"), fmax_hz=20.0)
+    f_dsm = ds.eigenfrequencies(ds.build_model(eq, "dsm"), fmax_hz=20.0)
+    np.testing.assert_allclose(f_spring, f_dsm, rtol=1e-2)

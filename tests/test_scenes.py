@@ -1,4 +1,5 @@
-"""Built-in scenes and the TOML loader (dynstiff/scenes/)."""
+"""Built-in scenes and the TOML loader (dynstiff/scenes/): every seed-paper robot loads by
+name and from its file and balances; TOML errors name the key and the line."""
 
 import numpy as np
 import pytest
@@ -30,3 +31,70 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
     rob = ds.load_scene(p).robot
     assert rob.g == ds.STANDARD_GRAVITY
     assert rob.platform.free_dofs == ds.platform.DOF_NAMES
+
+
+@pytest.mark.parametrize("edit,key,line", [
+    (("mass = 91.058", "mas = 91.058"), "mas", 12),
+    (("EA = 139486.7", "EA = -1.0"), "EA", None),
+    (("[analysis]", "[analysys]"), "analysys", None),
+    (("forbidden_band_hz = [0.0, 1.5]", "forbidden_band_hz = [1.5, 0.0]"), "forbidden_band_hz",
+     None),
+])
+def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(ds.SceneError, match=key) as exc:
+        ds.load_scene(p).robot
+    if line is not None:
+        assert f"line {line}" in str(exc.value)
+    else:
+        assert "line " in str(exc.value)
+
+
+def test_scene_loads_by_name_and_path(cogiro):
+    assert "cogiro" in ds.list_scenes()
+    r = ds.load_scene(ds.scenes.loader.SCENE_DIR / "cogiro.toml").robot
+    np.testing.assert_array_equal(r.anchors, cogiro.robot.anchors)
+    with pytest.raises(ds.SceneError, match="unknown scene"):
+        ds.load_scene("nope")
+
+
+@pytest.mark.parametrize("name", ["cogiro", "planar2", "sixcable", "fourcable"])
+def test_builtin_scenes_load_and_equilibrate(name):
+    scene = ds.load_scene(name)
+    same = ds.load_scene(ds.scenes.loader.SCENE_DIR / f"{name}.toml").robot
+    np.testing.assert_array_equal(same.anchors, scene.robot.anchors)
+    eq = scene.equilibrium()
+    assert eq.residual < 1e-9
+    lo, hi = scene.band_hz
+    assert np.all(eq.tensions >= scene.robot.tension_limits[0])
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=hi)
+    assert len(f) >= 1 and np.all(np.diff(f) >= 0)
+
+
+SEED_SCENES = ("cogiro", "planar2", "sixcable", "fourcable", "pendulum", "simulator")
+
+
+@pytest.mark.parametrize("name", SEED_SCENES)
+def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
+    """Every robot of the seed papers is a built-in scene: by name and from its TOML file
+    it gives the same robot, and its pose is a static equilibrium with sane tensions."""
+    assert name in ds.list_scenes()
+    by_name = ds.load_scene(name)
+    by_path = ds.load_scene(str(ds.scenes.loader.SCENE_DIR / f"{name}.toml"))
+    np.testing.assert_array_equal(by_name.robot.anchors, by_path.robot.anchors)
+    eq = by_name.equilibrium()
+    assert eq.residual < 1e-8
+    lo, hi = by_name.robot.tension_limits
+    # the limits hold along each whole cable (sampled)
+    s = np.linspace(0.0, 1.0, 2001)
+    T = np.array([st.tension(s * st.unstretched_length) for st in eq.states])
+    assert T.min() >= lo * (1 - 1e-9) and T.max() <= hi * (1 + 1e-9)
+    if name == "simulator":
+        # its lower cables run down to their anchors: the least tension is there, on t_min
+        # (not at the platform end, which carries t_min + the hanging weight)
+        assert eq.min_tensions.min() == pytest.approx(lo, rel=1e-9)
+        assert eq.tensions.min() > lo + 10.0
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 2)
+    assert np.all(np.isfinite(f)) and np.all(f > 0)

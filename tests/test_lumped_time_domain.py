@@ -32,24 +32,6 @@ from dynstiff.lumped import (
 E17 = 8.2051e-6 * 17e9          # CoGiRo cable EA [N] (theory.md §8.1)
 
 
-@pytest.fixture(scope="module")
-def lengths0():
-    return point_mass_robot().equilibrium(pose=[0.2, -0.1, 1.0]).unstretched_lengths
-
-
-@pytest.fixture(scope="module")
-def robot_model(lengths0):
-    """Point-mass robot models by segment count, at their equilibrium."""
-    cache = {}
-
-    def get(N):
-        if N not in cache:
-            m = linearised(point_mass_robot(), lengths0, N)
-            cache[N] = m
-        return cache[N]
-    return get
-
-
 def pendulum(free_dofs):
     """A body pinned at P (cables attached at P carry no moment): a heavy pendulum / top."""
     anchors = np.array([[-2.0, -1.0, 3.0], [2.0, -1.0, 3.0], [0.0, 2.0, 3.0]])
@@ -401,26 +383,3 @@ def test_bad_inputs_raise_typed_errors_naming_the_argument(robot_model, lengths0
         LumpedMassModel(m.robot, lengths0, segments=0)
     with pytest.raises(InvalidParameterError, match="model"):
         simulate(m.robot, 1.0, 1e-3)
-
-
-def test_results_convert_and_plot(robot_model):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    m = robot_model(3)
-    r = simulate(m, 0.5, 0.01, initial=[1e-4, 0, 0, 0, 0, 0], record_nodes=True)
-    n_t = r.times.size
-    assert n_t == 51 and r.pose.shape == (n_t, 6) and r.velocity.shape == (n_t, 6)
-    assert [a.shape for a in r.nodes] == [(n_t, 4, 3)] * 3
-    np.testing.assert_allclose(r.nodes[0][:, -1], r.pose[:, :3], atol=1e-12)  # B = P
-    df = r.to_frame()
-    assert len(df) == n_t and "z [m]" in df and "residual [J]" in df and "T_B2 [N]" in df
-    sp = r.spectrum("x")
-    assert len(sp.to_frame()) == sp.freq_hz.size
-    with pytest.raises(InvalidParameterError, match="channel"):
-        r.spectrum("q")
-    for fig in (r.plot(), sp.plot()):
-        assert fig.axes
-        plt.close(fig)
-    with pytest.raises(ValueError):
-        r.pose[0, 0] = 1.0                                    # read-only history

@@ -1,7 +1,10 @@
-"""Tension distribution (closest to a reference within the limits) against an independent
-brute-force solution: every assignment of the cables to {free, at t_min, at t_max} is solved
-as an equality-constrained least-squares problem, and the best feasible one is the optimum
-(the objective is strictly convex, so it is unique)."""
+"""Robot statics (dynstiff/statics.py, theory.md §4): inverse and forward statics, the
+workspace edge, and the tension distribution.
+
+The tension distribution (closest to a reference within the limits) is checked against an
+independent brute-force solution: every assignment of the cables to {free, at t_min, at
+t_max} is solved as an equality-constrained least-squares problem, and the best feasible one
+is the optimum (the objective is strictly convex, so it is unique)."""
 
 import itertools
 
@@ -11,10 +14,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.errors import SlackCableError
+from dynstiff.errors import InvalidParameterError, SlackCableError
 from dynstiff.statics import tension_distribution
 
 
+# ----------------------------------------------------------------- tension distribution
 def brute_force(W, w, lo, hi, r):
     """Enumerate the 3^n active sets [N]."""
     k, n = W.shape
@@ -63,6 +67,36 @@ def test_infeasible_wrench_is_reported():
     w = W @ np.full(8, 1000.0)
     with pytest.raises(SlackCableError, match="wrench-feasible"):
         tension_distribution(W, w, 100.0, 200.0)
+
+
+# ---------------------------------------------------------- inverse and forward statics
+def test_inverse_then_forward_statics_round_trip(cogiro, cogiro_eq):
+    assert cogiro_eq.residual < 1e-10
+    fwd = cogiro.robot.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+    np.testing.assert_allclose(fwd.pose.position, cogiro.pose.position, atol=1e-9)
+    np.testing.assert_allclose(fwd.pose.rotation, cogiro.pose.rotation, atol=1e-9)
+    t_min, t_max = cogiro.robot.tension_limits
+    assert np.all(cogiro_eq.tensions >= t_min - 1e-9) and np.all(cogiro_eq.tensions <= t_max)
+
+
+def test_forward_statics_with_held_dofs_needs_initial_pose(cogiro, cogiro_eq):
+    p = cogiro.robot.platform
+    planar = ds.Platform(p.mass, p.center_of_mass, p.inertia, free_dofs=("x", "z", "ry"))
+    rob = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments, cogiro.robot.cables, planar,
+                   tension_limits=cogiro.robot.tension_limits)
+    with pytest.raises(InvalidParameterError, match="initial_pose"):
+        rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+    eq = rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths,
+                         initial_pose=cogiro.pose)
+    np.testing.assert_allclose(eq.pose.position, cogiro.pose.position, atol=1e-9)
+    m = ds.FrequencyModel(eq)
+    K = m.dynamic_stiffness([0.0, 10.0])
+    np.testing.assert_allclose(K, K.transpose(0, 2, 1), atol=1e-9 * np.abs(K).max())
+
+
+def test_pose_outside_workspace_raises(cogiro):
+    with pytest.raises(SlackCableError, match="pose"):
+        cogiro.robot.equilibrium(pose=[9.0, 0.0, 1.0])
 
 
 def test_cogiro_near_the_workspace_edge_converges():

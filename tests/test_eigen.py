@@ -1,14 +1,21 @@
-"""Wittrick-Williams never misses a root (theory.md §5): property test on random 3-cable
-point-mass robots against an independent lumped-mass model (theory.md §7), and a dense
-determinant scan that does miss the coincident roots of a symmetric robot."""
+"""Wittrick-Williams eigenfrequencies, mode counts and cable fields (dynstiff/eigen.py,
+theory.md §5).
+
+W-W never misses a root: its count against an independent lumped-mass model (theory.md §7)
+on a point-mass robot and as a property test on random 3-cable point-mass robots; coincident
+and close roots of a symmetric robot; a dense determinant scan that does miss the coincident
+roots of a symmetric robot. Cable displacement fields of a mode meet the platform."""
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
+from dynstiff.eigen import cable_fields
 from dynstiff.errors import SlackCableError
-from conftest import lumped_point_mass_frequencies
+from conftest import lumped_point_mass_frequencies, point_mass_robot
+
 
 N_SEG = 40                    # lumped segments per cable
 M_CABLE = 0.064               # [kg/m], CoGiRo cable (theory.md §8.1)
@@ -16,6 +23,64 @@ AREA = 8.2051e-6              # [m^2]
 N_COMPARED = 20               # lowest modes of the continuous model compared
 
 
+# -------------------------------------------------------------- W-W against lumped mass
+def test_wittrick_williams_count_equals_lumped_model_count():
+    rob = point_mass_robot()
+    eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])
+    m = ds.FrequencyModel(eq)
+    f = ds.eigenfrequencies(m, 30)
+    f_lumped = lumped_point_mass_frequencies(eq, 80, n_modes=30)
+    # same number of modes below every probe frequency away from any mode
+    probes = np.linspace(0.5, 0.97 * f[-1], 400)
+    gap = np.min(np.abs(probes[:, None] / np.concatenate([f, f_lumped])[None, :] - 1), axis=1)
+    probes = probes[gap > 0.004]
+    J = ds.mode_count(m, 2 * np.pi * probes)
+    J_lumped = np.searchsorted(f_lumped, probes)
+    np.testing.assert_array_equal(J, J_lumped)
+    np.testing.assert_allclose(f, f_lumped, rtol=3e-3)   # discretisation O((n pi/N)^2/24)
+
+
+def test_close_and_coincident_roots_are_found():
+    """A symmetric robot: three identical cables at 120 deg give double roots."""
+    ang = np.radians([90, 210, 330])
+    anchors = np.column_stack([5 * np.cos(ang), 5 * np.sin(ang), np.full(3, 5.0)])
+    rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(20.0, free_dofs=("x", "y", "z")))
+    eq = rob.equilibrium(pose=[0, 0, 1.0])
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 26)
+    pairs = np.sum(np.abs(np.diff(f)) < 1e-6 * f[1:])
+    assert pairs >= 3                                      # coincident roots resolved
+    J = ds.mode_count(ds.FrequencyModel(eq), 2 * np.pi * f[:20] * (1 + 1e-7))
+    np.testing.assert_array_equal(J, [np.sum(f <= fk * (1 + 1e-9)) for fk in f[:20]])
+
+
+def test_close_pairs_are_found():
+    """Break the symmetry slightly: each double root splits into a pair < 1e-4 apart
+    (relative); W-W finds both members and the count steps by one at each."""
+    ang = np.radians([90, 210, 330])
+    anchors = np.column_stack([5 * np.cos(ang), 5 * np.sin(ang), np.full(3, 5.0)])
+    anchors[0, 0] += 2e-5                                   # 20 micrometres
+    rob = ds.Robot(anchors, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(20.0, free_dofs=("x", "y", "z")))
+    m = ds.FrequencyModel(rob.equilibrium(pose=[0, 0, 1.0]))
+    f = ds.eigenfrequencies(m, 32)
+    gaps = np.diff(f) / f[1:]
+    close = np.flatnonzero((gaps > 0) & (gaps < 1e-4))
+    close = close[close + 2 < len(f)]                      # the next mode up is known
+    assert len(close) >= 3
+    for k in close:
+        mid = 0.5 * (f[k] + f[k + 1])
+        lo, hi = f[k] - 0.25 * (f[k + 1] - f[k]), f[k + 1] + 0.25 * (f[k + 1] - f[k])
+        if hi >= f[k + 2] or (k > 0 and lo <= f[k - 1]):
+            continue                                       # a third close root: tested below
+        np.testing.assert_array_equal(ds.mode_count(m, 2 * np.pi * np.array([lo, mid, hi])),
+                                      [k, k + 1, k + 2])
+    # every computed root is a distinct step of the count, even in triplets 6e-7 apart
+    between = 0.5 * (f[1:] + f[:-1])
+    np.testing.assert_array_equal(ds.mode_count(m, 2 * np.pi * between), np.arange(1, len(f)))
+
+
+# ------------------------------------------------------------------------ random robots
 def highest_harmonic(eq, f_hz):
     """Largest clamped-string harmonic number n = 2 f L sqrt(m/T) over the cables at f_hz."""
     return max(2 * f_hz * s.chord_length * np.sqrt(M_CABLE / s.mean_tension) for s in eq.states)
@@ -92,7 +157,7 @@ def test_ww_count_equals_lumped_count_on_random_robots(radius, turn, jitter, hei
     assert r["J"].max() >= N_COMPARED // 2
 
 
-# ------------------------------------------------------------------ why not a det scan
+# ------------------------------------------------------------------- why not a det scan
 def symmetric_robot():
     """Three identical cables at 120 deg, platform on the axis: double roots (x-y symmetry)
     and purely local cable modes (platform at rest) on the coinciding cable poles."""
@@ -133,3 +198,22 @@ def test_determinant_scan_misses_roots_that_ww_finds():
     assert sum(len(c) > 1 for c in clusters) >= 6     # repeated roots present
     assert n_scan == visible
     assert n_scan < n_ww and n_raw < n_ww
+
+
+# ------------------------------------------------------------------------- cable fields
+@pytest.fixture(scope="module")
+def scene():
+    return ds.load_scene("cogiro")
+
+
+def test_cable_fields_are_continuous_with_the_platform(scene):
+    m = ds.FrequencyModel(scene.equilibrium())
+    modes = ds.modes(m, 6)
+    for k in np.flatnonzero(np.array(modes.kind) == "global")[:2]:
+        pos, disp = cable_fields(m, modes, k)
+        x6 = modes.platform_shapes[k]
+        np.testing.assert_allclose(disp[:, 0], 0.0, atol=1e-12)       # anchors clamped
+        for i, r in enumerate(m.lever_arms):
+            np.testing.assert_allclose(disp[i, -1], x6[:3] + np.cross(x6[3:], r), rtol=1e-9,
+                                       atol=1e-12)
+        np.testing.assert_allclose(pos[:, -1], [s.end for s in m.equilibrium.states], atol=1e-12)

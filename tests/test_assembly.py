@@ -1,0 +1,98 @@
+"""The closed-form robot model (dynstiff/assembly.py, FrequencyModel; theory.md §4): the
+massless-cable limit against an independent straight-cable model, the geometric stiffness
+at equilibrium, and frequencies and mode shapes that turn and mirror with the robot."""
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+import dynstiff as ds
+
+
+def skew(a):
+    return np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+
+
+def straight_cable_frequencies(eq):
+    """Independent massless straight-cable model: K = sum J^T (k u u^T + t/l (I - u u^T)) J
+    + K_geo, with k = EA/L0, mass matrix of the rigid body written out here (Hz)."""
+    rob, pose = eq.robot, eq.pose
+    R = pose.matrix
+    K = np.zeros((6, 6))
+    Kgeo = np.zeros((3, 3))
+    for i, s in enumerate(eq.states):
+        r = R @ rob.attachments[i]
+        B = pose.position + r
+        d = rob.anchors[i] - B
+        l = np.linalg.norm(d)
+        u = d / l
+        t = s.tension_at_end
+        Kc = rob.cables[i].EA / eq.unstretched_lengths[i] * np.outer(u, u) + t / l * (
+            np.eye(3) - np.outer(u, u))
+        J = np.hstack([np.eye(3), -skew(r)])
+        K += J.T @ Kc @ J
+        f = t * u
+        Kgeo += (r @ f) * np.eye(3) - np.outer(r, f)      # -[f]x[r]x = (f.r) I - r f^T
+    m = rob.platform.mass
+    rG = R @ rob.platform.center_of_mass
+    fg = m * np.array([0, 0, -rob.g])
+    Kgeo += (rG @ fg) * np.eye(3) - np.outer(rG, fg)
+    K[3:, 3:] += Kgeo
+    M = np.zeros((6, 6))
+    M[:3, :3] = m * np.eye(3)
+    M[:3, 3:] = -m * skew(rG)
+    M[3:, :3] = m * skew(rG)
+    M[3:, 3:] = R @ rob.platform.inertia @ R.T + m * (np.dot(rG, rG) * np.eye(3) - np.outer(rG, rG))
+    fi = rob.platform.free_index
+    lam = scipy.linalg.eigh(0.5 * (K + K.T)[np.ix_(fi, fi)], M[np.ix_(fi, fi)],
+                            eigvals_only=True)
+    return np.sqrt(lam) / (2 * np.pi)
+
+
+def test_massless_limit_matches_straight_cable_model(cogiro):
+    light = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments,
+                     ds.Cable(1e-7, cogiro.robot.cables[0].EA), cogiro.robot.platform,
+                     tension_limits=cogiro.robot.tension_limits)
+    eq = light.equilibrium(pose=cogiro.pose)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), 6)
+    np.testing.assert_allclose(f, straight_cable_frequencies(eq), rtol=1e-6)
+
+
+def test_geometric_stiffness_symmetric_at_equilibrium(cogiro_eq):
+    Kg = ds.FrequencyModel(cogiro_eq).K_geo
+    assert np.abs(Kg).max() > 10          # not trivially zero
+    np.testing.assert_allclose(Kg, Kg.T, atol=1e-10 * np.abs(Kg).max())
+
+
+def rotated_robot(rob, pose, phi):
+    """The robot turned by phi about the vertical (gravity unchanged)."""
+    c, s = np.cos(phi), np.sin(phi)
+    Q = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+    from scipy.spatial.transform import Rotation
+    rot = (Rotation.from_matrix(Q) * Rotation.from_rotvec(pose.rotation)).as_rotvec()
+    return (ds.Robot(rob.anchors @ Q.T, rob.attachments, rob.cables, rob.platform,
+                     tension_limits=rob.tension_limits), ds.Pose(Q @ pose.position, rot))
+
+
+def test_rotating_robot_with_gravity_leaves_frequencies(cogiro, cogiro_eq):
+    f = ds.eigenfrequencies(ds.FrequencyModel(cogiro_eq), 12)
+    rob, pose = rotated_robot(cogiro.robot, cogiro.pose, 0.7)
+    eq = rob.equilibrium(pose=pose)
+    np.testing.assert_allclose(ds.eigenfrequencies(ds.FrequencyModel(eq), 12), f, rtol=1e-9)
+
+
+def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
+    Mx = np.diag([-1.0, 1, 1])
+    p = cogiro.robot.platform
+    pm = ds.Platform(p.mass, Mx @ p.center_of_mass, Mx @ p.inertia @ Mx)
+    rob = ds.Robot(cogiro.robot.anchors @ Mx, cogiro.robot.attachments @ Mx, cogiro.robot.cables,
+                   pm, tension_limits=cogiro.robot.tension_limits)
+    eq = rob.equilibrium(pose=Mx @ cogiro.pose.position)
+    a = ds.modes(ds.FrequencyModel(cogiro_eq), 8)
+    b = ds.modes(ds.FrequencyModel(eq), 8)
+    np.testing.assert_allclose(b.freq_hz, a.freq_hz, rtol=1e-9)
+    # translation mirrors with Mx, rotation (axial vector) with -Mx
+    T = np.diag([-1.0, 1, 1, 1, -1, -1])
+    for k in np.flatnonzero(np.array(a.kind) == "global"):
+        ma, mb = T @ a.platform_shapes[k], b.platform_shapes[k]
+        assert abs(ma @ mb) == pytest.approx(np.linalg.norm(ma) * np.linalg.norm(mb), rel=1e-6)

@@ -1,0 +1,242 @@
+"""The command line (dynstiff/cli.py, `python -m dynstiff`), run in subprocesses: demo,
+modes, frf, sweep, simulate and check; their tables and figures are read back and compared
+with the library, and bad arguments exit with status 2 and a message naming them."""
+
+import subprocess
+import sys
+
+import pytest
+
+pytestmark = pytest.mark.integration
+
+
+# --------------------------------------------------------------------------------- demo
+def test_demo_main_job_on_cogiro(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--out", str(tmp_path),
+                          "--points", "400"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+
+    import dynstiff as ds
+    modes = pd.read_csv(tmp_path / "modes.csv")
+    ref = ds.eigenfrequencies(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), 40)
+    assert len(modes) == 40
+    assert abs(modes["freq [Hz]"] / ref - 1).max() < 1e-9
+    statics = pd.read_csv(tmp_path / "statics.csv")
+    assert len(statics) == 8 and (statics["tension at B [N]"] >= 100 - 1e-6).all()
+    checks = pd.read_csv(tmp_path / "checks.csv")
+    assert len(checks) == 6 and checks["passed"].all()
+    frf = pd.read_csv(tmp_path / "frf.csv")
+    assert set(frf["input"]) == {"fx", "fz"} and frf["freq [Hz]"].nunique() == 400
+    for name in ("frf.png", "mode_shape.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    assert "recommended model: dsm" in out.stdout
+
+
+def test_demo_cable_report(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--cable", "--out",
+                          str(tmp_path), "--points", "400"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert "in-plane symmetric 1" in out.stdout
+    for name in ["report.txt", "statics.csv", "modes.csv", "dynamic_stiffness.png"]:
+        assert (tmp_path / name).stat().st_size > 0
+    import pandas as pd
+    modes = pd.read_csv(tmp_path / "modes.csv")
+    assert list(modes.columns) == ["freq [Hz]", "Omega [-]", "family", "order"]
+    assert modes["freq [Hz]"].is_monotonic_increasing
+
+
+# ---------------------------------------------------------- modes, frf, sweep, simulate
+def test_cli_rejects_unknown_option():
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--bogus"],
+                         capture_output=True, text=True)
+    assert out.returncode == 2
+    assert "--bogus" in out.stderr
+
+
+def run_cli(*args):
+    return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
+                          text=True)
+
+
+def test_cli_modes_table_and_csv(tmp_path):
+    out = run_cli("modes", "cogiro", "-n", "6", "--csv", str(tmp_path / "m.csv"))
+    assert out.returncode == 0, out.stderr
+    assert "global" in out.stdout and "freq [Hz]" in out.stdout
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "m.csv")
+    assert len(df) == 6 and df["freq [Hz]"].is_monotonic_increasing
+    assert df["kind"].isin(["global", "local"]).all()
+
+
+def test_cli_modes_model_choice(tmp_path):
+    """--model: the 30-segment lumped model lands within 1e-3 of the closed form on CoGiRo's
+    first modes; the massless rungs give platform modes only, the straight spring stiffer
+    than the catenary (sag softens the cable)."""
+    import pandas as pd
+    tables = {}
+    for m in ("dsm", "lumped", "catenary", "spring"):
+        out = run_cli("modes", "cogiro", "-n", "3", "--model", m, "--csv",
+                      str(tmp_path / f"{m}.csv"))
+        assert out.returncode == 0, out.stderr
+        assert out.stdout.startswith(f"{m} model")
+        tables[m] = pd.read_csv(tmp_path / f"{m}.csv")["freq [Hz]"].to_numpy()
+    assert abs(tables["lumped"] / tables["dsm"] - 1).max() < 1e-3
+    assert (tables["spring"] > tables["catenary"]).all()
+    assert (pd.read_csv(tmp_path / "spring.csv")["kind"] == "global").all()
+    bad = run_cli("modes", "cogiro", "--model", "lumped", "--segments", "0")
+    assert bad.returncode == 2 and "--segments" in bad.stderr
+    bad = run_cli("modes", "cogiro", "--model", "beam")
+    assert bad.returncode == 2 and "beam" in bad.stderr
+
+
+def test_cli_errors_exit_nonzero_with_message(tmp_path):
+    out = run_cli("modes", "nope")
+    assert out.returncode == 2 and "unknown scene 'nope'" in out.stderr
+    out = run_cli("modes", "cogiro", "--pose", "9", "0", "1")
+    assert out.returncode == 2 and "pose [9.0" in out.stderr
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[platform]\nmass = 1.0\nbogus_key = 3\n[[cables]]\nanchor=[0,0,1]\n"
+                   "attachment=[0,0,0]\n")
+    out = run_cli("modes", str(bad))
+    assert out.returncode == 2 and "line 3" in out.stderr and "bogus_key" in out.stderr
+    out = run_cli("modes", str(tmp_path / "missing.toml"))
+    assert out.returncode == 2 and "missing.toml" in out.stderr
+
+
+def test_cli_frf_writes_table_and_figure(tmp_path):
+    out = run_cli("frf", "cogiro", "--from", "fz", "--to", "z", "--band", "1", "3", "--points",
+                  "400", "--csv", str(tmp_path / "f.csv"), "--plot", str(tmp_path / "f.png"))
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "f.csv")
+    assert len(df) == 400 and set(df["output"]) == {"z"} and set(df["input"]) == {"fz"}
+    # the largest response in 1-3 Hz is the first (vertical) global mode of CoGiRo
+    import dynstiff as ds
+    f1 = ds.eigenfrequencies(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), 1)[0]
+    peak = df.loc[df["magnitude"].idxmax(), "freq [Hz]"]
+    assert abs(peak - f1) < 2.0 / 399 + 1e-9            # within one frequency step
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+    bad = run_cli("frf", "cogiro", "--band", "5", "1")
+    assert bad.returncode == 2 and "--band" in bad.stderr
+    bad = run_cli("frf", "cogiro", "--from", "fq")
+    assert bad.returncode == 2 and "fq" in bad.stderr
+
+
+def test_frf_of_a_held_dof_is_refused_not_zero():
+    """The pendulum has one free DOF (ry): naming fx or the output y would give an FRF that
+    is identically 0; that is an error naming the channel, and x of D = (0, 0, d) is not."""
+    import dynstiff as ds
+    from dynstiff.errors import InvalidParameterError
+    model = ds.FrequencyModel(ds.load_scene("pendulum").equilibrium())
+    with pytest.raises(InvalidParameterError, match=r"inputs \['fx'\].*\('ry',\)"):
+        ds.frf(model, [1.0], inputs="fx", outputs="x")
+    with pytest.raises(InvalidParameterError, match=r"outputs \['y'\]"):
+        ds.frf(model, [1.0], inputs="my", outputs=["x", "y"], point=[0, 0, 0.75])
+    # x of D moves by d dphi: H_x,my = d H_ry,my
+    h = ds.frf(model, [1.0], inputs="my", outputs=["x", "ry"], point=[0, 0, 0.75]).H[0, :, 0]
+    assert h[0] == pytest.approx(0.75 * h[1], rel=1e-12) and abs(h[1]) > 0
+    assert ds.frf(model, [1.0]).H.shape == (1, 6, 6)           # the default keeps zero channels
+    bad = run_cli("frf", "pendulum", "--from", "fx", "--to", "x")
+    assert bad.returncode == 2 and "held DOFs only" in bad.stderr and "fx" in bad.stderr
+
+
+def test_cli_sweep_line_and_parameter(tmp_path):
+    out = run_cli("sweep", "cogiro", "--line", "0", "0", "1", "2", "1", "1.5", "--steps", "3",
+                  "-n", "8", "--csv", str(tmp_path / "s.csv"), "--plot", str(tmp_path / "v.png"))
+    assert out.returncode == 0, out.stderr
+    assert "3/3" in out.stderr                              # the progress bar ran to the end
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "s.csv")
+    assert len(df) == 24 and sorted(df["step"].unique()) == [0, 1, 2]
+    assert abs(df["value"].max() - (4 + 1 + 0.25) ** 0.5) < 1e-9     # arc length [m]
+    assert (tmp_path / "v.png").stat().st_size > 10_000
+    out = run_cli("sweep", "cogiro", "--parameter", "EA", "--values", "1.4e5", "9.8e5",
+                  "-n", "6", "--quiet")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr == ""                                  # --quiet: no progress bar
+    assert "EA [N]" in out.stdout
+    bad = run_cli("sweep", "cogiro")
+    assert bad.returncode == 2 and "--line, --path or --parameter" in bad.stderr
+    bad = run_cli("sweep", "cogiro", "--parameter", "colour", "--values", "1")
+    assert bad.returncode == 2 and "colour" in bad.stderr
+
+
+def test_cli_sweep_path_file(tmp_path):
+    """--path: a CSV with a header, a comment and a blank line gives the same frequencies as
+    the closed-form model at each pose; a malformed line is an error naming file and line."""
+    import numpy as np
+    import pandas as pd
+
+    import dynstiff as ds
+    f = tmp_path / "path.csv"
+    f.write_text("# a path\nx,y,z\n0,0,1\n0.5,0.2,1.1  # comment\n\n1,0.4,1.2,0,0,0.05\n")
+    out = run_cli("sweep", "cogiro", "--path", str(f), "-n", "6", "--quiet", "--csv",
+                  str(tmp_path / "s.csv"))
+    assert out.returncode == 0, out.stderr
+    df = pd.read_csv(tmp_path / "s.csv")
+    rob = ds.load_scene("cogiro").robot
+    for k, pose in enumerate([[0, 0, 1], [0.5, 0.2, 1.1], [1, 0.4, 1.2, 0, 0, 0.05]]):
+        ref = ds.eigenfrequencies(ds.FrequencyModel(rob.equilibrium(pose=pose)), 6)
+        np.testing.assert_allclose(df.loc[df["step"] == k, "freq [Hz]"], ref, rtol=1e-12)
+    f.write_text("0 0 1\n0 0 1.1\n0 0\n")
+    bad = run_cli("sweep", "cogiro", "--path", str(f), "-n", "6")
+    assert bad.returncode == 2 and "line 3" in bad.stderr and str(f) in bad.stderr
+
+
+def test_cli_simulate_free_vibration_and_line(tmp_path):
+    out = run_cli("simulate", "fourcable", "--time", "2", "--segments", "1", "--csv",
+                  str(tmp_path / "t.csv"), "--plot", str(tmp_path / "s.png"))
+    assert out.returncode == 0, out.stderr
+    import re
+    peaks = [float(x) for x in re.search(r"spectrum peaks of x in [^:]*: (.*)",
+                                         out.stdout).group(1).split(",")]
+    import dynstiff as ds
+    f1 = ds.eigenfrequencies(ds.FrequencyModel(ds.load_scene("fourcable").equilibrium()), 1)[0]
+    assert min(abs(p - f1) for p in peaks) < 0.5                       # resolution 0.5 Hz
+    import pandas as pd
+    assert len(pd.read_csv(tmp_path / "t.csv")) == 1001
+    out = run_cli("simulate", "planar2", "--to", "1", "0", "-10", "--speed", "1", "--ramp",
+                  "0.5", "--time", "0.2", "--segments", "2", "--quiet")
+    assert out.returncode == 0, out.stderr
+    dev = float(re.search(r"quasi-static path ([0-9.e-]+) m", out.stdout).group(1))
+    assert 0 < dev < 0.01
+    bad = run_cli("simulate", "cogiro", "--offset", "1", "2")
+    assert bad.returncode == 2 and "--offset needs 6 values" in bad.stderr
+    bad = run_cli("simulate", "cogiro", "--band", "5", "1")
+    assert bad.returncode == 2 and "--band" in bad.stderr
+    bad = run_cli("simulate", "cogiro", "--dt", "-1")
+    assert bad.returncode == 2 and "dt" in bad.stderr
+
+
+def test_cli_malformed_toml_and_unknown_options(tmp_path):
+    bad = tmp_path / "broken.toml"
+    bad.write_text("[platform\nmass = 1\n")
+    for cmd in ("modes", "check", "sweep", "simulate", "frf"):
+        out = run_cli(cmd, str(bad))
+        assert out.returncode == 2, cmd
+        assert "TOML syntax error" in out.stderr and "broken.toml" in out.stderr, cmd
+        out = run_cli(cmd, "cogiro", "--no-such-option")
+        assert out.returncode == 2 and "--no-such-option" in out.stderr, cmd
+
+
+# -------------------------------------------------------------------------------- check
+def test_cli_check_exit_codes():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    assert run("cogiro", "--band", "1", "2").returncode == 0
+    out = run("cogiro", "--band", "4", "5")
+    assert out.returncode == 1 and "FAIL  global modes outside band" in out.stdout
+    out = run("cogiro", "--pose", "9", "0", "1")
+    assert out.returncode == 1 and "FAIL  workspace" in out.stdout
+
+
+def test_cli_check_defaults_to_the_scenes_forbidden_band():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    out = run("cogiro")                                    # forbidden_band_hz = [0, 1.5]
+    assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
+    out = run("sixcable")                                  # no forbidden band in the scene
+    assert out.returncode == 1 and "no forbidden band" in out.stdout
+    assert "FAIL  cable model" in out.stdout
+    assert "global modes outside band" not in out.stdout

@@ -1,0 +1,63 @@
+"""Frequency response functions (dynstiff/frf.py, theory.md §4): reciprocity, peaks at the
+eigenfrequencies, an exact pole, and channels on held DOFs refused by the closed-form and
+the lumped model alike."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError, PoleWarning
+from conftest import linearised
+
+
+def test_receptance_is_symmetric(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    H = ds.frf(m, 2 * np.pi * np.linspace(0.2, 10, 200)).H
+    np.testing.assert_allclose(H, H.transpose(0, 2, 1), rtol=1e-8, atol=1e-12 * np.abs(H).max())
+
+
+def test_frf_peaks_sit_at_eigenfrequencies(cogiro):
+    light = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments,
+                     ds.Cable(0.064, cogiro.robot.cables[0].EA, loss_factor=1e-4),
+                     cogiro.robot.platform, tension_limits=cogiro.robot.tension_limits)
+    eq = light.equilibrium(pose=cogiro.pose)
+    m = ds.FrequencyModel(eq)
+    modes = ds.modes(m, 3)
+    f1 = modes.freq_hz[0]
+    f = np.linspace(0.9 * f1, 1.1 * f1, 20001)
+    H = ds.frf(m, 2 * np.pi * f).H
+    amp = np.abs(H).max(axis=(1, 2))
+    assert f[np.argmax(amp)] == pytest.approx(f1, rel=2e-4)
+
+
+def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq):
+    class Singular:
+        """The closed-form model with an exactly singular K at the first frequency."""
+
+        def __init__(self, model):
+            self.model = model
+
+        def __getattr__(self, name):
+            return getattr(self.model, name)
+
+        def dynamic_stiffness(self, omega):
+            K = self.model.dynamic_stiffness(omega)
+            K[0] = 0.0
+            return K
+
+    with pytest.warns(PoleWarning):
+        H = ds.frf(Singular(ds.FrequencyModel(cogiro_eq)), [1.0, 2.0]).H
+    assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
+
+
+def test_frf_channel_on_held_dofs_only_raises_like_closed_form():
+    """The point-mass four-cable robot has x, y, z free: a moment input or a rotation
+    output named explicitly would give an FRF identically 0, so both models refuse it."""
+    eq = ds.load_scene("fourcable").equilibrium()
+    lumped = linearised(eq.robot, eq.unstretched_lengths, 2)
+    for model in (lumped, ds.FrequencyModel(eq)):
+        with pytest.raises(InvalidParameterError, match=r"inputs \['mx'\]"):
+            ds.frf(model, [1.0], inputs="mx")
+        with pytest.raises(InvalidParameterError, match=r"outputs \['rz'\]"):
+            ds.frf(model, [1.0], outputs="rz")
+        assert ds.frf(model, [1.0], inputs="fz", outputs="z").H.shape == (1, 1, 1)

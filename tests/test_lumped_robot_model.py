@@ -1,0 +1,178 @@
+"""Tests of the whole-robot lumped-mass model (dynstiff.lumped.robot_model): the residual and
+its analytic tangent, statics, inputs, and a model without hidden state.
+
+References: theory.md §4 (J_i, K_geo, M_p), §7.1 (lumped model), §7.2 (O(N^-2)), §1.1
+(lumped nodes lie on the elastic catenary). The numbers asserted were measured with this
+model and the closed-form robot statics (not published values); each comment gives the
+measured value behind its tolerance.
+"""
+
+import dataclasses
+import time
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import ConvergenceError, InvalidParameterError
+from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
+from conftest import point_mass_robot
+
+
+def central_difference_jacobian(model, pose, interior, h=1e-6):
+    """-dR/dx by central differences (platform moved by Pose.moved, nodes additively)."""
+    K = np.zeros((model.n_dof, model.n_dof))
+    for k in range(model.n_dof):
+        e = np.zeros(model.n_dof)
+        e[k] = h
+        K[:, k] = -(model.residual(*model.displaced(pose, interior, e))
+                    - model.residual(*model.displaced(pose, interior, -e))) / (2 * h)
+    return K
+
+
+@pytest.mark.parametrize("case", ["point mass", "6 dof", "pinned", "planar"])
+def test_tangent_equals_central_difference_jacobian(cogiro, cogiro_eq, case):
+    """Analytic sparse tangent (element K_e, slaved end nodes J_i, K_geo of the rotating lever
+    arms) = central-difference Jacobian of the residual, away from equilibrium (where the
+    geometric rotation block is not symmetric) as well as at it."""
+    if case == "point mass":
+        rob = point_mass_robot()
+        L0 = rob.equilibrium(pose=[0.2, -0.1, 1.0]).unstretched_lengths
+        start = None
+    else:
+        dofs = {"6 dof": ("x", "y", "z", "rx", "ry", "rz"), "pinned": ("rx", "ry", "rz"),
+                "planar": ("x", "z", "ry")}[case]
+        rob = dataclasses.replace(
+            cogiro.robot, platform=dataclasses.replace(cogiro.robot.platform, free_dofs=dofs))
+        L0, start = cogiro_eq.unstretched_lengths, cogiro.pose   # held DOFs at the scene pose
+    model = LumpedMassModel(rob, L0, segments=4)
+    st = model.equilibrium(initial_pose=start)
+    rng = np.random.default_rng(1)
+    pose, interior = model.displaced(st.pose, st.interior, 1e-3 * rng.standard_normal(model.n_dof))
+    K = model.tangent_stiffness(pose, interior).toarray()
+    K_fd = central_difference_jacobian(model, pose, interior)
+    nf = model.n_free
+    scale = np.abs(K).max()
+    assert np.abs(K - K_fd).max() < 1e-8 * scale                 # measured 1e-10 to 3e-10
+    Kp, Kp_fd = K[:nf, :nf], K_fd[:nf, :nf]
+    assert np.abs(Kp - Kp_fd).max() < 1e-8 * np.abs(Kp).max()
+    if sum(d.startswith("r") for d in rob.platform.free_dofs) >= 2:
+        # off equilibrium the rotation block is non-symmetric (measured ~1e-3): the check
+        # above covers the full K_geo, not only its symmetric part
+        assert np.abs(Kp - Kp.T).max() > 1e-5 * np.abs(Kp).max()
+        K_eq = LumpedLinearModel(model, st).matrices()[0].toarray()
+        assert np.abs(K_eq - K_eq.T).max() < 1e-11 * np.abs(K_eq).max()   # measured 3e-13
+
+
+# ------------------------------------------------------------------------------ statics
+def test_statics_agree_with_elastic_catenary_at_second_order(cogiro, cogiro_eq, lumped):
+    """Forward statics of the lumped model vs the closed-form robot statics for the same
+    lengths. The lumped nodes lie on the catenary (theory.md §1.1) but straight segments
+    replace the curved arcs, an O(l0^2) error in each cable's end force: the poses differ by
+    ~4e-7 m at N = 30, falling as N^-2 (measured ratio 30 -> 60: 4.0)."""
+    fwd = cogiro.robot.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+    L0 = cogiro_eq.unstretched_lengths
+    dp, dr, dF = {}, {}, {}
+    for N in (30, 60):
+        st = lumped(N).equilibrium
+        assert st.iterations <= 2 and st.residual <= 1e-10       # measured 1 iteration
+        dp[N] = np.linalg.norm(st.pose.position - fwd.pose.position)
+        dr[N] = np.linalg.norm(st.pose.rotation - fwd.pose.rotation)
+        # the cause: end forces of lumped chains vs catenaries at the *same* pose
+        F_cat = [s.force_on_end for s in cogiro.robot.cable_states(st.pose, L0)]
+        dF[N] = np.abs(st.platform_forces - F_cat).max()
+        K, _ = lumped(N).matrices()
+        assert abs(K - K.T).max() < 1e-13 * abs(K).max()         # measured 5e-16
+    assert dp[30] < 1e-6 and dr[30] < 1e-7                       # measured 4.4e-7 m, 4.0e-8 rad
+    assert dF[30] < 5e-3                                         # measured 2.2e-3 N of ~290 N
+    assert dp[30] / dp[60] == pytest.approx(4.0, rel=0.05)       # (60/30)^2
+    assert dF[30] / dF[60] == pytest.approx(4.0, rel=0.05)
+
+
+def test_cogiro_statics_fast(cogiro, cogiro_eq):
+    """Issue 4: N = 50 per cable in well under a second (measured 0.05-0.07 s, 1 iteration)."""
+    model = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=50)
+    t = time.perf_counter()
+    st = model.equilibrium()
+    assert time.perf_counter() - t < 1.0
+    assert st.iterations <= 2
+    assert [len(x) for x in st.nodes] == [51] * 8 and [len(t) for t in st.tensions] == [50] * 8
+
+
+# ------------------------------------------------------------------------------- errors
+@pytest.mark.parametrize("segments, match", [
+    (0, "segments"), (-3, "segments"), (2.5, "segments"), (True, "segments"),
+    ([30] * 7, "segments"), ([30] * 7 + [0], "segments"), ("30", "segments")])
+def test_bad_segments(cogiro, cogiro_eq, segments, match):
+    with pytest.raises(InvalidParameterError, match=match):
+        LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segments)
+
+
+@pytest.mark.parametrize("lengths", [np.full(7, 10.0), np.r_[np.full(7, 10.0), -1.0],
+                                     np.r_[np.full(7, 10.0), np.nan], "ten"])
+def test_bad_lengths(cogiro, lengths):
+    with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
+        LumpedMassModel(cogiro.robot, lengths, segments=10)
+
+
+def test_other_bad_inputs(cogiro, cogiro_eq, lumped):
+    with pytest.raises(InvalidParameterError, match="robot"):
+        LumpedMassModel(cogiro.robot.platform, cogiro_eq.unstretched_lengths)
+    with pytest.raises(InvalidParameterError, match="n_modes"):
+        ds.eigenfrequencies(lumped(20), 0)
+    with pytest.raises(InvalidParameterError, match="inputs"):
+        ds.frf(lumped(20), [1.0], inputs="fq")
+    with pytest.raises(InvalidParameterError, match="omega"):
+        ds.frf(lumped(20), [-1.0])
+
+
+def test_per_cable_segments(cogiro, cogiro_eq):
+    segs = [10, 12, 14, 16, 10, 12, 14, 16]
+    model = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segs)
+    st = model.equilibrium()
+    assert [len(t) for t in st.tensions] == segs
+    assert model.n_dof == 6 + 3 * sum(n - 1 for n in segs)
+
+
+def test_convergence_error_reports_residual(cogiro, cogiro_eq):
+    model = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=10)
+    with pytest.raises(ConvergenceError, match="residual") as exc:
+        model.equilibrium(tol=1e-22)                 # below rounding: must stop, not loop
+    assert 0 < exc.value.residual < 1e-12
+
+
+def test_stacked_residual_equals_the_per_cable_loop(cogiro, cogiro_eq):
+    """All chains at once (equal N) and cable by cable (any N) give the same forces, off
+    equilibrium and with slack segments."""
+    model = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=6)
+    st = model.equilibrium(initial_pose=cogiro.pose)
+    rng = np.random.default_rng(7)
+    pose, interior = model.displaced(st.pose, st.interior,
+                                     2e-2 * rng.standard_normal(model.n_dof))
+    nodes, _ = model._full_nodes(pose, interior)
+    inner1, F1, t1 = model._chain_forces_stacked(nodes)
+    inner2, F2, t2 = model._chain_forces_loop(nodes)
+    assert np.abs(inner1 - inner2).max() < 1e-12 * np.abs(inner1).max()
+    assert np.abs(F1 - F2).max() < 1e-12 * np.abs(F1).max()
+    assert t1 == t2
+    from dynstiff.lumped.robot_model import segment_forces
+    T = [segment_forces(x, model.segment_lengths[i], cogiro.robot.cables[i].EA)[2]
+         for i, x in enumerate(nodes)]
+    assert any(np.any(t == 0.0) for t in T)                     # slack segments among them
+
+
+def test_the_lumped_model_holds_no_hidden_state(cogiro, cogiro_eq):
+    """equilibrium() returns a state and changes nothing in the model; the linearisation is
+    built on a given state, and the analyses refuse the unlinearised model by name."""
+    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=4)
+    before = {k: (id(v), v.tobytes() if isinstance(v, np.ndarray) else v)
+              for k, v in vars(mm).items() if not isinstance(v, ds.Robot)}
+    st = mm.equilibrium(initial_pose=cogiro.pose)
+    mm.equilibrium(tol=1e-6)
+    after = {k: (id(v), v.tobytes() if isinstance(v, np.ndarray) else v)
+             for k, v in vars(mm).items() if not isinstance(v, ds.Robot)}
+    assert before == after and not hasattr(mm, "state")
+    lin = LumpedLinearModel(mm, st)
+    assert lin.equilibrium is st and lin.pose is st.pose
+    with pytest.raises(InvalidParameterError, match="linearise"):
+        ds.eigenfrequencies(mm, 3)
