@@ -271,3 +271,19 @@ def test_proximity_warnings_are_real_warnings(modes120):
         warnings.simplefilter("error", ProximityWarning)
         with pytest.raises(ProximityWarning):
             proximity_warnings(modes120, rtol=0.01, warn=True)
+
+
+def test_sweep_runs_on_any_rung(cogiro):
+    """The sweep takes the model of every step from the ladder: massless cables give the six
+    platform modes only, all global and tracked; the lumped rung tracks the same global modes
+    as the closed form (its first global frequency within the N = 6 discretisation error)."""
+    poses = [[-0.5, 0.0, 1.0], [0.0, 0.0, 1.0], [0.5, 0.0, 1.0]]
+    cat = ds.sweep(cogiro.robot, poses=poses, n_modes=6, rung="catenary")
+    assert set(cat.kind) == {"global"} and cat.n_tracks == 6
+    dsm = ds.sweep(cogiro.robot, poses=poses, n_modes=8)
+    lum = ds.sweep(cogiro.robot, poses=poses, n_modes=8, rung="lumped", segments=6)
+    f_dsm = dsm.veering_table().iloc[:, 0].to_numpy()
+    f_lum = lum.veering_table().iloc[:, 0].to_numpy()
+    np.testing.assert_allclose(f_lum, f_dsm, rtol=(np.pi / 6) ** 2 / 24)
+    with pytest.raises(InvalidParameterError, match="tol"):
+        ds.sweep(cogiro.robot, poses=poses, n_modes=6, rung="dsm", tol=1e-9)
