@@ -1,0 +1,47 @@
+"""The equilibrium record (dynstiff/equilibrium.py): its tensions, table and stiffness."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+
+
+def test_tensions_are_those_of_the_catenaries(cogiro_eq):
+    eq = cogiro_eq
+    np.testing.assert_array_equal(eq.tensions, [s.tension_at_end for s in eq.states])
+    np.testing.assert_array_equal(eq.anchor_tensions, [s.tension_at_anchor for s in eq.states])
+    # the anchors sit above the platform: the least tension is at B, the largest at A, and
+    # they differ by about the weight of the cable above B (dT = w dz, theory.md §1.1)
+    assert np.all(eq.min_tensions <= np.minimum(eq.tensions, eq.anchor_tensions) + 1e-12)
+    assert np.all(eq.max_tensions >= np.maximum(eq.tensions, eq.anchor_tensions) - 1e-12)
+    dz = np.array([s.anchor[2] - s.end[2] for s in eq.states])
+    w = np.array([s.cable.mass_per_length * s.g for s in eq.states])
+    np.testing.assert_allclose(eq.anchor_tensions - eq.tensions, w * dz, rtol=3e-3)
+
+
+def test_table_has_units_and_one_row_per_cable(cogiro_eq):
+    df = cogiro_eq.to_frame()
+    assert len(df) == 8
+    assert {"tension at B [N]", "tension at A [N]", "unstretched length [m]",
+            "chord length [m]", "sag [m]", "lambda^2 [-]"} <= set(df.columns)
+    np.testing.assert_array_equal(df["unstretched length [m]"], cogiro_eq.unstretched_lengths)
+    r = repr(cogiro_eq)
+    assert r.startswith("Equilibrium(8 cables") and len(r) < 160
+
+
+def test_platform_stiffness_is_symmetric_at_a_full_equilibrium(cogiro_eq):
+    """At a 6-DOF equilibrium the geometric stiffness is symmetric (theory.md §4), so the
+    whole 6x6 platform stiffness is; it is positive definite for a stable pose."""
+    K = cogiro_eq.platform_stiffness()
+    assert np.abs(K - K.T).max() < 1e-9 * np.abs(K).max()
+    assert np.linalg.eigvalsh(0.5 * (K + K.T)).min() > 0
+    assert cogiro_eq.residual < 1e-10
+
+
+def test_equilibria_compare_by_their_poses(cogiro):
+    a = cogiro.robot.equilibrium(pose=[0.5, 0.0, 1.0])
+    b = cogiro.robot.equilibrium(pose=ds.Pose([0.5, 0.0, 1.0]))
+    assert a.pose == b.pose
+    np.testing.assert_allclose(a.unstretched_lengths, b.unstretched_lengths, rtol=1e-14)
+    with pytest.raises(AttributeError):
+        a.pose = b.pose                                   # frozen record

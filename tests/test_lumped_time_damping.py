@@ -1,0 +1,44 @@
+"""Damping of the time-domain model and the explicit step limit
+(dynstiff/lumped/time_damping.py, theory.md §7.3)."""
+
+import numpy as np
+import pytest
+
+from dynstiff.errors import InvalidParameterError
+from dynstiff.lumped import LumpedMassModel, TimeDamping, explicit_step_limit
+
+
+def test_rayleigh_gives_its_ratio_at_both_frequencies():
+    """zeta(omega) = alpha / (2 omega) + beta omega / 2 equals zeta at f1 and f2, and is
+    smaller between them."""
+    d = TimeDamping.rayleigh(0.02, 1.5, 6.0)
+    for f in (1.5, 6.0):
+        w = 2 * np.pi * f
+        assert d.alpha / (2 * w) + d.beta * w / 2 == pytest.approx(0.02, rel=1e-14)
+    w = 2 * np.pi * 3.0
+    assert d.alpha / (2 * w) + d.beta * w / 2 < 0.02
+
+
+def test_axial_dashpots_per_cable_and_bad_values():
+    assert np.array_equal(TimeDamping(axial=2.0).axial_per_cable(3), [2.0, 2.0, 2.0])
+    assert np.array_equal(TimeDamping(axial=[1, 2, 3]).axial_per_cable(3), [1, 2, 3])
+    with pytest.raises(InvalidParameterError, match="damping.axial"):
+        TimeDamping(axial=[1, 2]).axial_per_cable(3)
+    with pytest.raises(InvalidParameterError, match="axial"):
+        TimeDamping(axial=-1.0)
+    with pytest.raises(InvalidParameterError, match="beta"):
+        TimeDamping(beta=np.nan)
+
+
+def test_explicit_limit_is_the_axial_wave_transit_time_of_a_segment(cogiro, cogiro_eq):
+    """Undamped: dt < l0 / sqrt(EA / m) (theory.md §7.3); damping lowers it by
+    sqrt(1 + zeta^2) - zeta."""
+    N = 10
+    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=N)
+    cab = cogiro.robot.cables[0]
+    dt0 = (cogiro_eq.unstretched_lengths / N).min() / np.sqrt(cab.EA / cab.mass_per_length)
+    assert explicit_step_limit(mm) == pytest.approx(dt0, rel=1e-14)
+    l0 = cogiro_eq.unstretched_lengths.min() / N
+    c = 0.1 * l0 * np.sqrt(cab.EA * cab.mass_per_length)      # zeta = 0.1 on the top mode
+    damped = explicit_step_limit(mm, damping=TimeDamping(axial=c))
+    assert damped == pytest.approx(dt0 * (np.sqrt(1.01) - 0.1), rel=1e-12)

@@ -1,0 +1,70 @@
+"""Result types (dynstiff/results.py): units, tables and the FRF kinds."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
+from dynstiff.results import RESPONSE_KINDS, response_factor
+
+
+def test_response_factor_is_i_omega_to_the_kind():
+    w = np.array([0.0, 1.5, 20.0])
+    np.testing.assert_array_equal(response_factor(w, "receptance"), np.ones(3))
+    np.testing.assert_array_equal(response_factor(w, "mobility"), 1j * w)
+    np.testing.assert_allclose(response_factor(w, "accelerance"), -w**2, rtol=1e-15)
+    assert set(RESPONSE_KINDS) == {"receptance", "mobility", "accelerance"}
+    with pytest.raises(InvalidParameterError, match="kind"):
+        response_factor(w, "inertance")
+
+
+@pytest.mark.parametrize("kind, unit_fx, unit_mz", [
+    ("receptance", "m/N", "rad/(N m)"),
+    ("mobility", "m/(N s)", "rad/(N m s)"),
+    ("accelerance", "m/(N s^2)", "rad/(N m s^2)"),
+])
+def test_frf_units(kind, unit_fx, unit_mz):
+    r = ds.FRFResult(freq_hz=np.array([1.0]), H=np.ones((1, 6, 6), complex),
+                     inputs=ds.results.INPUT_NAMES, outputs=ds.results.OUTPUT_NAMES, kind=kind)
+    assert r.unit("x", "fx") == unit_fx
+    assert r.unit("rz", "mz") == unit_mz
+    with pytest.raises(InvalidParameterError, match="unit"):
+        r.unit("fx", "x")
+
+
+def test_frf_table_is_tidy_and_repr_short():
+    H = (np.arange(12) + 1j).reshape(2, 3, 2)
+    r = ds.FRFResult(freq_hz=np.array([1.0, 2.0]), H=H, inputs=("fx", "fz"),
+                     outputs=("x", "y", "z"), kind="receptance")
+    df = r.to_frame()
+    assert len(df) == 12
+    row = df[(df["freq [Hz]"] == 2.0) & (df["output"] == "y") & (df["input"] == "fz")]
+    assert row["real"].item() == H[1, 1, 1].real and row["imag"].item() == 1.0
+    assert row["magnitude"].item() == pytest.approx(abs(H[1, 1, 1]), rel=1e-15)
+    assert row["phase [deg]"].item() == pytest.approx(np.degrees(np.angle(H[1, 1, 1])))
+    assert "2 frequencies" in repr(r) and len(repr(r)) < 150
+
+
+def test_damped_modes_frequency_and_damping_ratio_from_the_complex_root():
+    """e^{i omega t} with omega = omega_d + i sigma: f = omega_d / 2 pi,
+    zeta = sigma / |omega|."""
+    om = np.array([2 * np.pi * 3.0 * (1 + 0.02j), np.nan + 1j * np.nan])
+    d = ds.DampedModes(undamped_freq_hz=np.array([3.0, 5.0]), omega=om,
+                       residual=np.array([1e-12, np.nan]))
+    assert d.freq_hz[0] == pytest.approx(3.0, rel=1e-15)
+    assert d.damping_ratio[0] == pytest.approx(0.02 / np.hypot(1, 0.02), rel=1e-14)
+    df = d.to_frame()
+    assert list(df.columns) == ["undamped freq [Hz]", "damped freq [Hz]", "damping ratio [-]",
+                                "residual [-]"]
+    assert "1 damped roots found" in repr(d)
+
+
+def test_modal_table_units_and_shift(cogiro_model):
+    md = ds.modes(cogiro_model, 8)
+    df = md.to_frame()
+    for col in ("freq [Hz]", "cable energy fraction [-]", "x [m]", "rz [rad]"):
+        assert col in df.columns
+    g = np.array(md.kind) == "global"
+    np.testing.assert_allclose(md.shift_from_massless[g],
+                               md.freq_hz[g] / md.massless_freq_hz[g] - 1, rtol=1e-15)
+    assert np.all(np.isnan(md.shift_from_massless[~g]))

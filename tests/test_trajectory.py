@@ -1,0 +1,45 @@
+"""Trajectories and their quasi-static cable lengths (dynstiff/trajectory.py)."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
+from dynstiff.trajectory import circle, line, quasi_static_lengths
+
+
+def test_line_with_ramps_covers_its_length_at_its_speed():
+    """(1 - cos)/2 ramps of R seconds: duration L/v + R, cruise speed v, zero end speeds."""
+    tr = line([0, 0, 1], [2, 1, 1], speed=0.5, ramp=1.0)
+    L = np.sqrt(5.0)
+    assert tr.duration == pytest.approx(L / 0.5 + 1.0, rel=1e-14)
+    p0, _ = tr.at(0.0)
+    p1, _ = tr.at(tr.duration)
+    np.testing.assert_allclose(p0[0], [0, 0, 1], atol=1e-15)
+    np.testing.assert_allclose(p1[0], [2, 1, 1], atol=1e-12)
+    h = 1e-6
+    t_mid = tr.duration / 2
+    v_mid = (tr.at(t_mid + h)[0] - tr.at(t_mid - h)[0])[0] / (2 * h)
+    assert np.linalg.norm(v_mid) == pytest.approx(0.5, rel=1e-8)
+    v_start = (tr.at(h)[0] - tr.at(0.0)[0])[0] / h
+    assert np.linalg.norm(v_start) < 1e-5
+    with pytest.raises(InvalidParameterError, match="ramp"):
+        line([0, 0, 1], [1, 0, 1], speed=1.0, ramp=2.0)
+
+
+def test_circle_stays_on_its_radius_and_turns_counter_clockwise():
+    tr = circle([0, 0, 1], radius=0.5, speed=0.25, turns=0.25)
+    pos = tr.positions
+    np.testing.assert_allclose(np.linalg.norm(pos[:, :2], axis=1), 0.5, rtol=1e-14)
+    np.testing.assert_allclose(pos[:, 2], 1.0)
+    np.testing.assert_allclose(pos[-1], [0.0, 0.5, 1.0], atol=1e-12)     # a quarter turn
+
+
+def test_quasi_static_lengths_are_inverse_statics_at_every_sample(cogiro):
+    tr = line([0, 0, 1], [1, 0, 1], speed=1.0, samples_per_s=2.0)
+    L, T = quasi_static_lengths(cogiro.robot, tr)
+    assert L.shape == T.shape == (tr.times.size, 8)
+    for k in (0, tr.times.size - 1):
+        eq = cogiro.robot.equilibrium(pose=np.concatenate([tr.positions[k], tr.rotations[k]]))
+        np.testing.assert_allclose(L[k], eq.unstretched_lengths, rtol=1e-12)
+        np.testing.assert_allclose(T[k], eq.tensions, rtol=1e-10)
