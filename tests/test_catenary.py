@@ -237,3 +237,25 @@ def test_profile_table_runs_from_anchor_to_end():
     assert df["tension [N]"].iloc[-1] == pytest.approx(st.tension_at_end, rel=1e-12)
     arc = np.linalg.norm(np.diff(xyz, axis=0), axis=1).sum()
     assert np.linalg.norm(B - A) < arc < st.stretched_length + 1e-12
+
+
+@pytest.mark.parametrize("mass, rtol", [(0.064, 1e-13), (5e-7, 4e-15)])
+def test_mean_tension_is_the_arc_average_of_the_tension(mass, rtol):
+    """mean_tension = (1/L0) int_0^L0 T(s) ds, against a 40-digit quadrature of
+    T(s) = sqrt(H^2 + (V0 + w0 s)^2) with the state's own H and V0. The light cable
+    (W/T = 5e-7) takes the small-weight Taylor branch, whose W^2/24 term is 1e-14 of T there:
+    a 1/12 would miss by as much."""
+    import mpmath
+    cable = ds.Cable(mass, 1.4e5)
+    st = ds.unstretched_length_for_tension([0, 0, 0], [10.0, 0.0, 2.0], 100.0, cable)
+    W = cable.weight_per_length(st.g) * st.unstretched_length
+    assert (W < 1e-6 * st.tension_at_anchor) == (mass < 1e-3)   # the branch under test
+    with mpmath.workdps(40):
+        H, V0 = mpmath.mpf(st.H), mpmath.mpf(st.V0)
+        w0, L0 = mpmath.mpf(cable.weight_per_length(st.g)), mpmath.mpf(st.unstretched_length)
+        ref = mpmath.quad(lambda s: mpmath.sqrt(H**2 + (V0 + w0 * s) ** 2), [0, L0]) / L0
+    assert abs(st.mean_tension / float(ref) - 1) <= rtol
+    # not the mean of the two end tensions (the tension varies non-linearly along the cable)
+    if mass > 1e-3:
+        ends = 0.5 * (st.tension_at_end + st.tension_at_anchor)
+        assert abs(ends / float(ref) - 1) > 1e3 * rtol

@@ -61,3 +61,18 @@ def test_frf_channel_on_held_dofs_only_raises_like_closed_form():
         with pytest.raises(InvalidParameterError, match=r"outputs \['rz'\]"):
             ds.frf(model, [1.0], outputs="rz")
         assert ds.frf(model, [1.0], inputs="fz", outputs="z").H.shape == (1, 1, 1)
+
+
+def test_mobility_and_accelerance_values(cogiro_eq):
+    """Mobility = i omega H and accelerance = -omega^2 H (convention e^{i omega t},
+    theory.md §4): a purely imaginary, respectively real, multiple of the receptance, which
+    is real for the undamped robot."""
+    m = ds.FrequencyModel(cogiro_eq)
+    w = 2 * np.pi * np.array([0.7, 2.9])
+    H = ds.frf(m, w, inputs=["fx", "mz"], outputs=["y", "rz"]).H
+    mob = ds.frf(m, w, inputs=["fx", "mz"], outputs=["y", "rz"], kind="mobility")
+    acc = ds.frf(m, w, inputs=["fx", "mz"], outputs=["y", "rz"], kind="accelerance")
+    np.testing.assert_array_equal(mob.H.real, 0.0)
+    np.testing.assert_allclose(mob.H.imag, w[:, None, None] * H.real, rtol=1e-15)
+    np.testing.assert_allclose(acc.H.real, -(w**2)[:, None, None] * H.real, rtol=1e-15)
+    assert mob.unit("y", "fx") == "m/(N s)" and acc.unit("rz", "mz") == "rad/(N m s^2)"
