@@ -8,13 +8,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import positive_scalar
-from .assembly import FrequencyModel
 from .eigen import modes as modal
 from .errors import DynstiffError, InvalidParameterError
 from .interaction import proximity_warnings
+from .ladder import RUNGS, build_model
 from .recommend import recommend_model
 
 __all__ = ["CheckResult", "design_checks"]
+
+_RUNG_NAMES = {"spring": "massless straight-spring model", "catenary": "massless catenary model",
+               "dsm": "closed-form DSM", "lumped": "lumped-mass model"}
 
 
 @dataclass(frozen=True)
@@ -55,7 +58,8 @@ class CheckResult:
 
 
 def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
-                  max_sag_ratio=0.02, fmax_hz=None, model_rtol=1e-2):
+                  max_sag_ratio=0.02, fmax_hz=None, model_rtol=1e-2, rung="dsm",
+                  **model_options):
     """Run the design checks at a pose.
 
     Parameters
@@ -74,9 +78,14 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     fmax_hz : float, optional
         Modes are computed up to this frequency [Hz] (default: 1.5 x the band's top, or
         the 6th global mode).
+    rung : str
+        The model the modal checks use, one of :data:`dynstiff.ladder.RUNGS` (default "dsm",
+        the closed-form dynamic stiffness).
+    **model_options
+        Passed to :func:`dynstiff.ladder.build_model` (e.g. ``segments`` of "lumped").
     model_rtol : float
-        Admissible relative frequency error of the cable model the checks use (the
-        closed-form dynamic stiffness) up to the highest mode checked [-]: the "cable model"
+        Admissible relative frequency error of the cable model the checks use up to the
+        highest mode checked [-]: the "cable model"
         row fails when :func:`dynstiff.recommend_model` predicts a larger error, and names
         the cheapest model that meets it.
 
@@ -85,6 +94,8 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     CheckResult
     """
     model_rtol = positive_scalar("model_rtol", model_rtol)
+    if rung not in RUNGS:
+        raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
     rows = []
     t_min, t_max = robot.tension_limits
     try:
@@ -106,14 +117,15 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
                      value=float(sag.max()), limit=max_sag_ratio,
                      detail=f"largest {sag.max():.2e} (cable {int(sag.argmax())}), "
                             f"limit {max_sag_ratio:g}"))
-    model = FrequencyModel(eq)
+    model = build_model(eq, rung, **model_options)
     if fmax_hz is None:
         fmax_hz = 1.5 * band_hz[1] if band_hz is not None else None
     if fmax_hz is None:
         n = 40
         while True:
-            modes = modal(model, n_modes=n)
-            if sum(k == "global" for k in modes.kind) >= model.n_free or n >= 320:
+            modes = modal(model, n_modes=int(min(n, getattr(model, "n_dof", n))))
+            if sum(k == "global" for k in modes.kind) >= model.n_free or n >= 320 or \
+                    n >= getattr(model, "n_dof", np.inf):
                 break
             n *= 2
     else:
@@ -135,12 +147,15 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
             else f"no global mode within {margin:.1%} of [{lo:g}, {hi:g}] Hz"))
     top = float(fmax_hz * (1 + proximity_rtol) if fmax_hz is not None else modes.freq_hz.max())
     rec = recommend_model(eq, band_hz=(0.0, top), rtol=model_rtol)
-    err = rec.errors["dsm"]
+    err = rec.errors[rung]
+    if rung == "lumped":                 # the error of the segment count used, not recommended
+        n_seg = int(np.min(model.segments))
+        err = float((max(1.0, rec.estimates["highest_harmonic"]) * np.pi / n_seg) ** 2 / 24)
     need = rec.rung if rec.predicted_error <= model_rtol else "none on the ladder"
     rows.append(dict(
         check="cable model", passed=bool(err <= model_rtol), value=float(err),
         limit=model_rtol,
-        detail=(f"closed-form DSM used here, predicted error {err:.1e} to {top:.3g} Hz "
+        detail=(f"{_RUNG_NAMES[rung]} used here, predicted error {err:.1e} to {top:.3g} Hz "
                 f"(limit {model_rtol:g}); cheapest adequate model: {need}"
                 + ("" if err <= model_rtol else
                    f" ({rec.segments} segments per cable)" if rec.rung == "lumped" else ""))))

@@ -129,7 +129,7 @@ def test_mirror_symmetry():
 
 
 @pytest.mark.parametrize("name,A,B,ratio", CASES, ids=[c[0] for c in CASES])
-def test_static_stiffness_is_derivative_of_end_force(name, A, B, ratio):
+def test_end_stiffness_is_derivative_of_end_force(name, A, B, ratio):
     cable = cogiro_cable(17e9)
     A, B = np.asarray(A, float), np.asarray(B, float)
     L0 = ratio * np.linalg.norm(B - A)

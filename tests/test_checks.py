@@ -74,3 +74,24 @@ def test_cable_model_row_names_the_model_the_checks_need():
     # a looser tolerance lets the DSM pass there
     r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=0.1))["cable model"]
     assert r["passed"]
+
+
+def test_checks_run_on_any_rung(cogiro):
+    """The modal checks take their model from the ladder. The lumped model (N = 8) gives the
+    closed form's verdicts at CoGiRo's pose. The massless catenary is adequate while the
+    checked modes stay below the first cable mode (3.2 Hz; modes to 2.3 Hz for a 0-1.5 Hz
+    band) and fails its own "cable model" row (predicted error inf) once they do not."""
+    band = (0.0, 1.5)
+    rows = {r: rows_by_name(design_checks(cogiro.robot, cogiro.pose, band_hz=band, rung=r,
+                                          **({"segments": 8} if r == "lumped" else {})))
+            for r in ("dsm", "lumped", "catenary")}
+    for name in ("tension limits", "global modes outside band", "local modes near global modes",
+                 "cable model"):
+        assert rows["lumped"][name]["passed"] == rows["dsm"][name]["passed"]
+    assert "lumped-mass model used here" in rows["lumped"]["cable model"]["detail"]
+    assert rows["catenary"]["cable model"]["passed"]
+    wide = rows_by_name(design_checks(cogiro.robot, cogiro.pose, band_hz=band, fmax_hz=6.0,
+                                      rung="catenary"))["cable model"]
+    assert not wide["passed"] and wide["value"] == np.inf
+    with pytest.raises(InvalidParameterError, match="rung"):
+        design_checks(cogiro.robot, cogiro.pose, rung="exact")

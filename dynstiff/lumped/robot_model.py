@@ -1,5 +1,7 @@
 """Lumped-mass model of a whole cable robot: nonlinear statics, tangent stiffness and mass
-(its modes and FRFs are computed in :mod:`dynstiff.lumped.robot_modal`).
+(its linearisation about an equilibrium is the "lumped" rung,
+:class:`dynstiff.lumped.LumpedLinearModel`, whose modes and FRFs come from the same
+functions as every rung's).
 
 Every cable i is a chain of N_i straight, tension-only springs between point masses
 (theory.md §7.1); the platform is the rigid body of the same :class:`~dynstiff.Robot`, with
