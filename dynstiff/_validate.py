@@ -35,6 +35,10 @@ def point(name, value, dim=3):
     return arr
 
 
+#: Largest angular frequency [rad/s] any function accepts: omega^2 M stays finite.
+MAX_OMEGA = 1e150
+
+
 def omega_array(value, name="omega", complex_ok=False):
     """Return angular frequencies as a 1-D array; raise if negative or not finite.
 
@@ -56,6 +60,10 @@ def omega_array(value, name="omega", complex_ok=False):
         raise InvalidParameterError(
             f"{name} must be finite{'' if dtype is complex else ' and >= 0'} [rad/s], got "
             f"{arr[bad][0]!r} at index {int(np.flatnonzero(bad)[0])}")
+    if arr.size and np.abs(arr).max() > MAX_OMEGA:
+        raise InvalidParameterError(
+            f"{name} must be <= {MAX_OMEGA:g} rad/s (omega^2 times a mass must stay finite), "
+            f"got {np.abs(arr).max():.6g}")
     return arr
 
 

@@ -18,9 +18,9 @@ import numpy as np
 from ._validate import omega_array
 from ._vec import cross
 from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_field, cable_kinetic_energy,
-                        chord_parameters, dyad_basis, end_block_coefficients,
+                        check_frequency_range, chord_parameters, dyad_basis, end_block_coefficients,
                         mode_count_nondimensional, stack_parameters)
-from .model_base import PlatformModel
+from .model_base import PlatformModel, require_equilibrium
 from .platform import lever_map, platform_mass_matrix
 from .robot import geometric_stiffness
 
@@ -61,7 +61,7 @@ class FrequencyModel(PlatformModel):
 
     def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
                  damping=True):
-        robot, pose = equilibrium.robot, equilibrium.pose
+        robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         self._init_platform(robot, equilibrium, pose)
         self.tension = tension
         self.chordwise_inertia = bool(chordwise_inertia)
@@ -98,7 +98,7 @@ class FrequencyModel(PlatformModel):
 
         ``omega`` [rad/s], shape (n_omega,), validated, real or complex."""
         C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
-        C = C.reshape(omega.size, -1)
+        C = C.reshape(omega.size, 5 * len(self.params))
         if not self.damped and np.isrealobj(omega):
             C = np.real(C)
         return C
@@ -117,6 +117,7 @@ class FrequencyModel(PlatformModel):
         otherwise. Entries are inf/NaN exactly on a clamped-cable pole.
         """
         omega = omega_array(omega, complex_ok=True)
+        check_frequency_range(self.stacked_params, omega)
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
@@ -126,6 +127,7 @@ class FrequencyModel(PlatformModel):
         shape (n_omega,) (theory.md §5.2); the damping is ignored."""
         omega = omega_array(omega)
         st = self.stacked_params
+        check_frequency_range(st, omega)
         Omega = omega[:, None] * st.L * np.sqrt(st.m / st.T)
         return mode_count_nondimensional(Omega, st.lambda_sq).sum(axis=1)
 

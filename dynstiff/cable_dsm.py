@@ -58,6 +58,8 @@ __all__ = [
     "local_entries",
     "end_block_coefficients",
     "mode_count_nondimensional",
+    "check_frequency_range",
+    "MAX_OMEGA_ND",
     "cable_field",
     "cable_kinetic_energy",
     "local_end_stiffness",
@@ -76,6 +78,35 @@ DEFAULT_CHORDWISE_INERTIA = True
 
 _SERIES_RADIUS = 1.0
 _N_TERMS = 16
+
+#: Largest nondimensional frequency |Omega| = |omega| L sqrt(m/T) at which the closed forms
+#: are evaluated: there sin and cos of psi = Omega/2 still carry 9 correct digits (the phase
+#: error is ulp(psi) ~ 1e-9) and the mode counts are exact integers; about 3 million clamped
+#: modes of the cable lie below it.
+MAX_OMEGA_ND = 1e7
+#: Largest |Im psi| (damped or complex frequencies): sin and cos overflow near 710.
+MAX_IMAG_PSI = 350.0
+
+
+def check_frequency_range(params, omega, name="omega"):
+    """Raise InvalidParameterError naming ``name`` unless every omega [rad/s] keeps
+    |Omega| <= MAX_OMEGA_ND and |Im psi| <= MAX_IMAG_PSI for the cable(s) ``params``
+    (ChordParameters, single or stacked); the message gives the admissible bound [rad/s]."""
+    scale = np.max(np.atleast_1d(params.L * np.sqrt(params.m / params.T)))   # Omega per rad/s
+    w = np.abs(np.asarray(omega))
+    if w.size and w.max() * scale > MAX_OMEGA_ND:
+        k = int(np.argmax(w))
+        raise InvalidParameterError(
+            f"{name} must be <= {MAX_OMEGA_ND / scale:.6g} rad/s for this cable model "
+            f"(omega L sqrt(m/T) <= {MAX_OMEGA_ND:g}, beyond which the closed form loses its "
+            f"digits), got {complex(np.asarray(omega).ravel()[k]) if np.iscomplexobj(omega) else float(np.asarray(omega).ravel()[k]):.6g}")
+    if np.iscomplexobj(omega) and w.size:
+        psi = np.abs(np.imag(params.psi(np.asarray(omega).reshape(-1, 1)
+                                        if np.ndim(params.L) else np.asarray(omega))))
+        if psi.max() > MAX_IMAG_PSI:
+            raise InvalidParameterError(
+                f"{name} has an imaginary part too large for the closed form (|Im psi| = "
+                f"{psi.max():.4g} > {MAX_IMAG_PSI:g}: sin and cos overflow)")
 
 
 # --------------------------------------------------------------------------- psi kernels
@@ -252,6 +283,7 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
         raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
+    check_frequency_range(p, omega)
     dyads = dyad_basis(p.rotation)
     n = omega.size
     coef = block_coefficients(p, omega, chordwise_inertia, blocks=ends)
@@ -360,6 +392,7 @@ def cable_mode_count(state, omega, tension="mean"):
     """
     omega = omega_array(omega)
     p = chord_parameters(state, tension)
+    check_frequency_range(p, omega)
     return mode_count_nondimensional(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
 
 
@@ -402,6 +435,13 @@ def irvine_symmetric_roots(lambda_sq, n_roots):
         lo, hi = (2 * k - 1) * np.pi / 2, (2 * k + 1) * np.pi / 2
         if lam2 == 0.0:
             out[k - 1] = 2 * lo
+            continue
+        # high branches: the root sits delta ~ lambda^2 / (4 psi^3) above the branch start,
+        # where 4 cos(psi) is below its own rounding (ulp(psi)); tan(lo + delta) = -1/delta
+        # + O(delta) then gives delta to O(delta^2), below the ulp of psi
+        delta = lam2 / (4.0 * lo**3)
+        if delta < 1e-8:
+            out[k - 1] = 2.0 * (lo + delta)
             continue
 
         def f(x):

@@ -97,7 +97,8 @@ def mode_count(model, omega):
     return m.cable_mode_count(omega) + np.sum(ev < 0, axis=1)
 
 
-def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto"):
+def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto",
+                     max_modes=20000):
     """Natural frequencies [Hz] of the undamped robot, ascending, none missed.
 
     Parameters
@@ -112,6 +113,9 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
         Relative width of the final Wittrick-Williams bracket (default 1e-12).
     method : {"auto", "matrix", "wittrick-williams"}
         "auto": the finite eigenproblem for discrete rungs, W-W otherwise.
+    max_modes : int
+        Largest number of frequencies computed (a guard on the time and memory that a large
+        ``fmax_hz`` or ``n_modes`` would ask for); the error says how many were asked.
 
     Returns
     -------
@@ -128,12 +132,27 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
     n_modes, fmax_hz = _validated_request(n_modes, fmax_hz)
     if not (isinstance(rtol, Real) and 0 < rtol < 1e-2):
         raise InvalidParameterError(f"rtol must be a number in (0, 1e-2), got {rtol!r}")
+    if isinstance(max_modes, bool) or not isinstance(max_modes, Integral) or max_modes < 1:
+        raise InvalidParameterError(f"max_modes must be an integer >= 1, got {max_modes!r}")
+    if n_modes is not None and n_modes > max_modes:
+        raise InvalidParameterError(
+            f"n_modes = {n_modes} is more than max_modes = {max_modes}; raise max_modes to "
+            f"compute them")
     if _method(model, method) == "matrix":
         return eigen_matrix.eigenfrequencies(model.undamped(), n_modes, fmax_hz)
     m = model.undamped()
     if fmax_hz is not None:
         w_hi = _TWO_PI * fmax_hz
-        N = int(mode_count(m, w_hi)[0])
+        try:
+            N = int(mode_count(m, w_hi)[0])
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(
+                f"fmax_hz = {fmax_hz:g} Hz is out of the {m.rung!r} model's range: {exc}"
+            ) from None
+        if N > max_modes and (n_modes is None or n_modes > max_modes):
+            raise InvalidParameterError(
+                f"fmax_hz = {fmax_hz:g} Hz holds {N} modes, more than max_modes = "
+                f"{max_modes}; lower fmax_hz or raise max_modes")
         if n_modes is not None:
             N = min(N, n_modes)
     else:

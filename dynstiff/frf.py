@@ -23,10 +23,20 @@ def _channels(names, allowed, arg):
         return list(range(6))
     if isinstance(names, str):
         names = [names]
+    try:
+        names = list(names)
+    except TypeError:
+        raise InvalidParameterError(
+            f"{arg} must be a name or a list of names among {allowed}, got {names!r}") from None
+    if not names:
+        raise InvalidParameterError(f"{arg} must name at least one channel among {allowed}, "
+                                    f"got an empty list")
     idx = []
     for n in names:
         if n not in allowed:
             raise InvalidParameterError(f"{arg} must be among {allowed}, got {n!r}")
+        if allowed.index(n) in idx:
+            raise InvalidParameterError(f"{arg} names {n!r} twice: {names!r}")
         idx.append(allowed.index(n))
     return idx
 

@@ -25,7 +25,7 @@ from .assembly import FrequencyModel
 from .errors import InvalidParameterError
 from .lumped.linear_model import LumpedLinearModel
 from .lumped.robot_model import LumpedMassModel
-from .model_base import PlatformModel
+from .model_base import PlatformModel, require_equilibrium
 from .platform import lever_map
 from .robot import geometric_stiffness
 
@@ -61,7 +61,7 @@ class StaticCableModel(PlatformModel):
         if stiffness not in ("spring", "catenary"):
             raise InvalidParameterError(
                 f"stiffness must be 'spring' or 'catenary', got {stiffness!r}")
-        robot, pose = equilibrium.robot, equilibrium.pose
+        robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         self._init_platform(robot, equilibrium, pose)
         self.rung = stiffness
         self.damped = False
@@ -126,6 +126,7 @@ def build_model(equilibrium, rung, segments=30, **options):
     unknown = sorted(set(options) - set(allowed.get(rung, ())))
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
+    require_equilibrium(equilibrium)
     if unknown:
         raise InvalidParameterError(
             f"options {unknown} do not apply to rung {rung!r} (it takes "

@@ -52,7 +52,20 @@ from .platform import platform_mass_matrix
 
 from .errors import InvalidParameterError
 
-__all__ = ["PlatformModel", "require_model"]
+__all__ = ["PlatformModel", "require_model", "require_equilibrium"]
+
+
+def require_equilibrium(equilibrium, name="equilibrium"):
+    """Raise InvalidParameterError naming ``name`` unless it is a static equilibrium of a
+    robot (``Robot.equilibrium(...)``): it needs ``robot``, ``pose``, ``states`` and
+    ``unstretched_lengths``."""
+    missing = [a for a in ("robot", "pose", "states", "unstretched_lengths")
+               if not hasattr(equilibrium, a)]
+    if missing:
+        raise InvalidParameterError(
+            f"{name} must be an Equilibrium (from Robot.equilibrium or Scene.equilibrium), got "
+            f"{type(equilibrium).__name__} without {missing[0]!r}")
+    return equilibrium
 
 
 def require_model(model, name="model"):

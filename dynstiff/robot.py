@@ -11,6 +11,7 @@ vector in the base frame, so dB_i = dp + dtheta x r_i with r_i = R_p b_i.
 """
 
 from dataclasses import dataclass
+from numbers import Integral
 
 import numpy as np
 
@@ -185,6 +186,10 @@ class Robot:
         """
         if (pose is None) == (unstretched_lengths is None):
             raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
+        tol = positive_scalar("tol", tol)
+        if max_iter is not None and (isinstance(max_iter, bool) or
+                                     not isinstance(max_iter, Integral) or max_iter < 1):
+            raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
         if pose is not None:
             return inverse_statics(self, as_pose(pose), tension_reference, tol,
                                    500 if max_iter is None else max_iter)

@@ -7,6 +7,7 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
 
 
 def skew(a):
@@ -96,3 +97,14 @@ def test_mirrored_robot_gives_mirrored_modes(cogiro, cogiro_eq):
     for k in np.flatnonzero(np.array(a.kind) == "global"):
         ma, mb = T @ a.platform_shapes[k], b.platform_shapes[k]
         assert abs(ma @ mb) == pytest.approx(np.linalg.norm(ma) * np.linalg.norm(mb), rel=1e-6)
+
+
+def test_bad_equilibrium_and_frequencies_name_the_argument(cogiro_eq):
+    with pytest.raises(InvalidParameterError, match="equilibrium must be an Equilibrium"):
+        ds.FrequencyModel("eq")
+    m = ds.FrequencyModel(cogiro_eq)
+    assert m.dynamic_stiffness([]).shape == (0, 6, 6)
+    with pytest.raises(InvalidParameterError, match="omega must be <="):
+        m.dynamic_stiffness([1.0, 1e9])
+    with pytest.raises(InvalidParameterError, match="imaginary part too large"):
+        m.dynamic_stiffness([10.0 + 1e5j])

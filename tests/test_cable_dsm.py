@@ -248,3 +248,44 @@ def test_bad_options_raise(state300):
 def test_shapes(state300):
     assert ds.cable_dynamic_stiffness(state300, 3.0).shape == (1, 3, 3)
     assert ds.cable_dynamic_stiffness(state300, np.arange(7.0), ends="both").shape == (7, 6, 6)
+
+
+def test_frequencies_beyond_the_closed_forms_range_are_refused(state300):
+    """omega L sqrt(m/T) above 1e7 (sin and cos of psi lose their digits; mode counts leave
+    exact integers) is an error naming omega and the admissible bound, never an overflowed
+    count or a NaN matrix."""
+    p = ds.cable_dsm.chord_parameters(state300)
+    w_max = ds.cable_dsm.MAX_OMEGA_ND / (p.L * np.sqrt(p.m / p.T))
+    n = ds.cable_mode_count(state300, 0.999 * w_max)[0]
+    assert 0 < n < 2**53
+    for w in (1.001 * w_max, 1e20, 1e300):
+        with pytest.raises(InvalidParameterError, match=r"omega must be <= .* rad/s"):
+            ds.cable_mode_count(state300, w)
+        with pytest.raises(InvalidParameterError, match="omega must be <="):
+            ds.cable_dynamic_stiffness(state300, [1.0, w])
+
+
+@pytest.mark.parametrize("lam2", [0.18, 5e3])
+def test_high_irvine_roots_match_a_multiprecision_bisection(lam2):
+    """Up to the 20000th symmetric root (where the root sits 1e-16 above its branch start and
+    4 cos(psi) is below its own rounding), against a 40-digit bisection of
+    4 cos(psi) - lambda^2 (psi cos psi - sin psi) / psi^3 = 0."""
+    import mpmath
+    roots = irvine_symmetric_roots(lam2, 20000)
+    with mpmath.workdps(40):
+        L2 = mpmath.mpf(lam2)
+
+        def g(x):
+            return 4 * mpmath.cos(x) - L2 * (x * mpmath.cos(x) - mpmath.sin(x)) / x**3
+        for k in (1, 40, 2000, 20000):
+            a = (2 * k - 1) * mpmath.pi / 2 + mpmath.mpf("1e-35")
+            b = (2 * k + 1) * mpmath.pi / 2 - mpmath.mpf("1e-35")
+            ga = g(a)
+            for _ in range(170):
+                c = (a + b) / 2
+                gc = g(c)
+                if ga * gc <= 0:
+                    b = c
+                else:
+                    a, ga = c, gc
+            assert abs(roots[k - 1] / float(a + b) - 1) < 4e-16

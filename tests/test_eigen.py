@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff.eigen import cable_fields
-from dynstiff.errors import SlackCableError
+from dynstiff.errors import InvalidParameterError, SlackCableError
 from conftest import lumped_point_mass_frequencies, point_mass_robot
 
 
@@ -236,3 +236,29 @@ def test_cable_energy_fraction_is_the_frequency_derivative_of_the_dynamic_stiffn
         assert md.cable_energy_fraction[k] == pytest.approx(1 - 1 / q, abs=1e-8)  # measured 5e-10
         checked += 1
     assert checked >= 3
+
+
+@pytest.mark.parametrize("kw, match", [
+    ({"n_modes": 2.5, "fmax_hz": 5.0}, "n_modes must be an integer"),
+    ({"n_modes": 0, "fmax_hz": 5.0}, "n_modes must be an integer"),
+    ({"n_modes": np.nan}, "n_modes must be an integer"),
+    ({"n_modes": "3"}, "n_modes must be an integer"),
+    ({"fmax_hz": np.nan}, "fmax_hz must be finite"),
+    ({"fmax_hz": "5"}, "fmax_hz must be finite"),
+    ({"fmax_hz": [5.0]}, "fmax_hz must be finite"),
+    ({"fmax_hz": 5.0 + 1j}, "fmax_hz must be finite"),
+    ({}, "give n_modes or fmax_hz"),
+    ({"fmax_hz": 1e9}, r"fmax_hz = 1e\+09 Hz is out of the 'dsm' model's range"),
+    ({"fmax_hz": 3000.0, "max_modes": 100}, "holds .* modes, more than max_modes = 100"),
+    ({"n_modes": 101, "max_modes": 100}, "more than max_modes"),
+])
+def test_bad_mode_requests_name_the_argument(cogiro_eq, kw, match):
+    m = ds.FrequencyModel(cogiro_eq)
+    with pytest.raises(InvalidParameterError, match=match):
+        ds.eigenfrequencies(m, **kw)
+
+
+def test_mode_count_at_an_absurd_frequency_is_refused_by_every_rung(cogiro_eq):
+    for rung in ("catenary", "dsm"):
+        with pytest.raises(InvalidParameterError, match="omega must be <="):
+            ds.mode_count(ds.build_model(cogiro_eq, rung), 1e300)

@@ -76,3 +76,17 @@ def test_mobility_and_accelerance_values(cogiro_eq):
     np.testing.assert_allclose(mob.H.imag, w[:, None, None] * H.real, rtol=1e-15)
     np.testing.assert_allclose(acc.H.real, -(w**2)[:, None, None] * H.real, rtol=1e-15)
     assert mob.unit("y", "fx") == "m/(N s)" and acc.unit("rz", "mz") == "rad/(N m s^2)"
+
+
+def test_channel_lists_are_checked_and_an_empty_grid_gives_an_empty_result(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    with pytest.raises(InvalidParameterError, match="names 'fz' twice"):
+        ds.frf(m, [1.0], inputs=["fz", "fz"])
+    with pytest.raises(InvalidParameterError, match="outputs must name at least one"):
+        ds.frf(m, [1.0], outputs=[])
+    with pytest.raises(InvalidParameterError, match="inputs must be a name or a list"):
+        ds.frf(m, [1.0], inputs=3)
+    empty = ds.frf(m, [], inputs="fz", outputs="z")
+    assert empty.H.shape == (0, 1, 1) and empty.freq_hz.shape == (0,)
+    with pytest.raises(InvalidParameterError, match="model must be a model of the ladder"):
+        ds.frf(cogiro_eq, [1.0])

@@ -105,3 +105,12 @@ def test_cogiro_near_the_workspace_edge_converges():
     eq = ds.load_scene("cogiro").robot.equilibrium(pose=[5.0, 3.0, 1.0])
     assert eq.residual < 1e-10
     assert eq.min_tensions.min() == pytest.approx(100.0, abs=1e-6)
+
+
+def test_bad_tolerance_and_iteration_count_name_the_argument(cogiro):
+    with pytest.raises(InvalidParameterError, match="tol must be finite"):
+        cogiro.robot.equilibrium(pose=cogiro.pose, tol=float("nan"))
+    with pytest.raises(InvalidParameterError, match="max_iter must be an integer >= 1"):
+        cogiro.robot.equilibrium(pose=cogiro.pose, max_iter=0)
+    with pytest.raises(InvalidParameterError, match="max_iter"):
+        cogiro.robot.equilibrium(unstretched_lengths=[12.0] * 8, max_iter=2.5)

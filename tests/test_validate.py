@@ -43,3 +43,11 @@ def test_point_and_lengths():
     with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
         unstretched_lengths("ab", 2)
     np.testing.assert_array_equal(unstretched_lengths((1, 2), 2), [1.0, 2.0])
+
+
+def test_omega_is_bounded_so_that_omega_squared_stays_finite():
+    from dynstiff._validate import MAX_OMEGA
+    assert np.isfinite(MAX_OMEGA**2 * 1e6)
+    omega_array([MAX_OMEGA])
+    with pytest.raises(InvalidParameterError, match="omega must be <= 1e\\+150"):
+        omega_array([1.0, 1e300])
