@@ -94,6 +94,21 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     CheckResult
     """
     model_rtol = positive_scalar("model_rtol", model_rtol)
+    margin = positive_scalar("margin", margin, allow_zero=True)
+    proximity_rtol = positive_scalar("proximity_rtol", proximity_rtol)
+    max_sag_ratio = positive_scalar("max_sag_ratio", max_sag_ratio)
+    if fmax_hz is not None:
+        fmax_hz = positive_scalar("fmax_hz", fmax_hz)
+    if band_hz is not None:
+        try:
+            lo, hi = (positive_scalar("band_hz", b, allow_zero=True) for b in band_hz)
+        except (TypeError, ValueError):
+            raise InvalidParameterError(
+                f"band_hz must be (low, high) with 0 <= low < high [Hz], got {band_hz!r}") from None
+        if not lo < hi:
+            raise InvalidParameterError(
+                f"band_hz must be (low, high) with 0 <= low < high [Hz], got {band_hz!r}")
+        band_hz = (lo, hi)
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
     rows = []

@@ -11,14 +11,14 @@ def _cmd_demo(args):
         from .report import cable_report, write_report
         rep = cable_report(fmax_hz=args.fmax, n_points=args.points)
         files = write_report(rep, args.out)
-        sys.stdout.write(rep.text())
+        _info(args).write(rep.text())
     else:
         from .demo import robot_report
         from .scenes import load_scene
         text, files = robot_report(load_scene(args.scene), args.out,
                                    band_hz=(0.1, args.fmax), n_points=args.points)
-        sys.stdout.write(text)
-    sys.stdout.write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
+        _info(args).write(text)
+    _info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
     return 0
 
 
@@ -123,7 +123,7 @@ def _cmd_sweep(args):
                     parameter=f"{args.parameter} [{units[args.parameter]}]")
     df = res.to_frame()
     if args.csv:
-        df.to_csv(args.csv, index=False)
+        _write_table(df, args.csv, "csv")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -134,12 +134,12 @@ def _cmd_sweep(args):
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
     vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
-    sys.stdout.write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
+    _info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
                      f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
-    sys.stdout.write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
+    _info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
     for name in (args.csv, args.plot):
-        if name:
-            sys.stdout.write(f"wrote {name}\n")
+        if name and name != "-":
+            _info(args).write(f"wrote {name}\n")
     return 0
 
 
@@ -167,7 +167,7 @@ def _cmd_simulate(args):
                        settle=args.time, progress=bar)
         resp = tr.response
         df = tr.to_frame()
-        sys.stdout.write(
+        _info(args).write(
             f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
             f"{args.speed:g} m/s (ramp {args.ramp:g} s), {args.segments} segments per "
             f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
@@ -197,16 +197,16 @@ def _cmd_simulate(args):
                     f"--band must be LO HI with 0 <= LO < HI [Hz], got {list(args.band)}")
         else:
             band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
-        sys.stdout.write(
+        _info(args).write(
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
             f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
             f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
         peaks = sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8]
         inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
-        sys.stdout.write(f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz [Hz] "
+        _info(args).write(f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz [Hz] "
                          f"(resolution {sp.resolution_hz:.3g} Hz): "
                          + ", ".join(f"{f:.4g}" for f in np.sort(peaks)) + "\n")
-        sys.stdout.write(f"linearised lumped-model frequencies in the band [Hz] "
+        _info(args).write(f"linearised lumped-model frequencies in the band [Hz] "
                          f"({inband.size}): " + ", ".join(f"{f:.4g}" for f in inband[:8])
                          + (", ..." if inband.size > 8 else "") + "\n")
         if args.plot:
@@ -217,17 +217,17 @@ def _cmd_simulate(args):
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
-        df.to_csv(args.csv, index=False)
+        _write_table(df, args.csv, "csv")
     for name in (args.csv, args.plot):
-        if name:
-            sys.stdout.write(f"wrote {name}\n")
+        if name and name != "-":
+            _info(args).write(f"wrote {name}\n")
     return 0
 
 
 def _cmd_scenes(args):
     from .scenes import list_scenes, load_scene
     for name in list_scenes():
-        sys.stdout.write(f"{name:<12s} {load_scene(name).description}\n")
+        _info(args).write(f"{name:<12s} {load_scene(name).description}\n")
     return 0
 
 
@@ -252,19 +252,19 @@ def _cmd_modes(args):
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
     df = res.to_frame()
-    sys.stdout.write(f"{args.model} model")
-    sys.stdout.write(f", {args.segments} segments per cable" if args.model == "lumped"
+    _info(args).write(f"{args.model} model")
+    _info(args).write(f", {args.segments} segments per cable" if args.model == "lumped"
                      else "")
-    sys.stdout.write(f"{note}:\n")
+    _info(args).write(f"{note}:\n")
     if args.csv:
-        df.to_csv(args.csv, index=False)
+        _write_table(df, args.csv, "csv")
     if args.json:
-        df.to_json(args.json, orient="records", indent=1)
+        _write_table(df, args.json, "json")
     cols = [c for c in ("mode", "freq [Hz]", "kind", "cable energy fraction [-]",
                         "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
     with np.printoptions(suppress=True):
-        sys.stdout.write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
-    sys.stdout.write("\n")
+        _info(args).write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
+    _info(args).write("\n")
     return 0
 
 
@@ -272,7 +272,14 @@ def _equilibrium(scene, args):
     if getattr(args, "pose", None) is not None:
         return scene.robot.equilibrium(pose=args.pose)
     if getattr(args, "lengths", None) is not None:
-        return scene.robot.equilibrium(unstretched_lengths=args.lengths)
+        # held DOFs keep the values of the start pose: the scene's, when it has one
+        start = scene.pose
+        if start is None and len(scene.robot.platform.free_dofs) < 6:
+            from .errors import InvalidParameterError
+            raise InvalidParameterError(
+                f"--lengths: scene {scene.name!r} holds DOFs but gives no [pose] to hold them "
+                f"at; give --pose instead, or a [pose] position in the scene file")
+        return scene.equilibrium(unstretched_lengths=args.lengths, initial_pose=start)
     return scene.equilibrium()
 
 
@@ -294,7 +301,7 @@ def _cmd_frf(args):
               kind=args.kind)
     df = res.to_frame()
     if args.csv:
-        df.to_csv(args.csv, index=False)
+        _write_table(df, args.csv, "csv")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -304,11 +311,11 @@ def _cmd_frf(args):
         fig.savefig(args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])
     k = int(np.argmax(h))
-    sys.stdout.write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
+    _info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
                      f"{lo:g}-{hi:g} Hz, largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n")
     for name in (args.csv, args.plot):
-        if name:
-            sys.stdout.write(f"wrote {name}\n")
+        if name and name != "-":
+            _info(args).write(f"wrote {name}\n")
     return 0
 
 
@@ -324,20 +331,22 @@ def _cmd_check(args):
                         proximity_rtol=args.proximity, max_sag_ratio=args.max_sag,
                         model_rtol=args.rtol)
     if band is None:
-        sys.stdout.write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
+        _info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
                          "scene's [analysis])\n")
-    sys.stdout.write(res.text())
+    _info(args).write(res.text())
     if args.csv:
-        res.to_frame().to_csv(args.csv, index=False)
+        _write_table(res.to_frame(), args.csv, "csv")
     return 0 if res.passed else 1
 
 
 def build_parser():
     """The argument parser of the ``dynstiff`` command."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="dynstiff",
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser.add_argument("--debug", action="store_true",
+                        help="show the full traceback of an error")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     demo = sub.add_parser(
         "demo", help="main job on a scene (default: CoGiRo): statics, modes, model choice, "
                      "design checks, FRF and mode-shape figures, CSV tables")
@@ -455,18 +464,99 @@ def build_parser():
 
 
 def main(argv=None):
-    """Entry point; returns the process exit code."""
+    """Entry point; returns the process exit code: 0 done (``check``: all passed), 1 a check
+    failed, 2 an error, reported on one line (``--debug`` shows the traceback)."""
     parser = build_parser()
-    args = parser.parse_args(argv)
     try:
-        return args.func(args)
-    except (DynstiffError, FileNotFoundError) as exc:
-        sys.stderr.write(f"dynstiff: error: {exc}\n")
+        args = parser.parse_args(argv)
+    except _UsageError as exc:
+        sys.stderr.write(f"dynstiff: error: {exc} (dynstiff -h, or dynstiff COMMAND -h)\n")
         return 2
+    try:
+        _check_outputs(args)
+        return args.func(args)
     except BrokenPipeError:             # output piped into e.g. `head`: stop quietly
         import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except (DynstiffError, OSError, UnicodeDecodeError, MemoryError) as exc:
+        if args.debug:
+            raise
+        what = f"{type(exc).__name__}: " if isinstance(exc, (UnicodeDecodeError,
+                                                             MemoryError)) else ""
+        sys.stderr.write(f"dynstiff: error: {what}{exc}\n")
+        return 2
+
+
+class _UsageError(Exception):
+    """A command line argparse rejects (one line instead of the usage block)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise _UsageError(f"{self.prog}: {message}")
+
+
+#: Figure formats accepted by ``--plot`` (matplotlib's raster and vector writers).
+_FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff",
+                    ".webp")
+
+
+def _check_outputs(args):
+    """Refuse an output path before any work: a folder, a missing folder, or a figure format
+    matplotlib does not write. ``-`` (``--csv``, ``--json``) is standard output."""
+    from pathlib import Path
+
+    from .errors import InvalidParameterError
+    for opt in ("csv", "json", "plot"):
+        value = getattr(args, opt, None)
+        if value is None or (value == "-" and opt != "plot"):
+            continue
+        p = Path(value)
+        if p.is_dir():
+            raise InvalidParameterError(f"--{opt} {value}: is a folder; give a file name")
+        if not p.parent.is_dir():
+            raise InvalidParameterError(f"--{opt} {value}: folder {str(p.parent)!r} does not "
+                                        f"exist")
+        if opt == "plot" and p.suffix.lower() not in _FIGURE_SUFFIXES:
+            raise InvalidParameterError(
+                f"--plot {value}: the file name must end in one of {_FIGURE_SUFFIXES}")
+    for opt in ("points", "steps", "segments", "n"):
+        value = getattr(args, opt, None)
+        least = 2 if opt in ("points", "steps") else 1
+        if value is not None and value < least:
+            raise InvalidParameterError(f"--{opt if opt != 'n' else 'n'} must be >= {least}, "
+                                        f"got {value}")
+    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag"):
+        value = getattr(args, opt, None)
+        if value is not None and not (value > 0 and value < float("inf")):
+            raise InvalidParameterError(
+                f"--{opt.replace('_', '-')} must be finite and > 0, got {value}")
+    pose = getattr(args, "pose", None)
+    if pose is not None and len(pose) not in (3, 6):
+        raise InvalidParameterError(
+            f"--pose needs 3 numbers (x y z [m]) or 6 (and rx ry rz [rad]), got {len(pose)}: "
+            f"{pose}")
+
+
+def _info(args):
+    """Stream of a command's report: standard output, or standard error when a table goes
+    to standard output (``--csv -`` / ``--json -``), so that the data stays clean."""
+    to_stdout = "-" in (getattr(args, "csv", None), getattr(args, "json", None))
+    return sys.stderr if to_stdout else sys.stdout
+
+
+def _write_table(df, path, kind):
+    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output)."""
+    if kind == "csv":
+        text = df.to_csv(index=False)
+    else:
+        text = df.to_json(orient="records", indent=1)
+    if path == "-":
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+    else:
+        with open(path, "w") as fh:
+            fh.write(text)
 
 
 if __name__ == "__main__":

@@ -2,10 +2,14 @@
 modes, frf, sweep, simulate and check; their tables and figures are read back and compared
 with the library, and bad arguments exit with status 2 and a message naming them."""
 
+import re
 import subprocess
 import sys
 
+import numpy as np
 import pytest
+
+import dynstiff as ds
 
 pytestmark = pytest.mark.integration
 
@@ -240,3 +244,65 @@ def test_cli_check_defaults_to_the_scenes_forbidden_band():
     assert out.returncode == 1 and "no forbidden band" in out.stdout
     assert "FAIL  cable model" in out.stdout
     assert "global modes outside band" not in out.stdout
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["modes", "{tmp}"], "is a folder, not a scene file"),
+    (["modes", "{latin}"], "not a UTF-8"),
+    (["modes", "{blob}"], "not a UTF-8"),
+    (["check", "planar2", "--max-sag", "nan"], "--max-sag must be finite and > 0"),
+    (["check", "planar2", "--margin", "-1"], "margin must be >= 0"),
+    (["frf", "planar2", "--points", "0"], "--points must be >= 2"),
+    (["frf", "planar2", "--points", "-3"], "--points must be >= 2"),
+    (["frf", "planar2", "--plot", "{tmp}/f.xyz"], "the file name must end in one of"),
+    (["frf", "planar2", "--plot", "{tmp}"], "is a folder"),
+    (["modes", "planar2", "--csv", "{tmp}"], "is a folder"),
+    (["modes", "planar2", "--json", "{tmp}/missing/t.json"], "does not exist"),
+    (["sweep", "planar2", "--path", "{tmp}"], "Is a directory"),
+    (["sweep", "planar2", "--path", "{blob}"], "UnicodeDecodeError"),
+    (["modes", "cogiro", "--fmax", "1e9"], "fmax_hz = 1e\\+09 Hz is out of"),
+    (["modes", "planar2", "--pose", "0", "0"], "--pose needs 3 numbers .* got 2: \\[0.0, 0.0\\]"),
+    (["modes", "planar2", "--bogus"], "unrecognized arguments: --bogus"),
+    ([], "required: command"),
+])
+def test_bad_command_lines_give_one_line_and_exit_2(tmp_path, capsys, argv, message):
+    """Every error is one line on standard error with exit code 2, and nothing is written
+    (no traceback unless --debug)."""
+    from dynstiff.cli import main
+    latin, blob = tmp_path / "latin.toml", tmp_path / "blob.toml"
+    latin.write_bytes('[scene]\nname = "grün"\n'.encode("latin-1"))
+    blob.write_bytes(bytes(range(256)))
+    argv = [a.format(tmp=tmp_path, latin=latin, blob=blob) for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("dynstiff: error: ")
+    assert re.search(message, err), err
+    assert "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["blob.toml", "latin.toml"]
+
+
+def test_debug_shows_the_traceback_and_dash_writes_to_stdout(capsys):
+    from dynstiff.cli import main
+    with pytest.raises(ds.InvalidParameterError):
+        main(["--debug", "modes", "planar2", "--pose", "0", "0"])
+    assert main(["modes", "planar2", "-n", "2", "--csv", "-"]) == 0
+    cap = capsys.readouterr()
+    assert cap.out.startswith("mode,freq [Hz],kind,") and len(cap.out.splitlines()) == 3
+    assert "dsm model" in cap.err                 # the report moves out of the data's way
+
+
+def test_lengths_on_a_scene_with_held_dofs_hold_them_at_the_scene_pose(capsys):
+    """planar2 holds y and the rotations: forward statics from --lengths starts from (and
+    keeps the held DOFs of) the scene's pose instead of asking for an option that does not
+    exist; the lengths of the scene's own pose give back its frequencies."""
+    from dynstiff.cli import main
+    scene = ds.load_scene("planar2")
+    L0 = scene.equilibrium().unstretched_lengths
+    assert main(["modes", "planar2", "-n", "3", "--csv", "-", "--lengths",
+                 *[repr(float(x)) for x in L0]]) == 0
+    via_lengths = capsys.readouterr().out
+    assert main(["modes", "planar2", "-n", "3", "--csv", "-"]) == 0
+    at_pose = capsys.readouterr().out
+    f1 = [float(r.split(",")[1]) for r in via_lengths.splitlines()[1:4]]
+    f2 = [float(r.split(",")[1]) for r in at_pose.splitlines()[1:4]]
+    np.testing.assert_allclose(f1, f2, rtol=1e-7)

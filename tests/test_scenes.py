@@ -98,3 +98,37 @@ def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
         assert eq.tensions.min() > lo + 10.0
     f = ds.eigenfrequencies(ds.FrequencyModel(eq), 2)
     assert np.all(np.isfinite(f)) and np.all(f > 0)
+
+
+@pytest.mark.parametrize("old, new, key", [
+    ("anchor = [-15.0, 0.0, 0.0]", 'anchor = ["-15", "0", "12"]', "anchor"),
+    ("anchor = [-15.0, 0.0, 0.0]", "anchor = [true, false, true]", "anchor"),
+    ("anchor = [-15.0, 0.0, 0.0]", "anchor = [-15.0, 0.0]", "anchor"),
+    ('free_dofs = ["x", "z"]', 'free_dofs = "xz"', "free_dofs"),
+    ("mass = ", "mass = true #", "mass"),
+    ("position = [0.0, 0.0, -10.0]", "position = [0.0, 0.0, -10.0]\nunstretched_lengths = [18.0, 18.0]",
+     "unstretched_lengths"),
+])
+def test_toml_values_are_not_coerced(tmp_path, old, new, key):
+    """Strings are not numbers, booleans are not numbers, a string is not a list of DOF
+    names, and a pose is a position or lengths, not both: each is refused naming the key."""
+    text = (ds.scenes.loader.SCENE_DIR / "planar2.toml").read_text()
+    assert old in text
+    p = tmp_path / "bad.toml"
+    p.write_text(text.replace(old, new, 1))
+    with pytest.raises(ds.SceneError, match=key) as exc:
+        ds.load_scene(p)
+    assert "line" in str(exc.value)
+
+
+def test_folders_and_binary_files_are_not_scenes(tmp_path):
+    with pytest.raises(ds.SceneError, match="is a folder"):
+        ds.load_scene(tmp_path)
+    p = tmp_path / "latin.toml"
+    p.write_bytes('[scene]\nname = "grün"\n'.encode("latin-1"))
+    with pytest.raises(ds.SceneError, match="not a UTF-8"):
+        ds.load_scene(p)
+    b = tmp_path / "blob.toml"
+    b.write_bytes(bytes(range(256)))
+    with pytest.raises(ds.SceneError):
+        ds.load_scene(b)

@@ -31,6 +31,48 @@ _SCHEMA = {
 }
 _REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
 
+# the type every key must have as written in the file (no coercion: "1" is not a number and
+# true is not 1): "number", "int", "str", "vector" (3 numbers), "numbers" (a list of numbers),
+# "names" (a list of strings), "inertia" (a number, 3 numbers or 3 rows of 3 numbers)
+_TYPES = {
+    "name": "str", "description": "str", "g": "number", "mass": "number",
+    "center_of_mass": "vector", "inertia": "inertia", "free_dofs": "names",
+    "mass_per_length": "number", "EA": "number", "viscous_damping": "number",
+    "loss_factor": "number", "min": "number", "max": "number", "anchor": "vector",
+    "attachment": "vector", "position": "vector", "rotation": "vector",
+    "unstretched_lengths": "numbers", "band_hz": "numbers", "forbidden_band_hz": "numbers",
+    "n_modes": "int",
+}
+
+
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+
+def _type_error(value, kind):
+    """None if ``value`` has the type ``kind`` of _TYPES, else what was expected."""
+    if kind == "number" and not _is_number(value):
+        return "a number"
+    if kind == "int" and (not isinstance(value, int) or isinstance(value, bool)):
+        return "an integer"
+    if kind == "str" and not isinstance(value, str):
+        return "a string"
+    if kind in ("vector", "numbers") and not (
+            isinstance(value, list) and all(_is_number(v) for v in value)
+            and (len(value) == 3 if kind == "vector" else len(value) > 0)):
+        return "3 numbers" if kind == "vector" else "a list of numbers"
+    if kind == "names" and not (isinstance(value, list)
+                                and all(isinstance(v, str) for v in value)):
+        return "a list of names"
+    if kind == "inertia" and not (
+            _is_number(value)
+            or (isinstance(value, list) and len(value) == 3
+                and (all(_is_number(v) for v in value)
+                     or all(isinstance(r, list) and len(r) == 3
+                            and all(_is_number(v) for v in r) for r in value)))):
+        return "a number, 3 numbers or 3 rows of 3 numbers"
+    return None
+
 
 class SceneError(DynstiffError, ValueError):
     """A scene file is malformed; the message names the file, the key and its line."""
@@ -135,7 +177,13 @@ def read_scene(path):
     """
     import tomllib
     path = Path(path)
-    text = path.read_text()
+    if path.is_dir():
+        raise SceneError(f"{path}: is a folder, not a scene file")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(f"{path}: not a UTF-8 text (TOML) file ({exc.reason} at byte "
+                         f"{exc.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -162,6 +210,13 @@ def read_scene(path):
             for key in _REQUIRED.get(sec, ()):
                 if key not in tab:
                     fail(f"missing key {key!r} in [{sec}]", None, sec, k)
+            for key, value in tab.items():
+                expected = _type_error(value, _TYPES[key])
+                if expected:
+                    fail(f"{key} in [{sec}] must be {expected}, got {value!r}", key, sec, k)
+            if sec == "pose" and "position" in tab and "unstretched_lengths" in tab:
+                fail("[pose] gives both position and unstretched_lengths: give one (inverse "
+                     "or forward statics)", "unstretched_lengths", "pose")
     if not data.get("cables"):
         fail("no [[cables]] table: a scene needs at least one cable")
     if "platform" not in data:
