@@ -44,6 +44,7 @@ All matrices give the forces applied **to** the cable ends per unit end displace
 
 import functools
 from dataclasses import dataclass
+from numbers import Integral
 
 import numpy as np
 
@@ -516,9 +517,9 @@ def cable_natural_frequencies(state, n_modes, tension="mean"):
     -------
     CableModes
     """
-    n = int(n_modes)
-    if n < 1 or n != n_modes:
+    if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
         raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
+    n = int(n_modes)
     p = chord_parameters(state, tension)
     k = np.arange(1, n + 1)
     Om = np.concatenate([k * np.pi, 2 * k * np.pi, irvine_symmetric_roots(p.lambda_sq, n)])

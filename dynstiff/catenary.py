@@ -25,6 +25,7 @@ almost weightless cable (W << H) and for an almost vertical one (H << |V|).
 """
 
 from dataclasses import dataclass
+from numbers import Integral
 
 import numpy as np
 
@@ -329,9 +330,18 @@ class CatenaryState:
 
 
 # --------------------------------------------------------------------------- solver
+#: Largest coordinate [m] of a cable end: lengths squared and multiplied by forces stay finite.
+MAX_COORDINATE = 1e100
+
+
 def _validate_ends(anchor, end):
     A = point("anchor", anchor)
     B = point("end", end)
+    if max(np.abs(A).max(), np.abs(B).max()) > MAX_COORDINATE:
+        raise InvalidParameterError(
+            f"anchor and end must lie within {MAX_COORDINATE:g} m of the origin (the "
+            f"catenary's squares and products must stay finite), got anchor={A.tolist()} "
+            f"end={B.tolist()}")
     L = float(np.linalg.norm(B - A))
     if L <= 1e-12 * max(1.0, float(np.max(np.abs(A)))):
         raise InvalidParameterError(
@@ -450,6 +460,8 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
     """
     A, B, L = _validate_ends(anchor, end)
     L0 = positive_scalar("unstretched_length", unstretched_length)
+    if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
+        raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
     if not isinstance(cable, Cable):
         raise InvalidParameterError(f"cable must be a dynstiff.Cable, got {type(cable).__name__}")
     g = positive_scalar("g", g, allow_zero=True)

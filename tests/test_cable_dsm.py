@@ -289,3 +289,9 @@ def test_high_irvine_roots_match_a_multiprecision_bisection(lam2):
                 else:
                     a, ga = c, gc
             assert abs(roots[k - 1] / float(a + b) - 1) < 4e-16
+
+
+@pytest.mark.parametrize("n", [np.nan, np.inf, None, 2.0, "3", 0])
+def test_cable_natural_frequencies_count_must_be_an_integer(state300, n):
+    with pytest.raises(InvalidParameterError, match="n_modes must be an integer >= 1"):
+        ds.cable_natural_frequencies(state300, n)

@@ -259,3 +259,10 @@ def test_mean_tension_is_the_arc_average_of_the_tension(mass, rtol):
     if mass > 1e-3:
         ends = 0.5 * (st.tension_at_end + st.tension_at_anchor)
         assert abs(ends / float(ref) - 1) > 1e3 * rtol
+
+
+def test_bad_iteration_counts_and_absurd_coordinates_name_the_argument(cable17):
+    with pytest.raises(InvalidParameterError, match="max_iter must be an integer >= 1"):
+        ds.solve_catenary([0, 0, 0], [10, 0, 2], 10.3, cable17, max_iter=0)
+    with pytest.raises(InvalidParameterError, match="within 1e\\+100 m of the origin"):
+        ds.solve_catenary([0, 0, 0], [1e300, 0, 2], 10.3, cable17)

@@ -383,3 +383,17 @@ def test_bad_inputs_raise_typed_errors_naming_the_argument(robot_model, lengths0
         LumpedMassModel(m.robot, lengths0, segments=0)
     with pytest.raises(InvalidParameterError, match="model"):
         simulate(m.robot, 1.0, 1e-3)
+
+
+def test_absurd_starts_and_run_lengths_are_refused_before_any_step():
+    """A 1000 m offset stretches a segment 567 times its length: the error names the offset
+    (it used to blame dt after a blown-up step). A 1e9 s run at 1 ms would ask for 1e12
+    records (7 TiB): refused naming t_end, dt and the max_records guard."""
+    eq = ds.load_scene("fourcable").equilibrium()
+    m = ds.build_model(eq, "lumped", segments=2)
+    with pytest.raises(ds.InvalidParameterError, match="strain 567 .* initial offset"):
+        simulate(m, 0.05, 1e-3, initial=[1000.0, 0, 0, 0, 0, 0])
+    with pytest.raises(ds.InvalidParameterError, match="t_end = 1e\\+09 s .* max_records"):
+        simulate(m, 1e9, 1e-3)
+    r = simulate(m, 1.0, 1e-3, record_every=10, max_records=101)
+    assert r.times.size == 101

@@ -282,9 +282,21 @@ def _force_space_start(anchor, end, unstretched_length, cable, n_segments, g,
             grad = l0 * np.sum(f / r[:, None] + f / EA, axis=0) - chord
             if np.linalg.norm(grad) <= gtol:
                 break
-            hess = l0 * ((n_segments / EA + np.sum(1.0 / r)) * eye
-                         - np.einsum("i,ij,ik->jk", r ** -3, f, f))
-            step = -np.linalg.solve(hess, grad)
+            # segment compliance (|f|^2 + delta^2) I - f f^T over r^3, its diagonal written
+            # without the cancellation 1/r - f_z^2/r^3 (for a nearly straight, nearly slack
+            # segment along z that difference is below the rounding of 1/r and the 1/EA
+            # term, the only one left, would be lost)
+            sq = f * f
+            other = np.stack([sq[:, 1] + sq[:, 2], sq[:, 0] + sq[:, 2],
+                              sq[:, 0] + sq[:, 1]], axis=1) + delta * delta
+            r3 = r ** 3
+            hess = -np.einsum("i,ij,ik->jk", 1.0 / r3, f, f)
+            hess[np.diag_indices(3)] = np.sum(other / r3[:, None], axis=0)
+            hess = l0 * (n_segments / EA * eye + hess)
+            try:
+                step = -np.linalg.solve(hess, grad)
+            except np.linalg.LinAlgError:
+                break                      # only a starting point: the node Newton goes on
             slope = np.dot(grad, step)
             alpha = 1.0
             while alpha > 1e-10:

@@ -351,6 +351,21 @@ class LumpedMassModel:
             [c.mass_per_length for c in rob.cables] * self.unstretched_lengths))
         return max(weight + t_max, np.finfo(float).tiny)
 
+    def rounding_floor(self, pose, t_max):
+        """Relative residual [-] below which rounding, not the configuration, decides.
+
+        A segment tension EA (l / l0 - 1) is computed from node coordinates of size |x| with
+        relative rounding eps, so it carries an error of about eps EA |x| / l0; summed on a
+        node and scaled like :meth:`relative_residual`: 4 eps max_i(EA_i / l0_i) |x|_max /
+        (m_p g + sum m L0 g + t_max).
+        """
+        pose = as_pose(pose)
+        B, _ = self.robot.attachment_points(pose)
+        size = max(np.abs(self.robot.anchors).max(), np.abs(B).max(), 1.0)
+        EA = np.array([c.EA for c in self.robot.cables])
+        return float(4 * np.finfo(float).eps * np.max(EA / self.segment_lengths) * size
+                     / self._force_scale(t_max))
+
     def relative_residual(self, R, t_max):
         """Largest unbalanced force of R (moments divided by the platform size) over the
         force scale m_p g + sum m L0 g + t_max [-]: the measure of ``equilibrium(tol=)``."""
@@ -495,7 +510,9 @@ class LumpedMassModel:
             whenever some DOFs are held.
         tol : float
             Converged when the largest unbalanced force (node, platform force, or platform
-            moment / platform size) is <= tol (m_p g + sum m L0 g + max T).
+            moment / platform size) is <= tol (m_p g + sum m L0 g + max T), or below the
+            rounding floor of the residual (:meth:`rounding_floor`) when that is larger
+            (stiff cables in short segments); ``residual`` of the result is what was reached.
         max_iter : int
             Maximum Newton iterations.
 
@@ -526,7 +543,7 @@ class LumpedMassModel:
         R, t_max = self.residual_unchecked(pose, interior)
         res = self.relative_residual(R, t_max)
         iteration = 0
-        while res > tol:
+        while res > max(tol, self.rounding_floor(pose, t_max)):
             if iteration == max_iter:
                 raise ConvergenceError(
                     f"LumpedMassModel.equilibrium did not converge in {max_iter} Newton "
@@ -550,6 +567,8 @@ class LumpedMassModel:
                     break
                 alpha *= 0.5
             if not res_t < res:
+                if res <= 4 * self.rounding_floor(pose, t_max):
+                    break                      # stagnation at the rounding level: converged
                 raise ConvergenceError(
                     f"LumpedMassModel.equilibrium: no step reduces the residual (stagnation "
                     f"at rounding level or a wrong tangent), relative residual {res:.3e} > "

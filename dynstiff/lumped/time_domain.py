@@ -214,7 +214,7 @@ def _step_count(t_end, dt):
 # -------------------------------------------------------------------------- simulate
 def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
              initial=None, damping=None, record_every=1, *, record_nodes=False, tol=1e-9,
-             max_iter=25, start=None):
+             max_iter=25, start=None, max_records=1_000_000):
     """Integrate the nonlinear equations of motion of the lumped-mass robot.
 
     Starts from a static equilibrium (``start``, or the equilibrium for ``lengths(0)``),
@@ -257,6 +257,10 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         (as :meth:`LumpedMassModel.equilibrium`).
     max_iter : int
         Newton iterations per step before a :class:`ConvergenceError`.
+    max_records : int
+        Largest number of recorded time steps, ceil(t_end / dt) / record_every + 1 (a guard
+        on memory: each record holds the pose, velocity and tensions); raise it, or
+        ``record_every``, for longer runs.
     start : LumpedEquilibrium, optional
         Equilibrium of ``model`` to start from (default: that of a LumpedLinearModel,
         otherwise ``model.equilibrium()``). With ``lengths``, its pose starts the search
@@ -311,6 +315,15 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     for name, val in (("record_every", record_every), ("max_iter", max_iter)):
         if isinstance(val, bool) or not isinstance(val, Integral) or val < 1:
             raise InvalidParameterError(f"{name} must be an integer >= 1, got {val!r}")
+    if isinstance(max_records, bool) or not isinstance(max_records, Integral) or \
+            max_records < 1:
+        raise InvalidParameterError(f"max_records must be an integer >= 1, got {max_records!r}")
+    n_records = _step_count(t_end, dt) // record_every + 1
+    if n_records > max_records:
+        raise InvalidParameterError(
+            f"t_end = {t_end:g} s at dt = {dt:g} s with record_every = {record_every} makes "
+            f"{n_records} records, more than max_records = {max_records}; raise record_every "
+            f"or max_records, or shorten t_end")
     tol = positive_scalar("tol", tol)
     if excitation is not None and not callable(excitation):
         raise InvalidParameterError(
@@ -367,6 +380,11 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         [x.ravel() for x in eq.interior]))
     F, fe, fd, t_max, frame = dyn.forces(pose, X, v, 0.0)
     pot = potential_energy(m, frame, X)
+    if pot[5] > 1.0:
+        raise InvalidParameterError(
+            f"simulate: the start stretches a segment to strain {pot[5]:.3g} (> 1): "
+            f"{'initial offset ' + str(offset.tolist()) if np.any(offset) else 'lengths(0)'} "
+            f"is far outside the cables' elastic range; give a smaller one")
     if pot[4]:
         i, s = pot[4][0]
         raise SlackCableError(
