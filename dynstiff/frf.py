@@ -87,7 +87,8 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     return (B, C, tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
 
 
-def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
+def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
+        max_frequencies=1_000_000):
     """FRFs of the robot platform, for a model of any rung.
 
     H(omega) = C K(omega)^-1 B with K(omega) = ``model.dynamic_stiffness(omega)`` on the free
@@ -107,6 +108,9 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
         Platform point [m, platform frame] whose translation is output (default P).
     kind : {"receptance", "mobility", "accelerance"}
         Mobility = i omega H, accelerance = -omega^2 H.
+    max_frequencies : int
+        Largest number of frequencies (a guard on memory: K(omega) takes n_free^2 complex
+        numbers per frequency); raise it for longer grids.
 
     Returns
     -------
@@ -120,6 +124,10 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance"):
     """
     require_model(model)
     omega = omega_array(omega)
+    if omega.size > max_frequencies:
+        raise InvalidParameterError(
+            f"omega has {omega.size} frequencies, more than max_frequencies = "
+            f"{max_frequencies}; raise max_frequencies or evaluate in pieces")
     factor = response_factor(omega, kind)
     B, C, in_names, out_names = channel_maps(model.free_index, model.pose.matrix,
                                              inputs, outputs, point)

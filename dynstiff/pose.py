@@ -23,7 +23,10 @@ class Pose:
 
     def __post_init__(self):
         for name in ("position", "rotation"):
-            v = np.asarray(getattr(self, name), dtype=float)
+            try:
+                v = np.asarray(getattr(self, name), dtype=float)
+            except (TypeError, ValueError):
+                v = np.zeros(0)
             if v.shape != (3,) or not np.all(np.isfinite(v)):
                 raise InvalidParameterError(
                     f"pose {name} must be 3 finite numbers, got {getattr(self, name)!r}")
@@ -63,12 +66,15 @@ def as_pose(pose):
     """A :class:`Pose` from a Pose, (position, rotation), or 3 / 6 numbers."""
     if isinstance(pose, Pose):
         return pose
-    v = np.asarray(pose, dtype=float)
-    if v.shape == (3,):
-        return Pose(v)
-    if v.shape == (6,):
-        return Pose(v[:3], v[3:])
     if isinstance(pose, (tuple, list)) and len(pose) == 2:
         return Pose(*pose)
+    try:
+        v = np.asarray(pose, dtype=float)
+    except (TypeError, ValueError):
+        v = None
+    if v is not None and v.shape == (3,):
+        return Pose(v)
+    if v is not None and v.shape == (6,):
+        return Pose(v[:3], v[3:])
     raise InvalidParameterError(
         f"pose must be a Pose, (position, rotation), 3 or 6 numbers, got {pose!r}")

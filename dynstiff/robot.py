@@ -187,6 +187,9 @@ class Robot:
         if (pose is None) == (unstretched_lengths is None):
             raise InvalidParameterError("give exactly one of pose= or unstretched_lengths=")
         tol = positive_scalar("tol", tol)
+        if tol < 1e-15:
+            raise InvalidParameterError(
+                f"tol must be >= 1e-15 (the residual is computed in float64), got {tol!r}")
         if max_iter is not None and (isinstance(max_iter, bool) or
                                      not isinstance(max_iter, Integral) or max_iter < 1):
             raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")

@@ -209,14 +209,14 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     else:
         raise ConvergenceError(
             f"inverse statics: cable directions still change by {change:.2e} after "
-            f"{max_iter} iterations", residual=change)
+            f"{max_iter} iterations (max_iter)", residual=change)
     # final balance with these exact catenaries
     resid = robot.wrench(pose, states)[fi]
     scale = robot.platform.mass * max(robot.g, 1.0)
     res = np.linalg.norm(resid) / scale
     if res > tol:
         raise ConvergenceError(
-            f"inverse statics: wrench residual {res:.3e} (relative to m g) > {tol:.0e} at pose "
+            f"inverse statics: wrench residual {res:.3e} (relative to m g) > tol {tol:.0e} at pose "
             f"{pose.as_vector().tolist()}", residual=res)
     L0 = np.array([s.unstretched_length for s in states])
     return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0, states=tuple(states),
@@ -303,4 +303,4 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
         pose, states, w, res = trial, st_t, w_t, res_t
     raise ConvergenceError(
         f"forward statics did not converge: wrench residual {res:.3e} (relative to m g) > "
-        f"{tol:.0e} at pose {pose.as_vector().tolist()}", residual=res)
+        f"tol {tol:.0e} at pose {pose.as_vector().tolist()}", residual=res)

@@ -14,6 +14,20 @@ import dynstiff as ds
 pytestmark = pytest.mark.integration
 
 
+@pytest.fixture(autouse=True)
+def no_traceback(monkeypatch):
+    """Every command line run here (subprocess or in-process) may fail, but with one line:
+    a traceback without --debug fails the test."""
+    run = subprocess.run
+
+    def checked(args, *a, **kw):
+        out = run(args, *a, **kw)
+        err = out.stderr.decode() if isinstance(out.stderr, bytes) else (out.stderr or "")
+        assert "Traceback" not in err or "--debug" in args, err[-2000:]
+        return out
+    monkeypatch.setattr(subprocess, "run", checked)
+
+
 # --------------------------------------------------------------------------------- demo
 def test_demo_main_job_on_cogiro(tmp_path):
     out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--out", str(tmp_path),

@@ -90,3 +90,10 @@ def test_channel_lists_are_checked_and_an_empty_grid_gives_an_empty_result(cogir
     assert empty.H.shape == (0, 1, 1) and empty.freq_hz.shape == (0,)
     with pytest.raises(InvalidParameterError, match="model must be a model of the ladder"):
         ds.frf(cogiro_eq, [1.0])
+
+
+def test_frequency_grids_beyond_the_memory_guard_are_refused(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    with pytest.raises(InvalidParameterError, match="more than max_frequencies = 10"):
+        ds.frf(m, np.linspace(0.1, 1.0, 11), max_frequencies=10)
+    assert ds.frf(m, np.linspace(0.1, 1.0, 10), max_frequencies=10).H.shape[0] == 10
