@@ -19,6 +19,9 @@ Format (all SI units; see ``cogiro.toml`` for a complete example)::
                       (trajectory, excitation, drums ...), as ``Scene.study`` (a dict)
 
 Unknown keys, missing keys and bad values raise :class:`SceneError` naming the key and its line.
+Values are taken as written, never coerced: numbers are numbers (not strings, not booleans),
+points are 3 numbers, ``free_dofs`` is a list of names, and ``[pose]`` gives a position or
+unstretched lengths, not both.
 """
 
 from .loader import Scene, SceneError, list_scenes, load_scene, read_scene
