@@ -262,3 +262,12 @@ def test_mode_count_at_an_absurd_frequency_is_refused_by_every_rung(cogiro_eq):
     for rung in ("catenary", "dsm"):
         with pytest.raises(InvalidParameterError, match="omega must be <="):
             ds.mode_count(ds.build_model(cogiro_eq, rung), 1e300)
+
+
+def test_every_rung_validates_its_mode_request(cogiro_eq):
+    for rung in ds.RUNGS:
+        m = ds.build_model(cogiro_eq, rung, segments=4)
+        for kw in ({"fmax_hz": np.nan}, {"n_modes": 2.5, "fmax_hz": 5.0},
+                   {"n_modes": 0, "fmax_hz": 5.0}):
+            with pytest.raises(InvalidParameterError, match="n_modes|fmax_hz"):
+                ds.eigenfrequencies(m, **kw)
