@@ -17,6 +17,10 @@ def positive_scalar(name, value, allow_zero=False):
     if x < 0 or (x == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise InvalidParameterError(f"{name} must be {bound}, got {x!r}")
+    if 0 < x < np.finfo(float).tiny:
+        raise InvalidParameterError(
+            f"{name} must be 0 or at least {np.finfo(float).tiny:.3g} (a subnormal float has "
+            f"lost its digits), got {x!r}")
     return x
 
 
@@ -74,7 +78,8 @@ def unstretched_lengths(value, n):
         L0 = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         L0 = None
-    if L0 is None or L0.shape != (n,) or not np.all(np.isfinite(L0)) or np.any(L0 <= 0):
+    if L0 is None or L0.shape != (n,) or not np.all(np.isfinite(L0)) or \
+            np.any(L0 < np.finfo(float).tiny):
         raise InvalidParameterError(
             f"unstretched_lengths must be {n} finite positive lengths [m] (one per cable), "
             f"got {value!r}")

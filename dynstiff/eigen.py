@@ -55,10 +55,14 @@ def _validated_request(n_modes, fmax_hz):
             raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
         n_modes = int(n_modes)
     if fmax_hz is not None:
-        if isinstance(fmax_hz, bool) or not isinstance(fmax_hz, Real) or \
-                not np.isfinite(fmax_hz) or fmax_hz <= 0:
+        try:
+            f = float(fmax_hz) if isinstance(fmax_hz, Real) and not isinstance(fmax_hz, bool) \
+                else np.nan
+        except OverflowError:                        # an integer beyond float range
+            f = np.inf
+        if not np.isfinite(f) or f <= 0:
             raise InvalidParameterError(f"fmax_hz must be finite and > 0 [Hz], got {fmax_hz!r}")
-        fmax_hz = float(fmax_hz)
+        fmax_hz = f
     return n_modes, fmax_hz
 
 

@@ -271,3 +271,10 @@ def test_every_rung_validates_its_mode_request(cogiro_eq):
                    {"n_modes": 0, "fmax_hz": 5.0}):
             with pytest.raises(InvalidParameterError, match="n_modes|fmax_hz"):
                 ds.eigenfrequencies(m, **kw)
+
+
+def test_an_integer_beyond_the_float_range_is_named(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    for f in (10**20, 10**400):
+        with pytest.raises(InvalidParameterError, match="fmax_hz"):
+            ds.eigenfrequencies(m, fmax_hz=f)

@@ -51,3 +51,11 @@ def test_omega_is_bounded_so_that_omega_squared_stays_finite():
     omega_array([MAX_OMEGA])
     with pytest.raises(InvalidParameterError, match="omega must be <= 1e\\+150"):
         omega_array([1.0, 1e300])
+
+
+def test_subnormal_scalars_are_refused():
+    with pytest.raises(InvalidParameterError, match="EA must be 0 or at least"):
+        positive_scalar("EA", 2.225073858507203e-309)
+    assert positive_scalar("EA", 2.3e-308) == 2.3e-308
+    with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
+        unstretched_lengths([1.0, 2.2e-311], 2)
