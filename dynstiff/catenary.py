@@ -32,7 +32,7 @@ import numpy as np
 from ._validate import point, positive_scalar
 from ._vec import cross
 from .chord import chord_parameters
-from .constants import STANDARD_GRAVITY
+from .constants import MAX_COORDINATE, STANDARD_GRAVITY
 from .errors import ConvergenceError, InvalidParameterError, SlackCableError
 from .params import Cable
 
@@ -330,10 +330,6 @@ class CatenaryState:
 
 
 # --------------------------------------------------------------------------- solver
-#: Largest coordinate [m] of a cable end: lengths squared and multiplied by forces stay finite.
-MAX_COORDINATE = 1e100
-
-
 def _validate_ends(anchor, end):
     A = point("anchor", anchor)
     B = point("end", end)

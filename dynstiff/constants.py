@@ -3,6 +3,10 @@
 #: Standard gravity [m/s^2]. Passed explicitly to every function that needs gravity.
 STANDARD_GRAVITY = 9.81
 
+#: Largest coordinate [m] of a point (anchors, attachments, poses): squares of lengths and
+#: their products with forces stay finite.
+MAX_COORDINATE = 1e100
+
 #: Names of the six platform degrees of freedom, in the order used everywhere: translations
 #: of the reference point P [m], then the small rotation vector [rad] (base axes).
 DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")

@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .constants import MAX_COORDINATE
 from .errors import InvalidParameterError
 from .platform import rotation_matrix
 
@@ -27,9 +28,11 @@ class Pose:
                 v = np.asarray(getattr(self, name), dtype=float)
             except (TypeError, ValueError):
                 v = np.zeros(0)
-            if v.shape != (3,) or not np.all(np.isfinite(v)):
+            if v.shape != (3,) or not np.all(np.isfinite(v)) or \
+                    np.abs(v).max() > MAX_COORDINATE:
                 raise InvalidParameterError(
-                    f"pose {name} must be 3 finite numbers, got {getattr(self, name)!r}")
+                    f"pose {name} must be 3 finite numbers within {MAX_COORDINATE:g}, got "
+                    f"{getattr(self, name)!r}")
             object.__setattr__(self, name, v)
 
     def __eq__(self, other):

@@ -19,7 +19,7 @@ from . import _validate
 from ._validate import positive_scalar
 from ._vec import cross
 from .catenary import solve_catenary
-from .constants import STANDARD_GRAVITY
+from .constants import MAX_COORDINATE, STANDARD_GRAVITY
 from .equilibrium import Equilibrium
 from .errors import InvalidParameterError
 from .params import Cable
@@ -68,6 +68,11 @@ class Robot:
             raise InvalidParameterError(
                 f"attachments must be a finite array of shape {A.shape} like anchors, got "
                 f"shape {b.shape}")
+        for name, X in (("anchors", A), ("attachments", b)):
+            if np.abs(X).max(initial=0.0) > MAX_COORDINATE:
+                raise InvalidParameterError(
+                    f"{name} must lie within {MAX_COORDINATE:g} m of the origin, got "
+                    f"{np.abs(X).max(initial=0.0):.3g} m")
         n = A.shape[0]
         cables = self.cables
         if isinstance(cables, Cable):

@@ -38,3 +38,13 @@ def test_each_stiffness_has_its_own_name(cogiro_eq):
     np.testing.assert_allclose(cat.massless_stiffness(), 0.5 * (K6 + K6.T), rtol=1e-12)
     for obj in (s, cogiro_eq, cogiro_eq.robot, cat):
         assert not hasattr(obj, "static_stiffness") and not hasattr(obj, "dof_names")
+
+
+def test_coordinates_beyond_1e100_m_are_named(cogiro):
+    r = cogiro.robot
+    far = r.attachments.copy()
+    far[0, 0] = 1.0000000000000002e100
+    with pytest.raises(InvalidParameterError, match="attachments must lie within"):
+        ds.Robot(r.anchors, far, r.cables, r.platform)
+    with pytest.raises(InvalidParameterError, match="pose position"):
+        ds.Pose([1e101, 0.0, 0.0])
