@@ -96,11 +96,12 @@ def check_frequency_range(params, omega, name="omega"):
     scale = np.max(np.atleast_1d(params.L * np.sqrt(params.m / params.T)))   # Omega per rad/s
     w = np.abs(np.asarray(omega))
     if w.size and w.max() * scale > MAX_OMEGA_ND:
-        k = int(np.argmax(w))
+        bad = np.asarray(omega).ravel()[int(np.argmax(w))]
+        bad = complex(bad) if np.iscomplexobj(omega) else float(bad)
         raise InvalidParameterError(
             f"{name} must be <= {MAX_OMEGA_ND / scale:.6g} rad/s for this cable model "
             f"(omega L sqrt(m/T) <= {MAX_OMEGA_ND:g}, beyond which the closed form loses its "
-            f"digits), got {complex(np.asarray(omega).ravel()[k]) if np.iscomplexobj(omega) else float(np.asarray(omega).ravel()[k]):.6g}")
+            f"digits), got {bad:.6g}")
     if np.iscomplexobj(omega) and w.size:
         psi = np.abs(np.imag(params.psi(np.asarray(omega).reshape(-1, 1)
                                         if np.ndim(params.L) else np.asarray(omega))))

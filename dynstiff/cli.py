@@ -306,7 +306,8 @@ def _cmd_frf(args):
         import matplotlib
         matplotlib.use("Agg")
         from .plot import plot_frf
-        fig = plot_frf(res, modes(model, fmax_hz=hi), pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig = plot_frf(res, modes(model, fmax_hz=hi),
+                       pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])

@@ -13,7 +13,7 @@ from ._validate import omega_array, point as validated_point
 from .errors import InvalidParameterError, PoleWarning
 from .model_base import require_model
 from .platform import skew
-from .results import INPUT_NAMES, OUTPUT_NAMES, RESPONSE_KINDS, FRFResult, response_factor
+from .results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
 

@@ -406,7 +406,8 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         mass, ...); ``robot`` is not used.
 
     At each step the modes come from ``modes(build_model(eq, rung, **model_options),
-    n_modes, fmax_hz)`` (for the default "dsm" rung, complete by Wittrick-Williams counting). Global modes are tracked: the global modes of a step are
+    n_modes, fmax_hz)`` (for the default "dsm" rung, complete by Wittrick-Williams
+    counting). Global modes are tracked: the global modes of a step are
     matched to the tracks of the previous step, then to older tracks missing at the previous
     step, by the largest total mass-weighted MAC of the platform shapes (Hungarian
     assignment), a pair counting only if MAC >= ``mac_min``; the rest start new tracks.

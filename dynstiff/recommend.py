@@ -169,7 +169,8 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
         if np.any(sel):
             dsm = FrequencyModel(equilibrium)
             # cable part of the DSM robot matrix (it includes -omega^2 M_p) minus the static one
-            Kd = dsm.dynamic_stiffness(w[sel]).real + (w[sel] ** 2)[:, None, None] * cat.platform_mass
+            Kd = (dsm.dynamic_stiffness(w[sel]).real
+                  + (w[sel] ** 2)[:, None, None] * cat.platform_mass)
             dK = Kd - cat.K[None]
             Xs = X[:, sel]
             shift = (np.einsum("ik,kij,jk->k", Xs, dK, Xs)

@@ -3,7 +3,6 @@
 import numpy as np
 import pytest
 
-import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
 from dynstiff.trajectory import circle, line, quasi_static_lengths
 

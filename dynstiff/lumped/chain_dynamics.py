@@ -126,7 +126,8 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
             ab = ab0.copy()
             ab[BANDWIDTH] += inertia
             try:
-                x = scipy.linalg.solve_banded((BANDWIDTH, BANDWIDTH), ab, coupling, check_finite=False)
+                x = scipy.linalg.solve_banded((BANDWIDTH, BANDWIDTH), ab, coupling,
+                                              check_finite=False)
             except np.linalg.LinAlgError:
                 warnings.warn(f"chain_end_dynamic_stiffness: omega = {w!r} rad/s is a "
                               f"fixed-end natural frequency (pole); returning inf",

@@ -9,7 +9,8 @@ rotations) carrying the half node masses m l0 / 2 at the attachment points B_i::
     M(q) a = R(q) + f_ext(t) + f_d(q, v) - g(q, v)
 
 R is the model's own residual (``LumpedMassModel.residual_unchecked``: spring forces, gravity, the
-platform wrench about P) and its tangent K = -dR/dx (``LumpedMassModel.tangent_unchecked``) drives the
+platform wrench about P) and its tangent K = -dR/dx
+(``LumpedMassModel.tangent_unchecked``) drives the
 Newton iterations; no second force assembly is written here.
 
 Notation (theory.md §4, §7.1)
