@@ -81,3 +81,13 @@ def test_stacked_parameters_are_elementwise_the_single_ones(cogiro_eq):
     for name in ("L", "T", "m", "c", "EA", "q", "L_e", "cos_theta"):
         np.testing.assert_array_equal(getattr(st, name), [getattr(p, name) for p in params])
     np.testing.assert_array_equal(st.lambda_sq, [p.lambda_sq for p in params])
+
+
+def test_weightless_inclined_cable_still_has_an_orthonormal_chord_frame(cable17):
+    """With g = 0 there is no sag direction: e_v is the horizontal direction made normal to
+    the chord (and then normalised), so the frame stays orthonormal for inclined chords."""
+    st = ds.solve_catenary([0, 0, 0], [8.0, 3.0, 5.0], 9.0, cable17, g=0.0)
+    R = chord_parameters(st).rotation
+    np.testing.assert_allclose(R.T @ R, np.eye(3), atol=1e-14)
+    assert abs(R[:, 0] @ R[:, 1]) < 1e-14
+    assert chord_parameters(st).q == 0.0 and chord_parameters(st).lambda_sq == 0.0
