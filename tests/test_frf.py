@@ -45,7 +45,7 @@ def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq):
             K[0] = 0.0
             return K
 
-    with pytest.warns(PoleWarning):
+    with pytest.warns(PoleWarning, match=r"e\.g\. 0\.159154943 Hz"):    # 1 rad/s
         H = ds.frf(Singular(ds.FrequencyModel(cogiro_eq)), [1.0, 2.0]).H
     assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
 
@@ -97,3 +97,36 @@ def test_frequency_grids_beyond_the_memory_guard_are_refused(cogiro_eq):
     with pytest.raises(InvalidParameterError, match="more than max_frequencies = 10"):
         ds.frf(m, np.linspace(0.1, 1.0, 11), max_frequencies=10)
     assert ds.frf(m, np.linspace(0.1, 1.0, 10), max_frequencies=10).H.shape[0] == 10
+
+
+def test_output_point_moves_with_the_platform_rotation(cogiro_eq):
+    """The translation of a platform point c is dp - [R_p c]x dtheta (theory.md §4): the
+    FRF to point c follows from the FRFs at P, with the lever of c rotated by R_p."""
+    eq = cogiro_eq.robot.equilibrium(pose=[0.3, -0.2, 1.1, 0.05, -0.03, 0.1])
+    m = ds.FrequencyModel(eq)
+    w = 2 * np.pi * np.array([0.9, 1.7])
+    c = np.array([0.4, -0.25, 0.3])
+    Hc = ds.frf(m, w, outputs=["x", "y", "z"], point=c).H
+    HP = ds.frf(m, w).H                                    # (n, 6 outputs, 6 inputs)
+    rc = eq.pose.matrix @ c
+    lever = np.array([[0, -rc[2], rc[1]], [rc[2], 0, -rc[0]], [-rc[1], rc[0], 0]])
+    expected = HP[:, :3, :] - lever @ HP[:, 3:, :]
+    np.testing.assert_allclose(Hc, expected, rtol=1e-12, atol=1e-15 * np.abs(HP).max())
+    assert np.abs(Hc - HP[:, :3, :]).max() > 1e-3 * np.abs(HP[:, :3, :]).max()
+
+
+def test_frf_exactly_on_a_cable_pole_is_the_finite_limit(cogiro_eq):
+    """A clamped-cable frequency is a pole of that cable's K_B (entries ~1e16 there in
+    float64) but not of H, where it is an anti-resonance: the FRF at the pole is finite,
+    equal to its limit from both sides, and no PoleWarning is issued."""
+    import warnings
+    m = ds.FrequencyModel(cogiro_eq)
+    p = m.params[0]
+    w_pole = np.pi * np.sqrt(p.T / p.m) / p.L            # first out-of-plane mode of cable 0
+    assert np.abs(m.dynamic_stiffness(w_pole)).max() > 1e12
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PoleWarning)
+        H = ds.frf(m, [w_pole * (1 - 1e-7), w_pole, w_pole * (1 + 1e-7)]).H
+    assert np.all(np.isfinite(H[1]))
+    np.testing.assert_allclose(H[1], 0.5 * (H[0] + H[2]), rtol=1e-5,
+                               atol=1e-9 * np.abs(H).max())
