@@ -526,7 +526,7 @@ def _check_outputs(args):
         value = getattr(args, opt, None)
         least = 2 if opt in ("points", "steps") else 1
         if value is not None and value < least:
-            raise InvalidParameterError(f"--{opt if opt != 'n' else 'n'} must be >= {least}, "
+            raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt} must be >= {least}, "
                                         f"got {value}")
     for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag"):
         value = getattr(args, opt, None)

@@ -59,17 +59,19 @@ def _to_hz(lam):
     return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
 
 
-def _count(model, n_modes, fmax_hz):
-    """Number of modes the request (n_modes and/or fmax_hz) asks for, with their
-    frequencies when fmax_hz decided it."""
+def _lowest(model, n_modes, fmax_hz):
+    """Eigenpairs (lam, V) of the request: the lowest ``n_modes``, or all below ``fmax_hz``
+    (the first ``n_modes`` of them if both), from one eigen solve per trial count."""
     if fmax_hz is None:
-        return n_modes
+        return eig(model, n_modes)
     n = 12 if n_modes is None else n_modes
     while True:                      # grow the count until the band is covered
-        f = _to_hz(eig(model, min(n, model.n_dof))[0])
+        lam, V = eig(model, min(n, model.n_dof))
+        f = _to_hz(lam)
         if n >= model.n_dof or f[-1] >= fmax_hz:
             k = int(np.sum(f < fmax_hz))
-            return k if n_modes is None else min(k, n_modes)
+            k = k if n_modes is None else min(k, n_modes)
+            return lam[:k], V[:, :k]
         n *= 2
 
 
@@ -77,8 +79,7 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None):
     """Lowest natural frequencies [Hz], ascending (validated request, see
     :func:`dynstiff.eigen.eigenfrequencies`); an unstable equilibrium's negative eigenvalue
     lambda is reported as -sqrt(-lambda) / 2 pi."""
-    n = _count(model, n_modes, fmax_hz)
-    return _to_hz(eig(model, n)[0]) if n else np.zeros(0)
+    return _to_hz(_lowest(model, n_modes, fmax_hz)[0])
 
 
 def modes(model, n_modes=None, fmax_hz=None):
@@ -97,12 +98,9 @@ def modes(model, n_modes=None, fmax_hz=None):
         Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
         platform does not move at all).
     """
-    n = _count(model, n_modes, fmax_hz)
+    lam, V = _lowest(model, n_modes, fmax_hz)
+    n = lam.size
     nf, fi = model.n_free, model.free_index
-    if n == 0:
-        lam, V = np.zeros(0), np.zeros((model.n_dof, 0))
-    else:
-        lam, V = eig(model, n)
     freq = _to_hz(lam)
     Mp = model.platform_mass
     X = V[:nf]                                               # (nf, n)
