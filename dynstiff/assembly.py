@@ -11,18 +11,21 @@ Each K_B,i is a combination of five dyads of its chord frame, so the whole sum o
 single (n_omega, 5 n) @ (5 n, n_free^2) product: no loop over frequencies.
 """
 
+import warnings
 from dataclasses import replace
 
 import numpy as np
 
 from ._validate import omega_array
 from ._vec import cross
-from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_field, cable_kinetic_energy,
-                        check_frequency_range, chord_parameters, dyad_basis, end_block_coefficients,
-                        mode_count_nondimensional, stack_parameters)
+from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_RTOL,
+                        cable_field, cable_kinetic_energy, check_frequency_range,
+                        chord_parameters, closed_form_local_error, closed_form_validity,
+                        dyad_basis,
+                        end_block_coefficients, mode_count_nondimensional, stack_parameters)
+from .errors import ClosedFormWarning, InvalidParameterError
 from .model_base import PlatformModel, require_equilibrium
 from .platform import lever_map, platform_mass_matrix
-from .robot import geometric_stiffness
 
 __all__ = ["FrequencyModel"]
 
@@ -42,6 +45,11 @@ class FrequencyModel(PlatformModel):
         Include the consistent chordwise mass of the cables (theory.md §3.6).
     damping : bool
         Keep the cables' damping (default); False builds the undamped model.
+    guard_rtol : float or None
+        The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` names every
+        cable whose estimated frequency error exceeds this (at build: sag, chordwise weight,
+        tension variation, slackness), and every cable whose first axial frequency the
+        asked omega reaches (in :meth:`dynamic_stiffness`). None: no warnings.
 
     Attributes
     ----------
@@ -60,8 +68,14 @@ class FrequencyModel(PlatformModel):
     rung = "dsm"
 
     def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
-                 damping=True):
+                 damping=True, guard_rtol=DEFAULT_GUARD_RTOL):
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
+        if guard_rtol is not None and not (isinstance(guard_rtol, (int, float))
+                                           and not isinstance(guard_rtol, bool)
+                                           and 0 < guard_rtol < np.inf):
+            raise InvalidParameterError(
+                f"guard_rtol must be a number > 0 or None, got {guard_rtol!r}")
+        self.guard_rtol = guard_rtol
         self._init_platform(robot, equilibrium, pose)
         self.tension = tension
         self.chordwise_inertia = bool(chordwise_inertia)
@@ -71,6 +85,12 @@ class FrequencyModel(PlatformModel):
             self.damped = False
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
+        validity = [closed_form_validity(s, 0.0, tension) for s in equilibrium.states]
+        self._validity = tuple(validity)
+        self._axial_omega = np.array([AXIAL_MARGIN * 2 * np.pi * v.values["axial_hz"]
+                                      for v in validity])
+        self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
+        self._warned = set()                 # (cable, cause) already reported
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -80,17 +100,11 @@ class FrequencyModel(PlatformModel):
             D = dyad_basis(p.rotation).reshape(5, 3, 3)
             blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
         self._assembly = np.vstack(blocks)
-        K_geo = np.zeros((6, 6))
-        K_geo[3:, 3:] = geometric_stiffness(robot, pose, equilibrium.states)
-        self.K_geo = K_geo
+        self._init_geometric(robot, pose, equilibrium.states)
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
-        # With held rotations the reaction moment about a held axis makes the free block of
-        # K_geo non-symmetric by 1/2 [M_reaction]x, an artefact of the non-commuting rotation
-        # vector; the conservative (potential-energy Hessian) stiffness is its symmetric part.
-        # At a full 6-DOF equilibrium the block is already symmetric.
-        Kg = K_geo[np.ix_(fi, fi)]
-        self._K_geo_free = 0.5 * (Kg + Kg.T)
         self._freeze()
+        if guard_rtol is not None:
+            self._guard_static()
 
     def cable_coefficients(self, omega):
         """Dyad coefficients (uu, uv, vu, vv, ww) of every cable's end-B DSM, all cables in one
@@ -118,9 +132,87 @@ class FrequencyModel(PlatformModel):
         """
         omega = omega_array(omega, complex_ok=True)
         check_frequency_range(self.stacked_params, omega)
+        self._guard_axial(omega)
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+
+    def static_error(self):
+        """First-order relative frequency error of the massless-cable modes caused by the
+        closed form's static stiffness, against the exact catenaries (theory.md §11.5).
+
+        Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
+        (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
+        it."""
+        fi = self.free_index
+        K_ex = self._K_geo_free.copy()
+        dK = []
+        K0 = self.cable_coefficients(np.zeros(1)).real.reshape(len(self.params), 5)
+        for i, (s, r) in enumerate(zip(self.equilibrium.states, self.lever_arms)):
+            J = lever_map(r, fi)
+            Ke = J.T @ s.end_stiffness @ J
+            K_ex += Ke
+            Kd = (K0[i] @ self._assembly[5 * i:5 * i + 5]).reshape(self.n_free, self.n_free)
+            dK.append(Kd - Ke)
+        from scipy.linalg import eigh
+        lam, X = eigh(0.5 * (K_ex + K_ex.T), self.platform_mass)
+        ok = lam > 0
+        if not np.any(ok):
+            return 0.0, None
+        X, lam = X[:, ok], lam[ok]
+        per = np.array([np.einsum("ik,ij,jk->k", X, d, X) for d in dK]) / (2 * lam)
+        total = np.abs(per.sum(axis=0))
+        k = int(np.argmax(total))
+        return float(total[k]), int(np.argmax(np.abs(per[:, k])))
+
+    def _guard_static(self):
+        """Warn for slack cables and for a static error above ``guard_rtol``."""
+        for i, v in enumerate(self._validity):
+            if v.causes["slack"] > 0:
+                self._warn_once(i, "slack", f"cable {i}: the closed form does not apply: "
+                                + "; ".join(v.reasons(self.guard_rtol)))
+        err, i = self.static_error()
+        if err > self.guard_rtol:
+            self._warn_once(i, "static", (
+                f"cable {i}: the closed form's static stiffness shifts a global mode by "
+                f"{err:.2g} (estimate, > guard_rtol {self.guard_rtol:g}; "
+                + "; ".join(self._validity[i].reasons(0.1 * self.guard_rtol)) + ")"))
+
+    def _guard_axial(self, omega):
+        """Warn once per cable when omega reaches its axial modes, or its local modes while
+        their estimated error exceeds ``guard_rtol`` (theory.md §11.5)."""
+        if self.guard_rtol is None or not omega.size:
+            return
+        top = float(np.max(np.abs(omega)))
+        for i in np.flatnonzero(top >= self._axial_omega):
+            f_ax = self._validity[i].values["axial_hz"]
+            self._warn_once(int(i), "axial", (
+                f"cable {i}: its axial modes from {f_ax:.4g} Hz lie in the band asked (up to "
+                f"{top / 2 / np.pi:.4g} Hz); the closed form has none, so mode counts and "
+                f"frequencies above are wrong"))
+        for i in np.flatnonzero(top >= self._local_omega):
+            v = self._validity[i]
+            if (int(i), "local") in self._warned or not np.isfinite(v.error) \
+                    or v.error <= self.guard_rtol:
+                continue
+            # the envelope is conservative: measure against the exact cable before warning
+            err = closed_form_local_error(self.equilibrium.states[i],
+                                          min(top, self._axial_omega[i]), self.tension)
+            if err <= self.guard_rtol:
+                self._warned.add((int(i), "local"))        # checked, within tolerance
+                continue
+            self._warn_once(int(i), "local", (
+                f"cable {i}: its local modes (from {self._local_omega[i] / 2 / np.pi:.4g} Hz) "
+                f"are in the band asked and the closed form's are {err:.2g} off the exact "
+                f"model's (> guard_rtol {self.guard_rtol:g}; "
+                + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
+
+    def _warn_once(self, cable, cause, message):
+        if (cable, cause) in self._warned:
+            return
+        self._warned.add((cable, cause))
+        warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
+                                        cause=cause), stacklevel=4)
 
     def cable_mode_count(self, omega):
         """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],
@@ -140,8 +232,10 @@ class FrequencyModel(PlatformModel):
         """The same model with the cables' damping removed (itself when undamped)."""
         if not self.damped:
             return self
-        return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
-                              damping=False)
+        with warnings.catch_warnings():          # the static causes were reported already
+            warnings.simplefilter("ignore", ClosedFormWarning)
+            return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+                                  damping=False, guard_rtol=self.guard_rtol)
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
@@ -175,3 +269,4 @@ class FrequencyModel(PlatformModel):
             dB = x[:3] + cross(x[3:], r)
             disp[i] = np.real(cable_field(p, omega, p.rotation.T @ dB, xs)) @ p.rotation.T
         return pos, disp
+

@@ -267,11 +267,14 @@ class CatenaryState:
 
     @property
     def sag(self):
-        """Largest distance of the cable from its chord [m] (from a 401-point profile)."""
+        """Largest distance of the cable from its chord *segment* AB [m] (from a 401-point
+        profile; a point beyond an end of the segment counts its distance to that end, so a
+        slack cable hanging in a U below its lower end shows its true sag)."""
         p = self.profile(401) - self.anchor
-        e = self.chord / self.chord_length
-        perp = p - np.outer(p @ e, e)
-        return float(np.max(np.linalg.norm(perp, axis=1)))
+        L = self.chord_length
+        e = self.chord / L
+        along = np.clip(p @ e, 0.0, L)
+        return float(np.max(np.linalg.norm(p - np.outer(along, e), axis=1)))
 
     # ---- chord-frame (parabolic) parameters used by the linear dynamic theory
     @property
@@ -281,8 +284,17 @@ class CatenaryState:
 
     @property
     def lambda_sq(self):
-        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.chord.chord_parameters`)."""
-        return chord_parameters(self).lambda_sq
+        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.chord.chord_parameters`).
+
+        The chord theory's value (q L / T)^2 L EA / (T L_e) assumes the parabola of sag
+        d = q L^2 / (8 T). Where the measured :attr:`sag` is more than twice that (a slack
+        cable, e.g. hanging in a U under a near-vertical chord, whose q is ~0), the same
+        parameter is reported with the measured sag, 64 (d/L)^2 L EA / (T L_e), so that a
+        slack cable is never reported as a taut string (theory.md §11.5)."""
+        p = chord_parameters(self)
+        if self.sag > 2.0 * p.sag:
+            return float(64.0 * (self.sag / p.L) ** 2 * p.L * self.cable.EA / (p.T * p.L_e))
+        return p.lambda_sq
 
     # ---- stiffness
     @property

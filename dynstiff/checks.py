@@ -17,7 +17,8 @@ from .recommend import recommend_model
 __all__ = ["CheckResult", "design_checks"]
 
 _RUNG_NAMES = {"spring": "massless straight-spring model", "catenary": "massless catenary model",
-               "dsm": "closed-form DSM", "lumped": "lumped-mass model"}
+               "dsm": "closed-form DSM", "exact": "exact cable DSM",
+               "lumped": "lumped-mass model"}
 
 
 @dataclass(frozen=True)
@@ -132,9 +133,11 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
                      value=float(sag.max()), limit=max_sag_ratio,
                      detail=f"largest {sag.max():.2e} (cable {int(sag.argmax())}), "
                             f"limit {max_sag_ratio:g}"))
-    model = build_model(eq, rung, **model_options)
     if fmax_hz is None:
         fmax_hz = 1.5 * band_hz[1] if band_hz is not None else None
+    if rung == "exact" and fmax_hz is not None:      # the exact cables resolve the checked band
+        model_options = {"fmax_hz": 1.1 * fmax_hz * (1 + proximity_rtol), **model_options}
+    model = build_model(eq, rung, **model_options)
     if fmax_hz is None:
         n = 40
         while True:

@@ -161,9 +161,15 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
             N = min(N, n_modes)
     else:
         N = n_modes
-        w_hi = _TWO_PI
+        w_top = getattr(m, "max_omega", np.inf)           # a model's band (exact rung)
+        w_hi = min(_TWO_PI, w_top)
         while mode_count(m, w_hi)[0] < N:
-            w_hi *= 2.0
+            if w_hi >= w_top:
+                raise InvalidParameterError(
+                    f"n_modes = {N} asks for more than the {m.rung!r} model's band holds "
+                    f"({int(mode_count(m, w_top)[0])} modes below {w_top / _TWO_PI:g} Hz); "
+                    f"build it with a larger fmax_hz")
+            w_hi = min(2.0 * w_hi, w_top)
             if w_hi > 1e8:
                 raise ConvergenceError(f"fewer than {N} modes below {w_hi:.3g} rad/s")
     if N == 0:

@@ -11,6 +11,7 @@ __all__ = [
     "SlackCableError",
     "UnsupportedAnalysisError",
     "PoleWarning",
+    "ClosedFormWarning",
 ]
 
 
@@ -41,3 +42,14 @@ class UnsupportedAnalysisError(DynstiffError, TypeError):
 
 class PoleWarning(RuntimeWarning):
     """A quantity was evaluated exactly on a pole; the value returned is inf."""
+
+
+class ClosedFormWarning(UserWarning):
+    """The closed-form (shallow-cable) theory is used outside its range for the question
+    asked: the message names the cable, the cause and the estimated error, and points to the
+    "exact" rung. ``cable`` (index) and ``cause`` are attributes."""
+
+    def __init__(self, message, cable=None, cause=None):
+        super().__init__(message)
+        self.cable = cable
+        self.cause = cause

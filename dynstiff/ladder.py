@@ -6,6 +6,7 @@ rung        cable model                                                        m
 "spring"    (a) massless straight spring: (EA/L0) u u^T + (T/L)(I - u u^T)      global only
 "catenary"  (b) massless elastic catenary: exact static 3x3 end stiffness       global only
 "dsm"       (c) closed-form dynamic stiffness (Irvine-Caughey, theory.md §3)    global + local
+"exact"     (e) dynamic stiffness about the true catenary (theory.md §11)      global + local
 "lumped"    (d) lumped-mass chains with N segments per cable (theory.md §7)     global + local
 ==========  =================================================================  ==============
 
@@ -23,6 +24,7 @@ import numpy as np
 from ._validate import omega_array
 from .assembly import FrequencyModel
 from .errors import InvalidParameterError
+from .exact_model import ExactModel
 from .lumped.linear_model import LumpedLinearModel
 from .lumped.robot_model import LumpedMassModel
 from .model_base import PlatformModel, require_equilibrium
@@ -32,7 +34,7 @@ from .robot import geometric_stiffness
 __all__ = ["RUNGS", "StaticCableModel", "build_model"]
 
 #: The rungs, cheapest first.
-RUNGS = ("spring", "catenary", "dsm", "lumped")
+RUNGS = ("spring", "catenary", "dsm", "exact", "lumped")
 
 
 class StaticCableModel(PlatformModel):
@@ -109,20 +111,23 @@ def build_model(equilibrium, rung, segments=30, **options):
     ----------
     equilibrium : Equilibrium
         From :meth:`Robot.equilibrium`.
-    rung : {"spring", "catenary", "dsm", "lumped"}
+    rung : {"spring", "catenary", "dsm", "exact", "lumped"}
     segments : int or sequence of int
         Segments per cable of the "lumped" rung (ignored by the others).
     **options
-        "dsm": ``tension``, ``chordwise_inertia`` (:class:`FrequencyModel`); "lumped":
+        "dsm": ``tension``, ``chordwise_inertia``, ``guard_rtol`` (:class:`FrequencyModel`);
+        "exact":
+        ``fmax_hz``, ``order``, ``half_waves`` (:class:`ExactModel`); "lumped":
         ``tol``, ``max_iter`` of its equilibrium (:meth:`LumpedMassModel.equilibrium`).
 
     Returns
     -------
-    StaticCableModel, FrequencyModel or LumpedLinearModel
+    StaticCableModel, FrequencyModel, ExactModel or LumpedLinearModel
         Immutable, with ``.rung``. The lumped model is linearised about its own
         equilibrium for the same unstretched lengths, started from ``equilibrium.pose``.
     """
-    allowed = {"dsm": ("tension", "chordwise_inertia"), "lumped": ("tol", "max_iter")}
+    allowed = {"dsm": ("tension", "chordwise_inertia", "guard_rtol"),
+               "exact": ("fmax_hz", "order", "half_waves"), "lumped": ("tol", "max_iter")}
     unknown = sorted(set(options) - set(allowed.get(rung, ())))
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
@@ -135,6 +140,8 @@ def build_model(equilibrium, rung, segments=30, **options):
         return StaticCableModel(equilibrium, rung)
     if rung == "dsm":
         return FrequencyModel(equilibrium, **options)
+    if rung == "exact":
+        return ExactModel(equilibrium, **options)
     if isinstance(segments, Integral) and not isinstance(segments, bool) and segments < 1:
         raise InvalidParameterError(f"segments must be >= 1, got {segments!r}")
     mass_model = LumpedMassModel(equilibrium.robot, equilibrium.unstretched_lengths,

@@ -49,6 +49,7 @@ What a rung can say about its own poles (one of)
 import numpy as np
 
 from .platform import platform_mass_matrix
+from .robot import geometric_stiffness
 
 from .errors import InvalidParameterError
 
@@ -104,6 +105,19 @@ class PlatformModel:
         self.n_free = len(fi)
         self.platform_mass = platform_mass_matrix(robot.platform, pose.matrix)[np.ix_(fi, fi)]
         self.damped = any(c.is_damped for c in robot.cables)
+
+    def _init_geometric(self, robot, pose, states):
+        """K_geo (6, 6) (theory.md §4) and its conservative free block.
+
+        With held rotations the reaction moment about a held axis makes the free block of
+        K_geo non-symmetric by 1/2 [M_reaction]x, an artefact of the non-commuting rotation
+        vector; the conservative (potential-energy Hessian) stiffness is its symmetric part.
+        At a full 6-DOF equilibrium the block is already symmetric."""
+        K_geo = np.zeros((6, 6))
+        K_geo[3:, 3:] = geometric_stiffness(robot, pose, states)
+        self.K_geo = K_geo
+        Kg = K_geo[np.ix_(self.free_index, self.free_index)]
+        self._K_geo_free = 0.5 * (Kg + Kg.T)
 
     def _freeze(self):
         for value in vars(self).values():

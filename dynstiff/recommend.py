@@ -13,10 +13,10 @@ Error estimates (relative frequency error, all modes in the band)
   shift of each massless mode x at omega by the cables' inertia,
   |x^T (K_dsm(omega) - K_cat) x| / (2 omega^2 x^T M x), with K_dsm the closed-form
   robot dynamic stiffness; "spring" adds its measured gap to "catenary" (the sag effect).
-* "dsm": the measured envelope of the shallow-cable error (tests/test_cable_dsm.py),
-  15 delta^2 + 2 delta eps (1 + 40 eps), delta = d/L, eps = W sin(theta) / T, worst cable; when
-  cable modes lie in the band, also eps^2 / 4 for the tension variation along the cable that
-  the mean-tension theory ignores (second order in eps).
+* "dsm": measured against the exact rung in the band (theory.md §11.5; the exact rung costs
+  a few times the closed form); inf when a cable is slack or its axial modes reach the band
+  (the closed form has none, :func:`dynstiff.cable_dsm.closed_form_validity`).
+* "exact": 1e-8, the rounding floor of its discretisation (theory.md §11.2).
 * "lumped": the beaded-string error (n pi / N)^2 / 24 of the highest cable harmonic n in the
   band (theory.md §7.2), with N chosen so that it stays below rtol / 2.
 """
@@ -26,14 +26,17 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .assembly import FrequencyModel
-from .cable_dsm import cable_mode_count, chord_parameters
+from .cable_dsm import cable_mode_count, chord_parameters, closed_form_validity
 from .eigen import eigenfrequencies
-from .errors import InvalidParameterError
+from .errors import ClosedFormWarning, InvalidParameterError
 from .ladder import RUNGS, StaticCableModel
 
 __all__ = ["Recommendation", "recommend_model", "predicted_errors"]
 
 _COST_ORDER = {r: i for i, r in enumerate(RUNGS)}
+#: Relative frequency error of the "exact" rung in its band: the rounding floor of its
+#: discretisation, measured 1e-9 against Richardson-extrapolated lumped chains (theory.md §11.2).
+EXACT_ERROR = 1e-8
 
 
 @dataclass(frozen=True)
@@ -100,16 +103,33 @@ class Recommendation:
         })
 
 
-def _dsm_static_envelope(states):
-    env = 0.0
-    eps_max = 0.0
-    for s in states:
-        p = chord_parameters(s)
-        delta = p.sag / p.L
-        eps = s.total_weight * abs(s.chord[2]) / s.chord_length / p.T
-        env = max(env, 15 * delta**2 + 2 * delta * eps * (1 + 40 * eps))
-        eps_max = max(eps_max, eps)
-    return env, eps_max
+def _dsm_error(equilibrium, band_hz):
+    """The closed form's error in the band, measured against the exact rung (theory.md
+    §11.5): the largest relative difference of their frequencies in the band, paired in
+    order from the band's bottom (the top mode straddling the band's edge is compared too);
+    inf for a slack cable or axial modes in the band (the closed form has none), or when
+    the two count different numbers of modes. Returns (error, largest chordwise weight ratio,
+    causes of the cables the guard flags)."""
+    import warnings
+
+    from .exact_model import ExactModel
+    lo, hi = band_hz
+    w_hi = 2 * np.pi * hi
+    val = [closed_form_validity(s, w_hi) for s in equilibrium.states]
+    eps_max = max(v.values["weight_ratio"] for v in val)
+    causes = sorted({r for v in val for r in v.reasons(1e-2)})
+    if not all(np.isfinite(v.error) for v in val):
+        return np.inf, float(eps_max), causes
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ClosedFormWarning)
+        f_d = eigenfrequencies(FrequencyModel(equilibrium), fmax_hz=hi)
+    f_x = eigenfrequencies(ExactModel(equilibrium, fmax_hz=1.25 * hi), fmax_hz=1.2 * hi)
+    b = f_x[(f_x >= lo) & (f_x < hi)]
+    a = f_d[f_d >= lo][:b.size]
+    if a.size < b.size or np.count_nonzero(f_d < hi) != np.count_nonzero(f_x < hi):
+        return np.inf, float(eps_max), causes
+    err = float(np.max(np.abs(a / b - 1))) if b.size else 0.0
+    return err, float(eps_max), causes
 
 
 def predicted_errors(equilibrium, band_hz, rtol=1e-2):
@@ -145,13 +165,13 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
         p = chord_parameters(s)
         f1.append(np.sqrt(p.T / p.m) / (2 * p.L))
         harm.append(2 * hi * p.L * np.sqrt(p.m / p.T))          # Omega / pi at the band top
-    env, eps_max = _dsm_static_envelope(states)
+    dsm_error, eps_max, dsm_causes = _dsm_error(equilibrium, (lo, hi))
     cable_mass = sum(s.cable.mass_per_length * s.unstretched_length for s in states)
     estimates = dict(
         cable_f1_hz=float(min(f1)), cable_modes_in_band=n_cable,
         sag_ratio_max=float(max(chord_parameters(s).sag / s.chord_length for s in states)),
         lambda_sq_max=float(max(s.lambda_sq for s in states)),
-        weight_ratio_max=float(eps_max),
+        weight_ratio_max=float(eps_max), closed_form_causes=dsm_causes,
         mass_ratio=float(cable_mass / equilibrium.robot.platform.mass),
         highest_harmonic=float(max(harm)))
     errors = {}
@@ -183,7 +203,8 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
             errors["spring"] = float(np.max(np.abs(fs / fc - 1))) + errors["catenary"]
         else:
             errors["catenary"] = errors["spring"] = 0.0
-    errors["dsm"] = float(env + (eps_max**2 / 4 if n_cable > 0 else 0.0))
+    errors["dsm"] = float(dsm_error)
+    errors["exact"] = EXACT_ERROR
     n_harm = max(1.0, estimates["highest_harmonic"])
     segments = int(np.ceil(n_harm * np.pi / np.sqrt(12.0 * rtol)))
     segments = max(segments, 4)

@@ -67,13 +67,18 @@ def test_cable_model_row_names_the_model_the_checks_need():
     rec = recommend_model(scene.equilibrium(), band_hz=(0.0, 1.5 * 1.5 * 1.03), rtol=1e-2)
     assert r["passed"] and r["value"] == rec.errors["dsm"] and r["value"] < 1e-3
     six = ds.load_scene("sixcable")
-    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-2))["cable model"]
-    assert not r["passed"] and r["value"] > 1e-2 and "lumped" in r["detail"]
+    # sixcable (20 m heavy cables, sag 2.4 %): the closed form's local modes are 5e-3 off the
+    # exact model's (measured by the guard), so it fails 1e-3 and the row names the exact rung
+    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-3))["cable model"]
+    assert not r["passed"] and 1e-3 < r["value"] < 1e-2 and "exact" in r["detail"]
     with pytest.raises(InvalidParameterError, match="model_rtol"):
         design_checks(six.robot, six.pose, model_rtol=-1.0)
     # a looser tolerance lets the DSM pass there
-    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=0.1))["cable model"]
+    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-2))["cable model"]
     assert r["passed"]
+    r = rows_by_name(design_checks(six.robot, six.pose, model_rtol=1e-3, rung="exact",
+                                   fmax_hz=3.0))["cable model"]
+    assert r["passed"] and r["value"] <= 1e-8
 
 
 def test_checks_run_on_any_rung(cogiro):
@@ -94,4 +99,4 @@ def test_checks_run_on_any_rung(cogiro):
                                       rung="catenary"))["cable model"]
     assert not wide["passed"] and wide["value"] == np.inf
     with pytest.raises(InvalidParameterError, match="rung"):
-        design_checks(cogiro.robot, cogiro.pose, rung="exact")
+        design_checks(cogiro.robot, cogiro.pose, rung="fem")

@@ -13,7 +13,8 @@ from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
 
 matplotlib.use("Agg")
 
-RUNG_OPTIONS = {"spring": {}, "catenary": {}, "dsm": {}, "lumped": {"segments": 10}}
+RUNG_OPTIONS = {"spring": {}, "catenary": {}, "dsm": {}, "exact": {"fmax_hz": 10.0},
+                "lumped": {"segments": 10}}
 
 
 @pytest.fixture(scope="module")
@@ -90,6 +91,7 @@ def test_the_rungs_agree_where_their_physics_does(models):
     error (theory.md §7.2: 10 segments, (pi/10)^2/24 = 4e-3 at the first harmonic)."""
     f = {r: ds.eigenfrequencies(m, n_modes=1)[0] for r, m in models.items()}
     assert abs(f["lumped"] / f["dsm"] - 1) < 4e-3
+    assert abs(f["exact"] / f["dsm"] - 1) < 1e-3          # shallow taut cables: 1e-4 apart
     assert abs(f["catenary"] / f["dsm"] - 1) < 1e-2
     assert abs(f["spring"] / f["catenary"] - 1) < 2e-2
 
@@ -134,4 +136,6 @@ def test_build_model_rejects_options_of_other_rungs(cogiro_eq):
     with pytest.raises(InvalidParameterError, match="tension"):
         ds.build_model(cogiro_eq, "spring", tension="chord")
     with pytest.raises(InvalidParameterError, match="rung"):
-        ds.build_model(cogiro_eq, "exact")
+        ds.build_model(cogiro_eq, "fem")
+    with pytest.raises(InvalidParameterError, match="fmax_hz"):
+        ds.build_model(cogiro_eq, "exact", tol=1e-9)

@@ -79,8 +79,11 @@ def run(quick=False):
         cf1 = min(ds.cable_natural_frequencies(s, 1).freq_hz[0] for s in eq.states)
         bands = [(0.01, 0.8 * cf1), (0.01, 1.8 * cf1)]
         ref = reference_frequencies(eq, max(b[1] for b in bands))
-        f_rung = {r: ds.eigenfrequencies(build_model(eq, r), fmax_hz=bands[-1][1] * 1.5)
+        top = bands[-1][1] * 1.5
+        f_rung = {r: ds.eigenfrequencies(build_model(eq, r), fmax_hz=top)
                   for r in ("spring", "catenary", "dsm")}
+        f_rung["exact"] = ds.eigenfrequencies(build_model(eq, "exact", fmax_hz=1.1 * top),
+                                              fmax_hz=top)
         for band in bands:
             for rtol in rtols:
                 rec = recommend_model(eq, band, rtol)

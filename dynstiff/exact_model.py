@@ -1,0 +1,185 @@
+"""The "exact" rung: every cable's numerically exact dynamic stiffness, assembled.
+
+    K(omega) = sum_i J_i^T E_i K_BB,i(omega) E_i^T J_i + K_geo - omega^2 M_p     (theory.md §4)
+
+with K_BB,i the end-B block of cable i's dynamic stiffness about its true elastic catenary
+(:class:`dynstiff.cable_exact.ExactCable`, theory.md §11), E_i its local frame and J_i the
+lever map. Each K_BB,i is K_s - w^2 M_psi - w^4 sum_j beta_j beta_j^T mu_j / (1 - w^2 mu_j),
+so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) product.
+"""
+
+import numpy as np
+
+from ._validate import omega_array
+from .cable_exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
+from .errors import InvalidParameterError
+from .model_base import PlatformModel, require_equilibrium
+from .platform import lever_map, platform_mass_matrix
+
+__all__ = ["ExactModel", "DEFAULT_FMAX_HZ"]
+
+#: Default band of the exact rung [Hz]: the cables are discretised to resolve it.
+DEFAULT_FMAX_HZ = 25.0
+_BB = np.ix_([3, 4, 5], [3, 4, 5])
+
+
+class ExactModel(PlatformModel):
+    """The "exact" rung (theory.md §11): cables linearised about their true catenary.
+
+    Immutable; the interface of every model is described in :mod:`dynstiff.model_base`.
+
+    Parameters
+    ----------
+    equilibrium : Equilibrium
+        From :meth:`Robot.equilibrium`.
+    fmax_hz : float
+        Band [Hz] the cable discretisations resolve (default 25 Hz); K(omega) above it is
+        refused with an error that says so.
+    order : int
+        Polynomial order of the cables' spectral elements.
+    half_waves : float
+        Transverse half-wavelengths per element at ``fmax_hz``.
+    damping : bool
+        Keep the cables' damping (default); False builds the undamped model.
+
+    Attributes
+    ----------
+    rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
+        As every model (:mod:`dynstiff.model_base`).
+    cables : tuple of ExactCable
+    fmax_hz, max_omega : float
+        The band [Hz] and its angular frequency [rad/s].
+    lever_arms : ndarray, shape (n_cables, 3)
+        r_i = R_p b_i [m].
+    K_geo, M_p : ndarray, shape (6, 6)
+        Geometric stiffness and platform mass matrix (all DOFs).
+    """
+
+    rung = "exact"
+
+    def __init__(self, equilibrium, fmax_hz=DEFAULT_FMAX_HZ, order=DEFAULT_ORDER,
+                 half_waves=HALF_WAVES_PER_ELEMENT, damping=True):
+        robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
+        try:
+            f = float(fmax_hz)
+        except (TypeError, ValueError):
+            f = np.nan
+        if isinstance(fmax_hz, bool) or not np.isfinite(f) or f <= 0:
+            raise InvalidParameterError(f"fmax_hz must be finite and > 0 [Hz], got {fmax_hz!r}")
+        self._init_platform(robot, equilibrium, pose)
+        self.fmax_hz = f
+        self.max_omega = 2.0 * np.pi * f
+        self.order, self.half_waves = order, half_waves
+        self.cables = tuple(ExactCable(s, self.max_omega, order, damping, half_waves)
+                            for s in equilibrium.states)
+        self.damped = any(c.damped for c in self.cables)
+        self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
+        self._init_geometric(robot, pose, equilibrium.states)
+        self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
+        fi = self.free_index
+        nf = self.n_free
+        # map of each cable's local end-B 3x3 block (flattened) to the free-DOF matrix
+        const = np.zeros(nf * nf, dtype=complex if self.damped else float)
+        mass_rows, mode_rows, mu, visc = [], [], [], []
+        for cab, r in zip(self.cables, self.lever_arms):
+            G = cab.frame.T @ lever_map(r, fi)                           # (3, nf)
+            Q = np.einsum("ai,bj->abij", G, G).reshape(9, nf * nf)
+            const = const + cab.static_stiffness[_BB].ravel() @ Q
+            mass_rows.append(cab.mass_psi[_BB].ravel() @ Q)
+            mode_rows.append(cab.beta_dyads(ends="end") @ Q)
+            mu.append(cab.flexibilities)
+            visc.append(np.full(cab.flexibilities.size, cab.c / cab.m))
+        self._const = const + self._K_geo_free.ravel()
+        self._mass = np.array(mass_rows)                                  # (n_cables, nf^2)
+        self._modes = np.vstack(mode_rows)                                # (n_modes, nf^2)
+        self._mu = np.concatenate(mu)
+        self._visc_cable = np.array([c.c / c.m for c in self.cables])
+        self._visc_mode = np.concatenate(visc)
+        self._freeze()
+
+    def dynamic_stiffness(self, omega):
+        """K(omega) on the free DOFs, shape (n_omega, n_free, n_free) (theory.md §4, §11.3).
+
+        Parameters
+        ----------
+        omega : float or array_like, shape (n_omega,)
+            [rad/s], real >= 0 or complex, |omega| <= ``max_omega``.
+
+        Returns
+        -------
+        ndarray [N/m, N, N m/rad]; real when undamped and omega real. Infinite on a
+        clamped-cable pole.
+        """
+        omega = omega_array(omega, complex_ok=True)
+        self._check(omega)
+        w = omega[:, None]
+        w2_c = w**2 - 1j * w * self._visc_cable[None, :] if self.damped else w**2
+        w2_m = w**2 - 1j * w * self._visc_mode[None, :] if self.damped else w**2
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g = w2_m**2 * self._mu[None, :] / (1.0 - w2_m * self._mu[None, :])
+        if self.damped:
+            K = self._const[None, :] - w2_c @ self._mass - g @ self._modes
+        else:
+            K = self._const[None, :] - w2_c * self._mass.sum(axis=0)[None, :] - g @ self._modes
+        if not self.damped and np.isrealobj(omega):
+            K = K.real
+        nf = self.n_free
+        return K.reshape(-1, nf, nf) - (omega**2)[:, None, None] * self.platform_mass
+
+    def _check(self, omega):
+        w = np.abs(omega)
+        if w.size and w.max() > self.max_omega * (1 + 1e-12):
+            bad = np.asarray(omega).ravel()[int(np.argmax(w))]
+            raise InvalidParameterError(
+                f"omega must be <= {self.max_omega:.6g} rad/s: the exact model was built for "
+                f"fmax_hz = {self.fmax_hz:g} Hz, got {bad:.6g} rad/s "
+                f"({abs(bad) / 2 / np.pi:.6g} Hz); build it with a larger fmax_hz")
+
+    def cable_mode_count(self, omega):
+        """J0: clamped-cable frequencies below omega of all cables, shape (n_omega,)
+        (theory.md §11.3); the damping is ignored."""
+        omega = omega_array(omega)
+        self._check(omega)
+        return sum(c.mode_count(omega) for c in self.cables)
+
+    def massless_stiffness(self):
+        """Static stiffness K(0): the exact catenaries' end stiffness + K_geo, shape
+        (n_free, n_free) [N/m, N, N m/rad]."""
+        return self.dynamic_stiffness(0.0)[0].real
+
+    def undamped(self):
+        """The same model with the cables' damping removed (itself when undamped)."""
+        if not self.damped:
+            return self
+        return ExactModel(self.equilibrium, self.fmax_hz, self.order, self.half_waves,
+                          damping=False)
+
+    def _end_motion(self, cab, r, x):
+        return cab.frame.T @ (x[:3] + np.cross(x[3:], r))
+
+    def cable_kinetic_energies(self, omega, x):
+        """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
+        shape (n_cables,), for the platform motion x (6,) at omega [rad/s] (theory.md §11.3)."""
+        return np.array([c.kinetic_energy(omega, self._end_motion(c, r, x))
+                         for c, r in zip(self.cables, self.lever_arms)])
+
+    def cable_displacements(self, omega, x, n_points=41):
+        """Cable displacement fields for the platform motion x (6,) at omega [rad/s].
+
+        Returns
+        -------
+        positions : ndarray, shape (n_cables, n_points, 3)
+            Points of the static catenaries, equally spaced in unstretched arc length [m].
+        displacements : ndarray, shape (n_cables, n_points, 3)
+            Real part of the field [m], global frame (linear between the nodes).
+        """
+        pos = np.zeros((len(self.cables), n_points, 3))
+        disp = np.zeros_like(pos)
+        for i, (c, r) in enumerate(zip(self.cables, self.lever_arms)):
+            s = np.linspace(0.0, c.state.unstretched_length, n_points)
+            pos[i] = c.state.profile(n_points)
+            if not np.any(x):
+                continue
+            u = np.real(c.end_response(omega, self._end_motion(c, r, x))) @ c.frame.T
+            disp[i] = np.column_stack([np.interp(s, c.s, u[:, k]) for k in range(3)])
+        return pos, disp
