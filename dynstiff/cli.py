@@ -231,6 +231,25 @@ def _cmd_scenes(args):
     return 0
 
 
+def _exact_model(eq, n_modes, fmax_hz):
+    """The exact rung with a band that holds the request: 1.05 fmax_hz, or, for n_modes, a
+    band doubled from 25 Hz until it holds them (theory.md §11)."""
+    from .eigen import mode_count
+    from .errors import InvalidParameterError
+    from .ladder import build_model
+    if fmax_hz is not None:
+        return build_model(eq, "exact", fmax_hz=1.05 * fmax_hz)
+    band = 25.0
+    while True:
+        model = build_model(eq, "exact", fmax_hz=band)
+        if mode_count(model, 2 * 3.141592653589793 * band)[0] >= n_modes:
+            return model
+        band *= 2.0
+        if band > 1e4:
+            raise InvalidParameterError(f"-n {n_modes}: more modes than the exact model holds "
+                                        f"below 10 kHz")
+
+
 def _cmd_modes(args):
     import numpy as np
 
@@ -243,7 +262,10 @@ def _cmd_modes(args):
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
     n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    model = build_model(eq, args.model, segments=args.segments)
+    if args.model == "exact":
+        model = _exact_model(eq, n, args.fmax)
+    else:
+        model = build_model(eq, args.model, segments=args.segments)
     note = ""
     if hasattr(model, "matrices") and n is not None and n > model.n_dof:
         note = f" (it has {model.n_dof} modes; {n} asked)"
@@ -373,10 +395,12 @@ def build_parser():
     mo.add_argument("-n", type=int, help="number of modes (default: the scene's n_modes)")
     mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
     mo.add_argument("--json", help="write the full table to this JSON file")
-    mo.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
-                    help="cable model: closed-form dynamic stiffness (default), lumped masses "
-                         "(--segments), or massless cables with the catenary's or the "
-                         "straight spring's stiffness (platform modes only)")
+    mo.add_argument("--model", default="dsm",
+                    choices=["dsm", "exact", "lumped", "catenary", "spring"],
+                    help="cable model: closed-form dynamic stiffness (default), the exact "
+                         "cable about its true catenary, lumped masses (--segments), or "
+                         "massless cables with the catenary's or the straight spring's "
+                         "stiffness (platform modes only)")
     mo.add_argument("--segments", type=int, default=30,
                     help="segments per cable of the lumped model (default 30)")
     mo.set_defaults(func=_cmd_modes)

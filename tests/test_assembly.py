@@ -108,3 +108,33 @@ def test_bad_equilibrium_and_frequencies_name_the_argument(cogiro_eq):
         m.dynamic_stiffness([1.0, 1e9])
     with pytest.raises(InvalidParameterError, match="imaginary part too large"):
         m.dynamic_stiffness([10.0 + 1e5j])
+
+
+def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogiro(cogiro_eq):
+    """FrequencyModel's guard (theory.md §11.5): silent on CoGiRo up to 20 Hz at its default
+    tolerance; a ClosedFormWarning names the cable and the cause on a heavy sagging robot, and
+    guard_rtol=None turns it off."""
+    import warnings
+    from dynstiff.errors import ClosedFormWarning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ClosedFormWarning)
+        m = ds.FrequencyModel(cogiro_eq)
+        ds.eigenfrequencies(m, fmax_hz=20.0)
+        assert m.static_error()[0] < 1e-4
+    # a three-cable point mass on heavy, sagging, steep cables
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    rob = ds.Robot(A, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
+    eq = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    with pytest.warns(ClosedFormWarning) as rec:
+        m = ds.FrequencyModel(eq)
+        ds.eigenfrequencies(m, fmax_hz=1.5)
+    causes = {(w.message.cable, w.message.cause) for w in rec}
+    assert (0, "static") in causes and {c for c, k in causes if k == "local"} == {0, 1, 2}
+    assert all("use the 'exact' rung" in str(w.message) for w in rec)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ClosedFormWarning)
+        ds.eigenfrequencies(ds.FrequencyModel(eq, guard_rtol=None), fmax_hz=1.5)
+    with pytest.raises(InvalidParameterError, match="guard_rtol"):
+        ds.FrequencyModel(eq, guard_rtol=-1.0)

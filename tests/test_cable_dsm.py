@@ -304,3 +304,26 @@ def test_ten_thousand_labelled_cable_modes(state300):
     assert len(cm) == 10000 and np.all(np.diff(cm.Omega) >= 0)
     oop = np.array(cm.family) == "out-of-plane"
     np.testing.assert_allclose(cm.Omega[oop], np.pi * cm.order[oop], rtol=1e-15)
+
+
+def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
+    """closed_form_validity (theory.md §11.5): the estimate bounds the measured error of the
+    clamped frequencies against the exact model on the hard cases, is inf for a slack U and
+    for axial modes in the band, and stays below 1e-3 on CoGiRo's cables."""
+    from dynstiff.cable_dsm import closed_form_local_error, closed_form_validity
+    slack = ds.solve_catenary([0, 0, 0], [1e-6, 0, 10], 10.1, ds.Cable(0.064, 1.4e5))
+    v = closed_form_validity(slack)
+    assert np.isinf(v.error) and any("slack" in r for r in v.reasons(1e-2))
+    steep = ds.solve_catenary([0, 0, 0], [5.0, 0, 5 * np.sqrt(3)], 10.6, ds.Cable(1.0, 1e6))
+    v = closed_form_validity(steep)
+    measured = closed_form_local_error(steep, 0.0)
+    assert measured > 1e-2 and v.error >= measured
+    soft = ds.solve_catenary([0, 0, 0], [10.0, 0, -2.0], 9.8, ds.Cable(1.0, 2e3))
+    f_ax = np.sqrt(2e3 / 1.0) / (2 * 9.8)
+    assert np.isfinite(closed_form_validity(soft, 2 * np.pi * 0.8 * f_ax).error)
+    v = closed_form_validity(soft, 2 * np.pi * f_ax)
+    assert np.isinf(v.causes["axial"]) and "axial modes from" in v.reasons(1e-2)[-1]
+    for s in ds.load_scene("cogiro").equilibrium().states:
+        v = closed_form_validity(s, 2 * np.pi * 20.0)
+        assert v.error < 1e-3
+        assert closed_form_local_error(s, 2 * np.pi * 20.0) <= v.error

@@ -266,3 +266,22 @@ def test_bad_iteration_counts_and_absurd_coordinates_name_the_argument(cable17):
         ds.solve_catenary([0, 0, 0], [10, 0, 2], 10.3, cable17, max_iter=0)
     with pytest.raises(InvalidParameterError, match="within 1e\\+100 m of the origin"):
         ds.solve_catenary([0, 0, 0], [1e300, 0, 2], 10.3, cable17)
+
+
+def test_a_slack_cable_in_a_u_is_not_reported_as_a_taut_string():
+    """solve_catenary([0,0,0], [1e-6,0,10], 10.1, ...) hangs in a U below A: the distance from
+    the chord *segment* is its true sag (the U reaches |V0|/w = 5 cm below A), and lambda^2 is
+    then written with the measured sag (theory.md §11.5); a taut cable keeps the chord theory's
+    lambda^2 and its sag is the profile's largest distance from the line."""
+    s = ds.solve_catenary([0, 0, 0], [1e-6, 0, 10], 10.1, ds.Cable(0.064, 1.4e5))
+    w0 = s.cable.weight_per_length(s.g)
+    drop = -s.V0 / w0                                  # arc length from A down to the bottom
+    assert s.sag == pytest.approx(drop, rel=2e-2) and s.sag > 0.04
+    assert s.lambda_sq > 50                            # not a taut string (was 2e-9)
+    taut = ds.solve_catenary(A0, B0, 1.0001 * np.linalg.norm(np.subtract(B0, A0)), cogiro_cable())
+    from dynstiff.chord import chord_parameters
+    assert taut.lambda_sq == chord_parameters(taut).lambda_sq
+    p = taut.profile(401) - taut.anchor
+    e = taut.chord / taut.chord_length
+    line = np.max(np.linalg.norm(p - np.outer(p @ e, e), axis=1))
+    assert taut.sag == pytest.approx(line, rel=1e-12)

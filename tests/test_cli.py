@@ -89,17 +89,18 @@ def test_cli_modes_table_and_csv(tmp_path):
 
 def test_cli_modes_model_choice(tmp_path):
     """--model: the 30-segment lumped model lands within 1e-3 of the closed form on CoGiRo's
-    first modes; the massless rungs give platform modes only, the straight spring stiffer
+    first modes, the exact cable within 3e-4 (the closed form's error); the massless rungs give platform modes only, the straight spring stiffer
     than the catenary (sag softens the cable)."""
     import pandas as pd
     tables = {}
-    for m in ("dsm", "lumped", "catenary", "spring"):
+    for m in ("dsm", "exact", "lumped", "catenary", "spring"):
         out = run_cli("modes", "cogiro", "-n", "3", "--model", m, "--csv",
                       str(tmp_path / f"{m}.csv"))
         assert out.returncode == 0, out.stderr
         assert out.stdout.startswith(f"{m} model")
         tables[m] = pd.read_csv(tmp_path / f"{m}.csv")["freq [Hz]"].to_numpy()
     assert abs(tables["lumped"] / tables["dsm"] - 1).max() < 1e-3
+    assert 1e-6 < abs(tables["exact"] / tables["dsm"] - 1).max() < 3e-4   # theory.md §11.5
     assert (tables["spring"] > tables["catenary"]).all()
     assert (pd.read_csv(tmp_path / "spring.csv")["kind"] == "global").all()
     bad = run_cli("modes", "cogiro", "--model", "lumped", "--segments", "0")

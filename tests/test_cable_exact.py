@@ -1,0 +1,273 @@
+"""The exact cable (dynstiff/cable_exact.py, theory.md §11): static limit, weightless limit,
+symmetries, spectral convergence, damping, and agreement with an independent model, the
+lumped-mass chain (theory.md §7) extrapolated by Richardson."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.cable_dsm import cable_dynamic_stiffness, cable_natural_frequencies
+from dynstiff.cable_exact import ExactCable, gll
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.lumped.chain import chain_equilibrium
+from dynstiff.lumped.chain_dynamics import (chain_end_dynamic_stiffness,
+                                            chain_fixed_end_frequencies)
+
+TWO_PI = 2 * np.pi
+# (anchor, end, L0, cable): the hard cases of theory.md §11.3
+HARD = {
+    "sagging 10x5 m, d/L 0.10": ((0, 0, 0), (10.0, 0, 5.0), 11.5, ds.Cable(1.0, 1e6)),
+    "steep 60 deg sagging": ((0, 0, 0), (5.0, 0, 5 * np.sqrt(3)), 10.6, ds.Cable(1.0, 1e6)),
+    "soft, axial mode among the first ten": ((0, 0, 0), (10.0, 0, -2.0), 9.8,
+                                             ds.Cable(1.0, 2e3)),
+}
+# static-limit cases: taut, sagging up to d/L 0.3, steep to 85 deg, vertical limit, slack U
+STATIC = {
+    "taut (CoGiRo cable)": ((0, 0, 0), (8.0, 3.0, -5.0), 9.9, ds.Cable(0.064, 139486.7)),
+    "sagging d/L 0.3": ((0, 0, 0), (10.0, 0, 0), 12.3, ds.Cable(1.0, 1e6)),
+    "steep 85 deg": ((0, 0, 0), (10 * np.cos(np.radians(85)), 0, 10 * np.sin(np.radians(85))),
+                     10.02, ds.Cable(0.5, 1e6)),
+    "vertical limit": ((0, 0, 0), (1e-4, 0, 10.0), 9.99, ds.Cable(0.064, 1.4e5)),
+    "slack U (T_min 0.04 T_max)": ((0, 0, 0), (2.0, 0, 9.0), 10.1, ds.Cable(0.064, 1.4e5)),
+}
+
+
+def state(case):
+    A, B, L0, cab = case
+    return ds.solve_catenary(A, B, L0, cab)
+
+
+def richardson(f, Ns):
+    """(4 f_2N - f_N) / 3 from the two finest of a sequence of O(N^-2) results."""
+    return (4 * f[Ns[-1]] - f[Ns[-2]]) / 3
+
+
+@pytest.mark.parametrize("name", STATIC)
+def test_static_limit_is_the_catenary_end_stiffness(name):
+    """omega -> 0 gives the exact elastic-catenary static stiffness (theory.md §11.1, §11.3):
+    the discretisation's own static condensation converges to it (the self-check, measured
+    1e-11 to 5e-8), and K(omega) tends to it continuously, as omega^2."""
+    s = state(STATIC[name])
+    cab = ExactCable(s, TWO_PI * 2.0)
+    assert cab.static_mismatch <= 1e-6
+    Kd = cab.discrete_static_stiffness()[3:, 3:]
+    Ke = s.end_stiffness
+    E = cab.frame
+    np.testing.assert_allclose(E @ Kd @ E.T, Ke, rtol=0, atol=1e-6 * np.abs(Ke).max())
+    w1 = np.sqrt(cab.eigenvalues[0])
+    K = cab.dynamic_stiffness([0.0, 1e-4 * w1, 1e-3 * w1])
+    np.testing.assert_allclose(K[0], Ke, rtol=0, atol=1e-12 * np.abs(Ke).max())
+    d1, d2 = np.abs(K[1] - K[0]).max(), np.abs(K[2] - K[0]).max()
+    assert d2 / d1 == pytest.approx(100.0, rel=1e-3)              # O(omega^2)
+    # the slack cable is no taut string
+    if name.startswith("slack"):
+        assert s.lambda_sq > 10 and s.sag > 0.1
+
+
+def test_the_linearisation_reproduces_the_catenary_flexibility():
+    """int D^-1 ds = d(l_h, h)/d(H, V_B) (theory.md §11.1): computed here by 2000-point
+    Gauss quadrature of D^-1 along the arc, independently of the discretisation."""
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    x, w = np.polynomial.legendre.leggauss(200)
+    L0, EA, w0 = s.unstretched_length, s.cable.EA, s.cable.weight_per_length(s.g)
+    edges = np.linspace(0, L0, 11)
+    F = np.zeros((2, 2))
+    for a, b in zip(edges[:-1], edges[1:]):
+        sq = 0.5 * (b - a) * (x + 1) + a
+        V = s.V0 + w0 * sq
+        T = np.hypot(s.H, V)
+        t = np.stack([s.H / T, V / T])
+        tt = np.einsum("iq,jq->qij", t, t)
+        Dinv = tt / EA + ((1 + T / EA) / T)[:, None, None] * (np.eye(2) - tt)
+        F += 0.5 * (b - a) * np.einsum("q,qij->ij", w, Dinv)
+    np.testing.assert_allclose(F, s.in_plane_flexibility, rtol=1e-12)
+
+
+def test_weightless_cable_is_a_taut_string_and_an_axial_rod():
+    """g = 0 (theory.md §11.4): clamped modes n pi sqrt(D_t/m)/L0 (in and out of the plane)
+    and n pi sqrt(EA/m)/L0 (axial); end stiffness EA k_a cot(k_a L0) along the cable and
+    D_t k_t cot(k_t L0) across it."""
+    cab, L0 = ds.Cable(0.5, 2e4), 9.98
+    s = ds.solve_catenary((0, 0, 0), (10.0, 0, 0), L0, cab, g=0.0)
+    T = s.H
+    Dt = T / (1 + T / cab.EA)
+    n = np.arange(1, 30)
+    ct, ca = np.sqrt(Dt / cab.mass_per_length), np.sqrt(cab.EA / cab.mass_per_length)
+    ref = np.sort(np.concatenate([n * np.pi * ct / L0, n * np.pi * ct / L0,
+                                  n * np.pi * ca / L0]))[:24]
+    ec = ExactCable(s, 1.05 * ref[-1])
+    np.testing.assert_allclose(np.sqrt(ec.eigenvalues[:24]), ref, rtol=1e-9)
+    fam = np.array(ec.family[:24])
+    assert np.count_nonzero(fam == "axial") == np.count_nonzero(n * ca / L0 <= ref[-1] / np.pi)
+    w = np.array([0.37, 1.9, 0.6 * ref[-1]])
+    K = ec.dynamic_stiffness(w)
+    ka, kt = w * np.sqrt(cab.mass_per_length / cab.EA), w * np.sqrt(cab.mass_per_length / Dt)
+    np.testing.assert_allclose(K[:, 0, 0], cab.EA * ka / np.tan(ka * L0), rtol=1e-9)
+    np.testing.assert_allclose(K[:, 1, 1], Dt * kt / np.tan(kt * L0), rtol=1e-9)
+    np.testing.assert_allclose(K[:, 2, 2], Dt * kt / np.tan(kt * L0), rtol=1e-9)
+
+
+def _rotz(a):
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1.0]])
+
+
+def test_symmetry_reciprocity_rotation_mirror_and_reversal():
+    A, B, L0, cab = (0, 0, 0), np.array([6.0, 2.0, 4.0]), 7.7, ds.Cable(0.8, 5e5)
+    s = ds.solve_catenary(A, B, L0, cab)
+    w = TWO_PI * np.array([0.13, 0.71, 1.37])
+    band = TWO_PI * 1.5
+    K = ExactCable(s, band).dynamic_stiffness(w, ends="both")
+    assert np.isrealobj(K)
+    np.testing.assert_allclose(K, np.swapaxes(K, 1, 2), rtol=0, atol=1e-12 * np.abs(K).max())
+    # rigid rotation about the vertical
+    R = _rotz(0.83)
+    K_rot = ExactCable(ds.solve_catenary(A, R @ B, L0, cab), band).dynamic_stiffness(w, "both")
+    R6 = np.kron(np.eye(2), R)
+    np.testing.assert_allclose(K_rot, R6 @ K @ R6.T, rtol=0, atol=1e-9 * np.abs(K).max())
+    # mirror y -> -y
+    S = np.diag([1.0, -1.0, 1.0])
+    K_mir = ExactCable(ds.solve_catenary(A, S @ B, L0, cab), band).dynamic_stiffness(w, "both")
+    S6 = np.kron(np.eye(2), S)
+    np.testing.assert_allclose(K_mir, S6 @ K @ S6, rtol=0, atol=1e-9 * np.abs(K).max())
+    # the same cable seen from the other end: the two ends swap places
+    K_rev = ExactCable(ds.solve_catenary(B, A, L0, cab), band).dynamic_stiffness(w, "both")
+    P = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+    np.testing.assert_allclose(K_rev, P @ K @ P, rtol=0, atol=1e-8 * np.abs(K).max())
+
+
+def test_spectral_convergence_in_the_element_order():
+    """At a fixed mesh, the error of the clamped frequencies falls exponentially with the
+    polynomial order p (theory.md §11.2): measured 7e-4, 6e-6, 1.5e-8, 2e-11 at p = 6, 8, 10,
+    12; each step of 2 in p must divide it by more than 20 until the rounding floor."""
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    band = TWO_PI * 2.0
+    ref = np.sqrt(ExactCable(s, band, order=24, half_waves=4.0).eigenvalues[:10])
+    errs = []
+    for p in (6, 8, 10, 12):
+        f = np.sqrt(ExactCable(s, band, order=p, half_waves=4.0).eigenvalues[:10])
+        errs.append(np.max(np.abs(f / ref - 1)))
+    assert errs[0] > 1e-4
+    for a, b in zip(errs[:-1], errs[1:]):
+        assert b < a / 20 or b < 1e-9
+
+
+def test_gll_rule_integrates_polynomials_and_differentiates_exactly():
+    xi, w, Dm = gll(7)
+    assert w.sum() == pytest.approx(2.0, abs=1e-14)
+    assert np.dot(w, xi**12) == pytest.approx(2 / 13, rel=1e-13)          # degree 2p - 2
+    np.testing.assert_allclose(Dm @ xi**5, 5 * xi**4, atol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def lumped_reference():
+    """Clamped frequencies (first 12) and end stiffness at three omega between poles of the
+    lumped chain, N = 200, 400, 800, for every hard case."""
+    out = {}
+    for name, (A, B, L0, cab) in HARD.items():
+        f, K = {}, {}
+        st = ds.solve_catenary(A, B, L0, cab)
+        w1 = np.sqrt(ExactCable(st, 1.0).eigenvalues[0])
+        w = w1 * np.array([0.31, 0.83, 1.27])
+        for N in (200, 400, 800):
+            ch = chain_equilibrium(A, B, L0, cab, N)
+            f[N] = TWO_PI * chain_fixed_end_frequencies(ch, 12)
+            K[N] = chain_end_dynamic_stiffness(ch, w)
+        out[name] = (st, w, richardson(f, (400, 800)), richardson(K, (400, 800)),
+                     richardson(f, (200, 400)))
+    return out
+
+
+@pytest.mark.parametrize("name", HARD)
+def test_agrees_with_richardson_extrapolated_lumped_chains(lumped_reference, name):
+    """Independent model (theory.md §7): clamped frequencies (axial included where they fall)
+    and the end stiffness at three omega agree with the lumped chain extrapolated from N = 400
+    and 800 to 1e-6 (measured 7e-10 to 3e-9 on the frequencies)."""
+    st, w, f_ref, K_ref, f_ref_coarse = lumped_reference[name]
+    assert np.max(np.abs(f_ref / f_ref_coarse - 1)) < 1e-7          # the reference converged
+    ec = ExactCable(st, 1.1 * f_ref[-1])
+    np.testing.assert_allclose(np.sqrt(ec.eigenvalues[:12]), f_ref, rtol=1e-6)
+    K = ec.dynamic_stiffness(w)
+    np.testing.assert_allclose(K, K_ref, rtol=0, atol=1e-6 * np.abs(K_ref).max())
+    if name.startswith("soft"):
+        assert "axial" in ec.family[:10]
+        f_ax = np.sqrt(st.cable.EA / st.cable.mass_per_length) / (2 * st.unstretched_length)
+        k = ec.family.index("axial")
+        assert np.sqrt(ec.eigenvalues[k]) / TWO_PI == pytest.approx(f_ax, rel=0.05)
+
+
+def test_damping_agrees_with_the_damped_lumped_chain():
+    """Hysteretic (EA (1 + i eta) on the axial strain) and viscous (m - i c / omega on all
+    motions) damping (theory.md §11.3) against the lumped chain, which models both the same
+    way, extrapolated from N = 200, 400."""
+    A, B, L0 = (0, 0, 0), (10.0, 0, -2.0), 9.8
+    cab = ds.Cable(1.0, 2e3, viscous_damping=0.3, loss_factor=0.02)
+    st = ds.solve_catenary(A, B, L0, cab)
+    w = TWO_PI * np.array([0.2, 0.9, 1.7])
+    K = {N: chain_end_dynamic_stiffness(chain_equilibrium(A, B, L0, cab, N), w)
+         for N in (200, 400)}
+    K_ref = richardson(K, (200, 400))
+    ec = ExactCable(st, TWO_PI * 2.0)
+    assert ec.damped
+    Ke = ec.dynamic_stiffness(w)
+    np.testing.assert_allclose(Ke, K_ref, rtol=0, atol=1e-5 * np.abs(K_ref).max())
+    np.testing.assert_allclose(Ke, np.swapaxes(Ke, 1, 2), atol=1e-12 * np.abs(Ke).max())
+    und = ExactCable(st, TWO_PI * 2.0, damping=False)
+    assert not und.damped and np.isrealobj(und.dynamic_stiffness(w))
+    np.testing.assert_array_equal(und.eigenvalues, ec.eigenvalues)
+
+
+def test_kinetic_energy_is_the_derivative_of_the_stiffness():
+    """sum m |u|^2 of the response to an end motion u equals -u^T dK/d(omega^2) u
+    (theory.md §11.3), central difference of step 1e-6 omega."""
+    s = state(HARD["steep 60 deg sagging"])
+    ec = ExactCable(s, TWO_PI * 1.5)
+    u = np.array([0.3, -0.5, 0.8])
+    E = ec.frame
+    for w in (0.4 * np.sqrt(ec.eigenvalues[0]), 0.5 * np.sqrt(ec.eigenvalues[3]
+                                                             + ec.eigenvalues[4])):
+        h = 1e-6 * w
+        K = ec.dynamic_stiffness([w - h, w + h])
+        dK = (K[1] - K[0]) / (2 * w * 2 * h)                   # d/d(omega^2)
+        ug = E @ u
+        assert ec.kinetic_energy(w, u) == pytest.approx(-ug @ dK @ ug, rel=1e-6)
+        resp = ec.end_response(w, u)
+        np.testing.assert_allclose(resp[0], 0.0)
+        np.testing.assert_allclose(resp[-1], u)
+
+
+def test_poles_are_the_clamped_frequencies_and_the_count_is_exact():
+    s = state(HARD["soft, axial mode among the first ten"])
+    ec = ExactCable(s, TWO_PI * 4.0)
+    w = np.sqrt(ec.eigenvalues[:15])
+    assert w[-1] < TWO_PI * 4.0
+    np.testing.assert_array_equal(ec.mode_count(w * (1 + 1e-9)), np.arange(1, 16))
+    np.testing.assert_array_equal(ec.mode_count(w * (1 - 1e-9)), np.arange(0, 15))
+    K = ec.dynamic_stiffness(w[:3] * (1 + 1e-9))
+    assert np.all(np.abs(K).max(axis=(1, 2)) > 1e4 * np.abs(ec.dynamic_stiffness(0.0)).max())
+    modes = cable_natural_frequencies(s, 12, model="exact")
+    np.testing.assert_allclose(TWO_PI * modes.freq_hz, w[:12], rtol=1e-12)
+    assert "axial" in modes.family and modes.labels[0] == "out-of-plane 1"
+    K2 = cable_dynamic_stiffness(s, [0.0, 1.0], model="exact")
+    np.testing.assert_allclose(K2[0], s.end_stiffness, rtol=0,
+                               atol=1e-12 * np.abs(s.end_stiffness).max())
+
+
+def test_bad_input_and_too_slack_cables_are_refused():
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    ec = ExactCable(s, 5.0)
+    with pytest.raises(InvalidParameterError, match="omega must be <= 5"):
+        ec.dynamic_stiffness([1.0, 6.0])
+    with pytest.raises(InvalidParameterError, match="ends"):
+        ec.dynamic_stiffness(1.0, ends="A")
+    for kw, word in (({"omega_max": -1.0}, "omega_max"), ({"omega_max": np.inf}, "omega_max"),
+                     ({"omega_max": 1.0, "order": 2}, "order"),
+                     ({"omega_max": 1.0, "half_waves": 0}, "half_waves")):
+        with pytest.raises(InvalidParameterError, match=word):
+            ExactCable(s, **kw)
+    with pytest.raises(InvalidParameterError, match="model"):
+        cable_dynamic_stiffness(s, 1.0, model="fem")
+    # hanging in a U under a near-vertical chord (T_min / T_max = 3e-9): refused, not wrong
+    slack = ds.solve_catenary((0, 0, 0), (1e-6, 0, 10), 10.1, ds.Cable(0.064, 1.4e5))
+    with pytest.raises(DynstiffError, match="too slack"):
+        ExactCable(slack, TWO_PI * 3)

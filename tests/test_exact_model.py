@@ -1,0 +1,179 @@
+"""The "exact" rung at robot level (dynstiff/exact_model.py, theory.md §11): complete mode
+counts where the closed form misses axial modes, CoGiRo against the converged lumped model,
+and the model interface (dynstiff/model_base.py)."""
+
+import dataclasses
+import warnings
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import ClosedFormWarning, InvalidParameterError
+
+TWO_PI = 2 * np.pi
+
+
+def richardson3(f):
+    """Two-level Richardson of O(N^-2) + O(N^-4) results at N, 2N, 4N (dict in that order)."""
+    a, b, c = (f[k] for k in sorted(f))
+    r1, r2 = (4 * b - a) / 3, (4 * c - b) / 3
+    return (16 * r2 - r1) / 15
+
+
+def lumped_reference(eq, n, segments):
+    f = {N: ds.eigenfrequencies(ds.build_model(eq, "lumped", segments=N), n_modes=n)
+         for N in segments}
+    return richardson3(f)
+
+
+@pytest.fixture(scope="module")
+def soft_planar2():
+    r = ds.load_scene("planar2").robot
+    rob = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2)
+    return rob.equilibrium(ds.Pose([0, 0, -10]))
+
+
+def test_axial_modes_are_counted_where_the_closed_form_misses_them(soft_planar2):
+    """planar2 with Cable(1, 2e4) at (0, 0, -10): the closed form finds 18 modes below 4.5 Hz
+    and warns that the cables' axial modes (from 4.12 Hz) are in the band; the exact rung
+    finds 20, the same as the lumped model (N = 40, 80, 160 extrapolated) to 1e-6."""
+    eq = soft_planar2
+    with pytest.warns(ClosedFormWarning, match="axial modes from 4.12") as rec:
+        f_dsm = ds.eigenfrequencies(ds.build_model(eq, "dsm"), fmax_hz=4.5)
+    assert {w.message.cause for w in rec} >= {"axial"}
+    assert {w.message.cable for w in rec if w.message.cause == "axial"} == {0, 1}
+    assert len(f_dsm) == 18
+    mx = ds.build_model(eq, "exact", fmax_hz=5.0)
+    f_ex = ds.eigenfrequencies(mx, fmax_hz=4.5)
+    assert len(f_ex) == 20
+    ref = lumped_reference(eq, 20, (40, 80, 160))
+    np.testing.assert_allclose(f_ex, ref, rtol=1e-6)
+    # the count agrees below every frequency between two reference modes
+    mid = TWO_PI * 0.5 * (ref[:-1] + ref[1:])
+    gaps = np.diff(ref) > 1e-6 * ref[1:]
+    np.testing.assert_array_equal(ds.mode_count(mx, mid[gaps]), np.arange(1, 20)[gaps])
+
+
+def _cogiro(E):
+    sc = ds.load_scene("cogiro")
+    r0 = sc.robot
+    cables = tuple(dataclasses.replace(c, EA=8.2051e-6 * E) for c in r0.cables)
+    return dataclasses.replace(r0, cables=cables), sc.pose
+
+
+def _check_against_lumped(eq, fmax_hz, rtol, segments=(40, 80, 160)):
+    mx = ds.build_model(eq, "exact", fmax_hz=1.05 * fmax_hz)
+    f = ds.eigenfrequencies(mx, fmax_hz=fmax_hz)
+    ref = lumped_reference(eq, len(f) + 2, segments)
+    # modes closer than 2e-3 (pairs of local modes of symmetric cables) change order between
+    # the lumped N, so their Richardson values pair different modes: within such a cluster
+    # the mean (a smooth function of N) is compared to rtol, each mode to the cluster width
+    n = len(f)
+    edges = np.flatnonzero(np.diff(f) > 2e-3 * f[1:]) + 1
+    for lo, hi in zip(np.r_[0, edges], np.r_[edges, n]):
+        assert np.mean(f[lo:hi]) == pytest.approx(np.mean(ref[lo:hi]), rel=rtol)
+        width = (f[hi - 1] - f[lo]) / f[lo]
+        np.testing.assert_allclose(f[lo:hi], ref[lo:hi], rtol=rtol + width)
+    isolated = np.diff(np.r_[0, edges, n]) == 1
+    assert isolated.sum() >= min(20, n // 2)         # many modes are checked one by one
+    assert ref[len(f)] >= fmax_hz * (1 - 1e-6)               # none missed below fmax
+    mid = TWO_PI * 0.5 * (ref[:len(f)] + ref[1:len(f) + 1])
+    gaps = np.diff(ref[:len(f) + 1]) > 1e-5 * ref[1:len(f) + 1]
+    np.testing.assert_array_equal(ds.mode_count(mx, mid[gaps]),
+                                  np.arange(1, len(f) + 1)[gaps])
+    return f
+
+
+def test_cogiro_matches_the_converged_lumped_model():
+    """CoGiRo at its scene pose, E = 17 GPa: every frequency to 10 Hz (38 modes) equals the
+    lumped model extrapolated from N = 40, 80, 160 to 2e-5 (measured 1e-7)."""
+    rob, pose = _cogiro(17e9)
+    f = _check_against_lumped(rob.equilibrium(pose), 10.0, 2e-5)
+    assert len(f) >= 30
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("E", [17e9, 120e9])
+@pytest.mark.parametrize("position", [[0, 0, 1.0], [2.0, 1.0, 1.5], [-3.0, -2.0, 2.0],
+                                      [4.0, -2.5, 0.5]])
+def test_cogiro_over_the_workspace_to_20_hz(E, position):
+    """Four poses x E = 17 and 120 GPa, all modes to 20 Hz (about 90): 2e-5 against the
+    lumped model extrapolated from N = 80, 160, 320 (measured 1e-8; from N = 40 the close
+    pairs of local modes near 19 Hz change order between N and are paired wrongly), and the
+    same count below every gap."""
+    rob, pose = _cogiro(E)
+    _check_against_lumped(rob.equilibrium(ds.Pose(position, pose.rotation)), 20.0, 2e-5,
+                          segments=(80, 160, 320))
+
+
+@pytest.fixture(scope="module")
+def cogiro_exact(cogiro_eq):
+    return ds.build_model(cogiro_eq, "exact", fmax_hz=8.0)
+
+
+def test_static_limit_and_closeness_to_the_closed_form(cogiro_eq, cogiro_exact):
+    """K(0) is the exact catenaries' stiffness (the "catenary" rung) to 1e-12; on CoGiRo's
+    shallow taut cables the first global modes are within 3e-4 of the closed form (its
+    measured error, theory.md §11.5)."""
+    K_cat = ds.build_model(cogiro_eq, "catenary").K
+    np.testing.assert_allclose(cogiro_exact.massless_stiffness(), K_cat, rtol=0,
+                               atol=1e-12 * np.abs(K_cat).max())
+    f_ex = ds.eigenfrequencies(cogiro_exact, n_modes=6)
+    f_cf = ds.eigenfrequencies(ds.build_model(cogiro_eq, "dsm"), n_modes=6)
+    np.testing.assert_allclose(f_cf, f_ex, rtol=3e-4)
+    assert np.max(np.abs(f_cf / f_ex - 1)) > 1e-6                # but they are not the same
+
+
+def test_modes_fields_and_energies(cogiro_exact):
+    md = ds.modes(cogiro_exact, fmax_hz=4.0)
+    assert {"global", "local"} <= set(md.kind)
+    k = list(md.kind).index("global")
+    pos, disp = ds.cable_fields(cogiro_exact, md, k)
+    assert pos.shape == disp.shape == (8, 41, 3)
+    # the field ends at the attachment's motion; it starts at rest at the anchor
+    x = md.platform_shapes[k]
+    r = cogiro_exact.lever_arms
+    np.testing.assert_allclose(disp[:, -1], x[:3] + np.cross(x[3:], r), atol=1e-12)
+    np.testing.assert_allclose(disp[:, 0], 0.0, atol=1e-15)
+    np.testing.assert_allclose(pos[:, 0], cogiro_exact.robot.anchors, atol=1e-12)
+    # kinetic energy identity: cable share from -x^T dK/d(omega^2) x (M_p-normalised x)
+    w = TWO_PI * md.freq_hz[k]
+    h = 1e-6 * w
+    K = cogiro_exact.dynamic_stiffness([w - h, w + h])
+    dK = (K[1] - K[0]) / (4 * w * h)
+    total = -x @ dK @ x
+    cab = cogiro_exact.cable_kinetic_energies(w, x).sum()
+    plat = x @ cogiro_exact.platform_mass @ x
+    assert total == pytest.approx(cab + plat, rel=1e-6)
+
+
+def test_damped_exact_model(cogiro):
+    rob = dataclasses.replace(cogiro.robot, cables=dataclasses.replace(
+        cogiro.robot.cables[0], loss_factor=0.02, viscous_damping=0.01))
+    eq = rob.equilibrium(pose=cogiro.pose)
+    m = ds.build_model(eq, "exact", fmax_hz=6.0)
+    assert m.damped and not m.undamped().damped
+    f0 = ds.eigenfrequencies(m, n_modes=3)
+    np.testing.assert_allclose(f0, ds.eigenfrequencies(m.undamped(), n_modes=3), rtol=0)
+    H = ds.frf(m, TWO_PI * f0[:1])
+    assert np.all(np.isfinite(H.H)) and np.abs(H.H.imag).max() > 0
+    dm = ds.damped_modes(m, 1)
+    assert dm.damping_ratio[0] > 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ClosedFormWarning)
+        dd = ds.damped_modes(ds.build_model(eq, "dsm"), 1)
+    assert dm.omega[0] == pytest.approx(dd.omega[0], rel=1e-3)
+    assert dm.damping_ratio[0] == pytest.approx(dd.damping_ratio[0], rel=0.05)
+
+
+def test_requests_beyond_the_band_are_refused(cogiro_exact):
+    with pytest.raises(InvalidParameterError, match="fmax_hz = 8 Hz"):
+        cogiro_exact.dynamic_stiffness(TWO_PI * 9.0)
+    with pytest.raises(InvalidParameterError, match="larger fmax_hz"):
+        ds.eigenfrequencies(cogiro_exact, n_modes=500)
+    with pytest.raises(InvalidParameterError, match="out of the 'exact' model's range"):
+        ds.eigenfrequencies(cogiro_exact, fmax_hz=9.0)
+    for bad in (0.0, -1.0, np.nan, "ten", True):
+        with pytest.raises(InvalidParameterError, match="fmax_hz"):
+            ds.build_model(cogiro_exact.equilibrium, "exact", fmax_hz=bad)
