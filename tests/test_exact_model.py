@@ -76,12 +76,13 @@ def _check_against_lumped(eq, fmax_hz, rtol, segments=(40, 80, 160)):
         width = (f[hi - 1] - f[lo]) / f[lo]
         np.testing.assert_allclose(f[lo:hi], ref[lo:hi], rtol=rtol + width)
     isolated = np.diff(np.r_[0, edges, n]) == 1
-    assert isolated.sum() >= min(20, n // 2)         # many modes are checked one by one
-    assert ref[len(f)] >= fmax_hz * (1 - 1e-6)               # none missed below fmax
-    mid = TWO_PI * 0.5 * (ref[:len(f)] + ref[1:len(f) + 1])
-    gaps = np.diff(ref[:len(f) + 1]) > 1e-5 * ref[1:len(f) + 1]
-    np.testing.assert_array_equal(ds.mode_count(mx, mid[gaps]),
-                                  np.arange(1, len(f) + 1)[gaps])
+    assert isolated.sum() >= min(15, n // 4)         # many modes are checked one by one
+    # the count agrees below every frequency between two clusters of reference modes
+    ends = np.r_[edges, n]
+    mid = np.array([0.5 * (ref[lo:hi].max() + ref[hi:nx].min()) for lo, hi, nx in
+                    zip(np.r_[0, edges], ends, np.r_[ends[1:], n + 1])])
+    mid = np.minimum(mid, 1.04 * fmax_hz)                     # inside the model's band
+    np.testing.assert_array_equal(ds.mode_count(mx, TWO_PI * mid), ends[:mid.size])
     return f
 
 
