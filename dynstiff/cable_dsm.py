@@ -532,7 +532,7 @@ def _lowest_string_omega(state):
         / state.unstretched_length
 
 
-def _exact_modes(state, n, p):
+def _exact_modes(state, n):
     """First n clamped modes of the exact cable (theory.md §11), band grown until it holds
     them; returns (omega_j [rad/s], family)."""
     w = 1.2 * (n + 1) * _lowest_string_omega(state)
@@ -573,7 +573,7 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
     p = chord_parameters(state, tension)
     to_hz = np.sqrt(p.T / p.m) / (2 * np.pi * p.L)
     if _cable_model(model) == "exact":
-        w, fam = _exact_modes(state, n, p)
+        w, fam = _exact_modes(state, n)
         order = np.zeros(n, dtype=int)
         for name in set(fam):
             sel = np.array([f == name for f in fam])

@@ -175,6 +175,10 @@ class ExactCable:
                 f"omega_max must be finite and > 0 [rad/s], got {omega_max!r}")
         if isinstance(order, bool) or not isinstance(order, Integral) or not 4 <= order <= 40:
             raise InvalidParameterError(f"order must be an integer in [4, 40], got {order!r}")
+        if not all(hasattr(state, a) for a in ("H", "V0", "cable", "unstretched_length")):
+            raise InvalidParameterError(
+                f"state must be a CatenaryState (dynstiff.solve_catenary), got "
+                f"{type(state).__name__}")
         cab = state.cable
         self.state, self.omega_max, self.order = state, float(omega_max), int(order)
         self.damped = bool(damping) and cab.is_damped
@@ -308,7 +312,6 @@ class ExactCable:
         """Exact static two-end stiffness of the catenary, local frame, (6, 6) [N/m]:
         [[K_s, -K_s], [-K_s, K_s]], K_s = (int D^-1 ds)^-1 (theory.md §11.3)."""
         st = self.state
-        E = self.frame
         F = np.zeros((3, 3), dtype=complex if eta > 0 else float)
         F2 = st.in_plane_flexibility                    # d(l_h, h)/d(H, Vb) = int D^-1 ds
         F[np.ix_([0, 2], [0, 2])] = F2
@@ -319,7 +322,6 @@ class ExactCable:
             F[np.ix_([0, 2], [0, 2])] += d * np.array([[Ixx, Ixz], [Ixz, Izz]])
         Ks = np.linalg.inv(F)
         Ks = 0.5 * (Ks + Ks.T)
-        del E
         return np.block([[Ks, -Ks], [-Ks, Ks]])
 
     # ------------------------------------------------------------------ parts

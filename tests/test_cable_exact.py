@@ -267,6 +267,8 @@ def test_bad_input_and_too_slack_cables_are_refused():
             ExactCable(s, **kw)
     with pytest.raises(InvalidParameterError, match="model"):
         cable_dynamic_stiffness(s, 1.0, model="fem")
+    with pytest.raises(InvalidParameterError, match="CatenaryState"):
+        ExactCable("state", 1.0)
     # hanging in a U under a near-vertical chord (T_min / T_max = 3e-9): refused, not wrong
     slack = ds.solve_catenary((0, 0, 0), (1e-6, 0, 10), 10.1, ds.Cable(0.064, 1.4e5))
     with pytest.raises(DynstiffError, match="too slack"):
