@@ -257,7 +257,8 @@ def test_cli_check_defaults_to_the_scenes_forbidden_band():
     assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
     out = run("sixcable")                                  # no forbidden band in the scene
     assert out.returncode == 1 and "no forbidden band" in out.stdout
-    assert "FAIL  cable model" in out.stdout
+    # the closed form's error on sixcable, measured against the exact rung, is 5e-3 < 1e-2
+    assert "PASS  cable model" in out.stdout and "FAIL  local modes near" in out.stdout
     assert "global modes outside band" not in out.stdout
 
 
