@@ -1,0 +1,50 @@
+"""The subcommands of dynstiff/cli_exchange.py run in subprocesses: import-caspr writes a
+scene that loads and equals the built-in CoGiRo; bad files fail in one line."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+
+pytestmark = pytest.mark.integration
+DATA = Path(__file__).parent / "data" / "caspr"
+
+
+def run_cli(*args):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", *map(str, args)],
+                         capture_output=True, text=True)
+    assert "Traceback" not in out.stderr, out.stderr[-2000:]
+    return out
+
+
+def test_import_caspr_writes_a_loadable_commented_scene(tmp_path):
+    ref = ds.load_scene("cogiro").robot
+    path = tmp_path / "cogiro.toml"
+    out = run_cli("import-caspr", DATA / "CoGiRo_bodies.xml", DATA / "CoGiRo_cables.xml",
+                  "--mass-per-length", 0.064, "--EA", 139486.7, "--out", path)
+    assert out.returncode == 0, out.stderr
+    assert "warning: " in out.stderr and "products of inertia" in out.stderr
+    assert "8 cables" in out.stdout
+    text = path.read_text()
+    assert text.startswith("# CoGiRo: imported from CASPR") and "inertia_convention" in text
+    sc = ds.load_scene(path)
+    for f in ("anchors", "attachments"):
+        np.testing.assert_array_equal(getattr(sc.robot, f), getattr(ref, f))
+    np.testing.assert_array_equal(sc.robot.platform.inertia, ref.platform.inertia)
+    assert sc.robot.cables == ref.cables and sc.pose == ds.Pose([0, 0, 2.0])
+
+
+def test_import_caspr_named_set_to_stdout_and_bad_file():
+    out = run_cli("import-caspr", DATA / "IPAnema_1_bodies.xml", DATA / "IPAnema_1_cables.xml",
+                  "--mass-per-length", 0.02, "--EA", 2e5, "--cable-set", "IROS_CASPR_2016",
+                  "--out", "-")
+    assert out.returncode == 0, out.stderr
+    assert "anchor = [-2.0, 3.0, 5.0]" in out.stdout and "max = 200.0" in out.stdout
+    out = run_cli("import-caspr", DATA / "CoGiRo_cables.xml", DATA / "CoGiRo_cables.xml",
+                  "--mass-per-length", 0.064, "--EA", 1e5, "--out", "-")
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and "root element <cables>" in out.stderr
