@@ -48,3 +48,19 @@ def test_import_caspr_named_set_to_stdout_and_bad_file():
                   "--mass-per-length", 0.064, "--EA", 1e5, "--out", "-")
     assert out.returncode == 2
     assert out.stderr.count("\n") == 1 and "root element <cables>" in out.stderr
+
+
+def test_frf_uff_writes_records_that_pyuff_reads(tmp_path):
+    pyuff = pytest.importorskip("pyuff")
+    path = tmp_path / "frf.uff"
+    out = run_cli("frf", "cogiro", "--from", "fz", "mx", "--to", "z", "--band", 0.5, 4,
+                  "--points", 20, "--kind", "accelerance", "--uff", path)
+    assert out.returncode == 0, out.stderr
+    assert f"wrote {path}" in out.stdout
+    sets = pyuff.UFF(str(path)).read_sets()
+    assert len(sets) == 2 and {s["ref_dir"] for s in sets} == {3, 4}
+    assert all(s["ordinate_spec_data_type"] == 12 for s in sets)
+    sc = ds.load_scene("cogiro")
+    res = ds.frf(ds.build_model(sc.equilibrium(), "dsm"), 2 * np.pi * np.linspace(0.5, 4, 20),
+                 inputs="fz", outputs="z", kind="accelerance")
+    np.testing.assert_allclose(sets[0]["data"], res.H[:, 0, 0], rtol=1e-11)
