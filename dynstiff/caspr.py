@@ -218,9 +218,9 @@ def _read_body(path, inertia_convention, stacklevel):
         what = ("products of inertia (tensor entry = -printed value)"
                 if inertia_convention == "products" else
                 "tensor entries (CASPR's code; products of inertia would change sign)")
-        warnings.warn(f"{path}: Ixy, Ixz, Iyz read as {what}: "
-                      f"inertia_convention="
-                      f"{inertia_convention!r}", InertiaConventionWarning, stacklevel=stacklevel + 1)
+        warnings.warn(f"{path}: Ixy, Ixz, Iyz read as {what}: inertia_convention="
+                      f"{inertia_convention!r}", InertiaConventionWarning,
+                      stacklevel=stacklevel + 1)
     parent = link.find("parent")
     origin = np.zeros(3)
     if parent is not None:

@@ -22,7 +22,8 @@ import numpy as np
 from .constants import DOF_NAMES, LOAD_NAMES
 from .errors import DynstiffError, InvalidParameterError
 
-__all__ = ["MissingDependencyError", "UFF_DATA_TYPES", "frf_to_control", "require", "uff58_records", "write_uff58"]
+__all__ = ["MissingDependencyError", "UFF_DATA_TYPES", "frf_to_control", "require",
+           "uff58_records", "write_uff58"]
 
 #: UFF specific data type of the response (numerator) for each FRF kind.
 UFF_DATA_TYPES = {"receptance": 8, "mobility": 11, "accelerance": 12}
@@ -43,8 +44,8 @@ def require(module):
     try:
         return importlib.import_module(module)
     except ImportError:
-        raise MissingDependencyError(f"{module} is needed for this: pip install \"dynstiff[exchange]\""
-                          ) from None
+        raise MissingDependencyError(
+            f"{module} is needed for this: pip install \"dynstiff[exchange]\"") from None
 
 
 def uff58_records(result, node=1, entity="platform", point_node=None, binary=False):
