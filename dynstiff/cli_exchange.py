@@ -46,6 +46,33 @@ def cmd_import_caspr(args):
     return 0
 
 
+def cmd_calibrate(args):
+    """``dynstiff calibrate SCENE --measured FILE --parameter EA [...]``."""
+    from .calibrate import calibrate
+    from .errors import InvalidParameterError
+    from .measured import read_measured_modes
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    measured = read_measured_modes(args.measured)
+    pose = None
+    if args.pose is not None:
+        if len(args.pose) not in (3, 6):
+            raise InvalidParameterError(f"--pose needs 3 or 6 numbers, got {len(args.pose)}")
+        from .pose import Pose
+        pose = Pose(args.pose[:3], args.pose[3:] if len(args.pose) == 6 else [0, 0, 0])
+    res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
+                    rung=args.model, confidence=args.confidence)
+    info = sys.stderr if args.csv == "-" else sys.stdout
+    info.write(f"{scene.name}: {len(measured)} measured modes, {args.model} model, "
+               f"{res.n_evaluations} evaluations\n")
+    info.write(res.text())
+    if args.csv:
+        _out(args.csv, res.to_frame().to_csv(index=False))
+        if args.csv != "-":
+            info.write(f"wrote {args.csv}\n")
+    return 0
+
+
 def add_commands(sub):
     """Add ``import-caspr`` and ``calibrate`` to the subparsers ``sub``."""
     ic = sub.add_parser("import-caspr", help="write a scene file from CASPR's XML model files "
@@ -66,3 +93,21 @@ def add_commands(sub):
     ic.add_argument("--name", help="scene name (default: the CASPR link's name)")
     ic.add_argument("--out", required=True, help="scene file to write ('-': standard output)")
     ic.set_defaults(func=cmd_import_caspr)
+    ca = sub.add_parser("calibrate", help="fit EA, platform mass ... to measured natural "
+                                          "frequencies; estimates with confidence intervals")
+    ca.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    ca.add_argument("--measured", required=True,
+                    help="CSV of measured modes: 'freq [Hz]', optional 'sigma [Hz]' and "
+                         "shape columns x y z rx ry rz")
+    ca.add_argument("--parameter", action="append", required=True,
+                    help="parameter to fit (repeat for several): EA, EA_<i>, EA_*, mass, "
+                         "inertia, t_min")
+    ca.add_argument("--pose", type=float, nargs="+", metavar="X",
+                    help="pose of the measurement x y z [m] (rx ry rz [rad]); default the "
+                         "scene's")
+    ca.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
+                    help="cable model (default %(default)s)")
+    ca.add_argument("--confidence", type=float, default=0.95,
+                    help="level of the intervals (default %(default)s)")
+    ca.add_argument("--csv", help="write the residual of every mode (CSV; '-' for stdout)")
+    ca.set_defaults(func=cmd_calibrate)
