@@ -88,8 +88,9 @@ class MeasuredModes:
         return self.freq_hz.size
 
     def __repr__(self):
+        shapes = "yes" if self.shapes is not None else "no"
         return (f"MeasuredModes({len(self)} modes {self.freq_hz.min():.4g}-"
-                f"{self.freq_hz.max():.4g} Hz, shapes {'yes' if self.shapes is not None else 'no'})")
+                f"{self.freq_hz.max():.4g} Hz, shapes {shapes})")
 
     def to_frame(self):
         """pandas DataFrame in the format :func:`read_measured_modes` reads."""

@@ -64,3 +64,24 @@ def test_frf_uff_writes_records_that_pyuff_reads(tmp_path):
     res = ds.frf(ds.build_model(sc.equilibrium(), "dsm"), 2 * np.pi * np.linspace(0.5, 4, 20),
                  inputs="fz", outputs="z", kind="accelerance")
     np.testing.assert_allclose(sets[0]["data"], res.H[:, 0, 0], rtol=1e-11)
+
+
+def test_calibrate_fits_EA_to_a_measured_table(tmp_path):
+    """Frequencies of CoGiRo at 60 GPa (first 3 platform modes, the closed-form model,
+    rounded to 4 digits as a measurement would print them): EA = 60 GPa x 8.2051e-6 m^2
+    lies in the interval reported."""
+    table = tmp_path / "measured.csv"
+    table.write_text("freq [Hz]\n4.1965\n4.6405\n5.9685\n")
+    out_csv = tmp_path / "residuals.csv"
+    out = run_cli("calibrate", "cogiro", "--measured", table, "--parameter", "EA",
+                  "--csv", out_csv)
+    assert out.returncode == 0, out.stderr
+    line = next(ln for ln in out.stdout.splitlines() if ln.startswith("EA"))
+    _, initial, est, lo, hi = line.split()
+    assert float(initial) == pytest.approx(139486.7, rel=1e-5)     # printed to 6 digits
+    assert float(lo) < 60e9 * 8.2051e-6 < float(hi)
+    import pandas as pd
+    df = pd.read_csv(out_csv)
+    assert np.all(np.abs(df["residual [-]"]) < 1e-4)
+    out = run_cli("calibrate", "cogiro", "--measured", table, "--parameter", "stiffness")
+    assert out.returncode == 2 and "'stiffness' is not one of" in out.stderr
