@@ -23,7 +23,13 @@ Parameters (names):
 ``"mass"``      platform mass                                         kg
 ``"inertia"``   one factor on the platform inertia tensor about G      --
 ``"t_min"``     least tension of the tension distribution              N
+``"loss_factor"``      hysteretic loss factor of every cable         --
+``"viscous_damping"``  viscous damping of every cable                N s/m^2
 =============  ==================================================  =========
+
+A damping parameter is fitted to the measured damping ratios (``MeasuredModes.damping_ratio``)
+with the residuals zeta_k(p) / zeta_k^meas - 1 appended to the frequency residuals; the
+model's ratios are those of :func:`dynstiff.damped_modes` for the paired modes.
 
 Every evaluation solves the inverse statics at the pose again (EA and mass change the
 equilibrium) and the modes of the chosen rung, paired with the measured ones at every
@@ -37,6 +43,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .damped import damped_modes
 from .eigen import modes
 from .errors import ConvergenceError, InvalidParameterError
 from .ladder import build_model
@@ -45,7 +52,9 @@ from .measured import MeasuredModes, massless_pairing, pair_modes
 __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
 
 #: Parameter names (module notes); "EA_<i>" and "EA_*" name cables.
-PARAMETERS = ("EA", "EA_i", "EA_*", "mass", "inertia", "t_min")
+PARAMETERS = ("EA", "EA_i", "EA_*", "mass", "inertia", "t_min", "loss_factor",
+              "viscous_damping")
+_DAMPING = ("loss_factor", "viscous_damping")
 
 
 def _expand(parameters, n_cables):
@@ -55,7 +64,7 @@ def _expand(parameters, n_cables):
     for p in parameters:
         if p == "EA_*":
             names += [f"EA_{i}" for i in range(n_cables)]
-        elif p in ("EA", "mass", "inertia", "t_min"):
+        elif p in ("EA", "mass", "inertia", "t_min") + _DAMPING:
             names.append(p)
         elif isinstance(p, str) and p.startswith("EA_") and p[3:].isdigit() \
                 and int(p[3:]) < n_cables:
@@ -79,6 +88,8 @@ def _value(robot, name):
         return robot.platform.mass
     if name == "inertia":
         return 1.0
+    if name in _DAMPING:
+        return getattr(robot.cables[0], name)
     return robot.tension_limits[0]
 
 
@@ -96,6 +107,8 @@ def _with(robot, names, factors):
             platform = replace(platform, mass=platform.mass * s)
         elif name == "inertia":
             platform = replace(platform, inertia=platform.inertia * s)
+        elif name in _DAMPING:
+            cables = [replace(c, **{name: getattr(c, name) * s}) for c in cables]
         else:
             limits = (limits[0] * s, limits[1])
     return replace(robot, cables=cables, platform=platform, tension_limits=limits)
@@ -123,8 +136,10 @@ class CalibrationResult:
     robot : Robot
         The calibrated robot.
     n_evaluations : int
-    jacobian : ndarray, shape (n_modes, n_par)
+    jacobian : ndarray, shape (n_residuals, n_par)
         d(residual)/d ln(p) at the estimate.
+    measured_damping, fitted_damping : ndarray, shape (n_modes,) or None
+        Damping ratios [-], when a damping parameter was fitted.
     """
 
     parameters: tuple
@@ -141,6 +156,8 @@ class CalibrationResult:
     robot: object
     n_evaluations: int
     jacobian: np.ndarray
+    measured_damping: object = None
+    fitted_damping: object = None
 
     @property
     def residual(self):
@@ -167,12 +184,16 @@ class CalibrationResult:
     def to_frame(self):
         """One row per measured mode: measured, initial and fitted frequency, residual, MAC."""
         import pandas as pd
-        return pd.DataFrame({"mode": np.arange(1, self.measured_hz.size + 1),
-                             "measured [Hz]": self.measured_hz,
-                             "initial [Hz]": self.initial_hz,
-                             "fitted [Hz]": self.fitted_hz,
-                             "residual [-]": self.residual, "MAC [-]": self.mac,
-                             "cable energy fraction [-]": self.cable_fraction})
+        df = pd.DataFrame({"mode": np.arange(1, self.measured_hz.size + 1),
+                           "measured [Hz]": self.measured_hz,
+                           "initial [Hz]": self.initial_hz,
+                           "fitted [Hz]": self.fitted_hz,
+                           "residual [-]": self.residual, "MAC [-]": self.mac,
+                           "cable energy fraction [-]": self.cable_fraction})
+        if self.fitted_damping is not None:
+            df["measured damping ratio [-]"] = self.measured_damping
+            df["fitted damping ratio [-]"] = self.fitted_damping
+        return df
 
     def plot(self, ax=None):
         """Relative error of every mode before and after the fit; returns the Figure."""
@@ -191,7 +212,7 @@ class CalibrationResult:
 
 def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
               pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
-              fmax_factor=1.3, **model_options):
+              fmax_factor=1.3, start=None, **model_options):
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
     Parameters
@@ -216,6 +237,9 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     xtol, max_nfev : passed to :func:`scipy.optimize.least_squares`
     fmax_factor : float
         The model's modes are computed up to this times the highest measured frequency.
+    start : dict, optional
+        Start values {name: value} replacing the robot's (needed for a damping parameter the
+        robot has at 0).
 
     Returns
     -------
@@ -240,9 +264,23 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     names = _expand(parameters, robot.n_cables)
     if not 0 < confidence < 1:
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
-    m, n = len(measured), len(names)
+    for name, value in (start or {}).items():
+        if name not in names:
+            raise InvalidParameterError(f"start names {name!r}, not a fitted parameter {names}")
+        robot = _with(robot, [name], [value / _value(robot, name)]) if _value(robot, name) \
+            else replace(robot, cables=[replace(c, **{name: value}) for c in robot.cables])
+    zero = [nm for nm in names if not _value(robot, nm) > 0]
+    if zero:
+        raise InvalidParameterError(f"parameters {zero} are 0 in the robot: give start values, "
+                                    f"e.g. start={{{zero[0]!r}: 0.01}}")
+    damp = [nm for nm in names if nm in _DAMPING]
+    if damp and measured.damping_ratio is None:
+        raise InvalidParameterError(f"fitting {damp} needs measured damping ratios")
+    zeta_meas = measured.damping_ratio if damp else None
+    m, n = len(measured) * (2 if damp else 1), len(names)
     if m < n:
-        raise InvalidParameterError(f"{m} measured modes cannot fix {n} parameters {names}")
+        raise InvalidParameterError(f"{m} measured values cannot fix {n} parameters {names}")
+    n_modes = len(measured)
     scale = measured.sigma_hz if measured.sigma_hz is not None else measured.freq_hz
     pairing = pairing or ("mac" if measured.shapes is not None else "massless")
     if pairing not in ("mac", "massless"):
@@ -260,12 +298,16 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         if pairing == "mac":
             idx, mac = pair_modes(md, measured, "mac")
         else:
-            idx, mac = massless_pairing(md, model, m), np.full(m, np.nan)
+            idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
         paired.cable_fraction = np.asarray(md.cable_energy_fraction)[idx]
+        paired.zeta = damped_modes(model, fmax_hz=fmax).damping_ratio[idx] if damp else None
         return md.freq_hz[idx], mac
 
     def residual(u):
-        return (paired(u)[0] - measured.freq_hz) / scale
+        r = (paired(u)[0] - measured.freq_hz) / scale
+        if damp:
+            r = np.concatenate([r, paired.zeta / zeta_meas - 1.0])
+        return r
 
     u0 = np.zeros(n)
     f_init = paired(u0)[0]
@@ -293,9 +335,13 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     p0 = np.array([_value(robot, nm) for nm in names])
     fitted = _with(robot, names, np.exp(sol.x))
     f_fit, mac = paired(sol.x)
+    if not np.all(np.isfinite(res_final := residual(sol.x))):
+        raise ConvergenceError(f"calibration: a paired mode has no damped root at the estimate "
+                               f"(residuals {res_final})")
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
         ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
         confidence=confidence, measured_hz=measured.freq_hz, initial_hz=f_init,
         fitted_hz=f_fit, mac=mac, cable_fraction=paired.cable_fraction, robot=fitted,
-        n_evaluations=count[0], jacobian=J)
+        n_evaluations=count[0], jacobian=J, measured_damping=zeta_meas,
+        fitted_damping=paired.zeta)
