@@ -101,7 +101,8 @@ def add_commands(sub):
                          "shape columns x y z rx ry rz")
     ca.add_argument("--parameter", action="append", required=True,
                     help="parameter to fit (repeat for several): EA, EA_<i>, EA_*, mass, "
-                         "inertia, t_min")
+                         "inertia, t_min, loss_factor, viscous_damping (the last two need a "
+                         "'damping ratio [-]' column and a nonzero value in the scene)")
     ca.add_argument("--pose", type=float, nargs="+", metavar="X",
                     help="pose of the measurement x y z [m] (rx ry rz [rad]); default the "
                          "scene's")
