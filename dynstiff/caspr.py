@@ -224,10 +224,9 @@ def _read_body(path, inertia_convention, stacklevel):
     parent = link.find("parent")
     origin = np.zeros(3)
     if parent is not None:
-        num = parent.find("num")
-        if num is not None and num.text.strip() != "0":
-            raise CasprError(f"{path}: the link's parent is link {num.text.strip()}, not the "
-                             f"base (0)")
+        num = (parent.findtext("num") or "0").strip()
+        if num != "0":
+            raise CasprError(f"{path}: the link's parent is link {num}, not the base (0)")
         if parent.find("location") is not None:
             origin = _numbers(path, parent.find("location"), "<parent><location>", 3)
     try:
