@@ -15,9 +15,10 @@ K(omega) of every rung. The truncated modes enter through their static (residual
 
     R = K(0)^-1 - sum_r phi_r phi_r^T / omega_r^2,
 
-so that H is exact at omega = 0 and off by O(omega^2 / omega_trunc^2) of the truncated modes'
-share below the first truncated mode. Modes whose platform is at rest (a cable alone on its
-pole) have no residue and are left out.
+so that H is exact at omega = 0; what it leaves of a truncated mode t grows as
+omega^2 / (omega_t^2 - omega^2), so the kept band must hold every mode with a large platform
+share (all the platform modes of the massless-cable model, not only the band of interest).
+Modes whose platform is at rest (a cable alone on its pole) have no residue and are left out.
 """
 
 from dataclasses import dataclass
