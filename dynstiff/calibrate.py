@@ -5,8 +5,8 @@ Weighted least squares on the relative frequency residuals (theory.md §15.6)
     r_k(p) = (f_k(p) - f_k^meas) / s_k,      s_k = sigma_k  or  f_k^meas (relative),
 
 over the parameters p = p0 exp(u) (positive; u free), solved by scipy's trust-region
-least squares with forward-difference sensitivities J = dr/du. At the optimum the covariance
-of u is
+least squares with finite-difference sensitivities J = dr/du (step 1e-4 in u, far above
+the 1e-10 tolerance of the statics; forward during the search, central at the estimate). At the optimum the covariance of u is
 
     C = s^2 (J^T J)^-1,   s^2 = |r|^2 / (m - n)   (or 1 when every sigma_k is given),
 
@@ -45,6 +45,7 @@ import numpy as np
 
 from .damped import damped_modes
 from .eigen import modes
+from .frf import frf as frf_of
 from .errors import ConvergenceError, InvalidParameterError
 from .ladder import build_model
 from .measured import MeasuredModes, massless_pairing, pair_modes
@@ -139,7 +140,9 @@ class CalibrationResult:
     jacobian : ndarray, shape (n_residuals, n_par)
         d(residual)/d ln(p) at the estimate.
     measured_damping, fitted_damping : ndarray, shape (n_modes,) or None
-        Damping ratios [-], when a damping parameter was fitted.
+        Damping ratios [-], when a damping parameter was fitted to them.
+    frf_log_error : float or None
+        RMS of ln |H_model / H_measured| at the estimate, when FRFs were fitted.
     """
 
     parameters: tuple
@@ -158,6 +161,7 @@ class CalibrationResult:
     jacobian: np.ndarray
     measured_damping: object = None
     fitted_damping: object = None
+    frf_log_error: object = None
 
     @property
     def residual(self):
@@ -167,8 +171,12 @@ class CalibrationResult:
     def __repr__(self):
         est = ", ".join(f"{p} = {v:.5g} [{lo:.5g}, {hi:.5g}]" for p, v, lo, hi in
                         zip(self.parameters, self.estimate, self.ci_low, self.ci_high))
-        return (f"CalibrationResult({est} ({100 * self.confidence:g} %), rms residual "
-                f"{np.sqrt(np.mean(self.residual**2)):.3g}, {self.n_evaluations} evaluations)")
+        fit = (f"rms frequency residual {np.sqrt(np.mean(self.residual**2)):.3g}"
+               if self.measured_hz.size else "")
+        if self.frf_log_error is not None:
+            fit += (", " if fit else "") + f"rms ln|H| residual {self.frf_log_error:.3g}"
+        return (f"CalibrationResult({est} ({100 * self.confidence:g} %), {fit}, "
+                f"{self.n_evaluations} evaluations)")
 
     def text(self):
         """A short report: estimates with intervals, then the residual per mode."""
@@ -212,14 +220,15 @@ class CalibrationResult:
 
 def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
               pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
-              fmax_factor=1.3, start=None, **model_options):
+              fmax_factor=1.3, start=None, frf=None, frf_point=None, **model_options):
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
     Parameters
     ----------
     scene_or_robot : Scene or Robot
         The start; a Scene gives its pose too.
-    measured : MeasuredModes or array_like of frequencies [Hz]
+    measured : MeasuredModes or array_like of frequencies [Hz], or None
+        None: fit the FRF magnitudes ``frf`` alone.
     parameters : str or sequence of str
         Among :data:`PARAMETERS` (module notes).
     pose : Pose or array_like, optional
@@ -240,6 +249,16 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     start : dict, optional
         Start values {name: value} replacing the robot's (needed for a damping parameter the
         robot has at 0).
+    frf : FRFResult, optional
+        Measured FRFs (:func:`dynstiff.read_measured_frf`): the residuals
+        ln |H_model| - ln |H_measured| of every finite entry are appended (a relative
+        magnitude error, on the scale of the relative frequency residuals). Undamped
+        magnitudes are smooth in the parameters only away from resonances: choose a band
+        that no mode of the start or of the measurement enters (e.g. the stiffness line
+        below the first mode), and driving-point FRFs: a cross FRF has antiresonances,
+        where ln |H| is singular.
+    frf_point : array_like, shape (3,), optional
+        Platform point of the measured translations [m, platform frame] (default P).
 
     Returns
     -------
@@ -248,7 +267,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     Raises
     ------
     InvalidParameterError
-        Unknown parameter, bad confidence, more parameters than measured modes.
+        Unknown parameter, bad confidence, more parameters than measured values.
     ConvergenceError
         The least-squares search failed (its message and cost are named).
     """
@@ -260,7 +279,10 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     if pose is None:
         raise InvalidParameterError("calibrate needs the pose of the measurement: give pose= "
                                     "or a scene with a [pose]")
-    measured = measured if isinstance(measured, MeasuredModes) else MeasuredModes(measured)
+    if measured is None and frf is None:
+        raise InvalidParameterError("give measured frequencies, measured FRFs (frf=) or both")
+    if measured is not None and not isinstance(measured, MeasuredModes):
+        measured = MeasuredModes(measured)
     names = _expand(parameters, robot.n_cables)
     if not 0 < confidence < 1:
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
@@ -274,55 +296,94 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         raise InvalidParameterError(f"parameters {zero} are 0 in the robot: give start values, "
                                     f"e.g. start={{{zero[0]!r}: 0.01}}")
     damp = [nm for nm in names if nm in _DAMPING]
-    if damp and measured.damping_ratio is None:
-        raise InvalidParameterError(f"fitting {damp} needs measured damping ratios")
-    zeta_meas = measured.damping_ratio if damp else None
-    m, n = len(measured) * (2 if damp else 1), len(names)
+    if damp and (measured is None or measured.damping_ratio is None) and frf is None:
+        raise InvalidParameterError(f"fitting {damp} needs measured damping ratios or FRFs")
+    use_zeta = bool(damp) and measured is not None and measured.damping_ratio is not None
+    n_modes = 0 if measured is None else len(measured)
+    H_meas = None
+    if frf is not None:
+        H_meas = np.asarray(frf.H)
+        frf_ok = np.isfinite(H_meas) & (np.abs(H_meas) > 0)
+    m = n_modes * (2 if use_zeta else 1) + (0 if frf is None else int(frf_ok.sum()))
+    n = len(names)
     if m < n:
         raise InvalidParameterError(f"{m} measured values cannot fix {n} parameters {names}")
-    n_modes = len(measured)
-    scale = measured.sigma_hz if measured.sigma_hz is not None else measured.freq_hz
-    pairing = pairing or ("mac" if measured.shapes is not None else "massless")
-    if pairing not in ("mac", "massless"):
-        raise InvalidParameterError(f"pairing must be 'mac' (measured shapes) or 'massless', "
-                                    f"got {pairing!r}")
-    fmax = fmax_factor * measured.freq_hz.max()
+    if measured is not None:
+        scale = measured.sigma_hz if measured.sigma_hz is not None else measured.freq_hz
+        pairing = pairing or ("mac" if measured.shapes is not None else "massless")
+        if pairing not in ("mac", "massless"):
+            raise InvalidParameterError(f"pairing must be 'mac' (measured shapes) or "
+                                        f"'massless', got {pairing!r}")
+        fmax = fmax_factor * measured.freq_hz.max()
     count = [0]
+    empty = np.zeros(0)
 
-    def paired(u):
-        """Paired model frequencies [Hz] (n_modes,) and MAC at ln(factors) u."""
+    def evaluate(u):
+        """Paired frequencies [Hz], MAC, cable shares, damping ratios and the FRF residual
+        at ln(factors) u."""
         model = build_model(_with(robot, names, np.exp(u)).equilibrium(pose), rung,
                             **model_options)
-        md = modes(model, fmax_hz=fmax)
         count[0] += 1
-        if pairing == "mac":
-            idx, mac = pair_modes(md, measured, "mac")
-        else:
-            idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
-        paired.cable_fraction = np.asarray(md.cable_energy_fraction)[idx]
-        paired.zeta = damped_modes(model, fmax_hz=fmax).damping_ratio[idx] if damp else None
-        return md.freq_hz[idx], mac
+        out = {"f": empty, "mac": empty, "share": empty, "zeta": None, "r_frf": empty}
+        if measured is not None:
+            md = modes(model, fmax_hz=fmax)
+            if pairing == "mac":
+                idx, mac = pair_modes(md, measured, "mac")
+            else:
+                idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
+            out.update(f=md.freq_hz[idx], mac=mac,
+                       share=np.asarray(md.cable_energy_fraction)[idx])
+            if use_zeta:
+                out["zeta"] = damped_modes(model, fmax_hz=fmax).damping_ratio[idx]
+        if frf is not None:
+            Hm = frf_of(model, 2 * np.pi * frf.freq_hz, inputs=list(frf.inputs),
+                        outputs=list(frf.outputs), point=frf_point, kind=frf.kind).H
+            out["r_frf"] = np.log(np.abs(Hm[frf_ok]) / np.abs(H_meas[frf_ok]))
+        r = [out["f"] - (measured.freq_hz if measured is not None else 0.0)]
+        if measured is not None:
+            r[0] = r[0] / scale
+        if use_zeta:
+            r.append(out["zeta"] / measured.damping_ratio - 1.0)
+        r.append(out["r_frf"])
+        out["r"] = np.concatenate(r)
+        return out
+
+    last_eval = {}
 
     def residual(u):
-        r = (paired(u)[0] - measured.freq_hz) / scale
-        if damp:
-            r = np.concatenate([r, paired.zeta / zeta_meas - 1.0])
+        r = evaluate(u)["r"]
+        last_eval.update(u=np.array(u, dtype=float), r=r)
         return r
 
+    def jacobian(u, h=1e-4, central=False):
+        """Differences in ln p with a step far above the statics' tolerance (1e-10):
+        forward (reusing the residual just evaluated at u) during the search, central for the
+        sensitivities at the estimate."""
+        if central:
+            return np.column_stack([(residual(u + h * e) - residual(u - h * e)) / (2 * h)
+                                    for e in np.eye(n)])
+        r0 = last_eval["r"] if np.array_equal(last_eval.get("u"), u) else residual(u)
+        u = np.array(u, dtype=float)
+        return np.column_stack([(residual(u + h * e) - r0) / h for e in np.eye(n)])
+
     u0 = np.zeros(n)
-    f_init = paired(u0)[0]
+    first = evaluate(u0)
     lo, hi = np.log(bounds[0]), np.log(bounds[1])
-    sol = least_squares(residual, u0, bounds=(np.full(n, lo), np.full(n, hi)),
-                        diff_step=1e-4, xtol=xtol, max_nfev=max_nfev)
+    sol = least_squares(residual, u0, jac=jacobian, bounds=(np.full(n, lo), np.full(n, hi)),
+                        xtol=xtol, max_nfev=max_nfev)
     if sol.status <= 0:
         raise ConvergenceError(f"calibration did not converge: {sol.message} (cost "
                                f"{sol.cost:.3g} after {sol.nfev} evaluations)")
-    # sensitivities at the estimate by central differences (step 1e-4 in ln p)
-    h = 1e-4
-    J = np.column_stack([(residual(sol.x + h * e) - residual(sol.x - h * e)) / (2 * h)
-                         for e in np.eye(n)])
+    last = evaluate(sol.x)
+    if not np.all(np.isfinite(last["r"])):
+        raise ConvergenceError(f"calibration: a residual is not finite at the estimate (a "
+                               f"paired mode without a damped root, or an FRF pole): "
+                               f"{last['r']}")
+    J = jacobian(sol.x, central=True)   # sensitivities at the estimate
     dof = m - n
-    if measured.sigma_hz is not None:
+    sigmas = measured is not None and measured.sigma_hz is not None and not use_zeta \
+        and frf is None
+    if sigmas:
         s2, q = 1.0, norm.ppf(0.5 + confidence / 2)
     elif dof > 0:
         s2, q = 2 * sol.cost / dof, student_t.ppf(0.5 + confidence / 2, dof)
@@ -333,15 +394,14 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     except np.linalg.LinAlgError:
         se = np.full(n, np.nan)
     p0 = np.array([_value(robot, nm) for nm in names])
-    fitted = _with(robot, names, np.exp(sol.x))
-    f_fit, mac = paired(sol.x)
-    if not np.all(np.isfinite(res_final := residual(sol.x))):
-        raise ConvergenceError(f"calibration: a paired mode has no damped root at the estimate "
-                               f"(residuals {res_final})")
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
         ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
-        confidence=confidence, measured_hz=measured.freq_hz, initial_hz=f_init,
-        fitted_hz=f_fit, mac=mac, cable_fraction=paired.cable_fraction, robot=fitted,
-        n_evaluations=count[0], jacobian=J, measured_damping=zeta_meas,
-        fitted_damping=paired.zeta)
+        confidence=confidence,
+        measured_hz=empty if measured is None else measured.freq_hz,
+        initial_hz=first["f"], fitted_hz=last["f"], mac=last["mac"],
+        cable_fraction=last["share"], robot=_with(robot, names, np.exp(sol.x)),
+        n_evaluations=count[0], jacobian=J,
+        measured_damping=measured.damping_ratio if use_zeta else None,
+        fitted_damping=last["zeta"],
+        frf_log_error=None if frf is None else float(np.sqrt(np.mean(last["r_frf"]**2))))

@@ -33,7 +33,7 @@ def platform_frequencies(robot, pose, rung, n, **kw):
 
 
 def test_recovers_EA_from_noisy_synthetic_frequencies(scene):
-    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "dsm", 6)
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "dsm", 4)
     noisy = f * (1 + 0.003 * np.random.default_rng(1).standard_normal(f.size))
     res = calibrate(scene, noisy, parameters="EA")          # starts at 17 GPa
     E, lo, hi = res.estimate[0] / AREA, res.ci_low[0] / AREA, res.ci_high[0] / AREA
@@ -43,21 +43,30 @@ def test_recovers_EA_from_noisy_synthetic_frequencies(scene):
     assert np.all(np.abs(res.initial_hz / noisy - 1) > 0.3)  # 17 GPa was far off
     assert res.robot.cables[3].EA == pytest.approx(res.estimate[0])
     df = res.to_frame()
-    assert list(df["mode"]) == [1, 2, 3, 4, 5, 6] and "cable energy fraction [-]" in df
+    assert list(df["mode"]) == [1, 2, 3, 4] and "cable energy fraction [-]" in df
 
 
-def test_recovers_EA_from_the_lumped_model_at_its_convergence_rate(scene):
-    """The lumped model (N segments per cable) is an independent discretisation: the EA the
-    closed-form model fits to its first 3 platform frequencies approaches the true one as
-    1/N^2 (error 3.8e-4 at N = 20, 1.2e-4 at N = 40), and at N = 40 the interval holds it."""
+def test_recovers_EA_from_the_independent_lumped_model(scene):
+    """The lumped model (40 segments per cable) is an independent discretisation: the EA the
+    closed-form model fits to its first 3 platform frequencies is within 3e-4 of the true
+    one, inside the reported interval."""
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "lumped", 3,
+                             segments=40)
+    res = calibrate(scene, f, parameters="EA")
+    assert abs(res.estimate[0] / AREA / E_TRUE - 1) < 3e-4
+    assert res.ci_low[0] / AREA < E_TRUE < res.ci_high[0] / AREA
+
+
+@pytest.mark.slow
+def test_lumped_calibration_bias_falls_at_the_convergence_rate(scene):
+    """The fitted EA's error is the lumped model's discretisation error: 3.8e-4 at N = 20,
+    1.2e-4 at N = 40, the 1/N^2 rate of theory.md §7 (ratio 3.2 of the ideal 4)."""
     truth = with_E(scene.robot, E_TRUE)
     err = []
     for N in (20, 40):
         f = platform_frequencies(truth, scene.pose, "lumped", 3, segments=N)
-        res = calibrate(scene, f, parameters="EA")
-        err.append(res.estimate[0] / AREA / E_TRUE - 1)
+        err.append(calibrate(scene, f, parameters="EA").estimate[0] / AREA / E_TRUE - 1)
     assert abs(err[0]) < 1e-3 and abs(err[1]) < 0.4 * abs(err[0])
-    assert res.ci_low[0] / AREA < E_TRUE < res.ci_high[0] / AREA
 
 
 def test_mass_and_measured_shapes(scene):
@@ -107,3 +116,22 @@ def test_loss_factor_from_measured_damping_ratios(scene):
         calibrate(scene, meas, parameters="loss_factor")
     with pytest.raises(ds.InvalidParameterError, match="needs measured damping ratios"):
         calibrate(scene, meas.freq_hz, parameters="loss_factor", start={"loss_factor": 0.01})
+
+
+def test_EA_from_measured_frf_magnitudes(scene):
+    """FRF magnitudes alone (the driving point fz -> z from 0.1 to 1.5 Hz, below the first
+    mode of both the 17 GPa start (2.2 Hz) and the 60 GPa truth, 2 % noise on each
+    magnitude): the log-magnitude residuals fix EA within its interval."""
+    truth = with_E(scene.robot, E_TRUE)
+    model = ds.build_model(truth.equilibrium(scene.pose), "dsm")
+    f = np.linspace(0.1, 1.5, 30)
+    res = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs="z")
+    noise = 1 + 0.02 * np.random.default_rng(3).standard_normal(res.H.shape)
+    meas = ds.FRFResult(res.freq_hz, res.H * noise, res.inputs, res.outputs, res.kind)
+    fit = calibrate(scene, None, parameters="EA", frf=meas)
+    lo, hi = fit.ci_low[0] / AREA, fit.ci_high[0] / AREA
+    assert lo < E_TRUE < hi and hi / lo - 1 < 0.05
+    assert 0.01 < fit.frf_log_error < 0.03                       # the 2 % noise
+    assert fit.measured_hz.size == 0 and "ln|H|" in repr(fit)
+    with pytest.raises(ds.InvalidParameterError, match="give measured frequencies"):
+        calibrate(scene, None)
