@@ -6,9 +6,11 @@ Weighted least squares on the relative frequency residuals (theory.md §15.6)
 
 over the parameters p = p0 exp(u) (positive; u free), solved by scipy's trust-region
 least squares with finite-difference sensitivities J = dr/du (step 1e-4 in u, far above
-the 1e-10 tolerance of the statics; forward during the search, central at the estimate). At the optimum the covariance of u is
+the 1e-10 tolerance of the statics; forward during the search, central at the estimate).
+At the optimum the covariance of u is
 
-    C = s^2 (J^T J)^-1,   s^2 = |r|^2 / (m - n)   (or 1 when every sigma_k is given),
+    C = s^2 (J^T J)^-1,   s^2 = |r|^2 / (m - n)   (or 1 when every sigma_k is given and
+                                                   nothing else is fitted),
 
 and the confidence interval of p_j is p0_j exp(u_j -+ t_{m-n} sqrt(C_jj)) (Student's t at
 the chosen level; a normal quantile when the sigmas are given). With as many measured modes as
