@@ -29,11 +29,20 @@ from .errors import (
     SlackCableError,
     UnsupportedAnalysisError,
 )
+from .calibrate import CalibrationResult, calibrate
 from .damped import DampedModes, damped_modes
 from .eigen import ModalResult, cable_fields, eigenfrequencies, mode_count, modes
 from .frf import FRFResult, frf
 from .ladder import RUNGS, StaticCableModel, build_model
 from .lumped import LumpedLinearModel, LumpedMassModel
+from .measured import (
+    MeasuredModes,
+    compare_frf,
+    compare_modes,
+    read_measured_frf,
+    read_measured_modes,
+)
+from .reduced import ModalModel, modal_model, to_statespace
 from .results import LumpedModalResult
 from .recommend import Recommendation, recommend_model
 from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
@@ -45,6 +54,16 @@ from .scenes import Scene, SceneError, list_scenes, load_scene
 __version__ = "0.1.0"
 
 __all__ = [
+    "calibrate",
+    "CalibrationResult",
+    "MeasuredModes",
+    "compare_frf",
+    "compare_modes",
+    "read_measured_frf",
+    "read_measured_modes",
+    "ModalModel",
+    "modal_model",
+    "to_statespace",
     "frf",
     "eigenfrequencies",
     "modes",

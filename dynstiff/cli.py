@@ -324,6 +324,8 @@ def _cmd_frf(args):
     df = res.to_frame()
     if args.csv:
         _write_table(df, args.csv, "csv")
+    if args.uff:
+        res.to_uff(args.uff)
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -336,7 +338,7 @@ def _cmd_frf(args):
     k = int(np.argmax(h))
     _info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
                      f"{lo:g}-{hi:g} Hz, largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n")
-    for name in (args.csv, args.plot):
+    for name in (args.csv, args.plot, args.uff):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
     return 0
@@ -422,6 +424,7 @@ def build_parser():
     fr.add_argument("--points", type=int, default=4000, help="number of frequencies")
     fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
     fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
+    fr.add_argument("--uff", help="write the FRFs as UFF 58 records (needs dynstiff[exchange])")
     fr.set_defaults(func=_cmd_frf)
     ck = sub.add_parser("check", help="design checks with a pass/fail report; exit code 1 if "
                                       "any check fails")
@@ -485,6 +488,8 @@ def build_parser():
     si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
     si.add_argument("--quiet", action="store_true", help="no progress bar")
     si.set_defaults(func=_cmd_simulate)
+    from .cli_exchange import add_commands
+    add_commands(sub)
     return parser
 
 
@@ -533,9 +538,9 @@ def _check_outputs(args):
     from pathlib import Path
 
     from .errors import InvalidParameterError
-    for opt in ("csv", "json", "plot"):
+    for opt in ("csv", "json", "plot", "uff"):
         value = getattr(args, opt, None)
-        if value is None or (value == "-" and opt != "plot"):
+        if value is None or (value == "-" and opt not in ("plot", "uff")):
             continue
         p = Path(value)
         if p.is_dir():

@@ -91,6 +91,20 @@ class FRFResult:
         from .plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
+    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
+        """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
+        binary with exact doubles): :func:`dynstiff.exchange.write_uff58` (theory.md §15.3).
+        Returns the path."""
+        from .exchange import write_uff58
+        return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
+                           binary=binary)
+
+    def to_control(self):
+        """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
+        [rad/s]): :func:`dynstiff.exchange.frf_to_control`."""
+        from .exchange import frf_to_control
+        return frf_to_control(self)
+
     def to_frame(self):
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
         real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""

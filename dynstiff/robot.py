@@ -18,6 +18,7 @@ import numpy as np
 from . import _validate
 from ._validate import positive_scalar
 from ._vec import cross
+from .caspr import read_caspr
 from .catenary import solve_catenary
 from .constants import MAX_COORDINATE, STANDARD_GRAVITY
 from .equilibrium import Equilibrium
@@ -103,6 +104,44 @@ class Robot:
         object.__setattr__(self, "cables", cables)
         object.__setattr__(self, "g", g)
         object.__setattr__(self, "tension_limits", (t_min, t_max))
+
+    @classmethod
+    def from_caspr(cls, bodies_xml, cables_xml, cable, cable_set=None,
+                   inertia_convention="products", g=STANDARD_GRAVITY, min_tension=1.0):
+        """Robot of a single-body CASPR model (:mod:`dynstiff.caspr`, theory.md §15.1).
+
+        Parameters
+        ----------
+        bodies_xml, cables_xml : str or Path
+            CASPR's ``*_bodies.xml`` and ``*_cables.xml``.
+        cable : Cable or sequence of Cable
+            Cable properties (CASPR holds no cable mass or axial stiffness).
+        cable_set : str, optional
+            ``<cable_set>`` id (default: the file's ``default_cable_set``).
+        inertia_convention : {"products", "tensor"}
+            Meaning of the printed Ixy, Ixz, Iyz: products of inertia (default; tensor entry
+            = -value, theory.md §15.2) or tensor entries.
+        g : float
+            Gravity [m/s^2].
+        min_tension : float
+            Least t_min [N]: CASPR's force_min is often 0, a slack (and singular) sagging
+            cable; t_min = max(force_min, min_tension).
+
+        Returns
+        -------
+        Robot
+            Its ``tension_limits`` are the tightest pair holding for every cable. The pose
+            ``q_initial`` is ``dynstiff.caspr.read_caspr(...).position`` / ``.rotation``
+            (or :func:`dynstiff.scenes.import_caspr`, which returns a Scene with it).
+        """
+        m = read_caspr(bodies_xml, cables_xml, cable_set, inertia_convention, stacklevel=3)
+        platform = Platform(mass=m.mass, center_of_mass=m.center_of_mass, inertia=m.inertia,
+                            free_dofs=m.free_dofs)
+        return cls(anchors=m.anchors, attachments=m.attachments, cables=cable,
+                   platform=platform, g=g,
+                   tension_limits=(max(m.tension_limits[0], positive_scalar(
+                       "min_tension", min_tension)), m.tension_limits[1]),
+                   name=m.name)
 
     @property
     def n_cables(self):

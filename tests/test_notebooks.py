@@ -18,6 +18,10 @@ def test_notebook_executes(path):
         f"{path.name} is stored with outputs"
     nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}}).execute()
+    if "plt.show()" in "".join(c.source for c in nb.cells):
+        # figures shown inline reach the reader as images, not only as files
+        assert any("image/png" in o.get("data", {}) for c in nb.cells
+                   if c.cell_type == "code" for o in c.outputs), f"{path.name} shows no figure"
 
 
 def test_there_are_notebooks():

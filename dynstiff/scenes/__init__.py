@@ -25,5 +25,7 @@ unstretched lengths, not both.
 """
 
 from .loader import Scene, SceneError, list_scenes, load_scene, read_scene
+from .writer import import_caspr, scene_text, write_scene
 
-__all__ = ["Scene", "SceneError", "list_scenes", "load_scene", "read_scene"]
+__all__ = ["Scene", "SceneError", "list_scenes", "load_scene", "read_scene", "import_caspr",
+           "scene_text", "write_scene"]

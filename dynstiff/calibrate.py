@@ -1,0 +1,409 @@
+"""Calibration: the robot's uncertain parameters fitted to measured natural frequencies.
+
+Weighted least squares on the relative frequency residuals (theory.md §15.6)
+
+    r_k(p) = (f_k(p) - f_k^meas) / s_k,      s_k = sigma_k  or  f_k^meas (relative),
+
+over the parameters p = p0 exp(u) (positive; u free), solved by scipy's trust-region
+least squares with finite-difference sensitivities J = dr/du (step 1e-4 in u, far above
+the 1e-10 tolerance of the statics; forward during the search, central at the estimate).
+At the optimum the covariance of u is
+
+    C = s^2 (J^T J)^-1,   s^2 = |r|^2 / (m - n)   (or 1 when every sigma_k is given and
+                                                   nothing else is fitted),
+
+and the confidence interval of p_j is p0_j exp(u_j -+ t_{m-n} sqrt(C_jj)) (Student's t at
+the chosen level; a normal quantile when the sigmas are given). With as many measured modes as
+parameters the spread of the residuals is unknown: the interval is NaN unless sigmas are given.
+
+Parameters (names):
+
+=============  ==================================================  =========
+``"EA"``        one factor on every cable's EA; reported as EA of     N
+                cable 0
+``"EA_i"``      EA of cable i alone (``"EA_*"``: one per cable)        N
+``"mass"``      platform mass                                         kg
+``"inertia"``   one factor on the platform inertia tensor about G      --
+``"t_min"``     least tension of the tension distribution              N
+``"loss_factor"``      hysteretic loss factor of every cable         --
+``"viscous_damping"``  viscous damping of every cable                N s/m^2
+=============  ==================================================  =========
+
+A damping parameter is fitted to the measured damping ratios (``MeasuredModes.damping_ratio``)
+with the residuals zeta_k(p) / zeta_k^meas - 1 appended to the frequency residuals; the
+model's ratios are those of :func:`dynstiff.damped_modes` for the paired modes.
+
+Every evaluation solves the inverse statics at the pose again (EA and mass change the
+equilibrium) and the modes of the chosen rung, paired with the measured ones at every
+evaluation: by MAC with the measured shapes when there are some, otherwise the k-th measured
+frequency with the continuation of the k-th platform mode of the massless-cable model
+(:func:`dynstiff.measured.massless_pairing`), which keeps its order while E moves the whole
+spectrum. The sensitivities at the estimate are central differences (step 1e-4 in ln p).
+"""
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .damped import damped_modes
+from .eigen import modes
+from .frf import frf as frf_of
+from .errors import ConvergenceError, InvalidParameterError
+from .ladder import build_model
+from .measured import MeasuredModes, massless_pairing, pair_modes
+
+__all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
+
+#: Parameter names (module notes); "EA_<i>" and "EA_*" name cables.
+PARAMETERS = ("EA", "EA_i", "EA_*", "mass", "inertia", "t_min", "loss_factor",
+              "viscous_damping")
+_DAMPING = ("loss_factor", "viscous_damping")
+
+
+def _expand(parameters, n_cables):
+    if isinstance(parameters, str):
+        parameters = (parameters,)
+    names = []
+    for p in parameters:
+        if p == "EA_*":
+            names += [f"EA_{i}" for i in range(n_cables)]
+        elif p in ("EA", "mass", "inertia", "t_min") + _DAMPING:
+            names.append(p)
+        elif isinstance(p, str) and p.startswith("EA_") and p[3:].isdigit() \
+                and int(p[3:]) < n_cables:
+            names.append(p)
+        else:
+            raise InvalidParameterError(
+                f"parameters: {p!r} is not one of {PARAMETERS} (EA_i with i < {n_cables})")
+    if len(set(names)) != len(names) or ("EA" in names and any(n.startswith("EA_")
+                                                               for n in names)):
+        raise InvalidParameterError(f"parameters name a quantity twice: {names}")
+    return tuple(names)
+
+
+def _value(robot, name):
+    """Current value of a parameter of ``robot`` (units: module notes)."""
+    if name == "EA":
+        return robot.cables[0].EA
+    if name.startswith("EA_"):
+        return robot.cables[int(name[3:])].EA
+    if name == "mass":
+        return robot.platform.mass
+    if name == "inertia":
+        return 1.0
+    if name in _DAMPING:
+        return getattr(robot.cables[0], name)
+    return robot.tension_limits[0]
+
+
+def _with(robot, names, factors):
+    """``robot`` with each parameter multiplied by its factor."""
+    cables = list(robot.cables)
+    platform, limits = robot.platform, robot.tension_limits
+    for name, s in zip(names, factors):
+        if name == "EA":
+            cables = [replace(c, EA=c.EA * s) for c in cables]
+        elif name.startswith("EA_"):
+            i = int(name[3:])
+            cables[i] = replace(cables[i], EA=cables[i].EA * s)
+        elif name == "mass":
+            platform = replace(platform, mass=platform.mass * s)
+        elif name == "inertia":
+            platform = replace(platform, inertia=platform.inertia * s)
+        elif name in _DAMPING:
+            cables = [replace(c, **{name: getattr(c, name) * s}) for c in cables]
+        else:
+            limits = (limits[0] * s, limits[1])
+    return replace(robot, cables=cables, platform=platform, tension_limits=limits)
+
+
+@dataclass(frozen=True)
+class CalibrationResult:
+    """Fitted parameters, their confidence intervals and the residual of every mode.
+
+    Attributes
+    ----------
+    parameters : tuple of str
+    initial, estimate : ndarray, shape (n_par,)
+        Values in the units of the module notes.
+    ci_low, ci_high : ndarray, shape (n_par,)
+        Confidence interval at ``confidence`` (NaN when the residuals cannot tell).
+    confidence : float
+    measured_hz, initial_hz, fitted_hz : ndarray, shape (n_modes,)
+        Measured frequencies and the paired model frequencies at the start and the estimate.
+    mac : ndarray, shape (n_modes,)
+        MAC of each pair at the estimate (NaN without shapes to compare).
+    cable_fraction : ndarray, shape (n_modes,)
+        Cable share of the kinetic energy of each paired model mode at the estimate [-]: a
+        mode near a cable frequency (large share) pairs ambiguously and weighs little.
+    robot : Robot
+        The calibrated robot.
+    n_evaluations : int
+    jacobian : ndarray, shape (n_residuals, n_par)
+        d(residual)/d ln(p) at the estimate.
+    measured_damping, fitted_damping : ndarray, shape (n_modes,) or None
+        Damping ratios [-], when a damping parameter was fitted to them.
+    frf_log_error : float or None
+        RMS of ln |H_model / H_measured| at the estimate, when FRFs were fitted.
+    """
+
+    parameters: tuple
+    initial: np.ndarray
+    estimate: np.ndarray
+    ci_low: np.ndarray
+    ci_high: np.ndarray
+    confidence: float
+    measured_hz: np.ndarray
+    initial_hz: np.ndarray
+    fitted_hz: np.ndarray
+    mac: np.ndarray
+    cable_fraction: np.ndarray
+    robot: object
+    n_evaluations: int
+    jacobian: np.ndarray
+    measured_damping: object = None
+    fitted_damping: object = None
+    frf_log_error: object = None
+
+    @property
+    def residual(self):
+        """Relative residual f_fitted / f_measured - 1 of every mode [-]."""
+        return self.fitted_hz / self.measured_hz - 1.0
+
+    def __repr__(self):
+        est = ", ".join(f"{p} = {v:.5g} [{lo:.5g}, {hi:.5g}]" for p, v, lo, hi in
+                        zip(self.parameters, self.estimate, self.ci_low, self.ci_high))
+        fit = (f"rms frequency residual {np.sqrt(np.mean(self.residual**2)):.3g}"
+               if self.measured_hz.size else "")
+        if self.frf_log_error is not None:
+            fit += (", " if fit else "") + f"rms ln|H| residual {self.frf_log_error:.3g}"
+        return (f"CalibrationResult({est} ({100 * self.confidence:g} %), {fit}, "
+                f"{self.n_evaluations} evaluations)")
+
+    def text(self):
+        """A short report: estimates with intervals, then the residual per mode."""
+        lines = [f"{'parameter':<10} {'initial':>12} {'estimate':>12} "
+                 f"{'ci low':>12} {'ci high':>12}"]
+        for p, a, v, lo, hi in zip(self.parameters, self.initial, self.estimate, self.ci_low,
+                                   self.ci_high):
+            lines.append(f"{p:<10} {a:12.6g} {v:12.6g} {lo:12.6g} {hi:12.6g}")
+        lines.append(f"({100 * self.confidence:g} % confidence)")
+        lines.append(self.to_frame().to_string(index=False))
+        return "\n".join(lines) + "\n"
+
+    def to_frame(self):
+        """One row per measured mode: measured, initial and fitted frequency, residual, MAC."""
+        import pandas as pd
+        df = pd.DataFrame({"mode": np.arange(1, self.measured_hz.size + 1),
+                           "measured [Hz]": self.measured_hz,
+                           "initial [Hz]": self.initial_hz,
+                           "fitted [Hz]": self.fitted_hz,
+                           "residual [-]": self.residual, "MAC [-]": self.mac,
+                           "cable energy fraction [-]": self.cable_fraction})
+        if self.fitted_damping is not None:
+            df["measured damping ratio [-]"] = self.measured_damping
+            df["fitted damping ratio [-]"] = self.fitted_damping
+        return df
+
+    def plot(self, ax=None):
+        """Relative error of every mode before and after the fit; returns the Figure."""
+        import matplotlib.pyplot as plt
+        if ax is None:
+            fig, ax = plt.subplots(figsize=(6, 3.5))
+        fig = ax.figure
+        k = np.arange(1, self.measured_hz.size + 1)
+        ax.bar(k - 0.2, 100 * (self.initial_hz / self.measured_hz - 1), 0.4, label="initial")
+        ax.bar(k + 0.2, 100 * self.residual, 0.4, label="fitted")
+        ax.axhline(0, color="0.4", lw=0.8)
+        ax.set(xlabel="measured mode", ylabel="model / measured - 1 [%]", xticks=k)
+        ax.legend()
+        return fig
+
+
+def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
+              pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
+              fmax_factor=1.3, start=None, frf=None, frf_point=None, **model_options):
+    """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
+
+    Parameters
+    ----------
+    scene_or_robot : Scene or Robot
+        The start; a Scene gives its pose too.
+    measured : MeasuredModes or array_like of frequencies [Hz], or None
+        None: fit the FRF magnitudes ``frf`` alone.
+    parameters : str or sequence of str
+        Among :data:`PARAMETERS` (module notes).
+    pose : Pose or array_like, optional
+        Platform pose of the measurement (default: the scene's).
+    rung : str
+        Model of the cables (:func:`dynstiff.build_model`); ``model_options`` go there.
+    pairing : {"mac", "massless"}, optional
+        "mac" (default with measured shapes): :func:`dynstiff.measured.pair_modes`;
+        "massless" (default without): the k-th measured mode is the continuation of the k-th
+        massless-cable platform mode (:func:`dynstiff.measured.massless_pairing`).
+    confidence : float
+        Level of the intervals, in (0, 1).
+    bounds : (float, float)
+        Range of each factor p / p0 searched.
+    xtol, max_nfev : passed to :func:`scipy.optimize.least_squares`
+    fmax_factor : float
+        The model's modes are computed up to this times the highest measured frequency.
+    start : dict, optional
+        Start values {name: value} replacing the robot's (needed for a damping parameter the
+        robot has at 0).
+    frf : FRFResult, optional
+        Measured FRFs (:func:`dynstiff.read_measured_frf`): the residuals
+        ln |H_model| - ln |H_measured| of every finite entry are appended (a relative
+        magnitude error, on the scale of the relative frequency residuals). Undamped
+        magnitudes are smooth in the parameters only away from resonances: choose a band
+        that no mode of the start or of the measurement enters (e.g. the stiffness line
+        below the first mode), and driving-point FRFs: a cross FRF has antiresonances,
+        where ln |H| is singular.
+    frf_point : array_like, shape (3,), optional
+        Platform point of the measured translations [m, platform frame] (default P).
+
+    Returns
+    -------
+    CalibrationResult
+
+    Raises
+    ------
+    InvalidParameterError
+        Unknown parameter, bad confidence, more parameters than measured values.
+    ConvergenceError
+        The least-squares search failed (its message and cost are named).
+    """
+    from scipy.optimize import least_squares
+    from scipy.stats import norm, t as student_t
+    robot = getattr(scene_or_robot, "robot", scene_or_robot)
+    if pose is None:
+        pose = getattr(scene_or_robot, "pose", None)
+    if pose is None:
+        raise InvalidParameterError("calibrate needs the pose of the measurement: give pose= "
+                                    "or a scene with a [pose]")
+    if measured is None and frf is None:
+        raise InvalidParameterError("give measured frequencies, measured FRFs (frf=) or both")
+    if measured is not None and not isinstance(measured, MeasuredModes):
+        measured = MeasuredModes(measured)
+    names = _expand(parameters, robot.n_cables)
+    if not 0 < confidence < 1:
+        raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
+    for name, value in (start or {}).items():
+        if name not in names:
+            raise InvalidParameterError(f"start names {name!r}, not a fitted parameter {names}")
+        robot = _with(robot, [name], [value / _value(robot, name)]) if _value(robot, name) \
+            else replace(robot, cables=[replace(c, **{name: value}) for c in robot.cables])
+    zero = [nm for nm in names if not _value(robot, nm) > 0]
+    if zero:
+        raise InvalidParameterError(f"parameters {zero} are 0 in the robot: give start values, "
+                                    f"e.g. start={{{zero[0]!r}: 0.01}}")
+    damp = [nm for nm in names if nm in _DAMPING]
+    if damp and (measured is None or measured.damping_ratio is None) and frf is None:
+        raise InvalidParameterError(f"fitting {damp} needs measured damping ratios or FRFs")
+    use_zeta = bool(damp) and measured is not None and measured.damping_ratio is not None
+    n_modes = 0 if measured is None else len(measured)
+    H_meas = None
+    if frf is not None:
+        H_meas = np.asarray(frf.H)
+        frf_ok = np.isfinite(H_meas) & (np.abs(H_meas) > 0)
+    m = n_modes * (2 if use_zeta else 1) + (0 if frf is None else int(frf_ok.sum()))
+    n = len(names)
+    if m < n:
+        raise InvalidParameterError(f"{m} measured values cannot fix {n} parameters {names}")
+    if measured is not None:
+        scale = measured.sigma_hz if measured.sigma_hz is not None else measured.freq_hz
+        pairing = pairing or ("mac" if measured.shapes is not None else "massless")
+        if pairing not in ("mac", "massless"):
+            raise InvalidParameterError(f"pairing must be 'mac' (measured shapes) or "
+                                        f"'massless', got {pairing!r}")
+        fmax = fmax_factor * measured.freq_hz.max()
+    count = [0]
+    empty = np.zeros(0)
+
+    def evaluate(u):
+        """Paired frequencies [Hz], MAC, cable shares, damping ratios and the FRF residual
+        at ln(factors) u."""
+        model = build_model(_with(robot, names, np.exp(u)).equilibrium(pose), rung,
+                            **model_options)
+        count[0] += 1
+        out = {"f": empty, "mac": empty, "share": empty, "zeta": None, "r_frf": empty}
+        if measured is not None:
+            md = modes(model, fmax_hz=fmax)
+            if pairing == "mac":
+                idx, mac = pair_modes(md, measured, "mac")
+            else:
+                idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
+            out.update(f=md.freq_hz[idx], mac=mac,
+                       share=np.asarray(md.cable_energy_fraction)[idx])
+            if use_zeta:
+                out["zeta"] = damped_modes(model, fmax_hz=fmax).damping_ratio[idx]
+        if frf is not None:
+            Hm = frf_of(model, 2 * np.pi * frf.freq_hz, inputs=list(frf.inputs),
+                        outputs=list(frf.outputs), point=frf_point, kind=frf.kind).H
+            out["r_frf"] = np.log(np.abs(Hm[frf_ok]) / np.abs(H_meas[frf_ok]))
+        r = [out["f"] - (measured.freq_hz if measured is not None else 0.0)]
+        if measured is not None:
+            r[0] = r[0] / scale
+        if use_zeta:
+            r.append(out["zeta"] / measured.damping_ratio - 1.0)
+        r.append(out["r_frf"])
+        out["r"] = np.concatenate(r)
+        return out
+
+    last_eval = {}
+
+    def residual(u):
+        r = evaluate(u)["r"]
+        last_eval.update(u=np.array(u, dtype=float), r=r)
+        return r
+
+    def jacobian(u, h=1e-4, central=False):
+        """Differences in ln p with a step far above the statics' tolerance (1e-10):
+        forward (reusing the residual just evaluated at u) during the search, central for the
+        sensitivities at the estimate."""
+        if central:
+            return np.column_stack([(residual(u + h * e) - residual(u - h * e)) / (2 * h)
+                                    for e in np.eye(n)])
+        r0 = last_eval["r"] if np.array_equal(last_eval.get("u"), u) else residual(u)
+        u = np.array(u, dtype=float)
+        return np.column_stack([(residual(u + h * e) - r0) / h for e in np.eye(n)])
+
+    u0 = np.zeros(n)
+    first = evaluate(u0)
+    lo, hi = np.log(bounds[0]), np.log(bounds[1])
+    sol = least_squares(residual, u0, jac=jacobian, bounds=(np.full(n, lo), np.full(n, hi)),
+                        xtol=xtol, max_nfev=max_nfev)
+    if sol.status <= 0:
+        raise ConvergenceError(f"calibration did not converge: {sol.message} (cost "
+                               f"{sol.cost:.3g} after {sol.nfev} evaluations)")
+    last = evaluate(sol.x)
+    if not np.all(np.isfinite(last["r"])):
+        raise ConvergenceError(f"calibration: a residual is not finite at the estimate (a "
+                               f"paired mode without a damped root, or an FRF pole): "
+                               f"{last['r']}")
+    J = jacobian(sol.x, central=True)   # sensitivities at the estimate
+    dof = m - n
+    sigmas = measured is not None and measured.sigma_hz is not None and not use_zeta \
+        and frf is None
+    if sigmas:
+        s2, q = 1.0, norm.ppf(0.5 + confidence / 2)
+    elif dof > 0:
+        s2, q = 2 * sol.cost / dof, student_t.ppf(0.5 + confidence / 2, dof)
+    else:
+        s2, q = np.nan, np.nan
+    try:
+        se = np.sqrt(np.diag(s2 * np.linalg.inv(J.T @ J)))
+    except np.linalg.LinAlgError:
+        se = np.full(n, np.nan)
+    p0 = np.array([_value(robot, nm) for nm in names])
+    return CalibrationResult(
+        parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
+        ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
+        confidence=confidence,
+        measured_hz=empty if measured is None else measured.freq_hz,
+        initial_hz=first["f"], fitted_hz=last["f"], mac=last["mac"],
+        cable_fraction=last["share"], robot=_with(robot, names, np.exp(sol.x)),
+        n_evaluations=count[0], jacobian=J,
+        measured_damping=measured.damping_ratio if use_zeta else None,
+        fitted_damping=last["zeta"],
+        frf_log_error=None if frf is None else float(np.sqrt(np.mean(last["r_frf"]**2))))

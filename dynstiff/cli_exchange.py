@@ -1,0 +1,114 @@
+"""Subcommands that talk to other tools: ``import-caspr`` and ``calibrate``.
+
+Added to the ``dynstiff`` parser by :func:`add_commands`; errors are DynstiffError and are
+reported on one line by :func:`dynstiff.cli.main`.
+"""
+
+import sys
+import warnings
+
+__all__ = ["add_commands"]
+
+
+def _out(path, text):
+    if path == "-":
+        sys.stdout.write(text)
+    else:
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+
+
+def cmd_import_caspr(args):
+    """``dynstiff import-caspr BODIES CABLES --mass-per-length M --EA EA --out FILE``."""
+    from .caspr import InertiaConventionWarning
+    from .params import Cable
+    from .scenes.writer import caspr_comments, import_caspr, scene_text
+    cable = Cable(mass_per_length=args.mass_per_length, EA=args.EA)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InertiaConventionWarning)
+        scene = import_caspr(args.bodies, args.cables, cable, cable_set=args.cable_set,
+                             inertia_convention=args.inertia_convention, name=args.name,
+                             min_tension=args.min_tension)
+    for w in caught:
+        sys.stderr.write(f"dynstiff: warning: {w.message}\n")
+    text = scene_text(scene.robot, scene.pose, name=scene.name, description=scene.description,
+                      comments=caspr_comments(scene, args.bodies, args.cables),
+                      cable_names=scene.study["caspr_cable_names"])
+    _out(args.out, text)
+    info = sys.stderr if args.out == "-" else sys.stdout
+    r = scene.robot
+    info.write(f"{scene.name}: {r.n_cables} cables, platform {r.platform.mass:g} kg, free "
+               f"{' '.join(r.platform.free_dofs)}, pose {scene.pose.position.tolist()} m, "
+               f"tensions {r.tension_limits[0]:g}-{r.tension_limits[1]:g} N, inertia "
+               f"convention {args.inertia_convention!r}\n")
+    if args.out != "-":
+        info.write(f"wrote {args.out}\n")
+    return 0
+
+
+def cmd_calibrate(args):
+    """``dynstiff calibrate SCENE --measured FILE --parameter EA [...]``."""
+    from .calibrate import calibrate
+    from .errors import InvalidParameterError
+    from .measured import read_measured_modes
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    measured = read_measured_modes(args.measured)
+    pose = None
+    if args.pose is not None:
+        if len(args.pose) not in (3, 6):
+            raise InvalidParameterError(f"--pose needs 3 or 6 numbers, got {len(args.pose)}")
+        from .pose import Pose
+        pose = Pose(args.pose[:3], args.pose[3:] if len(args.pose) == 6 else [0, 0, 0])
+    res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
+                    rung=args.model, confidence=args.confidence)
+    info = sys.stderr if args.csv == "-" else sys.stdout
+    info.write(f"{scene.name}: {len(measured)} measured modes, {args.model} model, "
+               f"{res.n_evaluations} evaluations\n")
+    info.write(res.text())
+    if args.csv:
+        _out(args.csv, res.to_frame().to_csv(index=False))
+        if args.csv != "-":
+            info.write(f"wrote {args.csv}\n")
+    return 0
+
+
+def add_commands(sub):
+    """Add ``import-caspr`` and ``calibrate`` to the subparsers ``sub``."""
+    ic = sub.add_parser("import-caspr", help="write a scene file from CASPR's XML model files "
+                                             "(single rigid body)")
+    ic.add_argument("bodies", help="CASPR *_bodies.xml")
+    ic.add_argument("cables", help="CASPR *_cables.xml")
+    ic.add_argument("--mass-per-length", type=float, required=True,
+                    help="cable mass per unstretched length [kg/m] (CASPR holds none)")
+    ic.add_argument("--EA", type=float, required=True,
+                    help="cable axial stiffness [N] (CASPR holds none)")
+    ic.add_argument("--cable-set", help="cable set id (default: the file's default_cable_set)")
+    ic.add_argument("--inertia-convention", default="products", choices=["products", "tensor"],
+                    help="printed Ixy, Ixz, Iyz are products of inertia (default; tensor entry "
+                         "= -value) or tensor entries (CASPR's code)")
+    ic.add_argument("--min-tension", type=float, default=1.0,
+                    help="least t_min [N] where CASPR's force_min is lower (default "
+                         "%(default)s)")
+    ic.add_argument("--name", help="scene name (default: the CASPR link's name)")
+    ic.add_argument("--out", required=True, help="scene file to write ('-': standard output)")
+    ic.set_defaults(func=cmd_import_caspr)
+    ca = sub.add_parser("calibrate", help="fit EA, platform mass ... to measured natural "
+                                          "frequencies; estimates with confidence intervals")
+    ca.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    ca.add_argument("--measured", required=True,
+                    help="CSV of measured modes: 'freq [Hz]', optional 'sigma [Hz]' and "
+                         "shape columns x y z rx ry rz")
+    ca.add_argument("--parameter", action="append", required=True,
+                    help="parameter to fit (repeat for several): EA, EA_<i>, EA_*, mass, "
+                         "inertia, t_min, loss_factor, viscous_damping (the last two need a "
+                         "'damping ratio [-]' column and a nonzero value in the scene)")
+    ca.add_argument("--pose", type=float, nargs="+", metavar="X",
+                    help="pose of the measurement x y z [m] (rx ry rz [rad]); default the "
+                         "scene's")
+    ca.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
+                    help="cable model (default %(default)s)")
+    ca.add_argument("--confidence", type=float, default=0.95,
+                    help="level of the intervals (default %(default)s)")
+    ca.add_argument("--csv", help="write the residual of every mode (CSV; '-' for stdout)")
+    ca.set_defaults(func=cmd_calibrate)

@@ -1,0 +1,470 @@
+"""Measurements in: measured natural frequencies (with optional platform mode shapes) and
+measured FRFs, read from files and compared with a model (theory.md §15.5).
+
+Measured modes come as a table, CSV with a header: a frequency column ``freq [Hz]`` (or
+``freq_hz``), optionally ``sigma [Hz]`` (standard deviation of each frequency), ``damping
+ratio [-]``, and platform shape columns among ``x y z rx ry rz`` (the units of
+:class:`~dynstiff.ModalResult`: m, rad; empty where not measured). Measured FRFs come as UFF 58
+records (function type 4, as :meth:`dynstiff.FRFResult.to_uff` writes them) or as the CSV of
+:meth:`dynstiff.FRFResult.to_frame`.
+
+Pairing a measured mode with a model mode (:func:`pair_modes`):
+
+* ``"mac"`` (default when shapes are given): the assignment (Hungarian) that maximises the
+  sum of MAC x platform share over the pairs, MAC on the measured platform DOFs,
+  MAC = |a^T b|^2 / (|a|^2 |b|^2), platform share = 1 - cable energy fraction;
+* ``"order"`` (default without shapes): the k-th measured frequency with the k-th global mode;
+* ``"frequency"``: the assignment minimising the sum of |ln(f_model / f_measured)| over global
+  modes.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import DOF_NAMES
+from .errors import InvalidParameterError
+from .results import FRFResult
+
+__all__ = ["MeasuredModes", "ModeComparison", "FRFComparison", "PAIRINGS", "compare_frf",
+           "compare_modes", "mac_matrix", "massless_pairing", "pair_modes",
+           "read_measured_frf", "read_measured_modes"]
+
+#: Ways to pair measured and model modes (module notes).
+PAIRINGS = ("mac", "order", "frequency")
+_FREQ_COLUMNS = ("freq [Hz]", "freq_hz", "frequency [Hz]", "f [Hz]")
+
+
+@dataclass(frozen=True)
+class MeasuredModes:
+    """Measured natural frequencies, optionally with platform shapes.
+
+    Parameters
+    ----------
+    freq_hz : array_like, shape (n,)
+        Natural frequencies [Hz], > 0.
+    shapes : array_like, shape (n, 6), optional
+        Platform motions (x, y, z [m], rx, ry, rz [rad]) about P, any scale; NaN where a DOF
+        was not measured.
+    sigma_hz : array_like, shape (n,), optional
+        Standard deviation of each frequency [Hz], > 0 (weights of a calibration).
+    damping_ratio : array_like, shape (n,), optional
+        Measured modal damping ratios [-].
+    """
+
+    freq_hz: np.ndarray
+    shapes: object = None
+    sigma_hz: object = None
+    damping_ratio: object = None
+
+    def __post_init__(self):
+        f = np.atleast_1d(np.asarray(self.freq_hz, dtype=float))
+        if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):
+            raise InvalidParameterError(
+                f"freq_hz must be a non-empty list of finite frequencies > 0 [Hz], got "
+                f"{self.freq_hz!r}")
+        object.__setattr__(self, "freq_hz", f)
+        if self.shapes is not None:
+            S = np.asarray(self.shapes, dtype=float)
+            if S.shape != (f.size, 6):
+                raise InvalidParameterError(
+                    f"shapes must have shape ({f.size}, 6) (x y z rx ry rz per mode, NaN where "
+                    f"not measured), got {S.shape}")
+            if not np.all(np.any(np.isfinite(S) & (S != 0), axis=1)):
+                raise InvalidParameterError("shapes: every mode needs a nonzero measured DOF")
+            object.__setattr__(self, "shapes", S)
+        for name in ("sigma_hz", "damping_ratio"):
+            v = getattr(self, name)
+            if v is None:
+                continue
+            v = np.broadcast_to(np.asarray(v, dtype=float), f.shape).copy()
+            if not np.all(np.isfinite(v)) or np.any(v < 0) or (name == "sigma_hz"
+                                                               and np.any(v == 0)):
+                raise InvalidParameterError(f"{name} must be finite and > 0, one per mode, "
+                                            f"got {getattr(self, name)!r}")
+            object.__setattr__(self, name, v)
+
+    def __len__(self):
+        return self.freq_hz.size
+
+    def __repr__(self):
+        shapes = "yes" if self.shapes is not None else "no"
+        return (f"MeasuredModes({len(self)} modes {self.freq_hz.min():.4g}-"
+                f"{self.freq_hz.max():.4g} Hz, shapes {shapes})")
+
+    def to_frame(self):
+        """pandas DataFrame in the format :func:`read_measured_modes` reads."""
+        import pandas as pd
+        df = pd.DataFrame({"freq [Hz]": self.freq_hz})
+        if self.sigma_hz is not None:
+            df["sigma [Hz]"] = self.sigma_hz
+        if self.damping_ratio is not None:
+            df["damping ratio [-]"] = self.damping_ratio
+        if self.shapes is not None:
+            for k, name in enumerate(DOF_NAMES):
+                df[name] = self.shapes[:, k]
+        return df
+
+
+def read_measured_modes(path):
+    """Read a table of measured modes (CSV, module notes).
+
+    Returns
+    -------
+    MeasuredModes
+
+    Raises
+    ------
+    InvalidParameterError
+        No frequency column, or bad values (named).
+    """
+    import pandas as pd
+    df = pd.read_csv(path, comment="#", skipinitialspace=True)
+    df.columns = [str(c).strip() for c in df.columns]
+    col = next((c for c in _FREQ_COLUMNS if c in df.columns), None)
+    if col is None:
+        raise InvalidParameterError(f"{path}: no frequency column; expected one of "
+                                    f"{list(_FREQ_COLUMNS)}, found {list(df.columns)}")
+    shape_cols = [c for c in DOF_NAMES if c in df.columns]
+    shapes = None
+    if shape_cols:
+        shapes = np.full((len(df), 6), np.nan)
+        for c in shape_cols:
+            shapes[:, DOF_NAMES.index(c)] = pd.to_numeric(df[c], errors="coerce")
+    try:
+        return MeasuredModes(
+            freq_hz=pd.to_numeric(df[col], errors="coerce").to_numpy(float), shapes=shapes,
+            sigma_hz=df["sigma [Hz]"].to_numpy(float) if "sigma [Hz]" in df else None,
+            damping_ratio=(df["damping ratio [-]"].to_numpy(float)
+                           if "damping ratio [-]" in df else None))
+    except InvalidParameterError as exc:
+        raise InvalidParameterError(f"{path}: {exc}") from None
+
+
+def read_measured_frf(path):
+    """Read measured FRFs: UFF 58 records (``.uff``/``.unv``, through pyuff) or the CSV of
+    :meth:`FRFResult.to_frame`.
+
+    Returns
+    -------
+    FRFResult
+        Channels from the UFF direction codes (1-6: x..rz for responses, fx..mz for loads);
+        kind from the ordinate data type (8, 11, 12). All records must share one frequency
+        axis and one kind.
+    """
+    from pathlib import Path
+    path = Path(path)
+    if path.suffix.lower() == ".csv":
+        return _frf_from_csv(path)
+    from .exchange import UFF_DATA_TYPES, require
+    pyuff = require("pyuff")
+    sets = pyuff.UFF(str(path)).read_sets()
+    sets = [sets] if isinstance(sets, dict) else list(sets)
+    sets = [s for s in sets if s.get("type") == 58 and s.get("func_type") == 4]
+    if not sets:
+        raise InvalidParameterError(f"{path}: no UFF 58 frequency response record "
+                                    f"(function type 4)")
+    kinds = {v: k for k, v in UFF_DATA_TYPES.items()}
+    kind = {kinds.get(s.get("ordinate_spec_data_type"), "receptance") for s in sets}
+    f = np.asarray(sets[0]["x"], dtype=float)
+    if len(kind) > 1 or any(np.asarray(s["x"]).shape != f.shape
+                            or not np.allclose(s["x"], f, rtol=1e-5) for s in sets):
+        raise InvalidParameterError(f"{path}: the records mix kinds {sorted(kind)} or "
+                                    f"frequency axes; give one kind on one axis")
+    outs, ins = [], []
+    for s in sets:
+        for lst, name, names in ((outs, "rsp_dir", DOF_NAMES),
+                                 (ins, "ref_dir", ("fx", "fy", "fz", "mx", "my", "mz"))):
+            d = abs(int(s[name]))
+            if not 1 <= d <= 6:
+                raise InvalidParameterError(f"{path}: direction {s[name]} is not one of the "
+                                            f"6 platform DOFs (1-6)")
+            if names[d - 1] not in lst:
+                lst.append(names[d - 1])
+    H = np.full((f.size, len(outs), len(ins)), np.nan + 0j)
+    for s in sets:
+        o = outs.index(DOF_NAMES[abs(int(s["rsp_dir"])) - 1])
+        i = ins.index(("fx", "fy", "fz", "mx", "my", "mz")[abs(int(s["ref_dir"])) - 1])
+        H[:, o, i] = np.asarray(s["data"], dtype=complex)
+    return FRFResult(freq_hz=f, H=H, inputs=tuple(ins), outputs=tuple(outs), kind=kind.pop())
+
+
+def _frf_from_csv(path):
+    import pandas as pd
+    df = pd.read_csv(path)
+    need = {"freq [Hz]", "input", "output", "real", "imag"}
+    if not need <= set(df.columns):
+        raise InvalidParameterError(f"{path}: FRF CSV needs the columns {sorted(need)} (as "
+                                    f"FRFResult.to_frame writes them), found {list(df.columns)}")
+    f = np.unique(df["freq [Hz]"].to_numpy(float))
+    outs = list(dict.fromkeys(df["output"]))
+    ins = list(dict.fromkeys(df["input"]))
+    H = np.full((f.size, len(outs), len(ins)), np.nan + 0j)
+    k = np.searchsorted(f, df["freq [Hz]"].to_numpy(float))
+    o = np.array([outs.index(v) for v in df["output"]])
+    i = np.array([ins.index(v) for v in df["input"]])
+    H[k, o, i] = df["real"].to_numpy(float) + 1j * df["imag"].to_numpy(float)
+    kind = str(df["kind"].iloc[0]) if "kind" in df else "receptance"
+    return FRFResult(freq_hz=f, H=H, inputs=tuple(ins), outputs=tuple(outs), kind=kind)
+
+
+def mac_matrix(measured_shapes, model_shapes):
+    """MAC between measured and model platform shapes on the measured DOFs.
+
+    Parameters
+    ----------
+    measured_shapes : ndarray, shape (n_meas, 6), NaN where not measured
+    model_shapes : ndarray, shape (n_model, 6)
+
+    Returns
+    -------
+    ndarray, shape (n_meas, n_model), in [0, 1]
+    """
+    A = np.asarray(measured_shapes, dtype=float)
+    B = np.asarray(model_shapes, dtype=float)
+    mask = np.isfinite(A)
+    A0 = np.where(mask, A, 0.0)
+    num = (A0 @ B.T) ** 2
+    nb = mask.astype(float) @ (B**2).T             # |b|^2 over each measured mode's DOFs
+    na = np.sum(A0**2, axis=1)[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mac = num / (na * nb)
+    return np.nan_to_num(mac, nan=0.0)
+
+
+def massless_pairing(model_modes, model, n):
+    """Indices of the modes of ``model_modes`` that continue the first ``n`` platform modes of
+    the massless-cable model (K(0) phi = omega^2 M_p phi): for each, the mode with the largest
+    mass-weighted MAC x platform share (Hungarian assignment), shape (n,).
+
+    The massless modes keep their order when a parameter moves the whole spectrum, while the
+    modes of a rung with cable mass split near cable frequencies; this pairing follows the
+    platform motion through them (theory.md §15.5)."""
+    from scipy.linalg import eigh
+    from scipy.optimize import linear_sum_assignment
+    M = model.platform_mass
+    lam, X0 = eigh(model.massless_stiffness(), M)
+    if n > X0.shape[1]:
+        raise InvalidParameterError(f"{n} measured modes but the platform has only "
+                                    f"{X0.shape[1]} free DOFs")
+    X = np.asarray(model_modes.platform_shapes)[:, model.free_index]     # (n_modes, n_free)
+    num = (X0[:, :n].T @ M @ X.T) ** 2
+    den = np.einsum("ij,jk,ik->i", X, M, X)[None, :] * \
+        np.einsum("ji,jk,ki->i", X0[:, :n], M, X0[:, :n])[:, None]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mac = np.nan_to_num(num / den)
+    score = mac * (1.0 - np.asarray(model_modes.cable_energy_fraction))[None, :]
+    if score.shape[1] < n:
+        raise InvalidParameterError(f"{n} measured modes but only {score.shape[1]} model "
+                                    f"modes computed: compute more (fmax_hz)")
+    rows, cols = linear_sum_assignment(-score)
+    idx = np.empty(n, dtype=int)
+    idx[rows] = cols
+    return idx
+
+
+def pair_modes(model_modes, measured, pairing=None):
+    """Pair measured modes with modes of a :class:`~dynstiff.ModalResult` (module notes).
+
+    Returns
+    -------
+    model_index : ndarray of int, shape (n_meas,)
+        Index into ``model_modes`` of each measured mode's partner.
+    mac : ndarray, shape (n_meas,)
+        Their MAC (NaN without measured shapes).
+
+    Raises
+    ------
+    InvalidParameterError
+        Unknown ``pairing``, "mac" without shapes, or fewer candidate model modes than
+        measured ones.
+    """
+    from scipy.optimize import linear_sum_assignment
+    pairing = pairing or ("mac" if measured.shapes is not None else "order")
+    if pairing not in PAIRINGS:
+        raise InvalidParameterError(f"pairing must be one of {PAIRINGS}, got {pairing!r}")
+    n = len(measured)
+    glob = np.flatnonzero(np.array(model_modes.kind) == "global")
+    if pairing == "mac":
+        if measured.shapes is None:
+            raise InvalidParameterError("pairing='mac' needs measured shapes")
+        mac = mac_matrix(measured.shapes, model_modes.platform_shapes)
+        score = mac * (1.0 - np.asarray(model_modes.cable_energy_fraction))[None, :]
+        if score.shape[1] < n:
+            raise InvalidParameterError(f"{n} measured modes but only {score.shape[1]} model "
+                                        f"modes: compute more (fmax_hz)")
+        rows, cols = linear_sum_assignment(-score)
+        idx = np.empty(n, dtype=int)
+        idx[rows] = cols
+        return idx, mac[np.arange(n), idx]
+    if glob.size < n:
+        raise InvalidParameterError(
+            f"{n} measured modes but the model has {glob.size} global modes in "
+            f"{len(model_modes)} computed: compute more (fmax_hz), or give shapes")
+    if pairing == "order":
+        idx = glob[np.argsort(np.argsort(measured.freq_hz))]
+    else:
+        cost = np.abs(np.log(model_modes.freq_hz[glob][None, :] / measured.freq_hz[:, None]))
+        rows, cols = linear_sum_assignment(cost)
+        idx = np.empty(n, dtype=int)
+        idx[rows] = glob[cols]
+    mac = (mac_matrix(measured.shapes, model_modes.platform_shapes)[np.arange(n), idx]
+           if measured.shapes is not None else np.full(n, np.nan))
+    return idx, mac
+
+
+@dataclass(frozen=True)
+class ModeComparison:
+    """Measured and model frequencies, paired.
+
+    Attributes
+    ----------
+    measured_hz, model_hz : ndarray, shape (n,)
+        [Hz].
+    model_index : ndarray of int, shape (n,)
+        The model mode (0-based, in the model's ascending list) of each measured mode.
+    mac : ndarray, shape (n,)
+        NaN without measured shapes.
+    kind : tuple of str
+        "global"/"local" of the paired model modes.
+    """
+
+    measured_hz: np.ndarray
+    model_hz: np.ndarray
+    model_index: np.ndarray
+    mac: np.ndarray
+    kind: tuple
+
+    @property
+    def error(self):
+        """Relative error f_model / f_measured - 1 [-], shape (n,)."""
+        return self.model_hz / self.measured_hz - 1.0
+
+    def __len__(self):
+        return self.measured_hz.size
+
+    def __repr__(self):
+        return (f"ModeComparison({len(self)} pairs, largest error "
+                f"{np.abs(self.error).max():.3g}, rms {np.sqrt(np.mean(self.error**2)):.3g})")
+
+    def to_frame(self):
+        """One row per measured mode, units in the column names."""
+        import pandas as pd
+        return pd.DataFrame({"measured [Hz]": self.measured_hz, "model [Hz]": self.model_hz,
+                             "error [-]": self.error, "model mode": self.model_index + 1,
+                             "kind": list(self.kind), "MAC [-]": self.mac})
+
+    def plot(self, ax=None):
+        """Model against measured frequency, with the line of equality; returns the Figure."""
+        import matplotlib.pyplot as plt
+        if ax is None:
+            fig, ax = plt.subplots(figsize=(4.5, 4.2))
+        fig = ax.figure
+        lo = 0.9 * min(self.measured_hz.min(), self.model_hz.min())
+        hi = 1.1 * max(self.measured_hz.max(), self.model_hz.max())
+        ax.plot([lo, hi], [lo, hi], color="0.6", lw=1)
+        ax.plot(self.measured_hz, self.model_hz, "o", color="C0")
+        for k, (fm, fa) in enumerate(zip(self.measured_hz, self.model_hz)):
+            ax.annotate(f"{100 * self.error[k]:+.1f} %", (fm, fa), textcoords="offset points",
+                        xytext=(5, -10), fontsize=8)
+        ax.set(xlabel="measured [Hz]", ylabel="model [Hz]", xlim=(lo, hi), ylim=(lo, hi))
+        return fig
+
+
+def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
+    """Pair measured modes with a model's and tabulate the errors (theory.md §15.5).
+
+    Parameters
+    ----------
+    model_or_modes : model of any rung, or its :class:`~dynstiff.ModalResult`
+    measured : MeasuredModes, or array_like of frequencies [Hz]
+    pairing : {"mac", "order", "frequency"}, optional
+        Default "mac" with measured shapes, "order" without.
+    fmax_hz : float, optional
+        Band of the model's modes (default 1.5 x the highest measured frequency).
+
+    Returns
+    -------
+    ModeComparison
+    """
+    measured = measured if isinstance(measured, MeasuredModes) else MeasuredModes(measured)
+    md = model_or_modes
+    if not hasattr(md, "platform_shapes"):
+        from .eigen import modes
+        md = modes(model_or_modes, fmax_hz=fmax_hz or 1.5 * measured.freq_hz.max())
+    idx, mac = pair_modes(md, measured, pairing)
+    return ModeComparison(measured_hz=measured.freq_hz, model_hz=md.freq_hz[idx],
+                          model_index=idx, mac=mac, kind=tuple(md.kind[k] for k in idx))
+
+
+@dataclass(frozen=True)
+class FRFComparison:
+    """Measured and model FRFs on the measured frequencies and channels.
+
+    Attributes
+    ----------
+    measured, model : FRFResult
+    """
+
+    measured: FRFResult
+    model: FRFResult
+
+    @property
+    def log_magnitude_error(self):
+        """RMS over frequency of log10 |H_model / H_measured| per (output, input) [decades],
+        shape (n_out, n_in)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.log10(np.abs(self.model.H) / np.abs(self.measured.H))
+        return np.sqrt(np.nanmean(r**2, axis=0))
+
+    def __repr__(self):
+        return (f"FRFComparison({self.measured.kind}, {len(self.measured.freq_hz)} frequencies, "
+                f"rms log10 magnitude error {np.nanmax(self.log_magnitude_error):.3g} decades)")
+
+    def plot(self, ax=None):
+        """Overlay of measured (dots) and model (line) magnitudes, every channel pair;
+        returns the Figure."""
+        import matplotlib.pyplot as plt
+        if ax is None:
+            fig, ax = plt.subplots(figsize=(7, 4))
+        fig = ax.figure
+        for o, out in enumerate(self.model.outputs):
+            for i, inp in enumerate(self.model.inputs):
+                c = f"C{(o * len(self.model.inputs) + i) % 10}"
+                ax.semilogy(self.measured.freq_hz, np.abs(self.measured.H[:, o, i]), ".",
+                            color=c, ms=3, label=f"{out}/{inp} measured")
+                ax.semilogy(self.model.freq_hz, np.abs(self.model.H[:, o, i]), "-", color=c,
+                            lw=1, label=f"{out}/{inp} model")
+        ax.set(xlabel="frequency [Hz]", ylabel=f"|H| ({self.model.kind})")
+        ax.legend(fontsize=7, ncol=2)
+        return fig
+
+    def to_frame(self):
+        """Measured and model values side by side (tidy, one row per frequency and pair)."""
+        a, b = self.measured.to_frame(), self.model.to_frame()
+        a["model magnitude"] = b["magnitude"].to_numpy()
+        a["model phase [deg]"] = b["phase [deg]"].to_numpy()
+        return a
+
+
+def compare_frf(model, measured, point=None):
+    """Model FRFs at the measured frequencies and channels, with the measured ones.
+
+    Parameters
+    ----------
+    model : model of any rung
+    measured : FRFResult (e.g. :func:`read_measured_frf`)
+    point : array_like, shape (3,), optional
+        Platform point of the measured translations [m, platform frame] (default P).
+
+    Returns
+    -------
+    FRFComparison
+    """
+    from .frf import frf
+    if not isinstance(measured, FRFResult):
+        raise InvalidParameterError(f"measured must be an FRFResult, got "
+                                    f"{type(measured).__name__}")
+    res = frf(model, 2 * np.pi * measured.freq_hz, inputs=list(measured.inputs),
+              outputs=list(measured.outputs), point=point, kind=measured.kind)
+    return FRFComparison(measured=measured, model=res)

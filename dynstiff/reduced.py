@@ -1,0 +1,215 @@
+"""A reduced modal model of the platform for control design, and its python-control form.
+
+The receptance of any rung (theory.md §15.4) is expanded over its natural frequencies
+
+    H(omega) = sum_r phi_r phi_r^T / (omega_r^2 - omega^2 + 2 i zeta_r omega_r omega) + R,
+
+phi_r the platform shape of mode r (free DOFs) scaled by its *exact* modal mass
+
+    mu_r = -x_r^T dK/d(omega^2)(omega_r) x_r,        phi_r = x_r / sqrt(mu_r),
+
+the residue of K(omega)^-1 at omega_r^2, which counts the kinetic energy of the cables as well as
+the platform's (for a discrete rung dK/d(omega^2) = -M, so mu_r is the usual generalized mass).
+dK/domega is taken by a complex step, Im K(omega + i h) / h, exact to rounding for the analytic
+K(omega) of every rung. The truncated modes enter through their static (residual) flexibility
+
+    R = K(0)^-1 - sum_r phi_r phi_r^T / omega_r^2,
+
+so that H is exact at omega = 0; what it leaves of a truncated mode t grows as
+omega^2 / (omega_t^2 - omega^2), so the kept band must hold every mode with a large platform
+share (all the platform modes of the massless-cable model, not only the band of interest).
+Modes whose platform is at rest (a cable alone on its pole) have no residue and are left out.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .eigen import eigenfrequencies
+from .errors import InvalidParameterError
+from .exchange import require
+from .frf import channel_maps
+from .model_base import require_model
+
+__all__ = ["ModalModel", "modal_model", "to_statespace"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+@dataclass(frozen=True)
+class ModalModel:
+    """Modal expansion of the platform receptance (module notes, theory.md §15.4).
+
+    Attributes
+    ----------
+    omega : ndarray, shape (n,)
+        Natural frequencies omega_r [rad/s] of the kept modes (platform moving).
+    shapes : ndarray, shape (n, n_free)
+        phi_r, platform shapes scaled to unit exact modal mass [1/sqrt(kg), ...].
+    modal_mass : ndarray, shape (n,)
+        mu_r of the shape x_r normalised to x_r^T M_p x_r = 1 [-] (1 for a platform alone;
+        larger by the cables' share of the kinetic energy).
+    damping : ndarray, shape (n,)
+        Modal damping ratios zeta_r [-].
+    residual : ndarray, shape (n_free, n_free) or None
+        Residual flexibility R [m/N, ...] of the truncated modes (None: not corrected).
+    free_dofs : tuple of str
+    pose : Pose
+    """
+
+    omega: np.ndarray
+    shapes: np.ndarray
+    modal_mass: np.ndarray
+    damping: np.ndarray
+    residual: object
+    free_dofs: tuple
+    pose: object
+
+    @property
+    def freq_hz(self):
+        """Natural frequencies [Hz], shape (n,)."""
+        return self.omega / _TWO_PI
+
+    def __len__(self):
+        return len(self.omega)
+
+    def __repr__(self):
+        f = self.freq_hz
+        span = f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
+        return (f"ModalModel({len(self)} modes {span}, free {self.free_dofs}, residual "
+                f"{'on' if self.residual is not None else 'off'})")
+
+    def receptance(self, omega):
+        """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...]."""
+        w = np.atleast_1d(np.asarray(omega, dtype=float))
+        den = (self.omega**2 - w[:, None]**2 + 2j * self.damping * self.omega * w[:, None])
+        H = np.einsum("kr,ri,rj->kij", 1.0 / den, self.shapes, self.shapes)
+        if self.residual is not None:
+            H = H + self.residual
+        return H
+
+
+def _dK_domega2(m, omega):
+    """dK/d(omega^2) at a real omega > 0 [kg, ...] by a complex step, (n_free, n_free)."""
+    h = 1e-20 * omega
+    dK = m.dynamic_stiffness(np.array([omega + 1j * h]))[0].imag / h
+    return dK / (2.0 * omega)
+
+
+def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
+                cluster_rtol=1e-8, null_rtol=1e-6):
+    """Modal expansion of a model's platform receptance (module notes, theory.md §15.4).
+
+    Parameters
+    ----------
+    model : model of any rung (:mod:`dynstiff.model_base`); its damping is ignored
+    n_modes, fmax_hz : as :func:`dynstiff.eigenfrequencies`
+        Which natural frequencies to keep (those with the platform at rest drop out).
+    damping : float or array_like, shape (n_kept,)
+        Modal damping ratios zeta [-], >= 0 (one for all, or one per kept mode).
+    residual : bool
+        Add the residual flexibility of the truncated modes (default True).
+    cluster_rtol : float
+        Frequencies closer than this (relative) are one repeated root.
+    null_rtol : float
+        Eigenvalues of K(omega_r) below ``null_rtol`` times the largest of K(0) span the
+        platform shapes of the root.
+
+    Returns
+    -------
+    ModalModel
+    """
+    m = require_model(model).undamped()
+    f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
+    w_all = _TWO_PI * f
+    if np.any(w_all <= 0):
+        raise InvalidParameterError(
+            f"the model has a zero or negative natural frequency ({f.min():.3g} Hz): an "
+            f"unstable or free platform has no modal expansion")
+    K0 = m.massless_stiffness()
+    scale = np.abs(np.linalg.eigvalsh(0.5 * (K0 + K0.T))).max()
+    omega, shapes, masses = [], [], []
+    k = 0
+    while k < len(w_all):
+        j = k + 1
+        while j < len(w_all) and w_all[j] - w_all[k] <= cluster_rtol * w_all[k]:
+            j += 1
+        w = float(np.mean(w_all[k:j]))
+        K = m.dynamic_stiffness(np.array([w]))[0]
+        k = j
+        if not np.all(np.isfinite(K)):
+            continue                                   # a cable pole: platform at rest
+        ev, V = np.linalg.eigh(0.5 * (K + K.T))
+        V = V[:, np.abs(ev) < null_rtol * scale]
+        if V.shape[1] == 0:
+            continue
+        Mc = -V.T @ _dK_domega2(m, w) @ V
+        mu, U = np.linalg.eigh(0.5 * (Mc + Mc.T))
+        if np.any(mu <= 0):
+            raise InvalidParameterError(
+                f"non-positive modal mass {mu.min():.3g} at {w / _TWO_PI:.6g} Hz")
+        X = V @ U
+        Mp = m.platform_mass
+        for i in range(X.shape[1]):
+            x = X[:, i]
+            omega.append(w)
+            shapes.append(x / np.sqrt(mu[i]))
+            masses.append(mu[i] / (x @ Mp @ x))
+    omega = np.array(omega)
+    shapes = np.array(shapes).reshape(len(omega), m.n_free)
+    zeta = np.broadcast_to(np.asarray(damping, dtype=float), omega.shape).copy() \
+        if np.ndim(damping) == 0 or np.size(damping) == len(omega) else None
+    if zeta is None or not np.all(np.isfinite(zeta)) or np.any(zeta < 0):
+        raise InvalidParameterError(
+            f"damping must be one ratio >= 0 or one per kept mode ({len(omega)}), got "
+            f"{damping!r}")
+    R = None
+    if residual:
+        R = np.linalg.inv(K0) - np.einsum("r,ri,rj->ij", 1.0 / omega**2, shapes, shapes)
+        R = 0.5 * (R + R.T)
+    return ModalModel(omega=omega, shapes=shapes, modal_mass=np.array(masses), damping=zeta,
+                      residual=R, free_dofs=m.free_dofs, pose=m.pose)
+
+
+def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, outputs=None,
+                  point=None, residual=True):
+    """python-control ``StateSpace`` of the platform from its modes (theory.md §15.4).
+
+    States (q_1 .. q_n, dq_1/dt .. dq_n/dt), modal coordinates of the kept modes:
+
+        A = [[0, I], [-Omega^2, -2 Z Omega]],  B = [[0], [Phi^T B_in]],
+        C = [[C_out Phi, 0]],                   D = C_out R B_in,
+
+    so that C (i omega - A)^-1 B + D is the receptance of :class:`ModalModel` between the
+    named channels.
+
+    Parameters
+    ----------
+    model : model of any rung, or a :class:`ModalModel`
+    n_modes, fmax_hz, damping, residual : as :func:`modal_model` (ignored for a ModalModel,
+        except that ``residual=False`` drops its residual)
+    inputs, outputs, point : as :func:`dynstiff.frf`
+        Loads on the platform (about P) and motions of a platform point (default P).
+
+    Returns
+    -------
+    control.StateSpace
+        Inputs and outputs named after the channels; 2 n states.
+    """
+    ct = require("control")
+    mm = model if isinstance(model, ModalModel) else modal_model(
+        model, n_modes=n_modes, fmax_hz=fmax_hz, damping=damping, residual=residual)
+    free_index = np.array([("x", "y", "z", "rx", "ry", "rz").index(d) for d in mm.free_dofs])
+    B_in, C_out, in_names, out_names = channel_maps(free_index, mm.pose.matrix, inputs,
+                                                    outputs, point)
+    n = len(mm)
+    Om = np.diag(mm.omega)
+    A = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-Om**2, -2.0 * np.diag(mm.damping) @ Om]])
+    Phi = mm.shapes.T                                   # (n_free, n)
+    B = np.vstack([np.zeros((n, B_in.shape[1])), Phi.T @ B_in])
+    C = np.hstack([C_out @ Phi, np.zeros((C_out.shape[0], n))])
+    D = C_out @ mm.residual @ B_in if (mm.residual is not None and residual) else \
+        np.zeros((C_out.shape[0], B_in.shape[1]))
+    return ct.ss(A, B, C, D, inputs=list(in_names), outputs=list(out_names),
+                 states=[f"q{r + 1}" for r in range(n)] + [f"dq{r + 1}" for r in range(n)])

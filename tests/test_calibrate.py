@@ -1,0 +1,137 @@
+"""Calibration (dynstiff/calibrate.py, theory.md §15.6): a known EA recovered from noisy
+synthetic frequencies of the model itself (within the reported interval), and from the
+frequencies of the independent lumped model, whose discretisation bias falls at the rate of
+its convergence (O(1/N^2)); per-cable EA and platform mass; bad requests named."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.calibrate import calibrate
+from dynstiff.measured import MeasuredModes, massless_pairing
+
+AREA = 8.2051e-6          # CoGiRo cable cross-section [m^2] (theory.md §8.1)
+E_TRUE = 60e9             # [Pa], inside CoGiRo's 17-120 GPa
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return ds.load_scene("cogiro")
+
+
+def with_E(robot, E):
+    return replace(robot, cables=[replace(c, EA=AREA * E) for c in robot.cables])
+
+
+def platform_frequencies(robot, pose, rung, n, **kw):
+    """The first n platform modes of a rung, continued from the massless-cable modes."""
+    m = ds.build_model(robot.equilibrium(pose), rung, **kw)
+    md = ds.modes(m, fmax_hz=12.0)
+    return md.freq_hz[massless_pairing(md, m, n)]
+
+
+def test_recovers_EA_from_noisy_synthetic_frequencies(scene):
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "dsm", 4)
+    noisy = f * (1 + 0.003 * np.random.default_rng(1).standard_normal(f.size))
+    res = calibrate(scene, noisy, parameters="EA")          # starts at 17 GPa
+    E, lo, hi = res.estimate[0] / AREA, res.ci_low[0] / AREA, res.ci_high[0] / AREA
+    assert lo < E_TRUE < hi
+    assert abs(E / E_TRUE - 1) < 0.01 and hi / lo - 1 < 0.03
+    assert np.sqrt(np.mean(res.residual**2)) < 0.005       # the noise level, 0.3 %
+    assert np.all(np.abs(res.initial_hz / noisy - 1) > 0.3)  # 17 GPa was far off
+    assert res.robot.cables[3].EA == pytest.approx(res.estimate[0])
+    df = res.to_frame()
+    assert list(df["mode"]) == [1, 2, 3, 4] and "cable energy fraction [-]" in df
+
+
+def test_recovers_EA_from_the_independent_lumped_model(scene):
+    """The lumped model (40 segments per cable) is an independent discretisation: the EA the
+    closed-form model fits to its first 3 platform frequencies is within 3e-4 of the true
+    one, inside the reported interval."""
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "lumped", 3,
+                             segments=40)
+    res = calibrate(scene, f, parameters="EA")
+    assert abs(res.estimate[0] / AREA / E_TRUE - 1) < 3e-4
+    assert res.ci_low[0] / AREA < E_TRUE < res.ci_high[0] / AREA
+
+
+@pytest.mark.slow
+def test_lumped_calibration_bias_falls_at_the_convergence_rate(scene):
+    """The fitted EA's error is the lumped model's discretisation error: 3.8e-4 at N = 20,
+    1.2e-4 at N = 40, the 1/N^2 rate of theory.md §7 (ratio 3.2 of the ideal 4)."""
+    truth = with_E(scene.robot, E_TRUE)
+    err = []
+    for N in (20, 40):
+        f = platform_frequencies(truth, scene.pose, "lumped", 3, segments=N)
+        err.append(calibrate(scene, f, parameters="EA").estimate[0] / AREA / E_TRUE - 1)
+    assert abs(err[0]) < 1e-3 and abs(err[1]) < 0.4 * abs(err[0])
+
+
+def test_mass_and_measured_shapes(scene):
+    """Platform mass from 4 frequencies with shapes (MAC pairing), sigma-weighted: the
+    interval uses the given sigmas (normal quantile)."""
+    r = scene.robot
+    truth = replace(r, platform=replace(r.platform, mass=100.0))
+    m = ds.build_model(truth.equilibrium(scene.pose), "catenary")
+    md = ds.modes(m, n_modes=4)
+    meas = MeasuredModes(md.freq_hz, shapes=md.platform_shapes, sigma_hz=0.002 * md.freq_hz)
+    res = calibrate(scene, meas, parameters=["mass"], rung="catenary")
+    assert res.estimate[0] == pytest.approx(100.0, rel=1e-6)
+    assert res.ci_low[0] < 100.0 < res.ci_high[0]
+    np.testing.assert_allclose(res.mac, 1.0, atol=1e-9)
+
+
+def test_bad_requests_are_named(scene):
+    with pytest.raises(ds.InvalidParameterError, match="'stiffness' is not one of"):
+        calibrate(scene, [1.0, 2.0], parameters="stiffness")
+    with pytest.raises(ds.InvalidParameterError, match="1 measured values cannot fix 2"):
+        calibrate(scene, [2.2], parameters=["EA", "mass"])
+    with pytest.raises(ds.InvalidParameterError, match="name a quantity twice"):
+        calibrate(scene, [2.2, 2.4, 3.0], parameters=["EA", "EA_1"])
+    with pytest.raises(ds.InvalidParameterError, match="needs the pose"):
+        calibrate(scene.robot, [2.2], parameters="EA")
+    with pytest.raises(ds.InvalidParameterError, match="confidence must be in"):
+        calibrate(scene, [2.2], confidence=95)
+
+
+def test_loss_factor_from_measured_damping_ratios(scene):
+    """The cables' loss factor from the damping ratios of 3 platform modes (2 % error on
+    each): 0.02 recovered within its interval; a damping parameter needs a start when the
+    robot has none, and measured ratios."""
+    r = scene.robot
+    truth = replace(r, cables=[replace(c, loss_factor=0.02) for c in r.cables])
+    m = ds.build_model(truth.equilibrium(scene.pose), "dsm")
+    md = ds.modes(m, fmax_hz=6.0)
+    idx = massless_pairing(md, m, 3)
+    zeta = ds.damped_modes(m, fmax_hz=6.0).damping_ratio[idx]
+    noisy = zeta * (1 + 0.02 * np.array([1, -1, 0.5]))
+    meas = MeasuredModes(md.freq_hz[idx], damping_ratio=noisy)
+    res = calibrate(scene, meas, parameters="loss_factor", start={"loss_factor": 0.005})
+    assert res.ci_low[0] < 0.02 < res.ci_high[0]
+    assert res.estimate[0] == pytest.approx(0.02, rel=0.02)
+    assert "fitted damping ratio [-]" in res.to_frame()
+    with pytest.raises(ds.InvalidParameterError, match="are 0 in the robot: give start"):
+        calibrate(scene, meas, parameters="loss_factor")
+    with pytest.raises(ds.InvalidParameterError, match="needs measured damping ratios"):
+        calibrate(scene, meas.freq_hz, parameters="loss_factor", start={"loss_factor": 0.01})
+
+
+def test_EA_from_measured_frf_magnitudes(scene):
+    """FRF magnitudes alone (the driving point fz -> z from 0.1 to 1.5 Hz, below the first
+    mode of both the 17 GPa start (2.2 Hz) and the 60 GPa truth, 2 % noise on each
+    magnitude): the log-magnitude residuals fix EA within its interval."""
+    truth = with_E(scene.robot, E_TRUE)
+    model = ds.build_model(truth.equilibrium(scene.pose), "dsm")
+    f = np.linspace(0.1, 1.5, 30)
+    res = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs="z")
+    noise = 1 + 0.02 * np.random.default_rng(3).standard_normal(res.H.shape)
+    meas = ds.FRFResult(res.freq_hz, res.H * noise, res.inputs, res.outputs, res.kind)
+    fit = calibrate(scene, None, parameters="EA", frf=meas)
+    lo, hi = fit.ci_low[0] / AREA, fit.ci_high[0] / AREA
+    assert lo < E_TRUE < hi and hi / lo - 1 < 0.05
+    assert 0.01 < fit.frf_log_error < 0.03                       # the 2 % noise
+    assert fit.measured_hz.size == 0 and "ln|H|" in repr(fit)
+    with pytest.raises(ds.InvalidParameterError, match="give measured frequencies"):
+        calibrate(scene, None)

@@ -1,0 +1,87 @@
+"""The subcommands of dynstiff/cli_exchange.py run in subprocesses: import-caspr writes a
+scene that loads and equals the built-in CoGiRo; bad files fail in one line."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+
+pytestmark = pytest.mark.integration
+DATA = Path(__file__).parent / "data" / "caspr"
+
+
+def run_cli(*args):
+    out = subprocess.run([sys.executable, "-m", "dynstiff", *map(str, args)],
+                         capture_output=True, text=True)
+    assert "Traceback" not in out.stderr, out.stderr[-2000:]
+    return out
+
+
+def test_import_caspr_writes_a_loadable_commented_scene(tmp_path):
+    ref = ds.load_scene("cogiro").robot
+    path = tmp_path / "cogiro.toml"
+    out = run_cli("import-caspr", DATA / "CoGiRo_bodies.xml", DATA / "CoGiRo_cables.xml",
+                  "--mass-per-length", 0.064, "--EA", 139486.7, "--out", path)
+    assert out.returncode == 0, out.stderr
+    assert "warning: " in out.stderr and "products of inertia" in out.stderr
+    assert "8 cables" in out.stdout
+    text = path.read_text()
+    assert text.startswith("# CoGiRo: imported from CASPR") and "inertia_convention" in text
+    sc = ds.load_scene(path)
+    for f in ("anchors", "attachments"):
+        np.testing.assert_array_equal(getattr(sc.robot, f), getattr(ref, f))
+    np.testing.assert_array_equal(sc.robot.platform.inertia, ref.platform.inertia)
+    assert sc.robot.cables == ref.cables and sc.pose == ds.Pose([0, 0, 2.0])
+
+
+def test_import_caspr_named_set_to_stdout_and_bad_file():
+    out = run_cli("import-caspr", DATA / "IPAnema_1_bodies.xml", DATA / "IPAnema_1_cables.xml",
+                  "--mass-per-length", 0.02, "--EA", 2e5, "--cable-set", "IROS_CASPR_2016",
+                  "--out", "-")
+    assert out.returncode == 0, out.stderr
+    assert "anchor = [-2.0, 3.0, 5.0]" in out.stdout and "max = 200.0" in out.stdout
+    out = run_cli("import-caspr", DATA / "CoGiRo_cables.xml", DATA / "CoGiRo_cables.xml",
+                  "--mass-per-length", 0.064, "--EA", 1e5, "--out", "-")
+    assert out.returncode == 2
+    assert out.stderr.count("\n") == 1 and "root element <cables>" in out.stderr
+
+
+def test_frf_uff_writes_records_that_pyuff_reads(tmp_path):
+    pyuff = pytest.importorskip("pyuff")
+    path = tmp_path / "frf.uff"
+    out = run_cli("frf", "cogiro", "--from", "fz", "mx", "--to", "z", "--band", 0.5, 4,
+                  "--points", 20, "--kind", "accelerance", "--uff", path)
+    assert out.returncode == 0, out.stderr
+    assert f"wrote {path}" in out.stdout
+    sets = pyuff.UFF(str(path)).read_sets()
+    assert len(sets) == 2 and {s["ref_dir"] for s in sets} == {3, 4}
+    assert all(s["ordinate_spec_data_type"] == 12 for s in sets)
+    sc = ds.load_scene("cogiro")
+    res = ds.frf(ds.build_model(sc.equilibrium(), "dsm"), 2 * np.pi * np.linspace(0.5, 4, 20),
+                 inputs="fz", outputs="z", kind="accelerance")
+    np.testing.assert_allclose(sets[0]["data"], res.H[:, 0, 0], rtol=1e-11)
+
+
+def test_calibrate_fits_EA_to_a_measured_table(tmp_path):
+    """Frequencies of CoGiRo at 60 GPa (first 3 platform modes, the closed-form model,
+    rounded to 4 digits as a measurement would print them): EA = 60 GPa x 8.2051e-6 m^2
+    lies in the interval reported."""
+    table = tmp_path / "measured.csv"
+    table.write_text("freq [Hz]\n4.1965\n4.6405\n5.9685\n")
+    out_csv = tmp_path / "residuals.csv"
+    out = run_cli("calibrate", "cogiro", "--measured", table, "--parameter", "EA",
+                  "--csv", out_csv)
+    assert out.returncode == 0, out.stderr
+    line = next(ln for ln in out.stdout.splitlines() if ln.startswith("EA"))
+    _, initial, est, lo, hi = line.split()
+    assert float(initial) == pytest.approx(139486.7, rel=1e-5)     # printed to 6 digits
+    assert float(lo) < 60e9 * 8.2051e-6 < float(hi)
+    import pandas as pd
+    df = pd.read_csv(out_csv)
+    assert np.all(np.abs(df["residual [-]"]) < 1e-4)
+    out = run_cli("calibrate", "cogiro", "--measured", table, "--parameter", "stiffness")
+    assert out.returncode == 2 and "'stiffness' is not one of" in out.stderr

@@ -1,0 +1,96 @@
+"""FRFs out (dynstiff/exchange.py, FRFResult.to_uff / to_control; theory.md §15.3): UFF 58
+files read back through pyuff with the same values, function and data types, units and DOF
+labels; python-control's FrequencyResponseData holds the same matrix."""
+
+import sys
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.exchange import MissingDependencyError, require, uff58_records
+
+pyuff = pytest.importorskip("pyuff")
+control = pytest.importorskip("control")
+
+
+@pytest.fixture(scope="module")
+def model():
+    return ds.build_model(ds.load_scene("cogiro").equilibrium(), "dsm")
+
+
+@pytest.fixture(scope="module")
+def omega():
+    return 2 * np.pi * np.linspace(0.3, 6.0, 37)
+
+
+# (kind, UFF ordinate data type, numerator units of a translation and of a rotation)
+KINDS = [("receptance", 8, "m", "rad"), ("mobility", 11, "m/s", "rad/s"),
+         ("accelerance", 12, "m/s^2", "rad/s^2")]
+
+
+@pytest.mark.parametrize("kind, dtype, trans, rot", KINDS)
+def test_uff58_reads_back_with_values_types_and_units(tmp_path, model, omega, kind, dtype,
+                                                      trans, rot):
+    res = ds.frf(model, omega, inputs=["fy", "mx"], outputs=["x", "rz"], kind=kind)
+    path = res.to_uff(tmp_path / "frf.uff")
+    sets = pyuff.UFF(str(path)).read_sets()
+    assert len(sets) == 4 and all(s["type"] == 58 for s in sets)
+    expect = {(o, i): res.H[:, a, b] for a, o in enumerate(res.outputs)
+              for b, i in enumerate(res.inputs)}
+    for s in sets:
+        out = ("x", "y", "z", "rx", "ry", "rz")[s["rsp_dir"] - 1]
+        inp = ("fx", "fy", "fz", "mx", "my", "mz")[s["ref_dir"] - 1]
+        assert s["func_type"] == 4                               # frequency response function
+        assert s["ordinate_spec_data_type"] == dtype
+        assert s["orddenom_spec_data_type"] == 13                # excitation force
+        assert s["abscissa_spec_data_type"] == 18                # frequency
+        assert s["abscissa_axis_units_lab"] == "Hz"
+        num = rot if out.startswith("r") else trans
+        den = "N m" if inp.startswith("m") else "N"
+        assert s["ordinate_axis_units_lab"] == num and s["orddenom_axis_units_lab"] == den
+        assert s["ordinate_len_unit_exp"] == (0 if out.startswith("r") else 1)
+        assert s["orddenom_len_unit_exp"] == (1 if inp.startswith("m") else 0)
+        assert s["orddenom_force_unit_exp"] == 1
+        assert s["rsp_node"] == s["ref_node"] == 1
+        # ASCII: 12 significant digits of H, 6 of the frequency (E13.5)
+        np.testing.assert_allclose(s["data"], expect[(out, inp)], rtol=1e-11, atol=0)
+        np.testing.assert_allclose(s["x"], res.freq_hz, rtol=5e-6)
+
+
+def test_binary_uff58_is_exact(tmp_path, model, omega):
+    res = ds.frf(model, omega, inputs="fz", outputs="z")
+    path = res.to_uff(tmp_path / "frf.uff", binary=True, node=7, point_node=12)
+    s = pyuff.UFF(str(path)).read_sets()                    # one set: a dict
+    np.testing.assert_array_equal(s["data"], res.H[:, 0, 0])
+    np.testing.assert_array_equal(s["x"], res.freq_hz)
+    assert (s["ref_node"], s["rsp_node"], s["rsp_dir"], s["ref_dir"]) == (7, 12, 3, 3)
+
+
+def test_uff_refuses_an_frf_with_a_pole_and_an_unknown_kind(model):
+    res = ds.frf(model, [1.0, 2.0], inputs="fz", outputs="z")
+    bad = ds.FRFResult(res.freq_hz, np.full_like(res.H, np.inf), res.inputs, res.outputs,
+                       res.kind)
+    with pytest.raises(ds.InvalidParameterError, match="inf or NaN"):
+        uff58_records(bad)
+    bad = ds.FRFResult(res.freq_hz, res.H, res.inputs, res.outputs, "compliance")
+    with pytest.raises(ds.InvalidParameterError, match="kind must be one of"):
+        uff58_records(bad)
+
+
+def test_to_control_is_outputs_by_inputs_by_frequencies(model, omega):
+    res = ds.frf(model, omega, inputs=["fx", "fz", "my"], outputs=["y", "ry"])
+    frd = res.to_control()
+    assert isinstance(frd, control.FrequencyResponseData)
+    assert frd.ninputs == 3 and frd.noutputs == 2
+    np.testing.assert_allclose(frd.omega, omega)
+    np.testing.assert_array_equal(np.asarray(frd.frdata), np.moveaxis(res.H, 0, -1))
+    assert frd.input_labels == ["fx", "fz", "my"] and frd.output_labels == ["y", "ry"]
+    # python-control evaluates it back at a stored frequency
+    np.testing.assert_allclose(frd.eval(omega[5]), res.H[5])
+
+
+def test_missing_library_names_the_extra(monkeypatch):
+    monkeypatch.setitem(sys.modules, "pyuff", None)
+    with pytest.raises(MissingDependencyError, match=r'dynstiff\[exchange\]'):
+        require("pyuff")

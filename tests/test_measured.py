@@ -1,0 +1,118 @@
+"""Measurements in (dynstiff/measured.py, theory.md §15.5): measured-mode tables and FRF files
+read back, MAC pairing finds a shuffled set of modes, comparisons tabulate and plot."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.measured import (
+    MeasuredModes,
+    compare_frf,
+    compare_modes,
+    mac_matrix,
+    massless_pairing,
+    pair_modes,
+    read_measured_frf,
+    read_measured_modes,
+)
+
+
+@pytest.fixture(scope="module")
+def model():
+    return ds.build_model(ds.load_scene("cogiro").equilibrium(), "dsm")
+
+
+@pytest.fixture(scope="module")
+def md(model):
+    return ds.modes(model, fmax_hz=7.0)
+
+
+def test_mac_is_one_for_scaled_shapes_and_ignores_unmeasured_dofs():
+    a = np.array([[1.0, 2.0, np.nan, 0.5, np.nan, 0.0]])
+    b = np.array([[-3.0, -6.0, 100.0, -1.5, 7.0, 0.0], [2.0, -1.0, 0.0, 0.0, 0.0, 0.0]])
+    mac = mac_matrix(a, b)
+    np.testing.assert_allclose(mac, [[1.0, 0.0]], atol=1e-15)
+
+
+def test_mac_pairing_finds_shuffled_noisy_modes(md):
+    glob = np.flatnonzero(np.array(md.kind) == "global")[:5]
+    order = glob[[3, 0, 4, 2, 1]]
+    rng = np.random.default_rng(0)
+    shapes = md.platform_shapes[order] * (1 + 0.05 * rng.standard_normal((5, 6)))
+    shapes[:, 5] = np.nan                                    # rz not measured
+    meas = MeasuredModes(md.freq_hz[order] * 1.02, shapes=shapes)
+    idx, mac = pair_modes(md, meas)
+    np.testing.assert_array_equal(idx, order)
+    assert np.all(mac > 0.95)
+    cmp = compare_modes(md, meas)
+    np.testing.assert_allclose(cmp.error, 1 / 1.02 - 1, rtol=1e-12)
+    df = cmp.to_frame()
+    assert list(df.columns)[:3] == ["measured [Hz]", "model [Hz]", "error [-]"]
+    assert cmp.plot().axes[0].get_xlabel() == "measured [Hz]"
+
+
+def test_order_and_frequency_pairing_without_shapes(md):
+    glob = np.flatnonzero(np.array(md.kind) == "global")
+    f = md.freq_hz[glob[:3]] * np.array([1.01, 0.99, 1.0])
+    idx, mac = pair_modes(md, MeasuredModes(f[::-1]))          # order: by rank
+    np.testing.assert_array_equal(idx, glob[:3][::-1])
+    assert np.all(np.isnan(mac))
+    idx, _ = pair_modes(md, MeasuredModes(f), "frequency")
+    np.testing.assert_array_equal(idx, glob[:3])
+    with pytest.raises(ds.InvalidParameterError, match="needs measured shapes"):
+        pair_modes(md, MeasuredModes(f), "mac")
+
+
+def test_massless_pairing_continues_the_platform_modes(model, md):
+    """Below the first cable family the closed-form platform modes are the massless ones."""
+    idx = massless_pairing(md, model, 3)
+    np.testing.assert_allclose(md.freq_hz[idx], md.freq_hz[:3])
+
+
+def test_measured_modes_csv_round_trip(tmp_path, md):
+    meas = MeasuredModes(md.freq_hz[:3], shapes=md.platform_shapes[:3],
+                         sigma_hz=[0.01, 0.02, 0.03])
+    path = tmp_path / "modes.csv"
+    meas.to_frame().to_csv(path, index=False)
+    back = read_measured_modes(path)
+    np.testing.assert_array_equal(back.freq_hz, meas.freq_hz)
+    np.testing.assert_allclose(back.shapes, meas.shapes, rtol=1e-15)
+    np.testing.assert_array_equal(back.sigma_hz, meas.sigma_hz)
+    (tmp_path / "bad.csv").write_text("f\n1.0\n")
+    with pytest.raises(ds.InvalidParameterError, match="no frequency column"):
+        read_measured_modes(tmp_path / "bad.csv")
+    (tmp_path / "neg.csv").write_text("freq [Hz]\n1.0\n-2.0\n")
+    with pytest.raises(ds.InvalidParameterError, match="neg.csv: freq_hz must be"):
+        read_measured_modes(tmp_path / "neg.csv")
+
+
+@pytest.mark.parametrize("suffix", [".uff", ".csv"])
+def test_measured_frf_files_read_back(tmp_path, model, suffix):
+    if suffix == ".uff":
+        pytest.importorskip("pyuff")
+    res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 4.0, 30), inputs=["fx", "mz"],
+                 outputs=["y", "rz"], kind="mobility")
+    path = tmp_path / f"frf{suffix}"
+    if suffix == ".uff":
+        res.to_uff(path, binary=True)
+    else:
+        res.to_frame().to_csv(path, index=False)
+    back = read_measured_frf(path)
+    assert back.inputs == res.inputs and back.outputs == res.outputs and back.kind == "mobility"
+    np.testing.assert_allclose(back.H, res.H, rtol=1e-14)
+    np.testing.assert_allclose(back.freq_hz, res.freq_hz, rtol=1e-14)
+
+
+def test_compare_frf_overlays_and_scores(model):
+    f = np.linspace(0.5, 4.0, 40)
+    truth = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs=["z", "rx"])
+    meas = ds.FRFResult(truth.freq_hz, truth.H * 1.1, truth.inputs, truth.outputs, truth.kind)
+    cmp = compare_frf(model, meas)
+    np.testing.assert_allclose(cmp.log_magnitude_error, np.log10(1.1), rtol=1e-9)
+    fig = cmp.plot()
+    assert len(fig.axes[0].lines) == 4
+    assert "model magnitude" in cmp.to_frame()
