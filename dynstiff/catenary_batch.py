@@ -25,7 +25,7 @@ import numpy as np
 
 from .catenary import CatenaryState, unstretched_length_for_tension
 
-__all__ = ["catenary_arrays", "states_for_tensions", "taut_catenaries"]
+__all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 
 _RTOL = 1e-13          # relative residual of the three equations at convergence
 _MAX_ITER = 40
@@ -209,3 +209,27 @@ def states_for_tensions(anchors, ends, tensions, cables, g, start=None):
                                     H=float(H[i]), V0=float(V0[i]),
                                     residual=float(res[i])))
     return states
+
+
+def sag_ratios(anchors, ends, H, V0, L0, EA, w0, n_points=401):
+    """Largest distance of each cable from its chord over the chord length [-], shape (n,).
+
+    The profile (docs/theory.md §1.1) at ``n_points`` points equally spaced in unstretched
+    arc length, as :attr:`dynstiff.catenary.CatenaryState.sag` samples it, all cables and
+    points at once. A cable with H = 0 (vertical chord) is straight: 0.
+    """
+    d = ends - anchors
+    lh = np.hypot(d[:, 0], d[:, 1])
+    L = np.hypot(lh, d[:, 2])
+    s = L0[:, None] * np.linspace(0.0, 1.0, n_points)[None, 1:]          # (n, m)
+    Hc = np.where(H > 0, H, 1.0)[:, None]
+    a = np.broadcast_to((V0[:, None] / Hc), s.shape).ravel()
+    b = ((V0[:, None] + w0[:, None] * s) / Hc).ravel()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        d_asinh, _, _, d_sqrt = _divided_differences(a, b, b - a)
+    d_asinh, d_sqrt = d_asinh.reshape(s.shape), d_sqrt.reshape(s.shape)
+    x = s * (Hc / EA[:, None] + d_asinh)
+    z = s * ((V0[:, None] + 0.5 * w0[:, None] * s) / EA[:, None] + d_sqrt)
+    dist = np.abs(x * d[:, 2:3] - z * lh[:, None]) / L[:, None]
+    out = np.nanmax(dist, axis=1, initial=0.0) / L
+    return np.where((H > 0) & (w0 > 0), out, 0.0)

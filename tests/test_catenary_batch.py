@@ -117,3 +117,18 @@ def test_vertical_weightless_and_unreachable_cables_go_to_the_scalar_solver():
     st_ = states_for_tensions(A[:2], B[:2], t[:2], cables[:2], G)
     assert st_[0].tension_at_end == pytest.approx(500.0, rel=1e-10)
     assert st_[0].H == 0.0
+
+
+def test_sag_ratios_equal_the_profile_of_each_state():
+    """The batched sag equals CatenaryState.sag / chord (same 401 points) on every CoGiRo
+    cable at a central and an edge pose."""
+    from dynstiff.catenary_batch import catenary_arrays, sag_ratios
+    robot = ds.load_scene("cogiro").robot
+    for p in ([0.0, 0.0, 1.0], [5.0, 3.0, 1.0]):
+        eq = robot.equilibrium(pose=p)
+        B, _ = robot.attachment_points(eq.pose)
+        got = sag_ratios(robot.anchors, B, *catenary_arrays(eq.states),
+                         *arrays(robot.cables))
+        ref = np.array([s.sag / s.chord_length for s in eq.states])
+        np.testing.assert_allclose(got, ref, rtol=1e-9)
+        assert ref.max() > 1e-4
