@@ -461,6 +461,8 @@ def build_parser():
     si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
     si.add_argument("--quiet", action="store_true", help="no progress bar")
     si.set_defaults(func=_cmd_simulate)
+    from .cli_workspace import add_workspace_parser
+    add_workspace_parser(sub)
     return parser
 
 

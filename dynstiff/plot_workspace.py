@@ -92,8 +92,10 @@ def plot_workspace_slices(ds, n_slices=4, fig=None):
             f"{need:.0%}" if not isinstance(band, str) and band is not None else "no band")
     worst = " (worst case over " + ", ".join(d for d in _REDUCED if d in ds.dims) + ")" \
         if any(d in ds.dims for d in _REDUCED) else ""
+    n_modes = ds.sizes.get("mode", 0)
     fig.suptitle(f"{ds.attrs.get('robot', '')} workspace map{worst}: {int(dyn.sum())} of "
-                 f"{dyn.size} positions in the dynamic workspace; {band}")
+                 f"{dyn.size} positions in the dynamic workspace\n{band}; grey: infeasible, "
+                 f"or no global mode among the first {n_modes} modes")
     return fig
 
 
