@@ -5,13 +5,13 @@ import numpy as np
 import pytest
 
 xr = pytest.importorskip("xarray")
-import matplotlib  # noqa: E402
+import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
-from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot_workspace import (  # noqa: E402
+from dynstiff.errors import InvalidParameterError
+from dynstiff.plot_workspace import (
     plot_workspace_3d,
     plot_workspace_slices,
     worst_case,
@@ -35,7 +35,7 @@ def synthetic_map():
 
 
 def test_worst_case_is_the_least_frequency_and_the_all_pass_verdict():
-    f1, mg, dyn, feas = worst_case(synthetic_map())
+    f1, _mg, dyn, feas = worst_case(synthetic_map())
     assert f1.dims == ("x", "y", "z")
     np.testing.assert_allclose(f1.sel(x=1.0, y=0.0, z=2.0), 1 + 1 + 2 + 0.0)
     assert np.isnan(f1.sel(x=2.0, y=1.0, z=1.0))

@@ -9,8 +9,8 @@ import pytest
 import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
-from dynstiff.checks import design_checks  # noqa: E402
-from dynstiff.workspace import CHECKS, box_grid, workspace  # noqa: E402
+from dynstiff.checks import design_checks
+from dynstiff.workspace import CHECKS, box_grid, workspace
 
 N_MODES = 6
 BAND = (0.0, 1.5)
@@ -80,13 +80,13 @@ def test_grid_with_a_cable_parameter_and_chunking_that_does_not_matter(robot):
     """A 2 x 1 x 2 grid x 2 orientations x 2 moduli: dimensions and coordinates in order; a
     stiffer cable raises every first global frequency; chunks of 1 (cold statics at every
     pose) give the warm-started chunk of 8 to 1e-8."""
-    kw = dict(box=(-1.0, 1.0, 0.0, 0.0, 1.0, 3.0), step=2.0, n_modes=4,
-              orientations=[[0, 0, 0], [0, 0, 0.1]], parameter="EA",
-              values=[1.39487e5, 2.0e5], band_hz=BAND)
+    kw = {"box": (-1.0, 1.0, 0.0, 0.0, 1.0, 3.0), "step": 2.0, "n_modes": 4,
+              "orientations": [[0, 0, 0], [0, 0, 0.1]], "parameter": "EA",
+              "values": [1.39487e5, 2.0e5], "band_hz": BAND}
     a = workspace(robot, chunk_size=8, **kw)
     b = workspace(robot, chunk_size=1, **kw)
-    assert dict(a.sizes) == dict(x=2, y=1, z=2, orientation=2, parameter=2, mode=4,
-                                 cable=8, check=len(CHECKS), component=3)
+    assert dict(a.sizes) == {"x": 2, "y": 1, "z": 2, "orientation": 2, "parameter": 2, "mode": 4,
+                                 "cable": 8, "check": len(CHECKS), "component": 3}
     assert a["feasible"].dims == ("x", "y", "z", "orientation", "parameter")
     np.testing.assert_array_equal(a["x"], [-1.0, 1.0])
     f = a["first_global_hz"]
@@ -103,19 +103,19 @@ def test_box_grid_axes():
 
 
 @pytest.mark.parametrize("kw, match", [
-    (dict(poses=None), "exactly one of poses"),
-    (dict(box=(0, 1, 0, 1, 1, 2)), "step"),
-    (dict(box=(1, 0, 0, 1, 1, 2), step=0.5), "box must be"),
-    (dict(box=(0, 1, 0, 1, 1, 2), step=-1.0), "step"),
-    (dict(poses=[[0, 0, 1]], parameter="E"), "parameter and values|go together"),
-    (dict(poses=[[0, 0, 1]], parameter="E", values=[1.0]), "cable field"),
-    (dict(poses=[[0, 0, 1]], parameter="EA", values=[-1.0]), "EA"),
-    (dict(poses=[[0, 0, 1]], n_modes=0), "n_modes"),
-    (dict(poses=[[0, 0, 1]], chunk_size=2.5), "chunk_size"),
-    (dict(poses=[[0, 0, 1]], band_hz=(2.0, 1.0)), "band_hz"),
-    (dict(poses=[[0, 0, 1]], rung="beam"), "rung"),
-    (dict(poses=[[0, 0, 1]], workers=0), "workers"),
-    (dict(poses=[], ), "at least one pose"),
+    ({"poses": None}, "exactly one of poses"),
+    ({"box": (0, 1, 0, 1, 1, 2)}, "step"),
+    ({"box": (1, 0, 0, 1, 1, 2), "step": 0.5}, "box must be"),
+    ({"box": (0, 1, 0, 1, 1, 2), "step": -1.0}, "step"),
+    ({"poses": [[0, 0, 1]], "parameter": "E"}, "parameter and values|go together"),
+    ({"poses": [[0, 0, 1]], "parameter": "E", "values": [1.0]}, "cable field"),
+    ({"poses": [[0, 0, 1]], "parameter": "EA", "values": [-1.0]}, "EA"),
+    ({"poses": [[0, 0, 1]], "n_modes": 0}, "n_modes"),
+    ({"poses": [[0, 0, 1]], "chunk_size": 2.5}, "chunk_size"),
+    ({"poses": [[0, 0, 1]], "band_hz": (2.0, 1.0)}, "band_hz"),
+    ({"poses": [[0, 0, 1]], "rung": "beam"}, "rung"),
+    ({"poses": [[0, 0, 1]], "workers": 0}, "workers"),
+    ({"poses": [], }, "at least one pose"),
 ])
 def test_bad_arguments_are_named(robot, kw, match):
     with pytest.raises(ds.InvalidParameterError, match=match):
@@ -127,8 +127,8 @@ def test_local_processes_and_a_dask_cluster_give_the_serial_dataset(robot):
     """Two worker processes (concurrent.futures) and a real dask.distributed LocalCluster
     with 2 worker processes return the serial Dataset (1e-12), recorded failures included."""
     distributed = pytest.importorskip("distributed")
-    kw = dict(box=(-6.0, 6.0, -4.0, 4.0, 1.0, 1.0), step=4.0, n_modes=4, band_hz=BAND,
-              chunk_size=4)
+    kw = {"box": (-6.0, 6.0, -4.0, 4.0, 1.0, 1.0), "step": 4.0, "n_modes": 4, "band_hz": BAND,
+              "chunk_size": 4}
     serial = workspace(robot, **kw)
     assert not serial["feasible"].all() and serial["feasible"].any()
     procs = workspace(robot, workers=2, **kw)

@@ -7,7 +7,7 @@ import pytest
 import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
-from dynstiff.workspace_data import VARIABLES, open_workspace  # noqa: E402
+from dynstiff.workspace_data import VARIABLES, open_workspace
 
 POSES = [[0.0, 0.0, 1.0], [9.0, 0.0, 1.0], [1.0, 1.0, 2.0]]
 
