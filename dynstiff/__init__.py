@@ -41,7 +41,7 @@ from .params import Cable
 from .platform import Platform
 from .robot import Equilibrium, Pose, Robot
 from .scenes import Scene, SceneError, list_scenes, load_scene
-from .workspace import box_grid, workspace
+from .workspace_map import box_grid, workspace
 
 __version__ = "0.1.0"
 

@@ -64,7 +64,7 @@ def _cmd_workspace(args):
 
     from .errors import InvalidParameterError
     from .scenes import load_scene
-    from .workspace import workspace
+    from .workspace_map import workspace
     out = Path(args.out)
     if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
         raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "

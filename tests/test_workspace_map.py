@@ -1,4 +1,4 @@
-"""Workspace maps (dynstiff/workspace.py, docs/theory.md §13): per-pose values against the
+"""Workspace maps (dynstiff/workspace_map.py, docs/theory.md §13): per-pose values against the
 single-pose analyses, recorded failures in input order, the band margin's definition, the
 cable-parameter dimension, independence of the chunking, argument checks, and (integration
 tier) the same Dataset from local processes and from a real Dask cluster."""
@@ -10,7 +10,7 @@ import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
 from dynstiff.checks import design_checks
-from dynstiff.workspace import CHECKS, box_grid, workspace
+from dynstiff.workspace_map import CHECKS, box_grid, workspace
 
 N_MODES = 6
 BAND = (0.0, 1.5)
@@ -141,3 +141,32 @@ def test_local_processes_and_a_dask_cluster_give_the_serial_dataset(robot):
         np.testing.assert_array_equal(serial["reason"].values, other["reason"].values)
         np.testing.assert_array_equal(serial["feasible"].values, other["feasible"].values)
     assert dask.attrs["engine"] == "dask"
+
+
+@pytest.mark.parametrize("position", [(0.0, 0.0, 1.0), (3.0, 2.0, 2.5), (5.0, 3.0, 1.0)])
+def test_platform_participation_from_the_derivative_of_k_equals_the_cable_energies(
+        robot, position):
+    """-x^T dK/d(omega^2) x is the total modal mass (docs/theory.md §13.3): the platform
+    share from it equals 1 - the closed-form cable energy fraction of dynstiff.modes
+    (1e-8) over 30 modes, global and local."""
+    from dynstiff.workspace_map import platform_participation
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    res = ds.modes(m, n_modes=30)
+    np.testing.assert_allclose(platform_participation(m, res.freq_hz),
+                               1.0 - res.cable_energy_fraction, rtol=0, atol=1e-8)
+
+
+def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies(
+        robot, monkeypatch):
+    """With a step so wide that cable poles fall inside it, every such mode takes the
+    closed-form cable energies: the result still equals dynstiff.modes."""
+    import importlib
+    wsmod = importlib.import_module("dynstiff.workspace_map")
+    m = ds.build_model(robot.equilibrium(pose=[0.0, 0.0, 1.0]), "dsm")
+    res = ds.modes(m, n_modes=12)
+    monkeypatch.setattr(wsmod, "_FD_STEP", 0.2)
+    w = 2 * np.pi * res.freq_hz
+    assert np.any(m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w))
+    near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
+    got = wsmod.platform_participation(m, res.freq_hz)
+    np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
