@@ -1,0 +1,148 @@
+"""Natural frequencies of a closed-form model started from those of a neighbouring pose
+(a workspace map or a sweep moves the platform in small steps): Wittrick-Williams counts
+certify the brackets, so no mode is missed (docs/theory.md §5.1, §13.4). Cold, the same
+count bisection as :func:`dynstiff.eigen.eigenfrequencies` brackets the roots; a bracket
+that also holds a cable pole is bisected only until the pole is out and then polished by
+regula falsi like the others (instead of bisection down to ``rtol``).
+
+The lowest n frequencies of the neighbour, omega'_1 < ... < omega'_n, give the candidate
+brackets (b_{r-1}, b_r] with b_r = sqrt(omega'_r omega'_{r+1}) between neighbours,
+b_0 = omega'_1 / (1 + delta) and b_n = omega'_n (1 + delta). One vectorised count J(b) tells
+whether every bracket holds exactly its own root: J(b_{r-1}) = r - 1 and J(b_r) = r for all
+r. If so, the brackets with a cable pole are bisected on the count until the pole is out (or
+the bracket is below ``rtol``, a root on the pole), and all are then solved by Illinois
+regula falsi on the eigenvalue of K(omega) that crosses zero. Otherwise the cold bracketing
+runs.
+"""
+
+import numpy as np
+
+from .eigen import mode_count
+from .errors import ConvergenceError
+
+__all__ = ["eigenfrequencies_near"]
+
+_TWO_PI = 2.0 * np.pi
+_DELTA = 0.05         # relative room below the first and above the last previous frequency
+
+
+def _crossing(m, omega, index):
+    """Eigenvalue number ``index`` (ascending) of the real symmetric K(omega), shape (n,)."""
+    K = np.real(m.dynamic_stiffness(omega))
+    ev = np.linalg.eigvalsh(0.5 * (K + np.swapaxes(K, 1, 2)))
+    return ev[np.arange(len(omega)), index]
+
+
+def _illinois(m, lo, hi, index, rtol, max_iter=100):
+    """Illinois regula falsi on the decreasing crossing eigenvalue in pole-free isolated
+    brackets [lo, hi] [rad/s] (bisection where an update leaves the bracket)."""
+    f_lo = _crossing(m, lo, index)
+    f_hi = _crossing(m, hi, index)
+    side = np.zeros(len(lo), dtype=int)
+    x = 0.5 * (lo + hi)
+    for _ in range(max_iter):
+        act = hi - lo > rtol * hi
+        if not np.any(act):
+            break
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = np.where(act, (lo * f_hi - hi * f_lo) / (f_hi - f_lo), x)
+        bad = ~np.isfinite(x) | (x <= lo) | (x >= hi)
+        x = np.where(bad, 0.5 * (lo + hi), x)
+        fx = _crossing(m, x, index)
+        pos = fx >= 0
+        lo_new = np.where(act & pos, x, lo)
+        hi_new = np.where(act & ~pos, x, hi)
+        f_hi = np.where(act & pos & (side == 1), 0.5 * f_hi, f_hi)
+        f_lo = np.where(act & ~pos & (side == -1), 0.5 * f_lo, f_lo)
+        f_lo = np.where(act & pos, fx, f_lo)
+        f_hi = np.where(act & ~pos, fx, f_hi)
+        side = np.where(act, np.where(pos, 1, -1), side)
+        converged = act & (fx == 0)
+        lo, hi = np.where(converged, x, lo_new), np.where(converged, x, hi_new)
+    return 0.5 * (lo + hi)
+
+
+def _brackets(m, n, rtol):
+    """Cold Wittrick-Williams bracketing of the lowest n roots, as
+    :func:`dynstiff.eigen.eigenfrequencies`: bisection on the count until each bracket holds
+    one root and is narrower than 1e-3 of its top (or narrower than rtol: a multiple root).
+    Returns lo, hi [rad/s] and the isolated mask."""
+    w_hi = _TWO_PI
+    while mode_count(m, w_hi)[0] < n:
+        w_hi *= 2.0
+        if w_hi > 1e8:
+            raise ConvergenceError(f"fewer than {n} modes below {w_hi:.3g} rad/s")
+    r = np.arange(1, n + 1)
+    lo, hi = np.zeros(n), np.full(n, w_hi)
+    J_lo, J_hi = np.zeros(n, dtype=int), np.full(n, n)
+    while True:
+        width = hi - lo
+        isolated = (J_lo == r - 1) & (J_hi == r) & (width < 1e-3 * hi)
+        if np.all(isolated | (width <= rtol * hi)):
+            return lo, hi, isolated
+        act = ~isolated & (width > rtol * hi)
+        mid = 0.5 * (lo[act] + hi[act])
+        u, inv = np.unique(mid, return_inverse=True)
+        J = mode_count(m, u)[inv]
+        above = J >= r[act]
+        idx = np.flatnonzero(act)
+        hi[idx[above]], J_hi[idx[above]] = mid[above], J[above]
+        lo[idx[~above]], J_lo[idx[~above]] = mid[~above], J[~above]
+
+
+def _polish(m, lo, hi, isolated, rtol):
+    """Roots [rad/s] in isolated brackets: bisection on the count while a cable pole shares
+    the bracket (to rtol for a root on the pole), then Illinois on the crossing eigenvalue;
+    other brackets (multiple roots, already narrower than rtol) give their midpoint."""
+    r = np.arange(1, lo.size + 1)
+    lo, hi = lo.copy(), hi.copy()
+    while True:
+        poled = isolated & (m.cable_mode_count(lo) != m.cable_mode_count(hi))
+        act = poled & (hi - lo > rtol * hi)
+        if not np.any(act):
+            break
+        mid = 0.5 * (lo[act] + hi[act])
+        above = mode_count(m, mid) >= r[act]
+        idx = np.flatnonzero(act)
+        hi[idx[above]] = mid[above]
+        lo[idx[~above]] = mid[~above]
+    out = 0.5 * (lo + hi)
+    free = isolated & ~poled & (hi - lo > rtol * hi)
+    if np.any(free):
+        index = (r[free] - 1) - m.cable_mode_count(lo[free])
+        out[free] = _illinois(m, lo[free], hi[free], index, rtol)
+    return out
+
+
+def eigenfrequencies_near(model, n_modes, previous_hz=None, rtol=1e-12):
+    """The lowest ``n_modes`` natural frequencies [Hz] of a closed-form model, none missed.
+
+    Parameters
+    ----------
+    model : model with ``dynamic_stiffness`` and ``cable_mode_count`` (the "dsm" rung)
+    n_modes : int
+    previous_hz : array_like, shape (n_modes,), optional
+        The lowest frequencies [Hz] of a neighbouring pose (or of the same robot with a
+        nearby parameter), ascending: candidate brackets, kept only if the counts certify
+        them.
+    rtol : float
+        Relative width of the final bracket (as :func:`dynstiff.eigen.eigenfrequencies`).
+
+    Returns
+    -------
+    ndarray, shape (n_modes,) [Hz]
+    """
+    m = model.undamped()
+    n = int(n_modes)
+    f = None if previous_hz is None else np.asarray(previous_hz, dtype=float)
+    if (f is not None and f.shape == (n,) and np.all(np.isfinite(f)) and np.all(f > 0)
+            and np.all(np.diff(f) > 0)):
+        w = _TWO_PI * f
+        b = np.concatenate([[w[0] / (1 + _DELTA)], np.sqrt(w[:-1] * w[1:]),
+                            [w[-1] * (1 + _DELTA)]])
+        J = mode_count(m, b)
+        r = np.arange(1, n + 1)
+        if np.array_equal(J[:-1], r - 1) and np.array_equal(J[1:], r):
+            return _polish(m, b[:-1], b[1:], np.ones(n, bool), rtol) / _TWO_PI
+    lo, hi, isolated = _brackets(m, n, rtol)
+    return _polish(m, lo, hi, isolated, rtol) / _TWO_PI
