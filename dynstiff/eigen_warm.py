@@ -35,30 +35,41 @@ def _crossing(m, omega, index):
 
 def _illinois(m, lo, hi, index, rtol, max_iter=100):
     """Illinois regula falsi on the decreasing crossing eigenvalue in pole-free isolated
-    brackets [lo, hi] [rad/s] (bisection where an update leaves the bracket)."""
+    brackets [lo, hi] [rad/s], each estimate x evaluated at x -/+ 0.45 rtol hi: once the
+    two straddle the root, the bracket is below rtol (regula falsi alone keeps one end
+    and closes the other slowly). Bisection where an update leaves the bracket."""
+    n = len(lo)
     f_lo = _crossing(m, lo, index)
     f_hi = _crossing(m, hi, index)
-    side = np.zeros(len(lo), dtype=int)
-    x = 0.5 * (lo + hi)
+    side = np.zeros(n, dtype=int)
     for _ in range(max_iter):
         act = hi - lo > rtol * hi
         if not np.any(act):
             break
         with np.errstate(divide="ignore", invalid="ignore"):
-            x = np.where(act, (lo * f_hi - hi * f_lo) / (f_hi - f_lo), x)
+            x = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
         bad = ~np.isfinite(x) | (x <= lo) | (x >= hi)
         x = np.where(bad, 0.5 * (lo + hi), x)
-        fx = _crossing(m, x, index)
-        pos = fx >= 0
-        lo_new = np.where(act & pos, x, lo)
-        hi_new = np.where(act & ~pos, x, hi)
-        f_hi = np.where(act & pos & (side == 1), 0.5 * f_hi, f_hi)
-        f_lo = np.where(act & ~pos & (side == -1), 0.5 * f_lo, f_lo)
-        f_lo = np.where(act & pos, fx, f_lo)
-        f_hi = np.where(act & ~pos, fx, f_hi)
-        side = np.where(act, np.where(pos, 1, -1), side)
-        converged = act & (fx == 0)
-        lo, hi = np.where(converged, x, lo_new), np.where(converged, x, hi_new)
+        d = 0.45 * rtol * hi
+        a = np.clip(x - d, lo, hi)
+        b = np.clip(x + d, lo, hi)
+        fa, fb = np.split(_crossing(m, np.concatenate([a, b]), np.tile(index, 2)), 2)
+        # the new bracket: the highest point with f >= 0 and the lowest with f < 0
+        new_lo = np.where(fb >= 0, b, np.where(fa >= 0, a, lo))
+        nf_lo = np.where(fb >= 0, fb, np.where(fa >= 0, fa, f_lo))
+        new_hi = np.where(fa < 0, a, np.where(fb < 0, b, hi))
+        nf_hi = np.where(fa < 0, fa, np.where(fb < 0, fb, f_hi))
+        moved_lo, moved_hi = new_lo != lo, new_hi != hi
+        # Illinois: halve the kept end's value when the same end moved twice running
+        nf_hi = np.where(moved_lo & ~moved_hi & (side == 1), 0.5 * nf_hi, nf_hi)
+        nf_lo = np.where(moved_hi & ~moved_lo & (side == -1), 0.5 * nf_lo, nf_lo)
+        side = np.where(moved_lo & ~moved_hi, 1, np.where(moved_hi & ~moved_lo, -1, 0))
+        zero = (fa == 0) | (fb == 0)
+        root = np.where(fa == 0, a, b)
+        lo = np.where(act, np.where(zero, root, new_lo), lo)
+        hi = np.where(act, np.where(zero, root, new_hi), hi)
+        f_lo = np.where(act, nf_lo, f_lo)
+        f_hi = np.where(act, nf_hi, f_hi)
     return 0.5 * (lo + hi)
 
 
