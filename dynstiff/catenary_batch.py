@@ -163,12 +163,15 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None):
             guess = None
     if guess is None:
         guess = _straight_start(*args)
-    sol = list(_newton(*args, *guess))
+    with np.errstate(all="ignore"):       # a diverging cable shows as non-finite, not ok
+        sol = list(_newton(*args, *guess))
     ok = sol[3]
     if start is not None and not np.all(ok):      # retry the others from the straight cable
         redo = np.flatnonzero(~ok)
         sub = tuple(a[redo] for a in args)
-        for k, v in enumerate(_newton(*sub, *_straight_start(*sub))):
+        with np.errstate(all="ignore"):
+            again = _newton(*sub, *_straight_start(*sub))
+        for k, v in enumerate(again):
             sol[k][redo] = v
     H, V0, L0, ok, res = sol
     done = idx[ok]

@@ -69,6 +69,13 @@ def _cmd_workspace(args):
     if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
         raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "
                                     f"existing folder")
+    if out.suffix == ".zarr":
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise InvalidParameterError(
+                f"--out {args.out}: Zarr output needs the zarr package (pip install zarr); "
+                f"or give NAME.nc") from None
     if (args.parameter is None) != (args.values is None):
         raise InvalidParameterError("--parameter and --values go together")
     if args.workers is not None and args.workers < 1:

@@ -1,18 +1,16 @@
 """Natural frequencies of a closed-form model started from those of a neighbouring pose
-(a workspace map or a sweep moves the platform in small steps): Wittrick-Williams counts
-certify the brackets, so no mode is missed (docs/theory.md §5.1, §13.4). Cold, the same
-count bisection as :func:`dynstiff.eigen.eigenfrequencies` brackets the roots; a bracket
-that also holds a cable pole is bisected only until the pole is out and then polished by
-regula falsi like the others (instead of bisection down to ``rtol``).
+(a workspace map or a sweep moves the platform in steps): Wittrick-Williams counts certify
+every bracket, so no mode is missed (docs/theory.md §5.1, §13.4).
 
-The lowest n frequencies of the neighbour, omega'_1 < ... < omega'_n, give the candidate
-brackets (b_{r-1}, b_r] with b_r = sqrt(omega'_r omega'_{r+1}) between neighbours,
-b_0 = omega'_1 / (1 + delta) and b_n = omega'_n (1 + delta). One vectorised count J(b) tells
-whether every bracket holds exactly its own root: J(b_{r-1}) = r - 1 and J(b_r) = r for all
-r. If so, the brackets with a cable pole are bisected on the count until the pole is out (or
-the bracket is below ``rtol``, a root on the pole), and all are then solved by Illinois
-regula falsi on the eigenvalue of K(omega) that crosses zero. Otherwise the cold bracketing
-runs.
+The neighbour's lowest frequencies omega'_1 < ... < omega'_n give seed points
+b_r = sqrt(omega'_r omega'_{r+1}) between them, b_0 = omega'_1 / (1 + delta) and
+b_n = omega'_n (1 + delta). One vectorised count J(b) brackets every root r between the
+highest seed with J <= r - 1 and the lowest with J >= r; near the neighbour these brackets
+hold one root each at once, farther away the count bisection of
+:func:`dynstiff.eigen.eigenfrequencies` goes on from them (from [0, omega_hi] without
+seeds). A bracket that also holds a cable pole is bisected on the count only until the pole
+is out (down to ``rtol`` for a root on the pole); every root is then polished by Illinois
+regula falsi on the eigenvalue of K(omega) that crosses zero.
 """
 
 import numpy as np
@@ -73,22 +71,36 @@ def _illinois(m, lo, hi, index, rtol, max_iter=100):
     return 0.5 * (lo + hi)
 
 
-def _brackets(m, n, rtol):
-    """Cold Wittrick-Williams bracketing of the lowest n roots, as
-    :func:`dynstiff.eigen.eigenfrequencies`: bisection on the count until each bracket holds
-    one root and is narrower than 1e-3 of its top (or narrower than rtol: a multiple root).
-    Returns lo, hi [rad/s] and the isolated mask."""
-    w_hi = _TWO_PI
-    while mode_count(m, w_hi)[0] < n:
-        w_hi *= 2.0
-        if w_hi > 1e8:
-            raise ConvergenceError(f"fewer than {n} modes below {w_hi:.3g} rad/s")
+def _brackets(m, n, rtol, seeds=None):
+    """Wittrick-Williams bracketing of the lowest n roots [rad/s]: counts at the ``seeds``
+    (if any) give the first brackets, then bisection on the count until each bracket holds
+    exactly one root (or is narrower than rtol: a multiple root). Returns lo, hi and the
+    isolated mask."""
     r = np.arange(1, n + 1)
-    lo, hi = np.zeros(n), np.full(n, w_hi)
-    J_lo, J_hi = np.zeros(n, dtype=int), np.full(n, n)
+    lo, hi = np.zeros(n), np.zeros(n)
+    J_lo, J_hi = np.zeros(n, dtype=int), np.zeros(n, dtype=int)
+    todo = np.ones(n, dtype=bool)                 # roots without an upper seed
+    w_hi = _TWO_PI
+    if seeds is not None and seeds.size:
+        J = mode_count(m, seeds)
+        for k in range(n):
+            below = np.flatnonzero(J <= k)
+            if below.size:
+                lo[k], J_lo[k] = seeds[below[-1]], J[below[-1]]
+            above = np.flatnonzero(J >= k + 1)
+            if above.size:
+                hi[k], J_hi[k] = seeds[above[0]], J[above[0]]
+                todo[k] = False
+        w_hi = seeds[-1]
+    if np.any(todo):
+        while (J_top := mode_count(m, w_hi)[0]) < n:
+            w_hi *= 2.0
+            if w_hi > 1e8:
+                raise ConvergenceError(f"fewer than {n} modes below {w_hi:.3g} rad/s")
+        hi[todo], J_hi[todo] = w_hi, J_top
     while True:
+        isolated = (J_lo == r - 1) & (J_hi == r)
         width = hi - lo
-        isolated = (J_lo == r - 1) & (J_hi == r) & (width < 1e-3 * hi)
         if np.all(isolated | (width <= rtol * hi)):
             return lo, hi, isolated
         act = ~isolated & (width > rtol * hi)
@@ -145,15 +157,11 @@ def eigenfrequencies_near(model, n_modes, previous_hz=None, rtol=1e-12):
     """
     m = model.undamped()
     n = int(n_modes)
-    f = None if previous_hz is None else np.asarray(previous_hz, dtype=float)
-    if (f is not None and f.shape == (n,) and np.all(np.isfinite(f)) and np.all(f > 0)
-            and np.all(np.diff(f) > 0)):
-        w = _TWO_PI * f
-        b = np.concatenate([[w[0] / (1 + _DELTA)], np.sqrt(w[:-1] * w[1:]),
-                            [w[-1] * (1 + _DELTA)]])
-        J = mode_count(m, b)
-        r = np.arange(1, n + 1)
-        if np.array_equal(J[:-1], r - 1) and np.array_equal(J[1:], r):
-            return _polish(m, b[:-1], b[1:], np.ones(n, bool), rtol) / _TWO_PI
-    lo, hi, isolated = _brackets(m, n, rtol)
+    seeds = None
+    f = None if previous_hz is None else np.asarray(previous_hz, dtype=float).ravel()
+    if f is not None and f.size and np.all(np.isfinite(f)) and np.all(f > 0):
+        w = np.unique(_TWO_PI * f)
+        seeds = np.concatenate([[w[0] / (1 + _DELTA)], np.sqrt(w[:-1] * w[1:]),
+                                [w[-1] * (1 + _DELTA)]])
+    lo, hi, isolated = _brackets(m, n, rtol, seeds)
     return _polish(m, lo, hi, isolated, rtol) / _TWO_PI

@@ -216,7 +216,7 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
                     raise
                 eq = robot.equilibrium(pose=pose)        # a far neighbour: start afresh
             f, part, glob = _modes(build_model(eq, rung, **model_options), n_modes, prev_hz)
-        except DynstiffError as exc:
+        except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
             reasons[j] = f"{type(exc).__name__}: {exc}"
             continue
         prev, prev_hz = eq, f
