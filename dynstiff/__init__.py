@@ -50,6 +50,7 @@ from .params import Cable
 from .platform import Platform
 from .robot import Equilibrium, Pose, Robot
 from .scenes import Scene, SceneError, list_scenes, load_scene
+from .workspace_map import box_grid, workspace
 
 __version__ = "0.1.0"
 
@@ -64,6 +65,8 @@ __all__ = [
     "ModalModel",
     "modal_model",
     "to_statespace",
+    "workspace",
+    "box_grid",
     "frf",
     "eigenfrequencies",
     "modes",

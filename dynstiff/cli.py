@@ -490,6 +490,8 @@ def build_parser():
     si.set_defaults(func=_cmd_simulate)
     from .cli_exchange import add_commands
     add_commands(sub)
+    from .cli_workspace import add_workspace_parser
+    add_workspace_parser(sub)
     return parser
 
 

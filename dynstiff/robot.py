@@ -201,7 +201,7 @@ class Robot:
 
     # ------------------------------------------------------------------ statics
     def equilibrium(self, pose=None, unstretched_lengths=None, tension_reference=None,
-                    initial_pose=None, tol=1e-10, max_iter=None):
+                    initial_pose=None, tol=1e-10, max_iter=None, start=None):
         """Static equilibrium with sagging cables.
 
         Give exactly one of:
@@ -220,6 +220,10 @@ class Robot:
         slowly when the cables are light or nearly slack, since the direction at B then
         depends strongly on the tension) and 50 Newton iterations for forward statics.
 
+        ``start`` (inverse statics): an :class:`Equilibrium` of this robot at a neighbouring
+        pose; its cable directions and catenaries start the iteration (a sweep over poses
+        warm-starts each pose from the previous one). The equilibrium reached is the same.
+
         Returns
         -------
         Equilibrium
@@ -237,9 +241,15 @@ class Robot:
         if max_iter is not None and (isinstance(max_iter, bool) or
                                      not isinstance(max_iter, Integral) or max_iter < 1):
             raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+        if start is not None and not (isinstance(start, Equilibrium)
+                                      and start.robot.n_cables == self.n_cables
+                                      and np.array_equal(start.robot.anchors, self.anchors)):
+            raise InvalidParameterError(
+                f"start must be an Equilibrium of this robot (same anchors), got "
+                f"{type(start).__name__}")
         if pose is not None:
             return inverse_statics(self, as_pose(pose), tension_reference, tol,
-                                   500 if max_iter is None else max_iter)
+                                   500 if max_iter is None else max_iter, start)
         return forward_statics(self, _validate.unstretched_lengths(unstretched_lengths,
                                                                    self.n_cables),
                                None if initial_pose is None else as_pose(initial_pose), tol,

@@ -15,7 +15,8 @@ with the analytic 6x6 stiffness (theory.md §4).
 import numpy as np
 
 from ._vec import cross
-from .catenary import unstretched_length_for_tension
+from .catenary import CatenaryState, unstretched_length_for_tension
+from .catenary_batch import catenary_arrays, taut_catenaries
 from .equilibrium import Equilibrium
 from .pose import Pose
 from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
@@ -159,9 +160,47 @@ def _limits(t_min, t_max):
     return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
 
 
-def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50):
+def _end_quantities(anchors, ends, H, V0, L0, w0):
+    """Unit force direction on B, shape (n, 3), and the tension margins lo = T_B - min T,
+    hi = max T - T_B [N], shape (n,), of catenaries given by arrays (H, V0, L0)."""
+    d = ends - anchors
+    lh = np.hypot(d[:, 0], d[:, 1])
+    vertical = lh <= 1e-14 * np.linalg.norm(d, axis=1)
+    lh_safe = np.where(vertical, 1.0, lh)
+    e_h = np.stack([np.where(vertical, 1.0, d[:, 0] / lh_safe),
+                    np.where(vertical, 0.0, d[:, 1] / lh_safe), np.zeros(len(H))], axis=1)
+    Vb = V0 + w0 * L0
+    f = -(H[:, None] * e_h)
+    f[:, 2] -= Vb
+    T_B = np.hypot(H, Vb)
+    T_A = np.hypot(H, V0)
+    T_min = np.where((V0 < 0.0) & (Vb > 0.0), H,
+                     np.hypot(H, np.minimum(np.abs(V0), np.abs(Vb))))
+    return f / T_B[:, None], T_B - T_min, np.maximum(T_B, T_A) - T_B
+
+
+def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50, start=None):
     """Tensions and unstretched lengths that hold the platform at ``pose`` (sag included),
     with every cable's tension within the robot's limits all along its length.
+
+    The fixed point of cable directions and tension distribution is iterated; each
+    iteration solves all catenaries for their end tensions at once
+    (:func:`dynstiff.catenary_batch.taut_catenaries`, docs/theory.md §13.1), warm-started
+    from the previous iteration.
+
+    Parameters
+    ----------
+    robot : Robot
+    pose : Pose
+    tension_reference : float or ndarray, shape (n,), optional
+        Reference tensions [N] of the distribution (default the lower limit).
+    tol : float
+        Admissible wrench residual relative to the platform weight [-].
+    max_iter : int
+        Fixed-point iterations.
+    start : Equilibrium, optional
+        A neighbouring equilibrium of the same robot: its cable directions, tension margins
+        and catenaries start the iteration (the fixed point reached is the same).
 
     Returns
     -------
@@ -169,16 +208,24 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
     """
     fi = robot.platform.free_index
     B, r = robot.attachment_points(pose)
-    u = robot.anchors - B
-    u /= np.linalg.norm(u, axis=1)[:, None]
+    A = robot.anchors
+    n = robot.n_cables
+    w0 = np.array([c.mass_per_length for c in robot.cables]) * robot.g
+    EA = np.array([c.EA for c in robot.cables])
     wg = robot.gravity_wrench(pose)
     t_min, t_max = robot.tension_limits
     # the limits hold along the whole cable: the platform-end tension t_i is bounded by
     # [t_min + lo_i, t_max - hi_i], lo_i = T_B - min T, hi_i = max T - T_B of the last
     # catenaries (a cable going down to its anchor is least tensioned there)
-    lo = np.zeros(robot.n_cables)
-    hi = np.zeros(robot.n_cables)
-    states = None
+    if start is not None:
+        warm = catenary_arrays(start.states)
+        u, lo, hi = _end_quantities(A, B, *warm, w0)
+    else:
+        warm = None
+        u = A - B
+        u /= np.linalg.norm(u, axis=1)[:, None]
+        lo = np.zeros(n)
+        hi = np.zeros(n)
     best, since_best = np.inf, 0
     for it in range(max_iter):
         W = np.vstack([u.T, cross(r, u).T])[fi]
@@ -187,16 +234,18 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
                                      tension_reference)
         except SlackCableError as exc:
             raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
-        try:
-            states = [unstretched_length_for_tension(robot.anchors[i], B[i], t[i],
-                                                     robot.cables[i], robot.g)
-                      for i in range(robot.n_cables)]
-        except SlackCableError as exc:
-            raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
-        u_new = np.array([s.force_on_end for s in states])
-        u_new /= np.linalg.norm(u_new, axis=1)[:, None]
-        lo_new = np.array([s.tension_at_end - s.min_tension for s in states])
-        hi_new = np.array([s.max_tension - s.tension_at_end for s in states])
+        H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
+        scalar = {}
+        for i in np.flatnonzero(pending):
+            try:
+                scalar[i] = unstretched_length_for_tension(A[i], B[i], t[i], robot.cables[i],
+                                                           robot.g)
+            except SlackCableError as exc:
+                raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
+            H[i], V0[i], L0[i] = scalar[i].H, scalar[i].V0, scalar[i].unstretched_length
+            res[i] = scalar[i].residual
+        warm = (H, V0, L0)
+        u_new, lo_new, hi_new = _end_quantities(A, B, H, V0, L0, w0)
         change = max(np.abs(u_new - u).max(),
                      np.abs(np.concatenate([lo_new - lo, hi_new - hi])).max() / t.max())
         u, lo, hi = u_new, lo_new, hi_new
@@ -210,6 +259,11 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
         raise ConvergenceError(
             f"inverse statics: cable directions still change by {change:.2e} after "
             f"{max_iter} iterations (max_iter)", residual=change)
+    states = [scalar[i] if i in scalar else
+              CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
+                            cable=robot.cables[i], g=robot.g, H=float(H[i]), V0=float(V0[i]),
+                            residual=float(res[i]))
+              for i in range(n)]
     # final balance with these exact catenaries
     resid = robot.wrench(pose, states)[fi]
     scale = robot.platform.mass * max(robot.g, 1.0)
@@ -218,9 +272,8 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50)
         raise ConvergenceError(
             f"inverse statics: wrench residual {res:.3e} (relative to m g) > tol {tol:.0e} at pose "
             f"{pose.as_vector().tolist()}", residual=res)
-    L0 = np.array([s.unstretched_length for s in states])
-    return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0, states=tuple(states),
-                       residual=float(res))
+    return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0.copy(),
+                       states=tuple(states), residual=float(res))
 
 
 def _kinematic_guess(robot, L0):

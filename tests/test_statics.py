@@ -114,3 +114,116 @@ def test_bad_tolerance_and_iteration_count_name_the_argument(cogiro):
         cogiro.robot.equilibrium(pose=cogiro.pose, max_iter=0)
     with pytest.raises(InvalidParameterError, match="max_iter"):
         cogiro.robot.equilibrium(unstretched_lengths=[12.0] * 8, max_iter=2.5)
+
+
+# ------------------------------------------- the batched statics against the scalar solver
+def reference_inverse_statics(robot, pose, max_iter=500):
+    """The fixed point with every cable solved alone by the bracketing (Brent) search of
+    :func:`dynstiff.catenary.unstretched_length_for_tension`, as inverse statics did before
+    the batched Newton on (H, V0, L0): the reference the batched solver must equal."""
+    from dynstiff._vec import cross
+    from dynstiff.catenary import unstretched_length_for_tension
+
+    fi = robot.platform.free_index
+    B, r = robot.attachment_points(pose)
+    u = robot.anchors - B
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    wg = robot.gravity_wrench(pose)
+    t_min, t_max = robot.tension_limits
+    lo = np.zeros(robot.n_cables)
+    hi = np.zeros(robot.n_cables)
+    best, since_best = np.inf, 0
+    for _ in range(max_iter):
+        W = np.vstack([u.T, cross(r, u).T])[fi]
+        t = tension_distribution(W, -wg[fi], t_min + lo, t_max - hi)
+        states = [unstretched_length_for_tension(robot.anchors[i], B[i], t[i],
+                                                 robot.cables[i], robot.g)
+                  for i in range(robot.n_cables)]
+        u_new = np.array([s.force_on_end for s in states])
+        u_new /= np.linalg.norm(u_new, axis=1)[:, None]
+        lo_new = np.array([s.tension_at_end - s.min_tension for s in states])
+        hi_new = np.array([s.max_tension - s.tension_at_end for s in states])
+        change = max(np.abs(u_new - u).max(),
+                     np.abs(np.concatenate([lo_new - lo, hi_new - hi])).max() / t.max())
+        u, lo, hi = u_new, lo_new, hi_new
+        best, since_best = (change, 0) if change < best else (best, since_best + 1)
+        if change < 1e-15 or (best < 1e-9 and since_best >= 10):
+            break
+    return (np.array([s.unstretched_length for s in states]),
+            np.array([s.tension_at_end for s in states]))
+
+
+def assert_same_statics(eq, ref):
+    L0, t = ref
+    np.testing.assert_allclose(eq.unstretched_lengths, L0, rtol=1e-9, atol=0)
+    np.testing.assert_allclose(eq.tensions, t, rtol=1e-9, atol=0)
+
+
+@pytest.mark.parametrize("name", ["cogiro", "fourcable", "sixcable", "simulator", "planar2"])
+def test_batched_statics_equal_the_scalar_solver_on_every_scene(name):
+    sc = ds.load_scene(name)
+    eq = sc.equilibrium()
+    assert_same_statics(eq, reference_inverse_statics(sc.robot, eq.pose))
+
+
+@pytest.mark.parametrize("position", [(5.0, 3.0, 1.0), (-4.0, 2.5, 0.5), (2.0, -3.0, 3.5)])
+def test_batched_statics_equal_the_scalar_solver_across_the_cogiro_workspace(position):
+    robot = ds.load_scene("cogiro").robot
+    eq = robot.equilibrium(pose=position)
+    assert_same_statics(eq, reference_inverse_statics(robot, eq.pose))
+
+
+def test_warm_start_from_a_neighbouring_pose_reaches_the_same_equilibrium(cogiro, cogiro_eq):
+    """Started from the central equilibrium, the fixed point at a pose 0.4 m away is the one
+    reached from straight cables (to 1e-9), in fewer iterations' worth of work."""
+    robot = cogiro.robot
+    cold = robot.equilibrium(pose=[0.4, -0.2, 1.3])
+    warm = robot.equilibrium(pose=[0.4, -0.2, 1.3], start=cogiro_eq)
+    assert_same_statics(warm, (cold.unstretched_lengths, cold.tensions))
+    assert warm.residual < 1e-10
+
+
+def test_warm_start_must_be_an_equilibrium_of_the_same_robot(cogiro):
+    other = ds.load_scene("sixcable").equilibrium()
+    with pytest.raises(InvalidParameterError, match="start"):
+        cogiro.robot.equilibrium(pose=cogiro.pose, start=other)
+    with pytest.raises(InvalidParameterError, match="start"):
+        cogiro.robot.equilibrium(pose=cogiro.pose, start="warm")
+
+
+@pytest.mark.slow
+def test_batched_statics_equal_the_scalar_solver_on_a_1000_pose_cogiro_grid():
+    """10 x 10 x 10 positions over the CoGiRo workspace. Started from straight cables, the
+    batched solver fails exactly where the scalar one does and otherwise equals it (1e-9).
+    Warm-started from the previous pose (as a workspace map does) it equals it too; near
+    the edge of the workspace it may also find an equilibrium that the iteration from
+    straight cables misses (the straight-cable tensions left the limits at an early
+    iteration): that one must be a true equilibrium within the limits."""
+    robot = ds.load_scene("cogiro").robot
+    t_min, t_max = robot.tension_limits
+    grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 10), np.linspace(-3.5, 3.5, 10),
+                                np.linspace(0.3, 3.6, 10), indexing="ij"), -1).reshape(-1, 3)
+    prev, n_ok, n_extra = None, 0, 0
+    for p in grid:
+        try:
+            warm = robot.equilibrium(pose=p, start=prev)
+        except SlackCableError:
+            warm = None
+        try:
+            ref = reference_inverse_statics(robot, ds.Pose(p))
+        except SlackCableError:
+            with pytest.raises(SlackCableError):
+                robot.equilibrium(pose=p)
+            if warm is not None:
+                n_extra += 1
+                assert warm.residual < 1e-10
+                assert np.all(warm.min_tensions >= t_min - 1e-6)
+                assert np.all(warm.max_tensions <= t_max + 1e-6)
+                prev = warm
+            continue
+        assert_same_statics(robot.equilibrium(pose=p), ref)
+        assert warm is not None
+        assert_same_statics(warm, ref)
+        prev, n_ok = warm, n_ok + 1
+    assert n_ok > 500
+    assert n_extra < 0.02 * len(grid)

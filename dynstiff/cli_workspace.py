@@ -1,0 +1,126 @@
+"""The ``dynstiff workspace`` command: a workspace map of a scene over a box grid
+(docs/theory.md §13), written to netCDF (or Zarr) with an optional figure and table."""
+
+import sys
+
+__all__ = ["add_workspace_parser"]
+
+
+def add_workspace_parser(sub):
+    """Add the ``workspace`` subcommand to the subparsers ``sub`` of the dynstiff parser."""
+    ws = sub.add_parser(
+        "workspace", help="map statics, modes and design checks over a box grid of positions "
+                          "(optionally x orientations x a cable parameter); netCDF output")
+    ws.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    ws.add_argument("--box", type=float, nargs=6, required=True,
+                    metavar=("X0", "X1", "Y0", "Y1", "Z0", "Z1"), help="grid box [m]")
+    ws.add_argument("--step", type=float, required=True, help="grid spacing [m]")
+    ws.add_argument("--orientations", metavar="FILE",
+                    help="rotation vectors rx ry rz [rad], one a line ('#' comments), "
+                         "crossed with the positions (default: the scene's rotation)")
+    ws.add_argument("--parameter", choices=["EA", "mass_per_length"],
+                    help="cable parameter set on every cable: EA [N] or mass_per_length "
+                         "[kg/m]")
+    ws.add_argument("--values", type=float, nargs="+", metavar="V", help="parameter values")
+    ws.add_argument("-n", type=int, default=20, help="modes per pose (default %(default)s)")
+    ws.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="forbidden band [Hz] (default: the scene's forbidden_band_hz)")
+    ws.add_argument("--margin", type=float, default=0.05,
+                    help="relative margin of the global modes to the band (default "
+                         "%(default)s)")
+    ws.add_argument("--chunk-size", type=int, default=25,
+                    help="poses per task, warm-started along it (default %(default)s)")
+    run = ws.add_mutually_exclusive_group()
+    run.add_argument("--workers", type=int, help="local worker processes")
+    run.add_argument("--scheduler", metavar="ADDRESS",
+                     help="Dask scheduler address, e.g. tcp://10.0.0.5:8786")
+    ws.add_argument("--out", required=True,
+                    help="map file: NAME.nc (netCDF) or NAME.zarr (Zarr folder)")
+    ws.add_argument("--plot", help="write the slices of the map (PNG, PDF, ...)")
+    ws.add_argument("--csv", help="write the table, one row per pose ('-': standard output)")
+    ws.add_argument("--quiet", action="store_true", help="no progress line")
+    ws.set_defaults(func=_cmd_workspace)
+    return ws
+
+
+def _orientations(path):
+    import numpy as np
+
+    from .errors import InvalidParameterError
+    try:
+        rot = np.loadtxt(path, comments="#", ndmin=2, dtype=float)
+    except ValueError as exc:
+        raise InvalidParameterError(f"--orientations {path}: {exc}") from None
+    if rot.shape[1] != 3 or rot.shape[0] == 0:
+        raise InvalidParameterError(f"--orientations {path}: need 3 numbers a line "
+                                    f"(rx ry rz [rad]), got shape {rot.shape}")
+    return rot
+
+
+def _cmd_workspace(args):
+    from pathlib import Path
+
+    import numpy as np
+
+    from .errors import InvalidParameterError
+    from .scenes import load_scene
+    from .workspace_map import workspace
+    out = Path(args.out)
+    if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
+        raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "
+                                    f"existing folder")
+    if out.suffix == ".zarr":
+        try:
+            import zarr  # noqa: F401
+        except ImportError:
+            raise InvalidParameterError(
+                f"--out {args.out}: Zarr output needs the zarr package (pip install zarr); "
+                f"or give NAME.nc") from None
+    if (args.parameter is None) != (args.values is None):
+        raise InvalidParameterError("--parameter and --values go together")
+    if args.workers is not None and args.workers < 1:
+        raise InvalidParameterError(f"--workers must be >= 1, got {args.workers}")
+    scene = load_scene(args.scene)
+    rot = (_orientations(args.orientations) if args.orientations else
+           None if scene.pose is None or not np.any(scene.pose.rotation)
+           else scene.pose.rotation[None, :])
+    band = tuple(args.band) if args.band else scene.forbidden_band_hz
+    kw = dict(box=args.box, step=args.step, orientations=rot, parameter=args.parameter,
+              values=args.values, n_modes=args.n, band_hz=band, margin=args.margin,
+              chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet)
+    info = sys.stderr if args.csv == "-" else sys.stdout
+    if args.scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise InvalidParameterError(
+                '--scheduler needs Dask: pip install "dynstiff[workspace]"') from None
+        with Client(args.scheduler) as client:
+            ds = workspace(scene.robot, client=client, **kw)
+    else:
+        ds = workspace(scene.robot, **kw)
+    if out.suffix == ".zarr":
+        ds.to_zarr(out, mode="w")
+    else:
+        ds.to_netcdf(out)
+    f1 = ds["first_global_hz"].values
+    info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
+               f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "
+               f"{int(ds['dynamic'].sum())} pass every check; first global frequency "
+               + (f"{np.nanmin(f1):.3f}-{np.nanmax(f1):.3f} Hz\n" if np.isfinite(f1).any()
+                  else "not found\n"))
+    if args.csv:
+        df = ds.dynstiff.to_frame()
+        text = df.to_csv(index=False)
+        if args.csv == "-":
+            sys.stdout.write(text)
+        else:
+            Path(args.csv).write_text(text)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        ds.dynstiff.plot().savefig(args.plot, dpi=120)
+    for name in (args.out, args.plot, args.csv):
+        if name and name != "-":
+            info.write(f"wrote {name}\n")
+    return 0

@@ -1,0 +1,136 @@
+"""Figures of a workspace map (an ``xarray.Dataset`` of :func:`dynstiff.workspace`):
+horizontal slices and a 3-D view of the first global frequency, the band margin and the
+dynamic workspace (docs/theory.md §13). matplotlib is imported when a figure is drawn.
+
+Over an ``orientation`` or ``parameter`` dimension the figures show the worst case: the
+least first global frequency and band margin, and a pose belongs to the dynamic workspace
+only when every check passes for every orientation and value.
+"""
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+__all__ = ["plot_workspace_3d", "plot_workspace_slices", "worst_case"]
+
+_REDUCED = ("orientation", "parameter")
+
+
+def worst_case(ds):
+    """(first global frequency [Hz], band margin [-], dynamic, feasible) over x, y, z: the
+    least value and the all-pass verdict over the orientations and parameter values."""
+    if not all(d in ds.dims for d in ("x", "y", "z")):
+        raise InvalidParameterError(
+            "the workspace figures need a grid map (dimensions x, y, z): give box= to "
+            "dynstiff.workspace_map")
+    red = [d for d in _REDUCED if d in ds.dims]
+    f1 = ds["first_global_hz"].min(red, skipna=False) if red else ds["first_global_hz"]
+    mg = ds["band_margin"].min(red, skipna=False) if red else ds["band_margin"]
+    dyn = ds["dynamic"].all(red) if red else ds["dynamic"]
+    feas = ds["feasible"].all(red) if red else ds["feasible"]
+    return (f1.transpose("x", "y", "z"), mg.transpose("x", "y", "z"),
+            dyn.transpose("x", "y", "z"), feas.transpose("x", "y", "z"))
+
+
+def _edges(v):
+    """Cell edges around the centres v (a single centre gets a unit-width cell)."""
+    if v.size == 1:
+        return np.array([v[0] - 0.5, v[0] + 0.5])
+    mid = 0.5 * (v[1:] + v[:-1])
+    return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+
+def plot_workspace_slices(ds, n_slices=4, fig=None):
+    """Horizontal slices (x, y) at up to ``n_slices`` heights z: first global frequency
+    [Hz] (top), band margin [-] (middle, 0 and the required margin as contours) and the
+    dynamic workspace (bottom: every check passes / a check fails / infeasible).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap, TwoSlopeNorm
+
+    f1, mg, dyn, feas = worst_case(ds)
+    x, y, z = (ds[c].values for c in ("x", "y", "z"))
+    ks = np.unique(np.linspace(0, z.size - 1, min(n_slices, z.size)).round().astype(int))
+    if fig is None:
+        fig = plt.figure(figsize=(3.4 * ks.size + 1.2, 9.0), layout="constrained")
+    axs = np.asarray(fig.subplots(3, ks.size, squeeze=False, sharex=True, sharey=True))
+    xe, ye = _edges(x), _edges(y)
+    finite = np.isfinite(f1.values)
+    fmin, fmax = ((np.nanmin(f1.values), np.nanmax(f1.values)) if finite.any() else (0, 1))
+    m = mg.values[np.isfinite(mg.values)]
+    lim = max(np.abs(m).max() if m.size else 1.0, 1e-3)
+    need = float(ds.attrs.get("margin", 0.0))
+    state = np.where(~feas.values, 0, np.where(dyn.values, 2, 1))
+    cmap_state = ListedColormap(["0.75", "tab:orange", "tab:green"])
+    for j, k in enumerate(ks):
+        a0, a1, a2 = axs[:, j]
+        im0 = a0.pcolormesh(xe, ye, f1.values[:, :, k].T, cmap="viridis", vmin=fmin,
+                            vmax=fmax)
+        im1 = a1.pcolormesh(xe, ye, mg.values[:, :, k].T, cmap="RdBu",
+                            norm=TwoSlopeNorm(0.0, -lim, lim))
+        if x.size > 1 and y.size > 1 and np.isfinite(mg.values[:, :, k]).sum() > 3:
+            a1.contour(x, y, mg.values[:, :, k].T, levels=sorted({0.0, need}), colors="k",
+                       linewidths=0.8)
+        im2 = a2.pcolormesh(xe, ye, state[:, :, k].T, cmap=cmap_state, vmin=-0.5, vmax=2.5)
+        for a in (a0, a1, a2):
+            a.set_facecolor("0.75")
+            a.set_aspect("equal")
+        a0.set_title(f"z = {z[k]:.3g} m")
+        a2.set_xlabel("x [m]")
+    for a in axs[:, 0]:
+        a.set_ylabel("y [m]")
+    fig.colorbar(im0, ax=axs[0, :], label="first global frequency [Hz]", shrink=0.9)
+    fig.colorbar(im1, ax=axs[1, :], label="band margin [-]", shrink=0.9)
+    cb = fig.colorbar(im2, ax=axs[2, :], ticks=[0, 1, 2], shrink=0.9)
+    cb.ax.set_yticklabels(["infeasible", "check fails", "all pass"])
+    band = ds.attrs.get("band_hz", None)
+    band = (f"forbidden band {np.round(np.asarray(band, float), 3).tolist()} Hz, margin "
+            f"{need:.0%}" if not isinstance(band, str) and band is not None else "no band")
+    worst = " (worst case over " + ", ".join(d for d in _REDUCED if d in ds.dims) + ")" \
+        if any(d in ds.dims for d in _REDUCED) else ""
+    n_modes = ds.sizes.get("mode", 0)
+    fig.suptitle(f"{ds.attrs.get('robot', '')} workspace map{worst}: {int(dyn.sum())} of "
+                 f"{dyn.size} positions in the dynamic workspace\n{band}; grey: infeasible, "
+                 f"or no global mode among the first {n_modes} modes")
+    return fig
+
+
+def plot_workspace_3d(ds, ax=None):
+    """3-D view: feasible positions coloured by their first global frequency [Hz], the
+    dynamic workspace as filled markers, the rest hollow; infeasible positions as grey
+    dots.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    import matplotlib.pyplot as plt
+
+    f1, _, dyn, feas = worst_case(ds)
+    X, Y, Z = np.meshgrid(ds["x"].values, ds["y"].values, ds["z"].values, indexing="ij")
+    if ax is None:
+        fig = plt.figure(figsize=(7.5, 6.0), layout="constrained")
+        ax = fig.add_subplot(projection="3d")
+    fig = ax.figure
+    f, d, ok = f1.values, dyn.values, feas.values & np.isfinite(f1.values)
+    vmin, vmax = (np.nanmin(f), np.nanmax(f)) if ok.any() else (0.0, 1.0)
+    sc = ax.scatter(X[d & ok], Y[d & ok], Z[d & ok], c=f[d & ok], cmap="viridis", vmin=vmin,
+                    vmax=vmax, s=28, depthshade=False, label="dynamic workspace")
+    nd = ok & ~d
+    ax.scatter(X[nd], Y[nd], Z[nd], facecolors="none", edgecolors=plt.get_cmap("viridis")(
+        (f[nd] - vmin) / max(vmax - vmin, 1e-12)), s=22, depthshade=False,
+        label="a check fails")
+    ax.scatter(X[~feas.values], Y[~feas.values], Z[~feas.values], c="0.6", s=4,
+               label="infeasible")
+    fig.colorbar(sc, ax=ax, shrink=0.7, label="first global frequency [Hz]")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.legend(loc="upper left", fontsize="small")
+    ax.set_title(f"{ds.attrs.get('robot', '')}: {int(d.sum())} of {d.size} positions pass "
+                 f"every check")
+    return fig

@@ -1,0 +1,134 @@
+"""Batched elastic catenaries for prescribed end tensions (dynstiff/catenary_batch.py,
+docs/theory.md §13.1): against the scalar bracketing solver of dynstiff/catenary.py, the
+analytic Jacobian against finite differences, the taut branch, and the hand-over of the
+cases the batch does not take (vertical chord, weightless cable, unreachable tension)."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dynstiff as ds
+from dynstiff.catenary import solve_catenary, unstretched_length_for_tension
+from dynstiff.catenary_batch import states_for_tensions, taut_catenaries
+from dynstiff.errors import SlackCableError
+
+G = 9.81
+CABLE = ds.Cable(0.064, 1.39487e5)          # CoGiRo, E = 17 GPa
+
+
+def arrays(cables, g=G):
+    return (np.array([c.EA for c in cables]),
+            np.array([c.mass_per_length for c in cables]) * g)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(1.0, 20.0), st.floats(-8.0, 8.0), st.floats(-1.0, 1.0),
+       st.floats(30.0, 5000.0), st.sampled_from([1.39487e5, 9.8461e5, 2e4]))
+def test_equals_the_scalar_solver(span, rise, side, tension, EA):
+    """Same unstretched length and (H, V0) as Brent's search on the scalar catenary
+    (1e-10 relative), over spans, rises, tensions (deep sag at 30 N) and moduli."""
+    cable = ds.Cable(0.064, EA)
+    A = np.array([[0.0, 0.0, 0.0]])
+    B = np.array([[span, side * span, rise]])
+    try:
+        ref = unstretched_length_for_tension(A[0], B[0], tension, cable, G)
+    except SlackCableError:
+        return
+    H, V0, L0, res, pending = taut_catenaries(A, B, np.array([tension]), *arrays([cable]))
+    assert not pending[0]
+    assert res[0] < 1e-12
+    assert L0[0] == pytest.approx(ref.unstretched_length, rel=1e-10)
+    assert H[0] == pytest.approx(ref.H, rel=1e-9)
+    assert V0[0] == pytest.approx(ref.V0, rel=1e-9, abs=1e-9 * tension)
+
+
+def test_solution_is_a_catenary_with_the_prescribed_tension():
+    """Round trip: the scalar catenary with the returned L0 between the same ends has the
+    prescribed end tension (an independent solve on (H, V0) only)."""
+    A = np.array([[-7.1775, -5.4361, 5.3911], [7.2, 5.3, 5.4]])
+    B = np.array([[0.5, -0.49, 1.0], [-3.0, 1.0, 0.4]])
+    t = np.array([850.0, 120.0])
+    H, _, L0, _, _ = taut_catenaries(A, B, t, *arrays([CABLE, CABLE]))
+    for i in range(2):
+        s = solve_catenary(A[i], B[i], L0[i], CABLE, G)
+        assert s.tension_at_end == pytest.approx(t[i], rel=1e-12)
+        assert s.H == pytest.approx(H[i], rel=1e-10)
+
+
+def test_jacobian_matches_finite_differences():
+    from dynstiff import catenary_batch as cb
+    x0 = np.array([400.0, -900.0, 11.0])
+    EA, w0 = np.array([1.39487e5]), np.array([0.064 * G])
+
+    def f(x):
+        x_, z_, T_, _ = cb._equations(x[0:1], x[1:2], x[2:3], EA, w0)
+        return np.array([x_[0], z_[0], T_[0]])
+
+    J = cb._equations(x0[0:1], x0[1:2], x0[2:3], EA, w0)[3][0]
+    for k in range(3):
+        h = 1e-6 * abs(x0[k])
+        e = np.zeros(3)
+        e[k] = h
+        fd = (f(x0 + e) - f(x0 - e)) / (2 * h)
+        np.testing.assert_allclose(J[:, k], fd, rtol=1e-6, atol=1e-10 * np.abs(J).max())
+
+
+def test_keeps_the_taut_branch_from_a_start_on_the_hanging_one():
+    """Two lengths give 60 N at B (10.2 m taut, about 190 m hanging in a deep loop);
+    started on the hanging solution itself, the result is still the taut one the scalar
+    solver returns."""
+    from scipy.optimize import brentq
+    A, B = np.array([[0.0, 0.0, 0.0]]), np.array([[10.0, 0.0, -2.0]])
+    t = np.array([60.0])
+    ref = unstretched_length_for_tension(A[0], B[0], 60.0, CABLE, G)
+    L_deep = brentq(lambda L0: solve_catenary(A[0], B[0], L0, CABLE, G).tension_at_end - 60.0,
+                    150.0, 300.0, xtol=1e-12)
+    deep = solve_catenary(A[0], B[0], L_deep, CABLE, G)
+    assert L_deep > 10 * ref.unstretched_length
+    start = (np.array([deep.H]), np.array([deep.V0]), np.array([deep.unstretched_length]))
+    _, _, L0, _, pending = taut_catenaries(A, B, t, *arrays([CABLE]), start=start)
+    assert not pending[0]
+    assert L0[0] == pytest.approx(ref.unstretched_length, rel=1e-10)
+
+
+def test_warm_start_gives_the_cold_result():
+    A = np.array([[-7.1775, -5.4361, 5.3911]] * 3)
+    B = np.array([[0.5, -0.49, 1.0], [1.5, 0.49, 2.0], [-2.0, 1.0, 0.3]])
+    t = np.array([400.0, 900.0, 2500.0])
+    EA, w0 = arrays([CABLE] * 3)
+    cold = taut_catenaries(A, B, t, EA, w0)
+    warm = taut_catenaries(A, B, 1.01 * t, EA, w0, start=cold[:3])
+    again = taut_catenaries(A, B, 1.01 * t, EA, w0)
+    np.testing.assert_allclose(warm[2], again[2], rtol=1e-13)
+
+
+def test_vertical_weightless_and_unreachable_cables_go_to_the_scalar_solver():
+    A = np.array([[0.0, 0.0, 5.0], [0.0, 0.0, 5.0], [0.0, 0.0, 0.0]])
+    B = np.array([[0.0, 0.0, 1.0], [3.0, 0.0, 1.0], [30.0, 0.0, 0.0]])
+    cables = [CABLE, ds.Cable(1e-12, 1e5), CABLE]
+    t = np.array([500.0, 500.0, 1.0])                 # 30 m span at 1 N: out of reach
+    EA, w0 = arrays(cables)
+    w0[1] = 0.0
+    *_, pending = taut_catenaries(A, B, t, EA, w0)
+    assert pending.tolist() == [True, True, True]
+    with pytest.raises(SlackCableError, match="not reachable"):
+        states_for_tensions(A, B, t, cables, G)
+    st_ = states_for_tensions(A[:2], B[:2], t[:2], cables[:2], G)
+    assert st_[0].tension_at_end == pytest.approx(500.0, rel=1e-10)
+    assert st_[0].H == 0.0
+
+
+def test_sag_ratios_equal_the_profile_of_each_state():
+    """The batched sag equals CatenaryState.sag / chord (same 401 points) on every CoGiRo
+    cable at a central and an edge pose."""
+    from dynstiff.catenary_batch import catenary_arrays, sag_ratios
+    robot = ds.load_scene("cogiro").robot
+    for p in ([0.0, 0.0, 1.0], [5.0, 3.0, 1.0]):
+        eq = robot.equilibrium(pose=p)
+        B, _ = robot.attachment_points(eq.pose)
+        got = sag_ratios(robot.anchors, B, *catenary_arrays(eq.states),
+                         *arrays(robot.cables))
+        ref = np.array([s.sag / s.chord_length for s in eq.states])
+        np.testing.assert_allclose(got, ref, rtol=1e-9)
+        assert ref.max() > 1e-4

@@ -1,0 +1,45 @@
+"""The ``dynstiff workspace`` command (dynstiff/cli_workspace.py): a small CoGiRo map
+written to netCDF with its figure and table, in a subprocess; argument errors on one line."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pytest.importorskip("xarray")
+
+
+def run(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "dynstiff", "workspace", *args], check=False,
+                          cwd=cwd, capture_output=True, text=True, timeout=600)
+
+
+@pytest.mark.integration
+def test_workspace_command_writes_map_figure_and_table(tmp_path):
+    from dynstiff.workspace_data import open_workspace
+    (tmp_path / "rot.txt").write_text("# rx ry rz\n0 0 0\n0 0 0.1\n")
+    r = run("cogiro", "--box", "-6", "6", "0", "0", "1", "1", "--step", "6",
+            "--orientations", "rot.txt", "-n", "3", "--out", "map.nc", "--plot", "map.png",
+            "--csv", "map.csv", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "6 poses" in r.stdout and "wrote map.nc" in r.stdout
+    m = open_workspace(tmp_path / "map.nc")
+    assert dict(m.sizes)["x"] == 3 and dict(m.sizes)["orientation"] == 2
+    np.testing.assert_allclose(m["rotation"].values[1], [0, 0, 0.1])
+    assert m.attrs["band_hz"].tolist() == [0.0, 1.5]          # the scene's forbidden band
+    assert (tmp_path / "map.png").stat().st_size > 10_000
+    assert len((tmp_path / "map.csv").read_text().splitlines()) == 1 + 6
+
+
+@pytest.mark.integration
+@pytest.mark.parametrize("args, match", [
+    (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.txt"], "--out"),
+    (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",
+      "--parameter", "EA"], "go together"),
+    (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",
+      "--workers", "2", "--scheduler", "tcp://x:1"], "not allowed with"),
+])
+def test_bad_workspace_arguments_fail_on_one_line(tmp_path, args, match):
+    r = run("cogiro", *args, cwd=tmp_path)
+    assert r.returncode == 2 and match in r.stderr and len(r.stderr.splitlines()) == 1

@@ -1,0 +1,64 @@
+"""Figures of a workspace map (dynstiff/plot_workspace.py): the worst case over orientations
+and parameter values, and the figures' content (cells, colour limits, counts in titles)."""
+
+import numpy as np
+import pytest
+
+xr = pytest.importorskip("xarray")
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+from dynstiff.errors import InvalidParameterError
+from dynstiff.plot_workspace import (
+    plot_workspace_3d,
+    plot_workspace_slices,
+    worst_case,
+)
+
+
+def synthetic_map():
+    """A 3 x 2 x 2 grid x 2 parameter values with known values: f1 = 1 + x + z + p."""
+    x, y, z, p = np.array([0.0, 1.0, 2.0]), np.array([0.0, 1.0]), np.array([1.0, 2.0]), \
+        np.array([0.0, 0.5])
+    X, Y, Z, P = np.meshgrid(x, y, z, p, indexing="ij")
+    f1 = 1.0 + X + Z + P
+    feas = ~((X == 2.0) & (Y == 1.0))
+    f1 = np.where(feas, f1, np.nan)
+    dyn = feas & (f1 > 3.2)
+    dims = ("x", "y", "z", "parameter")
+    return xr.Dataset({"first_global_hz": (dims, f1), "band_margin": (dims, f1 / 1.5 - 1),
+                       "dynamic": (dims, dyn), "feasible": (dims, feas)},
+                      coords={"x": x, "y": y, "z": z, "parameter": p},
+                      attrs={"robot": "test", "margin": 0.05, "band_hz": [0.0, 1.5]})
+
+
+def test_worst_case_is_the_least_frequency_and_the_all_pass_verdict():
+    f1, _mg, dyn, feas = worst_case(synthetic_map())
+    assert f1.dims == ("x", "y", "z")
+    np.testing.assert_allclose(f1.sel(x=1.0, y=0.0, z=2.0), 1 + 1 + 2 + 0.0)
+    assert np.isnan(f1.sel(x=2.0, y=1.0, z=1.0))
+    # (0, 0, 2): f1 = 3 at p = 0 and 3.5 at p = 0.5 -> not dynamic everywhere
+    assert not dyn.sel(x=0.0, y=0.0, z=2.0) and dyn.sel(x=1.0, y=0.0, z=2.0)
+    assert int(feas.sum()) == 10
+
+
+def test_slices_and_3d_view_draw_the_map():
+    ds = synthetic_map()
+    fig = plot_workspace_slices(ds, n_slices=4)
+    axes = [a for a in fig.axes if a.get_label() != "<colorbar>"]
+    assert len(axes) == 3 * 2 and len(fig.axes) == 3 * 2 + 3    # 3 rows x 2 heights, 3 bars
+    assert "4 of 12 positions" in fig._suptitle.get_text()
+    mesh = fig.axes[0].collections[0]
+    assert mesh.get_clim() == pytest.approx((2.0, 5.0))   # least f1 over p: 1+x+z
+    plt.close(fig)
+    fig = plot_workspace_3d(ds)
+    assert "4 of 12 positions" in fig.axes[0].get_title()
+    plt.close(fig)
+
+
+def test_a_list_of_poses_has_no_slices():
+    ds = synthetic_map().stack(pose=("x", "y", "z")).reset_index("pose")
+    with pytest.raises(InvalidParameterError, match="grid"):
+        plot_workspace_slices(ds)

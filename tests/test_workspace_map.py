@@ -1,0 +1,172 @@
+"""Workspace maps (dynstiff/workspace_map.py, docs/theory.md §13): per-pose values against the
+single-pose analyses, recorded failures in input order, the band margin's definition, the
+cable-parameter dimension, independence of the chunking, argument checks, and (integration
+tier) the same Dataset from local processes and from a real Dask cluster."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+
+xr = pytest.importorskip("xarray")
+from dynstiff.checks import design_checks
+from dynstiff.workspace_map import CHECKS, box_grid, workspace
+
+N_MODES = 6
+BAND = (0.0, 1.5)
+# two feasible poses around an infeasible one (outside the frame): input order is kept
+POSES = [[0.0, 0.0, 1.0], [9.0, 0.0, 1.0], [1.0, -0.5, 1.5, 0.0, 0.0, 0.05]]
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return ds.load_scene("cogiro").robot
+
+
+@pytest.fixture(scope="module")
+def listed(robot):
+    return workspace(robot, POSES, n_modes=N_MODES, band_hz=BAND, chunk_size=3)
+
+
+def test_each_pose_equals_the_single_pose_analyses(robot, listed):
+    """Tensions and lengths equal cold inverse statics (1e-9; the map warm-starts), the
+    frequencies equal dynstiff.modes (1e-8) and the platform participation is
+    1 - the cable energy fraction."""
+    for i in (0, 2):
+        eq = robot.equilibrium(pose=POSES[i])
+        res = ds.modes(ds.build_model(eq, "dsm"), n_modes=N_MODES)
+        p = listed.isel(pose=i)
+        np.testing.assert_allclose(p["tension"], eq.tensions, rtol=1e-9)
+        np.testing.assert_allclose(p["unstretched_length"], eq.unstretched_lengths, rtol=1e-9)
+        np.testing.assert_allclose(p["freq"], res.freq_hz, rtol=1e-8)
+        np.testing.assert_allclose(p["platform_participation"],
+                                   1.0 - res.cable_energy_fraction, rtol=1e-6, atol=1e-9)
+        glob = np.asarray(res.kind) == "global"
+        assert p["is_global"].values.tolist() == glob.tolist()
+        assert float(p["first_global_hz"]) == pytest.approx(res.freq_hz[glob][0], rel=1e-8)
+
+
+def test_band_margin_is_the_relative_distance_above_the_band(listed):
+    """Band (0, 1.5) Hz: the margin is f1 / 1.5 - 1 (every global mode lies above)."""
+    f1 = listed["first_global_hz"].values[[0, 2]]
+    np.testing.assert_allclose(listed["band_margin"].values[[0, 2]], f1 / 1.5 - 1.0,
+                               rtol=1e-14)
+
+
+def test_infeasible_pose_is_recorded_in_place_with_its_reason(listed):
+    assert listed["feasible"].values.tolist() == [True, False, True]
+    assert "SlackCableError" in str(listed["reason"].values[1])
+    assert listed["reason"].values[0] == ""
+    assert np.all(np.isnan(listed["tension"].values[1]))
+    assert not listed["passed"].values[1].any() and not listed["dynamic"].values[1]
+    np.testing.assert_array_equal(listed["position"].values[1], POSES[1])
+    np.testing.assert_array_equal(listed["rotation"].values[2], POSES[2][3:])
+
+
+def test_verdicts_match_the_design_checks(robot, listed):
+    """Tension and sag verdicts and values as dynstiff.design_checks at the same pose."""
+    rows = {r["check"]: r for r in design_checks(robot, POSES[0], band_hz=BAND).rows}
+    p = listed.isel(pose=0)
+    assert bool(p["passed"].sel(check="tension limits")) == rows["tension limits"]["passed"]
+    assert bool(p["passed"].sel(check="sag / chord")) == rows["sag / chord"]["passed"]
+    assert float(p["sag_ratio"].max()) == pytest.approx(rows["sag / chord"]["value"],
+                                                        rel=1e-9)
+    assert float(p["max_tension"].max()) == pytest.approx(rows["tension limits"]["value"],
+                                                          rel=1e-9)
+    assert list(listed["check"].values) == list(CHECKS)
+
+
+def test_grid_with_a_cable_parameter_and_chunking_that_does_not_matter(robot):
+    """A 2 x 1 x 2 grid x 2 orientations x 2 moduli: dimensions and coordinates in order; a
+    stiffer cable raises every first global frequency; chunks of 1 (cold statics at every
+    pose) give the warm-started chunk of 8 to 1e-8."""
+    kw = {"box": (-1.0, 1.0, 0.0, 0.0, 1.0, 3.0), "step": 2.0, "n_modes": 4,
+              "orientations": [[0, 0, 0], [0, 0, 0.1]], "parameter": "EA",
+              "values": [1.39487e5, 2.0e5], "band_hz": BAND}
+    a = workspace(robot, chunk_size=8, **kw)
+    b = workspace(robot, chunk_size=1, **kw)
+    assert dict(a.sizes) == {"x": 2, "y": 1, "z": 2, "orientation": 2, "parameter": 2, "mode": 4,
+                                 "cable": 8, "check": len(CHECKS), "component": 3}
+    assert a["feasible"].dims == ("x", "y", "z", "orientation", "parameter")
+    np.testing.assert_array_equal(a["x"], [-1.0, 1.0])
+    f = a["first_global_hz"]
+    assert np.all(f.isel(parameter=1) > 1.05 * f.isel(parameter=0))
+    xr.testing.assert_allclose(a[["freq", "tension"]], b[["freq", "tension"]], rtol=1e-8)
+
+
+def test_box_grid_axes():
+    x, y, z = box_grid((0.0, 1.0, -1.0, 1.0, 2.0, 2.0), 0.5)
+    np.testing.assert_allclose(x, [0.0, 0.5, 1.0])
+    np.testing.assert_allclose(y, [-1.0, -0.5, 0.0, 0.5, 1.0])
+    np.testing.assert_allclose(z, [2.0])
+    np.testing.assert_allclose(box_grid((0.0, 1.0, 0, 0, 0, 0), 0.3)[0], [0.0, 0.3, 0.6, 0.9])
+
+
+@pytest.mark.parametrize("kw, match", [
+    ({"poses": None}, "exactly one of poses"),
+    ({"box": (0, 1, 0, 1, 1, 2)}, "step"),
+    ({"box": (1, 0, 0, 1, 1, 2), "step": 0.5}, "box must be"),
+    ({"box": (0, 1, 0, 1, 1, 2), "step": -1.0}, "step"),
+    ({"poses": [[0, 0, 1]], "parameter": "E"}, "parameter and values|go together"),
+    ({"poses": [[0, 0, 1]], "parameter": "E", "values": [1.0]}, "cable field"),
+    ({"poses": [[0, 0, 1]], "parameter": "EA", "values": [-1.0]}, "EA"),
+    ({"poses": [[0, 0, 1]], "n_modes": 0}, "n_modes"),
+    ({"poses": [[0, 0, 1]], "chunk_size": 2.5}, "chunk_size"),
+    ({"poses": [[0, 0, 1]], "band_hz": (2.0, 1.0)}, "band_hz"),
+    ({"poses": [[0, 0, 1]], "rung": "beam"}, "rung"),
+    ({"poses": [[0, 0, 1]], "workers": 0}, "workers"),
+    ({"poses": [], }, "at least one pose"),
+])
+def test_bad_arguments_are_named(robot, kw, match):
+    with pytest.raises(ds.InvalidParameterError, match=match):
+        workspace(robot, **kw)
+
+
+@pytest.mark.integration
+def test_local_processes_and_a_dask_cluster_give_the_serial_dataset(robot):
+    """Two worker processes (concurrent.futures) and a real dask.distributed LocalCluster
+    with 2 worker processes return the serial Dataset (1e-12), recorded failures included."""
+    distributed = pytest.importorskip("distributed")
+    kw = {"box": (-6.0, 6.0, -4.0, 4.0, 1.0, 1.0), "step": 4.0, "n_modes": 4, "band_hz": BAND,
+              "chunk_size": 4}
+    serial = workspace(robot, **kw)
+    assert not serial["feasible"].all() and serial["feasible"].any()
+    procs = workspace(robot, workers=2, **kw)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        dask = workspace(robot, client=client, **kw)
+    for other in (procs, dask):
+        xr.testing.assert_allclose(serial, other, rtol=1e-12, atol=0)
+        np.testing.assert_array_equal(serial["reason"].values, other["reason"].values)
+        np.testing.assert_array_equal(serial["feasible"].values, other["feasible"].values)
+    assert dask.attrs["engine"] == "dask"
+
+
+@pytest.mark.parametrize("position", [(0.0, 0.0, 1.0), (3.0, 2.0, 2.5), (5.0, 3.0, 1.0)])
+def test_platform_participation_from_the_derivative_of_k_equals_the_cable_energies(
+        robot, position):
+    """-x^T dK/d(omega^2) x is the total modal mass (docs/theory.md §13.3): the platform
+    share from it equals 1 - the closed-form cable energy fraction of dynstiff.modes
+    (1e-8) over 30 modes, global and local."""
+    from dynstiff.workspace_map import platform_participation
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    res = ds.modes(m, n_modes=30)
+    np.testing.assert_allclose(platform_participation(m, res.freq_hz),
+                               1.0 - res.cable_energy_fraction, rtol=0, atol=1e-8)
+
+
+def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies(
+        robot, monkeypatch):
+    """With a step so wide that cable poles fall inside it, every such mode takes the
+    closed-form cable energies: the result still equals dynstiff.modes."""
+    import importlib
+    wsmod = importlib.import_module("dynstiff.workspace_map")
+    m = ds.build_model(robot.equilibrium(pose=[0.0, 0.0, 1.0]), "dsm")
+    res = ds.modes(m, n_modes=12)
+    monkeypatch.setattr(wsmod, "_FD_STEP", 0.2)
+    w = 2 * np.pi * res.freq_hz
+    assert np.any(m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w))
+    near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
+    got = wsmod.platform_participation(m, res.freq_hz)
+    np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
