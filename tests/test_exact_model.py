@@ -178,3 +178,26 @@ def test_requests_beyond_the_band_are_refused(cogiro_exact):
     for bad in (0.0, -1.0, np.nan, "ten", True):
         with pytest.raises(InvalidParameterError, match="fmax_hz"):
             ds.build_model(cogiro_exact.equilibrium, "exact", fmax_hz=bad)
+
+
+@pytest.mark.parametrize("damped", [False, True])
+def test_frequency_blocks_give_the_one_block_result(cogiro, monkeypatch, damped):
+    """K(omega) is evaluated in blocks of frequencies (a cache-sized temporary); blocks of 7
+    frequencies, the last one partial, give the single-block result, real and complex omega."""
+    import dynstiff.exact_model as em
+    rob = cogiro.robot
+    if damped:
+        rob = dataclasses.replace(rob, cables=dataclasses.replace(
+            rob.cables[0], loss_factor=0.02, viscous_damping=0.01))
+    m = ds.build_model(rob.equilibrium(pose=cogiro.pose), "exact", fmax_hz=6.0)
+    w = TWO_PI * np.linspace(0.0, 5.9, 52)
+    for omega in (w, w * (1 + 0.01j)):
+        monkeypatch.setattr(em, "BLOCK_ELEMENTS", 10**9)
+        one = m.dynamic_stiffness(omega)
+        n_modes = sum(c.flexibilities.size for c in m.cables)
+        monkeypatch.setattr(em, "BLOCK_ELEMENTS", 7 * n_modes)
+        blocks = m.dynamic_stiffness(omega)
+        assert blocks.dtype == one.dtype == (complex if damped or np.iscomplexobj(omega)
+                                             else float)
+        scale = np.abs(one).max(axis=(1, 2))          # BLAS blocking: rounding differs
+        assert (np.abs(blocks - one).max(axis=(1, 2)) <= 1e-14 * scale).all()
