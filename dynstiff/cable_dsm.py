@@ -51,7 +51,7 @@ import numpy as np
 from ._validate import omega_array
 from .cable_exact import ExactCable
 from .chord import ChordParameters, chord_parameters, stack_parameters
-from .errors import InvalidParameterError
+from .errors import ClosedFormWarning, InvalidParameterError
 
 __all__ = [
     "ChordParameters",
@@ -257,7 +257,8 @@ def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_I
 
 
 def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
-                            chordwise_inertia=DEFAULT_CHORDWISE_INERTIA, model="closed-form"):
+                            chordwise_inertia=DEFAULT_CHORDWISE_INERTIA, model="closed-form",
+                            guard_rtol=1e-2):
     """Dynamic stiffness matrix of one sagging cable in the global frame.
 
     Parameters
@@ -277,6 +278,10 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
         apply); "exact": linearised about the true catenary, no shallow-cable approximation
         (:class:`dynstiff.cable_exact.ExactCable`, theory.md §11), discretised for the
         largest |omega| asked.
+    guard_rtol : float or None
+        The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` when the cable
+        is slack, its axial modes are in the band asked, or its clamped frequencies in the
+        band are further than this from the exact model's. None: no check.
 
     Returns
     -------
@@ -299,6 +304,7 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
         return ExactCable(state, band).dynamic_stiffness(omega, ends)
     p = chord_parameters(state, tension)
     check_frequency_range(p, omega)
+    _guard_cable(state, float(np.max(omega, initial=0.0)), tension, guard_rtol)
     dyads = dyad_basis(p.rotation)
     n = omega.size
     coef = block_coefficients(p, omega, chordwise_inertia, blocks=ends)
@@ -545,7 +551,8 @@ def _exact_modes(state, n):
     raise InvalidParameterError(f"n_modes = {n} is more than the exact cable resolves")
 
 
-def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form"):
+def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form",
+                              guard_rtol=1e-2):
     """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
 
     "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane
@@ -562,6 +569,8 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
     tension : {"mean", "chord"}
         Tension of the closed form; Omega is always omega L sqrt(m / T) with this T.
     model : {"closed-form", "exact"}
+    guard_rtol : float or None
+        As :func:`cable_dynamic_stiffness` (closed form only).
 
     Returns
     -------
@@ -583,6 +592,9 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
                           order=order)
     k = np.arange(1, n + 1)
     Om = np.concatenate([k * np.pi, 2 * k * np.pi, irvine_symmetric_roots(p.lambda_sq, n)])
+    if guard_rtol is not None:
+        top = np.sort(Om)[n - 1] * np.sqrt(p.T / p.m) / p.L
+        _guard_cable(state, top, tension, guard_rtol)
     fam = (["out-of-plane"] * n + ["in-plane antisymmetric"] * n
            + ["in-plane symmetric"] * n)
     order = np.concatenate([k, k, k])
@@ -604,9 +616,11 @@ SLACK_RATIO = 0.1
 @dataclass(frozen=True)
 class ClosedFormValidity:
     """The closed form's estimated relative error for one cable and its causes (theory.md
-    §11.5): an envelope of the error of its clamped frequencies and of its static end
-    stiffness against the exact model, measured on 150 random cables (the largest ratio of
-    measured to estimated error was 0.83).
+    §11.5): an envelope of the error of its clamped frequencies against the exact model,
+    measured on 150 random cables (the largest ratio of measured to estimated error was
+    0.83). It is not an envelope of the static end stiffness, whose error in the soft
+    in-plane direction can exceed it 2.4x at 30-60 degrees; the robot model measures that
+    part exactly (:meth:`dynstiff.assembly.FrequencyModel.static_error`).
 
     Attributes
     ----------
@@ -665,6 +679,34 @@ def closed_form_validity(state, omega_max=0.0, tension="mean"):
     return ClosedFormValidity(error=float(err), causes=causes, values=values)
 
 
+def _guard_cable(state, omega_max, tension, guard_rtol):
+    """Warn (ClosedFormWarning) when the closed form is used outside its range for one cable
+    up to omega_max [rad/s]: slack, axial modes in the band, or a measured error of its
+    clamped frequencies above guard_rtol where the envelope exceeds it (theory.md §11.5)."""
+    if guard_rtol is None:
+        return
+    if not (isinstance(guard_rtol, (int, float)) and not isinstance(guard_rtol, bool)
+            and 0 < guard_rtol < np.inf):
+        raise InvalidParameterError(f"guard_rtol must be a number > 0 or None, got "
+                                    f"{guard_rtol!r}")
+    v = closed_form_validity(state, omega_max, tension)
+    if v.error <= guard_rtol:
+        return
+    if np.isfinite(v.error):
+        err = closed_form_local_error(state, omega_max, tension)
+        if err <= guard_rtol:
+            return
+        what = f"its clamped frequencies are {err:.2g} off the exact model's"
+    else:
+        what = "it is outside the closed form's range"
+    import warnings
+    cause = "slack" if np.isinf(v.causes["slack"]) else (
+        "axial" if np.isinf(v.causes["axial"]) else "local")
+    warnings.warn(ClosedFormWarning(
+        f"{what} (" + "; ".join(v.reasons(0.1 * guard_rtol)) + "): use model='exact'",
+        cable=None, cause=cause), stacklevel=3)
+
+
 def closed_form_local_error(state, omega_max, tension="mean"):
     """Measured relative error of the closed form's clamped-cable frequencies against the
     exact model (theory.md §11.5), over the modes below max(omega_max, 8 omega_1) [rad/s]
@@ -679,7 +721,7 @@ def closed_form_local_error(state, omega_max, tension="mean"):
     n = f_ex.size
     if n == 0:
         return 0.0
-    f_cf = 2 * np.pi * cable_natural_frequencies(state, n, tension).freq_hz
+    f_cf = 2 * np.pi * cable_natural_frequencies(state, n, tension, guard_rtol=None).freq_hz
     return float(np.max(np.abs(f_cf / f_ex - 1.0)))
 
 

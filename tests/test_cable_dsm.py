@@ -327,3 +327,14 @@ def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
         v = closed_form_validity(s, 2 * np.pi * 20.0)
         assert v.error < 1e-3
         assert closed_form_local_error(s, 2 * np.pi * 20.0) <= v.error
+    # the cable-level functions warn too, and stay silent on CoGiRo
+    import warnings
+    from dynstiff.errors import ClosedFormWarning
+    with pytest.warns(ClosedFormWarning, match="off the exact model's"):
+        ds.cable_natural_frequencies(steep, 5)
+    with pytest.warns(ClosedFormWarning, match="slack"):
+        ds.cable_dynamic_stiffness(slack, [0.0, 1.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ClosedFormWarning)
+        ds.cable_natural_frequencies(s, 12)
+        ds.cable_dynamic_stiffness(steep, 1.0, guard_rtol=None)

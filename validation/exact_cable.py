@@ -82,8 +82,8 @@ def case(sag_ratio, inclination_deg, n_modes=N_MODES):
     ex = cable_natural_frequencies(s, n_modes, model="exact")
     f_ex = ex.freq_hz
     K_ex = cable_dynamic_stiffness(s, 0.0, model="exact")[0]
-    f_cf = cable_natural_frequencies(s, n_modes).freq_hz
-    K_cf = cable_dynamic_stiffness(s, 0.0)[0]
+    f_cf = cable_natural_frequencies(s, n_modes, guard_rtol=None).freq_hz
+    K_cf = cable_dynamic_stiffness(s, 0.0, guard_rtol=None)[0]
     guard = closed_form_validity(s, 2 * np.pi * f_ex[-1])
     row = {"sag/chord": sag_ratio, "inclination [deg]": inclination_deg,
            "L0 [m]": s.unstretched_length, "T_min/T_max": s.min_tension / s.max_tension,
