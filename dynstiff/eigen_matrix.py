@@ -6,9 +6,6 @@ Reached through :func:`dynstiff.eigen.eigenfrequencies` and :func:`dynstiff.eige
 """
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse
-import scipy.sparse.linalg
 
 from .errors import InvalidParameterError
 from .results import LumpedModalResult, ModalResult
@@ -21,6 +18,7 @@ DENSE_LIMIT = 400
 
 
 def _dense(A):
+    import scipy.sparse
     return A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)
 
 
@@ -34,6 +32,8 @@ def eig(model, n_modes):
     V : ndarray, shape (n_dof, n_modes)
         Mass-normalised vectors, phi^T M phi = 1.
     """
+    import scipy.linalg
+    import scipy.sparse.linalg
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or \
             not 1 <= n_modes <= model.n_dof:
         raise InvalidParameterError(
@@ -98,6 +98,7 @@ def modes(model, n_modes=None, fmax_hz=None):
         Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
         platform does not move at all).
     """
+    import scipy.linalg
     lam, V = _lowest(model, n_modes, fmax_hz)
     n = lam.size
     nf, fi = model.n_free, model.free_index

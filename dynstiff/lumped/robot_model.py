@@ -46,8 +46,6 @@ from dataclasses import dataclass
 from numbers import Integral
 
 import numpy as np
-import scipy.sparse
-import scipy.sparse.linalg
 
 from .. import _validate
 from .._validate import positive_scalar
@@ -408,6 +406,7 @@ class LumpedMassModel:
     def tangent_unchecked(self, pose, interior, axial_of):
         """:meth:`tangent_stiffness` without the argument checks, with ``axial_of(i)`` the
         axial factor of cable i (for solvers and time stepping)."""
+        import scipy.sparse
         rob = self.robot
         fi, nf = self.free_index, self.n_free
         gvec = rob.gravity_vector
@@ -456,6 +455,7 @@ class LumpedMassModel:
     def _node_matrix(self, pose, per_node, platform_block):
         """Sparse matrix with ``per_node[i]`` on the interior nodes of cable i (diagonal) and
         the free-DOF block ``platform_block`` + sum_i J_i^T (per_node[i] / 2) J_i."""
+        import scipy.sparse
         fi, nf = self.free_index, self.n_free
         _, r = self.robot.attachment_points(pose)
         diag = np.zeros(self.n_dof)
@@ -527,6 +527,7 @@ class LumpedMassModel:
         SlackCableError
             A cable has a zero-tension segment (at the start or at the solution).
         """
+        import scipy.sparse.linalg
         tol = positive_scalar("tol", tol)
         if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
             raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")

@@ -6,7 +6,6 @@ matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the eq
 import functools
 
 import numpy as np
-import scipy.sparse
 
 from .._vec import cross
 from ..errors import InvalidParameterError
@@ -232,6 +231,7 @@ class Dynamics:
 
     def newton_matrix(self, pose, X, dt):
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
+        import scipy.sparse
         m = self.model
         frame = Frame(m, pose, self._last)
         EA = np.array([cb.EA for cb in m.robot.cables])

@@ -6,7 +6,6 @@ the schemes and the energy bookkeeping), except the failure types it raises."""
 import warnings
 
 import numpy as np
-import scipy.sparse.linalg
 
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
@@ -56,6 +55,7 @@ def implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     The LU factors of K + 4 M / dt^2 + 2 C / dt are kept while each iteration reduces the
     residual tenfold, and refreshed otherwise.
     """
+    import scipy.sparse.linalg
     m = dyn.model
     c0 = 4.0 / dt ** 2
     d = dt * v + 0.5 * dt ** 2 * a                    # predictor: a_{n+1} = a_n
