@@ -55,6 +55,10 @@ class FrequencyModel(PlatformModel):
         Geometric stiffness [N m/rad] (all DOFs; only the rotation block is non-zero).
     M_p : ndarray, shape (6, 6)
         Platform mass matrix about P (all DOFs).
+    assembly_map : ndarray, shape (5 n_cables, n_free**2)
+        Dyad coefficients of every cable (``cable_coefficients``) -> K on the free DOFs.
+    K_geo_free : ndarray, shape (n_free, n_free)
+        Symmetric part of K_geo on the free DOFs (the conservative stiffness).
     """
 
     rung = "dsm"
@@ -80,6 +84,7 @@ class FrequencyModel(PlatformModel):
             D = dyad_basis(p.rotation).reshape(5, 3, 3)
             blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
         self._assembly = np.vstack(blocks)
+        self.assembly_map = self._assembly
         K_geo = np.zeros((6, 6))
         K_geo[3:, 3:] = geometric_stiffness(robot, pose, equilibrium.states)
         self.K_geo = K_geo
@@ -90,6 +95,7 @@ class FrequencyModel(PlatformModel):
         # At a full 6-DOF equilibrium the block is already symmetric.
         Kg = K_geo[np.ix_(fi, fi)]
         self._K_geo_free = 0.5 * (Kg + Kg.T)
+        self.K_geo_free = self._K_geo_free
         self._freeze()
 
     def cable_coefficients(self, omega):

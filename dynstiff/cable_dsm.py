@@ -72,6 +72,7 @@ __all__ = [
     "DEFAULT_CHORDWISE_INERTIA",
     "dyad_basis",
     "block_coefficients",
+    "PSI_SERIES",
 ]
 
 #: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
@@ -125,6 +126,9 @@ def _series_coefficients():
 
 
 _E_COEF, _P_COEF, _Q_COEF = _series_coefficients()
+#: (radius, E coefficients, P~ coefficients) of the series branch of :func:`_psi_functions`,
+#: highest power of psi^2 first, for compiled kernels that evaluate the same functions.
+PSI_SERIES = (_SERIES_RADIUS, _E_COEF, _P_COEF)
 
 
 def _psi_functions(psi):

@@ -1,0 +1,197 @@
+"""Compiled (numba) kernels of the FRF: the robot's K(omega) of the "dsm" rung fused with the
+small real solve C K^-1 B, one frequency at a time (theory.md §4, §14.1).
+
+Imported only when an FRF is asked for and numba is installed (``pip install
+"dynstiff[fast]"``); :mod:`dynstiff.frf` falls back to the numpy path (K(omega) batched over
+frequency, then ``np.linalg.solve``), which stays the reference the kernels are tested
+against. Compiled on first use and cached on disk (``cache=True``).
+
+The cable entries are those of :func:`dynstiff.cable_dsm.local_entries` for an undamped
+cable at real omega (same formulas, same series branch for |psi| < 1); the assembly is
+``cable_coefficients(omega) @ assembly_map`` of :class:`dynstiff.assembly.FrequencyModel`.
+"""
+
+import numba
+import numpy as np
+
+__all__ = ["dsm_receptance", "real_receptance", "symmetric_assembly"]
+
+_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+
+
+def symmetric_assembly(assembly_map, n_free):
+    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
+    share the coefficient -k_uv) summed, and the upper triangle of K kept.
+
+    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
+    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
+    """
+    A = assembly_map.reshape(-1, 5, n_free, n_free)
+    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
+    iu, ju = np.triu_indices(n_free)
+    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))
+
+
+@numba.njit(**_JIT)
+def _horner(coef, x):
+    y = 0.0
+    for a in coef:
+        y = y * x + a
+    return y
+
+
+@numba.njit(**_JIT)
+def _lu_solve_into(K, B, C, out, work):
+    """out = C K^-1 B for one real K (nf, nf), by LU with partial pivoting (K overwritten,
+    work (nf, n_in) scratch); returns False where a pivot is exactly 0 (K singular)."""
+    nf = K.shape[0]
+    n_in = B.shape[1]
+    for i in range(nf):
+        for j in range(n_in):
+            work[i, j] = B[i, j]
+    for k in range(nf):
+        p = k
+        big = abs(K[k, k])
+        for i in range(k + 1, nf):
+            if abs(K[i, k]) > big:
+                big = abs(K[i, k])
+                p = i
+        if big == 0.0 or not np.isfinite(big):
+            return False
+        if p != k:
+            for j in range(nf):
+                K[k, j], K[p, j] = K[p, j], K[k, j]
+            for j in range(n_in):
+                work[k, j], work[p, j] = work[p, j], work[k, j]
+        inv = 1.0 / K[k, k]
+        for i in range(k + 1, nf):
+            f = K[i, k] * inv
+            if f != 0.0:
+                for j in range(k + 1, nf):
+                    K[i, j] -= f * K[k, j]
+                for j in range(n_in):
+                    work[i, j] -= f * work[k, j]
+    for k in range(nf - 1, -1, -1):
+        for j in range(n_in):
+            s = work[k, j]
+            for i in range(k + 1, nf):
+                s -= K[k, i] * work[i, j]
+            work[k, j] = s / K[k, k]
+    for o in range(C.shape[0]):
+        for j in range(n_in):
+            s = 0.0
+            for i in range(nf):
+                s += C[o, i] * work[i, j]
+            out[o, j] = s
+    return True
+
+
+@numba.njit(**_JIT)
+def real_receptance(K, B, C):
+    """C K^-1 B for a real stack K (n, nf, nf), B (nf, n_in), C (n_out, nf).
+
+    Returns
+    -------
+    H : ndarray, shape (n, n_out, n_in), real
+    singular : ndarray of bool, shape (n,)
+        Where K is exactly singular (H left 0 there); NaN where K is not finite.
+    """
+    n, nf = K.shape[0], K.shape[1]
+    H = np.zeros((n, C.shape[0], B.shape[1]))
+    singular = np.zeros(n, dtype=np.bool_)
+    Kk = np.empty((nf, nf))
+    work = np.empty((nf, B.shape[1]))
+    for k in range(n):
+        Kk[:, :] = K[k]
+        if not np.isfinite(Kk).all():          # exactly on a cable pole: as numpy, NaN
+            H[k] = np.nan
+            continue
+        singular[k] = not _lu_solve_into(Kk, B, C, H[k], work)
+    return H, singular
+
+
+@numba.njit(**_JIT)
+def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static,
+                   M, B, C):
+    """Receptance C K(omega)^-1 B of the "dsm" rung with undamped cables, K(omega) built and
+    solved one frequency at a time (theory.md §3.5, §4).
+
+    Parameters
+    ----------
+    omega : ndarray, shape (n,)
+        [rad/s], >= 0, within the closed form's range (checked by the caller).
+    L, m, T, lam2, alpha, K0 : ndarray, shape (n_cables,)
+        Chord parameters (real): chord length [m], mass per chord length [kg/m], tension
+        [N], Irvine lambda^2 [-], end slope [-], EA / L_e [N/m].
+    chordwise : bool
+        Consistent chordwise mass -omega^2 m L / 3 on k_uu (theory.md §3.6).
+    series : tuple (radius, E_coef, P_coef)
+        ``cable_dsm.PSI_SERIES``.
+    assembly : ndarray, shape (4 n_cables, nf (nf + 1) / 2)
+        :func:`symmetric_assembly` of ``FrequencyModel.assembly_map``.
+    K_static, M : ndarray, shape (nf, nf)
+        Geometric stiffness and platform mass on the free DOFs.
+    B, C : ndarray, shape (nf, n_in), (n_out, nf)
+
+    Returns
+    -------
+    H : ndarray, shape (n, n_out, n_in), real
+    kmax : ndarray, shape (n,)
+        max |K_ij(omega)| (to find the frequencies near a cable pole).
+    singular : ndarray of bool, shape (n,)
+        Where K(omega) is exactly singular (H left 0 there). Where K is not finite (exactly
+        on a cable pole) H is NaN and kmax inf.
+    """
+    radius, e_coef, p_coef = series
+    n, nc, nf = omega.size, L.size, K_static.shape[0]
+    iu, ju = np.triu_indices(nf)
+    nu = iu.size
+    H = np.zeros((n, C.shape[0], B.shape[1]))
+    kmax = np.empty(n)
+    singular = np.zeros(n, dtype=np.bool_)
+    Ku = np.empty(nu)
+    Kk = np.empty((nf, nf))
+    work = np.empty((nf, B.shape[1]))
+    coef = np.empty(4)
+    for k in range(n):
+        w = omega[k]
+        w2 = w * w
+        for q in range(nu):
+            Ku[q] = K_static[iu[q], ju[q]] - w2 * M[iu[q], ju[q]]
+        for j in range(nc):
+            psi = 0.5 * L[j] * np.sqrt(w2 * m[j] / T[j])
+            s, c = np.sin(psi), np.cos(psi)
+            cos2 = c * c - s * s
+            s_over_psi = 1.0 if psi == 0.0 else s / psi
+            if abs(psi) < radius:
+                x = psi * psi
+                E = _horner(e_coef, x)
+                Pt = _horner(p_coef, x)
+            else:
+                p3 = psi**3
+                E = (psi * c - s) / p3
+                Pt = ((1 + psi * psi) * s * c - psi) / p3
+            den = 4.0 * c - lam2[j] * E
+            TL = T[j] / L[j]
+            m_ax = -(w2 * m[j]) * L[j] / 6.0 if chordwise else 0.0
+            coef[0] = 4.0 * K0[j] * c / den + 2.0 * m_ax
+            coef[1] = -4.0 * alpha[j] * K0[j] * psi * psi * E / den
+            coef[2] = TL * (4.0 * cos2 + lam2[j] * Pt) / (s_over_psi * den)
+            coef[3] = TL * cos2 / (s_over_psi * c)
+            for a in range(4):
+                row = assembly[4 * j + a]
+                ca = coef[a]
+                for q in range(nu):
+                    Ku[q] += ca * row[q]
+        big = 0.0
+        for q in range(nu):
+            big = max(big, abs(Ku[q]))
+            Kk[iu[q], ju[q]] = Ku[q]
+            Kk[ju[q], iu[q]] = Ku[q]
+        if not np.isfinite(big) or np.isnan(Ku).any():    # exactly on a cable pole
+            kmax[k] = np.inf
+            H[k] = np.nan
+            continue
+        kmax[k] = big
+        singular[k] = not _lu_solve_into(Kk, B, C, H[k], work)
+    return H, kmax, singular
