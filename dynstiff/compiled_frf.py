@@ -17,6 +17,8 @@ import numpy as np
 __all__ = ["dsm_receptance", "real_receptance", "symmetric_assembly"]
 
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+#: Frequencies per block of the fused kernel (its coefficients stay in cache).
+_BLOCK = 256
 
 
 def symmetric_assembly(assembly_map, n_free):
@@ -41,14 +43,13 @@ def _horner(coef, x):
 
 
 @numba.njit(**_JIT)
-def _lu_solve_into(K, B, C, out, work):
+def _lu_solve_into(K, B, C, c_identity, out, work):
     """out = C K^-1 B for one real K (nf, nf), by LU with partial pivoting (K overwritten,
-    work (nf, n_in) scratch); returns False where a pivot is exactly 0 (K singular)."""
+    work (nf, n_in) scratch; C skipped when ``c_identity``); returns False where a pivot is
+    exactly 0 (K singular)."""
     nf = K.shape[0]
     n_in = B.shape[1]
-    for i in range(nf):
-        for j in range(n_in):
-            work[i, j] = B[i, j]
+    work[:, :] = B
     for k in range(nf):
         p = k
         big = abs(K[k, k])
@@ -66,17 +67,21 @@ def _lu_solve_into(K, B, C, out, work):
         inv = 1.0 / K[k, k]
         for i in range(k + 1, nf):
             f = K[i, k] * inv
-            if f != 0.0:
-                for j in range(k + 1, nf):
-                    K[i, j] -= f * K[k, j]
-                for j in range(n_in):
-                    work[i, j] -= f * work[k, j]
+            for j in range(k + 1, nf):
+                K[i, j] -= f * K[k, j]
+            for j in range(n_in):
+                work[i, j] -= f * work[k, j]
     for k in range(nf - 1, -1, -1):
+        for i in range(k + 1, nf):
+            f = K[k, i]
+            for j in range(n_in):
+                work[k, j] -= f * work[i, j]
+        inv = 1.0 / K[k, k]
         for j in range(n_in):
-            s = work[k, j]
-            for i in range(k + 1, nf):
-                s -= K[k, i] * work[i, j]
-            work[k, j] = s / K[k, k]
+            work[k, j] *= inv
+    if c_identity:
+        out[:, :] = work
+        return True
     for o in range(C.shape[0]):
         for j in range(n_in):
             s = 0.0
@@ -97,6 +102,7 @@ def real_receptance(K, B, C):
         Where K is exactly singular (H left 0 there); NaN where K is not finite.
     """
     n, nf = K.shape[0], K.shape[1]
+    c_identity = C.shape[0] == nf and (C == np.eye(nf)).all()
     H = np.zeros((n, C.shape[0], B.shape[1]))
     singular = np.zeros(n, dtype=np.bool_)
     Kk = np.empty((nf, nf))
@@ -106,7 +112,7 @@ def real_receptance(K, B, C):
         if not np.isfinite(Kk).all():          # exactly on a cable pole: as numpy, NaN
             H[k] = np.nan
             continue
-        singular[k] = not _lu_solve_into(Kk, B, C, H[k], work)
+        singular[k] = not _lu_solve_into(Kk, B, C, c_identity, H[k], work)
     return H, singular
 
 
@@ -135,7 +141,7 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
 
     Returns
     -------
-    H : ndarray, shape (n, n_out, n_in), real
+    H : ndarray, shape (n, n_out, n_in), complex (real values)
     kmax : ndarray, shape (n,)
         max |K_ij(omega)| (to find the frequencies near a cable pole).
     singular : ndarray of bool, shape (n,)
@@ -144,54 +150,67 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
     """
     radius, e_coef, p_coef = series
     n, nc, nf = omega.size, L.size, K_static.shape[0]
+    c_identity = C.shape[0] == nf and (C == np.eye(nf)).all()
     iu, ju = np.triu_indices(nf)
     nu = iu.size
-    H = np.zeros((n, C.shape[0], B.shape[1]))
+    half_L = 0.5 * L
+    TL = T / L
+    k0_4 = 4.0 * K0
+    k0_4a = 4.0 * alpha * K0
+    m_l6 = m * L / 6.0 if chordwise else np.zeros(nc)
+    Ks = np.empty(nu)
+    Ms = np.empty(nu)
+    for q in range(nu):
+        Ks[q] = K_static[iu[q], ju[q]]
+        Ms[q] = M[iu[q], ju[q]]
+    H = np.zeros((n, C.shape[0], B.shape[1]), dtype=np.complex128)
+    Hk = np.empty((C.shape[0], B.shape[1]))
     kmax = np.empty(n)
     singular = np.zeros(n, dtype=np.bool_)
-    Ku = np.empty(nu)
     Kk = np.empty((nf, nf))
     work = np.empty((nf, B.shape[1]))
-    coef = np.empty(4)
-    for k in range(n):
-        w = omega[k]
-        w2 = w * w
-        for q in range(nu):
-            Ku[q] = K_static[iu[q], ju[q]] - w2 * M[iu[q], ju[q]]
-        for j in range(nc):
-            psi = 0.5 * L[j] * np.sqrt(w2 * m[j] / T[j])
-            s, c = np.sin(psi), np.cos(psi)
-            cos2 = c * c - s * s
-            s_over_psi = 1.0 if psi == 0.0 else s / psi
-            if abs(psi) < radius:
-                x = psi * psi
-                E = _horner(e_coef, x)
-                Pt = _horner(p_coef, x)
-            else:
-                p3 = psi**3
-                E = (psi * c - s) / p3
-                Pt = ((1 + psi * psi) * s * c - psi) / p3
-            den = 4.0 * c - lam2[j] * E
-            TL = T[j] / L[j]
-            m_ax = -(w2 * m[j]) * L[j] / 6.0 if chordwise else 0.0
-            coef[0] = 4.0 * K0[j] * c / den + 2.0 * m_ax
-            coef[1] = -4.0 * alpha[j] * K0[j] * psi * psi * E / den
-            coef[2] = TL * (4.0 * cos2 + lam2[j] * Pt) / (s_over_psi * den)
-            coef[3] = TL * cos2 / (s_over_psi * c)
-            for a in range(4):
-                row = assembly[4 * j + a]
-                ca = coef[a]
-                for q in range(nu):
-                    Ku[q] += ca * row[q]
-        big = 0.0
-        for q in range(nu):
-            big = max(big, abs(Ku[q]))
-            Kk[iu[q], ju[q]] = Ku[q]
-            Kk[ju[q], iu[q]] = Ku[q]
-        if not np.isfinite(big) or np.isnan(Ku).any():    # exactly on a cable pole
-            kmax[k] = np.inf
-            H[k] = np.nan
-            continue
-        kmax[k] = big
-        singular[k] = not _lu_solve_into(Kk, B, C, H[k], work)
+    coef = np.empty((_BLOCK, 4 * nc))
+    for start in range(0, n, _BLOCK):
+        nb = min(_BLOCK, n - start)
+        for b in range(nb):
+            w = omega[start + b]
+            w2 = w * w
+            for j in range(nc):
+                psi = half_L[j] * np.sqrt(w2 * m[j] / T[j])     # as ChordParameters.psi
+                s, c = np.sin(psi), np.cos(psi)
+                cos2 = c * c - s * s
+                psi2 = psi * psi
+                if psi < radius:
+                    s_over_psi = 1.0 if psi == 0.0 else s / psi
+                    E = _horner(e_coef, psi2)
+                    Pt = _horner(p_coef, psi2)
+                else:
+                    s_over_psi = s / psi
+                    ip3 = 1.0 / (psi2 * psi)
+                    E = (psi * c - s) * ip3
+                    Pt = ((1.0 + psi2) * s * c - psi) * ip3
+                iden = 1.0 / (4.0 * c - lam2[j] * E)
+                coef[b, 4 * j] = k0_4[j] * c * iden - 2.0 * w2 * m_l6[j]
+                coef[b, 4 * j + 1] = -k0_4a[j] * psi2 * E * iden
+                coef[b, 4 * j + 2] = TL[j] * (4.0 * cos2 + lam2[j] * Pt) * iden / s_over_psi
+                coef[b, 4 * j + 3] = TL[j] * cos2 / (s_over_psi * c)
+        Kb = coef[:nb] @ assembly                       # (nb, nu), one BLAS product
+        for b in range(nb):
+            k = start + b
+            w2 = omega[k] * omega[k]
+            big = 0.0
+            for q in range(nu):
+                v = Kb[b, q] + Ks[q] - w2 * Ms[q]
+                big = max(big, abs(v))
+                Kk[iu[q], ju[q]] = v
+                Kk[ju[q], iu[q]] = v
+            if not np.isfinite(big) or np.isnan(Kb[b]).any():    # exactly on a cable pole
+                kmax[k] = np.inf
+                H[k] = np.nan
+                continue
+            kmax[k] = big
+            singular[k] = not _lu_solve_into(Kk, B, C, c_identity, Hk, work)
+            for o in range(Hk.shape[0]):
+                for i in range(Hk.shape[1]):
+                    H[k, o, i] = Hk[o, i]
     return H, kmax, singular

@@ -5,6 +5,7 @@ the platform (about P, base axes) and the motion of a platform point c (platform
 d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
 """
 
+import functools
 import importlib.util
 import warnings
 
@@ -149,9 +150,11 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
     # CoGiRo cable pole): there H is the mean of its values at omega (1 -+ 1e-9), which
     # cancels the O(1/K) term antisymmetric about the pole (its error is O(1e-9)). Only
     # frequencies where K is 1e6 times its regular size are examined.
-    regular = np.abs(model.massless_stiffness()).max() + \
-        omega**2 * np.abs(model.platform_mass).max()
-    cand = np.flatnonzero(kmax > 1e6 * regular)
+    inertia = omega**2 * np.abs(model.platform_mass).max()
+    cand = np.flatnonzero(kmax > 1e6 * inertia)            # (kmax > 1e6 regular implies it)
+    if cand.size:
+        regular = np.abs(model.massless_stiffness()).max() + inertia[cand]
+        cand = cand[kmax[cand] > 1e6 * regular]
     if cand.size:
         w = omega[cand]
         near = model.cable_mode_count(w * (1 - _POLE_STEP)) != \
@@ -166,6 +169,7 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
                      kind=kind)
 
 
+@functools.cache
 def _compiled():
     """The compiled kernels (:mod:`dynstiff.compiled_frf`), or None without numba."""
     if importlib.util.find_spec("numba") is None:
@@ -195,7 +199,7 @@ def _receptance(model, omega, B, C):
             real(p.lambda_sq), real(p.alpha), real(p.K0), bool(model.chordwise_inertia),
             PSI_SERIES, fast.symmetric_assembly(model.assembly_map, model.n_free), model.K_geo_free,
             np.ascontiguousarray(model.platform_mass, dtype=float), B, C)
-        return H.astype(complex), kmax, singular
+        return H, kmax, singular
     K = model.dynamic_stiffness(omega)
     H, singular = _solve(K, B, C, fast)
     return H, np.abs(K).max(axis=(1, 2)), singular
