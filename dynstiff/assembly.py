@@ -19,7 +19,8 @@ from ._validate import omega_array
 from ._vec import cross
 from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_field, cable_kinetic_energy,
                         check_frequency_range, chord_parameters, dyad_basis, end_block_coefficients,
-                        mode_count_nondimensional, stack_parameters)
+                        end_block_coefficients_and_count, mode_count_nondimensional,
+                        stack_parameters)
 from .model_base import PlatformModel, require_equilibrium
 from .platform import lever_map, platform_mass_matrix
 from .robot import geometric_stiffness
@@ -127,6 +128,32 @@ class FrequencyModel(PlatformModel):
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+
+    def dynamic_stiffness_and_count(self, omega):
+        """K(omega) and J0(omega) of the undamped model at real omega, from one evaluation of
+        the cable kernels (a Wittrick-Williams count needs both, theory.md §5, §14.2).
+
+        Parameters
+        ----------
+        omega : float or array_like, shape (n_omega,)
+            [rad/s], real >= 0.
+
+        Returns
+        -------
+        K : ndarray, shape (n_omega, n_free, n_free), real
+        J0 : ndarray of int, shape (n_omega,)
+            As :meth:`cable_mode_count`.
+        """
+        if self.damped:
+            return self.undamped().dynamic_stiffness_and_count(omega)
+        omega = omega_array(omega)
+        check_frequency_range(self.stacked_params, omega)
+        C, J0 = end_block_coefficients_and_count(self.stacked_params, omega,
+                                                 self.chordwise_inertia)
+        nf = self.n_free
+        K = (C.reshape(omega.size, -1) @ self._assembly).reshape(omega.size, nf, nf)
+        K = K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+        return K, J0.sum(axis=1)
 
     def cable_mode_count(self, omega):
         """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],

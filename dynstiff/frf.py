@@ -13,7 +13,7 @@ import numpy as np
 
 from ._validate import omega_array, point as validated_point
 from .assembly import FrequencyModel
-from .cable_dsm import PSI_SERIES, check_frequency_range
+from .cable_dsm import check_frequency_range
 from .errors import InvalidParameterError, PoleWarning
 from .model_base import require_model
 from .platform import skew
@@ -171,11 +171,11 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
 
 @functools.cache
 def _compiled():
-    """The compiled kernels (:mod:`dynstiff.compiled_frf`), or None without numba."""
+    """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
     if importlib.util.find_spec("numba") is None:
         return None
-    from . import compiled_frf
-    return compiled_frf
+    from . import compiled_dsm
+    return compiled_dsm
 
 
 def _receptance(model, omega, B, C):
@@ -188,17 +188,9 @@ def _receptance(model, omega, B, C):
     """
     fast = _compiled()
     if fast is not None and isinstance(model, FrequencyModel) and not model.damped:
-        p = model.stacked_params
-        check_frequency_range(p, omega)
-
-        def real(x):
-            return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
-
-        H, kmax, singular = fast.dsm_receptance(
-            np.ascontiguousarray(omega, dtype=float), real(p.L), real(p.m), real(p.T),
-            real(p.lambda_sq), real(p.alpha), real(p.K0), bool(model.chordwise_inertia),
-            PSI_SERIES, fast.symmetric_assembly(model.assembly_map, model.n_free), model.K_geo_free,
-            np.ascontiguousarray(model.platform_mass, dtype=float), B, C)
+        check_frequency_range(model.stacked_params, omega)
+        H, kmax, singular = fast.dsm_receptance(np.ascontiguousarray(omega, dtype=float),
+                                                *fast.model_arguments(model), B, C)
         return H, kmax, singular
     K = model.dynamic_stiffness(omega)
     H, singular = _solve(K, B, C, fast)

@@ -1,4 +1,4 @@
-"""Compiled FRF kernels (dynstiff/compiled_frf.py, theory.md §14.1) against the numpy path:
+"""Compiled FRF kernels (dynstiff/compiled_dsm.py, theory.md §14.1) against the numpy path:
 the fused K(omega) + solve of the "dsm" rung, the batched real solve, the reduced assembly
 map, and exact singularity."""
 
@@ -6,18 +6,13 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.cable_dsm import PSI_SERIES
 from dynstiff.frf import channel_maps
 
-cf = pytest.importorskip("dynstiff.compiled_frf", exc_type=ImportError)
+cf = pytest.importorskip("dynstiff.compiled_dsm", exc_type=ImportError)
 
 
 def _fused(model, omega, B, C):
-    p = model.stacked_params
-    return cf.dsm_receptance(omega, p.L, p.m, p.T, np.real(p.lambda_sq), np.real(p.alpha),
-                             np.real(p.K0), bool(model.chordwise_inertia), PSI_SERIES,
-                             cf.symmetric_assembly(model.assembly_map, model.n_free),
-                             model.K_geo_free, model.platform_mass, B, C)
+    return cf.dsm_receptance(omega, *cf.model_arguments(model), B, C)
 
 
 def _relative_error(H, H0):
@@ -81,3 +76,23 @@ def test_real_receptance_solves_and_flags_exact_singularity():
     ok = np.setdiff1d(np.arange(50), [7, 9, 11])
     H0 = C @ np.linalg.solve(K[ok], np.broadcast_to(B, (ok.size, 5, 2)))
     np.testing.assert_allclose(H[ok], H0, rtol=1e-10, atol=1e-12 * np.abs(H0).max())
+
+
+def test_count_kernel_equals_numpy_eigenvalues_and_cable_count(cogiro_eq):
+    """Eigenvalues of K(omega) and the cable count J0 of the compiled count against the numpy
+    path, on a grid that crosses many cable poles (J0 up to dozens) and passes within 1e-9
+    (relative) of some of them."""
+    m = ds.FrequencyModel(cogiro_eq, damping=False)
+    p = m.params[0]
+    poles = np.pi * np.sqrt(p.T / p.m) / p.L * np.arange(1, 6)
+    omega = np.sort(np.concatenate([np.linspace(0.0, 150.0, 4001), poles * (1 - 1e-9),
+                                    poles * (1 + 1e-9)]))
+    ev, J0 = cf.dsm_count(omega, *cf.model_arguments(m))
+    K, J0_ref = m.dynamic_stiffness_and_count(omega)
+    np.testing.assert_array_equal(J0, J0_ref)
+    np.testing.assert_array_equal(J0_ref, m.cable_mode_count(omega))
+    assert J0.max() > 30
+    ev_ref = np.linalg.eigvalsh(K)
+    # Weyl: both are within a few eps ||K|| of the exact eigenvalues
+    scale = np.abs(ev_ref).max(axis=1, keepdims=True)
+    assert np.all(np.abs(ev - ev_ref) <= 50 * np.finfo(float).eps * scale)
