@@ -184,6 +184,7 @@ class Dynamics:
         self.excitation = excitation
         self.c_visc = np.array([cb.viscous_damping for cb in model.robot.cables])
         self._last = None
+        self.extremes = (np.inf, 0.0)
         self.set_model(model)
 
     def set_model(self, model):
@@ -209,10 +210,14 @@ class Dynamics:
         return Cb
 
     def forces(self, pose, X, v, t):
-        """Total generalised force F and its external and damping parts, max tension."""
+        """Total generalised force F and its external and damping parts, max tension; the
+        smallest tension and largest strain of the configuration are kept in
+        ``self.extremes``."""
         m = self.model
         frame = self._last = Frame(m, pose, self._last)
-        R, t_max = m.residual_unchecked(pose, interior_views(m, X))
+        ext = []
+        R, t_max = m.residual_unchecked(pose, interior_views(m, X), ext)
+        self.extremes = ext[0]
         fe = self.load(t)
         tw = twist_of(m, v)
         nf = m.n_free

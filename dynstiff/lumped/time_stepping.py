@@ -155,10 +155,15 @@ class Ledger:
         self.peaks = np.zeros(4)
         self.warned = False
 
+    def track(self):
+        """Update the peaks of the work terms (the energy scale) at a step without a row."""
+        p = self.peaks
+        p[0], p[1] = max(p[0], abs(self.ext)), max(p[1], abs(self.winch))
+        p[2], p[3] = max(p[2], abs(self.carried)), max(p[3], abs(self.diss))
+
     def row(self, kinetic, pot):
         """(kinetic, gravity, elastic, ext, winch, carried, dissipated, residual) [J]."""
-        terms = np.array([self.ext, self.winch, self.carried, self.diss])
-        self.peaks = np.maximum(self.peaks, np.abs(terms))
+        self.track()
         E = kinetic + pot[0] + pot[1]
         res = E - self.E0 - (self.ext - self.diss + self.winch + self.carried)
         return (kinetic, pot[1], pot[0], self.ext, self.winch, self.carried, self.diss, res)
