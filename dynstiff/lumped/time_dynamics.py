@@ -123,6 +123,36 @@ def _gyroscopic(model, frame, tw):
 
 def _axial_dashpot(model, frame, X, v, tw, c_ax):
     """Generalised force of the axial dashpots c_ax d(epsilon)/dt (taut segments only)."""
+    if np.all(model.segments == model.segments[0]):
+        return _axial_dashpot_stacked(model, frame, X, v, tw, c_ax)
+    return _axial_dashpot_loop(model, frame, X, v, tw, c_ax)
+
+
+def _axial_dashpot_stacked(model, frame, X, v, tw, c_ax):
+    """:func:`_axial_dashpot` for chains of equal N, all at once (one segment_forces call)."""
+    rob = model.robot
+    n, N, nf = rob.n_cables, int(model.segments[0]), model.n_free
+    nodes = np.empty((n, N + 1, 3))
+    nodes[:, 0] = rob.anchors
+    nodes[:, 1:-1] = X.reshape(n, N - 1, 3)
+    nodes[:, -1] = frame.B
+    vel = np.zeros((n, N + 1, 3))
+    vel[:, 1:-1] = v[nf:].reshape(n, N - 1, 3)
+    vel[:, -1] = tw[:3] + cross(tw[3:], frame.r)
+    l0 = model.segment_lengths[:, None]
+    EA = np.array([c.EA for c in rob.cables])[:, None]
+    units, lengths, _ = segment_forces(nodes, l0, EA)
+    rate = np.einsum("ijk,ijk->ij", units, np.diff(vel, axis=1)) / l0
+    f = np.where(lengths > l0, np.asarray(c_ax)[:, None] * rate, 0.0)[..., None] * units
+    F = np.empty(model.n_dof)
+    F[nf:] = (f[:, 1:] - f[:, :-1]).ravel()
+    W = np.concatenate([-f[:, -1].sum(axis=0), -cross(frame.r, f[:, -1]).sum(axis=0)])
+    F[:nf] = W[model.free_index]
+    return F
+
+
+def _axial_dashpot_loop(model, frame, X, v, tw, c_ax):
+    """:func:`_axial_dashpot` cable by cable (any N per cable)."""
     F = np.zeros(model.n_dof)
     nf = model.n_free
     rob = model.robot
