@@ -40,7 +40,7 @@ for the linearised system and free of numerical damping, solved by Newton's meth
 sparse tangent K + 4 M / dt^2 + 2 C / dt (the LU factors are kept while Newton converges
 fast and refreshed when it slows down). The displacement update is dx = dt v_n +
 dt^2 / 4 (a_n + a_{n+1}); the platform rotation is composed exactly,
-R_{n+1} = exp([dtheta]x) R_n (scipy ``Rotation``), so large rotations are integrated
+R_{n+1} = exp([dtheta]x) R_n (unit quaternions), so large rotations are integrated
 properly (a Lie-group Newmark scheme with the angular velocity in the base frame; the
 Newton matrix neglects the derivatives of M(q) and g(q, v), which slows the iterations for
 fast rotations but does not change their solution).
