@@ -4,6 +4,7 @@ potential energy and the :class:`Dynamics` that assembles forces, mass and the N
 matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
 
 import functools
+import importlib.util
 
 import numpy as np
 
@@ -219,6 +220,9 @@ class Dynamics:
 
     def set_model(self, model):
         self.model = model
+        self.EA = np.array([cb.EA for cb in model.robot.cables])
+        self.node_weights = model.node_masses[:, None] * model.robot.gravity_vector
+        self._any_c_ax = bool(np.any(self.c_ax))
         self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
@@ -245,12 +249,16 @@ class Dynamics:
         ``self.extremes``."""
         m = self.model
         frame = self._last = Frame(m, pose, self._last)
-        ext = []
-        R, t_max = m.residual_unchecked(pose, interior_views(m, X), ext)
-        self.extremes = ext[0]
-        fe = self.load(t)
         tw = twist_of(m, v)
         nf = m.n_free
+        fast = _compiled() if np.all(m.segments == m.segments[0]) else None
+        if fast is not None:
+            R, dash, t_max = self._compiled_chain_forces(fast, frame, pose, X, v, tw)
+        else:
+            ext = []
+            R, t_max = m.residual_unchecked(pose, interior_views(m, X), ext)
+            self.extremes = ext[0]
+        fe = self.load(t)
         fd = np.zeros(m.n_dof)
         if self.alpha:
             fd -= self.alpha * self.mass_times(frame, v)
@@ -259,10 +267,42 @@ class Dynamics:
         if np.any(self.c_visc):
             fd[:nf] -= self.platform_viscous(frame) @ v[:nf]
             fd[nf:] -= self.cv * v[nf:]
-        if np.any(self.c_ax):
+        if fast is not None:
+            fd += dash
+        elif np.any(self.c_ax):
             fd += _axial_dashpot(m, frame, X, v, tw, self.c_ax)
         F = R + fe + fd - np.concatenate([_gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
         return F, fe, fd, t_max, frame
+
+    def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
+        """Residual R, axial-dashpot force and largest tension from the compiled chain kernel
+        (:mod:`dynstiff.lumped.compiled_chain`), chains of equal N; sets ``extremes``."""
+        m = self.model
+        rob = m.robot
+        n, N, nf = rob.n_cables, int(m.segments[0]), m.n_free
+        nodes = np.empty((n, N + 1, 3))
+        nodes[:, 0] = rob.anchors
+        nodes[:, 1:-1] = X.reshape(n, N - 1, 3)
+        nodes[:, -1] = frame.B
+        vel = np.zeros((n, N + 1, 3))
+        if self._any_c_ax:
+            vel[:, 1:-1] = v[nf:].reshape(n, N - 1, 3)
+            vel[:, -1] = tw[:3] + cross(tw[3:], frame.r)
+        inner, end, d_inner, d_end, t_max, t_min, strain = fast.chain_forces(
+            nodes, vel, m.segment_lengths, self.EA, self.c_ax, self.node_weights)
+        self.extremes = (t_min, strain)
+        R = np.empty(m.n_dof)
+        R[nf:] = inner.ravel()
+        W = np.concatenate([rob.platform.mass * rob.gravity_vector + end.sum(axis=0),
+                            cross(frame.rG, rob.platform.mass * rob.gravity_vector)
+                            + cross(frame.r, end).sum(axis=0)])
+        R[:nf] = W[m.free_index]
+        dash = np.zeros(m.n_dof)
+        if self._any_c_ax:
+            dash[nf:] = d_inner.ravel()
+            Wd = np.concatenate([d_end.sum(axis=0), cross(frame.r, d_end).sum(axis=0)])
+            dash[:nf] = Wd[m.free_index]
+        return R, dash, t_max
 
     def newton_matrix(self, pose, X, dt):
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
@@ -289,6 +329,16 @@ class Dynamics:
 
     def kinetic(self, frame, v):
         return 0.5 * float(v @ self.mass_times(frame, v))
+
+
+@functools.cache
+def _compiled():
+    """The compiled chain kernel (:mod:`dynstiff.lumped.compiled_chain`), or None without
+    numba."""
+    if importlib.util.find_spec("numba") is None:
+        return None
+    from . import compiled_chain
+    return compiled_chain
 
 
 def load_at(excitation, t):
