@@ -11,7 +11,7 @@ against. Compiled on first use and cached on disk.
 import numba
 import numpy as np
 
-__all__ = ["chain_forces"]
+__all__ = ["chain_forces", "robot_chain_forces"]
 
 
 @numba.njit(cache=True, error_model="numpy", nogil=True)
@@ -77,3 +77,72 @@ def chain_forces(nodes, vel, l0, EA, c_ax, weight):
             if damped:
                 dash_end[i, k] = -fd[N - 1, k]
     return inner, end, dash_inner, dash_end, t_max, t_min, strain_max
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, platform_weight,
+                       rG):
+    """The chains' generalised forces on a robot (chains of equal N, interior nodes flat),
+    with the platform's weight: what :func:`chain_forces` gives, assembled.
+
+    Parameters
+    ----------
+    anchors, B, r : ndarray, shape (n, 3)
+        Anchors, attachment points and lever arms r_i = R_p b_i [m].
+    X, v_nodes : ndarray, shape (3 n (N - 1),)
+        Interior node positions [m] and velocities [m/s], chain after chain.
+    twist : ndarray, shape (6,)
+        Platform twist (v_P [m/s], w [rad/s]).
+    l0, EA, c_ax, weight : as :func:`chain_forces`
+    platform_weight : ndarray, shape (3,)
+        m_p g [N].
+    rG : ndarray, shape (3,)
+        R_p c_G [m].
+
+    Returns
+    -------
+    inner, dash_inner : ndarray, shape (3 n (N - 1),)
+        Residual (spring + weight) and axial-dashpot forces on the interior nodes [N].
+    W, W_dash : ndarray, shape (6,)
+        Wrench about P [N, N m] of the chains and the platform weight, and of the dashpots.
+    t_max, t_min, strain_max : float
+    """
+    n = anchors.shape[0]
+    N = X.size // (3 * n) + 1
+    nodes = np.empty((n, N + 1, 3))
+    vel = np.zeros((n, N + 1, 3))
+    damped = False
+    for i in range(n):
+        damped = damped or c_ax[i] > 0.0
+    for i in range(n):
+        for k in range(3):
+            nodes[i, 0, k] = anchors[i, k]
+            nodes[i, N, k] = B[i, k]
+        for s in range(N - 1):
+            for k in range(3):
+                nodes[i, s + 1, k] = X[3 * ((N - 1) * i + s) + k]
+                vel[i, s + 1, k] = v_nodes[3 * ((N - 1) * i + s) + k]
+        if damped:
+            w0, w1, w2 = twist[3], twist[4], twist[5]
+            vel[i, N, 0] = twist[0] + w1 * r[i, 2] - w2 * r[i, 1]
+            vel[i, N, 1] = twist[1] + w2 * r[i, 0] - w0 * r[i, 2]
+            vel[i, N, 2] = twist[2] + w0 * r[i, 1] - w1 * r[i, 0]
+    inner, end, d_inner, d_end, t_max, t_min, strain = chain_forces(nodes, vel, l0, EA, c_ax,
+                                                                    weight)
+    W = np.zeros(6)
+    Wd = np.zeros(6)
+    for k in range(3):
+        W[k] = platform_weight[k]
+    W[3] = rG[1] * platform_weight[2] - rG[2] * platform_weight[1]
+    W[4] = rG[2] * platform_weight[0] - rG[0] * platform_weight[2]
+    W[5] = rG[0] * platform_weight[1] - rG[1] * platform_weight[0]
+    for i in range(n):
+        for src, dst in ((end, W), (d_end, Wd)):
+            f0, f1, f2 = src[i, 0], src[i, 1], src[i, 2]
+            dst[0] += f0
+            dst[1] += f1
+            dst[2] += f2
+            dst[3] += r[i, 1] * f2 - r[i, 2] * f1
+            dst[4] += r[i, 2] * f0 - r[i, 0] * f2
+            dst[5] += r[i, 0] * f1 - r[i, 1] * f0
+    return inner.ravel(), d_inner.ravel(), W, Wd, t_max, t_min, strain

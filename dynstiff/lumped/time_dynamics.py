@@ -222,6 +222,7 @@ class Dynamics:
         self.model = model
         self.EA = np.array([cb.EA for cb in model.robot.cables])
         self.node_weights = model.node_masses[:, None] * model.robot.gravity_vector
+        self.platform_weight = model.robot.platform.mass * model.robot.gravity_vector
         self._any_c_ax = bool(np.any(self.c_ax))
         self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
@@ -279,30 +280,13 @@ class Dynamics:
         (:mod:`dynstiff.lumped.compiled_chain`), chains of equal N; sets ``extremes``."""
         m = self.model
         rob = m.robot
-        n, N, nf = rob.n_cables, int(m.segments[0]), m.n_free
-        nodes = np.empty((n, N + 1, 3))
-        nodes[:, 0] = rob.anchors
-        nodes[:, 1:-1] = X.reshape(n, N - 1, 3)
-        nodes[:, -1] = frame.B
-        vel = np.zeros((n, N + 1, 3))
-        if self._any_c_ax:
-            vel[:, 1:-1] = v[nf:].reshape(n, N - 1, 3)
-            vel[:, -1] = tw[:3] + cross(tw[3:], frame.r)
-        inner, end, d_inner, d_end, t_max, t_min, strain = fast.chain_forces(
-            nodes, vel, m.segment_lengths, self.EA, self.c_ax, self.node_weights)
+        nf = m.n_free
+        inner, d_inner, W, Wd, t_max, t_min, strain = fast.robot_chain_forces(
+            rob.anchors, X, frame.B, frame.r, v[nf:], tw, m.segment_lengths, self.EA,
+            self.c_ax, self.node_weights, self.platform_weight, frame.rG)
         self.extremes = (t_min, strain)
-        R = np.empty(m.n_dof)
-        R[nf:] = inner.ravel()
-        W = np.concatenate([rob.platform.mass * rob.gravity_vector + end.sum(axis=0),
-                            cross(frame.rG, rob.platform.mass * rob.gravity_vector)
-                            + cross(frame.r, end).sum(axis=0)])
-        R[:nf] = W[m.free_index]
-        dash = np.zeros(m.n_dof)
-        if self._any_c_ax:
-            dash[nf:] = d_inner.ravel()
-            Wd = np.concatenate([d_end.sum(axis=0), cross(frame.r, d_end).sum(axis=0)])
-            dash[:nf] = Wd[m.free_index]
-        return R, dash, t_max
+        fi = m.free_index
+        return np.concatenate([W[fi], inner]), np.concatenate([Wd[fi], d_inner]), t_max
 
     def newton_matrix(self, pose, X, dt):
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
