@@ -146,6 +146,8 @@ class FrequencyModel(PlatformModel):
         """
         if self.damped:
             return self.undamped().dynamic_stiffness_and_count(omega)
+        if type(self) is not FrequencyModel:       # a subclass may change the cable kernels
+            return self.dynamic_stiffness(omega), self.cable_mode_count(omega)
         omega = omega_array(omega)
         check_frequency_range(self.stacked_params, omega)
         C, J0 = end_block_coefficients_and_count(self.stacked_params, omega,

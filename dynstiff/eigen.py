@@ -114,7 +114,8 @@ def _counter(m):
     the "dsm" rung when numba is installed, else ``dynamic_stiffness_and_count`` where the
     model has it, else K(omega) and the model's cable count (theory.md §14.2)."""
     fast = _compiled()
-    if fast is not None and isinstance(m, FrequencyModel) and not m.damped:
+    # exactly the closed-form class: a subclass may change the cable kernels
+    if fast is not None and type(m) is FrequencyModel and not m.damped:
         args = fast.model_arguments(m)
 
         def count(omega):

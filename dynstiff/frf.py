@@ -187,7 +187,8 @@ def _receptance(model, omega, B, C):
     over frequency, in real arithmetic when K is real (theory.md §14.1).
     """
     fast = _compiled()
-    if fast is not None and isinstance(model, FrequencyModel) and not model.damped:
+    # exactly the closed-form class: a subclass may change the cable kernels
+    if fast is not None and type(model) is FrequencyModel and not model.damped:
         check_frequency_range(model.stacked_params, omega)
         H, kmax, singular = fast.dsm_receptance(np.ascontiguousarray(omega, dtype=float),
                                                 *fast.model_arguments(model), B, C)
