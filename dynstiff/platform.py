@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import positive_scalar
+from ._vec import cross
 from .constants import DOF_NAMES
 from .errors import InvalidParameterError
 
@@ -92,7 +93,7 @@ def quaternion_to_rotvec(q):
 def quaternion_product(p, q):
     """Quaternion product p q (x, y, z, w): the rotation q followed by p, shape (4,)."""
     pv, pw, qv, qw = p[:3], p[3], q[:3], q[3]
-    return np.array([*(pw * qv + qw * pv + np.cross(pv, qv)), pw * qw - pv @ qv])
+    return np.array([*(pw * qv + qw * pv + cross(pv, qv)), pw * qw - pv @ qv])
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,8 @@ import numpy as np
 
 from .._vec import cross
 from ..errors import InvalidParameterError
-from ..platform import lever_map, platform_mass_matrix, skew
+from ..platform import (lever_map, platform_mass_matrix, quaternion_product,
+                        quaternion_to_rotvec, rotvec_to_quaternion, skew)
 from ..robot import Pose
 from .robot_model import LumpedMassModel, segment_forces
 
@@ -31,7 +32,12 @@ def interior_views(model, X):
 
 class FastPose(Pose):
     """A :class:`Pose` that computes its rotation matrix once (the model's residual, its
-    tangent and the platform terms all ask for it)."""
+    tangent and the platform terms all ask for it), built by the integrator without the
+    user-input checks of :class:`Pose` (its state is checked for finiteness every step)."""
+
+    def __post_init__(self):
+        object.__setattr__(self, "position", np.asarray(self.position, dtype=float))
+        object.__setattr__(self, "rotation", np.asarray(self.rotation, dtype=float))
 
     @functools.cached_property
     def matrix(self):
@@ -44,8 +50,9 @@ def advance(model, pose, X, dx):
     d6 = np.zeros(6)
     d6[model.free_index] = dx[:model.n_free]
     if np.any(d6[3:]):
-        moved = pose.moved(d6)
-        pose = FastPose(moved.position, moved.rotation)
+        q = quaternion_product(rotvec_to_quaternion(d6[3:]),
+                               rotvec_to_quaternion(pose.rotation))   # as Pose.moved
+        pose = FastPose(pose.position + d6[:3], quaternion_to_rotvec(q))
     else:
         new = FastPose(pose.position + d6[:3], pose.rotation)
         if "matrix" in pose.__dict__:                      # same rotation: keep R_p
@@ -215,6 +222,7 @@ class Dynamics:
         self.excitation = excitation
         self.c_visc = np.array([cb.viscous_damping for cb in model.robot.cables])
         self._last = None
+        self._load = None
         self.extremes = (np.inf, 0.0)
         self.set_model(model)
 
@@ -228,10 +236,15 @@ class Dynamics:
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
     def load(self, t):
+        """External load at t [s] on the free DOFs, shape (n_dof,); the excitation is
+        called once per time (the Newton iterations of a step share it)."""
+        if self._load is not None and self._load[0] == t:
+            return self._load[1].copy()
         F = np.zeros(self.model.n_dof)
         if self.excitation is not None:
             F[:self.model.n_free] = load_at(self.excitation, t)[self.model.free_index]
-        return F
+        self._load = (t, F)
+        return F.copy()
 
     def mass_times(self, frame, a):
         nf = self.model.n_free
