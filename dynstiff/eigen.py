@@ -213,7 +213,7 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
 
 
 def _seed_grid(m, w_hi, n_uniform=64):
-    """Frequencies [rad/s] at which the count is first evaluated, ascending, ending at w_hi:
+    """Frequencies [rad/s] at which the count is first evaluated, ascending from 0 to w_hi:
     a uniform grid and the massless-cable frequencies (near which the global modes lie),
     each with a neighbour 1e-3 above (theory.md §14.2)."""
     K0 = _real_symmetric(m.massless_stiffness()[None])[0]
@@ -223,7 +223,7 @@ def _seed_grid(m, w_hi, n_uniform=64):
         lam = np.zeros(0)
     w0 = np.sqrt(lam[(lam > 0) & (lam < w_hi**2)])
     pts = np.concatenate([np.linspace(0.0, w_hi, n_uniform + 1)[1:], w0, w0 * (1 + 1e-3)])
-    return np.unique(pts[(pts > 0) & (pts < w_hi)].tolist() + [w_hi])
+    return np.unique([0.0] + pts[(pts > 0) & (pts < w_hi)].tolist() + [w_hi])
 
 
 def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
@@ -237,11 +237,9 @@ def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
     roots on a cable pole keep bisecting to ``rtol``.
     """
     r = np.arange(1, N + 1)
-    # J(0) = 0: a stable equilibrium has no root at or below 0
-    grid = np.concatenate([[0.0], grid])
-    J_grid = np.concatenate([[0], J_grid])
-    J0_grid = np.concatenate([[0], J0_grid])
-    ev_grid = np.concatenate([np.full((1, ev_grid.shape[1]), np.nan), ev_grid])
+    # grid[0] = 0, where J = 0: a stable equilibrium has no root at or below 0
+    J_grid, J0_grid = J_grid.copy(), J0_grid.copy()
+    J_grid[0] = J0_grid[0] = 0
     i_hi = np.searchsorted(J_grid, r, side="left")          # first point with J >= r
     i_lo = i_hi - 1
     lo, hi = grid[i_lo], grid[i_hi]
