@@ -11,7 +11,7 @@ against. Compiled on first use and cached on disk.
 import numba
 import numpy as np
 
-__all__ = ["chain_forces", "robot_chain_forces"]
+__all__ = ["chain_forces", "robot_chain_forces", "explicit_steps"]
 
 
 @numba.njit(cache=True, error_model="numpy", nogil=True)
@@ -146,3 +146,207 @@ def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, p
             dst[4] += r[i, 2] * f0 - r[i, 0] * f2
             dst[5] += r[i, 0] * f1 - r[i, 1] * f0
     return inner.ravel(), d_inner.ravel(), W, Wd, t_max, t_min, strain
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _quat(v):
+    """Unit quaternion (x, y, z, w) of a rotation vector (as platform.rotvec_to_quaternion)."""
+    theta = np.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    if theta <= 1e-3:
+        t2 = theta * theta
+        scale = 0.5 - t2 / 48 + t2 * t2 / 3840
+    else:
+        scale = np.sin(theta / 2) / theta
+    return np.array([scale * v[0], scale * v[1], scale * v[2], np.cos(theta / 2)])
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _compose(d, rot):
+    """Rotation vector of exp(d) R(rot) (as Pose.moved)."""
+    p, q = _quat(d), _quat(rot)
+    x = p[3] * q[0] + q[3] * p[0] + (p[1] * q[2] - p[2] * q[1])
+    y = p[3] * q[1] + q[3] * p[1] + (p[2] * q[0] - p[0] * q[2])
+    z = p[3] * q[2] + q[3] * p[2] + (p[0] * q[1] - p[1] * q[0])
+    w = p[3] * q[3] - (p[0] * q[0] + p[1] * q[1] + p[2] * q[2])
+    if w < 0:
+        x, y, z, w = -x, -y, -z, -w
+    n = np.sqrt(x * x + y * y + z * z)
+    theta = 2 * np.arctan2(n, w)
+    if theta <= 1e-3:
+        t2 = theta * theta
+        scale = 2 + t2 / 12 + 7 * t2 * t2 / 2880
+    else:
+        scale = theta / np.sin(theta / 2)
+    return np.array([scale * x, scale * y, scale * z])
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _matrix(rot):
+    """Rotation matrix of a rotation vector (as platform.rotation_matrix)."""
+    q = _quat(rot)
+    x, y, z, w = q[0], q[1], q[2], q[3]
+    return np.array([
+        [w * w + x * x - y * y - z * z, 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), w * w - x * x + y * y - z * z, 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), w * w - x * x - y * y + z * z]])
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _cross(a, b):
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]])
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _skew(a):
+    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _platform(pos, rot, attachments, half, mass, com, inertia):
+    """Frame quantities (as time_dynamics.Frame): B, r, M6, rG, first moment."""
+    R = _matrix(rot)
+    r = attachments @ R.T
+    B = r + pos
+    rG = R @ com
+    S = _skew(rG)
+    M = np.zeros((6, 6))
+    for k in range(3):
+        M[k, k] = mass
+    M[:3, 3:] = -mass * S
+    M[3:, :3] = mass * S
+    M[3:, 3:] = R @ inertia @ R.T - mass * (S @ S)
+    hr = half @ r
+    Sh = _skew(hr)
+    hs = half.sum()
+    for k in range(3):
+        M[k, k] += hs
+    M[:3, 3:] -= Sh
+    M[3:, :3] += Sh
+    rr = 0.0
+    for i in range(half.size):
+        rr += half[i] * (r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2)
+    outer = np.zeros((3, 3))
+    for i in range(half.size):
+        for j in range(3):
+            for k in range(3):
+                outer[j, k] += half[i] * r[i, j] * r[i, k]
+    for k in range(3):
+        M[3 + k, 3 + k] += rr
+    M[3:, 3:] -= outer
+    return B, r, M, rG, mass * rG + hr
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def _forces(pos, rot, X, vp, vn, load, free, anchors, attachments, l0, EA, c_ax, weight,
+            platform_weight, half, mass, com, inertia, mu, alpha, c_visc, cv):
+    """Generalised forces of the explicit step (as Dynamics.forces with beta = 0), platform
+    part as a full 6-vector (0 on held DOFs): F, fe, fd (each platform (6,), nodes),
+    M6, strain, t_min, and the slack (cable, segment) or (-1, -1)."""
+    B, r, M6, rG, first = _platform(pos, rot, attachments, half, mass, com, inertia)
+    inner, d_inner, W, Wd, t_max, t_min, strain = robot_chain_forces(
+        anchors, X, B, r, vn, vp, l0, EA, c_ax, weight, platform_weight, rG)
+    fd_p = Wd.copy()
+    fd_n = d_inner.copy()
+    if alpha != 0.0:
+        fd_p -= alpha * (M6 @ vp)
+        fd_n -= alpha * mu * vn
+    for i in range(c_visc.size):
+        if c_visc[i] != 0.0:
+            # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
+            jv = vp[:3] + _cross(vp[3:], r[i])
+            c = 0.5 * c_visc[i] * l0[i]
+            fd_p[:3] -= c * jv
+            fd_p[3:] -= c * _cross(r[i], jv)
+    fd_n -= cv * vn
+    w = vp[3:]
+    g = np.zeros(6)
+    if w[0] != 0.0 or w[1] != 0.0 or w[2] != 0.0:
+        g[:3] = _cross(w, _cross(w, first))
+        Iw = np.zeros(3)
+        for j in range(3):
+            for k in range(3):
+                Iw[j] += M6[3 + j, 3 + k] * w[k]
+        g[3:] = _cross(w, Iw)
+    Fp = W + load + fd_p - g
+    for k in range(6):
+        if not free[k]:
+            Fp[k] = 0.0
+            fd_p[k] = 0.0
+    return Fp, inner + fd_n, load, fd_p, fd_n, M6, strain, t_min, B
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def explicit_steps(n_steps, dt, pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, loads, free,
+                   anchors, attachments, l0, EA, c_ax, weight, platform_weight, half, mass,
+                   com, inertia, mu, alpha, c_visc, cv, ext, diss, stop_at_slack):
+    """``n_steps`` velocity-Verlet steps of the lumped robot (as time_stepping.explicit_step
+    with beta = 0 and fixed lengths; theory.md §7.3, §14.4), platform DOFs as full 6-vectors
+    with the held ones 0.
+
+    ``loads`` (n_steps, 6) are the external loads at the end of each step. ``ext`` and
+    ``diss`` are the running work terms of the ledger. Returns the state after the steps
+    taken, the last fe, fd, the updated ext, diss, their peaks, the largest strain, the number
+    of steps with a slack segment and the first of them (step, cable, segment), and the
+    number of steps taken (fewer when the state became non-finite or a strain exceeded 1).
+    """
+    n_free = 0
+    for k in range(6):
+        n_free += 1 if free[k] else 0
+    fi = np.empty(n_free, dtype=np.int64)
+    j = 0
+    for k in range(6):
+        if free[k]:
+            fi[j] = k
+            j += 1
+    peak_ext, peak_diss = abs(ext), abs(diss)
+    strain_max = -np.inf
+    slack_steps = 0
+    taken = 0
+    status = 0
+    for s in range(n_steps):
+        vhp = vp + 0.5 * dt * ap
+        vhn = vn + 0.5 * dt * an
+        dp, dn = dt * vhp, dt * vhn
+        if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
+            rot = _compose(dp[3:], rot)
+        pos = pos + dp[:3]
+        X = X + dn
+        Fp, Fn, fe1, fd1_p, fd1_n, M6, strain, t_min, B = _forces(
+            pos, rot, X, vhp, vhn, loads[s], free, anchors, attachments, l0, EA, c_ax,
+            weight, platform_weight, half, mass, com, inertia, mu, alpha, c_visc, cv)
+        a1p = np.zeros(6)
+        if n_free:
+            Mff = np.empty((n_free, n_free))
+            Ff = np.empty(n_free)
+            for i in range(n_free):
+                Ff[i] = Fp[fi[i]]
+                for k in range(n_free):
+                    Mff[i, k] = M6[fi[i], fi[k]]
+            sol = np.linalg.solve(Mff, Ff)
+            for i in range(n_free):
+                a1p[fi[i]] = sol[i]
+        a1n = Fn / mu
+        v1p = vhp + 0.5 * dt * a1p
+        v1n = vhn + 0.5 * dt * a1n
+        if not (np.isfinite(a1p).all() and np.isfinite(a1n).all()
+                and np.isfinite(v1p).all() and np.isfinite(v1n).all()):
+            status = 1
+            break
+        ext += 0.5 * (dp @ (fe_p + fe1))
+        diss -= 0.5 * (dp @ (fd_p + fd1_p) + dn @ (fd_n + fd1_n))
+        peak_ext, peak_diss = max(peak_ext, abs(ext)), max(peak_diss, abs(diss))
+        strain_max = max(strain_max, strain)
+        if t_min <= 0.0:
+            slack_steps += 1
+        vp, vn, ap, an = v1p, v1n, a1p, a1n
+        fe_p, fd_p, fd_n = fe1, fd1_p, fd1_n
+        taken = s + 1
+        if strain > 1.0:
+            status = 2
+            break
+        if t_min <= 0.0 and stop_at_slack:
+            status = 3
+            break
+    return (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, ext, diss, peak_ext, peak_diss,
+            strain_max, slack_steps, taken, status)

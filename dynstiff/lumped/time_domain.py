@@ -98,6 +98,7 @@ from .linear_model import LumpedLinearModel
 from .robot_model import LumpedEquilibrium, LumpedMassModel
 from .time_damping import TimeDamping, explicit_step_limit
 from .time_dynamics import (
+    compiled_kernels,
     Dynamics,
     Frame,
     load_at,
@@ -112,6 +113,7 @@ from .time_stepping import (
     IntegrationError,
     carried_energy,
     check_blow_up,
+    compiled_explicit_run,
     explicit_step,
     implicit_step,
     Ledger,
@@ -408,7 +410,16 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
-    for k in range(1, n_steps + 1):
+    fast = compiled_kernels()
+    if scheme == "explicit" and fast is not None and length_fn is None and not damping.beta \
+            and np.all(m.segments == m.segments[0]) and m.segments[0] > 1:
+        slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
+                                            record_every, rec, ledger, damping,
+                                            SlackSegmentWarning)
+        n_steps_done = n_steps
+    else:
+        n_steps_done = 0
+    for k in range(n_steps_done + 1, n_steps + 1):
         t1 = k * dt
         m_prev = m
         if length_fn is not None:

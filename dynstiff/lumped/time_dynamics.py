@@ -328,6 +328,11 @@ class Dynamics:
         return 0.5 * float(v @ self.mass_times(frame, v))
 
 
+def compiled_kernels():
+    """The compiled kernels (:mod:`dynstiff.lumped.compiled_chain`), or None without numba."""
+    return _compiled()
+
+
 @functools.cache
 def _compiled():
     """The compiled chain kernel (:mod:`dynstiff.lumped.compiled_chain`), or None without

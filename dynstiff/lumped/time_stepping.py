@@ -10,7 +10,8 @@ import numpy as np
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
-from .time_dynamics import advance, interior_views, twist_of
+from .time_dynamics import (FastPose, Frame, advance, interior_views, load_at,
+                            potential_energy, twist_of)
 from .time_response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
@@ -111,7 +112,7 @@ def explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
+def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stacklevel=3):
     """IntegrationError when a strain exceeds 1 or the energy balance residual exceeds
     ``_BLOW_UP`` times the energy scale of the run (plus 1e-3 of the initial strain
     energy); an :class:`EnergyBalanceWarning`, once, when it passes ``_LEDGER_WARN`` of it.
@@ -127,7 +128,7 @@ def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
             f"{ledger.scale():.3g} J: the energy ledger is inaccurate at dt = {dt:g} s "
             f"(axial chain modes faster than 1 / dt, typically with winches, or an unstable "
             f"explicit step); halve dt to "
-            f"check the motion", EnergyBalanceWarning, stacklevel=3)
+            f"check the motion", EnergyBalanceWarning, stacklevel=stacklevel)
     if strain <= _STRAIN_LIMIT and abs(residual) <= _BLOW_UP * ledger.limit():
         return
     why = (f"a segment is stretched to {1 + strain:.3g} l0" if strain > _STRAIN_LIMIT
@@ -215,3 +216,74 @@ class Recorder:
         return TimeResponse(*out, nodes=None if self.nodes is None else tuple(self.nodes),
                             free_dofs=model.free_dofs, equilibrium_pose=eq_pose.as_vector(),
                             **info)
+
+
+def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning):
+    """The velocity-Verlet steps of a run with fixed lengths, beta = 0 and chains of equal N,
+    ``record_every`` steps per call of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.explicit_steps`, theory.md §14.4); the ledger
+    rows, records, checks and warnings at the recorded steps as in the stepwise loop.
+    Returns the number of steps with a slack segment."""
+    m = dyn.model
+    rob, p = m.robot, m.robot.platform
+    nf, fi = m.n_free, m.free_index
+    free = np.zeros(6, dtype=bool)
+    free[fi] = True
+
+    def six(x):
+        out = np.zeros(6)
+        out[fi] = x[:nf]
+        return out
+
+    pos, rot = np.array(pose.position, dtype=float), np.array(pose.rotation, dtype=float)
+    vp, vn, ap, an = six(v), v[nf:].copy(), six(a), a[nf:].copy()
+    fe_p, fd_p, fd_n = six(fe), six(fd), fd[nf:].copy()
+    consts = (rob.anchors.astype(float), rob.attachments.astype(float), m.segment_lengths,
+              dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
+              dyn.platform_weight, 0.5 * m.node_masses, float(p.mass),
+              np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
+              dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv)
+    k, slack_steps, warned = 0, 0, False
+    while k < n_steps:
+        count = min(n_steps, (k // record_every + 1) * record_every) - k
+        loads = np.zeros((count, 6))
+        if dyn.excitation is not None:
+            for j in range(count):
+                loads[j] = load_at(dyn.excitation, (k + 1 + j) * dt)
+            loads[:, ~free] = 0.0
+        (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, ledger.ext, ledger.diss, pk_ext,
+         pk_diss, strain, n_slack, taken, status) = fast.explicit_steps(
+            count, dt, pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, loads, free, *consts,
+            ledger.ext, ledger.diss, not warned)
+        ledger.peaks[0] = max(ledger.peaks[0], pk_ext)
+        ledger.peaks[3] = max(ledger.peaks[3], pk_diss)
+        slack_steps += n_slack
+        k += taken
+        t1 = k * dt
+        if status == 1:
+            raise IntegrationError(
+                f"simulate: non-finite state at step {k + 1} (t = {t1 + dt:g} s) with explicit "
+                f"dt = {dt:g} s; the predicted stability limit is "
+                f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)",
+                step=k + 1, time=t1 + dt, dt=dt)
+        pose = FastPose(pos, rot)
+        v = np.concatenate([vp[fi], vn])
+        frame = Frame(m, pose)
+        if status == 2:
+            check_blow_up(strain, 0.0, ledger, "explicit", dt, k, t1, m, damping, 4)
+        pot = None
+        if status == 3 or k % record_every == 0 or k == n_steps:
+            pot = potential_energy(m, frame, X)
+            row = ledger.row(dyn.kinetic(frame, v), pot)
+            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
+        if status == 3:
+            warned = True
+            i, s = pot[4][0]
+            warnings.warn(
+                f"simulate: cable {i} segment {s} went slack at step {k} (t = {t1:g} s); "
+                f"tension-only springs carry no force until it is taut again",
+                slack_warning, stacklevel=3)
+        if k % record_every == 0:
+            rec.store(k // record_every, t1, pose, v, m, pot, row, X)
+    return slack_steps
