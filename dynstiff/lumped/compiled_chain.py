@@ -11,7 +11,7 @@ against. Compiled on first use and cached on disk.
 import numba
 import numpy as np
 
-__all__ = ["chain_forces", "robot_chain_forces", "explicit_steps"]
+__all__ = ["chain_forces", "robot_chain_forces", "explicit_steps", "energies"]
 
 
 @numba.njit(cache=True, error_model="numpy", nogil=True)
@@ -274,6 +274,41 @@ def _forces(pos, rot, X, vp, vn, load, free, anchors, attachments, l0, EA, c_ax,
             Fp[k] = 0.0
             fd_p[k] = 0.0
     return Fp, inner + fd_n, load, fd_p, fd_n, M6, strain, t_min, B
+
+
+@numba.njit(cache=True, error_model="numpy", nogil=True)
+def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, mass, com,
+             inertia, mu):
+    """Ledger quantities of a state (as time_dynamics.potential_energy and
+    Dynamics.kinetic): elastic, gravity and kinetic energy [J], end and anchor tensions (n,)
+    [N], largest strain [-]."""
+    n = anchors.shape[0]
+    N = X.size // (3 * n) + 1
+    B, r, M6, rG, first = _platform(pos, rot, attachments, 0.5 * node_mass, mass, com,
+                                    inertia)
+    elastic, strain = 0.0, -np.inf
+    gravity = mass * g * (pos[2] + rG[2])
+    t_end, t_anchor = np.empty(n), np.empty(n)
+    for i in range(n):
+        zsum = 0.0
+        for s in range(N):
+            a = anchors[i] if s == 0 else X[3 * ((N - 1) * i + s - 1):3 * ((N - 1) * i + s)]
+            b = B[i] if s == N - 1 else X[3 * ((N - 1) * i + s):3 * ((N - 1) * i + s + 1)]
+            d0, d1, d2 = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+            length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+            stretch = max(length - l0[i], 0.0)
+            elastic += 0.5 * EA[i] / l0[i] * stretch * stretch
+            T = EA[i] * max(length / l0[i] - 1.0, 0.0)
+            if s == 0:
+                t_anchor[i] = T
+            if s == N - 1:
+                t_end[i] = T
+            strain = max(strain, length / l0[i] - 1.0)
+            if s < N - 1:
+                zsum += b[2]
+        gravity += node_mass[i] * g * (zsum + 0.5 * B[i, 2])
+    kinetic = 0.5 * (vp @ (M6 @ vp) + vn @ (mu * vn))
+    return elastic, gravity, kinetic, t_end, t_anchor, strain
 
 
 @numba.njit(cache=True, error_model="numpy", nogil=True)

@@ -269,13 +269,19 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
                 step=k + 1, time=t1 + dt, dt=dt)
         pose = FastPose(pos, rot)
         v = np.concatenate([vp[fi], vn])
-        frame = Frame(m, pose)
         if status == 2:
             check_blow_up(strain, 0.0, ledger, "explicit", dt, k, t1, m, damping, 4)
         pot = None
-        if status == 3 or k % record_every == 0 or k == n_steps:
-            pot = potential_energy(m, frame, X)
-            row = ledger.row(dyn.kinetic(frame, v), pot)
+        if status == 3:
+            pot = potential_energy(m, Frame(m, pose), X)
+            row = ledger.row(dyn.kinetic(Frame(m, pose), v), pot)
+            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
+        elif k % record_every == 0 or k == n_steps:
+            elastic, gravity, kinetic, t_end, t_anchor, strain = fast.energies(
+                pos, rot, X, vp, vn, consts[0], consts[1], m.segment_lengths, dyn.EA,
+                m.node_masses, rob.g, *consts[8:12])
+            pot = (elastic, gravity, t_end, t_anchor, [], strain)
+            row = ledger.row(kinetic, pot)
             check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
         if status == 3:
             warned = True
