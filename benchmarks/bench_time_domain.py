@@ -1,24 +1,27 @@
-"""Benchmark: time-domain simulation speed of the lumped-mass model, in simulated seconds per
-wall-clock second, beside MoorDyn for a single line.
+"""Benchmark: time-domain throughput of the lumped-mass model beside MoorDyn, each code at its
+largest time step that stays within a stated accuracy of its own fine-step run.
 
-Cases
------
-* CoGiRo (scene ``cogiro``, lengths of ``scene.equilibrium()``), N = 20 per cable, free
-  vibration after a 0.1 mm / 0.1 mrad offset: implicit (Newmark, dt = 1 ms) and explicit
-  (velocity Verlet at 0.9 x its predicted stability limit, theory.md §7.3).
-* One CoGiRo cable (anchor a_0, 300 N at B, 20 segments) ending on a 1-DOF vertical slider
-  whose mass the cable carries, driven by a 2 N, 2 Hz vertical force; axial dashpot
-  c_ax = 23.6 N s (damping ratio 0.5 on the highest axial chain mode; MoorDyn's RK2 goes to
-  NaN without it). dynstiff implicit at dt = 1, 2.5 and 5 ms, explicit at 0.9 x its limit.
-* The same line in MoorDyn (``pip install moordyn``; optional, not a dependency): a v2 input
-  file in air (rho 0), RK2 at dtM = 0.3 ms (its largest stable step here: 0.5 ms gives NaN),
-  anchor ``Fixed``, B ``Coupled`` and driven every 1 ms with the slider motion computed by
-  the dynstiff run. "tension diff" is the RMS difference of the fairlead-tension fluctuation
-  (mean removed: MoorDyn's FairTen is the net end-node force, ours the last segment's
-  tension) between MoorDyn and dynstiff under the same motion of B: the two codes integrate
-  the same lumped line, so it measures the accuracy reached at each dt.
+Cases (equal segments, N = 20 per cable, ``T_END`` = 10 s simulated by default)
+--------------------------------------------------------------------------------
+* **line**: one CoGiRo cable (anchor a_0, 300 N at B) ending on a 1-DOF vertical slider whose
+  mass the cable carries, driven by a 2 N, 2 Hz vertical force; axial dashpot c_ax = 23.6 N s
+  (damping ratio 0.5 on the highest axial chain mode; MoorDyn's RK2 goes to NaN without
+  it). Signal: the fairlead tension. MoorDyn integrates the same line with B ``Coupled`` and
+  driven every 1 ms with the slider motion of the dynstiff fine-step run.
+* **CoGiRo** (scene ``cogiro``, lengths of ``scene.equilibrium()``): 8 cables and the
+  6-DOF platform in free vibration after a 0.1 mm / 0.1 mrad offset, the same dashpots.
+  Signal: the platform pose (6 components). MoorDyn: a ``Free`` body (its input takes the
+  diagonal of the inertia only), anchors ``Fixed``, attachments on ``Body1``, driven in
+  steps of 1 ms.
 
-Run:  python benchmarks/bench_time_domain.py
+Accuracy: the RMS difference of the signal from the code's own fine-step run, relative to
+the RMS fluctuation of that run (``TOLERANCE`` = 2 %). dynstiff: implicit (Newmark) at
+several dt, fine run 0.25 ms; explicit (velocity Verlet) at 0.9 x its stability limit (its
+accuracy at that dt is checked against the same fine run over ``T_EXPLICIT`` seconds, and its
+speed measured there). MoorDyn: RK2 at several dtM (larger ones give NaN), fine run
+dtM / 4 of the smallest. Speed: simulated seconds per wall second of the stepping loop.
+
+Run:  python benchmarks/bench_time_domain.py [t_end]    (MoorDyn: pip install "dynstiff[benchmark]")
 """
 
 import contextlib
@@ -36,27 +39,20 @@ A0 = np.array([-7.1775, -5.4361, 5.3911])          # CoGiRo anchor a_0 (Table I)
 B0 = np.array([0.5032, -0.4928, 1.0])              # b_0 with the platform at (0, 0, 1) m
 CABLE = ds.Cable(0.064, 8.2051e-6 * 17e9)          # 4 mm steel, E = 17 GPa
 C_AX = 23.6                                        # axial dashpot [N s]
-MOORDYN_DTM = 3e-4                                 # MoorDyn RK2 internal step [s]
+N_SEG = 20
+T_END = 10.0
+T_EXPLICIT = 1.0
+TOLERANCE = 0.02
+OFFSET = np.array([1e-4, -1e-4, 1e-4, 1e-4, -1e-4, 1e-4])
+SHIFT = -10.0                                      # keep MoorDyn's lines below z = 0
+DT_IMPLICIT = (5e-3, 2.5e-3, 1e-3, 5e-4)
+DT_FINE = 2.5e-4
+DTM_MOORDYN = (4e-4, 3e-4, 2e-4, 1e-4)
+COUPLING = 1e-3
 
 
-def cogiro_cases(N=20, t_impl=1.0, t_expl=0.2):
-    scene = ds.load_scene("cogiro")
-    m = LumpedMassModel(scene.robot, scene.equilibrium().unstretched_lengths, segments=N)
-    start = m.equilibrium()
-    offset = [1e-4, -1e-4, 1e-4, 1e-4, -1e-4, 1e-4]
-    rows = []
-    r = simulate(m, t_impl, 1e-3, initial=offset, record_every=10, start=start)
-    rows.append((f"CoGiRo N={N}", "dynstiff implicit", 1e-3, r.speed_ratio,
-                 np.abs(r.energy.relative_residual).max(), np.nan))
-    dt = 0.9 * explicit_step_limit(m)
-    r = simulate(m, t_expl, dt, scheme="explicit", initial=offset, record_every=50,
-                 start=start)
-    rows.append((f"CoGiRo N={N}", "dynstiff explicit", dt, r.speed_ratio,
-                 np.abs(r.energy.relative_residual).max(), np.nan))
-    return rows
-
-
-def line_model(N=20):
+# ------------------------------------------------------------------------------ dynstiff
+def line_model(N=N_SEG):
     st = ds.unstretched_length_for_tension(A0, B0, 300.0, CABLE)
     slider = ds.Platform(st.force_on_end[2] / ds.STANDARD_GRAVITY, free_dofs=("z",))
     robot = ds.Robot(A0[None, :], np.zeros((1, 3)), CABLE, slider)
@@ -64,10 +60,38 @@ def line_model(N=20):
     return m, m.equilibrium(initial_pose=B0)
 
 
+def cogiro_model(N=N_SEG):
+    scene = ds.load_scene("cogiro")
+    eq = scene.equilibrium()
+    m = LumpedMassModel(scene.robot, eq.unstretched_lengths, segments=N)
+    return m, m.equilibrium(), eq
+
+
 def _force(t):
     return np.array([0.0, 0.0, 2.0 * np.sin(2 * np.pi * 2.0 * t), 0.0, 0.0, 0.0])
 
 
+def dynstiff_run(case, dt, t_end, scheme="implicit"):
+    """(speed [s/s], record times, signal, TimeResponse) of one dynstiff run."""
+    every = max(1, int(round(COUPLING / dt)))
+    damping = TimeDamping(axial=C_AX)
+    if case == "line":
+        m, start = line_model()
+        r = simulate(m, t_end, dt, excitation=_force, damping=damping, scheme=scheme,
+                     record_every=every, start=start)
+        return r.speed_ratio, r.times, r.end_tensions[:, 0], r
+    m, start, _ = cogiro_model()
+    r = simulate(m, t_end, dt, initial=OFFSET, damping=damping, scheme=scheme,
+                 record_every=every, start=start)
+    return r.speed_ratio, r.times, r.pose, r
+
+
+def explicit_dt(case):
+    m = line_model()[0] if case == "line" else cogiro_model()[0]
+    return 0.9 * explicit_step_limit(m, damping=TimeDamping(axial=C_AX))
+
+
+# ------------------------------------------------------------------------------ MoorDyn
 @contextlib.contextmanager
 def _c_output_silenced():
     """Send the C-level stdout / stderr (MoorDyn's console log) to /dev/null."""
@@ -86,105 +110,186 @@ def _c_output_silenced():
                 os.close(fd)
 
 
-def moordyn_line(motion, N=20, dtm=MOORDYN_DTM, coupling_dt=1e-3):
-    """MoorDyn run of the line with B driven by ``motion`` (a TimeResponse); returns
-    (simulated s per wall s, fairlead tension history at the coupling steps) or None."""
+def _header(title):
+    return ["--------------------- MoorDyn Input File ------------------------------------",
+            title,
+            "---------------------- LINE TYPES --------------------------------------------",
+            "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
+            "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
+            f"steel 0.004 {CABLE.mass_per_length:.10g} {CABLE.EA:.10g} {C_AX:.10g} 0 0 0 0 0"]
+
+
+def _options(dtm):
+    return ["---------------------- OPTIONS -----------------------------------------------",
+            f"{dtm} dtM", "rk2 tScheme", f"{ds.STANDARD_GRAVITY} g", "0.0 rho",
+            "100 WtrDpth", "0 TmaxIC", "0 writeLog", "1 disableOutput", "1 disableOutTime",
+            "------------------------- need this line -------------------------------------",
+            ""]
+
+
+def _point(i, where, x):
+    return "{} {} {:.10g} {:.10g} {:.10g} 0 0 0 0".format(i, where, *x)
+
+
+def line_input(L0, dtm, N=N_SEG):
+    return "\n".join(
+        _header("dynstiff benchmark: one CoGiRo cable in air")
+        + ["---------------------- POINTS ------------------------------------------------",
+           "ID Attachment X Y Z Mass Volume CdA Ca",
+           "(#) (word) (m) (m) (m) (kg) (m^3) (m^2) (-)",
+           _point(1, "Fixed", A0 + [0.0, 0.0, SHIFT]),
+           _point(2, "Coupled", B0 + [0.0, 0.0, SHIFT]),
+           "---------------------- LINES -------------------------------------------------",
+           "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
+           "(#) (name) (ID) (ID) (m) (-) (-)",
+           f"1 steel 1 2 {L0:.15g} {N} -"]
+        + _options(dtm))
+
+
+def cogiro_input(dtm, N=N_SEG):
+    _, _, eq = cogiro_model(2)
+    rob, p = eq.robot, eq.robot.platform
+    x0 = eq.pose.position + OFFSET[:3] + [0.0, 0.0, SHIFT]
+    ang = np.degrees(OFFSET[3:])                   # small angles: Euler = rotation vector
+    body = ("1 Free " + " ".join(f"{v:.10g}" for v in (*x0, *ang, p.mass))
+            + " {:.10g}|{:.10g}|{:.10g}".format(*p.center_of_mass)
+            + " {:.10g}|{:.10g}|{:.10g}".format(*np.diag(p.inertia)) + " 0 0 0")
+    lines = (_header("dynstiff benchmark: CoGiRo in air")
+             + ["---------------------- BODIES ------------------------------------------------",
+                "ID Attachment X0 Y0 Z0 r0 p0 y0 Mass CG* I* Volume CdA* Ca*",
+                "(#) (word) (m) (m) (m) (deg) (deg) (deg) (kg) (m) (kg-m^2) (m^3) (m^2) (-)",
+                body,
+                "---------------------- POINTS ------------------------------------------------",
+                "ID Attachment X Y Z Mass Volume CdA Ca",
+                "(#) (word) (m) (m) (m) (kg) (m^3) (m^2) (-)"])
+    n = rob.n_cables
+    lines += [_point(i + 1, "Fixed", rob.anchors[i] + [0.0, 0.0, SHIFT]) for i in range(n)]
+    lines += [_point(n + i + 1, "Body1", rob.attachments[i]) for i in range(n)]
+    lines += ["---------------------- LINES -------------------------------------------------",
+              "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
+              "(#) (name) (ID) (ID) (m) (-) (-)"]
+    lines += [f"{i + 1} steel {i + 1} {n + i + 1} {eq.unstretched_lengths[i]:.15g} {N} -"
+              for i in range(n)]
+    return "\n".join(lines + _options(dtm))
+
+
+def moordyn_run(case, dtm, t_end, motion=None):
+    """(speed [s/s], times, signal) of one MoorDyn run, NaN signal when it blows up; None
+    without moordyn. ``motion``: (times, z, vz) of B for the line."""
     try:
         import moordyn
     except ImportError:
         return None
-    shift = -10.0                                   # keep the line below MoorDyn's z = 0
-    L0 = motion.unstretched_lengths[0, 0]
-    text = "\n".join([
-        "--------------------- MoorDyn Input File ------------------------------------",
-        "dynstiff benchmark: one CoGiRo cable in air",
-        "---------------------- LINE TYPES --------------------------------------------",
-        "TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx",
-        "(name) (m) (kg/m) (N) (N-s/-) (N-m^2) (-) (-) (-) (-)",
-        f"steel 0.004 {CABLE.mass_per_length:.10g} {CABLE.EA:.10g} {C_AX:.10g} 0 0 0 0 0",
-        "---------------------- POINTS ------------------------------------------------",
-        "ID Attachment X Y Z Mass Volume CdA Ca",
-        "(#) (word) (m) (m) (m) (kg) (m^3) (m^2) (-)",
-        "1 Fixed {:.10g} {:.10g} {:.10g} 0 0 0 0".format(*(A0 + [0.0, 0.0, shift])),
-        "2 Coupled {:.10g} {:.10g} {:.10g} 0 0 0 0".format(*(B0 + [0.0, 0.0, shift])),
-        "---------------------- LINES -------------------------------------------------",
-        "ID LineType AttachA AttachB UnstrLen NumSegs LineOutputs",
-        "(#) (name) (ID) (ID) (m) (-) (-)",
-        f"1 steel 1 2 {L0:.15g} {N} -",
-        "---------------------- OPTIONS -----------------------------------------------",
-        f"{dtm} dtM", "rk2 tScheme", f"{ds.STANDARD_GRAVITY} g", "0.0 rho", "100 WtrDpth",
-        "0 writeLog", "1 disableOutput", "1 disableOutTime",
-        "------------------------- need this line -------------------------------------",
-        ""])
+    times = np.arange(0.0, t_end + 1e-12, COUPLING)
     with tempfile.TemporaryDirectory() as tmp, _c_output_silenced():
-        path = os.path.join(tmp, "line.txt")
-        with open(path, "w") as f:
-            f.write(text)
+        path = os.path.join(tmp, "input.txt")
+        if case == "line":
+            z = np.interp(times, motion[0], motion[1]) + SHIFT
+            vz = np.interp(times, motion[0], motion[2])
+            with open(path, "w") as f:
+                f.write(line_input(line_model()[0].unstretched_lengths[0], dtm))
+        else:
+            with open(path, "w") as f:
+                f.write(cogiro_input(dtm))
         system = moordyn.Create(path)
-        times = np.arange(0.0, motion.times[-1] + 1e-12, coupling_dt)
-        z = np.interp(times, motion.times, motion.pose[:, 2]) + shift
-        vz = np.interp(times, motion.times, motion.velocity[:, 2])
         xy = [float(B0[0]), float(B0[1])]
-        moordyn.Init(system, xy + [float(z[0])], [0.0, 0.0, float(vz[0])])
-        line = moordyn.GetLine(system, 1)
-        tension = np.empty(times.size)
-        tension[0] = moordyn.GetLineFairTen(line)
+        if case == "line":
+            moordyn.Init(system, xy + [float(z[0])], [0.0, 0.0, float(vz[0])])
+            line = moordyn.GetLine(system, 1)
+            sig = np.empty(times.size)
+            sig[0] = moordyn.GetLineFairTen(line)
+        else:
+            moordyn.Init(system, [], [])
+            body = moordyn.GetBody(system, 1)
+            sig = np.empty((times.size, 6))
+            sig[0] = moordyn.GetBodyState(body)[0]
         t0 = time.perf_counter()
+        ok = True
         for k in range(1, times.size):
-            # MoorDyn takes the coupled state at the start of the step and moves the point
-            # with that velocity over the step (passing the end state lags by one step)
-            moordyn.Step(system, xy + [float(z[k - 1])], [0.0, 0.0, float(vz[k - 1])],
-                         float(times[k - 1]), coupling_dt)
-            tension[k] = moordyn.GetLineFairTen(line)
+            try:
+                if case == "line":
+                    # the coupled state at the start of the step moves the point over it
+                    moordyn.Step(system, xy + [float(z[k - 1])], [0.0, 0.0, float(vz[k - 1])],
+                                 float(times[k - 1]), COUPLING)
+                    sig[k] = moordyn.GetLineFairTen(line)
+                else:
+                    moordyn.Step(system, [], [], float(times[k - 1]), COUPLING)
+                    sig[k] = moordyn.GetBodyState(body)[0]
+            except Exception:                      # MoorDyn raises on NaN
+                ok = False
+            if not ok or not np.all(np.isfinite(sig[k])):
+                sig[k:] = np.nan
+                break
         wall = time.perf_counter() - t0
         moordyn.Close(system)
-    return times[-1] / wall, times, tension
+    if case != "line":
+        sig = sig - [0.0, 0.0, SHIFT, 0.0, 0.0, 0.0]
+    return times[-1] / wall, times, sig
 
 
-def _tension_diff(r, times, tension):
-    ours = np.interp(times, r.times, r.end_tensions[:, 0])
-    return float(np.sqrt(np.mean(((ours - ours.mean()) - (tension - tension.mean())) ** 2)))
+# ------------------------------------------------------------------------------ accuracy
+def relative_error(times, sig, ref_times, ref):
+    """RMS difference from the fine run over the RMS fluctuation of the fine run [-]."""
+    sig = np.asarray(sig, dtype=float).reshape(len(times), -1)
+    ref = np.asarray(ref, dtype=float).reshape(len(ref_times), -1)
+    grid = ref_times[ref_times <= times[-1] + 1e-12]
+    a = np.column_stack([np.interp(grid, times, s) for s in sig.T])
+    b = ref[:grid.size]
+    if not np.all(np.isfinite(a)):
+        return np.inf
+    return float(np.sqrt(np.mean((a - b) ** 2)) / np.sqrt(np.mean((b - b.mean(axis=0)) ** 2)))
 
 
-def line_cases(N=20, t_end=5.0):
-    m, start = line_model(N)
-    damping = TimeDamping(axial=C_AX)
+def case_rows(case, t_end):
+    """Rows (case, code / scheme, dt, speed, error, passes) for one case."""
     rows = []
-    runs = []
-    for dt in (1e-3, 2.5e-3, 5e-3):
-        r = simulate(m, t_end, dt, excitation=_force, damping=damping, start=start)
-        runs.append(("dynstiff implicit", dt, r))
-    dt = 0.9 * explicit_step_limit(m, damping=damping)
-    r = simulate(m, t_end, dt, excitation=_force, damping=damping, record_every=3,
-                 start=start)
-    runs.append(("dynstiff explicit", dt, r))
-    md = None
-    for name, dt, r in runs:
-        res = moordyn_line(r, N)
-        diff = np.nan
-        if res is not None:
-            md = res
-            diff = _tension_diff(r, res[1], res[2])
-        rows.append((f"line N={N}", name, dt, r.speed_ratio,
-                     np.abs(r.energy.relative_residual).max(), diff))
-    if md is not None:
-        rows.append((f"line N={N}", "MoorDyn RK2", MOORDYN_DTM, md[0], np.nan, 0.0))
-    return rows, md is not None, float(np.std(runs[0][2].end_tensions[:, 0]))
+    _, t_ref, ref, r_ref = dynstiff_run(case, DT_FINE, t_end)
+    rows.append((case, "dynstiff implicit (fine)", DT_FINE, r_ref.speed_ratio, 0.0, True))
+    for dt in DT_IMPLICIT:
+        speed, t, sig, _ = dynstiff_run(case, dt, t_end)
+        err = relative_error(t, sig, t_ref, ref)
+        rows.append((case, "dynstiff implicit", dt, speed, err, err <= TOLERANCE))
+    dt = explicit_dt(case)
+    speed, t, sig, _ = dynstiff_run(case, dt, min(T_EXPLICIT, t_end), scheme="explicit")
+    err = relative_error(t, sig, t_ref, ref)
+    rows.append((case, "dynstiff explicit", dt, speed, err, err <= TOLERANCE))
+    motion = (r_ref.times, r_ref.pose[:, 2], r_ref.velocity[:, 2]) if case == "line" else None
+    fine = moordyn_run(case, min(DTM_MOORDYN) / 4, t_end, motion)
+    if fine is None:
+        return rows, False
+    rows.append((case, "MoorDyn RK2 (fine)", min(DTM_MOORDYN) / 4, fine[0], 0.0, True))
+    for dtm in DTM_MOORDYN:
+        speed, t, sig = moordyn_run(case, dtm, t_end, motion)
+        err = relative_error(t, sig, fine[1], fine[2])
+        rows.append((case, "MoorDyn RK2", dtm, speed, err, err <= TOLERANCE))
+    return rows, True
 
 
-def main():
-    rows = cogiro_cases()
-    line_rows, have_moordyn, t_std = line_cases()
-    rows += line_rows
-    print(f"{'case':<14s} {'code / scheme':<20s} {'dt [s]':>9s} {'sim s / wall s':>15s} "
-          f"{'energy res':>11s} {'tension diff [N]':>17s}")
-    for case, name, dt, speed, res, diff in rows:
-        print(f"{case:<14s} {name:<20s} {dt:9.2e} {speed:15.3f} {res:11.1e} {diff:17.4f}")
-    print(f"(fairlead tension fluctuation of the line: std {t_std:.3f} N)")
+def main(t_end=T_END):
+    rows, have_moordyn = [], True
+    for case in ("line", "CoGiRo"):
+        r, have_moordyn = case_rows(case, t_end)
+        rows += r
+    print(f"{t_end:g} s simulated; accuracy: RMS difference from the code's own fine run / "
+          f"RMS fluctuation, tolerance {TOLERANCE:.0%}")
+    print(f"{'case':<7s} {'code / scheme':<26s} {'dt [s]':>9s} {'sim s / wall s':>15s} "
+          f"{'rel. error':>11s} {'ok':>3s}")
+    for case, name, dt, speed, err, ok in rows:
+        print(f"{case:<7s} {name:<26s} {dt:9.2e} {speed:15.3f} {err:11.2e} "
+              f"{'yes' if ok else 'no':>3s}")
+    print("largest accurate step, speed:")
+    for case in ("line", "CoGiRo"):
+        for code in ("dynstiff", "MoorDyn"):
+            ok = [r for r in rows if r[0] == case and r[1].startswith(code) and r[5]
+                  and "fine" not in r[1]]
+            if ok:
+                best = max(ok, key=lambda r: r[3])
+                print(f"  {case:<7s} {code:<9s} {best[1]:<20s} dt {best[2]:.2e} s: "
+                      f"{best[3]:.3f} s/s")
     if not have_moordyn:
-        print("MoorDyn is absent (pip install moordyn): no side-by-side line run")
+        print("MoorDyn is absent (pip install \"dynstiff[benchmark]\"): no side-by-side run")
     return rows
 
 
 if __name__ == "__main__":
-    main()
+    main(*(float(a) for a in sys.argv[1:2]))

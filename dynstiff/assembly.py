@@ -21,8 +21,8 @@ from ._vec import cross
 from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_RTOL,
                         cable_field, cable_kinetic_energy, check_frequency_range,
                         chord_parameters, closed_form_local_error, closed_form_validity,
-                        dyad_basis,
-                        end_block_coefficients, mode_count_nondimensional, stack_parameters)
+                        dyad_basis, end_block_coefficients, end_block_coefficients_and_count,
+                        mode_count_nondimensional, stack_parameters)
 from .errors import ClosedFormWarning, InvalidParameterError
 from .model_base import PlatformModel, require_equilibrium
 from .platform import lever_map, platform_mass_matrix
@@ -63,6 +63,10 @@ class FrequencyModel(PlatformModel):
         Geometric stiffness [N m/rad] (all DOFs; only the rotation block is non-zero).
     M_p : ndarray, shape (6, 6)
         Platform mass matrix about P (all DOFs).
+    assembly_map : ndarray, shape (5 n_cables, n_free**2)
+        Dyad coefficients of every cable (``cable_coefficients``) -> K on the free DOFs.
+    K_geo_free : ndarray, shape (n_free, n_free)
+        Symmetric part of K_geo on the free DOFs (the conservative stiffness).
     """
 
     rung = "dsm"
@@ -100,7 +104,9 @@ class FrequencyModel(PlatformModel):
             D = dyad_basis(p.rotation).reshape(5, 3, 3)
             blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
         self._assembly = np.vstack(blocks)
+        self.assembly_map = self._assembly
         self._init_geometric(robot, pose, equilibrium.states)
+        self.K_geo_free = self._K_geo_free
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
         self._freeze()
         if guard_rtol is not None:
@@ -132,7 +138,7 @@ class FrequencyModel(PlatformModel):
         """
         omega = omega_array(omega, complex_ok=True)
         check_frequency_range(self.stacked_params, omega)
-        self._guard_axial(omega)
+        self.guard_band(omega)
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
@@ -178,9 +184,12 @@ class FrequencyModel(PlatformModel):
                 f"{err:.2g} (estimate, > guard_rtol {self.guard_rtol:g}; "
                 + "; ".join(self._validity[i].reasons(0.1 * self.guard_rtol)) + ")"))
 
-    def _guard_axial(self, omega):
-        """Warn once per cable when omega reaches its axial modes, or its local modes while
-        their estimated error exceeds ``guard_rtol`` (theory.md §11.5)."""
+    def guard_band(self, omega):
+        """The closed form's guard for a request up to max |omega| [rad/s] (theory.md §11.5):
+        a ClosedFormWarning, once per cable and cause, when omega reaches the cable's axial
+        modes, or its local modes while their error, measured against the exact cable,
+        exceeds ``guard_rtol``. Called by every evaluation of K(omega), compiled ones
+        included."""
         if self.guard_rtol is None or not omega.size:
             return
         top = float(np.max(np.abs(omega)))
@@ -213,6 +222,35 @@ class FrequencyModel(PlatformModel):
         self._warned.add((cable, cause))
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
                                         cause=cause), stacklevel=4)
+
+    def dynamic_stiffness_and_count(self, omega):
+        """K(omega) and J0(omega) of the undamped model at real omega, from one evaluation of
+        the cable kernels (a Wittrick-Williams count needs both, theory.md §5, §14.2).
+
+        Parameters
+        ----------
+        omega : float or array_like, shape (n_omega,)
+            [rad/s], real >= 0.
+
+        Returns
+        -------
+        K : ndarray, shape (n_omega, n_free, n_free), real
+        J0 : ndarray of int, shape (n_omega,)
+            As :meth:`cable_mode_count`.
+        """
+        if self.damped:
+            return self.undamped().dynamic_stiffness_and_count(omega)
+        if type(self) is not FrequencyModel:       # a subclass may change the cable kernels
+            return self.dynamic_stiffness(omega), self.cable_mode_count(omega)
+        omega = omega_array(omega)
+        check_frequency_range(self.stacked_params, omega)
+        self.guard_band(omega)
+        C, J0 = end_block_coefficients_and_count(self.stacked_params, omega,
+                                                 self.chordwise_inertia)
+        nf = self.n_free
+        K = (C.reshape(omega.size, -1) @ self._assembly).reshape(omega.size, nf, nf)
+        K = K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+        return K, J0.sum(axis=1)
 
     def cable_mode_count(self, omega):
         """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],

@@ -77,6 +77,8 @@ __all__ = [
     "DEFAULT_CHORDWISE_INERTIA",
     "dyad_basis",
     "block_coefficients",
+    "end_block_coefficients_and_count",
+    "PSI_SERIES",
 ]
 
 #: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
@@ -130,6 +132,9 @@ def _series_coefficients():
 
 
 _E_COEF, _P_COEF, _Q_COEF = _series_coefficients()
+#: (radius, E coefficients, P~ coefficients) of the series branch of :func:`_psi_functions`,
+#: highest power of psi^2 first, for compiled kernels that evaluate the same functions.
+PSI_SERIES = (_SERIES_RADIUS, _E_COEF, _P_COEF)
 
 
 def _psi_functions(psi):
@@ -173,9 +178,14 @@ def local_entries(p, omega, chordwise_inertia):
     (den = 4 cos psi - lambda^2 E = Delta / psi^3).
     """
     psi = np.asarray(p.psi(omega))
+    return _entries_from(p, omega, psi, _psi_functions(psi), chordwise_inertia)
+
+
+def _entries_from(p, omega, psi, functions, chordwise_inertia):
+    """:func:`local_entries` from psi and its :func:`_psi_functions`."""
     lam2 = p.lambda_sq_complex
     K0, T, L = p.K0, p.T, p.L
-    c, s_over_psi, cos2, E, Pt, Qt = _psi_functions(psi)
+    c, s_over_psi, cos2, E, Pt, Qt = functions
     den = 4.0 * c - lam2 * E
     TL = T / L
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -361,6 +371,27 @@ def end_block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_IN
     return _end_block(local_entries(params, om, chordwise_inertia), axis=-1)
 
 
+def end_block_coefficients_and_count(params, omega,
+                                     chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+    """:func:`end_block_coefficients` of undamped cables at real omega together with their
+    clamped-clamped mode counts J0 (:func:`cable_mode_count`), from one evaluation of the psi
+    functions (what a Wittrick-Williams count needs, theory.md §5, §14.2).
+
+    Returns
+    -------
+    coefficients : ndarray, shape as :func:`end_block_coefficients`, real
+    J0 : ndarray of int, shape (n_omega,) for one cable or (n_omega, n_cables) for a stack
+    """
+    if np.any(params.c > 0) or np.iscomplexobj(params.EA) or np.iscomplexobj(omega):
+        raise InvalidParameterError("end_block_coefficients_and_count needs undamped cables "
+                                    "at real omega")
+    om = omega if np.ndim(params.L) == 0 else omega[:, None]
+    psi = np.asarray(params.psi(om))
+    functions = _psi_functions(psi)
+    coef = _end_block(_entries_from(params, om, psi, functions, chordwise_inertia), axis=-1)
+    return np.real(coef), _mode_count_psi(psi, functions[0], functions[3], params.lambda_sq)
+
+
 def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
                        blocks="end"):
     """Coefficients of the DSM blocks on the dyad basis, each shape (n_omega, 5).
@@ -421,6 +452,12 @@ def mode_count_nondimensional(Omega, lambda_sq):
     """J0 as a function of the nondimensional frequency Omega >= 0 (see cable_mode_count)."""
     psi = 0.5 * Omega
     c, _, _, E, _, _ = _psi_functions(psi)
+    return _mode_count_psi(psi, c, E, lambda_sq)
+
+
+def _mode_count_psi(psi, c, E, lambda_sq):
+    """J0 from psi = Omega / 2 and its cos psi and E(psi) (see cable_mode_count)."""
+    Omega = 2.0 * psi
     k = np.floor(psi / np.pi + 0.5).astype(int)
     on_branch = c * np.where(k % 2 == 0, 1.0, -1.0) > 0
     upper = (((4.0 * c - lambda_sq * E) * c > 0) & on_branch).astype(int)

@@ -21,11 +21,16 @@ search works for every rung (``method="wittrick-williams"``), which is how the t
 checked against each other.
 """
 
+import functools
+import importlib.util
 from numbers import Integral, Real
 
 import numpy as np
 
 from . import eigen_matrix
+from ._validate import omega_array
+from .assembly import FrequencyModel
+from .cable_dsm import check_frequency_range
 from .errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
 from .model_base import require_model
 from .results import ModalResult
@@ -94,11 +99,43 @@ def mode_count(model, omega):
     -------
     ndarray of int, shape (n_omega,)
     """
-    m = require_model(model).undamped()
-    K = _real_symmetric(m.dynamic_stiffness(omega))
-    with np.errstate(invalid="ignore"):
-        ev = np.linalg.eigvalsh(K)
-    return m.cable_mode_count(omega) + np.sum(ev < 0, axis=1)
+    return _count(require_model(model).undamped(), omega)[0]
+
+
+def _count(m, omega):
+    """W-W count of the undamped model ``m`` at omega (n,) [rad/s]: (J, ev, J0) with the
+    ascending eigenvalues ev (n, n_free) of sym K(omega) and the cable count J0 (n,)."""
+    return _counter(m)(omega)
+
+
+def _counter(m):
+    """The function omega (n,) [rad/s] -> (J, ev, J0) of :func:`_count` for the undamped
+    model ``m``, with the cable kernels evaluated once per frequency: the compiled kernel of
+    the "dsm" rung when numba is installed, else ``dynamic_stiffness_and_count`` where the
+    model has it, else K(omega) and the model's cable count (theory.md §14.2)."""
+    fast = _compiled()
+    # exactly the closed-form class: a subclass may change the cable kernels
+    if fast is not None and type(m) is FrequencyModel and not m.damped:
+        args = fast.model_arguments(m)
+
+        def count(omega):
+            omega = omega_array(omega)
+            check_frequency_range(m.stacked_params, omega)
+            m.guard_band(omega)
+            ev, J0 = fast.dsm_count(omega, *args)
+            with np.errstate(invalid="ignore"):
+                return J0 + np.sum(ev < 0, axis=1), ev, J0
+        return count
+
+    def count(omega):
+        if hasattr(m, "dynamic_stiffness_and_count"):
+            K, J0 = m.dynamic_stiffness_and_count(omega)
+        else:
+            K, J0 = m.dynamic_stiffness(omega), m.cable_mode_count(omega)
+        with np.errstate(invalid="ignore"):
+            ev = np.linalg.eigvalsh(_real_symmetric(K))
+        return J0 + np.sum(ev < 0, axis=1), ev, J0
+    return count
 
 
 def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto",
@@ -145,14 +182,17 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
     if _method(model, method) == "matrix":
         return eigen_matrix.eigenfrequencies(model.undamped(), n_modes, fmax_hz)
     m = model.undamped()
+    count = _counter(m)
     if fmax_hz is not None:
         w_hi = _TWO_PI * fmax_hz
         try:
-            N = int(mode_count(m, w_hi)[0])
+            grid = _seed_grid(m, w_hi)
+            J, ev, J0 = count(grid)
         except InvalidParameterError as exc:
             raise InvalidParameterError(
                 f"fmax_hz = {fmax_hz:g} Hz is out of the {m.rung!r} model's range: {exc}"
             ) from None
+        N = int(J[-1])
         if N > max_modes and (n_modes is None or n_modes > max_modes):
             raise InvalidParameterError(
                 f"fmax_hz = {fmax_hz:g} Hz holds {N} modes, more than max_modes = "
@@ -163,91 +203,139 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
         N = n_modes
         w_top = getattr(m, "max_omega", np.inf)           # a model's band (exact rung)
         w_hi = min(_TWO_PI, w_top)
-        while mode_count(m, w_hi)[0] < N:
+        while count(w_hi)[0][0] < N:
             if w_hi >= w_top:
                 raise InvalidParameterError(
                     f"n_modes = {N} asks for more than the {m.rung!r} model's band holds "
-                    f"({int(mode_count(m, w_top)[0])} modes below {w_top / _TWO_PI:g} Hz); "
+                    f"({int(count(w_top)[0][0])} modes below {w_top / _TWO_PI:g} Hz); "
                     f"build it with a larger fmax_hz")
             w_hi = min(2.0 * w_hi, w_top)
             if w_hi > 1e8:
                 raise ConvergenceError(f"fewer than {N} modes below {w_hi:.3g} rad/s")
+        grid = _seed_grid(m, w_hi)
+        J, ev, J0 = count(grid)
     if N == 0:
         return np.zeros(0)
+    return _search(count, N, grid, J, ev, J0, rtol) / _TWO_PI
+
+
+def _seed_grid(m, w_hi, n_uniform=64):
+    """Frequencies [rad/s] at which the count is first evaluated, ascending from 0 to w_hi:
+    a uniform grid and the massless-cable frequencies (near which the global modes lie),
+    each with a neighbour 1e-3 above (theory.md §14.2)."""
+    K0 = _real_symmetric(m.massless_stiffness()[None])[0]
+    try:
+        lam = np.linalg.eigvals(np.linalg.solve(m.platform_mass, K0)).real
+    except np.linalg.LinAlgError:
+        lam = np.zeros(0)
+    w0 = np.sqrt(lam[(lam > 0) & (lam < w_hi**2)])
+    pts = np.concatenate([np.linspace(0.0, w_hi, n_uniform + 1)[1:], w0, w0 * (1 + 1e-3)])
+    return np.unique([0.0] + pts[(pts > 0) & (pts < w_hi)].tolist() + [w_hi])
+
+
+def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
+    """The N lowest roots [rad/s] from the counts (``count``, :func:`_counter`) on ``grid``
+    (theory.md §5, §14.2).
+
+    Each root r gets the tightest grid bracket with J(lo) < r <= J(hi). Brackets are bisected
+    on the count, all at once (one batched evaluation per step), until each holds one simple
+    root and no cable pole; those go to the Illinois iteration on the eigenvalue of K that
+    crosses zero, started from the end values the count already gave. Multiple roots and
+    roots on a cable pole keep bisecting to ``rtol``.
+    """
     r = np.arange(1, N + 1)
-    lo, hi = np.zeros(N), np.full(N, w_hi)
-    J_lo, J_hi = np.zeros(N, dtype=int), np.full(N, N)
-    # phase 1: bisection on the count until each bracket holds one simple root and no cable
-    # pole (then the eigenvalue of K that crosses zero is smooth and decreasing in it)
+    # grid[0] = 0, where J = 0: a stable equilibrium has no root at or below 0
+    J_grid, J0_grid = J_grid.copy(), J0_grid.copy()
+    J_grid[0] = J0_grid[0] = 0
+    i_hi = np.searchsorted(J_grid, r, side="left")          # first point with J >= r
+    i_lo = i_hi - 1
+    lo, hi = grid[i_lo], grid[i_hi]
+    J_lo, J_hi = J_grid[i_lo], J_grid[i_hi]
+    J0_lo, J0_hi = J0_grid[i_lo], J0_grid[i_hi]
+    ev_lo, ev_hi = ev_grid[i_lo], ev_grid[i_hi]
     while True:
-        width = hi - lo
-        isolated = (J_lo == r - 1) & (J_hi == r) & (width < 1e-3 * hi)
-        if np.all(isolated | (width <= rtol * hi)):
-            break
-        act = ~isolated & (width > rtol * hi)
-        mid = 0.5 * (lo[act] + hi[act])
-        u, inv = np.unique(mid, return_inverse=True)
-        J = mode_count(m, u)[inv]
-        above = J >= r[act]
-        idx = np.flatnonzero(act)
-        hi[idx[above]], J_hi[idx[above]] = mid[above], J[above]
-        lo[idx[~above]], J_lo[idx[~above]] = mid[~above], J[~above]
-    refine = isolated & (m.cable_mode_count(lo) == m.cable_mode_count(hi))
-    # multiple roots and roots on a cable pole keep bisecting to rtol
-    while True:
-        act = ~refine & (hi - lo > rtol * hi)
+        isolated = (J_lo == r - 1) & (J_hi == r) & (J0_lo == J0_hi)
+        act = ~isolated & (hi - lo > rtol * hi)
         if not np.any(act):
             break
         mid = 0.5 * (lo[act] + hi[act])
-        J = mode_count(m, mid)
+        u, inv = np.unique(mid, return_inverse=True)
+        Ju, evu, J0u = count(u)
+        J, ev, J0 = Ju[inv], evu[inv], J0u[inv]
         above = J >= r[act]
         idx = np.flatnonzero(act)
-        hi[idx[above]] = mid[above]
-        lo[idx[~above]] = mid[~above]
+        up, dn = idx[above], idx[~above]
+        hi[up], J_hi[up], J0_hi[up], ev_hi[up] = mid[above], J[above], J0[above], ev[above]
+        lo[dn], J_lo[dn], J0_lo[dn], ev_lo[dn] = mid[~above], J[~above], J0[~above], ev[~above]
     out = 0.5 * (lo + hi)
-    if np.any(refine):
-        out[refine] = _illinois(m, lo[refine], hi[refine], J_lo[refine], rtol)
-    return out / _TWO_PI
+    if np.any(isolated):
+        k = np.flatnonzero(isolated)
+        idx = J_lo[k] - J0_lo[k]
+        f_lo = ev_lo[k, idx]
+        f_hi = ev_hi[k, idx]
+        out[k] = _illinois(count, lo[k], hi[k], idx, f_lo, f_hi, rtol)
+    return out
 
 
-def _crossing_eigenvalue(m, omega, index):
-    """Eigenvalue number ``index`` (ascending, minus the cable-count offset) of K(omega)."""
-    ev = np.linalg.eigvalsh(_real_symmetric(m.dynamic_stiffness(omega)))
-    return ev[np.arange(len(omega)), index]
+@functools.cache
+def _compiled():
+    """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
+    if importlib.util.find_spec("numba") is None:
+        return None
+    from . import compiled_dsm
+    return compiled_dsm
 
 
-def _illinois(m, lo, hi, J_lo, rtol, max_iter=100):
+def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=100):
     """Vectorised Illinois regula falsi on the eigenvalue of K that crosses zero in [lo, hi].
 
     In an isolated bracket without cable poles, s{K} goes from s_lo = J_lo - J0 to s_lo + 1,
-    so eigenvalue number s_lo (ascending) goes from >= 0 to < 0, decreasing (W-W monotonicity).
-    Falls back to bisection where the update leaves the bracket. Returns roots [rad/s].
+    so eigenvalue number idx = s_lo (ascending) goes from f_lo >= 0 to f_hi < 0, decreasing
+    (W-W monotonicity). Falls back to bisection where the update leaves the bracket. Each
+    iterate x comes with a second point 0.45 rtol hi from it towards the far end of the
+    bracket, in the same batched evaluation: once x is within that distance of the root the
+    pair brackets it and the bracket closes to rtol at once. When the same end moves twice,
+    the retained end's value is scaled by the Anderson-Bjorck factor (theory.md §14.2).
+    Only the brackets still wider than rtol are evaluated. Returns roots [rad/s].
     """
-    idx = J_lo - m.cable_mode_count(lo)
-    f_lo = _crossing_eigenvalue(m, lo, idx)
-    f_hi = _crossing_eigenvalue(m, hi, idx)
+    lo, hi, f_lo, f_hi = (np.array(v, dtype=float) for v in (lo, hi, f_lo, f_hi))
     side = np.zeros(len(lo), dtype=int)
-    x = 0.5 * (lo + hi)
     for _ in range(max_iter):
-        act = hi - lo > rtol * hi
-        if not np.any(act):
+        act = np.flatnonzero(hi - lo > rtol * hi)
+        if not act.size:
             break
+        L, H, FL, FH, S = lo[act], hi[act], f_lo[act], f_hi[act], side[act]
         with np.errstate(divide="ignore", invalid="ignore"):
-            x = np.where(act, (lo * f_hi - hi * f_lo) / (f_hi - f_lo), x)
-        bad = ~np.isfinite(x) | (x <= lo) | (x >= hi)
-        x = np.where(bad, 0.5 * (lo + hi), x)
-        fx = _crossing_eigenvalue(m, x, idx)
-        pos = fx >= 0
-        # Illinois: halve the retained end's value when the same side is kept twice
-        lo_new = np.where(act & pos, x, lo)
-        hi_new = np.where(act & ~pos, x, hi)
-        f_hi = np.where(act & pos & (side == 1), 0.5 * f_hi, f_hi)
-        f_lo = np.where(act & ~pos & (side == -1), 0.5 * f_lo, f_lo)
-        f_lo = np.where(act & pos, fx, f_lo)
-        f_hi = np.where(act & ~pos, fx, f_hi)
-        side = np.where(act, np.where(pos, 1, -1), side)
-        converged = act & (np.abs(fx) == 0)
-        lo, hi = np.where(converged, x, lo_new), np.where(converged, x, hi_new)
+            x = (L * FH - H * FL) / (FH - FL)
+        bad = ~np.isfinite(x) | (x <= L) | (x >= H)
+        x = np.where(bad, 0.5 * (L + H), x)
+        step = np.where(H - x > x - L, 1.0, -1.0) * 0.45 * rtol * H
+        x2 = np.clip(x + step, np.nextafter(L, H), np.nextafter(H, L))
+        ev = count(np.concatenate([x, x2]))[1]
+        k = np.concatenate([idx[act], idx[act]])
+        fx, fx2 = np.split(ev[np.arange(k.size), k], 2)
+        a, b = np.minimum(x, x2), np.maximum(x, x2)
+        fa, fb = np.where(x <= x2, fx, fx2), np.where(x <= x2, fx2, fx)
+        up = fb >= 0                            # both points below the root: lo moves
+        dn = fa < 0                             # both above: hi moves
+        mid = ~up & ~dn                         # the pair brackets the root
+        # Anderson-Bjorck: when the same end moves twice, scale the retained end's value
+        # by 1 - f_new / f_replaced (by 1/2 where that is not in (0, 1))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            g_up, g_dn = 1.0 - fb / FL, 1.0 - fa / FH
+        g_up = np.where((g_up > 0) & (g_up < 1), g_up, 0.5)
+        g_dn = np.where((g_dn > 0) & (g_dn < 1), g_dn, 0.5)
+        FH = np.where(up & (S == 1), g_up * FH, FH)
+        FL = np.where(dn & (S == -1), g_dn * FL, FL)
+        L, FL = np.where(up, b, L), np.where(up, fb, FL)
+        H, FH = np.where(dn, a, H), np.where(dn, fa, FH)
+        L, FL = np.where(mid, a, L), np.where(mid, fa, FL)
+        H, FH = np.where(mid, b, H), np.where(mid, fb, FH)
+        S = np.where(up, 1, np.where(dn, -1, 0))
+        zero = (fa == 0) | (fb == 0)
+        xz = np.where(fa == 0, a, b)
+        L, H = np.where(zero, xz, L), np.where(zero, xz, H)
+        lo[act], hi[act], f_lo[act], f_hi[act], side[act] = L, H, FL, FH, S
     return 0.5 * (lo + hi)
 
 

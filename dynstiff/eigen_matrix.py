@@ -6,14 +6,11 @@ Reached through :func:`dynstiff.eigen.eigenfrequencies` and :func:`dynstiff.eige
 """
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse
-import scipy.sparse.linalg
 
 from .errors import InvalidParameterError
 from .results import LumpedModalResult, ModalResult
 
-__all__ = ["eig", "eigenfrequencies", "modes"]
+__all__ = ["eig", "eigenfrequencies", "modes", "count_below"]
 
 _TWO_PI = 2.0 * np.pi
 #: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
@@ -21,6 +18,7 @@ DENSE_LIMIT = 400
 
 
 def _dense(A):
+    import scipy.sparse
     return A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)
 
 
@@ -34,6 +32,8 @@ def eig(model, n_modes):
     V : ndarray, shape (n_dof, n_modes)
         Mass-normalised vectors, phi^T M phi = 1.
     """
+    import scipy.linalg
+    import scipy.sparse.linalg
     if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or \
             not 1 <= n_modes <= model.n_dof:
         raise InvalidParameterError(
@@ -59,11 +59,34 @@ def _to_hz(lam):
     return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
 
 
+def count_below(model, omega):
+    """Number of eigenvalues of (K, M) below omega^2, omega [rad/s], by the Wittrick-Williams
+    count of the model's condensed K(omega) (exact for a discrete model: J0 from the chains
+    with the platform held, theory.md §5.1, §14.3); None where K(omega) is not finite (omega
+    on a held-platform frequency)."""
+    w = np.array([float(omega)])
+    K = np.real(model.dynamic_stiffness(w))[0]
+    if not np.all(np.isfinite(K)):
+        return None
+    ev = np.linalg.eigvalsh(0.5 * (K + K.T))
+    return int(model.cable_mode_count(w)[0] + np.sum(ev < 0))
+
+
 def _lowest(model, n_modes, fmax_hz):
     """Eigenpairs (lam, V) of the request: the lowest ``n_modes``, or all below ``fmax_hz``
-    (the first ``n_modes`` of them if both), from one eigen solve per trial count."""
+    (the first ``n_modes`` of them if both). For a band, the number of modes in it is counted
+    first (:func:`count_below`) and one eigen solve asks for exactly that many; where the
+    count is unavailable or disagrees, the solve is repeated with a doubled count."""
     if fmax_hz is None:
         return eig(model, n_modes)
+    n = count_below(model, _TWO_PI * fmax_hz)
+    if n is not None:
+        n = n if n_modes is None else min(n, n_modes)
+        if n == 0:
+            return np.zeros(0), np.zeros((model.n_dof, 0))
+        lam, V = eig(model, min(n, model.n_dof))
+        if _to_hz(lam[-1]) < fmax_hz:
+            return lam, V
     n = 12 if n_modes is None else n_modes
     while True:                      # grow the count until the band is covered
         lam, V = eig(model, min(n, model.n_dof))
@@ -98,6 +121,7 @@ def modes(model, n_modes=None, fmax_hz=None):
         Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
         platform does not move at all).
     """
+    import scipy.linalg
     lam, V = _lowest(model, n_modes, fmax_hz)
     n = lam.size
     nf, fi = model.n_free, model.free_index

@@ -5,11 +5,15 @@ the platform (about P, base axes) and the motion of a platform point c (platform
 d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
 """
 
+import functools
+import importlib.util
 import warnings
 
 import numpy as np
 
 from ._validate import omega_array, point as validated_point
+from .assembly import FrequencyModel
+from .cable_dsm import check_frequency_range
 from .errors import InvalidParameterError, PoleWarning
 from .model_base import require_model
 from .platform import skew
@@ -71,8 +75,8 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     c = np.zeros(3) if point is None else validated_point("point", point)
     C6 = np.eye(6)
     C6[:3, 3:] = -skew(rotation @ c)
-    B = np.eye(6)[np.ix_(free_index, ii)]
-    C = C6[np.ix_(oo, free_index)]
+    B = np.ascontiguousarray(np.eye(6)[np.ix_(free_index, ii)])
+    C = np.ascontiguousarray(C6[np.ix_(oo, free_index)])
     # a channel named explicitly that touches no free DOF would give an FRF identically 0
     free = tuple(OUTPUT_NAMES[k] for k in free_index)
     for names, allowed, mat, axis, arg in ((inputs, INPUT_NAMES, B, 0, "inputs"),
@@ -134,50 +138,84 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
     factor = response_factor(omega, kind)
     B, C, in_names, out_names = channel_maps(model.free_index, model.pose.matrix,
                                              inputs, outputs, point)
-    K = model.dynamic_stiffness(omega)
-    H = _solve(K, B, C, omega)
+    H, kmax, singular = _receptance(model, omega, B, C)
+    if np.any(singular):
+        H[singular] = np.inf
+        warnings.warn(
+            f"K(omega) is exactly singular at {singular.sum()} frequencies (eigenfrequencies, "
+            f"e.g. {omega[singular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
+            PoleWarning, stacklevel=2)
     # a pole of a cable's K_B is not a pole of H (an anti-resonance), but within about 1e-9
     # of it K has entries ~1e16 next to ~1e3 and its LU loses ~13 digits (1e-3 in H at a
     # CoGiRo cable pole): there H is the mean of its values at omega (1 -+ 1e-9), which
     # cancels the O(1/K) term antisymmetric about the pole (its error is O(1e-9)). Only
     # frequencies where K is 1e6 times its regular size are examined.
-    regular = np.abs(model.massless_stiffness()).max() + \
-        omega**2 * np.abs(model.platform_mass).max()
-    cand = np.flatnonzero(np.abs(K).max(axis=(1, 2)) > 1e6 * regular)
+    inertia = omega**2 * np.abs(model.platform_mass).max()
+    cand = np.flatnonzero(kmax > 1e6 * inertia)            # (kmax > 1e6 regular implies it)
+    if cand.size:
+        regular = np.abs(model.massless_stiffness()).max() + inertia[cand]
+        cand = cand[kmax[cand] > 1e6 * regular]
     if cand.size:
         w = omega[cand]
         near = model.cable_mode_count(w * (1 - _POLE_STEP)) != \
             model.cable_mode_count(w * (1 + _POLE_STEP))
         if np.any(near):
             w = w[near]
-            H[cand[near]] = 0.5 * (
-                _solve(model.dynamic_stiffness(w * (1 - _POLE_STEP)), B, C, w)
-                + _solve(model.dynamic_stiffness(w * (1 + _POLE_STEP)), B, C, w))
+            H[cand[near]] = 0.5 * (_receptance(model, w * (1 - _POLE_STEP), B, C)[0]
+                                   + _receptance(model, w * (1 + _POLE_STEP), B, C)[0])
     if kind != "receptance":
         H = H * factor[:, None, None]
     return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
                      kind=kind)
 
 
-def _solve(K, B, C, omega):
-    """C K^-1 B for a stack K (n, nf, nf) at omega (n,) [rad/s], shape (n, n_out, n_in); inf
-    (with a PoleWarning) where K is exactly singular."""
-    K = K.astype(complex)
-    n = omega.size
-    H = np.empty((n, C.shape[0], B.shape[1]), dtype=complex)
+@functools.cache
+def _compiled():
+    """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
+    if importlib.util.find_spec("numba") is None:
+        return None
+    from . import compiled_dsm
+    return compiled_dsm
+
+
+def _receptance(model, omega, B, C):
+    """C K(omega)^-1 B of ``model`` at omega (n,) [rad/s], shape (n, n_out, n_in), complex.
+
+    Returns (H, kmax, singular): kmax (n,) the largest |K_ij| per frequency, singular (n,)
+    where K is exactly singular (H undefined there). Undamped "dsm" models take the fused
+    compiled kernel when numba is installed; every other model solves its K(omega) batched
+    over frequency, in real arithmetic when K is real (theory.md §14.1).
+    """
+    fast = _compiled()
+    # exactly the closed-form class: a subclass may change the cable kernels
+    if fast is not None and type(model) is FrequencyModel and not model.damped:
+        check_frequency_range(model.stacked_params, omega)
+        model.guard_band(omega)
+        H, kmax, singular = fast.dsm_receptance(np.ascontiguousarray(omega, dtype=float),
+                                                *fast.model_arguments(model), B, C)
+        return H, kmax, singular
+    K = model.dynamic_stiffness(omega)
+    H, singular = _solve(K, B, C, fast)
+    return H, np.abs(K).max(axis=(1, 2)), singular
+
+
+def _solve(K, B, C, fast=None):
+    """C K^-1 B for a stack K (n, nf, nf), shape (n, n_out, n_in), complex, and where K is
+    exactly singular (n,) bool; a real K is solved in real arithmetic and cast once."""
+    n = K.shape[0]
+    if fast is not None and not np.iscomplexobj(K):
+        H, singular = fast.real_receptance(np.ascontiguousarray(K, dtype=float), B, C)
+        return H.astype(complex), singular
+    singular = np.zeros(n, dtype=bool)
     rhs = np.broadcast_to(B, (n,) + B.shape)
     try:                                    # LU: raises only on an exactly singular K
-        H[:] = C @ np.linalg.solve(K, rhs)
+        return (C @ np.linalg.solve(K, rhs)).astype(complex), singular
     except np.linalg.LinAlgError:
-        singular = np.zeros(n, dtype=bool)
-        for k in range(n):
-            try:
-                H[k] = C @ np.linalg.solve(K[k], B)
-            except np.linalg.LinAlgError:
-                singular[k] = True
-        H[singular] = np.inf
-        warnings.warn(
-            f"K(omega) is exactly singular at {singular.sum()} frequencies (eigenfrequencies, "
-            f"e.g. {omega[singular][0] / (2 * np.pi):.9g} Hz): FRF set to inf",
-            PoleWarning, stacklevel=3)
-    return H
+        pass
+    H = np.empty((n, C.shape[0], B.shape[1]), dtype=complex)
+    for k in range(n):
+        try:
+            H[k] = C @ np.linalg.solve(K[k], B)
+        except np.linalg.LinAlgError:
+            singular[k] = True
+    return H, singular

@@ -23,10 +23,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import positive_scalar
+from ._vec import cross
 from .constants import DOF_NAMES
 from .errors import InvalidParameterError
 
-__all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "rotation_matrix", "platform_mass_matrix"]
+__all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "rotation_matrix", "platform_mass_matrix",
+           "rotvec_to_quaternion", "quaternion_to_rotvec", "quaternion_product"]
 
 
 
@@ -47,9 +49,51 @@ def lever_map(r, free_index=None):
 
 
 def rotation_matrix(rotvec):
-    """Rotation matrix [-] of a rotation vector [rad] (axis * angle), shape (3,) -> (3, 3)."""
-    from scipy.spatial.transform import Rotation
-    return Rotation.from_rotvec(np.asarray(rotvec, dtype=float)).as_matrix()
+    """Rotation matrix [-] of a rotation vector [rad] (axis * angle), shape (3,) -> (3, 3).
+
+    From the unit quaternion of :func:`rotvec_to_quaternion` (the same arithmetic as
+    ``scipy.spatial.transform.Rotation.from_rotvec(...).as_matrix()``, without its
+    per-call overhead: it runs several times per time step)."""
+    x, y, z, w = rotvec_to_quaternion(rotvec)
+    return np.array([
+        [w * w + x * x - y * y - z * z, 2 * (x * y - z * w), 2 * (x * z + y * w)],
+        [2 * (x * y + z * w), w * w - x * x + y * y - z * z, 2 * (y * z - x * w)],
+        [2 * (x * z - y * w), 2 * (y * z + x * w), w * w - x * x - y * y + z * z]])
+
+
+def rotvec_to_quaternion(rotvec):
+    """Unit quaternion (x, y, z, w) of a rotation vector [rad], shape (3,) -> (4,); the
+    factor sin(theta/2)/theta by its series below theta = 1e-3 (as scipy's Rotation)."""
+    v = np.asarray(rotvec, dtype=float)
+    theta = float(np.sqrt(v @ v))
+    if theta <= 1e-3:
+        t2 = theta * theta
+        scale = 0.5 - t2 / 48 + t2 * t2 / 3840
+    else:
+        scale = np.sin(theta / 2) / theta
+    return np.array([*(scale * v), np.cos(theta / 2)])
+
+
+def quaternion_to_rotvec(q):
+    """Rotation vector [rad] of a unit quaternion (x, y, z, w), angle in [0, pi] (as
+    scipy's ``Rotation.as_rotvec``), shape (4,) -> (3,)."""
+    q = np.asarray(q, dtype=float)
+    if q[3] < 0:
+        q = -q
+    n = float(np.sqrt(q[:3] @ q[:3]))
+    theta = 2 * np.arctan2(n, q[3])
+    if theta <= 1e-3:
+        t2 = theta * theta
+        scale = 2 + t2 / 12 + 7 * t2 * t2 / 2880
+    else:
+        scale = theta / np.sin(theta / 2)
+    return scale * q[:3]
+
+
+def quaternion_product(p, q):
+    """Quaternion product p q (x, y, z, w): the rotation q followed by p, shape (4,)."""
+    pv, pw, qv, qw = p[:3], p[3], q[:3], q[3]
+    return np.array([*(pw * qv + qw * pv + cross(pv, qv)), pw * qw - pv @ qv])
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,8 @@ import numpy as np
 
 from .constants import MAX_COORDINATE
 from .errors import InvalidParameterError
-from .platform import rotation_matrix
+from .platform import (quaternion_product, quaternion_to_rotvec, rotation_matrix,
+                       rotvec_to_quaternion)
 
 __all__ = ["Pose", "as_pose"]
 
@@ -60,9 +61,9 @@ class Pose:
 
     def moved(self, dx):
         """Pose after the small motion dx = (dp, dtheta) (dtheta in the base frame)."""
-        from scipy.spatial.transform import Rotation
-        R = Rotation.from_rotvec(dx[3:]) * Rotation.from_rotvec(self.rotation)
-        return Pose(self.position + dx[:3], R.as_rotvec())
+        q = quaternion_product(rotvec_to_quaternion(dx[3:]),
+                               rotvec_to_quaternion(self.rotation))
+        return Pose(self.position + dx[:3], quaternion_to_rotvec(q))
 
 
 def as_pose(pose):

@@ -278,3 +278,16 @@ def test_an_integer_beyond_the_float_range_is_named(cogiro_eq):
     for f in (10**20, 10**400):
         with pytest.raises(InvalidParameterError, match="fmax_hz"):
             ds.eigenfrequencies(m, fmax_hz=f)
+
+
+def test_numpy_count_path_finds_the_same_frequencies(cogiro_eq, monkeypatch):
+    """Without numba the count is K(omega) (cable kernels shared with J0) and a batched
+    eigvalsh: the same frequencies as the compiled count, to the bracket width."""
+    import sys
+    pytest.importorskip("numba")
+    m = ds.build_model(cogiro_eq, "dsm")
+    f = ds.eigenfrequencies(m, fmax_hz=10.0)
+    monkeypatch.setattr(sys.modules["dynstiff.eigen"], "_compiled", lambda: None)
+    f0 = ds.eigenfrequencies(m, fmax_hz=10.0)
+    assert len(f) == len(f0) == ds.mode_count(m, 2 * np.pi * 10.0)[0]
+    np.testing.assert_allclose(f, f0, rtol=2e-12)

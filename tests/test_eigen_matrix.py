@@ -50,3 +50,31 @@ def test_point_mass_held_rotations_are_zero():
     assert np.all(md.platform_shapes[:, 3:] == 0)
     np.testing.assert_allclose(np.sum(md.platform_shapes[:, :3] ** 2, axis=1) * 20.0, 1.0,
                                rtol=1e-12)
+
+
+def test_band_request_counts_first_and_solves_once(lumped, cogiro_eq, monkeypatch):
+    """The number of modes below fmax is the W-W count of the condensed K (exact for a
+    discrete model): it equals the dense eigenvalue count at every probe, and a band request
+    then takes one sparse solve of exactly that many modes."""
+    import scipy.linalg
+    model = lumped(20)
+    K, M = model.matrices()
+    K = 0.5 * (K + K.T)
+    lam = scipy.linalg.eigh(K.toarray(), M.toarray(), eigvals_only=True)
+    f_all = np.sqrt(np.abs(lam)) * np.sign(lam) / (2 * np.pi)
+    for f_probe in (0.5, 2.3, 3.4, 6.0, 9.97):
+        gap = np.abs(f_all / f_probe - 1).min()
+        assert gap > 1e-6                                  # probe away from any mode
+        assert eigen_matrix.count_below(model, 2 * np.pi * f_probe) == \
+            np.sum(f_all < f_probe)
+    spring = ds.build_model(cogiro_eq, "spring")
+    Ks, Ms = spring.matrices()
+    lam_s = scipy.linalg.eigh(0.5 * (Ks + Ks.T), Ms, eigvals_only=True)
+    assert eigen_matrix.count_below(spring, 2 * np.pi * 3.0) == \
+        np.sum(lam_s < (2 * np.pi * 3.0) ** 2) > 0
+    calls = []
+    eig = eigen_matrix.eig
+    monkeypatch.setattr(eigen_matrix, "eig", lambda m, n: calls.append(n) or eig(m, n))
+    f = ds.eigenfrequencies(model, fmax_hz=10.0)
+    assert calls == [np.sum(f_all < 10.0)] == [len(f)]
+    np.testing.assert_allclose(f, f_all[:len(f)], rtol=1e-9)

@@ -130,3 +130,21 @@ def test_frf_exactly_on_a_cable_pole_is_the_finite_limit(cogiro_eq):
     assert np.all(np.isfinite(H[1]))
     np.testing.assert_allclose(H[1], 0.5 * (H[0] + H[2]), rtol=1e-5,
                                atol=1e-9 * np.abs(H).max())
+
+
+@pytest.mark.parametrize("rung", ["dsm", "spring"])
+def test_numpy_fallback_equals_the_compiled_path(cogiro_eq, monkeypatch, rung):
+    """Without numba the FRF is K(omega) batched then a real np.linalg.solve: the same H
+    (to a few eps x cond K) as the compiled kernels, channels and output point included."""
+    import sys
+    pytest.importorskip("numba")
+    m = ds.build_model(cogiro_eq, rung)
+    omega = 2 * np.pi * np.linspace(0.05, 12.0, 800)
+    kw = {"inputs": ["fx", "fz", "mz"], "outputs": ["z", "rx"], "point": [0.2, 0.1, -0.3]}
+    H = ds.frf(m, omega, **kw).H
+    monkeypatch.setattr(sys.modules["dynstiff.frf"], "_compiled", lambda: None)
+    H0 = ds.frf(m, omega, **kw).H
+    cond = np.linalg.cond(m.dynamic_stiffness(omega))
+    err = np.abs(H - H0).max(axis=(1, 2)) / np.abs(H0).max(axis=(1, 2))
+    assert np.all(err < 8 * np.finfo(float).eps * cond)
+    assert err[cond < 1e3].max() < 1e-12

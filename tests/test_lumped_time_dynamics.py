@@ -56,3 +56,32 @@ def test_potential_is_stationary_at_equilibrium_and_nodes_carry_their_mass(lumpe
     assert m.sum() == pytest.approx(3 * sum(                 # x, y, z of every interior node
         c.mass_per_length * l0 * (N - 1) for c, l0, N in
             zip(mm.robot.cables, mm.segment_lengths, mm.segments)), rel=1e-14)
+
+
+def test_axial_dashpot_stacked_equals_loop_and_dissipates_its_power(lumped):
+    """The stacked axial dashpot (chains of equal N at once) gives the cable-by-cable forces,
+    and its power is the dissipation -sum c_ax l0 (d eps/dt)^2 over the taut segments."""
+    from dynstiff.lumped import time_dynamics as td
+    from dynstiff.lumped.robot_model import segment_forces
+    mm, st = lumped
+    rng = np.random.default_rng(5)
+    pose, interior = mm.displaced(st.pose, st.interior, 1e-3 * rng.standard_normal(mm.n_dof))
+    X = np.concatenate([x.ravel() for x in interior])
+    v = rng.standard_normal(mm.n_dof)
+    frame = Frame(mm, pose)
+    tw = td.twist_of(mm, v)
+    c_ax = np.linspace(0.0, 30.0, mm.robot.n_cables)         # the first cable undamped
+    F = td._axial_dashpot_stacked(mm, frame, X, v, tw, c_ax)
+    np.testing.assert_allclose(F, td._axial_dashpot_loop(mm, frame, X, v, tw, c_ax),
+                               rtol=1e-12, atol=1e-12 * np.abs(F).max())
+    power = 0.0
+    for i, xi in enumerate(td.interior_views(mm, X)):
+        nodes = np.vstack((mm.robot.anchors[i], xi, frame.B[i]))
+        vi = v[mm.offsets[i]:mm.offsets[i] + xi.size].reshape(-1, 3)
+        vel = np.vstack((np.zeros(3), vi, tw[:3] + np.cross(tw[3:], frame.r[i])))
+        l0 = mm.segment_lengths[i]
+        units, lengths, _ = segment_forces(nodes, l0, mm.robot.cables[i].EA)
+        rate = np.einsum("ij,ij->i", units, np.diff(vel, axis=0)) / l0
+        power -= c_ax[i] * l0 * np.sum(np.where(lengths > l0, rate**2, 0.0))
+    assert power < 0
+    assert F @ v == pytest.approx(power, rel=1e-10)

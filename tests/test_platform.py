@@ -3,8 +3,10 @@ the platform by dp + dtheta x r, and its transpose carries a force to a wrench a
 (theory.md §4)."""
 
 import numpy as np
+import pytest
 
 import dynstiff as ds
+from dynstiff.platform import rotation_matrix
 
 
 def test_lever_map_moves_a_point_by_dp_plus_dtheta_cross_r():
@@ -20,3 +22,24 @@ def test_lever_map_moves_a_point_by_dp_plus_dtheta_cross_r():
     fi = [0, 2, 5]
     np.testing.assert_array_equal(ds.platform.lever_map(r, fi),
                                   ds.platform.lever_map(r)[:, fi])
+
+
+@pytest.mark.parametrize("angle", [0.0, 1e-9, 1e-4, 9.9e-4, 1.1e-3, 0.5, 2.0, np.pi - 1e-6])
+def test_rotation_helpers_equal_scipy_rotation(angle):
+    """rotation_matrix and the quaternion composition of Pose.moved against scipy's
+    Rotation, on both sides of the series threshold (1e-3 rad) and near pi."""
+    from scipy.spatial.transform import Rotation
+    from dynstiff.platform import (quaternion_product, quaternion_to_rotvec,
+                                   rotvec_to_quaternion)
+    rng = np.random.default_rng(int(1e6 * angle) % 2**32)
+    for _ in range(20):
+        axis = rng.standard_normal(3)
+        v = angle * axis / np.linalg.norm(axis)
+        w = rng.uniform(-0.3, 0.3, 3)
+        np.testing.assert_allclose(rotation_matrix(v), Rotation.from_rotvec(v).as_matrix(),
+                                   rtol=0, atol=2e-15)
+        np.testing.assert_allclose(rotvec_to_quaternion(v), Rotation.from_rotvec(v).as_quat(
+            canonical=False), rtol=0, atol=2e-16)
+        q = quaternion_product(rotvec_to_quaternion(w), rotvec_to_quaternion(v))
+        ref = (Rotation.from_rotvec(w) * Rotation.from_rotvec(v)).as_rotvec()
+        np.testing.assert_allclose(quaternion_to_rotvec(q), ref, rtol=0, atol=4e-15)

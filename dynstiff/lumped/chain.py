@@ -34,9 +34,6 @@ from dataclasses import dataclass
 from numbers import Integral
 
 import numpy as np
-import scipy.linalg
-import scipy.optimize
-import scipy.sparse
 
 from .._validate import point, positive_scalar
 from ..constants import STANDARD_GRAVITY
@@ -215,6 +212,7 @@ def _tension_estimate(anchor, end, unstretched_length, cable, g):
     q = m g cos(theta) (theory.md §1.2: sag d, parabolic arc length). Without a transverse
     load (vertical chord or g = 0) it returns EA (L/L0 - 1)_+ + m g L0.
     """
+    import scipy.optimize
     chord = end - anchor
     length = np.linalg.norm(chord)
     cos_theta = np.hypot(chord[0], chord[1]) / length
@@ -597,6 +595,7 @@ def _regularised_solve(ab, rhs):
     the step a descent direction of the energy. Returns None if even the shifted matrix
     cannot be factorised.
     """
+    import scipy.linalg
     if ab.shape[1] == 0:
         return rhs
     shift = 0.0

@@ -5,8 +5,6 @@ fixed-end natural frequencies. Notation and conventions as :mod:`dynstiff.lumped
 import warnings
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse
 
 from .._validate import omega_array
 from ..errors import InvalidParameterError, PoleWarning
@@ -46,6 +44,7 @@ def chain_matrices(state):
     M : ndarray, shape (3(N+1),)
         Diagonal of the lumped mass matrix [kg].
     """
+    import scipy.sparse
     check_chain_state(state)
     n_dof = 3 * (state.n_segments + 1)
     rows, cols, vals = block_tridiagonal_entries(_stiffness_elements(state))
@@ -87,6 +86,7 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
     PoleWarning
         If an omega makes the interior block exactly singular.
     """
+    import scipy.linalg
     check_chain_state(state)
     omega = omega_array(omega)
     if ends not in ("end", "both"):
@@ -158,6 +158,7 @@ def chain_fixed_end_frequencies(state, n_modes):
     ndarray, shape (n_modes,)
         Natural frequencies [Hz], ascending.
     """
+    import scipy.linalg
     check_chain_state(state)
     n_int = 3 * (state.n_segments - 1)
     if n_int == 0:

@@ -17,9 +17,6 @@ Notation as :mod:`dynstiff.lumped.robot_model`.
 import functools
 
 import numpy as np
-import scipy.linalg
-import scipy.sparse
-import scipy.sparse.linalg
 
 from .._validate import omega_array
 from ..errors import InvalidParameterError
@@ -115,6 +112,7 @@ class LumpedLinearModel(PlatformModel):
         ndarray; real when undamped at real omega. inf where D_ii(omega) is exactly
         singular (a natural frequency of a chain with the platform held).
         """
+        import scipy.sparse.linalg
         omega = omega_array(omega, complex_ok=True)
         nf = self.n_free
         K = self.K_damped if self.K_damped is not None else self.K
@@ -150,6 +148,7 @@ class LumpedLinearModel(PlatformModel):
         """Static stiffness of the platform with the cable nodes condensed out (their
         massless limit), shape (n_free, n_free) [N/m, N, N m/rad]; comparable with
         ``Equilibrium.platform_stiffness()``."""
+        import scipy.sparse.linalg
         nf = self.n_free
         Kpp = self.K[:nf, :nf].toarray()
         if self.n_dof == nf:
@@ -169,6 +168,7 @@ class LumpedLinearModel(PlatformModel):
     def _held_platform_eigenvalues(self):
         """Eigenvalues omega^2 [rad^2/s^2] of (K_ii, M_ii), ascending (one chain at a time:
         the chains couple only through the platform)."""
+        import scipy.linalg
         K, M = self.K.tocsr(), self.M.tocsr()
         lam = []
         for o, size in zip(self.mass_model.offsets, 3 * (self.mass_model.segments - 1)):

@@ -46,8 +46,6 @@ from dataclasses import dataclass
 from numbers import Integral
 
 import numpy as np
-import scipy.sparse
-import scipy.sparse.linalg
 
 from .. import _validate
 from .._validate import positive_scalar
@@ -306,13 +304,15 @@ class LumpedMassModel:
         pose, interior = self._check_config(pose, interior)
         return self.residual_unchecked(pose, interior)[0]
 
-    def residual_unchecked(self, pose, interior):
+    def residual_unchecked(self, pose, interior, extremes=None):
         """:meth:`residual` without the argument checks (for solvers and time stepping), and
-        the largest tension [N]: (R, shape (n_dof,) [N, N m]; t_max)."""
+        the largest tension [N]: (R, shape (n_dof,) [N, N m]; t_max). With a list
+        ``extremes``, (smallest tension [N], largest strain l / l0 - 1 [-]) is appended to it
+        (what a time step checks: slack segments and blow-ups)."""
         nodes, r = self._full_nodes(pose, interior)
         uniform = np.all(self.segments == self.segments[0])
         inner, F, t_max = (self._chain_forces_stacked if uniform
-                           else self._chain_forces_loop)(nodes)
+                           else self._chain_forces_loop)(nodes, extremes)
         R = np.empty(self.n_dof)
         R[self.n_free:] = inner
         W = self.robot.gravity_wrench(pose)
@@ -321,28 +321,37 @@ class LumpedMassModel:
         R[:self.n_free] = W[self.free_index]
         return R, t_max
 
-    def _chain_forces_stacked(self, nodes):
+    def _chain_forces_stacked(self, nodes, extremes=None):
         """Forces of every chain with the same N at once, from nodes (n, N + 1, 3) [m]:
         interior-node forces (flat, 3 n (N - 1)), forces on the platform at each B_i
-        (n, 3) (the last segment and the half node weight) [N], the largest tension [N]."""
+        (n, 3) (the last segment and the half node weight) [N], the largest tension [N]
+        (and, into a list ``extremes``, the smallest tension and the largest strain)."""
         gvec = self.robot.gravity_vector
         EA = np.array([c.EA for c in self.robot.cables])
-        units, _, T = segment_forces(np.stack(nodes), self.segment_lengths[:, None], EA[:, None])
+        l0 = self.segment_lengths[:, None]
+        units, lengths, T = segment_forces(np.stack(nodes), l0, EA[:, None])
+        if extremes is not None:
+            extremes.append((float(T.min()), float((lengths / l0).max()) - 1.0))
         f = T[..., None] * units                                   # (n, N, 3)
         mg = self.node_masses[:, None] * gvec
         return ((f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel(), -f[:, -1] + 0.5 * mg,
                 float(T.max()))
 
-    def _chain_forces_loop(self, nodes):
+    def _chain_forces_loop(self, nodes, extremes=None):
         """As :meth:`_chain_forces_stacked`, cable by cable (any N per cable)."""
         gvec = self.robot.gravity_vector
         inner, F, t_max = [], np.empty((len(nodes), 3)), 0.0
+        t_min, strain = np.inf, -np.inf
         for i, x in enumerate(nodes):
-            units, _, T = segment_forces(x, self.segment_lengths[i], self.robot.cables[i].EA)
+            l0 = self.segment_lengths[i]
+            units, lengths, T = segment_forces(x, l0, self.robot.cables[i].EA)
             f = T[:, None] * units
             inner.append((f[1:] - f[:-1] + self.node_masses[i] * gvec).ravel())
             F[i] = -f[-1] + 0.5 * self.node_masses[i] * gvec
             t_max = max(t_max, float(T.max()))
+            t_min, strain = min(t_min, float(T.min())), max(strain, lengths.max() / l0 - 1.0)
+        if extremes is not None:
+            extremes.append((t_min, float(strain)))
         return np.concatenate(inner), F, t_max
 
     def _force_scale(self, t_max):
@@ -408,6 +417,7 @@ class LumpedMassModel:
     def tangent_unchecked(self, pose, interior, axial_of):
         """:meth:`tangent_stiffness` without the argument checks, with ``axial_of(i)`` the
         axial factor of cable i (for solvers and time stepping)."""
+        import scipy.sparse
         rob = self.robot
         fi, nf = self.free_index, self.n_free
         gvec = rob.gravity_vector
@@ -456,6 +466,7 @@ class LumpedMassModel:
     def _node_matrix(self, pose, per_node, platform_block):
         """Sparse matrix with ``per_node[i]`` on the interior nodes of cable i (diagonal) and
         the free-DOF block ``platform_block`` + sum_i J_i^T (per_node[i] / 2) J_i."""
+        import scipy.sparse
         fi, nf = self.free_index, self.n_free
         _, r = self.robot.attachment_points(pose)
         diag = np.zeros(self.n_dof)
@@ -527,6 +538,7 @@ class LumpedMassModel:
         SlackCableError
             A cable has a zero-tension segment (at the start or at the solution).
         """
+        import scipy.sparse.linalg
         tol = positive_scalar("tol", tol)
         if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
             raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")

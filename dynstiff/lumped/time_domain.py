@@ -40,7 +40,7 @@ for the linearised system and free of numerical damping, solved by Newton's meth
 sparse tangent K + 4 M / dt^2 + 2 C / dt (the LU factors are kept while Newton converges
 fast and refreshed when it slows down). The displacement update is dx = dt v_n +
 dt^2 / 4 (a_n + a_{n+1}); the platform rotation is composed exactly,
-R_{n+1} = exp([dtheta]x) R_n (scipy ``Rotation``), so large rotations are integrated
+R_{n+1} = exp([dtheta]x) R_n (unit quaternions), so large rotations are integrated
 properly (a Lie-group Newmark scheme with the angular velocity in the base frame; the
 Newton matrix neglects the derivatives of M(q) and g(q, v), which slows the iterations for
 fast rotations but does not change their solution).
@@ -63,7 +63,8 @@ material (of order dL0/dt) is neglected. The energy balance then counts
   anchor height;
 * the kinetic energy carried in with the mass, int 1/2 sum_j dmu_j/dt |v_j|^2 dt.
 
-Energy bookkeeping (every step, stored at the recorded ones)::
+Energy bookkeeping (the work terms every step; the energies, a pass over every segment, at
+the recorded steps, at the last one and, with winches, every step; theory.md §14.4)::
 
     E(t) - E(0) = W_ext - D + W_w + E_c + residual
 
@@ -97,6 +98,7 @@ from .linear_model import LumpedLinearModel
 from .robot_model import LumpedEquilibrium, LumpedMassModel
 from .time_damping import TimeDamping, explicit_step_limit
 from .time_dynamics import (
+    compiled_kernels,
     Dynamics,
     Frame,
     load_at,
@@ -111,6 +113,7 @@ from .time_stepping import (
     IntegrationError,
     carried_energy,
     check_blow_up,
+    compiled_explicit_run,
     explicit_step,
     implicit_step,
     Ledger,
@@ -407,7 +410,16 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
-    for k in range(1, n_steps + 1):
+    fast = compiled_kernels()
+    if scheme == "explicit" and fast is not None and length_fn is None and not damping.beta \
+            and np.all(m.segments == m.segments[0]) and m.segments[0] > 1:
+        slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
+                                            record_every, rec, ledger, damping,
+                                            SlackSegmentWarning)
+        n_steps_done = n_steps
+    else:
+        n_steps_done = 0
+    for k in range(n_steps_done + 1, n_steps + 1):
         t1 = k * dt
         m_prev = m
         if length_fn is not None:
@@ -415,10 +427,16 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
             dyn.set_model(m)
         step = implicit_step if scheme == "implicit" else explicit_step
         d, pose1, X1, v1, a1, fe1, fd1, frame1 = step(dyn, pose, X, v, a, t1, dt, k, newton)
-        # ---- bookkeeping and checks
-        pot1 = potential_energy(m, frame1, X1)
+        # ---- bookkeeping and checks: strain and slack from the step's own force
+        # evaluation at every step; the energies (a pass over every segment) where a record,
+        # a winch term, a slack segment or the end of the run needs them
+        t_min, strain = dyn.extremes
         ledger.ext += 0.5 * d @ (fe + fe1)
         ledger.diss -= 0.5 * d @ (fd + fd1)
+        record = k % record_every == 0
+        pot1 = None
+        if record or length_fn is not None or t_min <= 0.0 or k == n_steps:
+            pot1 = potential_energy(m, frame1, X1)
         if m is not m_prev:
             ledger.winch += 0.5 * (
                 sum(potential_energy(m, frame, X)[:2]) - pot[0] - pot[1]
@@ -426,9 +444,13 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
             dmu = node_mass_vector(m) - node_mass_vector(m_prev)
             ledger.carried += 0.25 * (carried_energy(m, m_prev, frame, v, dmu)
                                       + carried_energy(m, m_prev, frame1, v1, dmu))
-        row = ledger.row(dyn.kinetic(frame1, v1), pot1)
-        check_blow_up(pot1[5], row[-1], ledger, scheme, dt, k, t1, m, damping)
-        if pot1[4]:
+        if pot1 is None:
+            ledger.track()
+            check_blow_up(strain, 0.0, ledger, scheme, dt, k, t1, m, damping)
+        else:
+            row = ledger.row(dyn.kinetic(frame1, v1), pot1)
+            check_blow_up(pot1[5], row[-1], ledger, scheme, dt, k, t1, m, damping)
+        if pot1 is not None and pot1[4]:
             slack_steps += 1
             if slack_steps == 1:
                 i, s = pot1[4][0]
@@ -437,7 +459,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
                     f"tension-only springs carry no force until it is taut again",
                     SlackSegmentWarning, stacklevel=2)
         pose, X, v, a, fe, fd, frame, pot = pose1, X1, v1, a1, fe1, fd1, frame1, pot1
-        if k % record_every == 0:
+        if record:
             rec.store(k // record_every, t1, pose, v, m, pot, row, X)
     return rec.result(
         model=model, scheme=scheme, dt=dt, n_steps=n_steps, eq_pose=eq.pose,

@@ -4,13 +4,14 @@ potential energy and the :class:`Dynamics` that assembles forces, mass and the N
 matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
 
 import functools
+import importlib.util
 
 import numpy as np
-import scipy.sparse
 
 from .._vec import cross
 from ..errors import InvalidParameterError
-from ..platform import lever_map, platform_mass_matrix, skew
+from ..platform import (lever_map, platform_mass_matrix, quaternion_product,
+                        quaternion_to_rotvec, rotvec_to_quaternion, skew)
 from ..robot import Pose
 from .robot_model import LumpedMassModel, segment_forces
 
@@ -31,7 +32,12 @@ def interior_views(model, X):
 
 class FastPose(Pose):
     """A :class:`Pose` that computes its rotation matrix once (the model's residual, its
-    tangent and the platform terms all ask for it)."""
+    tangent and the platform terms all ask for it), built by the integrator without the
+    user-input checks of :class:`Pose` (its state is checked for finiteness every step)."""
+
+    def __post_init__(self):
+        object.__setattr__(self, "position", np.asarray(self.position, dtype=float))
+        object.__setattr__(self, "rotation", np.asarray(self.rotation, dtype=float))
 
     @functools.cached_property
     def matrix(self):
@@ -44,8 +50,9 @@ def advance(model, pose, X, dx):
     d6 = np.zeros(6)
     d6[model.free_index] = dx[:model.n_free]
     if np.any(d6[3:]):
-        moved = pose.moved(d6)
-        pose = FastPose(moved.position, moved.rotation)
+        q = quaternion_product(rotvec_to_quaternion(d6[3:]),
+                               rotvec_to_quaternion(pose.rotation))   # as Pose.moved
+        pose = FastPose(pose.position + d6[:3], quaternion_to_rotvec(q))
     else:
         new = FastPose(pose.position + d6[:3], pose.rotation)
         if "matrix" in pose.__dict__:                      # same rotation: keep R_p
@@ -124,6 +131,36 @@ def _gyroscopic(model, frame, tw):
 
 def _axial_dashpot(model, frame, X, v, tw, c_ax):
     """Generalised force of the axial dashpots c_ax d(epsilon)/dt (taut segments only)."""
+    if np.all(model.segments == model.segments[0]):
+        return _axial_dashpot_stacked(model, frame, X, v, tw, c_ax)
+    return _axial_dashpot_loop(model, frame, X, v, tw, c_ax)
+
+
+def _axial_dashpot_stacked(model, frame, X, v, tw, c_ax):
+    """:func:`_axial_dashpot` for chains of equal N, all at once (one segment_forces call)."""
+    rob = model.robot
+    n, N, nf = rob.n_cables, int(model.segments[0]), model.n_free
+    nodes = np.empty((n, N + 1, 3))
+    nodes[:, 0] = rob.anchors
+    nodes[:, 1:-1] = X.reshape(n, N - 1, 3)
+    nodes[:, -1] = frame.B
+    vel = np.zeros((n, N + 1, 3))
+    vel[:, 1:-1] = v[nf:].reshape(n, N - 1, 3)
+    vel[:, -1] = tw[:3] + cross(tw[3:], frame.r)
+    l0 = model.segment_lengths[:, None]
+    EA = np.array([c.EA for c in rob.cables])[:, None]
+    units, lengths, _ = segment_forces(nodes, l0, EA)
+    rate = np.einsum("ijk,ijk->ij", units, np.diff(vel, axis=1)) / l0
+    f = np.where(lengths > l0, np.asarray(c_ax)[:, None] * rate, 0.0)[..., None] * units
+    F = np.empty(model.n_dof)
+    F[nf:] = (f[:, 1:] - f[:, :-1]).ravel()
+    W = np.concatenate([-f[:, -1].sum(axis=0), -cross(frame.r, f[:, -1]).sum(axis=0)])
+    F[:nf] = W[model.free_index]
+    return F
+
+
+def _axial_dashpot_loop(model, frame, X, v, tw, c_ax):
+    """:func:`_axial_dashpot` cable by cable (any N per cable)."""
     F = np.zeros(model.n_dof)
     nf = model.n_free
     rob = model.robot
@@ -185,18 +222,29 @@ class Dynamics:
         self.excitation = excitation
         self.c_visc = np.array([cb.viscous_damping for cb in model.robot.cables])
         self._last = None
+        self._load = None
+        self.extremes = (np.inf, 0.0)
         self.set_model(model)
 
     def set_model(self, model):
         self.model = model
+        self.EA = np.array([cb.EA for cb in model.robot.cables])
+        self.node_weights = model.node_masses[:, None] * model.robot.gravity_vector
+        self.platform_weight = model.robot.platform.mass * model.robot.gravity_vector
+        self._any_c_ax = bool(np.any(self.c_ax))
         self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
     def load(self, t):
+        """External load at t [s] on the free DOFs, shape (n_dof,); the excitation is
+        called once per time (the Newton iterations of a step share it)."""
+        if self._load is not None and self._load[0] == t:
+            return self._load[1].copy()
         F = np.zeros(self.model.n_dof)
         if self.excitation is not None:
             F[:self.model.n_free] = load_at(self.excitation, t)[self.model.free_index]
-        return F
+        self._load = (t, F)
+        return F.copy()
 
     def mass_times(self, frame, a):
         nf = self.model.n_free
@@ -210,13 +258,21 @@ class Dynamics:
         return Cb
 
     def forces(self, pose, X, v, t):
-        """Total generalised force F and its external and damping parts, max tension."""
+        """Total generalised force F and its external and damping parts, max tension; the
+        smallest tension and largest strain of the configuration are kept in
+        ``self.extremes``."""
         m = self.model
         frame = self._last = Frame(m, pose, self._last)
-        R, t_max = m.residual_unchecked(pose, interior_views(m, X))
-        fe = self.load(t)
         tw = twist_of(m, v)
         nf = m.n_free
+        fast = _compiled() if np.all(m.segments == m.segments[0]) else None
+        if fast is not None:
+            R, dash, t_max = self._compiled_chain_forces(fast, frame, pose, X, v, tw)
+        else:
+            ext = []
+            R, t_max = m.residual_unchecked(pose, interior_views(m, X), ext)
+            self.extremes = ext[0]
+        fe = self.load(t)
         fd = np.zeros(m.n_dof)
         if self.alpha:
             fd -= self.alpha * self.mass_times(frame, v)
@@ -225,13 +281,29 @@ class Dynamics:
         if np.any(self.c_visc):
             fd[:nf] -= self.platform_viscous(frame) @ v[:nf]
             fd[nf:] -= self.cv * v[nf:]
-        if np.any(self.c_ax):
+        if fast is not None:
+            fd += dash
+        elif np.any(self.c_ax):
             fd += _axial_dashpot(m, frame, X, v, tw, self.c_ax)
         F = R + fe + fd - np.concatenate([_gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
         return F, fe, fd, t_max, frame
 
+    def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
+        """Residual R, axial-dashpot force and largest tension from the compiled chain kernel
+        (:mod:`dynstiff.lumped.compiled_chain`), chains of equal N; sets ``extremes``."""
+        m = self.model
+        rob = m.robot
+        nf = m.n_free
+        inner, d_inner, W, Wd, t_max, t_min, strain = fast.robot_chain_forces(
+            rob.anchors, X, frame.B, frame.r, v[nf:], tw, m.segment_lengths, self.EA,
+            self.c_ax, self.node_weights, self.platform_weight, frame.rG)
+        self.extremes = (t_min, strain)
+        fi = m.free_index
+        return np.concatenate([W[fi], inner]), np.concatenate([Wd[fi], d_inner]), t_max
+
     def newton_matrix(self, pose, X, dt):
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
+        import scipy.sparse
         m = self.model
         frame = Frame(m, pose, self._last)
         EA = np.array([cb.EA for cb in m.robot.cables])
@@ -254,6 +326,21 @@ class Dynamics:
 
     def kinetic(self, frame, v):
         return 0.5 * float(v @ self.mass_times(frame, v))
+
+
+def compiled_kernels():
+    """The compiled kernels (:mod:`dynstiff.lumped.compiled_chain`), or None without numba."""
+    return _compiled()
+
+
+@functools.cache
+def _compiled():
+    """The compiled chain kernel (:mod:`dynstiff.lumped.compiled_chain`), or None without
+    numba."""
+    if importlib.util.find_spec("numba") is None:
+        return None
+    from . import compiled_chain
+    return compiled_chain
 
 
 def load_at(excitation, t):

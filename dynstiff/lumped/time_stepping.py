@@ -6,12 +6,12 @@ the schemes and the energy bookkeeping), except the failure types it raises."""
 import warnings
 
 import numpy as np
-import scipy.sparse.linalg
 
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
-from .time_dynamics import advance, interior_views, twist_of
+from .time_dynamics import (FastPose, Frame, advance, interior_views, load_at,
+                            potential_energy, twist_of)
 from .time_response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
@@ -45,6 +45,7 @@ class StepNewton:
     def __init__(self, tol, max_iter):
         self.tol, self.max_iter = tol, max_iter
         self.lu = None
+        self.a_prev = None
         self.iterations = self.updates = 0
 
 
@@ -53,12 +54,18 @@ def implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
 
     Unknown: the increment d = x_{n+1} - x_n; a_{n+1} = 4 (d - dt v_n) / dt^2 - a_n and
     v_{n+1} = v_n + dt (a_n + a_{n+1}) / 2; residual G(d) = M a_{n+1} - F(q_{n+1}, v_{n+1}).
+    The iteration starts from a_{n+1} = 2 a_n - a_{n-1} (theory.md §14.4).
     The LU factors of K + 4 M / dt^2 + 2 C / dt are kept while each iteration reduces the
     residual tenfold, and refreshed otherwise.
     """
+    import scipy.sparse.linalg
     m = dyn.model
     c0 = 4.0 / dt ** 2
-    d = dt * v + 0.5 * dt ** 2 * a                    # predictor: a_{n+1} = a_n
+    # predictor: a_{n+1} extrapolated linearly from a_{n-1}, a_n (a_n at the first step)
+    a_pred = a if newton.a_prev is None or newton.a_prev.shape != a.shape else \
+        2.0 * a - newton.a_prev
+    d = dt * v + 0.25 * dt ** 2 * (a + a_pred)
+    newton.a_prev = a
     prev = np.inf
     for it in range(newton.max_iter + 1):
         pose1, X1 = advance(m, pose, X, d)
@@ -105,7 +112,7 @@ def explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
+def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stacklevel=3):
     """IntegrationError when a strain exceeds 1 or the energy balance residual exceeds
     ``_BLOW_UP`` times the energy scale of the run (plus 1e-3 of the initial strain
     energy); an :class:`EnergyBalanceWarning`, once, when it passes ``_LEDGER_WARN`` of it.
@@ -121,7 +128,7 @@ def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping):
             f"{ledger.scale():.3g} J: the energy ledger is inaccurate at dt = {dt:g} s "
             f"(axial chain modes faster than 1 / dt, typically with winches, or an unstable "
             f"explicit step); halve dt to "
-            f"check the motion", EnergyBalanceWarning, stacklevel=3)
+            f"check the motion", EnergyBalanceWarning, stacklevel=stacklevel)
     if strain <= _STRAIN_LIMIT and abs(residual) <= _BLOW_UP * ledger.limit():
         return
     why = (f"a segment is stretched to {1 + strain:.3g} l0" if strain > _STRAIN_LIMIT
@@ -155,10 +162,15 @@ class Ledger:
         self.peaks = np.zeros(4)
         self.warned = False
 
+    def track(self):
+        """Update the peaks of the work terms (the energy scale) at a step without a row."""
+        p = self.peaks
+        p[0], p[1] = max(p[0], abs(self.ext)), max(p[1], abs(self.winch))
+        p[2], p[3] = max(p[2], abs(self.carried)), max(p[3], abs(self.diss))
+
     def row(self, kinetic, pot):
         """(kinetic, gravity, elastic, ext, winch, carried, dissipated, residual) [J]."""
-        terms = np.array([self.ext, self.winch, self.carried, self.diss])
-        self.peaks = np.maximum(self.peaks, np.abs(terms))
+        self.track()
         E = kinetic + pot[0] + pot[1]
         res = E - self.E0 - (self.ext - self.diss + self.winch + self.carried)
         return (kinetic, pot[1], pot[0], self.ext, self.winch, self.carried, self.diss, res)
@@ -204,3 +216,80 @@ class Recorder:
         return TimeResponse(*out, nodes=None if self.nodes is None else tuple(self.nodes),
                             free_dofs=model.free_dofs, equilibrium_pose=eq_pose.as_vector(),
                             **info)
+
+
+def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning):
+    """The velocity-Verlet steps of a run with fixed lengths, beta = 0 and chains of equal N,
+    ``record_every`` steps per call of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.explicit_steps`, theory.md §14.4); the ledger
+    rows, records, checks and warnings at the recorded steps as in the stepwise loop.
+    Returns the number of steps with a slack segment."""
+    m = dyn.model
+    rob, p = m.robot, m.robot.platform
+    nf, fi = m.n_free, m.free_index
+    free = np.zeros(6, dtype=bool)
+    free[fi] = True
+
+    def six(x):
+        out = np.zeros(6)
+        out[fi] = x[:nf]
+        return out
+
+    pos, rot = np.array(pose.position, dtype=float), np.array(pose.rotation, dtype=float)
+    vp, vn, ap, an = six(v), v[nf:].copy(), six(a), a[nf:].copy()
+    fe_p, fd_p, fd_n = six(fe), six(fd), fd[nf:].copy()
+    consts = (rob.anchors.astype(float), rob.attachments.astype(float), m.segment_lengths,
+              dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
+              dyn.platform_weight, 0.5 * m.node_masses, float(p.mass),
+              np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
+              dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv)
+    k, slack_steps, warned = 0, 0, False
+    while k < n_steps:
+        count = min(n_steps, (k // record_every + 1) * record_every) - k
+        loads = np.zeros((count, 6))
+        if dyn.excitation is not None:
+            for j in range(count):
+                loads[j] = load_at(dyn.excitation, (k + 1 + j) * dt)
+            loads[:, ~free] = 0.0
+        (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, ledger.ext, ledger.diss, pk_ext,
+         pk_diss, strain, n_slack, taken, status) = fast.explicit_steps(
+            count, dt, pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, loads, free, *consts,
+            ledger.ext, ledger.diss, not warned)
+        ledger.peaks[0] = max(ledger.peaks[0], pk_ext)
+        ledger.peaks[3] = max(ledger.peaks[3], pk_diss)
+        slack_steps += n_slack
+        k += taken
+        t1 = k * dt
+        if status == 1:
+            raise IntegrationError(
+                f"simulate: non-finite state at step {k + 1} (t = {t1 + dt:g} s) with explicit "
+                f"dt = {dt:g} s; the predicted stability limit is "
+                f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)",
+                step=k + 1, time=t1 + dt, dt=dt)
+        pose = FastPose(pos, rot)
+        v = np.concatenate([vp[fi], vn])
+        if status == 2:
+            check_blow_up(strain, 0.0, ledger, "explicit", dt, k, t1, m, damping, 4)
+        pot = None
+        if status == 3:
+            pot = potential_energy(m, Frame(m, pose), X)
+            row = ledger.row(dyn.kinetic(Frame(m, pose), v), pot)
+            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
+        elif k % record_every == 0 or k == n_steps:
+            elastic, gravity, kinetic, t_end, t_anchor, strain = fast.energies(
+                pos, rot, X, vp, vn, consts[0], consts[1], m.segment_lengths, dyn.EA,
+                m.node_masses, rob.g, *consts[8:12])
+            pot = (elastic, gravity, t_end, t_anchor, [], strain)
+            row = ledger.row(kinetic, pot)
+            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
+        if status == 3:
+            warned = True
+            i, s = pot[4][0]
+            warnings.warn(
+                f"simulate: cable {i} segment {s} went slack at step {k} (t = {t1:g} s); "
+                f"tension-only springs carry no force until it is taut again",
+                slack_warning, stacklevel=3)
+        if k % record_every == 0:
+            rec.store(k // record_every, t1, pose, v, m, pot, row, X)
+    return slack_steps

@@ -1,0 +1,304 @@
+"""Compiled (numba) kernels of the "dsm" rung: the robot's K(omega) fused with the small real
+solve C K^-1 B of an FRF (theory.md §4, §14.1), and with the eigenvalues and cable count of
+a Wittrick-Williams count (theory.md §5, §14.2), one frequency at a time.
+
+Imported only when an FRF or an eigen search asks for it and numba is installed (``pip
+install "dynstiff[fast]"``); :mod:`dynstiff.frf` and :mod:`dynstiff.eigen` fall back to the
+numpy paths (K(omega) batched over frequency, then ``np.linalg``), which stay the reference
+the kernels are tested against. Compiled on first use and cached on disk (``cache=True``).
+
+The cable entries are those of :func:`dynstiff.cable_dsm.local_entries` for an undamped
+cable at real omega (same formulas, same series branch for |psi| < 1); the assembly is
+``cable_coefficients(omega) @ assembly_map`` of :class:`dynstiff.assembly.FrequencyModel`.
+"""
+
+import numba
+import numpy as np
+
+from .cable_dsm import PSI_SERIES
+
+__all__ = ["dsm_receptance", "dsm_count", "real_receptance", "symmetric_assembly",
+           "model_arguments"]
+
+_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
+#: Frequencies per block of the fused kernel (its coefficients stay in cache).
+_BLOCK = 256
+
+
+def model_arguments(model):
+    """The arguments L .. M of :func:`dsm_receptance` and :func:`dsm_count` for an undamped
+    :class:`dynstiff.assembly.FrequencyModel` (contiguous float arrays)."""
+    p = model.stacked_params
+
+    def real(x):
+        return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
+
+    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
+            bool(model.chordwise_inertia), PSI_SERIES,
+            symmetric_assembly(model.assembly_map, model.n_free),
+            np.ascontiguousarray(model.K_geo_free, dtype=float),
+            np.ascontiguousarray(model.platform_mass, dtype=float))
+
+
+def symmetric_assembly(assembly_map, n_free):
+    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
+    share the coefficient -k_uv) summed, and the upper triangle of K kept.
+
+    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
+    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
+    """
+    A = assembly_map.reshape(-1, 5, n_free, n_free)
+    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
+    iu, ju = np.triu_indices(n_free)
+    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))
+
+
+@numba.njit(**_JIT)
+def _horner(coef, x):
+    y = 0.0
+    for a in coef:
+        y = y * x + a
+    return y
+
+
+@numba.njit(**_JIT)
+def _lu_solve_into(K, B, C, c_identity, out, work):
+    """out = C K^-1 B for one real K (nf, nf), by LU with partial pivoting (K overwritten,
+    work (nf, n_in) scratch; C skipped when ``c_identity``); returns False where a pivot is
+    exactly 0 (K singular)."""
+    nf = K.shape[0]
+    n_in = B.shape[1]
+    work[:, :] = B
+    for k in range(nf):
+        p = k
+        big = abs(K[k, k])
+        for i in range(k + 1, nf):
+            if abs(K[i, k]) > big:
+                big = abs(K[i, k])
+                p = i
+        if big == 0.0 or not np.isfinite(big):
+            return False
+        if p != k:
+            for j in range(nf):
+                K[k, j], K[p, j] = K[p, j], K[k, j]
+            for j in range(n_in):
+                work[k, j], work[p, j] = work[p, j], work[k, j]
+        inv = 1.0 / K[k, k]
+        for i in range(k + 1, nf):
+            f = K[i, k] * inv
+            for j in range(k + 1, nf):
+                K[i, j] -= f * K[k, j]
+            for j in range(n_in):
+                work[i, j] -= f * work[k, j]
+    for k in range(nf - 1, -1, -1):
+        for i in range(k + 1, nf):
+            f = K[k, i]
+            for j in range(n_in):
+                work[k, j] -= f * work[i, j]
+        inv = 1.0 / K[k, k]
+        for j in range(n_in):
+            work[k, j] *= inv
+    if c_identity:
+        out[:, :] = work
+        return True
+    for o in range(C.shape[0]):
+        for j in range(n_in):
+            s = 0.0
+            for i in range(nf):
+                s += C[o, i] * work[i, j]
+            out[o, j] = s
+    return True
+
+
+@numba.njit(**_JIT)
+def real_receptance(K, B, C):
+    """C K^-1 B for a real stack K (n, nf, nf), B (nf, n_in), C (n_out, nf).
+
+    Returns
+    -------
+    H : ndarray, shape (n, n_out, n_in), real
+    singular : ndarray of bool, shape (n,)
+        Where K is exactly singular (H left 0 there); NaN where K is not finite.
+    """
+    n, nf = K.shape[0], K.shape[1]
+    c_identity = C.shape[0] == nf and (C == np.eye(nf)).all()
+    H = np.zeros((n, C.shape[0], B.shape[1]))
+    singular = np.zeros(n, dtype=np.bool_)
+    Kk = np.empty((nf, nf))
+    work = np.empty((nf, B.shape[1]))
+    for k in range(n):
+        Kk[:, :] = K[k]
+        if not np.isfinite(Kk).all():          # exactly on a cable pole: as numpy, NaN
+            H[k] = np.nan
+            continue
+        singular[k] = not _lu_solve_into(Kk, B, C, c_identity, H[k], work)
+    return H, singular
+
+
+@numba.njit(**_JIT)
+def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static,
+                   M, B, C):
+    """Receptance C K(omega)^-1 B of the "dsm" rung with undamped cables, K(omega) built and
+    solved one frequency at a time (theory.md §3.5, §4).
+
+    Parameters
+    ----------
+    omega : ndarray, shape (n,)
+        [rad/s], >= 0, within the closed form's range (checked by the caller).
+    L, m, T, lam2, alpha, K0 : ndarray, shape (n_cables,)
+        Chord parameters (real): chord length [m], mass per chord length [kg/m], tension
+        [N], Irvine lambda^2 [-], end slope [-], EA / L_e [N/m].
+    chordwise : bool
+        Consistent chordwise mass -omega^2 m L / 3 on k_uu (theory.md §3.6).
+    series : tuple (radius, E_coef, P_coef)
+        ``cable_dsm.PSI_SERIES``.
+    assembly : ndarray, shape (4 n_cables, nf (nf + 1) / 2)
+        :func:`symmetric_assembly` of ``FrequencyModel.assembly_map``.
+    K_static, M : ndarray, shape (nf, nf)
+        Geometric stiffness and platform mass on the free DOFs.
+    B, C : ndarray, shape (nf, n_in), (n_out, nf)
+
+    Returns
+    -------
+    H : ndarray, shape (n, n_out, n_in), complex (real values)
+    kmax : ndarray, shape (n,)
+        max |K_ij(omega)| (to find the frequencies near a cable pole).
+    singular : ndarray of bool, shape (n,)
+        Where K(omega) is exactly singular (H left 0 there). Where K is not finite (exactly
+        on a cable pole) H is NaN and kmax inf.
+    """
+    n, nf = omega.size, K_static.shape[0]
+    c_identity = C.shape[0] == nf and (C == np.eye(nf)).all()
+    H = np.zeros((n, C.shape[0], B.shape[1]), dtype=np.complex128)
+    Hk = np.empty((C.shape[0], B.shape[1]))
+    kmax = np.empty(n)
+    singular = np.zeros(n, dtype=np.bool_)
+    Kk = np.empty((nf, nf))
+    work = np.empty((nf, B.shape[1]))
+    J0 = np.empty(_BLOCK, dtype=np.int64)
+    for start in range(0, n, _BLOCK):
+        w = omega[start:start + _BLOCK]
+        Kb = _assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, J0,
+                              False)
+        for b in range(w.size):
+            k = start + b
+            big = _unpack(Kb[b], K_static, M, w[b], Kk)
+            if not np.isfinite(big):                   # exactly on a cable pole
+                kmax[k] = np.inf
+                H[k] = np.nan
+                continue
+            kmax[k] = big
+            singular[k] = not _lu_solve_into(Kk, B, C, c_identity, Hk, work)
+            for o in range(Hk.shape[0]):
+                for i in range(Hk.shape[1]):
+                    H[k, o, i] = Hk[o, i]
+    return H, kmax, singular
+
+
+@numba.njit(**_JIT)
+def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M):
+    """Ascending eigenvalues of K(omega) and the cable count J0(omega) of the "dsm" rung with
+    undamped cables, from one evaluation of the cable kernels per frequency (theory.md §5,
+    §14.2). Arguments as :func:`dsm_receptance`.
+
+    Returns
+    -------
+    ev : ndarray, shape (n, nf)
+        Eigenvalues of K(omega) [N/m ...], ascending; NaN where K is not finite.
+    J0 : ndarray of int, shape (n,)
+        Clamped-clamped cable modes strictly below omega, summed over the cables (as
+        :func:`dynstiff.cable_dsm.mode_count_nondimensional`).
+    """
+    n, nf = omega.size, K_static.shape[0]
+    ev = np.empty((n, nf))
+    J0 = np.empty(n, dtype=np.int64)
+    Kk = np.empty((nf, nf))
+    for start in range(0, n, _BLOCK):
+        w = omega[start:start + _BLOCK]
+        Kb = _assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
+                              J0[start:start + _BLOCK], True)
+        for b in range(w.size):
+            if np.isfinite(_unpack(Kb[b], K_static, M, w[b], Kk)):
+                ev[start + b] = np.linalg.eigvalsh(Kk)
+            else:
+                ev[start + b] = np.nan
+    return ev, J0
+
+
+@numba.njit(**_JIT)
+def _count_multiples_below(x, step):
+    """#{n >= 1 : n step < x}, as :func:`dynstiff.cable_dsm._count_multiples_below`."""
+    n = max(int(np.ceil(x / step)) - 1, 0)
+    if n >= 1 and n * step >= x:
+        n -= 1
+    if (n + 1) * step < x:
+        n += 1
+    return n
+
+
+@numba.njit(**_JIT)
+def _unpack(Ku, K_static, M, w, Kk):
+    """Kk = the symmetric K from its upper entries Ku of the cable part, plus K_static -
+    w^2 M; returns max |K_ij| (inf if any entry is not finite)."""
+    nf = Kk.shape[0]
+    w2 = w * w
+    big = 0.0
+    q = 0
+    for i in range(nf):
+        for j in range(i, nf):
+            v = Ku[q] + K_static[i, j] - w2 * M[i, j]
+            if not np.isfinite(v):
+                big = np.inf
+            big = max(big, abs(v))
+            Kk[i, j] = v
+            Kk[j, i] = v
+            q += 1
+    return big
+
+
+@numba.njit(**_JIT)
+def _assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, J0, count):
+    """Cable part of K (upper entries, shape (w.size, nf (nf + 1) / 2)) at the frequencies w
+    [rad/s] (a block), and with ``count`` the cable count J0 (written into J0[:w.size])."""
+    radius, e_coef, p_coef = series
+    nc = L.size
+    half_L = 0.5 * L
+    TL = T / L
+    k0_4 = 4.0 * K0
+    k0_4a = 4.0 * alpha * K0
+    m_l6 = m * L / 6.0 if chordwise else np.zeros(nc)
+    coef = np.empty((w.size, 4 * nc))
+    for b in range(w.size):
+        w2 = w[b] * w[b]
+        if count:
+            J0[b] = 0
+        for j in range(nc):
+            psi = half_L[j] * np.sqrt(w2 * m[j] / T[j])     # as ChordParameters.psi
+            s, c = np.sin(psi), np.cos(psi)
+            cos2 = c * c - s * s
+            psi2 = psi * psi
+            if psi < radius:
+                s_over_psi = 1.0 if psi == 0.0 else s / psi
+                E = _horner(e_coef, psi2)
+                Pt = _horner(p_coef, psi2)
+            else:
+                s_over_psi = s / psi
+                ip3 = 1.0 / (psi2 * psi)
+                E = (psi * c - s) * ip3
+                Pt = ((1.0 + psi2) * s * c - psi) * ip3
+            den = 4.0 * c - lam2[j] * E
+            iden = 1.0 / den
+            coef[b, 4 * j] = k0_4[j] * c * iden - 2.0 * w2 * m_l6[j]
+            coef[b, 4 * j + 1] = -k0_4a[j] * psi2 * E * iden
+            coef[b, 4 * j + 2] = TL[j] * (4.0 * cos2 + lam2[j] * Pt) * iden / s_over_psi
+            coef[b, 4 * j + 3] = TL[j] * cos2 / (s_over_psi * c)
+            if count:                                 # theory.md §5.2
+                Omega = 2.0 * psi
+                kb = int(np.floor(psi / np.pi + 0.5))
+                n_sym = 0
+                if kb > 0:
+                    on_branch = c * (1.0 if kb % 2 == 0 else -1.0) > 0
+                    n_sym = kb - 1 + (1 if (den * c > 0 and on_branch) else 0)
+                J0[b] += (_count_multiples_below(Omega, np.pi)
+                          + _count_multiples_below(Omega, 2 * np.pi) + n_sym)
+    return coef @ assembly

@@ -1,0 +1,82 @@
+"""Compiled chain forces of the time stepping (dynstiff/lumped/compiled_chain.py, theory.md
+§14.4) against the numpy path: the residual, the axial-dashpot force, the largest tension and
+the extreme tension and strain of a displaced, moving CoGiRo configuration."""
+
+import numpy as np
+import pytest
+
+from dynstiff.lumped import LumpedMassModel, TimeDamping
+from dynstiff.lumped import time_dynamics as td
+
+pytest.importorskip("numba")
+
+
+@pytest.mark.parametrize("c_first", [0.0, 12.0])
+def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_first):
+    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=6)
+    st = mm.equilibrium(initial_pose=cogiro.pose)
+    rng = np.random.default_rng(11)
+    pose, interior = mm.displaced(st.pose, st.interior, 2e-3 * rng.standard_normal(mm.n_dof))
+    pose = td.FastPose(pose.position, pose.rotation)
+    X = np.concatenate([x.ravel() for x in interior])
+    v = rng.standard_normal(mm.n_dof)
+    c_ax = np.r_[c_first, np.linspace(5.0, 30.0, mm.robot.n_cables - 1)]
+    out = {}
+    for fast in (True, False):
+        if not fast:
+            monkeypatch.setattr(td, "_compiled", lambda: None)
+        dyn = td.Dynamics(mm, TimeDamping(axial=c_ax), None, None)
+        F, fe, fd, t_max, _ = dyn.forces(pose, X, v, 0.0)
+        out[fast] = (F, fd, t_max, dyn.extremes)
+    (F1, fd1, t1, e1), (F0, fd0, t0, e0) = out[True], out[False]
+    assert np.abs(fd0).max() > 1e-3 * np.abs(F0).max()           # the dashpots act
+    np.testing.assert_allclose(F1, F0, rtol=0, atol=1e-12 * np.abs(F0).max())
+    np.testing.assert_allclose(fd1, fd0, rtol=0, atol=1e-12 * np.abs(fd0).max())
+    assert t1 == pytest.approx(t0, rel=1e-14)
+    np.testing.assert_allclose(e1, e0, rtol=1e-12, atol=1e-15)
+
+
+def test_extremes_see_a_slack_segment(cogiro, cogiro_eq):
+    """A chain pushed together has a slack segment: smallest tension 0, strain < 0 there."""
+    from dynstiff.lumped.compiled_chain import chain_forces
+    nodes = np.zeros((1, 4, 3))
+    nodes[0, :, 0] = [0.0, 1.0, 1.5, 3.0]                   # segments 1, 0.5, 1.5 m
+    vel = np.zeros_like(nodes)
+    inner, end, di, de, t_max, t_min, strain = chain_forces(
+        nodes, vel, np.array([1.0]), np.array([100.0]), np.array([0.0]), np.zeros((1, 3)))
+    assert t_min == 0.0 and t_max == pytest.approx(50.0) and strain == pytest.approx(0.5)
+    np.testing.assert_allclose(inner[0], [[0.0, 0, 0], [50.0, 0, 0]])
+    np.testing.assert_allclose(end[0], [-50.0, 0, 0])
+
+
+@pytest.mark.parametrize("viscous", [0.0, 0.3])
+def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monkeypatch,
+                                                        viscous):
+    """The compiled velocity-Verlet chunks give the stepwise numpy run: a spinning, driven
+    CoGiRo with Rayleigh, axial and cable viscous damping, records every 7 steps."""
+    import dataclasses
+
+    import dynstiff as ds
+    from dynstiff.lumped import explicit_step_limit, simulate
+    rob = cogiro.robot
+    cable = dataclasses.replace(rob.cables[0], viscous_damping=viscous)
+    robot = ds.Robot(rob.anchors, rob.attachments, cable, rob.platform)
+    mm = LumpedMassModel(robot, cogiro_eq.unstretched_lengths, segments=6)
+    damping = TimeDamping(alpha=0.3, axial=np.linspace(0.0, 20.0, 8))
+    dt = 0.8 * explicit_step_limit(mm, damping=damping)
+    kw = {"scheme": "explicit", "damping": damping, "record_every": 7,
+          "start": mm.equilibrium(),
+          "initial": ([1e-3, -1e-3, 1e-3, 2e-3, -1e-3, 1e-3],
+                      [0.01, 0.0, -0.01, 0.02, 0.01, -0.03]),
+          "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1])}
+    r1 = simulate(mm, 300 * dt, dt, **kw)
+    monkeypatch.setattr(td, "_compiled", lambda: None)
+    r0 = simulate(mm, 300 * dt, dt, **kw)
+    assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
+    for name in ("pose", "velocity", "end_tensions", "anchor_tensions"):
+        a, b = getattr(r1, name), getattr(r0, name)
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10 * np.abs(b).max(), err_msg=name)
+    scale = np.abs(r0.energy.gravity).max()          # the residual is a difference of these
+    for name in ("kinetic", "elastic", "gravity", "external_work", "dissipated", "residual"):
+        a, b = getattr(r1.energy, name), getattr(r0.energy, name)
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * scale, err_msg=name)
