@@ -15,7 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._validate import omega_array
+from ._validate import omega_array, positive_scalar
 from ._vec import cross
 from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_field, cable_kinetic_energy,
                         check_frequency_range, chord_parameters, dyad_basis, end_block_coefficients,
@@ -41,7 +41,19 @@ class FrequencyModel(PlatformModel):
     chordwise_inertia : bool
         Include the consistent chordwise mass of the cables (theory.md §3.6).
     damping : bool
-        Keep the cables' damping (default); False builds the undamped model.
+        Keep the damping (default); False builds the undamped model (the cables' own
+        damping and the two options below all removed).
+    cable_loss_factor : float
+        eta_c >= 0 [-]: hysteretic damping of *all* the cable's stiffness forces, the dynamic
+        tension (transverse motions) and the elastic stretching (axial), both times
+        (1 + i eta_c), the static geometry real; K_B(omega) = s K_B(omega / sqrt(s)) with
+        s = 1 + i eta_c and the viscous c / sqrt(s) (theory.md §12.2). Acts on top of a
+        cable's own ``loss_factor`` (EA only).
+    platform_damping_ratio : float
+        zeta_p >= 0 [-]: modal damping ratio of the platform modes (winches, frame,
+        joints): the hysteretic term i 2 zeta_p K_s with K_s the massless-cable stiffness,
+        which gives every massless-cable mode the damping ratio zeta_p at its resonance
+        (theory.md §12.2).
 
     Attributes
     ----------
@@ -60,15 +72,22 @@ class FrequencyModel(PlatformModel):
     rung = "dsm"
 
     def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
-                 damping=True):
+                 damping=True, cable_loss_factor=0.0, platform_damping_ratio=0.0):
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         self._init_platform(robot, equilibrium, pose)
         self.tension = tension
         self.chordwise_inertia = bool(chordwise_inertia)
+        self.cable_loss_factor = positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                 allow_zero=True)
+        self.platform_damping_ratio = positive_scalar(
+            "platform_damping_ratio", platform_damping_ratio, allow_zero=True)
         params = [chord_parameters(s, tension) for s in equilibrium.states]
         if not damping:
             params = [replace(p, c=0.0, EA=float(np.real(p.EA))) for p in params]
             self.damped = False
+            self.cable_loss_factor = self.platform_damping_ratio = 0.0
+        elif self.cable_loss_factor > 0 or self.platform_damping_ratio > 0:
+            self.damped = True
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
@@ -90,6 +109,10 @@ class FrequencyModel(PlatformModel):
         # At a full 6-DOF equilibrium the block is already symmetric.
         Kg = K_geo[np.ix_(fi, fi)]
         self._K_geo_free = 0.5 * (Kg + Kg.T)
+        self._K_platform_damping = None
+        if self.platform_damping_ratio > 0:
+            Ks = self._stiffness(np.zeros(1)).real[0]
+            self._K_platform_damping = 2j * self.platform_damping_ratio * 0.5 * (Ks + Ks.T)
         self._freeze()
 
     def cable_coefficients(self, omega):
@@ -97,7 +120,13 @@ class FrequencyModel(PlatformModel):
         broadcast call, shape (n_omega, 5 n_cables), cable-major [N/m].
 
         ``omega`` [rad/s], shape (n_omega,), validated, real or complex."""
-        C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
+        eta = self.cable_loss_factor
+        if eta > 0:                   # K_B(omega) = s K_B(omega / sqrt(s)), c -> c / sqrt(s)
+            s = 1.0 + 1j * eta
+            st = replace(self.stacked_params, c=self.stacked_params.c / np.sqrt(s))
+            C = s * end_block_coefficients(st, omega / np.sqrt(s), self.chordwise_inertia)
+        else:
+            C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
         C = C.reshape(omega.size, 5 * len(self.params))
         if not self.damped and np.isrealobj(omega):
             C = np.real(C)
@@ -118,9 +147,15 @@ class FrequencyModel(PlatformModel):
         """
         omega = omega_array(omega, complex_ok=True)
         check_frequency_range(self.stacked_params, omega)
+        K = self._stiffness(omega)
+        if self._K_platform_damping is not None:
+            K = K + self._K_platform_damping
+        return K - (omega**2)[:, None, None] * self.platform_mass
+
+    def _stiffness(self, omega):
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
-        return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+        return K + self._K_geo_free
 
     def cable_mode_count(self, omega):
         """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],
@@ -142,6 +177,12 @@ class FrequencyModel(PlatformModel):
             return self
         return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                               damping=False)
+
+    def with_damping(self, cable_loss_factor=0.0, platform_damping_ratio=0.0):
+        """The same cables with the model-level damping of :class:`FrequencyModel`."""
+        return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+                              cable_loss_factor=cable_loss_factor,
+                              platform_damping_ratio=platform_damping_ratio)
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],

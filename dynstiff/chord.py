@@ -91,7 +91,7 @@ class ChordParameters:
 
     def psi(self, omega):
         """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
-        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c > 0) \
+        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c != 0) \
             else omega**2 * self.m / self.T
         return 0.5 * self.L * np.sqrt(beta_sq)
 

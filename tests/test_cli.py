@@ -244,7 +244,7 @@ def test_cli_check_exit_codes():
                                     capture_output=True, text=True)
     assert run("cogiro", "--band", "1", "2").returncode == 0
     out = run("cogiro", "--band", "4", "5")
-    assert out.returncode == 1 and "FAIL  global modes outside band" in out.stdout
+    assert out.returncode == 1 and "FAIL  platform modes outside band" in out.stdout
     out = run("cogiro", "--pose", "9", "0", "1")
     assert out.returncode == 1 and "FAIL  workspace" in out.stdout
 
@@ -257,7 +257,7 @@ def test_cli_check_defaults_to_the_scenes_forbidden_band():
     out = run("sixcable")                                  # no forbidden band in the scene
     assert out.returncode == 1 and "no forbidden band" in out.stdout
     assert "FAIL  cable model" in out.stdout
-    assert "global modes outside band" not in out.stdout
+    assert "platform modes outside band" not in out.stdout
 
 
 @pytest.mark.parametrize("argv, message", [
