@@ -6,17 +6,55 @@ import sys
 from .errors import DynstiffError
 
 
+def _settings(scene, args):
+    """The analysis settings of ``scene`` with the command line's overrides
+    (:func:`dynstiff.settings.analysis_settings`, the one source of defaults)."""
+    from .settings import analysis_settings
+    band = getattr(args, "band", None)
+    fmax = getattr(args, "fmax", None)
+    kw = {}
+    if getattr(args, "command", None) == "check":
+        kw = dict(forbidden_hz=tuple(band) if band else None, margin=args.margin,
+                  model_rtol=args.rtol, participation=args.participation,
+                  frf_limit=args.frf_limit)
+        band = None
+    elif band:
+        kw["band_hz"] = tuple(band)
+    elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
+        from .settings import DEFAULT_BAND_HZ
+        lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
+        kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
+    if getattr(args, "model", None):
+        kw["rung"] = args.model
+    for name in ("segments", "n"):
+        if getattr(args, name, None) is not None:
+            kw["n_modes" if name == "n" else name] = getattr(args, name)
+    return analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
+
+
+def _cmd_report(args):
+    from .demo import robot_report
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    settings = _settings(scene, args)
+    text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
+    _info(args).write(text)
+    _info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
+    return 0
+
+
 def _cmd_demo(args):
     if args.cable:
         from .report import cable_report, write_report
-        rep = cable_report(fmax_hz=args.fmax, n_points=args.points)
+        rep = cable_report(fmax_hz=args.fmax or 12.0, n_points=args.points)
         files = write_report(rep, args.out)
         _info(args).write(rep.text())
     else:
         from .demo import robot_report
         from .scenes import load_scene
-        text, files = robot_report(load_scene(args.scene), args.out,
-                                   band_hz=(0.1, args.fmax), n_points=args.points)
+        scene = load_scene(args.scene)
+        settings = _settings(scene, args)          # every input checked before any file
+        text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
         _info(args).write(text)
     _info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
     return 0
@@ -238,12 +276,15 @@ def _cmd_modes(args):
     from .errors import InvalidParameterError
     from .ladder import build_model
     from .scenes import load_scene
-    if args.segments < 1:
+    if args.segments is not None and args.segments < 1:
         raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     eq = _equilibrium(scene, args)
-    n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    model = build_model(eq, args.model, segments=args.segments)
+    n = None if args.fmax and args.n is None else st.n_modes
+    args.model = st.rung
+    args.segments = st.segments
+    model = build_model(eq, st.rung, segments=st.segments)
     note = ""
     if hasattr(model, "matrices") and n is not None and n > model.n_dof:
         note = f" (it has {model.n_dof} modes; {n} asked)"
@@ -251,16 +292,21 @@ def _cmd_modes(args):
     res = modes(model, n_modes=n, fmax_hz=args.fmax)
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
+    from .participation import platform_participation
+    part = platform_participation(model, res, st.participation)
     df = res.to_frame()
+    df.insert(3, "platform share [-]", part.platform_share)
+    df.insert(4, "category", list(part.category))
+    meta = st.metadata(eq.pose, units="Hz; shapes normalised to unit platform kinetic energy")
     _info(args).write(f"{args.model} model")
     _info(args).write(f", {args.segments} segments per cable" if args.model == "lumped"
                      else "")
-    _info(args).write(f"{note}:\n")
+    _info(args).write(f"{note} (undamped natural frequencies; {st.damping.text()}):\n")
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", meta)
     if args.json:
-        _write_table(df, args.json, "json")
-    cols = [c for c in ("mode", "freq [Hz]", "kind", "cable energy fraction [-]",
+        _write_table(df, args.json, "json", meta)
+    cols = [c for c in ("mode", "freq [Hz]", "kind", "platform share [-]", "category",
                         "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
     with np.printoptions(suppress=True):
         _info(args).write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
@@ -286,34 +332,35 @@ def _equilibrium(scene, args):
 def _cmd_frf(args):
     import numpy as np
 
-    from .assembly import FrequencyModel
     from .eigen import modes
+    from .freqgrid import refined_grid
     from .frf import frf
     from .scenes import load_scene
     scene = load_scene(args.scene)
-    model = FrequencyModel(_equilibrium(scene, args))
-    lo, hi = args.band if args.band else (scene.band_hz or (0.1, 20.0))
-    if not 0 <= lo < hi:
-        from .errors import InvalidParameterError
-        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got {lo} {hi}")
-    f = np.linspace(lo, hi, args.points)
+    st = _settings(scene, args)
+    lo, hi = st.band_hz
+    eq = _equilibrium(scene, args)
+    model = st.model(eq)
+    marks = modes(model, fmax_hz=hi)
+    f = refined_grid((lo, hi), args.points, marks.freq_hz)
     res = frf(model, 2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
               kind=args.kind)
     df = res.to_frame()
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", st.metadata(eq.pose, units="in the unit column"))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
         from .plot import plot_frf
-        fig = plot_frf(res, modes(model, fmax_hz=hi),
-                       pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])
     k = int(np.argmax(h))
     _info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
-                     f"{lo:g}-{hi:g} Hz, largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n")
+                     f"{lo:g}-{hi:g} Hz ({args.points} uniform, refined at {len(marks)} "
+                     f"modes), largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n"
+                     f"{st.rung} model; {st.damping.text()}\n")
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
@@ -324,19 +371,23 @@ def _cmd_check(args):
     from .checks import design_checks
     from .scenes import load_scene
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     pose = args.pose if args.pose is not None else scene.pose
     if pose is None:
         pose = scene.equilibrium().pose
-    band = tuple(args.band) if args.band else scene.forbidden_band_hz
-    res = design_checks(scene.robot, pose, band_hz=band, margin=args.margin,
-                        proximity_rtol=args.proximity, max_sag_ratio=args.max_sag,
-                        model_rtol=args.rtol)
+    band = st.forbidden_hz
+    res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
+                        max_sag_ratio=args.max_sag, **st.check_options())
+    _info(args).write("\n".join(st.lines()) + "\n")
     if band is None:
         _info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
                          "scene's [analysis])\n")
     _info(args).write(res.text())
     if args.csv:
-        _write_table(res.to_frame(), args.csv, "csv")
+        from .robot import Pose
+        _write_table(res.to_frame(), args.csv, "csv",
+                     st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
+                                 (pose if hasattr(pose, "position") else None)))
     return 0 if res.passed else 1
 
 
@@ -347,6 +398,8 @@ def build_parser():
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
     parser.add_argument("--debug", action="store_true",
                         help="show the full traceback of an error")
+    from . import __version__
+    parser.add_argument("--version", action="version", version=f"dynstiff {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     demo = sub.add_parser(
         "demo", help="main job on a scene (default: CoGiRo): statics, modes, model choice, "
@@ -356,9 +409,21 @@ def build_parser():
                       help="single-cable report instead (CoGiRo cable 0: statics, fixed-end "
                            "frequencies, dynamic stiffness plot)")
     demo.add_argument("--out", default="dynstiff-demo", help="output folder (default %(default)s)")
-    demo.add_argument("--fmax", type=float, default=12.0, help="band upper end [Hz]")
-    demo.add_argument("--points", type=int, default=3000, help="number of frequencies")
+    demo.add_argument("--fmax", type=float,
+                      help="band upper end [Hz] (default: the scene's band)")
+    demo.add_argument("--points", type=int, default=3000,
+                      help="uniform frequencies of the FRFs, refined around every mode")
+    _damping_option(demo)
     demo.set_defaults(func=_cmd_demo)
+    rp = sub.add_parser("report", help="the demo's analysis of one scene: tables, figures and "
+                                       "a self-contained report.html")
+    rp.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    rp.add_argument("--out", default="dynstiff-report", help="output folder")
+    rp.add_argument("--fmax", type=float, help="band upper end [Hz] (default: the scene's)")
+    rp.add_argument("--points", type=int, default=3000,
+                    help="uniform frequencies of the FRFs, refined around every mode")
+    _damping_option(rp)
+    rp.set_defaults(func=_cmd_report)
     sc = sub.add_parser("scenes", help="list the built-in scenes")
     sc.set_defaults(func=_cmd_scenes)
     mo = sub.add_parser("modes", help="eigenfrequencies with global/local labels and energy "
@@ -373,12 +438,14 @@ def build_parser():
     mo.add_argument("-n", type=int, help="number of modes (default: the scene's n_modes)")
     mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
     mo.add_argument("--json", help="write the full table to this JSON file")
-    mo.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
-                    help="cable model: closed-form dynamic stiffness (default), lumped masses "
+    mo.add_argument("--model", choices=["dsm", "lumped", "catenary", "spring"],
+                    help="cable model (default: the scene's, else dsm): closed-form dynamic "
+                         "stiffness, lumped masses "
                          "(--segments), or massless cables with the catenary's or the "
                          "straight spring's stiffness (platform modes only)")
-    mo.add_argument("--segments", type=int, default=30,
-                    help="segments per cable of the lumped model (default 30)")
+    mo.add_argument("--segments", type=int,
+                    help="segments per cable of the lumped model (default: the scene's, "
+                         "else 30)")
     mo.set_defaults(func=_cmd_modes)
     fr = sub.add_parser("frf", help="frequency response functions of the platform")
     fr.add_argument("scene", help="built-in scene name or path to a TOML scene file")
@@ -395,7 +462,9 @@ def build_parser():
                     choices=["receptance", "mobility", "accelerance"])
     fr.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
                     help="frequency band [Hz] (default: the scene's band)")
-    fr.add_argument("--points", type=int, default=4000, help="number of frequencies")
+    fr.add_argument("--points", type=int, default=4000,
+                    help="uniform frequencies, refined around every mode in the band")
+    _damping_option(fr)
     fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
     fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
     fr.set_defaults(func=_cmd_frf)
@@ -406,10 +475,18 @@ def build_parser():
     ck.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
                     help="forbidden band for global modes [Hz] (default: the scene's "
                          "forbidden_band_hz)")
-    ck.add_argument("--rtol", type=float, default=1e-2,
-                    help="admissible frequency error of the cable model (default %(default)s)")
-    ck.add_argument("--margin", type=float, default=0.05,
-                    help="relative margin of global modes to the band (default %(default)s)")
+    ck.add_argument("--rtol", type=float,
+                    help="admissible frequency error of the cable model (default: the "
+                         "scene's model_rtol, else 0.01)")
+    ck.add_argument("--margin", type=float,
+                    help="relative margin of the platform modes to the band (default 0.05)")
+    ck.add_argument("--participation", type=float,
+                    help="platform share of a mode's kinetic energy from which it is held to "
+                         "the margin (default 0.1)")
+    ck.add_argument("--frf-limit", type=float,
+                    help="largest admissible receptance / static value in the band "
+                         "(default 10)")
+    _damping_option(ck)
     ck.add_argument("--proximity", type=float, default=0.03,
                     help="relative distance local-global mode that fails (default %(default)s)")
     ck.add_argument("--max-sag", type=float, default=0.02,
@@ -462,6 +539,14 @@ def build_parser():
     si.add_argument("--quiet", action="store_true", help="no progress bar")
     si.set_defaults(func=_cmd_simulate)
     return parser
+
+
+def _damping_option(p):
+    p.add_argument("--damping", type=float, nargs="+", metavar="V",
+                   help="ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss factor "
+                        "(all cable motions), cable viscous damping [N s/m^2]; values not "
+                        "given keep the scene's [damping] (defaults 0.01 0.01 0); "
+                        "--damping 0 0 0: undamped")
 
 
 def main(argv=None):
@@ -528,11 +613,16 @@ def _check_outputs(args):
         if value is not None and value < least:
             raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt} must be >= {least}, "
                                         f"got {value}")
-    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag"):
+    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag",
+                "participation", "frf_limit"):
         value = getattr(args, opt, None)
         if value is not None and not (value > 0 and value < float("inf")):
             raise InvalidParameterError(
                 f"--{opt.replace('_', '-')} must be finite and > 0, got {value}")
+    band = getattr(args, "band", None)
+    if band is not None and not (0 <= band[0] < band[1] < float("inf")):
+        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got "
+                                    f"{band[0]} {band[1]}")
     pose = getattr(args, "pose", None)
     if pose is not None and len(pose) not in (3, 6):
         raise InvalidParameterError(
@@ -547,12 +637,20 @@ def _info(args):
     return sys.stderr if to_stdout else sys.stdout
 
 
-def _write_table(df, path, kind):
-    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output)."""
+def _write_table(df, path, kind, metadata=None):
+    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output). With
+    ``metadata`` (a dict: scene, pose, model, damping, units, version): CSV gets a header of
+    ``# key: value`` lines (``pandas.read_csv(path, comment="#")``), JSON is
+    ``{"metadata": {...}, "data": [records]}``."""
+    import json
     if kind == "csv":
         text = df.to_csv(index=False)
+        if metadata:
+            text = "".join(f"# {k}: {json.dumps(v)}\n" for k, v in metadata.items()) + text
     else:
         text = df.to_json(orient="records", indent=1)
+        if metadata:
+            text = json.dumps({"metadata": metadata, "data": json.loads(text)}, indent=1)
     if path == "-":
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
     else:
