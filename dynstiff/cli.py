@@ -482,7 +482,7 @@ def build_parser():
                     help="relative margin of the platform modes to the band (default 0.05)")
     ck.add_argument("--participation", type=float,
                     help="platform share of a mode's kinetic energy from which it is held to "
-                         "the margin (default 0.1)")
+                         "the margin (default 0.05)")
     ck.add_argument("--frf-limit", type=float,
                     help="largest admissible receptance / static value in the band "
                          "(default 10)")

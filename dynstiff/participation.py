@@ -10,11 +10,11 @@ category    platform share s                           what it means
 ==========  ========================================  ===================================
 "global"    s >= GLOBAL_SHARE (0.5)                   the platform holds most energy
 "mixed"     PLATFORM_SHARE_THRESHOLD <= s < 0.5       a cable mode that moves the platform
-"local"     s < PLATFORM_SHARE_THRESHOLD (0.1)        the cables vibrate, the platform not
+"local"     s < PLATFORM_SHARE_THRESHOLD (0.05)       the cables vibrate, the platform not
 ==========  ========================================  ===================================
 
 The design checks hold every global *and* mixed mode to the frequency margin
-(theory.md §12.1 gives the evidence for 0.1).
+(theory.md §12.1 gives the evidence for 0.05).
 """
 
 from dataclasses import dataclass
@@ -34,7 +34,7 @@ __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT"
 GLOBAL_SHARE = 0.5
 #: Platform share from which a mode is "mixed" and held to the frequency margin [-]
 #: (theory.md §12.1).
-PLATFORM_SHARE_THRESHOLD = 0.1
+PLATFORM_SHARE_THRESHOLD = 0.05
 #: Largest admissible ratio of a direct platform receptance in the forbidden band to its
 #: static value [-] (theory.md §12.1).
 FRF_AMPLIFICATION_LIMIT = 10.0

@@ -44,7 +44,7 @@ def test_shares_sum_and_categories(cogiro50):
 
 
 def test_categories_thresholds():
-    assert categories([0.0, 0.0999, 0.1, 0.4999, 0.5, 1.0]) == (
+    assert categories([0.0, 0.0499, 0.05, 0.4999, 0.5, 1.0]) == (
         "local", "local", "mixed", "mixed", "global", "global")
     assert categories([0.05], threshold=0.01) == ("mixed",)
     assert PLATFORM_SHARE_THRESHOLD < GLOBAL_SHARE
