@@ -211,6 +211,13 @@ def _cmd_simulate(args):
             f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
             f"{tr.max_deviation:.4g} m ({100 * tr.relative_max_deviation:.3g} % of the mean "
             f"cable length)\n")
+        if args.plot:
+            import matplotlib
+            matplotlib.use("Agg")
+            from .plot import plot_tracking
+            fig = plot_tracking(tr)
+            fig.tight_layout()
+            fig.savefig(args.plot, dpi=120)
     else:
         offset = np.zeros(6)
         fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
@@ -226,7 +233,7 @@ def _cmd_simulate(args):
         resp = simulate(model, args.time, args.dt, initial=offset)
         df = resp.to_frame().reset_index()
         ch = args.channel or DOF_NAMES[fd[0]]
-        sp = resp.spectrum(ch)
+        sp = resp.spectrum(ch, prominence=_SPECTRUM_PROMINENCE)
         f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
         if args.band is not None:
             band = tuple(args.band)
@@ -239,11 +246,16 @@ def _cmd_simulate(args):
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
             f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
             f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
-        peaks = sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8]
+        peaks = np.sort(sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8])
         inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
-        _info(args).write(f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz [Hz] "
-                         f"(resolution {sp.resolution_hz:.3g} Hz): "
-                         + ", ".join(f"{f:.4g}" for f in np.sort(peaks)) + "\n")
+        near = [f_model[int(np.argmin(np.abs(f_model - f)))] if f_model.size else np.nan
+                for f in peaks]
+        _info(args).write(
+            f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz (Hann window, "
+            f"resolution {sp.resolution_hz:.3g} Hz, prominence >= "
+            f"{_SPECTRUM_PROMINENCE:.0%} of the largest), each with the nearest linearised "
+            f"mode:\n" + "".join(f"  {f:.4g} Hz ~ mode {m:.4g} Hz ({f - m:+.3g} Hz)\n"
+                                 for f, m in zip(peaks, near)))
         _info(args).write(f"linearised lumped-model frequencies in the band [Hz] "
                          f"({inband.size}): " + ", ".join(f"{f:.4g}" for f in inband[:8])
                          + (", ..." if inband.size > 8 else "") + "\n")
@@ -260,6 +272,11 @@ def _cmd_simulate(args):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
     return 0
+
+
+#: Smallest prominence of a reported spectrum peak, relative to the largest [-]: above the
+#: Hann window's highest side lobe (2.7 % of the main lobe), so leakage is not reported.
+_SPECTRUM_PROMINENCE = 0.03
 
 
 def _cmd_scenes(args):

@@ -633,3 +633,25 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
     ax.grid(True, which="both", alpha=0.3)
     ax.margins(x=0.25, y=0.2)
     return fig
+
+
+def plot_tracking(tracking, ax=None):
+    """A commanded path (:class:`dynstiff.trajectory.TrackingResult`): the deviation of P
+    from the desired path against time [mm], with the simulated and desired x y z [m] on a
+    second axis. Returns the Figure."""
+    fig, ax = figure_axes(ax, figsize=(8, 4.5))
+    r = tracking.response
+    ax.plot(r.times, 1e3 * tracking.deviation, color="k", label="deviation |P - P_d|")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("deviation from the desired path [mm]")
+    ax2 = ax.twinx()
+    for k, (n, c) in enumerate(zip("xyz", ("tab:blue", "tab:orange", "tab:green"))):
+        ax2.plot(r.times, r.pose[:, k], color=c, lw=1.2, label=f"{n} simulated")
+        ax2.plot(r.times, tracking.desired[:, k], color=c, lw=1.0, ls="--",
+                 label=f"{n} desired")
+    ax2.set_ylabel("position of P [m]")
+    h1, l1 = ax.get_legend_handles_labels()
+    h2, l2 = ax2.get_legend_handles_labels()
+    ax.legend(h1 + h2, l1 + l2, loc="upper left", fontsize=8, ncol=2)
+    ax.set_title(f"largest deviation {1e3 * tracking.max_deviation:.4g} mm")
+    return fig
