@@ -131,9 +131,10 @@ def _cmd_sweep(args):
     from .interaction import sweep
     from .scenes import load_scene
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     robot = scene.robot
     bar = None if args.quiet else _ProgressBar(f"sweep {scene.name}")
-    n_modes = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
+    n_modes = None if args.fmax and args.n is None else st.n_modes
     given = [name for name in ("line", "path", "parameter") if getattr(args, name) is not None]
     if len(given) != 1:
         raise InvalidParameterError(
@@ -144,10 +145,10 @@ def _cmd_sweep(args):
             raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
         pts = np.linspace(args.line[:3], args.line[3:], args.steps)
         res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar)
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
     elif args.path is not None:
         res = sweep(robot, poses=_read_path(args.path, rot), n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar)
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
     else:
         if not args.values:
             raise InvalidParameterError("--parameter needs --values V1 V2 ...")
@@ -157,11 +158,11 @@ def _cmd_sweep(args):
         def build(v):
             return _with_parameter(robot, args.parameter, v).equilibrium(pose=pose)
         res = sweep(None, build=build, values=args.values, n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar,
+                    fmax_hz=args.fmax, progress=bar, on_error="record",
                     parameter=f"{args.parameter} [{units[args.parameter]}]")
     df = res.to_frame()
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", st.metadata(units="Hz; value in " + res.parameter))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -175,6 +176,9 @@ def _cmd_sweep(args):
     _info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
                      f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
     _info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
+    for k, v, msg in res.failures:
+        _info(args).write(f"step {k} ({res.parameter} = {v:g}): infeasible, skipped: "
+                         f"{msg.splitlines()[0]}\n")
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
@@ -267,7 +271,13 @@ def _cmd_simulate(args):
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        from . import __version__
+        _write_table(df, args.csv, "csv", {
+            "dynstiff": __version__, "scene": scene.name, "model": "lumped",
+            "segments": args.segments, "dt [s]": args.dt,
+            "pose": {"position [m]": [float(v) for v in eq.pose.position],
+                     "rotation [rad]": [float(v) for v in eq.pose.rotation]},
+            "damping": "the cables' own (time domain)", "units": "SI, in the column names"})
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")

@@ -247,6 +247,17 @@ def test_cli_sweep_line_and_parameter(tmp_path):
     assert bad.returncode == 2 and "colour" in bad.stderr
 
 
+def test_cli_sweep_goes_on_past_an_infeasible_pose(tmp_path):
+    out = run_cli("sweep", "cogiro", "--line", "0", "0", "1", "9", "0", "1", "--steps", "3",
+                  "-n", "4", "--quiet", "--csv", str(tmp_path / "s.csv"))
+    assert out.returncode == 0, out.stderr
+    assert "infeasible, skipped" in out.stdout
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "s.csv", comment="#")
+    assert set(df["step"]) == {0, 1, 2} and (df["kind"] == "infeasible").sum() >= 1
+    assert (tmp_path / "s.csv").read_text().startswith("# dynstiff: ")
+
+
 def test_cli_sweep_path_file(tmp_path):
     """--path: a CSV with a header, a comment and a blank line gives the same frequencies as
     the closed-form model at each pose; a malformed line is an error naming file and line."""
