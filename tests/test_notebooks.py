@@ -1,4 +1,4 @@
-"""Notebooks are stored without outputs and execute without error."""
+"""Notebooks are stored without outputs, execute without error and show their figures."""
 
 from pathlib import Path
 
@@ -18,6 +18,12 @@ def test_notebook_executes(path):
         f"{path.name} is stored with outputs"
     nbclient.NotebookClient(nb, timeout=300, kernel_name="python3",
                             resources={"metadata": {"path": str(path.parent)}}).execute()
+    # every cell that makes a figure shows it: an image/png output (not an Agg backend
+    # that draws off screen, nor a figure assigned and never displayed)
+    for cell in nb.cells:
+        if cell.cell_type == "code" and "fig = " in cell.source:
+            kinds = [k for o in cell.get("outputs", []) for k in o.get("data", {})]
+            assert "image/png" in kinds, f"{path.name}: no figure shown by\n{cell.source}"
 
 
 def test_there_are_notebooks():
