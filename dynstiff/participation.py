@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validate import positive_scalar
-from .constants import DOF_NAMES
+from .constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from .errors import InvalidParameterError
 from .freqgrid import refined_grid
 from .frf import frf
@@ -30,11 +30,6 @@ from .frf import frf
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
            "Participation", "platform_participation", "categories", "receptance_amplification"]
 
-#: Platform share above which a mode is "global" [-] (the platform holds most of the energy).
-GLOBAL_SHARE = 0.5
-#: Platform share from which a mode is "mixed" and held to the frequency margin [-]
-#: (theory.md §12.1).
-PLATFORM_SHARE_THRESHOLD = 0.05
 #: Largest admissible ratio of a direct platform receptance in the forbidden band to its
 #: static value [-] (theory.md §12.1).
 FRF_AMPLIFICATION_LIMIT = 10.0
