@@ -38,8 +38,11 @@ class ChordParameters:
         Tension used by the linear theory [N].
     m : float
         Mass per unit chord length [kg/m].
-    c : float
-        Viscous damping per unit chord length [N s/m^2].
+    c : float or complex
+        Viscous damping per unit chord length [N s/m^2]. Complex, c / sqrt(1 + i eta),
+        when :class:`dynstiff.FrequencyModel` evaluates the hysteretic damping of all
+        stiffness forces by K(omega) = s K(omega / sqrt(s)) (theory.md §12.2); every kernel
+        tests ``c != 0``, so a real c behaves as before.
     EA : complex or float
         Axial stiffness [N], EA (1 + i eta) with hysteretic damping.
     q : float

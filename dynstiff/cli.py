@@ -173,6 +173,8 @@ def _cmd_sweep(args):
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
     vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
+    _info(args).write(f"{st.rung} model, undamped natural frequencies ({st.damping.text()} "
+                     f"applies to FRFs)\n")
     _info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
                      f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
     _info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
@@ -248,7 +250,8 @@ def _cmd_simulate(args):
             band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
         _info(args).write(
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
-            f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
+            f"{args.dt:g} s, {args.segments} segments per cable (damping: the cables' own, "
+            f"time domain): wall {resp.wall_time:.3g} s, "
             f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
         peaks = np.sort(sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8])
         inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
