@@ -390,7 +390,9 @@ def _cmd_frf(args):
     _info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
                      f"{lo:g}-{hi:g} Hz ({args.points} uniform, refined at {len(marks)} "
                      f"modes), largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n"
-                     f"{st.rung} model; {st.damping.text()}\n")
+                     f"{st.rung} model; {st.damping.text()}\n"
+                     + ("" if model.damped else "undamped model: |H| is unbounded at every "
+                        "mode, the largest value is the grid's, not a peak\n"))
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
