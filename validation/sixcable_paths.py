@@ -16,8 +16,12 @@ of the platform below the anchor plane, nor how the speed is reached. Choices (s
   horizontal stiffness is of order m g / 20 m; a velocity step would swing it by about
   v / omega ~ 1.4 m per m/s, not centimetres.
 
-Results (dt = 1 ms): line 0.025 m at 1 m/s and 0.18 m at 3 m/s; circle 0.097 m and 0.81 m
-(cables go briefly slack at 3 m/s). The paper's 0.052 / 0.027 m at 3 m/s imply a much
+Results (dt = 1 ms): line 0.025 m at 1 m/s and 0.18 m at 3 m/s; circle 0.097 m at 1 m/s.
+The circle at 3 m/s slackens the cables and is not converged (:func:`convergence`): with
+4 segments per cable 0.706, 0.663, 0.663 m at dt = 0.5, 0.25, 0.125 ms (energy residual
+0.088, 0.0055, 0.0028), with 8 segments 0.834 and 0.775 m at 0.25 and 0.125 ms (0.037,
+0.0028), with 16 the run blows up at 0.25 ms (a slack segment snapping), and at 1 ms
+Newton fails at t = 2.8 s: the deviation lies between 0.66 m and about 0.8 m. The paper's 0.052 / 0.027 m at 3 m/s imply a much
 stiffer geometry than this 20 m suspension, whose horizontal stiffness is set by gravity:
 the deviation scales as (speed / ramp) / omega_1^2.
 
