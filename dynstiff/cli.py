@@ -530,7 +530,8 @@ def build_parser():
     sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
-    sw.add_argument("--steps", type=int, default=11, help="poses along --line (default %(default)s)")
+    sw.add_argument("--steps", type=int, default=11,
+                    help="poses along --line (default %(default)s)")
     sw.add_argument("--path", metavar="FILE",
                     help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
                          "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
