@@ -23,7 +23,8 @@ The circle at 3 m/s slackens the cables and is not converged (:func:`convergence
 0.0028), with 16 the run blows up at 0.25 ms (a slack segment snapping), and at 1 ms
 Newton fails at t = 2.8 s: the deviation lies between 0.66 m and about 0.8 m.
 The paper's 0.052 / 0.027 m at 3 m/s imply a much stiffer geometry than this 20 m
-suspension, whose horizontal stiffness is set by gravity: the deviation scales as (speed / ramp) / omega_1^2.
+suspension, whose horizontal stiffness is set by gravity: the deviation scales as
+(speed / ramp) / omega_1^2.
 
 Sensitivity to the depth (:func:`depth_sensitivity`; the line, dt = 1 ms): at 1 m/s the
 largest deviation is 3.6, 7.5, 24.6 and 92.9 mm at 10, 15, 20 and 30 m below the anchors
