@@ -46,7 +46,7 @@ from .reduced import ModalModel, modal_model, to_statespace
 from .results import LumpedModalResult
 from .recommend import Recommendation, recommend_model
 from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
-from .params import Cable
+from .params import Cable, Damping
 from .platform import Platform
 from .robot import Equilibrium, Pose, Robot
 from .scenes import Scene, SceneError, list_scenes, load_scene
@@ -79,6 +79,7 @@ __all__ = [
     "StaticCableModel",
     "UnsupportedAnalysisError",
     "Cable",
+    "Damping",
     "CableModes",
     "Equilibrium",
     "FRFResult",

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._validate import omega_array
+from ._validate import omega_array, positive_scalar
 from ._vec import cross
 from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_RTOL,
                         cable_field, cable_kinetic_energy, check_frequency_range,
@@ -44,12 +44,25 @@ class FrequencyModel(PlatformModel):
     chordwise_inertia : bool
         Include the consistent chordwise mass of the cables (theory.md §3.6).
     damping : bool
-        Keep the cables' damping (default); False builds the undamped model.
+        Keep the damping (default); False builds the undamped model (the cables' own
+        damping and the two options below all removed).
+    cable_loss_factor : float
+        eta_c >= 0 [-]: hysteretic damping of *all* the cable's stiffness forces, the dynamic
+        tension (transverse motions) and the elastic stretching (axial), both times
+        (1 + i eta_c), the static geometry real; K_B(omega) = s K_B(omega / sqrt(s)) with
+        s = 1 + i eta_c and the viscous c / sqrt(s) (theory.md §12.2). Acts on top of a
+        cable's own ``loss_factor`` (EA only).
+    platform_damping_ratio : float
+        zeta_p >= 0 [-]: modal damping ratio of the platform modes (winches, frame,
+        joints): the hysteretic term i 2 zeta_p K_s with K_s the massless-cable stiffness,
+        which gives every massless-cable mode the damping ratio zeta_p at its resonance
+        (theory.md §12.2).
     guard_rtol : float or None
         The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` names every
-        cable whose estimated frequency error exceeds this (at build: sag, chordwise weight,
-        tension variation, slackness), and every cable whose first axial frequency the
-        asked omega reaches (in :meth:`dynamic_stiffness`). None: no warnings.
+        slack cable and every cable whose static error shifts a global mode by more than this
+        (at build), and every cable whose axial modes, or local modes measured further than
+        this from the exact cable's, the asked omega reaches (:meth:`guard_band`). None: no
+        warnings.
 
     Attributes
     ----------
@@ -72,7 +85,8 @@ class FrequencyModel(PlatformModel):
     rung = "dsm"
 
     def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
-                 damping=True, guard_rtol=DEFAULT_GUARD_RTOL):
+                 damping=True, cable_loss_factor=0.0, platform_damping_ratio=0.0,
+                 guard_rtol=DEFAULT_GUARD_RTOL):
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         if guard_rtol is not None and not (isinstance(guard_rtol, (int, float))
                                            and not isinstance(guard_rtol, bool)
@@ -83,10 +97,17 @@ class FrequencyModel(PlatformModel):
         self._init_platform(robot, equilibrium, pose)
         self.tension = tension
         self.chordwise_inertia = bool(chordwise_inertia)
+        self.cable_loss_factor = positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                 allow_zero=True)
+        self.platform_damping_ratio = positive_scalar(
+            "platform_damping_ratio", platform_damping_ratio, allow_zero=True)
         params = [chord_parameters(s, tension) for s in equilibrium.states]
         if not damping:
             params = [replace(p, c=0.0, EA=float(np.real(p.EA))) for p in params]
             self.damped = False
+            self.cable_loss_factor = self.platform_damping_ratio = 0.0
+        elif self.cable_loss_factor > 0 or self.platform_damping_ratio > 0:
+            self.damped = True
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
         validity = [closed_form_validity(s, 0.0, tension) for s in equilibrium.states]
@@ -108,6 +129,10 @@ class FrequencyModel(PlatformModel):
         self._init_geometric(robot, pose, equilibrium.states)
         self.K_geo_free = self._K_geo_free
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
+        self._K_platform_damping = None
+        if self.platform_damping_ratio > 0:
+            Ks = self._stiffness(np.zeros(1)).real[0]
+            self._K_platform_damping = 2j * self.platform_damping_ratio * 0.5 * (Ks + Ks.T)
         self._freeze()
         if guard_rtol is not None:
             self._guard_static()
@@ -117,7 +142,13 @@ class FrequencyModel(PlatformModel):
         broadcast call, shape (n_omega, 5 n_cables), cable-major [N/m].
 
         ``omega`` [rad/s], shape (n_omega,), validated, real or complex."""
-        C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
+        eta = self.cable_loss_factor
+        if eta > 0:                   # K_B(omega) = s K_B(omega / sqrt(s)), c -> c / sqrt(s)
+            s = 1.0 + 1j * eta
+            st = replace(self.stacked_params, c=self.stacked_params.c / np.sqrt(s))
+            C = s * end_block_coefficients(st, omega / np.sqrt(s), self.chordwise_inertia)
+        else:
+            C = end_block_coefficients(self.stacked_params, omega, self.chordwise_inertia)
         C = C.reshape(omega.size, 5 * len(self.params))
         if not self.damped and np.isrealobj(omega):
             C = np.real(C)
@@ -139,9 +170,15 @@ class FrequencyModel(PlatformModel):
         omega = omega_array(omega, complex_ok=True)
         check_frequency_range(self.stacked_params, omega)
         self.guard_band(omega)
+        K = self._stiffness(omega)
+        if self._K_platform_damping is not None:
+            K = K + self._K_platform_damping
+        return K - (omega**2)[:, None, None] * self.platform_mass
+
+    def _stiffness(self, omega):
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
-        return K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
+        return K + self._K_geo_free
 
     def static_error(self):
         """First-order relative frequency error of the massless-cable modes caused by the
@@ -274,6 +311,12 @@ class FrequencyModel(PlatformModel):
             warnings.simplefilter("ignore", ClosedFormWarning)
             return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                                   damping=False, guard_rtol=self.guard_rtol)
+
+    def with_damping(self, cable_loss_factor=0.0, platform_damping_ratio=0.0):
+        """The same cables with the model-level damping of :class:`FrequencyModel`."""
+        return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+                              cable_loss_factor=cable_loss_factor,
+                              platform_damping_ratio=platform_damping_ratio)
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],

@@ -197,7 +197,7 @@ def _entries_from(p, omega, psi, functions, chordwise_inertia):
         kw_s = TL * cos2 / sinc2
         kw_c = -TL / sinc2
     if chordwise_inertia:          # -omega^2 m~ L/6 with m~ = m - i c/omega
-        inertia = omega**2 * p.m - 1j * omega * p.c if np.any(p.c > 0) else omega**2 * p.m
+        inertia = omega**2 * p.m - 1j * omega * p.c if np.any(p.c != 0) else omega**2 * p.m
         m_axial = -inertia * L / 6.0
     else:
         m_axial = np.zeros_like(k_uu)

@@ -38,8 +38,11 @@ class ChordParameters:
         Tension used by the linear theory [N].
     m : float
         Mass per unit chord length [kg/m].
-    c : float
-        Viscous damping per unit chord length [N s/m^2].
+    c : float or complex
+        Viscous damping per unit chord length [N s/m^2]. Complex, c / sqrt(1 + i eta),
+        when :class:`dynstiff.FrequencyModel` evaluates the hysteretic damping of all
+        stiffness forces by K(omega) = s K(omega / sqrt(s)) (theory.md §12.2); every kernel
+        tests ``c != 0``, so a real c behaves as before.
     EA : complex or float
         Axial stiffness [N], EA (1 + i eta) with hysteretic damping.
     q : float
@@ -91,7 +94,7 @@ class ChordParameters:
 
     def psi(self, omega):
         """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
-        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c > 0) \
+        beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c != 0) \
             else omega**2 * self.m / self.T
         return 0.5 * self.L * np.sqrt(beta_sq)
 

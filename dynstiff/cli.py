@@ -6,17 +6,55 @@ import sys
 from .errors import DynstiffError
 
 
+def _settings(scene, args):
+    """The analysis settings of ``scene`` with the command line's overrides
+    (:func:`dynstiff.settings.analysis_settings`, the one source of defaults)."""
+    from .settings import analysis_settings
+    band = getattr(args, "band", None)
+    fmax = getattr(args, "fmax", None)
+    kw = {}
+    if getattr(args, "command", None) == "check":
+        kw = dict(forbidden_hz=tuple(band) if band else None, margin=args.margin,
+                  model_rtol=args.rtol, participation=args.participation,
+                  frf_limit=args.frf_limit)
+        band = None
+    elif band:
+        kw["band_hz"] = tuple(band)
+    elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
+        from .settings import DEFAULT_BAND_HZ
+        lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
+        kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
+    if getattr(args, "model", None):
+        kw["rung"] = args.model
+    for name in ("segments", "n"):
+        if getattr(args, name, None) is not None:
+            kw["n_modes" if name == "n" else name] = getattr(args, name)
+    return analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
+
+
+def _cmd_report(args):
+    from .demo import robot_report
+    from .scenes import load_scene
+    scene = load_scene(args.scene)
+    settings = _settings(scene, args)
+    text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
+    _info(args).write(text)
+    _info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
+    return 0
+
+
 def _cmd_demo(args):
     if args.cable:
         from .report import cable_report, write_report
-        rep = cable_report(fmax_hz=args.fmax, n_points=args.points)
+        rep = cable_report(fmax_hz=args.fmax or 12.0, n_points=args.points)
         files = write_report(rep, args.out)
         _info(args).write(rep.text())
     else:
         from .demo import robot_report
         from .scenes import load_scene
-        text, files = robot_report(load_scene(args.scene), args.out,
-                                   band_hz=(0.1, args.fmax), n_points=args.points)
+        scene = load_scene(args.scene)
+        settings = _settings(scene, args)          # every input checked before any file
+        text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
         _info(args).write(text)
     _info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
     return 0
@@ -93,9 +131,10 @@ def _cmd_sweep(args):
     from .interaction import sweep
     from .scenes import load_scene
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     robot = scene.robot
     bar = None if args.quiet else _ProgressBar(f"sweep {scene.name}")
-    n_modes = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
+    n_modes = None if args.fmax and args.n is None else st.n_modes
     given = [name for name in ("line", "path", "parameter") if getattr(args, name) is not None]
     if len(given) != 1:
         raise InvalidParameterError(
@@ -106,10 +145,10 @@ def _cmd_sweep(args):
             raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
         pts = np.linspace(args.line[:3], args.line[3:], args.steps)
         res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar)
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
     elif args.path is not None:
         res = sweep(robot, poses=_read_path(args.path, rot), n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar)
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
     else:
         if not args.values:
             raise InvalidParameterError("--parameter needs --values V1 V2 ...")
@@ -119,11 +158,11 @@ def _cmd_sweep(args):
         def build(v):
             return _with_parameter(robot, args.parameter, v).equilibrium(pose=pose)
         res = sweep(None, build=build, values=args.values, n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar,
+                    fmax_hz=args.fmax, progress=bar, on_error="record",
                     parameter=f"{args.parameter} [{units[args.parameter]}]")
     df = res.to_frame()
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", st.metadata(units="Hz; value in " + res.parameter))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -134,9 +173,14 @@ def _cmd_sweep(args):
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
     vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
+    _info(args).write(f"{st.rung} model, undamped natural frequencies ({st.damping.text()} "
+                     f"applies to FRFs)\n")
     _info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
                      f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
     _info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
+    for k, v, msg in res.failures:
+        _info(args).write(f"step {k} ({res.parameter} = {v:g}): infeasible, skipped: "
+                         f"{msg.splitlines()[0]}\n")
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
@@ -173,6 +217,13 @@ def _cmd_simulate(args):
             f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
             f"{tr.max_deviation:.4g} m ({100 * tr.relative_max_deviation:.3g} % of the mean "
             f"cable length)\n")
+        if args.plot:
+            import matplotlib
+            matplotlib.use("Agg")
+            from .plot import plot_tracking
+            fig = plot_tracking(tr)
+            fig.tight_layout()
+            fig.savefig(args.plot, dpi=120)
     else:
         offset = np.zeros(6)
         fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
@@ -188,7 +239,7 @@ def _cmd_simulate(args):
         resp = simulate(model, args.time, args.dt, initial=offset)
         df = resp.to_frame().reset_index()
         ch = args.channel or DOF_NAMES[fd[0]]
-        sp = resp.spectrum(ch)
+        sp = resp.spectrum(ch, prominence=_SPECTRUM_PROMINENCE)
         f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
         if args.band is not None:
             band = tuple(args.band)
@@ -199,13 +250,19 @@ def _cmd_simulate(args):
             band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
         _info(args).write(
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
-            f"{args.dt:g} s, {args.segments} segments per cable: wall {resp.wall_time:.3g} s, "
+            f"{args.dt:g} s, {args.segments} segments per cable (damping: the cables' own, "
+            f"time domain): wall {resp.wall_time:.3g} s, "
             f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
-        peaks = sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8]
+        peaks = np.sort(sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8])
         inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
-        _info(args).write(f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz [Hz] "
-                         f"(resolution {sp.resolution_hz:.3g} Hz): "
-                         + ", ".join(f"{f:.4g}" for f in np.sort(peaks)) + "\n")
+        near = [f_model[int(np.argmin(np.abs(f_model - f)))] if f_model.size else np.nan
+                for f in peaks]
+        _info(args).write(
+            f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz (Hann window, "
+            f"resolution {sp.resolution_hz:.3g} Hz, prominence >= "
+            f"{_SPECTRUM_PROMINENCE:.0%} of the largest), each with the nearest linearised "
+            f"mode:\n" + "".join(f"  {f:.4g} Hz ~ mode {m:.4g} Hz ({f - m:+.3g} Hz)\n"
+                                 for f, m in zip(peaks, near)))
         _info(args).write(f"linearised lumped-model frequencies in the band [Hz] "
                          f"({inband.size}): " + ", ".join(f"{f:.4g}" for f in inband[:8])
                          + (", ..." if inband.size > 8 else "") + "\n")
@@ -217,11 +274,22 @@ def _cmd_simulate(args):
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        from . import __version__
+        _write_table(df, args.csv, "csv", {
+            "dynstiff": __version__, "scene": scene.name, "model": "lumped",
+            "segments": args.segments, "dt [s]": args.dt,
+            "pose": {"position [m]": [float(v) for v in eq.pose.position],
+                     "rotation [rad]": [float(v) for v in eq.pose.rotation]},
+            "damping": "the cables' own (time domain)", "units": "SI, in the column names"})
     for name in (args.csv, args.plot):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
     return 0
+
+
+#: Smallest prominence of a reported spectrum peak, relative to the largest [-]: above the
+#: Hann window's highest side lobe (2.7 % of the main lobe), so leakage is not reported.
+_SPECTRUM_PROMINENCE = 0.03
 
 
 def _cmd_scenes(args):
@@ -257,15 +325,18 @@ def _cmd_modes(args):
     from .errors import InvalidParameterError
     from .ladder import build_model
     from .scenes import load_scene
-    if args.segments < 1:
+    if args.segments is not None and args.segments < 1:
         raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     eq = _equilibrium(scene, args)
-    n = args.n if args.n is not None else (None if args.fmax else (scene.n_modes or 20))
-    if args.model == "exact":
+    n = None if args.fmax and args.n is None else st.n_modes
+    args.model = st.rung
+    args.segments = st.segments
+    if st.rung == "exact":
         model = _exact_model(eq, n, args.fmax)
     else:
-        model = build_model(eq, args.model, segments=args.segments)
+        model = build_model(eq, st.rung, segments=st.segments)
     note = ""
     if hasattr(model, "matrices") and n is not None and n > model.n_dof:
         note = f" (it has {model.n_dof} modes; {n} asked)"
@@ -273,16 +344,21 @@ def _cmd_modes(args):
     res = modes(model, n_modes=n, fmax_hz=args.fmax)
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
+    from .participation import platform_participation
+    part = platform_participation(model, res, st.participation)
     df = res.to_frame()
+    df.insert(3, "platform share [-]", part.platform_share)
+    df.insert(4, "category", list(part.category))
+    meta = st.metadata(eq.pose, units="Hz; shapes normalised to unit platform kinetic energy")
     _info(args).write(f"{args.model} model")
     _info(args).write(f", {args.segments} segments per cable" if args.model == "lumped"
                      else "")
-    _info(args).write(f"{note}:\n")
+    _info(args).write(f"{note} (undamped natural frequencies; {st.damping.text()}):\n")
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", meta)
     if args.json:
-        _write_table(df, args.json, "json")
-    cols = [c for c in ("mode", "freq [Hz]", "kind", "cable energy fraction [-]",
+        _write_table(df, args.json, "json", meta)
+    cols = [c for c in ("mode", "freq [Hz]", "kind", "platform share [-]", "category",
                         "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
     with np.printoptions(suppress=True):
         _info(args).write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
@@ -308,36 +384,39 @@ def _equilibrium(scene, args):
 def _cmd_frf(args):
     import numpy as np
 
-    from .assembly import FrequencyModel
     from .eigen import modes
+    from .freqgrid import refined_grid
     from .frf import frf
     from .scenes import load_scene
     scene = load_scene(args.scene)
-    model = FrequencyModel(_equilibrium(scene, args))
-    lo, hi = args.band if args.band else (scene.band_hz or (0.1, 20.0))
-    if not 0 <= lo < hi:
-        from .errors import InvalidParameterError
-        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got {lo} {hi}")
-    f = np.linspace(lo, hi, args.points)
+    st = _settings(scene, args)
+    lo, hi = st.band_hz
+    eq = _equilibrium(scene, args)
+    model = st.model(eq)
+    marks = modes(model, fmax_hz=hi)
+    f = refined_grid((lo, hi), args.points, marks.freq_hz)
     res = frf(model, 2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
               kind=args.kind)
     df = res.to_frame()
     if args.csv:
-        _write_table(df, args.csv, "csv")
+        _write_table(df, args.csv, "csv", st.metadata(eq.pose, units="in the unit column"))
     if args.uff:
         res.to_uff(args.uff)
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
         from .plot import plot_frf
-        fig = plot_frf(res, modes(model, fmax_hz=hi),
-                       pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])
     k = int(np.argmax(h))
     _info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
-                     f"{lo:g}-{hi:g} Hz, largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n")
+                     f"{lo:g}-{hi:g} Hz ({args.points} uniform, refined at {len(marks)} "
+                     f"modes), largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n"
+                     f"{st.rung} model; {st.damping.text()}\n"
+                     + ("" if model.damped else "undamped model: |H| is unbounded at every "
+                        "mode, the largest value is the grid's, not a peak\n"))
     for name in (args.csv, args.plot, args.uff):
         if name and name != "-":
             _info(args).write(f"wrote {name}\n")
@@ -348,19 +427,23 @@ def _cmd_check(args):
     from .checks import design_checks
     from .scenes import load_scene
     scene = load_scene(args.scene)
+    st = _settings(scene, args)
     pose = args.pose if args.pose is not None else scene.pose
     if pose is None:
         pose = scene.equilibrium().pose
-    band = tuple(args.band) if args.band else scene.forbidden_band_hz
-    res = design_checks(scene.robot, pose, band_hz=band, margin=args.margin,
-                        proximity_rtol=args.proximity, max_sag_ratio=args.max_sag,
-                        model_rtol=args.rtol)
+    band = st.forbidden_hz
+    res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
+                        max_sag_ratio=args.max_sag, **st.check_options())
+    _info(args).write("\n".join(st.lines()) + "\n")
     if band is None:
         _info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
                          "scene's [analysis])\n")
     _info(args).write(res.text())
     if args.csv:
-        _write_table(res.to_frame(), args.csv, "csv")
+        from .robot import Pose
+        _write_table(res.to_frame(), args.csv, "csv",
+                     st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
+                                 (pose if hasattr(pose, "position") else None)))
     return 0 if res.passed else 1
 
 
@@ -371,6 +454,8 @@ def build_parser():
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
     parser.add_argument("--debug", action="store_true",
                         help="show the full traceback of an error")
+    from . import __version__
+    parser.add_argument("--version", action="version", version=f"dynstiff {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     demo = sub.add_parser(
         "demo", help="main job on a scene (default: CoGiRo): statics, modes, model choice, "
@@ -380,9 +465,21 @@ def build_parser():
                       help="single-cable report instead (CoGiRo cable 0: statics, fixed-end "
                            "frequencies, dynamic stiffness plot)")
     demo.add_argument("--out", default="dynstiff-demo", help="output folder (default %(default)s)")
-    demo.add_argument("--fmax", type=float, default=12.0, help="band upper end [Hz]")
-    demo.add_argument("--points", type=int, default=3000, help="number of frequencies")
+    demo.add_argument("--fmax", type=float,
+                      help="band upper end [Hz] (default: the scene's band)")
+    demo.add_argument("--points", type=int, default=3000,
+                      help="uniform frequencies of the FRFs, refined around every mode")
+    _damping_option(demo)
     demo.set_defaults(func=_cmd_demo)
+    rp = sub.add_parser("report", help="the demo's analysis of one scene: tables, figures and "
+                                       "a self-contained report.html")
+    rp.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    rp.add_argument("--out", default="dynstiff-report", help="output folder")
+    rp.add_argument("--fmax", type=float, help="band upper end [Hz] (default: the scene's)")
+    rp.add_argument("--points", type=int, default=3000,
+                    help="uniform frequencies of the FRFs, refined around every mode")
+    _damping_option(rp)
+    rp.set_defaults(func=_cmd_report)
     sc = sub.add_parser("scenes", help="list the built-in scenes")
     sc.set_defaults(func=_cmd_scenes)
     mo = sub.add_parser("modes", help="eigenfrequencies with global/local labels and energy "
@@ -397,14 +494,14 @@ def build_parser():
     mo.add_argument("-n", type=int, help="number of modes (default: the scene's n_modes)")
     mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
     mo.add_argument("--json", help="write the full table to this JSON file")
-    mo.add_argument("--model", default="dsm",
-                    choices=["dsm", "exact", "lumped", "catenary", "spring"],
-                    help="cable model: closed-form dynamic stiffness (default), the exact "
-                         "cable about its true catenary, lumped masses (--segments), or "
-                         "massless cables with the catenary's or the straight spring's "
-                         "stiffness (platform modes only)")
-    mo.add_argument("--segments", type=int, default=30,
-                    help="segments per cable of the lumped model (default 30)")
+    mo.add_argument("--model", choices=["dsm", "exact", "lumped", "catenary", "spring"],
+                    help="cable model (default: the scene's, else dsm): closed-form dynamic "
+                         "stiffness, the exact cable about its true catenary, lumped masses "
+                         "(--segments), or massless cables with the catenary's or the "
+                         "straight spring's stiffness (platform modes only)")
+    mo.add_argument("--segments", type=int,
+                    help="segments per cable of the lumped model (default: the scene's, "
+                         "else 30)")
     mo.set_defaults(func=_cmd_modes)
     fr = sub.add_parser("frf", help="frequency response functions of the platform")
     fr.add_argument("scene", help="built-in scene name or path to a TOML scene file")
@@ -421,7 +518,9 @@ def build_parser():
                     choices=["receptance", "mobility", "accelerance"])
     fr.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
                     help="frequency band [Hz] (default: the scene's band)")
-    fr.add_argument("--points", type=int, default=4000, help="number of frequencies")
+    fr.add_argument("--points", type=int, default=4000,
+                    help="uniform frequencies, refined around every mode in the band")
+    _damping_option(fr)
     fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
     fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
     fr.add_argument("--uff", help="write the FRFs as UFF 58 records (needs dynstiff[exchange])")
@@ -433,10 +532,18 @@ def build_parser():
     ck.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
                     help="forbidden band for global modes [Hz] (default: the scene's "
                          "forbidden_band_hz)")
-    ck.add_argument("--rtol", type=float, default=1e-2,
-                    help="admissible frequency error of the cable model (default %(default)s)")
-    ck.add_argument("--margin", type=float, default=0.05,
-                    help="relative margin of global modes to the band (default %(default)s)")
+    ck.add_argument("--rtol", type=float,
+                    help="admissible frequency error of the cable model (default: the "
+                         "scene's model_rtol, else 0.01)")
+    ck.add_argument("--margin", type=float,
+                    help="relative margin of the platform modes to the band (default 0.05)")
+    ck.add_argument("--participation", type=float,
+                    help="platform share of a mode's kinetic energy from which it is held to "
+                         "the margin (default 0.05)")
+    ck.add_argument("--frf-limit", type=float,
+                    help="largest admissible receptance / static value in the band "
+                         "(default 10)")
+    _damping_option(ck)
     ck.add_argument("--proximity", type=float, default=0.03,
                     help="relative distance local-global mode that fails (default %(default)s)")
     ck.add_argument("--max-sag", type=float, default=0.02,
@@ -448,7 +555,8 @@ def build_parser():
     sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
-    sw.add_argument("--steps", type=int, default=11, help="poses along --line (default %(default)s)")
+    sw.add_argument("--steps", type=int, default=11,
+                    help="poses along --line (default %(default)s)")
     sw.add_argument("--path", metavar="FILE",
                     help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
                          "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
@@ -493,6 +601,14 @@ def build_parser():
     from .cli_workspace import add_workspace_parser
     add_workspace_parser(sub)
     return parser
+
+
+def _damping_option(p):
+    p.add_argument("--damping", type=float, nargs="+", metavar="V",
+                   help="ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss factor "
+                        "(all cable motions), cable viscous damping [N s/m^2]; values not "
+                        "given keep the scene's [damping] (defaults 0.01 0.01 0); "
+                        "--damping 0 0 0: undamped")
 
 
 def main(argv=None):
@@ -559,11 +675,16 @@ def _check_outputs(args):
         if value is not None and value < least:
             raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt} must be >= {least}, "
                                         f"got {value}")
-    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag"):
+    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag",
+                "participation", "frf_limit"):
         value = getattr(args, opt, None)
         if value is not None and not (value > 0 and value < float("inf")):
             raise InvalidParameterError(
                 f"--{opt.replace('_', '-')} must be finite and > 0, got {value}")
+    band = getattr(args, "band", None)
+    if band is not None and not (0 <= band[0] < band[1] < float("inf")):
+        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got "
+                                    f"{band[0]} {band[1]}")
     pose = getattr(args, "pose", None)
     if pose is not None and len(pose) not in (3, 6):
         raise InvalidParameterError(
@@ -578,12 +699,20 @@ def _info(args):
     return sys.stderr if to_stdout else sys.stdout
 
 
-def _write_table(df, path, kind):
-    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output)."""
+def _write_table(df, path, kind, metadata=None):
+    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output). With
+    ``metadata`` (a dict: scene, pose, model, damping, units, version): CSV gets a header of
+    ``# key: value`` lines (``pandas.read_csv(path, comment="#")``), JSON is
+    ``{"metadata": {...}, "data": [records]}``."""
+    import json
     if kind == "csv":
         text = df.to_csv(index=False)
+        if metadata:
+            text = "".join(f"# {k}: {json.dumps(v)}\n" for k, v in metadata.items()) + text
     else:
         text = df.to_json(orient="records", indent=1)
+        if metadata:
+            text = json.dumps({"metadata": metadata, "data": json.loads(text)}, indent=1)
     if path == "-":
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
     else:

@@ -14,3 +14,11 @@ DOF_NAMES = ("x", "y", "z", "rx", "ry", "rz")
 #: Load channels on the platform, paired with ``DOF_NAMES``: forces [N] and moments [N m]
 #: about P (base axes).
 LOAD_NAMES = ("fx", "fy", "fz", "mx", "my", "mz")
+
+#: Platform share of a mode's kinetic energy from which it is "global" [-]
+#: (docs/theory.md §12.1).
+GLOBAL_SHARE = 0.5
+
+#: Platform share from which a mode is "mixed" (a cable mode that moves the platform) and is
+#: held to the frequency margin of the design checks [-] (docs/theory.md §12.1).
+PLATFORM_SHARE_THRESHOLD = 0.05

@@ -1,6 +1,8 @@
-"""The main job on a scene (``dynstiff demo``): statics, complete modal table, the model the
-scene needs, design checks, FRFs with the modes marked and a 3-D view of the first global
-mode, written as CSV tables and PNG figures.
+"""The main job on a scene (``dynstiff demo``, ``dynstiff report``): statics, modal table with
+platform participation, the model the scene needs, design checks, damped FRFs with the modes
+marked and a 3-D view of the first platform mode, written as CSV tables, PNG figures and one
+self-contained ``report.html``. Every setting comes from
+:func:`dynstiff.settings.analysis_settings` (the same as ``dynstiff check``).
 
 pandas and matplotlib are imported here, on demand.
 """
@@ -9,11 +11,23 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["robot_report"]
+__all__ = ["robot_report", "write_csv"]
 
 
-def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
-                 n_points=3000):
+def write_csv(df, path, metadata):
+    """Write ``df`` as CSV to ``path`` (or return the text when ``path`` is None) under a
+    header of ``# key: value`` lines (read back with ``pandas.read_csv(path,
+    comment="#")``)."""
+    import json
+    head = "".join(f"# {k}: {json.dumps(v)}\n" for k, v in metadata.items())
+    text = head + df.to_csv(index=False)
+    if path is None:
+        return text
+    Path(path).write_text(text)
+    return None
+
+
+def robot_report(scene, out, settings=None, n_points=3000, html=True):
     """Run the main analysis of ``scene`` and write its tables and figures into ``out``.
 
     Parameters
@@ -22,16 +36,12 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
         From :func:`dynstiff.load_scene`.
     out : str or Path
         Output folder (created).
-    n_modes : int, optional
-        Modes in the table (default: the scene's ``n_modes`` or 20).
-    band_hz : (float, float), optional
-        Band of the FRFs, the checks and the model recommendation [Hz] (default: the
-        scene's band or 0.1-12 Hz).
-    forbidden_hz : (float, float), optional
-        Band no global mode may enter (design check) [Hz]; default the scene's
-        ``forbidden_band_hz``, else below 1.5 Hz.
+    settings : AnalysisSettings, optional
+        Default: :func:`dynstiff.settings.analysis_settings` of the scene.
     n_points : int
-        Frequencies of the FRFs.
+        Uniform frequencies of the FRFs (refined around every mode in the band).
+    html : bool
+        Also write ``report.html``.
 
     Returns
     -------
@@ -44,71 +54,84 @@ def robot_report(scene, out, n_modes=None, band_hz=None, forbidden_hz=None,
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .assembly import FrequencyModel
     from .checks import design_checks
     from .eigen import modes as modal
+    from .freqgrid import refined_grid
     from .frf import frf
+    from .htmlreport import figure_png, html_page
+    from .participation import platform_participation
     from .plot import plot_frf
     from .plot3d import plot_robot
     from .recommend import recommend_model
+    from .settings import analysis_settings
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    n_modes = n_modes or scene.n_modes or 20
-    band = tuple(band_hz or scene.band_hz or (0.1, 12.0))
-    forbidden_hz = tuple(forbidden_hz or scene.forbidden_band_hz or (0.0, 1.5))
-    eq = scene.equilibrium()
-    model = FrequencyModel(eq)
-    modes = modal(model, n_modes=n_modes)
-    files = []
-
-    def save_csv(df, name):
-        df.to_csv(out / name, index=False)
-        files.append(out / name)
-
-    statics = eq.to_frame()
-    save_csv(statics, "statics.csv")
-    table = modes.to_frame()
-    save_csv(table, "modes.csv")
-    checks = design_checks(scene.robot, eq.pose, band_hz=tuple(forbidden_hz))
-    save_csv(checks.to_frame(), "checks.csv")
-    rec = recommend_model(eq, band_hz=band, rtol=1e-2)
-
-    f = np.linspace(band[0], band[1], n_points)
+    st = settings or analysis_settings(scene)
+    eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing
+    model = st.model(eq)
+    modes = modal(model, n_modes=min(st.n_modes, getattr(model, "n_dof", st.n_modes)))
+    marks = modes if modes.freq_hz[-1] >= st.band_hz[1] else modal(model,
+                                                                   fmax_hz=st.band_hz[1])
+    part = platform_participation(model, modes, st.participation)
+    checks = design_checks(scene.robot, eq.pose, **st.check_options())
+    rec = recommend_model(eq, band_hz=st.band_hz, rtol=st.model_rtol)
+    f = refined_grid(st.band_hz, n_points, marks.freq_hz)
     inputs = [c for c in ("fx", "fz") if c[1] in eq.robot.platform.free_dofs]
     outputs = [c[1] for c in inputs]
     response = frf(model, 2 * np.pi * f, inputs=inputs or None, outputs=outputs or None)
-    save_csv(response.to_frame(), "frf.csv")
-    # mark every mode of the FRF band, also those beyond the table's n_modes
-    marks = modes if modes.freq_hz[-1] >= band[1] else modal(model, fmax_hz=band[1])
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    files = []
+    meta = st.metadata(eq.pose)
+
+    def save_csv(df, name, units):
+        write_csv(df, out / name, {**meta, "table": name, "units": units})
+        files.append(out / name)
+
+    statics = eq.to_frame()
+    save_csv(statics, "statics.csv", "SI, in the column names")
+    table = modes.to_frame()
+    table.insert(3, "platform share [-]", part.platform_share)
+    table.insert(4, "category", list(part.category))
+    save_csv(table, "modes.csv", "Hz; mode shapes normalised to unit platform kinetic energy")
+    save_csv(checks.to_frame(), "checks.csv", "as each row's value and limit")
+    save_csv(response.to_frame(), "frf.csv", "in each row's unit column")
+    figs = []
     fig = plot_frf(response, marks, phase=True)
-    fig.savefig(out / "frf.png", dpi=120, bbox_inches="tight")
-    plt.close(fig)
-    files.append(out / "frf.png")
-    glob = [k for k, kind in enumerate(modes.kind) if kind == "global"]
-    if glob:
-        fig = plot_robot(eq, modes, glob[0], model=model)
-        fig.savefig(out / "mode_shape.png", dpi=120, bbox_inches="tight")
+    figs.append((fig, "frf.png", "Damped platform FRFs with the modes marked"))
+    kk = [k for k, c in enumerate(part.category) if c != "local"]
+    if kk:
+        fig = plot_robot(eq, modes, kk[0], model=model if model.rung == "dsm" else None)
+        figs.append((fig, "mode_shape.png", f"Mode {kk[0] + 1} ({part.category[kk[0]]}, "
+                                            f"{modes.freq_hz[kk[0]]:.4g} Hz)"))
+    pngs = []
+    for fig, name, caption in figs:
+        fig.savefig(out / name, dpi=120, bbox_inches="tight")
+        pngs.append((figure_png(fig), caption))
         plt.close(fig)
-        files.append(out / "mode_shape.png")
+        files.append(out / name)
 
     fmt = {"float_format": lambda x: f"{x:.5g}", "index": False}
-    cols = ["mode", "freq [Hz]", "kind", "cable energy fraction [-]", "massless freq [Hz]"]
-    text = "\n".join([
-        f"dynstiff: {scene.name}: {scene.description}",
-        f"pose {np.round(eq.pose.position, 4).tolist()} m, rotation "
-        f"{np.round(eq.pose.rotation, 4).tolist()} rad",
-        "",
-        "Statics (elastic catenaries)",
-        statics.to_string(**fmt),
-        "",
-        f"First {len(modes)} modes (Wittrick-Williams count: none missed)",
-        table[cols].to_string(**fmt),
-        "",
-        rec.text(),
-        "",
-        f"Design checks (forbidden band for global modes {forbidden_hz[0]:g}-"
-        f"{forbidden_hz[1]:g} Hz)",
-        checks.text(),
-    ])
+    cols = ["mode", "freq [Hz]", "kind", "platform share [-]", "category",
+            "massless freq [Hz]"]
+    head = [f"dynstiff: {scene.name}: {scene.description}",
+            f"pose {np.round(eq.pose.position, 4).tolist()} m, rotation "
+            f"{np.round(eq.pose.rotation, 4).tolist()} rad", *st.lines()]
+    sections = [
+        ("Statics (elastic catenaries)", statics.to_string(**fmt)),
+        (f"First {len(modes)} modes (Wittrick-Williams count: none missed; undamped "
+         f"frequencies)", table[cols].to_string(**fmt)),
+        ("Cable model", rec.text()),
+        ("Design checks", checks.text()),
+    ]
+    text = "\n".join(head + [""] + [f"{t}\n{b}\n" for t, b in sections])
+    if html:
+        blocks = [("pre", "\n".join(head)), ("h2", "Design checks"),
+                  ("checks", checks.rows), ("h2", "Cable model"), ("pre", rec.text()),
+                  ("h2", "Statics"), ("table", statics), ("h2", "Modes"),
+                  ("table", table[cols + [c for c in table.columns
+                                         if c.startswith(("x", "y", "z", "r"))]]),
+                  ("h2", "Figures")] + [("png", p) for p in pngs]
+        (out / "report.html").write_text(html_page(f"dynstiff report: {scene.name}", blocks))
+        files.append(out / "report.html")
     return text + "\n", files

@@ -10,7 +10,7 @@ so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) pro
 
 import numpy as np
 
-from ._validate import omega_array
+from ._validate import omega_array, positive_scalar
 from .cable_exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
 from .errors import InvalidParameterError
 from .model_base import PlatformModel, require_equilibrium
@@ -43,7 +43,15 @@ class ExactModel(PlatformModel):
     half_waves : float
         Transverse half-wavelengths per element at ``fmax_hz``.
     damping : bool
-        Keep the cables' damping (default); False builds the undamped model.
+        Keep the damping (default); False builds the undamped model (the cables' own damping
+        and the two options below all removed).
+    cable_loss_factor : float
+        eta_c >= 0 [-]: hysteretic damping of all the cable's stiffness forces (D -> D (1 + i
+        eta_c), axial and transverse), as the closed form's option (theory.md §12.2): exactly
+        K_B(omega) = s K_B(omega / sqrt(s)), s = 1 + i eta_c, the viscous c / sqrt(s).
+    platform_damping_ratio : float
+        zeta_p >= 0 [-]: the hysteretic term i 2 zeta_p K_s on the massless-cable stiffness
+        K_s (theory.md §12.2).
 
     Attributes
     ----------
@@ -61,7 +69,8 @@ class ExactModel(PlatformModel):
     rung = "exact"
 
     def __init__(self, equilibrium, fmax_hz=DEFAULT_FMAX_HZ, order=DEFAULT_ORDER,
-                 half_waves=HALF_WAVES_PER_ELEMENT, damping=True):
+                 half_waves=HALF_WAVES_PER_ELEMENT, damping=True, cable_loss_factor=0.0,
+                 platform_damping_ratio=0.0):
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         try:
             f = float(fmax_hz)
@@ -75,14 +84,20 @@ class ExactModel(PlatformModel):
         self.order, self.half_waves = order, half_waves
         self.cables = tuple(ExactCable(s, self.max_omega, order, damping, half_waves)
                             for s in equilibrium.states)
-        self.damped = any(c.damped for c in self.cables)
+        self.cable_loss_factor = positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                 allow_zero=True) if damping else 0.0
+        self.platform_damping_ratio = positive_scalar(
+            "platform_damping_ratio", platform_damping_ratio, allow_zero=True) if damping else 0.0
+        self.damped = (any(c.damped for c in self.cables) or self.cable_loss_factor > 0
+                       or self.platform_damping_ratio > 0)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         self._init_geometric(robot, pose, equilibrium.states)
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
         fi = self.free_index
         nf = self.n_free
         # map of each cable's local end-B 3x3 block (flattened) to the free-DOF matrix
-        const = np.zeros(nf * nf, dtype=complex if self.damped else float)
+        const = np.zeros(nf * nf, dtype=complex if any(c.damped for c in self.cables)
+                         else float)
         mass_rows, mode_rows, mu, visc = [], [], [], []
         for cab, r in zip(self.cables, self.lever_arms):
             G = cab.frame.T @ lever_map(r, fi)                           # (3, nf)
@@ -92,7 +107,12 @@ class ExactModel(PlatformModel):
             mode_rows.append(cab.beta_dyads(ends="end") @ Q)
             mu.append(cab.flexibilities)
             visc.append(np.full(cab.flexibilities.size, cab.c / cab.m))
-        self._const = const + self._K_geo_free.ravel()
+        self._const = const                                             # cables' K_s
+        self._K_platform_damping = None
+        if self.platform_damping_ratio > 0:
+            Ks = (const.real + self._K_geo_free.ravel()).reshape(nf, nf)
+            self._K_platform_damping = (2j * self.platform_damping_ratio
+                                        * 0.5 * (Ks + Ks.T)).ravel()
         self._mass = np.array(mass_rows)                                  # (n_cables, nf^2)
         self._modes = np.vstack(mode_rows)                                # (n_modes, nf^2)
         self._mu = np.concatenate(mu)
@@ -128,18 +148,27 @@ class ExactModel(PlatformModel):
     def _block(self, omega):
         """K(omega) for one block of validated frequencies, (n, n_free, n_free)."""
         w = omega[:, None]
+        # cable loss factor: K_B(omega) = s K_B(omega / sqrt(s)), i.e. w^2 -> w^2 / s
+        s = 1.0 + 1j * self.cable_loss_factor
         w2_c = w**2 - 1j * w * self._visc_cable[None, :] if self.damped else w**2
         w2_m = w**2 - 1j * w * self._visc_mode[None, :] if self.damped else w**2
+        if self.cable_loss_factor > 0:
+            w2_c, w2_m = w2_c / s, w2_m / s
         with np.errstate(divide="ignore", invalid="ignore"):
             g = w2_m**2 * self._mu[None, :] / (1.0 - w2_m * self._mu[None, :])
         if self.damped:
             K = self._const[None, :] - w2_c @ self._mass - g @ self._modes
+            if self.cable_loss_factor > 0:
+                K = s * K
+            if self._K_platform_damping is not None:
+                K = K + self._K_platform_damping[None, :]
         else:
             K = self._const[None, :] - w2_c * self._mass.sum(axis=0)[None, :] - g @ self._modes
         if not self.damped and np.isrealobj(omega):
             K = K.real
         nf = self.n_free
-        return K.reshape(-1, nf, nf) - (omega**2)[:, None, None] * self.platform_mass
+        return (K.reshape(-1, nf, nf) + self._K_geo_free
+                - (omega**2)[:, None, None] * self.platform_mass)
 
     def _check(self, omega):
         w = np.abs(omega)
@@ -168,6 +197,12 @@ class ExactModel(PlatformModel):
             return self
         return ExactModel(self.equilibrium, self.fmax_hz, self.order, self.half_waves,
                           damping=False)
+
+    def with_damping(self, cable_loss_factor=0.0, platform_damping_ratio=0.0):
+        """The same cables with the model-level damping options (theory.md §12.2)."""
+        return ExactModel(self.equilibrium, self.fmax_hz, self.order, self.half_waves,
+                          cable_loss_factor=cable_loss_factor,
+                          platform_damping_ratio=platform_damping_ratio)
 
     def _end_motion(self, cab, r, x):
         return cab.frame.T @ (x[:3] + np.cross(x[3:], r))

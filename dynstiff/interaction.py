@@ -223,6 +223,9 @@ class SweepResult:
         "global" or "local".
     cable_energy_fraction : ndarray of float
         Cable kinetic energy / total kinetic energy [-].
+    failures : tuple of (int, float, str)
+        Steps recorded as infeasible (``on_error="record"``): step, value, error message;
+        their row has kind "infeasible" and NaN frequency, ``modal`` and ``equilibria`` None.
     massless_freq_hz : ndarray of float
         Frequency of the matching massless-cable mode [Hz] (NaN for local modes).
     """
@@ -239,6 +242,7 @@ class SweepResult:
     kind: np.ndarray
     cable_energy_fraction: np.ndarray
     massless_freq_hz: np.ndarray
+    failures: tuple = ()
 
     def __len__(self):
         return len(self.step)
@@ -393,7 +397,8 @@ def _check_sweep_args(robot, poses, parameter, values, build, n_modes, fmax_hz, 
 
 
 def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=None,
-          fmax_hz=None, progress=None, mac_min=0.5, rung="dsm", **model_options):
+          fmax_hz=None, progress=None, mac_min=0.5, rung="dsm", on_error="raise",
+          **model_options):
     """Modes along a path of poses or a parameter, global modes tracked from step to step.
 
     Two ways to call it:
@@ -440,6 +445,10 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         Least MAC, in (0, 1], for a global mode to continue a track (default 0.5).
     rung : str
         Model of every step, one of :data:`dynstiff.ladder.RUNGS` (default "dsm").
+    on_error : {"raise", "record"}
+        A step whose statics or modes fail (an infeasible pose, a slack cable): "raise" the
+        error (with a note naming the step), or "record" it as one row of kind
+        "infeasible" (frequency NaN, the message in ``SweepResult.failures``) and go on.
     **model_options
         Passed to :func:`dynstiff.ladder.build_model` (e.g. ``segments`` of "lumped").
 
@@ -457,6 +466,9 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
     SlackCableError, ConvergenceError
         From the statics at a step (the note on the exception names the step).
     """
+    if on_error not in ("raise", "record"):
+        raise InvalidParameterError(f"on_error must be 'raise' or 'record', got {on_error!r}")
+    failures = []
     poses, values, parameter, fmax_hz, mac_min = _check_sweep_args(
         robot, poses, parameter, values, build, n_modes, fmax_hz, progress, mac_min)
     n_steps = values.size
@@ -476,8 +488,18 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
             model = build_model(eq, rung, **model_options)
             res = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
         except DynstiffError as exc:
-            exc.add_note(f"in sweep step {k} ({parameter} = {values[k]:g})")
-            raise
+            if on_error == "raise":
+                exc.add_note(f"in sweep step {k} ({parameter} = {values[k]:g})")
+                raise
+            failures.append((k, float(values[k]), f"{type(exc).__name__}: {exc}"))
+            for key, v in zip(rows, (k, values[k], 0, UNTRACKED, np.nan, "infeasible",
+                                     np.nan, np.nan)):
+                rows[key].append(np.array([v], dtype=object if key == "kind" else None))
+            modal.append(None)
+            equilibria.append(None)
+            if progress is not None:
+                progress(k + 1, n_steps)
+            continue
         M = np.zeros((6, 6))                     # M_p on all six DOFs (held ones 0)
         M[np.ix_(model.free_index, model.free_index)] = model.platform_mass
         ig = np.flatnonzero(np.asarray(res.kind) == "global")
@@ -515,4 +537,4 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
                        value=col["value"].astype(float), mode=col["mode"].astype(int),
                        track=col["track"].astype(int), freq_hz=col["freq"].astype(float),
                        kind=col["kind"].astype(str), cable_energy_fraction=col["frac"],
-                       massless_freq_hz=col["f0"].astype(float))
+                       massless_freq_hz=col["f0"].astype(float), failures=tuple(failures))

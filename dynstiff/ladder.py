@@ -115,9 +115,10 @@ def build_model(equilibrium, rung, segments=30, **options):
     segments : int or sequence of int
         Segments per cable of the "lumped" rung (ignored by the others).
     **options
-        "dsm": ``tension``, ``chordwise_inertia``, ``guard_rtol`` (:class:`FrequencyModel`);
-        "exact":
-        ``fmax_hz``, ``order``, ``half_waves`` (:class:`ExactModel`); "lumped":
+        "dsm": ``tension``, ``chordwise_inertia``, ``cable_loss_factor``,
+        ``platform_damping_ratio``, ``guard_rtol`` (:class:`FrequencyModel`); "exact":
+        ``fmax_hz``, ``order``, ``half_waves``, ``cable_loss_factor``,
+        ``platform_damping_ratio`` (:class:`ExactModel`); "lumped":
         ``tol``, ``max_iter`` of its equilibrium (:meth:`LumpedMassModel.equilibrium`).
 
     Returns
@@ -126,8 +127,11 @@ def build_model(equilibrium, rung, segments=30, **options):
         Immutable, with ``.rung``. The lumped model is linearised about its own
         equilibrium for the same unstretched lengths, started from ``equilibrium.pose``.
     """
-    allowed = {"dsm": ("tension", "chordwise_inertia", "guard_rtol"),
-               "exact": ("fmax_hz", "order", "half_waves"), "lumped": ("tol", "max_iter")}
+    allowed = {"dsm": ("tension", "chordwise_inertia", "cable_loss_factor",
+                       "platform_damping_ratio", "guard_rtol"),
+               "exact": ("fmax_hz", "order", "half_waves", "cable_loss_factor",
+                         "platform_damping_ratio"),
+               "lumped": ("tol", "max_iter")}
     unknown = sorted(set(options) - set(allowed.get(rung, ())))
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from ._validate import positive_scalar
 
-__all__ = ["Cable"]
+__all__ = ["Cable", "Damping", "DEFAULT_DAMPING"]
 
 
 @dataclass(frozen=True)
@@ -64,3 +64,54 @@ class Cable:
     def weight_per_length(self, g):
         """Weight per unstretched length w0 = m g [N/m] for gravity ``g`` [m/s^2]."""
         return self.mass_per_length * positive_scalar("g", g, allow_zero=True)
+
+
+@dataclass(frozen=True)
+class Damping:
+    """Damping of an analysis, on top of the cables' own (theory.md §12.2).
+
+    The defaults are chosen values, not measurements: a steel wire rope dissipates a few
+    tenths of a percent of its strain energy per radian (loss factor 0.005-0.02), and the
+    platform's winches, pulleys and frame add about one percent of critical damping to its
+    rigid-body modes. A scene's ``[damping]`` section or ``--damping`` replaces them; zeros
+    give the undamped model.
+
+    Parameters
+    ----------
+    platform_ratio : float
+        zeta_p, modal damping ratio of the platform modes [-], >= 0, < 1 (default 0.01).
+    cable_loss_factor : float
+        eta_c, hysteretic loss factor of all cable stiffness forces, transverse (dynamic
+        tension) and axial (elastic) [-], >= 0, < 1 (default 0.01).
+    cable_viscous_damping : float
+        c, viscous damping per length of every cable [N s/m^2], >= 0, acting on every cable
+        motion through the complex mass m - i c / omega (default 0); added to a cable's own
+        ``viscous_damping``.
+    """
+
+    platform_ratio: float = 0.01
+    cable_loss_factor: float = 0.01
+    cable_viscous_damping: float = 0.0
+
+    def __post_init__(self):
+        for name in ("platform_ratio", "cable_loss_factor", "cable_viscous_damping"):
+            v = positive_scalar(name, getattr(self, name), allow_zero=True)
+            if name != "cable_viscous_damping" and not v < 1:
+                from .errors import InvalidParameterError
+                raise InvalidParameterError(f"{name} must be < 1, got {v!r}")
+            object.__setattr__(self, name, v)
+
+    @property
+    def is_zero(self):
+        """True when no damping is added."""
+        return not (self.platform_ratio or self.cable_loss_factor or self.cable_viscous_damping)
+
+    def text(self):
+        """One line for a report: ``damping: platform zeta 0.01, cable eta 0.01, ...``."""
+        return (f"damping: platform modal ratio {self.platform_ratio:g}, cable loss factor "
+                f"{self.cable_loss_factor:g} (axial and transverse), cable viscous "
+                f"{self.cable_viscous_damping:g} N s/m^2")
+
+
+#: The damping an analysis uses when the scene gives no ``[damping]`` section.
+DEFAULT_DAMPING = Damping()

@@ -26,12 +26,29 @@ gid                 artist
 
 import numpy as np
 
+from .constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from .errors import InvalidParameterError
 
 __all__ = ["plot_frf", "plot_veering", "plot_spectrum", "plot_speed_accuracy", "plot_modes",
            "plot_damped_modes", "plot_cable_modes", "plot_tensions", "plot_model_errors"]
 
-_COLORS = {"global": "tab:red", "local": "tab:blue"}
+_COLORS = {"global": "tab:red", "mixed": "tab:purple", "local": "tab:blue"}
+_CATEGORY_LABELS = {
+    "global": f"global mode (platform share >= {GLOBAL_SHARE:.0%})",
+    "mixed": f"mixed mode (platform share {PLATFORM_SHARE_THRESHOLD:.0%}-{GLOBAL_SHARE:.0%})",
+    "local": f"local mode (platform share < {PLATFORM_SHARE_THRESHOLD:.0%})"}
+
+
+def mode_categories(modes):
+    """"global" / "mixed" / "local" of each mode of a ModalResult, from its platform share
+    1 - cable energy fraction (docs/theory.md §12.1); its ``kind`` when it has no energy
+    fractions."""
+    frac = getattr(modes, "cable_energy_fraction", None)
+    if frac is None:
+        return tuple(modes.kind)
+    share = 1.0 - np.asarray(frac, dtype=float)
+    return tuple("global" if s >= GLOBAL_SHARE else "mixed" if s >= PLATFORM_SHARE_THRESHOLD
+                 else "local" for s in share)
 
 
 def figure_axes(ax=None, figsize=(8, 4.5)):
@@ -80,8 +97,9 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     result : FRFResult
         ``H`` of shape (n_freq, n_out, n_in) at ``freq_hz``, shape (n_freq,) [Hz].
     modes : ModalResult, optional
-        Marks each mode inside the band by a dashed vertical line, red (gid ``mode-global``)
-        for global and blue (gid ``mode-local``) for local modes.
+        Marks each mode inside the band by a dashed vertical line coloured by its platform
+        share (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
+        blue (``mode-local``); the legend names the three.
     pairs : list of (output, input), optional
         Channels to draw, e.g. ``[("z", "fz")]`` (default: the pairs ``(outputs[k],
         inputs[k])`` present in ``result``).
@@ -133,18 +151,28 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
         if ax_ph is not None:
             with np.errstate(invalid="ignore"):
                 ax_ph.plot(f, np.degrees(np.angle(h)), lw=1.0)
+    shown = []
     if modes is not None:
+        cats = mode_categories(modes)
         for a in (ax, ax_ph):
             if a is None:
                 continue
-            for fm, kind in zip(modes.freq_hz, modes.kind):
+            for fm, cat in zip(modes.freq_hz, cats):
                 if f[0] <= fm <= f[-1]:
-                    a.axvline(fm, color=_COLORS[kind], lw=0.6, alpha=0.6, ls="--",
-                              gid=f"mode-{kind}")
+                    a.axvline(fm, color=_COLORS[cat], lw=0.6, alpha=0.6, ls="--",
+                              gid=f"mode-{cat}")
+                    if cat not in shown:
+                        shown.append(cat)
     ax.set_ylabel(f"|{result.kind}|" + (f" [{next(iter(units.values()))}]" if one_unit
                                          else " [units in the legend]" if units else ""))
-    ax.set_title(f"FRF ({result.kind}); dashed: modes, red global, blue local")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.set_title(f"FRF ({result.kind}), natural frequencies dashed")
+    from matplotlib.lines import Line2D
+    handles, labels = ax.get_legend_handles_labels()
+    for cat in ("global", "mixed", "local"):
+        if cat in shown:
+            handles.append(Line2D([], [], color=_COLORS[cat], lw=0.8, ls="--"))
+            labels.append(_CATEGORY_LABELS[cat])
+    ax.legend(handles, labels, loc="upper right", fontsize=8)
     ax.set_xlim(f[0], f[-1])
     if ax_ph is None:
         ax.set_xlabel("frequency [Hz]")
@@ -632,4 +660,26 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
     ax.set_ylabel(f"{error} (worst case)")
     ax.grid(True, which="both", alpha=0.3)
     ax.margins(x=0.25, y=0.2)
+    return fig
+
+
+def plot_tracking(tracking, ax=None):
+    """A commanded path (:class:`dynstiff.trajectory.TrackingResult`): the deviation of P
+    from the desired path against time [mm], with the simulated and desired x y z [m] on a
+    second axis. Returns the Figure."""
+    fig, ax = figure_axes(ax, figsize=(8, 4.5))
+    r = tracking.response
+    ax.plot(r.times, 1e3 * tracking.deviation, color="k", label="deviation |P - P_d|")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("deviation from the desired path [mm]")
+    ax2 = ax.twinx()
+    for k, (n, c) in enumerate(zip("xyz", ("tab:blue", "tab:orange", "tab:green"))):
+        ax2.plot(r.times, r.pose[:, k], color=c, lw=1.2, label=f"{n} simulated")
+        ax2.plot(r.times, tracking.desired[:, k], color=c, lw=1.0, ls="--",
+                 label=f"{n} desired")
+    ax2.set_ylabel("position of P [m]")
+    h1, l1 = ax.get_legend_handles_labels()
+    h2, l2 = ax2.get_legend_handles_labels()
+    ax.legend(h1 + h2, l1 + l2, loc="upper left", fontsize=8, ncol=2)
+    ax.set_title(f"largest deviation {1e3 * tracking.max_deviation:.4g} mm")
     return fig

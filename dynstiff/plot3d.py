@@ -271,11 +271,11 @@ def _draw(ax, geo, factor):
                else _GHOST, depthshade=False, gid="P", label="P")
     if not with_mode:
         return moving
-    col = _MODE.get(geo["kind"], "tab:red")
     moving["cables"] = []
     for i, c in enumerate(geo["cables"] + factor * geo["cable_disp"]):
-        (ln,) = ax.plot(c[:, 0], c[:, 1], c[:, 2], color=col, lw=1.3, gid=f"cable-{i}-mode",
-                        label="mode shape" if i == 0 else None)
+        (ln,) = ax.plot(c[:, 0], c[:, 1], c[:, 2], color=_cable_color(i), lw=1.3,
+                        gid=f"cable-{i}-mode",
+                        label="cables, mode shape (one colour each)" if i == 0 else None)
         moving["cables"].append(ln)
     Bd = B + factor * geo["dB"]
     if geo["faces"]:
@@ -286,11 +286,44 @@ def _draw(ax, geo, factor):
     if geo["path"]:
         pp = _path_points(Bd, geo["path"])
         (moving["platform"],) = ax.plot(pp[:, 0], pp[:, 1], pp[:, 2], color=_PLATFORM,
-                                        lw=2.0, gid="platform-mode")
+                                        lw=2.0, gid="platform-mode",
+                                        label="platform, mode shape")
     Pd = P + factor * geo["dP"]
-    moving["P"] = ax.scatter([Pd[0]], [Pd[1]], [Pd[2]], marker="o", s=24, color="k",
-                             depthshade=False, gid="P-mode")
+    # a marker of fixed size in points: the platform stays visible on a large frame
+    moving["P"] = ax.scatter([Pd[0]], [Pd[1]], [Pd[2]], marker="D", s=60, color=_PLATFORM,
+                             edgecolor="k", depthshade=False, gid="P-mode",
+                             label="P, mode shape")
     return moving
+
+
+#: Colours of the cables' mode shapes, cycled: neighbours in a pair differ, and none is the
+#: platform's orange or the static grey.
+_CABLE_COLORS = ("tab:blue", "tab:green", "tab:red", "tab:purple", "tab:brown", "tab:pink",
+                 "tab:olive", "tab:cyan", "navy", "darkgreen", "maroon", "indigo")
+
+
+def _cable_color(i):
+    """Colour of cable i's mode shape."""
+    return _CABLE_COLORS[i % len(_CABLE_COLORS)]
+
+
+def _draw_annotations(ax, geo, factor):
+    """Cable numbers at the anchors and arrows from the static to the displaced attachment
+    points and P (the direction of motion at the drawn phase)."""
+    a = geo["anchors"]
+    span = np.ptp(np.vstack([a, geo["B"]]), axis=0).max()
+    for i, p in enumerate(a):
+        off = 0.025 * span * (1 if i % 2 == 0 else -1)
+        ax.text(p[0], p[1], p[2] + off, str(i), color=_cable_color(i), fontsize=8,
+                ha="center", va="center", gid=f"anchor-label-{i}")
+    if geo["dB"] is None:
+        return
+    start = np.vstack([geo["B"], geo["P"][None, :]])
+    d = factor * np.vstack([geo["dB"], geo["dP"][None, :]])
+    keep = np.linalg.norm(d, axis=1) > 0
+    if np.any(keep):
+        ax.quiver(*start[keep].T, *d[keep].T, color="k", lw=1.0, arrow_length_ratio=0.3,
+                  gid="motion", label="motion, static to displaced")
 
 
 def _update(moving, geo, factor):
@@ -322,7 +355,7 @@ def _set_limits(ax, geo, factors):
     ax.set_xlim(mid[0] - span[0] / 2, mid[0] + span[0] / 2)
     ax.set_ylim(mid[1] - span[1] / 2, mid[1] + span[1] / 2)
     ax.set_zlim(mid[2] - span[2] / 2, mid[2] + span[2] / 2)
-    ax.set_box_aspect(span, zoom=0.95)
+    ax.set_box_aspect(span, zoom=1.0)
     from matplotlib.ticker import MaxNLocator
     for axis, length in zip((ax.xaxis, ax.yaxis, ax.zaxis), span):
         axis.set_major_locator(MaxNLocator(int(np.clip(round(8 * length / span.max()), 3, 8))))
@@ -364,12 +397,25 @@ def _prepare(eq, modes, mode, scale, n_points, model, sag_scale):
     return geo, k, scale, sag_scale
 
 
+def _flatness(geo):
+    """1 - height / width of the robot's bounding box, in [0, 1]."""
+    pts = np.vstack([geo["anchors"], geo["B"]])
+    span = np.maximum(np.ptp(pts, axis=0), 1e-9)
+    return float(np.clip(1.0 - span[2] / max(span[0], span[1]), 0.0, 1.0))
+
+
+def _figsize(geo):
+    """Figure size fitted to the robot's proportions (a flat robot gets a flat figure, so no
+    blank band is left below the axes box) [in]."""
+    return 10.0, float(10.0 * (0.24 + 0.5 * (1.0 - _flatness(geo))))
+
+
 def _axes3d(ax, figsize=(8.0, 6.0)):
     if ax is None:
         import matplotlib.pyplot as plt
         fig = plt.figure(figsize=figsize)
         ax = fig.add_subplot(projection="3d")
-        fig.subplots_adjust(left=0.0, right=1.0, bottom=0.04, top=0.92)
+        fig.subplots_adjust(left=-0.02, right=0.72, bottom=-0.22, top=1.12)
         return fig, ax
     if getattr(ax, "name", "") != "3d":
         raise InvalidParameterError(
@@ -429,15 +475,17 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
         FrequencyModel of ``eq``, ``ax`` not 3-D.
     """
     geo, k, scale, sag_scale = _prepare(eq, modes, mode, scale, n_points, model, sag_scale)
-    fig, ax = _axes3d(ax)
+    fig, ax = _axes3d(ax, figsize=_figsize(geo))
     _draw(ax, geo, scale if modes is not None else 0.0)
+    _draw_annotations(ax, geo, scale if modes is not None else 0.0)
     _set_limits(ax, geo, [scale] if modes is not None else [])
+    ax.view_init(elev=22, azim=-60)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
     ax.set_title(_title(eq, geo, k, None if modes is None else len(modes), scale, sag_scale),
-                 fontsize=10)
-    ax.legend(loc="upper left", fontsize=8)
+                 fontsize=10, y=0.9)
+    ax.legend(loc="center left", bbox_to_anchor=(1.17, 0.5), fontsize=7, framealpha=0.8)
     return fig
 
 

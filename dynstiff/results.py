@@ -43,6 +43,12 @@ def response_factor(omega, kind):
     return (1j * np.asarray(omega)) ** RESPONSE_KINDS[kind]
 
 
+#: Column units of the platform mode shapes in the tables: the shapes are normalised to unit
+#: platform kinetic energy x^T M_p x = 1, so translations are in m/sqrt(kg) and rotations in
+#: rad/(m sqrt(kg)) (M_p in kg and kg m^2), not in metres.
+SHAPE_UNITS = ("[m/kg^0.5, x'Mx=1]",) * 3 + ("[rad/(m kg^0.5), x'Mx=1]",) * 3
+
+
 def _span(freq_hz):
     f = np.asarray(freq_hz)
     return f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
@@ -170,7 +176,8 @@ class ModalResult:
         return plot_modes(self, ax=ax)
 
     def to_frame(self):
-        """pandas DataFrame, one row per mode, units in the column names."""
+        """pandas DataFrame, one row per mode, units in the column names; the shape columns
+        are labelled for their energy normalisation (``SHAPE_UNITS``)."""
         import pandas as pd
         df = pd.DataFrame({
             "mode": np.arange(1, len(self) + 1),
@@ -181,8 +188,7 @@ class ModalResult:
             "shift from massless [-]": self.shift_from_massless,
         })
         for k, name in enumerate(DOF_NAMES):
-            unit = "m" if k < 3 else "rad"
-            df[f"{name} [{unit}]"] = self.platform_shapes[:, k]
+            df[f"{name} {SHAPE_UNITS[k]}"] = self.platform_shapes[:, k]
         return df
 
 

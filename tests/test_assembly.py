@@ -138,3 +138,52 @@ def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogir
         ds.eigenfrequencies(ds.FrequencyModel(eq, guard_rtol=None), fmax_hz=1.5)
     with pytest.raises(InvalidParameterError, match="guard_rtol"):
         ds.FrequencyModel(eq, guard_rtol=-1.0)
+
+
+# ----------------------------------------------------------- damping of all cable motions
+def test_cable_loss_factor_damps_the_transverse_string_term(cogiro_eq):
+    """Hysteretic damping of all stiffness forces (theory.md §12.2): the out-of-plane (ww)
+    dyad coefficient of a cable is the taut string's T s beta cot(beta L) with s = 1 + i eta
+    and beta^2 = (omega^2 m - i omega c) / (T s), written out here; the cable's own
+    loss_factor (EA only) leaves it undamped (real), which is why that term was needed."""
+    eta, c = 0.03, 0.02
+    rob = cogiro_eq.robot
+    cables = [ds.Cable(cb.mass_per_length, cb.EA, viscous_damping=c) for cb in rob.cables]
+    eq = ds.Robot(rob.anchors, rob.attachments, cables, rob.platform,
+                  tension_limits=rob.tension_limits).equilibrium(pose=cogiro_eq.pose)
+    m = ds.FrequencyModel(eq, chordwise_inertia=False, cable_loss_factor=eta)
+    w = 2 * np.pi * np.array([0.7, 3.3, 7.9])
+    C = m.cable_coefficients(w).reshape(len(w), -1, 5)
+    s = 1 + 1j * eta
+    for i, p in enumerate(m.params):
+        beta = np.sqrt((w**2 * p.m - 1j * w * p.c) / (p.T * s))
+        expect = p.T * s * beta / np.tan(beta * p.L)
+        assert np.allclose(C[:, i, 4], expect, rtol=1e-10, atol=0)
+    axial_only = ds.FrequencyModel(ds.Robot(
+        rob.anchors, rob.attachments, [ds.Cable(cb.mass_per_length, cb.EA, loss_factor=eta)
+                                       for cb in rob.cables], rob.platform,
+        tension_limits=rob.tension_limits).equilibrium(pose=cogiro_eq.pose))
+    ww = axial_only.cable_coefficients(w).reshape(len(w), -1, 5)[..., 4]
+    assert np.all(np.abs(ww.imag) <= 1e-12 * np.abs(ww.real))
+    assert np.all(np.abs(C[..., 4].imag) > 1e-3 * np.abs(C[..., 4].real))
+
+
+def test_damping_ratios_of_the_platform_z_mode(cogiro_eq):
+    """CoGiRo's first mode (2.21 Hz, 99 % platform energy in z, cable stiffness only): the
+    cable loss factor eta gives it the damping ratio eta / 2 and the platform modal ratio
+    zeta_p gives it zeta_p, each to 3 % (the rest: the cables' 1 % energy, the geometric
+    stiffness that stays undamped); both together add. Undamped(): the options removed."""
+    base = ds.FrequencyModel(cogiro_eq)
+    f1 = ds.eigenfrequencies(base, 1)[0]
+    for opts, zeta in [(dict(cable_loss_factor=0.04), 0.02),
+                       (dict(platform_damping_ratio=0.015), 0.015),
+                       (dict(cable_loss_factor=0.04, platform_damping_ratio=0.015), 0.035)]:
+        m = ds.FrequencyModel(cogiro_eq, **opts)
+        assert m.damped and not m.undamped().damped
+        d = ds.damped_modes(m, n_modes=1)
+        assert abs(d.freq_hz[0] / f1 - 1) < 2e-3
+        assert d.damping_ratio[0] == pytest.approx(zeta, rel=0.03), opts
+    with pytest.raises(InvalidParameterError, match="cable_loss_factor"):
+        ds.FrequencyModel(cogiro_eq, cable_loss_factor=-0.1)
+    with pytest.raises(InvalidParameterError, match="platform_damping_ratio"):
+        ds.build_model(cogiro_eq, "dsm", platform_damping_ratio=np.nan)

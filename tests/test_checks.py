@@ -21,9 +21,9 @@ def test_checks_pass_and_fail_on_cogiro():
     # a band around the 2nd global mode must fail exactly that check
     bad = design_checks(scene.robot, scene.pose, band_hz=(fg[1] * 0.99, fg[1] * 1.01))
     r = rows_by_name(bad)
-    assert not bad.passed and not r["global modes outside band"]["passed"]
+    assert not bad.passed and not r["platform modes outside band"]["passed"]
     # two root searches, each converged to 1e-12 relative
-    assert abs(r["global modes outside band"]["value"] / fg[1] - 1) < 1e-11
+    assert abs(r["platform modes outside band"]["value"] / fg[1] - 1) < 1e-11
     assert r["tension limits"]["passed"] and r["sag / chord"]["passed"]
     # sag limit below the largest sag ratio fails
     s = max(st.sag / st.chord_length for st in scene.equilibrium().states)
@@ -52,7 +52,7 @@ def test_band_below_every_mode_passes(cogiro):
                      rob.platform, tension_limits=rob.tension_limits)
     f1 = ds.eigenfrequencies(ds.FrequencyModel(stiff.equilibrium(pose=cogiro.pose)), 1)[0]
     res = rows_by_name(design_checks(stiff, cogiro.pose, band_hz=(0.4 * f1, 0.6 * f1)))
-    assert res["global modes outside band"]["passed"]
+    assert res["platform modes outside band"]["passed"]
     assert res["local modes near global modes"]["passed"]
 
 
@@ -90,7 +90,7 @@ def test_checks_run_on_any_rung(cogiro):
     rows = {r: rows_by_name(design_checks(cogiro.robot, cogiro.pose, band_hz=band, rung=r,
                                           **({"segments": 8} if r == "lumped" else {})))
             for r in ("dsm", "lumped", "catenary")}
-    for name in ("tension limits", "global modes outside band", "local modes near global modes",
+    for name in ("tension limits", "platform modes outside band", "local modes near global modes",
                  "cable model"):
         assert rows["lumped"][name]["passed"] == rows["dsm"][name]["passed"]
     assert "lumped-mass model used here" in rows["lumped"]["cable model"]["detail"]
@@ -100,3 +100,42 @@ def test_checks_run_on_any_rung(cogiro):
     assert not wide["passed"] and wide["value"] == np.inf
     with pytest.raises(InvalidParameterError, match="rung"):
         design_checks(cogiro.robot, cogiro.pose, rung="fem")
+
+
+def test_mixed_platform_mode_in_band_fails_with_its_share():
+    """CoGiRo with a 50 kg platform: the 2.216 Hz mode holds 42 % of its kinetic energy in
+    the platform (a "local" mode by the old > 50 % rule, which let the check pass). Both the
+    margin check and the receptance check fail, the margin row naming the mode and share."""
+    from test_participation import with_mass
+    scene = ds.load_scene("cogiro")
+    rob = with_mass(scene.robot, 50.0)
+    res = design_checks(rob, scene.pose, band_hz=(2.0, 2.3))
+    r = rows_by_name(res)
+    assert not res.passed
+    row = r["platform modes outside band"]
+    assert not row["passed"] and abs(row["value"] - 2.216) < 5e-4
+    assert 0.40 < row["share"] < 0.44 and "platform share 42 %" in row["detail"]
+    assert not r["platform receptance in band"]["passed"]
+    assert r["platform receptance in band"]["value"] > 10
+    # a threshold above its share lets the margin row pass (it is the threshold that holds it)
+    r = rows_by_name(design_checks(rob, scene.pose, band_hz=(2.0, 2.3), participation=0.45))
+    assert r["platform modes outside band"]["passed"]
+    with pytest.raises(InvalidParameterError, match="participation"):
+        design_checks(rob, scene.pose, band_hz=(2.0, 2.3), participation=0.7)
+    with pytest.raises(InvalidParameterError, match="frf_limit"):
+        design_checks(rob, scene.pose, band_hz=(2.0, 2.3), frf_limit=0.5)
+
+
+def test_default_cogiro_verdicts():
+    """The 91 kg CoGiRo at its central pose and its 0-1.5 Hz forbidden band: the nearest
+    mode holding >= 5 % platform energy is the 2.206 Hz z mode (99 %), 47 % above the band,
+    and the z receptance at 1.5 Hz is 1.85 x static (the 1 / (1 - (1.5 / 2.206)^2) = 1.86 of
+    one mode): every check passes."""
+    scene = ds.load_scene("cogiro")
+    res = design_checks(scene.robot, scene.pose, band_hz=(0.0, 1.5), model_band_hz=(0.1, 12.0))
+    r = rows_by_name(res)
+    assert res.passed
+    assert abs(r["platform modes outside band"]["value"] - 2.2061) < 1e-3
+    assert r["platform modes outside band"]["share"] > 0.98
+    assert r["platform receptance in band"]["value"] == pytest.approx(
+        1 / (1 - (1.5 / 2.2061) ** 2), rel=0.02)

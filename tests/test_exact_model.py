@@ -201,3 +201,19 @@ def test_frequency_blocks_give_the_one_block_result(cogiro, monkeypatch, damped)
                                              else float)
         scale = np.abs(one).max(axis=(1, 2))          # BLAS blocking: rounding differs
         assert (np.abs(blocks - one).max(axis=(1, 2)) <= 1e-14 * scale).all()
+
+
+def test_model_level_damping_options_match_the_closed_forms(cogiro_eq):
+    """cable_loss_factor and platform_damping_ratio (theory.md §12.2) act on the exact rung as
+    on the closed form: CoGiRo's first damped root agrees to the rungs' frequency gap (2e-4)
+    and its damping ratio to 1e-3; undamped() drops them."""
+    opts = {"cable_loss_factor": 0.04, "platform_damping_ratio": 0.015}
+    mx = ds.build_model(cogiro_eq, "exact", fmax_hz=6.0, **opts)
+    md = ds.build_model(cogiro_eq, "dsm", **opts)
+    assert mx.damped and not mx.undamped().damped
+    a, b = ds.damped_modes(mx, 1), ds.damped_modes(md, 1)
+    assert a.freq_hz[0] == pytest.approx(b.freq_hz[0], rel=2e-4)
+    assert a.damping_ratio[0] == pytest.approx(b.damping_ratio[0], rel=1e-3)
+    assert a.damping_ratio[0] == pytest.approx(0.035, rel=0.03)
+    with pytest.raises(InvalidParameterError, match="cable_loss_factor"):
+        ds.build_model(cogiro_eq, "exact", cable_loss_factor=-1.0)

@@ -287,3 +287,21 @@ def test_sweep_runs_on_any_rung(cogiro):
     np.testing.assert_allclose(f_lum, f_dsm, rtol=(np.pi / 6) ** 2 / 24)
     with pytest.raises(InvalidParameterError, match="tol"):
         ds.sweep(cogiro.robot, poses=poses, n_modes=6, rung="dsm", tol=1e-9)
+
+
+def test_sweep_records_an_infeasible_pose_and_goes_on():
+    """on_error="record": the infeasible middle pose is one row of kind "infeasible" with the
+    error's message; the poses before and after it give the same modes as alone."""
+    rob = small_robot()
+    res = sweep(rob, poses=[[0, 0, 1.0], [9.0, 0, 1.0], [0.1, 0, 1.0]], n_modes=3,
+                on_error="record")
+    assert [k for k, _, _ in res.failures] == [1] and "SlackCableError" in res.failures[0][2]
+    df = res.to_frame()
+    bad = df[df["step"] == 1]
+    assert list(bad["kind"]) == ["infeasible"] and bad["freq [Hz]"].isna().all()
+    assert res.modal[1] is None and res.equilibria[1] is None
+    alone = sweep(rob, poses=[[0.1, 0, 1.0]], n_modes=3)
+    np.testing.assert_allclose(df[df["step"] == 2]["freq [Hz]"], alone.freq_hz, rtol=1e-12)
+    assert res.veering_table().shape[0] == 3
+    with pytest.raises(InvalidParameterError, match="on_error"):
+        sweep(rob, poses=[[0, 0, 1.0]], n_modes=3, on_error="skip")

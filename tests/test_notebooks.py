@@ -1,4 +1,4 @@
-"""Notebooks are stored without outputs and execute without error."""
+"""Notebooks are stored without outputs, execute without error and show their figures."""
 
 from pathlib import Path
 
@@ -22,6 +22,12 @@ def test_notebook_executes(path):
         # figures shown inline reach the reader as images, not only as files
         assert any("image/png" in o.get("data", {}) for c in nb.cells
                    if c.cell_type == "code" for o in c.outputs), f"{path.name} shows no figure"
+    # every cell that makes a figure shows it: an image/png output (not an Agg backend
+    # that draws off screen, nor a figure assigned and never displayed)
+    for cell in nb.cells:
+        if cell.cell_type == "code" and "fig = " in cell.source:
+            kinds = [k for o in cell.get("outputs", []) for k in o.get("data", {})]
+            assert "image/png" in kinds, f"{path.name}: no figure shown by\n{cell.source}"
 
 
 def test_there_are_notebooks():

@@ -20,3 +20,21 @@ from dynstiff.errors import InvalidParameterError
 def test_bad_cable_raises_naming_field(kwargs, name):
     with pytest.raises(InvalidParameterError, match=name):
         ds.Cable(**kwargs)
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(platform_ratio=-0.01), "platform_ratio"),
+    (dict(platform_ratio=1.0), "platform_ratio"),
+    (dict(cable_loss_factor=float("nan")), "cable_loss_factor"),
+    (dict(cable_viscous_damping=-1.0), "cable_viscous_damping"),
+])
+def test_bad_damping_raises_naming_field(kwargs, name):
+    with pytest.raises(InvalidParameterError, match=name):
+        ds.Damping(**kwargs)
+
+
+def test_damping_defaults_are_stated_and_printed():
+    d = ds.Damping()
+    assert (d.platform_ratio, d.cable_loss_factor, d.cable_viscous_damping) == (0.01, 0.01, 0)
+    assert not d.is_zero and ds.Damping(0, 0, 0).is_zero
+    assert "platform modal ratio 0.01" in d.text() and "cable loss factor 0.01" in d.text()

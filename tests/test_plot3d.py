@@ -160,3 +160,37 @@ def test_animation_without_pillow_says_so(tmp_path, cogiro_eq, cogiro_modes, mon
     monkeypatch.setitem(sys.modules, "PIL", None)            # import PIL -> ImportError
     with pytest.raises(InvalidParameterError, match="pillow"):
         animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "m.gif")
+
+
+def test_mode_shape_figure_explains_itself(cogiro_eq, cogiro_model, cogiro_modes):
+    """The displaced platform and P are in the legend; each cable's mode shape has its own
+    colour (CoGiRo's anchor pairs read as 8 cables, not 4) and its number at the anchor;
+    arrows give the direction of motion (from B_i by scale dB_i); the axes keep equal scales
+    (box aspect = data spans, z not compressed)."""
+    from matplotlib.colors import to_rgba
+    fig = plot_robot(cogiro_eq, cogiro_modes, 0, model=cogiro_model)
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "platform, mode shape" in labels and "P, mode shape" in labels
+    assert "motion, static to displaced" in labels
+    colours = [to_rgba(ln.get_color()) for i in range(8) for ln in ax.get_lines()
+               if ln.get_gid() == f"cable-{i}-mode"]
+    assert len(set(colours)) == 8
+    texts = {t.get_gid(): t.get_text() for t in ax.texts}
+    assert [texts[f"anchor-label-{i}"] for i in range(8)] == [str(i) for i in range(8)]
+    assert by_gid(ax, "motion")
+    spans = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
+    box = ax.get_box_aspect()
+    np.testing.assert_allclose(box / box.max(), spans / spans.max(), rtol=1e-6)
+
+
+def test_point_platform_is_visible_on_a_large_frame():
+    """sixcable (48 m frame, attachment points together): the displaced platform is a
+    marker of fixed size (60 pt^2) in the platform's colour, not a hull too small to see."""
+    sc = ds.load_scene("sixcable")
+    eq = sc.equilibrium()
+    m = ds.FrequencyModel(eq)
+    modes = ds.modes(m, n_modes=3)
+    fig = plot_robot(eq, modes, 0, model=m)
+    (pm,) = by_gid(fig.axes[0], "P-mode")
+    assert pm.get_sizes()[0] >= 50

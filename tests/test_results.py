@@ -62,8 +62,13 @@ def test_damped_modes_frequency_and_damping_ratio_from_the_complex_root():
 def test_modal_table_units_and_shift(cogiro_model):
     md = ds.modes(cogiro_model, 8)
     df = md.to_frame()
-    for col in ("freq [Hz]", "cable energy fraction [-]", "x [m]", "rz [rad]"):
+    for col in ("freq [Hz]", "cable energy fraction [-]", "x [m/kg^0.5, x'Mx=1]",
+                "rz [rad/(m kg^0.5), x'Mx=1]"):
         assert col in df.columns
+    assert "x [m]" not in df.columns and "rz [rad]" not in df.columns   # energy-normalised
+    M = cogiro_model.platform_mass
+    x = df[[c for c in df.columns if "x'Mx=1" in c]].to_numpy()[np.array(md.kind) == "global"]
+    np.testing.assert_allclose(np.einsum("ki,ij,kj->k", x, M, x), 1.0, rtol=1e-10)
     g = np.array(md.kind) == "global"
     np.testing.assert_allclose(md.shift_from_massless[g],
                                md.freq_hz[g] / md.massless_freq_hz[g] - 1, rtol=1e-15)

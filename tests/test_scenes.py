@@ -132,3 +132,25 @@ def test_folders_and_binary_files_are_not_scenes(tmp_path):
     b.write_bytes(bytes(range(256)))
     with pytest.raises(ds.SceneError):
         ds.load_scene(b)
+
+
+def test_scene_damping_and_analysis_settings_are_read(tmp_path):
+    """[damping] and the new [analysis] keys reach the Scene; absent, the stated defaults;
+    a bad value names the key and its line."""
+    from dynstiff.scenes.loader import SCENE_DIR
+    text = (SCENE_DIR / "planar2.toml").read_text()
+    assert ds.load_scene("planar2").damping == ds.Damping()
+    p = tmp_path / "d.toml"
+    p.write_text(text + '\n[damping]\nplatform_ratio = 0.03\ncable_loss_factor = 0.0\n')
+    sc = ds.load_scene(p)
+    assert sc.damping == ds.Damping(0.03, 0.0, 0.0)
+    p.write_text(text.replace("[analysis]", '[analysis]\nmodel = "lumped"\nsegments = 12\n'
+                                            'model_rtol = 0.02'))
+    sc = ds.load_scene(p)
+    assert (sc.model, sc.segments, sc.model_rtol) == ("lumped", 12, 0.02)
+    p.write_text(text + '\n[damping]\nplatform_ratio = -1.0\n')
+    with pytest.raises(ds.SceneError, match="platform_ratio"):
+        ds.load_scene(p)
+    p.write_text(text + '\n[damping]\nstiffness = 1.0\n')
+    with pytest.raises(ds.SceneError, match="unknown key 'stiffness'"):
+        ds.load_scene(p)

@@ -150,7 +150,8 @@ class TimeResponse:
             cols[f"{name} [J]"] = getattr(e, name)
         return pd.DataFrame(cols, index=pd.Index(self.times, name="t [s]"))
 
-    def spectrum(self, channel="z", window="hann", t_start=0.0, threshold=1e-3):
+    def spectrum(self, channel="z", window="hann", t_start=0.0, threshold=1e-3,
+                 prominence=None):
         """Windowed amplitude spectrum of a platform channel, with identified peaks.
 
         The mean is removed, the window applied and the one-sided amplitude scaled by the
@@ -170,6 +171,11 @@ class TimeResponse:
             Skip the records before this time [s] (transients).
         threshold : float
             Smallest peak kept, relative to the largest [-].
+        prominence : float, optional
+            Smallest prominence of a peak (its height above the higher of the two minima
+            that separate it from higher peaks, :func:`scipy.signal.find_peaks`), relative
+            to the largest peak [-]. 0.03 keeps only peaks above the Hann window's highest
+            side lobe (2.7 % of its main lobe): leakage is not reported as a mode.
 
         Returns
         -------
@@ -189,7 +195,9 @@ class TimeResponse:
         amp = np.abs(X) * 2.0 / w.sum()
         freq = np.fft.rfftfreq(y.size, 1.0 / fs)
         top = amp[1:].max(initial=0.0)
-        idx, _ = scipy.signal.find_peaks(amp, height=threshold * top, distance=4)
+        idx, _ = scipy.signal.find_peaks(
+            amp, height=threshold * top, distance=4,
+            prominence=None if prominence is None else prominence * top)
         idx = idx[(idx > 0) & (idx < amp.size - 1)]
         df = freq[1] - freq[0]
         la = np.log(np.maximum(amp, np.finfo(float).tiny))

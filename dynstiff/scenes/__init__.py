@@ -14,7 +14,15 @@ Format (all SI units; see ``cogiro.toml`` for a complete example)::
     [pose]            optional: position [m], rotation [rad] (rotation vector), or
                       unstretched_lengths [m] (one per cable)
     [analysis]        optional: band_hz [Hz, Hz] (band of interest), n_modes,
-                      forbidden_band_hz [Hz, Hz] (no global mode in it: design checks)
+                      forbidden_band_hz [Hz, Hz] (no platform mode in it: design checks),
+                      model (rung: spring, catenary, dsm, lumped; default dsm), model_rtol
+                      [-] (admissible frequency error of the model, default 0.01), segments
+                      (lumped rung, default 30)
+    [damping]         optional, added to the cables' own damping in every analysis:
+                      platform_ratio [-] (modal damping ratio of the platform modes,
+                      default 0.01), cable_loss_factor [-] (hysteretic, all cable motions,
+                      default 0.01), cable_viscous_damping [N s/m^2] (default 0); zeros:
+                      undamped
     [study]           optional, free-form: parameters of the scene's validation study
                       (trajectory, excitation, drums ...), as ``Scene.study`` (a dict)
 

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..constants import DOF_NAMES, STANDARD_GRAVITY
 from ..errors import DynstiffError, InvalidParameterError
-from ..params import Cable
+from ..params import DEFAULT_DAMPING, Cable, Damping
 from ..platform import Platform
 from ..pose import Pose
 from ..robot import Robot
@@ -26,7 +26,9 @@ _SCHEMA = {
     "cables": {"anchor", "attachment", "mass_per_length", "EA", "viscous_damping",
                "loss_factor"},
     "pose": {"position", "rotation", "unstretched_lengths"},
-    "analysis": {"band_hz", "n_modes", "forbidden_band_hz"},
+    "analysis": {"band_hz", "n_modes", "forbidden_band_hz", "model", "model_rtol",
+                 "segments"},
+    "damping": {"platform_ratio", "cable_loss_factor", "cable_viscous_damping"},
     "study": None,                  # free-form: parameters of the scene's validation study
 }
 _REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
@@ -41,7 +43,9 @@ _TYPES = {
     "loss_factor": "number", "min": "number", "max": "number", "anchor": "vector",
     "attachment": "vector", "position": "vector", "rotation": "vector",
     "unstretched_lengths": "numbers", "band_hz": "numbers", "forbidden_band_hz": "numbers",
-    "n_modes": "int",
+    "n_modes": "int", "model": "str", "model_rtol": "number", "segments": "int",
+    "platform_ratio": "number", "cable_loss_factor": "number",
+    "cable_viscous_damping": "number",
 }
 
 
@@ -92,6 +96,14 @@ class Scene:
     n_modes : int or None
     forbidden_band_hz : (float, float) or None
         Band no global mode may enter, with its margin (the design checks) [Hz].
+    model : str or None
+        Rung of the cable model the analyses use (``[analysis] model``).
+    model_rtol : float or None
+        Admissible relative frequency error of the cable model [-].
+    segments : int or None
+        Segments per cable of the "lumped" rung.
+    damping : Damping
+        The ``[damping]`` section, its defaults where absent (:class:`dynstiff.Damping`).
     study : dict
         The free-form ``[study]`` table: parameters of the scene's validation study
         (trajectory, excitation, drums ...), with units in the file's comments; not read
@@ -106,6 +118,10 @@ class Scene:
     band_hz: object = None
     n_modes: object = None
     forbidden_band_hz: object = None
+    model: object = None
+    model_rtol: object = None
+    segments: object = None
+    damping: object = DEFAULT_DAMPING
     study: object = None
     name: str = ""
     description: str = ""
@@ -276,9 +292,15 @@ def read_scene(path):
             fail(f"{key} must be [low, high] with 0 <= low < high, got {band!r}", key,
                  "analysis")
         bands[key] = None if band is None else tuple(float(b) for b in band)
+    for key in ("model_rtol", "segments", "n_modes"):
+        if key in an and not an[key] > 0:
+            fail(f"{key} in [analysis] must be > 0, got {an[key]!r}", key, "analysis")
+    damping = build("damping", lambda: Damping(**data.get("damping", {})), None, "damping")
     return Scene(robot=robot, pose=pose, unstretched_lengths=lengths,
                  band_hz=bands["band_hz"], n_modes=an.get("n_modes"),
                  forbidden_band_hz=bands["forbidden_band_hz"],
+                 model=an.get("model"), model_rtol=an.get("model_rtol"),
+                 segments=an.get("segments"), damping=damping,
                  study=study, name=sc.get("name", path.stem),
                  description=sc.get("description", ""),
                  path=path)

@@ -1,0 +1,206 @@
+"""One source of the analysis defaults of a scene.
+
+Every command (``demo``, ``report``, ``check``, ``modes``, ``frf``, ``sweep``) and the demo
+report take their band, forbidden band, cable model, tolerance and damping from
+:func:`analysis_settings`: the scene's ``[analysis]`` and ``[damping]`` sections, the
+defaults below where the scene is silent, and the user's overrides on top. So the same scene
+gives the same verdicts and the same model recommendation whichever command prints them.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .checks import damped_model
+from .errors import InvalidParameterError
+from .exact_model import DEFAULT_FMAX_HZ
+from .ladder import RUNGS
+from .params import Damping
+from .participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
+
+__all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL"]
+
+#: Band of interest of a scene without ``band_hz`` [Hz].
+DEFAULT_BAND_HZ = (0.1, 20.0)
+#: Admissible relative frequency error of the cable model [-].
+DEFAULT_MODEL_RTOL = 1e-2
+#: Relative margin of the checked modes to the forbidden band [-].
+DEFAULT_MARGIN = 0.05
+#: Modes listed by default.
+DEFAULT_N_MODES = 20
+#: Segments per cable of the lumped rung.
+DEFAULT_SEGMENTS = 30
+
+
+def _band(name, value):
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be (low, high) [Hz], got {value!r}") from None
+    if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo < hi):
+        raise InvalidParameterError(
+            f"{name} must be (low, high) with 0 <= low < high [Hz], got {value!r}")
+    return lo, hi
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """The settings every analysis of a scene uses.
+
+    Attributes
+    ----------
+    scene : str
+        Scene name.
+    band_hz : (float, float)
+        Band of interest: FRFs, the model recommendation [Hz].
+    forbidden_hz : (float, float) or None
+        Band no platform mode may enter (design checks) [Hz]; None: not checked.
+    n_modes : int
+        Modes listed.
+    rung : str
+        Cable model (:data:`dynstiff.RUNGS`).
+    segments : int
+        Segments per cable of the lumped rung.
+    model_rtol : float
+        Admissible relative frequency error of the cable model [-].
+    margin : float
+        Relative frequency margin to the forbidden band [-].
+    participation : float
+        Platform share from which a mode is held to the margin [-].
+    frf_limit : float
+        Largest admissible receptance / static value in the forbidden band [-].
+    damping : Damping
+    """
+
+    scene: str
+    band_hz: tuple
+    forbidden_hz: object
+    n_modes: int
+    rung: str
+    segments: int
+    model_rtol: float
+    margin: float
+    participation: float
+    frf_limit: float
+    damping: Damping
+
+    def model_options(self):
+        """Keyword options of :func:`dynstiff.build_model` for ``rung``."""
+        if self.rung == "exact":            # the exact cables resolve 1.6 x the band's top
+            return {"fmax_hz": max(DEFAULT_FMAX_HZ, 1.6 * float(self.band_hz[1]))}
+        return {"segments": self.segments} if self.rung == "lumped" else {}
+
+    def model(self, equilibrium, damped=True):
+        """The model of ``rung`` with the settings' damping (``damped=False``: none)."""
+        return damped_model(equilibrium, self.damping if damped else Damping(0, 0, 0),
+                            self.rung, **self.model_options())
+
+    def check_options(self):
+        """Keyword arguments of :func:`dynstiff.checks.design_checks`."""
+        return dict(band_hz=self.forbidden_hz, margin=self.margin,
+                    model_rtol=self.model_rtol, rung=self.rung,
+                    participation=self.participation, frf_limit=self.frf_limit,
+                    damping=self.damping, model_band_hz=self.band_hz,
+                    **self.model_options())
+
+    def lines(self):
+        """Lines stating the settings, for every printed report."""
+        fb = (f"{self.forbidden_hz[0]:g}-{self.forbidden_hz[1]:g} Hz (margin "
+              f"{self.margin:.0%}, modes with platform share >= {self.participation:.0%}, "
+              f"receptance <= {self.frf_limit:g} x static)" if self.forbidden_hz else "none")
+        seg = f", {self.segments} segments per cable" if self.rung == "lumped" else ""
+        return [f"band {self.band_hz[0]:g}-{self.band_hz[1]:g} Hz; forbidden band {fb}",
+                f"model {self.rung}{seg}, tolerance {self.model_rtol:g}; "
+                + self.damping.text()]
+
+    def metadata(self, pose=None, units=None):
+        """Dict for the header of a CSV/JSON output: scene, pose, model, damping, units,
+        version."""
+        from . import __version__
+        d = {"dynstiff": __version__, "scene": self.scene, "model": self.rung,
+             "band_hz": list(self.band_hz),
+             "damping": {"platform_ratio": self.damping.platform_ratio,
+                         "cable_loss_factor": self.damping.cable_loss_factor,
+                         "cable_viscous_damping [N s/m^2]":
+                             self.damping.cable_viscous_damping}}
+        if self.rung == "lumped":
+            d["segments"] = self.segments
+        if pose is not None:
+            d["pose"] = {"position [m]": [float(v) for v in pose.position],
+                         "rotation [rad]": [float(v) for v in pose.rotation]}
+        if units is not None:
+            d["units"] = units
+        return d
+
+
+def analysis_settings(scene, band_hz=None, forbidden_hz=None, n_modes=None, rung=None,
+                      segments=None, model_rtol=None, margin=None, participation=None,
+                      frf_limit=None, damping=None):
+    """The settings of ``scene``: each argument given overrides the scene's value, which
+    overrides the module default.
+
+    Parameters
+    ----------
+    scene : Scene
+    band_hz, forbidden_hz : (float, float), optional
+        [Hz].
+    n_modes, segments : int, optional
+    rung : str, optional
+    model_rtol, margin, participation, frf_limit : float, optional
+    damping : Damping or sequence of up to 3 floats, optional
+        (platform ratio, cable loss factor, cable viscous damping [N s/m^2]); values not
+        given keep the scene's.
+
+    Returns
+    -------
+    AnalysisSettings
+
+    Raises
+    ------
+    InvalidParameterError
+        A value out of range, naming it.
+    """
+    def pick(given, scene_value, default):
+        return given if given is not None else (
+            scene_value if scene_value is not None else default)
+
+    band = _band("band_hz", pick(band_hz, scene.band_hz, DEFAULT_BAND_HZ))
+    fb = pick(forbidden_hz, scene.forbidden_band_hz, None)
+    fb = None if fb is None else _band("forbidden_hz", fb)
+    rung = pick(rung, getattr(scene, "model", None), "dsm")
+    if rung not in RUNGS:
+        raise InvalidParameterError(f"model must be one of {RUNGS}, got {rung!r}")
+    n = pick(n_modes, scene.n_modes, DEFAULT_N_MODES)
+    seg = pick(segments, getattr(scene, "segments", None), DEFAULT_SEGMENTS)
+    for name, v in (("n_modes", n), ("segments", seg)):
+        if int(v) != v or v < 1:
+            raise InvalidParameterError(f"{name} must be an integer >= 1, got {v!r}")
+    base = getattr(scene, "damping", None) or Damping()
+    if damping is None:
+        damp = base
+    elif isinstance(damping, Damping):
+        damp = damping
+    else:
+        vals = list(damping)
+        if not 1 <= len(vals) <= 3:
+            raise InvalidParameterError(
+                f"damping needs 1 to 3 values (platform ratio, cable loss factor, cable "
+                f"viscous damping [N s/m^2]), got {vals!r}")
+        full = [base.platform_ratio, base.cable_loss_factor, base.cable_viscous_damping]
+        full[:len(vals)] = vals
+        damp = Damping(*full)
+    settings = AnalysisSettings(
+        scene=scene.name, band_hz=band, forbidden_hz=fb, n_modes=int(n), rung=rung,
+        segments=int(seg),
+        model_rtol=float(pick(model_rtol, getattr(scene, "model_rtol", None),
+                              DEFAULT_MODEL_RTOL)),
+        margin=float(pick(margin, None, DEFAULT_MARGIN)),
+        participation=float(pick(participation, None, PLATFORM_SHARE_THRESHOLD)),
+        frf_limit=float(pick(frf_limit, None, FRF_AMPLIFICATION_LIMIT)), damping=damp)
+    for name in ("model_rtol", "participation", "frf_limit"):
+        v = getattr(settings, name)
+        if not (np.isfinite(v) and v > 0):
+            raise InvalidParameterError(f"{name} must be finite and > 0, got {v!r}")
+    if not (np.isfinite(settings.margin) and settings.margin >= 0):
+        raise InvalidParameterError(f"margin must be >= 0 (finite), got {settings.margin!r}")
+    return settings

@@ -1,0 +1,59 @@
+"""One source of the analysis defaults (dynstiff/settings.py)."""
+
+import dataclasses
+
+import pytest
+
+import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
+from dynstiff.settings import DEFAULT_BAND_HZ, analysis_settings
+
+
+def test_scene_values_then_defaults_then_overrides():
+    six = ds.load_scene("sixcable")
+    st = analysis_settings(six)
+    assert st.band_hz == (0.05, 2.0) and st.forbidden_hz is None and st.n_modes == 20
+    assert st.rung == "dsm" and st.model_rtol == 0.01 and st.damping == ds.Damping()
+    bare = dataclasses.replace(six, band_hz=None, n_modes=None)
+    assert analysis_settings(bare).band_hz == DEFAULT_BAND_HZ
+    st = analysis_settings(six, band_hz=(0.1, 1.0), forbidden_hz=(0.2, 0.3), rung="lumped",
+                           segments=8, damping=[0.02])
+    assert st.band_hz == (0.1, 1.0) and st.forbidden_hz == (0.2, 0.3)
+    assert st.model_options() == {"segments": 8}
+    assert st.damping == ds.Damping(0.02, 0.01, 0.0)         # the rest keeps the scene's
+    opts = st.check_options()
+    assert opts["band_hz"] == (0.2, 0.3) and opts["model_band_hz"] == (0.1, 1.0)
+    assert opts["rung"] == "lumped" and opts["segments"] == 8
+    assert any("damping" in line for line in st.lines())
+
+
+def test_models_carry_the_damping():
+    sc = ds.load_scene("cogiro")
+    eq = sc.equilibrium()
+    m = analysis_settings(sc).model(eq)
+    assert m.damped and m.cable_loss_factor == 0.01 and m.platform_damping_ratio == 0.01
+    assert not analysis_settings(sc, damping=[0, 0, 0]).model(eq).damped
+    m = analysis_settings(sc, damping=[0, 0, 0.05]).model(eq)
+    assert all(c.viscous_damping == 0.05 for c in m.robot.cables)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(band_hz=(2.0, 1.0)), "band_hz"),
+                                      (dict(forbidden_hz=(-1.0, 1.0)), "forbidden_hz"),
+                                      (dict(rung="fem"), "model"),
+                                      (dict(n_modes=0), "n_modes"),
+                                      (dict(damping=[0.1, 0.1, 0.1, 0.1]), "damping"),
+                                      (dict(damping=[-0.1]), "platform_ratio"),
+                                      (dict(model_rtol=-1.0), "model_rtol"),
+                                      (dict(margin=-0.1), "margin")])
+def test_bad_settings_are_named(kw, name):
+    with pytest.raises(InvalidParameterError, match=name):
+        analysis_settings(ds.load_scene("planar2"), **kw)
+
+
+def test_metadata_names_scene_pose_model_damping_version():
+    sc = ds.load_scene("cogiro")
+    md = analysis_settings(sc).metadata(sc.pose, units="Hz")
+    assert md["dynstiff"] == ds.__version__ and md["scene"] == "cogiro"
+    assert md["model"] == "dsm" and md["units"] == "Hz"
+    assert md["pose"]["position [m]"] == [0.0, 0.0, 1.0]
+    assert md["damping"]["cable_loss_factor"] == 0.01
