@@ -273,3 +273,34 @@ def test_bad_input_and_too_slack_cables_are_refused():
     slack = ds.solve_catenary((0, 0, 0), (1e-6, 0, 10), 10.1, ds.Cable(0.064, 1.4e5))
     with pytest.raises(DynstiffError, match="too slack"):
         ExactCable(slack, TWO_PI * 3)
+
+
+@pytest.mark.parametrize("case", ["sagging", "weightless", "vertical"])
+def test_tangent_integrals_match_quadrature(case):
+    """int t t^T ds over the arc in closed form (theory.md §11.3, damped static stiffness)
+    against 2000-point Gauss quadrature of t(s) = (H, V0 + w s) / T(s)."""
+    from dynstiff.cable_exact import _tangent_integrals
+    if case == "sagging":
+        s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    elif case == "weightless":
+        s = ds.solve_catenary((0, 0, 0), (6.0, 0, 8.0), 9.99, ds.Cable(0.5, 2e4), g=0.0)
+    else:
+        s = ds.solve_catenary((0, 0, 0), (0.0, 0, 10.0), 9.9, ds.Cable(0.5, 2e4))
+    x, w = np.polynomial.legendre.leggauss(2000)
+    L0 = s.unstretched_length
+    sq = 0.5 * L0 * (x + 1)
+    V = s.V0 + s.cable.weight_per_length(s.g) * sq
+    T = np.hypot(s.H, V)
+    tx, tz = s.H / T, V / T
+    ref = [0.5 * L0 * np.dot(w, f) for f in (tx * tx, tx * tz, tz * tz)]
+    np.testing.assert_allclose(_tangent_integrals(s), ref, rtol=1e-12, atol=1e-14 * L0)
+
+
+def test_the_band_edge_is_inclusive():
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    ec = ExactCable(s, 5.0)
+    assert np.all(np.isfinite(ec.dynamic_stiffness([0.0, 5.0])))
+    assert ec.mode_count([5.0])[0] == np.count_nonzero(ec.eigenvalues < 25.0)
+    for bad in (5.0 * (1 + 1e-9), -5.0 * (1 + 1e-9)):
+        with pytest.raises(InvalidParameterError, match="omega must be <= 5 rad/s"):
+            ec.mode_count([bad])
