@@ -116,6 +116,7 @@ class FrequencyModel(PlatformModel):
                                       for v in validity])
         self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
         self._warned = set()                 # (cable, cause) already reported
+        self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -230,6 +231,9 @@ class FrequencyModel(PlatformModel):
         if self.guard_rtol is None or not omega.size:
             return
         top = float(np.max(np.abs(omega)))
+        if top <= self._guarded[0]:                  # this band was checked already
+            return
+        self._guarded[0] = top
         for i in np.flatnonzero(top >= self._axial_omega):
             f_ax = self._validity[i].values["axial_hz"]
             self._warn_once(int(i), "axial", (

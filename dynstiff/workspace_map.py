@@ -25,8 +25,8 @@ import numpy as np
 
 from ._validate import positive_scalar
 from .catenary_batch import catenary_arrays, sag_ratios
+from .eigen import eigenfrequencies
 from .eigen import modes as modal
-from .eigen_warm import eigenfrequencies_near
 from .errors import DynstiffError, InvalidParameterError
 from .ladder import RUNGS, build_model
 from .params import Cable
@@ -157,15 +157,15 @@ def platform_participation(model, freq_hz):
     return out
 
 
-def _modes(model, n_modes, previous_hz=None):
+def _modes(model, n_modes):
     """Frequencies [Hz], platform participation [-] and global flags of the lowest
-    ``n_modes`` modes: Wittrick-Williams frequencies (started from the previous pose's,
-    :func:`dynstiff.eigen_warm.eigenfrequencies_near`) and :func:`platform_participation`
-    for the closed-form rung, :func:`dynstiff.modes` otherwise."""
+    ``n_modes`` modes: Wittrick-Williams frequencies (the seeded, compiled count of
+    theory.md §14.2) and :func:`platform_participation` for the closed-form rung,
+    :func:`dynstiff.modes` otherwise."""
     if model.rung != "dsm" or model.damped:
         res = modal(model, n_modes=n_modes)
         return res.freq_hz, 1.0 - res.cable_energy_fraction, np.asarray(res.kind) == "global"
-    f = eigenfrequencies_near(model, n_modes, previous_hz)
+    f = eigenfrequencies(model, n_modes=n_modes)
     part = platform_participation(model, f)
     return f, part, part > 0.5
 
@@ -205,7 +205,7 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
     EA = np.array([c.EA for c in robot.cables])
     w0 = np.array([c.mass_per_length for c in robot.cables]) * robot.g
     t_min, t_max = robot.tension_limits
-    prev, prev_hz = None, None
+    prev = None
     for j, x in enumerate(poses):
         pose = as_pose(x)
         try:
@@ -215,11 +215,11 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
                 if prev is None:
                     raise
                 eq = robot.equilibrium(pose=pose)        # a far neighbour: start afresh
-            f, part, glob = _modes(build_model(eq, rung, **model_options), n_modes, prev_hz)
+            f, part, glob = _modes(build_model(eq, rung, **model_options), n_modes)
         except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
             reasons[j] = f"{type(exc).__name__}: {exc}"
             continue
-        prev, prev_hz = eq, f
+        prev = eq
         B, _ = robot.attachment_points(pose)
         out["feasible"][j] = True
         out["residual"][j] = eq.residual
