@@ -304,3 +304,30 @@ def test_the_band_edge_is_inclusive():
     for bad in (5.0 * (1 + 1e-9), -5.0 * (1 + 1e-9)):
         with pytest.raises(InvalidParameterError, match="omega must be <= 5 rad/s"):
             ec.mode_count([bad])
+
+
+def test_viscous_damping_is_the_undamped_cable_at_a_complex_frequency():
+    """Viscous damping c on all motions is the complex mass m - i c / omega (theory.md
+    §11.3): the damped cable's K(omega) is the undamped cable's at the complex frequency
+    sqrt(omega^2 - i omega c / m), through the same exact condensation."""
+    A, B, L0 = (0, 0, 0), (8.0, 0, 3.0), 8.7
+    damped = ds.solve_catenary(A, B, L0, ds.Cable(0.7, 3e5, viscous_damping=0.4))
+    plain = ds.solve_catenary(A, B, L0, ds.Cable(0.7, 3e5))
+    band = TWO_PI * 2.0
+    w = TWO_PI * np.array([0.11, 0.63, 1.41])
+    Kd = ExactCable(damped, band).dynamic_stiffness(w, ends="both")
+    wc = np.sqrt(w**2 - 1j * w * 0.4 / 0.7)
+    Ku = ExactCable(plain, band).dynamic_stiffness(wc, ends="both")
+    np.testing.assert_allclose(Kd, Ku, rtol=0, atol=1e-12 * np.abs(Kd).max())
+    assert np.abs(Kd.imag).max() > 1e-3 * np.abs(Kd.real).max()
+
+
+def test_end_block_dyads_are_the_end_block_of_the_two_end_dyads():
+    s = state(HARD["steep 60 deg sagging"])
+    ec = ExactCable(s, TWO_PI * 1.0)
+    both = ec.beta_dyads("both").reshape(-1, 6, 6)
+    end = ec.beta_dyads().reshape(-1, 3, 3)
+    np.testing.assert_array_equal(end, both[:, 3:, 3:])
+    assert both.shape[0] == ec.flexibilities.size
+    with pytest.raises(InvalidParameterError, match=r"\(0.795775 Hz\)"):
+        ExactCable(s, 5.0).dynamic_stiffness(6.0)
