@@ -331,3 +331,29 @@ def test_end_block_dyads_are_the_end_block_of_the_two_end_dyads():
     assert both.shape[0] == ec.flexibilities.size
     with pytest.raises(InvalidParameterError, match=r"\(0.795775 Hz\)"):
         ExactCable(s, 5.0).dynamic_stiffness(6.0)
+
+
+def test_the_self_check_refuses_a_discretisation_that_misses_the_statics():
+    """Order 8 on the U-shaped slack cable (T_min / T_max = 3e-9): its static condensation is
+    20 % off the exact static stiffness, and the constructor says so with the residual
+    instead of returning the model (theory.md §11.2)."""
+    from dynstiff.errors import ConvergenceError
+    slack = ds.solve_catenary((0, 0, 0), (1e-6, 0, 10), 10.1, ds.Cable(0.064, 1.4e5))
+    with pytest.raises(ConvergenceError, match=r"does not reproduce .* 2.81e-09 of the "
+                                               r"highest, EA / T_min = 7.91e\+12") as err:
+        ExactCable(slack, TWO_PI * 3, order=8)
+    assert err.value.residual > 1e-6
+
+
+def test_a_long_cable_keeps_modes_below_one_radian_per_second():
+    """A 100 m sagging span: the clamped frequencies, the lowest below 1 rad/s, equal the
+    Richardson-extrapolated lumped chain's to 1e-6; the arrays are read-only."""
+    A, B, L0, cab = (0, 0, 0), (100.0, 0, 10.0), 106.0, ds.Cable(1.0, 1e7)
+    f = {N: TWO_PI * chain_fixed_end_frequencies(chain_equilibrium(A, B, L0, cab, N), 4)
+         for N in (200, 400)}
+    ref = richardson(f, (200, 400))
+    assert ref[0] < 1.0
+    ec = ExactCable(ds.solve_catenary(A, B, L0, cab), 1.2 * ref[-1])
+    np.testing.assert_allclose(np.sqrt(ec.eigenvalues[:4]), ref, rtol=1e-6)
+    with pytest.raises(ValueError, match="read-only"):
+        ec.eigenvalues[0] = 1.0
