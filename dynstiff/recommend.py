@@ -108,8 +108,8 @@ def _dsm_error(equilibrium, band_hz):
     §11.5): the largest relative difference of their frequencies in the band, paired in
     order from the band's bottom (the top mode straddling the band's edge is compared too);
     inf for a slack cable or axial modes in the band (the closed form has none), or when
-    the closed form has fewer modes than the exact rung there. Returns (error, largest chordwise weight ratio,
-    causes of the cables the guard flags)."""
+    the closed form has fewer modes than the exact rung there. Returns (error, largest
+    chordwise weight ratio, causes of the cables the guard flags)."""
     import warnings
 
     from .exact_model import ExactModel
