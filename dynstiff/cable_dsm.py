@@ -94,6 +94,8 @@ _N_TERMS = 16
 MAX_OMEGA_ND = 1e7
 #: Largest |Im psi| (damped or complex frequencies): sin and cos overflow near 710.
 MAX_IMAG_PSI = 350.0
+#: Estimated relative frequency error above which the closed form warns (theory.md §11.5).
+DEFAULT_GUARD_RTOL = 1e-2
 
 
 def check_frequency_range(params, omega, name="omega"):
@@ -268,7 +270,7 @@ def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_I
 
 def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
                             chordwise_inertia=DEFAULT_CHORDWISE_INERTIA, model="closed-form",
-                            guard_rtol=1e-2):
+                            guard_rtol=DEFAULT_GUARD_RTOL):
     """Dynamic stiffness matrix of one sagging cable in the global frame.
 
     Parameters
@@ -589,7 +591,7 @@ def _exact_modes(state, n):
 
 
 def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form",
-                              guard_rtol=1e-2):
+                              guard_rtol=DEFAULT_GUARD_RTOL):
     """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
 
     "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane
@@ -641,8 +643,6 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
 
 
 # --------------------------------------------------------------------------- guard
-#: Estimated relative frequency error above which the closed form warns (theory.md §11.5).
-DEFAULT_GUARD_RTOL = 1e-2
 #: The closed form warns when the band reaches this fraction of a cable's first axial
 #: frequency sqrt(EA/m) / (2 L0) (it has no axial modes).
 AXIAL_MARGIN = 0.9

@@ -36,35 +36,39 @@ from .constants import MAX_COORDINATE, STANDARD_GRAVITY
 from .errors import ConvergenceError, InvalidParameterError, SlackCableError
 from .params import Cable
 
-__all__ = ["CatenaryState", "solve_catenary", "unstretched_length_for_tension"]
+__all__ = ["CatenaryState", "solve_catenary", "unstretched_length_for_tension",
+           "divided_differences"]
 
 _RTOL = 1e-12
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
 # --------------------------------------------------------------------------- kernels
-def _divided_differences(a, b, delta):
-    """Cancellation-free divided differences between t = a and t = b = a + delta.
+def divided_differences(a, b, delta):
+    """Cancellation-free divided differences between t = a and t = b = a + delta >= a.
 
     Returns (D_asinh, D_f, D_g, D_sqrt), each (F(b) - F(a)) / delta for
-    F = asinh(t), t / sqrt(1 + t^2), 1 / sqrt(1 + t^2), sqrt(1 + t^2).
-    Uses asinh(b) - asinh(a) = asinh(b sqrt(1+a^2) - a sqrt(1+b^2)) and rationalised
-    differences so nothing cancels when delta << |a|.
+    F = asinh(t), t / sqrt(1 + t^2), 1 / sqrt(1 + t^2), sqrt(1 + t^2), and the derivatives at
+    a where delta = 0 (weightless cable). Scalars or arrays of one shape (n,), elementwise
+    (also the batched statics, :mod:`dynstiff.catenary_batch`). Uses
+    asinh(b) - asinh(a) = asinh(b sqrt(1+a^2) - a sqrt(1+b^2)) and rationalised differences
+    so nothing cancels when delta << |a|.
     """
     sa, sb = np.hypot(1.0, a), np.hypot(1.0, b)
-    if delta == 0.0:                    # weightless cable: the derivatives at a
-        return 1.0 / sa, 1.0 / sa**3, -a / sa**3, a / sa
-    if a * b > 0:
-        # same sign: rationalise b sa - a sb = delta (a + b) / (b sa + a sb)
-        inner_over_delta = (a + b) / (b * sa + a * sb)
-        inner = delta * inner_over_delta
-    else:
-        inner = b * sa - a * sb          # both terms >= 0: no cancellation
-        inner_over_delta = inner / delta
-    d_asinh = np.arcsinh(inner) / delta
-    d_f = inner_over_delta / (sa * sb)
-    d_g = -(a + b) / ((sa + sb) * sa * sb)
-    d_sqrt = (a + b) / (sa + sb)
+    same = a * b > 0
+    zero = delta == 0
+    d = np.where(zero, 1.0, delta)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # same sign: rationalise b sa - a sb = delta (a + b) / (b sa + a sb); else both
+        # terms are >= 0 and nothing cancels
+        iod_same = (a + b) / (b * sa + a * sb)
+        inner_other = b * sa - a * sb
+        iod = np.where(same, iod_same, inner_other / d)
+    inner = np.where(same, d * iod_same, inner_other)
+    d_asinh = np.where(zero, 1.0 / sa, np.arcsinh(inner) / d)
+    d_f = np.where(zero, 1.0 / sa**3, iod / (sa * sb))
+    d_g = np.where(zero, -a / sa**3, -(a + b) / ((sa + sb) * sa * sb))
+    d_sqrt = np.where(zero, a / sa, (a + b) / (sa + sb))
     return d_asinh, d_f, d_g, d_sqrt
 
 
@@ -77,7 +81,7 @@ def _end_offsets_and_flexibility(H, V0, L0, EA, w0):
     """
     W = w0 * L0
     a, b, delta = V0 / H, (V0 + W) / H, W / H
-    d_asinh, d_f, d_g, d_sqrt = _divided_differences(a, b, delta)
+    d_asinh, d_f, d_g, d_sqrt = divided_differences(a, b, delta)
     x = L0 * (H / EA + d_asinh)
     z = L0 * ((V0 + 0.5 * W) / EA + d_sqrt)
     dx_dH = L0 / EA + (L0 / H) * (d_asinh - d_f)

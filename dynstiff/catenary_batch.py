@@ -23,29 +23,12 @@ cannot be reached.
 
 import numpy as np
 
-from .catenary import CatenaryState, unstretched_length_for_tension
+from .catenary import CatenaryState, divided_differences, unstretched_length_for_tension
 
 __all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 
 _RTOL = 1e-13          # relative residual of the three equations at convergence
 _MAX_ITER = 40
-
-
-def _divided_differences(a, b, delta):
-    """Vectorised (F(b) - F(a)) / delta, delta = b - a > 0, for F = asinh(t),
-    t / sqrt(1 + t^2), 1 / sqrt(1 + t^2), sqrt(1 + t^2); arrays of shape (n,)."""
-    sa, sb = np.hypot(1.0, a), np.hypot(1.0, b)
-    same = a * b > 0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        iod_same = (a + b) / (b * sa + a * sb)
-        inner_other = b * sa - a * sb
-        iod = np.where(same, iod_same, inner_other / delta)
-    inner = np.where(same, delta * iod_same, inner_other)
-    d_asinh = np.arcsinh(inner) / delta
-    d_f = iod / (sa * sb)
-    d_g = -(a + b) / ((sa + sb) * sa * sb)
-    d_sqrt = (a + b) / (sa + sb)
-    return d_asinh, d_f, d_g, d_sqrt
 
 
 def _equations(H, V0, L0, EA, w0):
@@ -54,7 +37,7 @@ def _equations(H, V0, L0, EA, w0):
     W = w0 * L0
     Vb = V0 + W
     a, b, delta = V0 / H, Vb / H, W / H
-    d_asinh, d_f, d_g, d_sqrt = _divided_differences(a, b, delta)
+    d_asinh, d_f, d_g, d_sqrt = divided_differences(a, b, delta)
     x = L0 * (H / EA + d_asinh)
     z = L0 * ((V0 + 0.5 * W) / EA + d_sqrt)
     T = np.hypot(H, Vb)
@@ -229,7 +212,7 @@ def sag_ratios(anchors, ends, H, V0, L0, EA, w0, n_points=401):
     a = np.broadcast_to((V0[:, None] / Hc), s.shape).ravel()
     b = ((V0[:, None] + w0[:, None] * s) / Hc).ravel()
     with np.errstate(divide="ignore", invalid="ignore"):
-        d_asinh, _, _, d_sqrt = _divided_differences(a, b, b - a)
+        d_asinh, _, _, d_sqrt = divided_differences(a, b, b - a)
     d_asinh, d_sqrt = d_asinh.reshape(s.shape), d_sqrt.reshape(s.shape)
     x = s * (Hc / EA[:, None] + d_asinh)
     z = s * ((V0[:, None] + 0.5 * w0[:, None] * s) / EA[:, None] + d_sqrt)
