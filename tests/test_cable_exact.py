@@ -357,3 +357,25 @@ def test_a_long_cable_keeps_modes_below_one_radian_per_second():
     np.testing.assert_allclose(np.sqrt(ec.eigenvalues[:4]), ref, rtol=1e-6)
     with pytest.raises(ValueError, match="read-only"):
         ec.eigenvalues[0] = 1.0
+
+
+def test_undamped_stiffness_is_real_and_responses_are_linear_in_the_end_motion():
+    """Undamped (c = 0, eta = 0): K(omega) is real, float64, at both ends; a damped cable's
+    is complex. The interior response is linear in the (complex) end displacement, and a
+    refusal names the offending frequency, not the first one."""
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    ec = ExactCable(s, 5.0)
+    assert ec.dynamic_stiffness([1.0, 2.0]).dtype == np.float64
+    assert ec.dynamic_stiffness(1.0, ends="both").dtype == np.float64
+    A, B, L0 = (0, 0, 0), (10.0, 0, 5.0), 11.5
+    for cab in (ds.Cable(1.0, 1e6, loss_factor=0.01), ds.Cable(1.0, 1e6, viscous_damping=0.2)):
+        K = ExactCable(ds.solve_catenary(A, B, L0, cab), 5.0).dynamic_stiffness(1.0)
+        assert np.iscomplexobj(K) and np.abs(K.imag).max() > 1e-6 * np.abs(K.real).max()
+    u = np.array([0.01, -0.02, 0.005])
+    for w in (1.3, 3.9):
+        U = ec.end_response(w, u)
+        np.testing.assert_allclose(ec.end_response(w, (0.3 - 2j) * u), (0.3 - 2j) * U,
+                                   rtol=1e-13, atol=1e-16)
+        np.testing.assert_allclose(U[-1], u, rtol=0, atol=0)
+    with pytest.raises(InvalidParameterError, match=r"got 6; build"):
+        ec.dynamic_stiffness([1.0, 6.0, 2.0])
