@@ -47,7 +47,8 @@ def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq):
 
     with pytest.warns(PoleWarning, match=r"e\.g\. 0\.159154943 Hz") as record:  # 1 rad/s
         H = ds.frf(Singular(ds.FrequencyModel(cogiro_eq)), [1.0, 2.0]).H
-    assert not record[0].filename.endswith("frf.py")    # the warning points at the caller
+    # the warning points at the caller, not into the module
+    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/frf.py")
     assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
 
 
