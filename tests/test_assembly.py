@@ -187,3 +187,38 @@ def test_damping_ratios_of_the_platform_z_mode(cogiro_eq):
         ds.FrequencyModel(cogiro_eq, cable_loss_factor=-0.1)
     with pytest.raises(InvalidParameterError, match="platform_damping_ratio"):
         ds.build_model(cogiro_eq, "dsm", platform_damping_ratio=np.nan)
+
+
+def test_with_damping_keeps_the_options_and_the_fused_kernel_equals_two_calls(cogiro_eq):
+    """``with_damping`` is the same model (tension, chordwise inertia) with the model-level
+    damping, its defaults undamped; ``dynamic_stiffness_and_count`` equals K(omega) of the
+    undamped model and the clamped-mode count J0, for every option, damped models and
+    subclasses included (theory.md §5, §14.2)."""
+    w = 2 * np.pi * np.array([0.4, 3.3, 7.9])
+    for opts in ({}, {"tension": "chord", "chordwise_inertia": False},
+                 {"chordwise_inertia": True}):
+        m = ds.FrequencyModel(cogiro_eq, **opts)
+        direct = ds.FrequencyModel(cogiro_eq, cable_loss_factor=0.03,
+                                   platform_damping_ratio=0.02, **opts)
+        damped = m.with_damping(0.03, 0.02)
+        assert damped.damped and not m.with_damping().damped
+        np.testing.assert_array_equal(damped.dynamic_stiffness(w), direct.dynamic_stiffness(w))
+        np.testing.assert_array_equal(m.with_damping().dynamic_stiffness(w),
+                                      m.dynamic_stiffness(w))
+        for model in (m, damped):
+            K, J0 = model.dynamic_stiffness_and_count(w)
+            np.testing.assert_allclose(K, m.dynamic_stiffness(w), rtol=1e-13,
+                                       atol=1e-13 * np.abs(K).max())
+            np.testing.assert_array_equal(J0, m.cable_mode_count(w))
+
+    class Softer(ds.FrequencyModel):
+        """A subclass with its own K(omega): the fused kernel must defer to it."""
+
+        def dynamic_stiffness(self, omega):
+            return 0.5 * super().dynamic_stiffness(omega)
+
+    sub = Softer(cogiro_eq)
+    K, J0 = sub.dynamic_stiffness_and_count(w)
+    np.testing.assert_allclose(K, 0.5 * ds.FrequencyModel(cogiro_eq).dynamic_stiffness(w),
+                               rtol=1e-13, atol=1e-13 * np.abs(K).max())
+    np.testing.assert_array_equal(J0, sub.cable_mode_count(w))

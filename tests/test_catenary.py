@@ -237,6 +237,7 @@ def test_profile_table_runs_from_anchor_to_end():
     assert df["tension [N]"].iloc[-1] == pytest.approx(st.tension_at_end, rel=1e-12)
     arc = np.linalg.norm(np.diff(xyz, axis=0), axis=1).sum()
     assert np.linalg.norm(B - A) < arc < st.stretched_length + 1e-12
+    assert len(st.to_frame()) == 50                       # the documented default
 
 
 @pytest.mark.parametrize("mass, rtol", [(0.064, 1e-13), (5e-7, 4e-15)])

@@ -217,3 +217,25 @@ def test_model_level_damping_options_match_the_closed_forms(cogiro_eq):
     assert a.damping_ratio[0] == pytest.approx(0.035, rel=0.03)
     with pytest.raises(InvalidParameterError, match="cable_loss_factor"):
         ds.build_model(cogiro_eq, "exact", cable_loss_factor=-1.0)
+
+
+def test_with_damping_keeps_the_band_and_mesh_and_still_fields_every_cable(cogiro_eq):
+    """``with_damping`` keeps fmax_hz, order and half_waves (the same K as a direct build),
+    its defaults undamped; ``cable_displacements`` with no motion gives every cable's
+    static profile (41 points by default) and zero displacement."""
+    from dynstiff.exact_model import ExactModel
+    m = ExactModel(cogiro_eq, fmax_hz=6.0, order=10, half_waves=3.0)
+    direct = ExactModel(cogiro_eq, 6.0, 10, 3.0, cable_loss_factor=0.02,
+                           platform_damping_ratio=0.01)
+    damped = m.with_damping(0.02, 0.01)
+    assert (damped.fmax_hz, damped.order, damped.half_waves) == (6.0, 10, 3.0)
+    w = TWO_PI * np.array([0.7, 4.1])
+    np.testing.assert_array_equal(damped.dynamic_stiffness(w), direct.dynamic_stiffness(w))
+    assert damped.damped and not m.with_damping().damped
+    np.testing.assert_array_equal(m.with_damping().dynamic_stiffness(w),
+                                  m.dynamic_stiffness(w))
+    pos, disp = m.cable_displacements(w[0], np.zeros(6))
+    assert pos.shape == disp.shape == (8, 41, 3)
+    assert not np.any(disp)
+    for c, p in zip(m.cables, pos):
+        np.testing.assert_allclose(p, c.state.profile(41), rtol=0, atol=0)
