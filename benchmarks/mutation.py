@@ -51,6 +51,9 @@ EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FRF_FAST
                    for n in (1, 5, 32, 36)})
 EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FLOAT for n in (22, 24)})
 EQUIVALENT.update({f"dynstiff.frf.x__solve__mutmut_{n}": _FLOAT for n in (15, 17)})
+EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
+                   "dtype=float dropped on a list of Python floats (float64 even when empty)"
+                   for n in (23, 25, 30, 32, 36, 38)})
 EQUIVALENT.update({
     "dynstiff.frf.x_channel_maps__mutmut_42":
         "np.eye(7) instead of np.eye(6) indexed by DOF numbers < 6: the same entries",
@@ -66,6 +69,14 @@ EQUIVALENT.update({
         "the fused kernel skipped for the base class: the same K and J0 from two calls",
     "dynstiff.assembly.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_33":
         "reshape(n, -2) equals reshape(n, -1) (any negative size is inferred)",
+    "dynstiff.interaction.xǁProximityWarningǁ__hash____mutmut_1":
+        "a constant hash keeps set and dict semantics (equality decides); only slower",
+    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_3":
+        "pd.array of an int64 array infers Int64 without being told",
+    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_5":
+        "pd.array of an int64 array infers Int64 without being told",
+    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_9":
+        "None assigned into an Int64 array is <NA>, like pd.NA",
     "dynstiff.frf.x_frf__mutmut_106":
         "receptance multiplied by its own factor (i omega)^0 = 1",
     "dynstiff.frf.x_frf__mutmut_107":

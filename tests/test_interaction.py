@@ -305,3 +305,35 @@ def test_sweep_records_an_infeasible_pose_and_goes_on():
     assert res.veering_table().shape[0] == 3
     with pytest.raises(InvalidParameterError, match="on_error"):
         sweep(rob, poses=[[0, 0, 1.0]], n_modes=3, on_error="skip")
+
+
+def test_proximity_records_compare_by_value_and_tabulate_with_their_types(modes120):
+    """Two records of the same pair are equal and hash alike; a record never equals a
+    tuple; the table holds the records' values, integer mode columns even when empty."""
+    warn = proximity_warnings(modes120)
+    again = proximity_warnings(modes120)
+    assert warn == again and len(set(warn) | set(again)) == len(warn)
+    assert warn[0] != (warn[0].global_mode, warn[0].local_mode)
+    assert warn[0] != warn[1]
+    assert eval(repr(warn[2]), {"ProximityWarning": ProximityWarning}) == warn[2]
+    df = to_frame(warn)
+    for col, field in zip(df.columns, ProximityWarning._FIELDS):
+        assert list(df[col]) == [getattr(w, field) for w in warn]
+    empty = to_frame([])
+    assert list(empty.dtypes) == [np.int64, np.int64, np.float64, np.float64, np.float64]
+    with pytest.raises(InvalidParameterError, match="got tuple"):
+        to_frame([warn[0], (1, 2)])
+
+
+def test_veering_plot_draws_into_the_given_axes_with_or_without_local_modes(path_sweep):
+    import matplotlib.pyplot as plt
+    res = path_sweep[1]
+    fig, ax = plt.subplots()
+    assert res.plot(ax=ax) is fig
+    gids = {a.get_gid() for a in ax.get_children()}
+    assert "local-modes" in gids and {f"track-{t}" for t in range(res.n_tracks)} <= gids
+    fig2, ax2 = plt.subplots()
+    res.plot(ax=ax2, show_local=False)
+    assert "local-modes" not in {a.get_gid() for a in ax2.get_children()}
+    plt.close(fig)
+    plt.close(fig2)
