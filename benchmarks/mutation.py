@@ -51,6 +51,23 @@ EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FRF_FAST
                    for n in (1, 5, 32, 36)})
 EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FLOAT for n in (22, 24)})
 EQUIVALENT.update({f"dynstiff.frf.x__solve__mutmut_{n}": _FLOAT for n in (15, 17)})
+_RESULT_TYPE = ("one of the four entries dropped from np.result_type: any damping makes at "
+                "least two of them complex (planted and checked), so the dtype is unchanged")
+EQUIVALENT.update({f"dynstiff.cable_dsm.x_{f}__mutmut_{n}": _RESULT_TYPE
+                   for f in ("local_end_stiffness", "local_two_end_stiffness")
+                   for n in range(15, 23)})
+_GROW = ("the first band tried for the exact clamped modes (or the loop bound, or one more "
+         "mode than needed): the band grows by 1.5 until it holds n modes, and modes inside "
+         "the band are exact whatever band was asked")
+EQUIVALENT.update({f"dynstiff.cable_dsm.x__exact_modes__mutmut_{n}": _GROW
+                   for n in (2, 3, 4, 5, 6, 9, 17, 19)})
+EQUIVALENT.update({
+    "dynstiff.cable_dsm.x_block_coefficients__mutmut_1":
+        "default blocks='end' changed: any value but 'both' gives the end block",
+    "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
+        "default blocks='end' changed: any value but 'both' gives the end block",
+    "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+})
 EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
                    "dtype=float dropped on a list of Python floats (float64 even when empty)"
                    for n in (23, 25, 30, 32, 36, 38)})

@@ -338,3 +338,81 @@ def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
         warnings.simplefilter("error", ClosedFormWarning)
         ds.cable_natural_frequencies(s, 12)
         ds.cable_dynamic_stiffness(steep, 1.0, guard_rtol=None)
+
+
+@pytest.mark.parametrize("chordwise", [True, False])
+@pytest.mark.parametrize("damping", [{}, {"loss_factor": 0.02}, {"viscous_damping": 0.3}])
+def test_block_coefficients_rebuild_the_two_end_matrix(chordwise, damping):
+    """The five dyad coefficients (u u, u v, v u, v v, w w) of the blocks AA, AB and BB
+    rebuild the local two-end DSM, with and without chordwise inertia, undamped or damped
+    (theory.md §3.4); undamped they are real."""
+    from dynstiff.cable_dsm import block_coefficients
+    state = ds.solve_catenary((0, 0, 0), (8.0, 3.0, -5.0), 9.9,
+                              ds.Cable(0.064, 139486.7, **damping))
+    p = chord_parameters(state)
+    w = np.array([0.5, 20.0, 55.0])
+    c = block_coefficients(p, w, chordwise, blocks="both")
+    assert set(c) == {"AA", "AB", "BB"}
+    assert set(block_coefficients(p, w, chordwise)) == {"BB"}
+    K = local_two_end_stiffness(p, w, chordwise)
+    assert np.iscomplexobj(K) == bool(damping)
+    for name, rows, cols in (("AA", slice(0, 3), slice(0, 3)), ("AB", slice(0, 3), slice(3, 6)),
+                             ("BB", slice(3, 6), slice(3, 6))):
+        a = c[name]
+        assert a.dtype == K.dtype
+        B = np.zeros((w.size, 3, 3), dtype=a.dtype)
+        B[:, 0, 0], B[:, 0, 1], B[:, 1, 0], B[:, 1, 1], B[:, 2, 2] = a.T
+        np.testing.assert_allclose(B, K[:, rows, cols], rtol=1e-13,
+                                   atol=1e-13 * np.abs(K).max())
+
+
+def test_undamped_kernels_continue_analytically_to_complex_frequencies():
+    """An undamped cable's DSM at complex omega (how damped modes are searched) is the
+    analytic continuation: complex, K(conj w) = conj K(w), and at w (1 + i e) it equals the
+    first-order Taylor step K(w) + i e w dK/domega to O(e^2) (theory.md §3.4)."""
+    state = ds.solve_catenary((0, 0, 0), (8.0, 3.0, -5.0), 9.9, ds.Cable(0.064, 139486.7))
+    p = chord_parameters(state)
+    w, e, h = np.array([3.0, 21.0]), 1e-6, 1e-4
+    for kernel in (local_end_stiffness, local_two_end_stiffness):
+        Kc = kernel(p, w * (1 + 1j * e))
+        assert np.iscomplexobj(Kc)
+        np.testing.assert_allclose(kernel(p, w * (1 - 1j * e)), np.conj(Kc), rtol=1e-14,
+                                   atol=1e-14 * np.abs(Kc).max())
+        dK = (kernel(p, w * (1 + h)) - kernel(p, w * (1 - h))) / (2 * h)
+        np.testing.assert_allclose(Kc.imag, e * dK, rtol=1e-5, atol=1e-9 * np.abs(dK).max())
+
+
+def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_stack():
+    """One evaluation of the psi functions gives the end-block coefficients and J0 equal to
+    :func:`end_block_coefficients` and :func:`cable_mode_count`, for one cable (shapes
+    (n, 5), (n,)) and a stack ((n, n_cables, 5), (n, n_cables)); damped cables or complex
+    omega are refused (theory.md §14.2)."""
+    from dynstiff.cable_dsm import (cable_mode_count, end_block_coefficients,
+                                    end_block_coefficients_and_count)
+    from dynstiff.chord import stack_parameters
+    states = [ds.solve_catenary((0, 0, 0), B, L0, ds.Cable(0.064, 139486.7))
+              for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]
+    w = np.linspace(0.0, 120.0, 57)
+    for chordwise in (True, False):
+        for k, s in enumerate(states):
+            p = chord_parameters(s)
+            c, J0 = end_block_coefficients_and_count(p, w, chordwise)
+            assert c.shape == (57, 5) and J0.shape == (57,) and c.dtype == np.float64
+            np.testing.assert_allclose(c, end_block_coefficients(p, w, chordwise), rtol=1e-14,
+                                       atol=1e-14 * np.abs(c).max())
+            np.testing.assert_array_equal(J0, cable_mode_count(s, w))
+            stack = stack_parameters([chord_parameters(t) for t in states])
+            cs, Js = end_block_coefficients_and_count(stack, w, chordwise)
+            assert cs.shape == (57, 2, 5) and Js.shape == (57, 2)
+            np.testing.assert_allclose(cs[:, k], c, rtol=1e-14, atol=1e-14 * np.abs(c).max())
+            np.testing.assert_array_equal(Js[:, k], J0)
+    assert J0.max() > 3
+    p = chord_parameters(states[0])
+    msg = r"^end_block_coefficients_and_count needs undamped cables at real omega$"
+    with pytest.raises(InvalidParameterError, match=msg):
+        end_block_coefficients_and_count(p, w * (1 + 1e-3j))
+    for cab in (ds.Cable(0.064, 139486.7, loss_factor=0.01),
+                ds.Cable(0.064, 139486.7, viscous_damping=0.1)):
+        damped = chord_parameters(ds.solve_catenary((0, 0, 0), (8.0, 3.0, -5.0), 9.9, cab))
+        with pytest.raises(InvalidParameterError, match=msg):
+            end_block_coefficients_and_count(damped, w)
