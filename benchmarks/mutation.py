@@ -67,6 +67,20 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+    "dynstiff.cable_dsm.x__real_if_undamped__mutmut_4":
+        "the kernels are already real for an undamped cable at real omega: np.real is a no-op",
+    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_79":
+        "omega is real here (complex omega is refused by the validation)",
+    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_154":
+        "omega is real here (complex omega is refused by the validation)",
+    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_29":
+        "the exact cable's band floored at 1 rad/s: modes inside any band are exact",
+    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_1":
+        "the floor of the exact cable's band only: results inside any band are exact",
+    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_2":
+        "the floor of the exact cable's band only: results inside any band are exact",
+    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_4":
+        "the floor of the exact cable's band only: results inside any band are exact",
 })
 EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
                    "dtype=float dropped on a list of Python floats (float64 even when empty)"

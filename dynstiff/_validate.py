@@ -51,6 +51,9 @@ def omega_array(value, name="omega", complex_ok=False):
     must be >= 0.
     """
     dtype = complex if complex_ok and np.iscomplexobj(value) else float
+    if dtype is float and np.iscomplexobj(value):        # never drop an imaginary part
+        raise InvalidParameterError(
+            f"{name} must be real angular frequencies [rad/s], got complex values")
     try:
         arr = np.atleast_1d(np.asarray(value, dtype=dtype))
     except (TypeError, ValueError):

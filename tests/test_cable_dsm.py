@@ -416,3 +416,40 @@ def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_st
         damped = chord_parameters(ds.solve_catenary((0, 0, 0), (8.0, 3.0, -5.0), 9.9, cab))
         with pytest.raises(InvalidParameterError, match=msg):
             end_block_coefficients_and_count(damped, w)
+
+
+def test_cable_dsm_options_reach_the_kernels(state300):
+    """Each option of :func:`cable_dynamic_stiffness` reaches the kernel: chordwise inertia
+    adds exactly -omega^2 m L / 3 u u^T to K_B (theory.md §3.4); the chord tension differs
+    from the mean tension; complex omega is refused, not cast; an empty grid gives
+    an empty stack for both models; the exact model honours ``ends``."""
+    s = state300
+    w = np.array([2.0, 9.0, 31.0])
+    p = chord_parameters(s)
+    u = (s.end - s.anchor) / np.linalg.norm(s.end - s.anchor)
+    on = ds.cable_dynamic_stiffness(s, w, chordwise_inertia=True)
+    off = ds.cable_dynamic_stiffness(s, w, chordwise_inertia=False)
+    np.testing.assert_allclose(on - off, -(w**2 * p.m * p.L / 3)[:, None, None]
+                               * np.outer(u, u), rtol=1e-9, atol=1e-9 * np.abs(on).max())
+    chord = ds.cable_dynamic_stiffness(s, w, tension="chord")
+    assert np.abs(chord - ds.cable_dynamic_stiffness(s, w)).max() > 1e-6 * np.abs(chord).max()
+    with pytest.raises(InvalidParameterError, match="omega must be real .* got complex"):
+        ds.cable_dynamic_stiffness(s, w * (1 + 1e-6j), ends="both")
+    for model in ("closed-form", "exact"):
+        assert ds.cable_dynamic_stiffness(s, [], model=model).shape == (0, 3, 3)
+    assert ds.cable_dynamic_stiffness(s, w, ends="both", model="exact").shape == (3, 6, 6)
+
+
+def test_cable_modes_table_repr_and_plot(state300):
+    import matplotlib.pyplot as plt
+    modes = ds.cable_natural_frequencies(state300, 5)
+    df = modes.to_frame()
+    assert list(df.columns) == ["freq [Hz]", "Omega [-]", "family", "order"]
+    np.testing.assert_array_equal(df["freq [Hz]"], modes.freq_hz)
+    assert list(df["family"]) == list(modes.family) and list(df["order"]) == list(modes.order)
+    assert repr(modes) == (f"CableModes(5 modes {modes.freq_hz[0]:.4g}-{modes.freq_hz[-1]:.4g}"
+                           f" Hz: {', '.join(modes.labels[:3])}, ...)")
+    fig, ax = plt.subplots()
+    assert modes.plot(ax=ax) is fig
+    assert any(str(a.get_gid()).startswith("cable-") for a in ax.get_children())
+    plt.close(fig)
