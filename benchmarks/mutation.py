@@ -67,6 +67,20 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+    "dynstiff.statics.x__limits__mutmut_8":
+        "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
+    "dynstiff.statics.x__limits__mutmut_9":
+        "t_max[1] instead of t_max[0] inside the branch where all t_max are equal",
+    "dynstiff.catenary.xǁCatenaryStateǁtension__mutmut_3":
+        "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
+    "dynstiff.catenary.xǁCatenaryStateǁtension__mutmut_5":
+        "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
+    "dynstiff.catenary.x__vertical_solution__mutmut_3":
+        "h <= 0 instead of h < 0: a vertical chord of zero length is refused before",
+    "dynstiff.catenary.x__vertical_solution__mutmut_13":
+        "> 0 instead of >= 0 at the slack boundary: differs only when V0 + W is exactly 0",
+    "dynstiff.catenary.x__vertical_solution__mutmut_24":
+        "< 0 instead of <= 0 at the slack boundary: differs only when V0 is exactly 0",
     "dynstiff.cable_dsm.x__real_if_undamped__mutmut_4":
         "the kernels are already real for an undamped cable at real omega: np.real is a no-op",
     "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_79":

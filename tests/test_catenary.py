@@ -199,6 +199,32 @@ def test_slack_vertical_cable_raises(cable17):
         ds.solve_catenary((0, 0, 10), (0, 0, 0), 12.0, cable17)
 
 
+@pytest.mark.parametrize("up", [True, False])
+def test_vertical_cable_is_taut_exactly_beyond_its_stretched_length(up):
+    """An exactly vertical cable is straight: |h| = L0 (1 + (T_low + W/2) / EA) with T_low
+    its lowest tension (theory.md §1.1). Just beyond |h|_0 = L0 (1 + W / (2 EA)) it is taut,
+    with T_low = EA (|h| / L0 - 1) - W/2 and T_high = T_low + W; just short of it, slack,
+    and the error names the rise or drop."""
+    cable = ds.Cable(0.5, 2e4)
+    L0, W = 10.0, 0.5 * 9.81 * 10.0
+    h0 = L0 * (1 + W / (2 * cable.EA))
+    sign = 1.0 if up else -1.0
+    h = h0 * (1 + 1e-6)
+    st = ds.solve_catenary((0, 0, 0), (0, 0, sign * h), L0, cable)
+    t_low = cable.EA * (h / L0 - 1) - W / 2
+    lower, upper = (st.tension_at_anchor, st.tension_at_end) if up else \
+        (st.tension_at_end, st.tension_at_anchor)
+    assert st.H == 0.0
+    assert lower == pytest.approx(t_low, rel=1e-9) and upper == pytest.approx(t_low + W, 1e-12)
+    word = "rise" if up else "drop"
+    with pytest.raises(SlackCableError, match=f"{word} {h0 * (1 - 1e-6)!r} m is not larger"):
+        ds.solve_catenary((0, 0, 0), (0, 0, sign * h0 * (1 - 1e-6)), L0, cable)
+    # a short rising cable (|h| < 1 m) on the same law
+    st = ds.solve_catenary((0, 0, 0), (0, 0, sign * 0.5), 0.45, cable)
+    t_low = cable.EA * (0.5 / 0.45 - 1) - 0.5 * 9.81 * 0.45 / 2
+    assert min(st.tension_at_anchor, st.tension_at_end) == pytest.approx(t_low, rel=1e-12)
+
+
 @pytest.mark.parametrize("args,name", [
     (((0, 0, 0), (0, 0, 0), 1.0), "anchor and end"),
     (((0, 0, 0), (1, 0, 0), 0.0), "unstretched_length"),

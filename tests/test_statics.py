@@ -227,3 +227,27 @@ def test_batched_statics_equal_the_scalar_solver_on_a_1000_pose_cogiro_grid():
         prev, n_ok = warm, n_ok + 1
     assert n_ok > 500
     assert n_extra < 0.02 * len(grid)
+
+
+def test_infeasible_distributions_name_the_limits_uniform_or_per_cable():
+    """A square system has one distribution; when it leaves the limits the error gives it and
+    the limits, as [lo, hi] when all cables share them, else per cable."""
+    from dynstiff.statics import tension_distribution
+    W = np.array([[1.0, -1.0], [1.0, 1.0]])
+    w = np.array([0.0, -2.0])                               # t = (-1, -1) N
+    with pytest.raises(SlackCableError) as err:
+        tension_distribution(W, w, 10.0, 500.0)
+    assert str(err.value) == ("the unique tension distribution [-1.0, -1.0] N violates the "
+                              "limits [10, 500] N")
+    with pytest.raises(SlackCableError) as err:
+        tension_distribution(W, w, [10.0, 20.0], [500.0, 400.0])
+    assert str(err.value).endswith("limits [[10.0, 20.0], [500.0, 400.0]] N")
+    with pytest.raises(SlackCableError) as err:
+        tension_distribution(W, w, [10.0, 10.0], [500.0, 400.1234])
+    assert str(err.value).endswith("limits [[10.0, 10.0], [500.0, 400.123]] N")
+    with pytest.raises(SlackCableError) as err:
+        tension_distribution(W, w, [10.0, 20.5678], [500.0, 500.0])
+    assert str(err.value).endswith("limits [[10.0, 20.568], [500.0, 500.0]] N")
+    W3 = np.array([[1.0, -1.0, 0.5]])                       # redundant: LP finds none
+    with pytest.raises(SlackCableError, match=r"no tension distribution within \[10, 20\] N"):
+        tension_distribution(W3, np.array([100.0]), 10.0, 20.0)
