@@ -67,6 +67,13 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+    "dynstiff.interaction.x__mac__mutmut_3":
+        "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
+    "dynstiff.interaction.x__assign__mutmut_3":
+        "X.shape[1] == 0 instead of X.shape[0] == 0: with no global mode the assignment "
+        "of an empty MAC matrix is empty too",
+    "dynstiff.interaction.x__assign__mutmut_26":
+        "MAC > mac_min instead of >=: differs only at MAC exactly mac_min",
     "dynstiff.statics.x__limits__mutmut_8":
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
     "dynstiff.statics.x__limits__mutmut_9":
@@ -96,6 +103,13 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_4":
         "the floor of the exact cable's band only: results inside any band are exact",
 })
+_EINSUM = "upper-case einsum subscripts: the same contraction"
+EQUIVALENT.update({"dynstiff.interaction.x__mac__mutmut_16": _EINSUM,
+                   "dynstiff.interaction.x__mac__mutmut_27": _EINSUM})
+EQUIVALENT.update({f"dynstiff.interaction.x_sweep__mutmut_{n}":
+                   "dtype of the one-element row arrays of an infeasible step: the table's "
+                   "columns are concatenated and take the dtypes of the feasible steps"
+                   for n in (90, 92, 93, 96)})
 EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
                    "dtype=float dropped on a list of Python floats (float64 even when empty)"
                    for n in (23, 25, 30, 32, 36, 38)})

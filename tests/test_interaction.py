@@ -231,23 +231,56 @@ def test_sweep_user_values_and_progress():
     np.testing.assert_allclose(res.equilibria[2].pose.position, [0.2, 0, 1.0])
 
 
-@pytest.mark.parametrize("kwargs,match", [
-    (dict(n_modes=5), "poses"),                                      # neither
-    (dict(poses=[[0, 0, 1.0]], build=lambda v: None, values=[1.0], n_modes=5), "not both"),
-    (dict(build=lambda v: None, n_modes=5), "values"),
-    (dict(build=lambda v: None, values=[], n_modes=5), "values"),
-    (dict(poses=[], n_modes=5), "poses"),
-    (dict(poses=[[0, 0, 1.0]]), "n_modes"),
-    (dict(poses=[[0, 0, 1.0]], n_modes=0), "n_modes"),
-    (dict(poses=[[0, 0, 1.0]], fmax_hz=-1.0), "fmax_hz"),
-    (dict(poses=[[0, 0, 1.0]], n_modes=5, progress=3), "progress"),
-    (dict(poses=[[0, 0, 1.0], [0, 0, 1.1]], values=[1.0], n_modes=5), "values"),
-    (dict(build=lambda v: 1.0, values=[1.0], n_modes=5), "build"),
-    (dict(poses=[[0, 0, 1.0]], n_modes=5, mac_min=2.0), "mac_min"),
+@pytest.mark.parametrize("kwargs,message", [
+    (dict(n_modes=5), "give poses= (a path of poses for robot) or build= (a callable value -> "
+     "Equilibrium) with values=; got neither"),
+    (dict(poses=[[0, 0, 1.0]], build=lambda v: None, values=[1.0], n_modes=5),
+     "give poses= or build=, not both"),
+    (dict(build=lambda v: None, n_modes=5), "build= needs values= (the parameter values to "
+     "sweep)"),
+    (dict(build=lambda v: None, values=[], n_modes=5),
+     "values must be a non-empty 1-D sequence, got shape (0,)"),
+    (dict(build=lambda v: None, values=["a"], n_modes=5), "values must be real numbers, got "
+     "['a']"),
+    (dict(build=lambda v: None, values=[np.nan], n_modes=5), "values must be finite, got [nan]"),
+    (dict(build=3, values=[1.0], n_modes=5), "build must be a callable value -> Equilibrium, "
+     "got 3"),
+    (dict(poses=[], n_modes=5), "poses must hold at least one pose, got an empty sequence"),
+    (dict(poses=3, n_modes=5), "poses must be a sequence of poses, got int"),
+    (dict(poses=[[0, 0, 1.0]]), "give n_modes (number of modes per step) or fmax_hz (band top "
+     "[Hz]), got neither"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=0), "n_modes must be an integer >= 1, got 0"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=2.0), "n_modes must be an integer >= 1, got 2.0"),
+    (dict(poses=[[0, 0, 1.0]], fmax_hz=-1.0), "fmax_hz must be > 0, got -1.0"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=5, progress=3),
+     "progress must be a callable (step, n_steps) or None, got 3"),
+    (dict(poses=[[0, 0, 1.0], [0, 0, 1.1]], values=[1.0], n_modes=5),
+     "values must give one value per pose (2), got 1"),
+    (dict(build=lambda v: 1.0, values=[1.0], n_modes=5),
+     "build must return an Equilibrium, got float for value np.float64(1.0)"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=5, mac_min=2.0), "mac_min must be in (0, 1], got 2.0"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=5, mac_min=-1.0), "mac_min must be > 0, got -1.0"),
+    (dict(poses=[[0, 0, 1.0]], n_modes=5, parameter=3),
+     "parameter must be a str (name [unit]), got 3"),
 ])
-def test_sweep_bad_arguments_name_them(kwargs, match):
-    with pytest.raises(InvalidParameterError, match=match):
+def test_sweep_bad_arguments_name_them(kwargs, message):
+    with pytest.raises(InvalidParameterError) as err:
         sweep(small_robot(), **kwargs)
+    assert str(err.value) == message
+
+
+def test_sweep_limits_are_inclusive_and_the_robot_is_checked():
+    """n_modes = 1 and mac_min = 1 are accepted; the default parameter name of a sweep over
+    poses is the arc length and of a build sweep "value"; a non-robot is refused by type."""
+    rob = small_robot()
+    assert len(sweep(rob, poses=[[0, 0, 1.0]], n_modes=1)) == 1
+    assert len(sweep(rob, poses=[[0, 0, 1.0], [0, 0, 1.05]], n_modes=2, mac_min=1.0)) == 4
+    built = sweep(None, build=lambda v: rob.equilibrium(pose=[0, 0, v]), values=[1.0],
+                  n_modes=2)
+    assert built.parameter == "value" == built.to_frame().attrs["parameter"]
+    with pytest.raises(InvalidParameterError) as err:
+        sweep("robot", poses=[[0, 0, 1.0]], n_modes=2)
+    assert str(err.value) == "robot must be a dynstiff.Robot for a sweep of poses, got str"
 
 
 def test_sweep_names_the_failing_step():
@@ -302,7 +335,13 @@ def test_sweep_records_an_infeasible_pose_and_goes_on():
     assert res.modal[1] is None and res.equilibria[1] is None
     alone = sweep(rob, poses=[[0.1, 0, 1.0]], n_modes=3)
     np.testing.assert_allclose(df[df["step"] == 2]["freq [Hz]"], alone.freq_hz, rtol=1e-12)
-    assert res.veering_table().shape[0] == 3
+    table = res.veering_table()
+    assert table.shape[0] == 3 and table.index.name == "step"
+    assert table.columns.name == "track" and list(table.columns) == list(range(res.n_tracks))
+    assert list(table.index) == [0, 1, 2] and table.loc[1].isna().all()
+    assert int(bad["mode"].iloc[0]) == 0 and bad["track"].isna().all()
+    assert df["freq [Hz]"].dtype == np.float64 and df["mode"].dtype == np.int64
+    assert repr(res).startswith("SweepResult(")
     with pytest.raises(InvalidParameterError, match="on_error"):
         sweep(rob, poses=[[0, 0, 1.0]], n_modes=3, on_error="skip")
 
@@ -337,3 +376,19 @@ def test_veering_plot_draws_into_the_given_axes_with_or_without_local_modes(path
     assert "local-modes" not in {a.get_gid() for a in ax2.get_children()}
     plt.close(fig)
     plt.close(fig2)
+
+
+def test_mac_is_one_for_a_mode_with_itself_and_zero_for_m_orthogonal_modes():
+    """MAC(x, y) = (x^T M y)^2 / ((x^T M x)(y^T M y)) with M the mean of the two mass
+    matrices: 1 on the diagonal for M-orthogonal modes, 0 off it, invariant to scaling."""
+    from dynstiff.interaction import _mac
+    rng = np.random.default_rng(3)
+    A = rng.normal(size=(4, 4))
+    M = A @ A.T + 4 * np.eye(4)
+    X = np.linalg.inv(np.linalg.cholesky(M))             # rows M-orthonormal: X M X^T = I
+    mac = _mac(X, M, 3.0 * X, M)
+    np.testing.assert_allclose(mac, np.eye(4), atol=1e-12)
+    y = X[0] + 0.5 * X[1]
+    expected = (X[0] @ M @ y) ** 2 / ((X[0] @ M @ X[0]) * (y @ M @ y))
+    assert _mac(X[:1], 0.5 * M, y[None], 1.5 * M)[0, 0] == pytest.approx(expected, rel=1e-12)
+    assert expected == pytest.approx(0.8, rel=1e-12)
