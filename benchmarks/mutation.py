@@ -109,7 +109,19 @@ EQUIVALENT.update({"dynstiff.interaction.x__mac__mutmut_16": _EINSUM,
 EQUIVALENT.update({f"dynstiff.interaction.x_sweep__mutmut_{n}":
                    "dtype of the one-element row arrays of an infeasible step: the table's "
                    "columns are concatenated and take the dtypes of the feasible steps"
-                   for n in (90, 92, 93, 96)})
+                   for n in (90, 92, 93, 96, 97)})
+EQUIVALENT.update({
+    "dynstiff.interaction.x_sweep__mutmut_159": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.interaction.x_sweep__mutmut_162": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.interaction.x_sweep__mutmut_204":
+        "reshape(None) of the 1-D kind array of length n leaves it as it is",
+    "dynstiff.interaction.x_sweep__mutmut_206":
+        "kind as a unicode instead of an object array: cast with astype(str) at the end",
+    "dynstiff.interaction.x_sweep__mutmut_208":
+        "kind as a unicode instead of an object array: cast with astype(str) at the end",
+    "dynstiff.interaction.x_sweep__mutmut_257": "astype(None) is astype(float64)",
+    "dynstiff.interaction.x_sweep__mutmut_266": "astype(None) is astype(float64)",
+})
 EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
                    "dtype=float dropped on a list of Python floats (float64 even when empty)"
                    for n in (23, 25, 30, 32, 36, 38)})

@@ -326,8 +326,10 @@ def test_sweep_records_an_infeasible_pose_and_goes_on():
     """on_error="record": the infeasible middle pose is one row of kind "infeasible" with the
     error's message; the poses before and after it give the same modes as alone."""
     rob = small_robot()
+    calls = []
     res = sweep(rob, poses=[[0, 0, 1.0], [9.0, 0, 1.0], [0.1, 0, 1.0]], n_modes=3,
-                on_error="record")
+                on_error="record", progress=lambda done, n: calls.append((done, n)))
+    assert calls == [(1, 3), (2, 3), (3, 3)]
     assert [k for k, _, _ in res.failures] == [1] and "SlackCableError" in res.failures[0][2]
     df = res.to_frame()
     bad = df[df["step"] == 1]
@@ -342,6 +344,9 @@ def test_sweep_records_an_infeasible_pose_and_goes_on():
     assert int(bad["mode"].iloc[0]) == 0 and bad["track"].isna().all()
     assert df["freq [Hz]"].dtype == np.float64 and df["mode"].dtype == np.int64
     assert repr(res).startswith("SweepResult(")
+    for k in (0, 2):
+        np.testing.assert_array_equal(df[df["step"] == k]["cable energy fraction [-]"],
+                                      res.modal[k].cable_energy_fraction)
     with pytest.raises(InvalidParameterError, match="on_error"):
         sweep(rob, poses=[[0, 0, 1.0]], n_modes=3, on_error="skip")
 
