@@ -417,3 +417,43 @@ def test_elements_are_spread_evenly_in_the_mesh_measure(name):
     assert n_el == int(np.ceil(phi(L0))) and n_el > 3
     # equal to the accuracy of the mesh's trapezoid sums on 4001+ points (measured <= 4e-7)
     np.testing.assert_allclose(np.diff([phi(x) for x in edges]), phi(L0) / n_el, rtol=1e-6)
+
+
+def test_a_single_element_cable_equals_a_refined_one():
+    """A weightless cable with a band near zero is one element (Phi(L0) rounds to 1): its
+    discrete statics must still reproduce the exact ones, and its K(omega) in the band
+    equal the multi-element cable's (the end-to-end coupling entries of the one element)."""
+    s = ds.solve_catenary((0, 0, 0), (6.0, 2.0, 8.0), 10.0, ds.Cable(0.5, 2e4), g=0.0)
+    one = ExactCable(s, 1e-20)
+    assert len(one.edges) == 2
+    many = ExactCable(s, TWO_PI * 5.0)
+    assert len(many.edges) > 3
+    for K1, K2 in ((one.discrete_static_stiffness(), many.discrete_static_stiffness()),
+                   (one.dynamic_stiffness(1e-20, ends="both"),
+                    many.dynamic_stiffness(1e-20, ends="both"))):
+        np.testing.assert_allclose(K1, K2, rtol=1e-9, atol=1e-9 * np.abs(K2).max())
+
+
+def test_the_documented_ranges_are_inclusive_and_damping_can_be_switched_off():
+    """order in [4, 40] (integers only), half_waves in (0, 8], omega_max > 0, a CatenaryState;
+    damping=False gives the undamped cable of a damped one; the nodes run from 0 to L0."""
+    s = state(HARD["sagging 10x5 m, d/L 0.10"])
+    for kw in ({"order": 4, "half_waves": 0.5}, {"order": 40}, {"half_waves": 8.0}):
+        assert ExactCable(s, 20.0, **kw).static_mismatch < 1e-6
+    for kw, word in (({"order": 3}, "order"), ({"order": 41}, "order"),
+                     ({"order": True}, "order"), ({"order": 12.0}, "order"),
+                     ({"half_waves": 8.5}, "half_waves"), ({"half_waves": -1.0}, "half_waves")):
+        with pytest.raises(InvalidParameterError, match=word):
+            ExactCable(s, 2.0, **kw)
+    with pytest.raises(InvalidParameterError, match="omega_max"):
+        ExactCable(s, 0.0)
+    with pytest.raises(InvalidParameterError, match="CatenaryState .*, got str$"):
+        ExactCable("state", 1.0)
+    ec = ExactCable(s, 5.0)
+    assert ec.s[0] == 0.0 and ec.s[-1] == s.unstretched_length and np.all(np.diff(ec.s) > 0)
+    A, B, L0 = (0, 0, 0), (10.0, 0, 5.0), 11.5
+    for cab in (ds.Cable(1.0, 1e6, loss_factor=0.05), ds.Cable(1.0, 1e6, viscous_damping=0.5)):
+        off = ExactCable(ds.solve_catenary(A, B, L0, cab), 5.0, damping=False)
+        assert not off.damped
+        np.testing.assert_array_equal(off.dynamic_stiffness([1.0, 3.0]),
+                                      ec.dynamic_stiffness([1.0, 3.0]))
