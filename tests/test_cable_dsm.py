@@ -453,3 +453,19 @@ def test_cable_modes_table_repr_and_plot(state300):
     assert modes.plot(ax=ax) is fig
     assert any(str(a.get_gid()).startswith("cable-") for a in ax.get_children())
     plt.close(fig)
+
+
+def test_series_coefficients_are_the_taylor_series_of_the_psi_functions():
+    """The series branch of the psi functions (|psi| < 1): its coefficients, recomputed
+    here, evaluate E, P~ and Q~ to 1e-15 of their mpmath values at psi^2 = 0.0 .. 1."""
+    import mpmath
+    from dynstiff.cable_dsm import _series_coefficients
+    E, P, Q = _series_coefficients()
+    for x in (0.0, 0.05, 0.3, 0.7, 1.0):
+        with mpmath.workdps(60):
+            p = mpmath.sqrt(x) if x else mpmath.mpf("1e-15")
+            s, c = mpmath.sin(p), mpmath.cos(p)
+            ref = [float(r) for r in ((p * c - s) / p**3, ((1 + p**2) * s * c - p) / p**3,
+                                      (p * (c**2 - s**2) + (p**2 - 1) * s * c) / p**3)]
+        for coef, r in zip((E, P, Q), ref):
+            assert np.polyval(coef, x) == pytest.approx(r, rel=1e-15, abs=1e-16)
