@@ -269,8 +269,8 @@ def main(argv):
     if not args.report_only:
         todo = [n for n in names if _verdict(n, res[n]) == "unchecked"
                 or (args.recheck and _verdict(n, res[n]) == "survived")]
-        for k in range(0, len(todo), 200):          # mutmut takes names on its command line
-            subprocess.run(["mutmut", "run"] + todo[k:k + 200], check=False)
+        for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
+            subprocess.run(["mutmut", "run"] + todo[k:k + 2000], check=False)
         res = _results()
     wall = time.perf_counter() - t0
     status = collections.defaultdict(collections.Counter)
