@@ -92,10 +92,46 @@ def test_proximity_bad_input_names_argument(modes120):
         proximity_warnings(modes120, rtol=-0.1)
     with pytest.raises(InvalidParameterError, match="rtol"):
         proximity_warnings(modes120, rtol=np.nan)
-    with pytest.raises(InvalidParameterError, match="modes"):
+    with pytest.raises(InvalidParameterError, match="^rtol must be"):
+        proximity_warnings(modes120, rtol=0.0)
+    with pytest.raises(InvalidParameterError, match="ModalResult .*got list$"):
         proximity_warnings([1.0, 2.0])
     with pytest.raises(InvalidParameterError, match="warnings"):
         to_frame([(1, 2)])
+
+    class Ragged:
+        freq_hz = np.array([1.0, 2.0, 3.0])
+        kind = ("global", "local")
+
+    with pytest.raises(InvalidParameterError) as err:
+        proximity_warnings(Ragged())
+    assert str(err.value) == ("modes: freq_hz and kind must be 1-D of equal length, got "
+                              "shapes (3,) and (2,)")
+    Ragged.freq_hz = np.ones((2, 1))
+    with pytest.raises(InvalidParameterError, match="1-D of equal length"):
+        proximity_warnings(Ragged())
+
+
+def test_one_global_and_one_local_mode_make_one_pair():
+    """The smallest case: one global and one local mode 0.3 % apart give one record, whose
+    text states the pair; the default is to return the records without issuing them."""
+    import warnings
+    m = ds.ModalResult(freq_hz=np.array([6.48, 6.5]), platform_shapes=np.zeros((2, 6)),
+                       cable_energy_fraction=np.array([0.1, 0.9]),
+                       cable_energy=np.zeros((2, 3)), kind=("global", "local"),
+                       massless_freq_hz=np.array([6.4, 6.4]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pairs = proximity_warnings(m, rtol=0.01)
+    assert [(w.global_mode, w.local_mode, w.freq_global_hz, w.freq_local_hz)
+            for w in pairs] == [(1, 2, 6.48, 6.5)]
+    assert pairs[0].relative_gap == pytest.approx(0.02 / 6.48, rel=1e-13)
+    assert str(pairs[0]) == ("local mode 2 (6.5 Hz) is within 0.309 % of global mode 1 "
+                             "(6.48 Hz)")
+    with pytest.warns(ProximityWarning) as record:
+        proximity_warnings(m, rtol=0.01, warn=True)
+    # issued at the caller, not inside the module
+    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/interaction.py")
 
 
 def test_proximity_without_local_modes_is_empty():
