@@ -38,15 +38,15 @@ def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_
 
 def test_extremes_see_a_slack_segment(cogiro, cogiro_eq):
     """A chain pushed together has a slack segment: smallest tension 0, strain < 0 there."""
-    from dynstiff.lumped.compiled_chain import chain_forces
-    nodes = np.zeros((1, 4, 3))
-    nodes[0, :, 0] = [0.0, 1.0, 1.5, 3.0]                   # segments 1, 0.5, 1.5 m
-    vel = np.zeros_like(nodes)
-    inner, end, di, de, t_max, t_min, strain = chain_forces(
-        nodes, vel, np.array([1.0]), np.array([100.0]), np.array([0.0]), np.zeros((1, 3)))
+    from dynstiff.lumped.compiled_chain import robot_chain_forces
+    X = np.array([1.0, 0, 0, 1.5, 0, 0])                 # segments 1, 0.5, 1.5 m
+    z3 = np.zeros((1, 3))
+    inner, _, W, _, t_max, t_min, strain = robot_chain_forces(
+        z3, X, np.array([[3.0, 0, 0]]), z3, np.zeros(6), np.zeros(6), np.array([1.0]),
+        np.array([100.0]), np.array([0.0]), z3, np.zeros(3), np.zeros(3))
     assert t_min == 0.0 and t_max == pytest.approx(50.0) and strain == pytest.approx(0.5)
-    np.testing.assert_allclose(inner[0], [[0.0, 0, 0], [50.0, 0, 0]])
-    np.testing.assert_allclose(end[0], [-50.0, 0, 0])
+    np.testing.assert_allclose(inner.reshape(2, 3), [[0.0, 0, 0], [50.0, 0, 0]])
+    np.testing.assert_allclose(W, [-50.0, 0, 0, 0, 0, 0])
 
 
 @pytest.mark.parametrize("viscous", [0.0, 0.3])
