@@ -1,6 +1,9 @@
-"""Compiled chain forces of the time stepping (dynstiff/lumped/compiled_chain.py, theory.md
-§14.4) against the numpy path: the residual, the axial-dashpot force, the largest tension and
-the extreme tension and strain of a displaced, moving CoGiRo configuration."""
+"""Compiled kernels of the time stepping (dynstiff/lumped/compiled_chain.py, theory.md §14.4,
+§14.5) against the numpy path: the residual, the axial-dashpot force, the largest tension and
+the extreme tension and strain of a displaced, moving CoGiRo configuration; the whole
+compiled explicit run against the stepwise loop (records, nodes, ledger, warnings, failure)."""
+
+import warnings
 
 import numpy as np
 import pytest
@@ -68,15 +71,65 @@ def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
           "start": mm.equilibrium(),
           "initial": ([1e-3, -1e-3, 1e-3, 2e-3, -1e-3, 1e-3],
                       [0.01, 0.0, -0.01, 0.02, 0.01, -0.03]),
-          "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1])}
+          "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1]),
+          "record_nodes": True}
     r1 = simulate(mm, 300 * dt, dt, **kw)
     monkeypatch.setattr(td, "_compiled", lambda: None)
     r0 = simulate(mm, 300 * dt, dt, **kw)
     assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
-    for name in ("pose", "velocity", "end_tensions", "anchor_tensions"):
-        a, b = getattr(r1, name), getattr(r0, name)
+    for name in ("times", "pose", "velocity", "end_tensions", "anchor_tensions",
+                 "unstretched_lengths", "nodes"):
+        a, b = np.asarray(getattr(r1, name)), np.asarray(getattr(r0, name))
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-10 * np.abs(b).max(), err_msg=name)
     scale = np.abs(r0.energy.gravity).max()          # the residual is a difference of these
     for name in ("kinetic", "elastic", "gravity", "external_work", "dissipated", "residual"):
         a, b = getattr(r1.energy, name), getattr(r0.energy, name)
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * scale, err_msg=name)
+
+
+def _both_paths(monkeypatch, run):
+    """run() with the compiled kernels, then with the numpy path: [(result or exception,
+    [(category, message) of the warnings])] * 2."""
+    from dynstiff.lumped import time_dynamics
+    out = []
+    for fast in (True, False):
+        if not fast:
+            monkeypatch.setattr(time_dynamics, "_compiled", lambda: None)
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                res = run()
+            except Exception as exc:                    # compared below
+                res = exc
+        out.append((res, [(w.category, str(w.message)) for w in caught]))
+    return out
+
+
+def test_compiled_run_warns_as_the_stepwise_loop_when_cables_go_slack(robot_model, monkeypatch):
+    """An upward kick of 0.6 m/s unloads the cables of the point-mass robot: both paths warn
+    once, naming the same cable, segment and step, count the same slack steps and record the
+    same motion."""
+    from dynstiff.lumped import SlackSegmentWarning, explicit_step_limit, simulate
+    m = robot_model(5)
+    dt = 0.5 * explicit_step_limit(m.mass_model)
+    (r1, w1), (r0, w0) = _both_paths(monkeypatch, lambda: simulate(
+        m, 0.06, dt, scheme="explicit", initial=([0] * 6, [0, 0, 0.6, 0, 0, 0]),
+        record_every=5))
+    assert [c for c, _ in w1] == [SlackSegmentWarning] and w1 == w0
+    assert r1.slack_steps == r0.slack_steps > 10
+    np.testing.assert_allclose(r1.pose, r0.pose, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(r1.energy.residual, r0.energy.residual, rtol=0,
+                               atol=1e-9 * np.abs(r0.energy.gravity).max())
+
+
+def test_compiled_run_fails_as_the_stepwise_loop(robot_model, monkeypatch):
+    """At 1.5 times the stability limit both paths raise the same IntegrationError (same
+    step, same message) after the same warnings."""
+    from dynstiff.lumped import IntegrationError, explicit_step_limit, simulate
+    m = robot_model(5)
+    dt = 1.5 * explicit_step_limit(m.mass_model)
+    (e1, w1), (e0, w0) = _both_paths(monkeypatch, lambda: simulate(
+        m, 2000 * dt, dt, scheme="explicit", initial=[1e-3, 0, 0, 0, 0, 0]))
+    assert isinstance(e1, IntegrationError) and isinstance(e0, IntegrationError)
+    assert (e1.step, str(e1)) == (e0.step, str(e0)) and e1.step < 2000
+    assert w1 == w0 and len(w1) >= 2                  # the dt warning, then the ledger's
