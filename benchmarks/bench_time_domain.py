@@ -331,7 +331,7 @@ def main(t_end=T_END, repeats=REPEATS):
         print(f"{case:<7s} {name:<26s} {dt:9.2e} {speed:15.3f} {err:11.2e} "
               f"{'yes' if ok else 'no':>3s}")
     print("(dynstiff explicit (fine): its error is against the implicit fine run)")
-    print("largest accurate step, speed, ratio dynstiff / MoorDyn:")
+    print("fastest run within the tolerance, speed, ratio dynstiff / MoorDyn:")
     for case in ("line", "CoGiRo"):
         best = best_rows(rows, case)
         for code, b in best.items():
