@@ -14,9 +14,11 @@ from dynstiff.lumped import time_dynamics as td
 pytest.importorskip("numba")
 
 
-@pytest.mark.parametrize("c_first", [0.0, 12.0])
-def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_first):
-    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=6)
+@pytest.mark.parametrize("c_first, segments", [(0.0, 6), (12.0, 6),
+                                               (12.0, [1, 2, 3, 4, 5, 6, 7, 3])])
+def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_first,
+                                              segments):
+    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segments)
     st = mm.equilibrium(initial_pose=cogiro.pose)
     rng = np.random.default_rng(11)
     pose, interior = mm.displaced(st.pose, st.interior, 2e-3 * rng.standard_normal(mm.n_dof))
@@ -45,18 +47,20 @@ def test_extremes_see_a_slack_segment(cogiro, cogiro_eq):
     X = np.array([1.0, 0, 0, 1.5, 0, 0])                 # segments 1, 0.5, 1.5 m
     z3 = np.zeros((1, 3))
     inner, _, W, _, t_max, t_min, strain = robot_chain_forces(
-        z3, X, np.array([[3.0, 0, 0]]), z3, np.zeros(6), np.zeros(6), np.array([1.0]),
-        np.array([100.0]), np.array([0.0]), z3, np.zeros(3), np.zeros(3))
+        z3, X, np.array([[3.0, 0, 0]]), z3, np.zeros(6), np.zeros(6), np.array([3]),
+        np.array([1.0]), np.array([100.0]), np.array([0.0]), z3, np.zeros(3), np.zeros(3))
     assert t_min == 0.0 and t_max == pytest.approx(50.0) and strain == pytest.approx(0.5)
     np.testing.assert_allclose(inner.reshape(2, 3), [[0.0, 0, 0], [50.0, 0, 0]])
     np.testing.assert_allclose(W, [-50.0, 0, 0, 0, 0, 0])
 
 
-@pytest.mark.parametrize("viscous", [0.0, 0.3])
+@pytest.mark.parametrize("viscous, beta, segments", [(0.0, 0.0, 6), (0.3, 0.0, 6),
+                                                     (0.3, 1e-4, [2, 3, 4, 5, 6, 7, 3, 5])])
 def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monkeypatch,
-                                                        viscous):
-    """The compiled velocity-Verlet chunks give the stepwise numpy run: a spinning, driven
-    CoGiRo with Rayleigh, axial and cable viscous damping, records every 7 steps."""
+                                                        viscous, beta, segments):
+    """The compiled velocity-Verlet run gives the stepwise numpy run: a spinning, driven
+    CoGiRo with Rayleigh (mass- and stiffness-proportional), axial and cable viscous
+    damping, chains of equal and of different N, records every 7 steps."""
     import dataclasses
 
     import dynstiff as ds
@@ -64,8 +68,8 @@ def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
     rob = cogiro.robot
     cable = dataclasses.replace(rob.cables[0], viscous_damping=viscous)
     robot = ds.Robot(rob.anchors, rob.attachments, cable, rob.platform)
-    mm = LumpedMassModel(robot, cogiro_eq.unstretched_lengths, segments=6)
-    damping = TimeDamping(alpha=0.3, axial=np.linspace(0.0, 20.0, 8))
+    mm = LumpedMassModel(robot, cogiro_eq.unstretched_lengths, segments=segments)
+    damping = TimeDamping(alpha=0.3, beta=beta, axial=np.linspace(0.0, 20.0, 8))
     dt = 0.8 * explicit_step_limit(mm, damping=damping)
     kw = {"scheme": "explicit", "damping": damping, "record_every": 7,
           "start": mm.equilibrium(),
@@ -77,9 +81,11 @@ def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
     monkeypatch.setattr(td, "_compiled", lambda: None)
     r0 = simulate(mm, 300 * dt, dt, **kw)
     assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
-    for name in ("times", "pose", "velocity", "end_tensions", "anchor_tensions",
-                 "unstretched_lengths", "nodes"):
-        a, b = np.asarray(getattr(r1, name)), np.asarray(getattr(r0, name))
+    pairs = [(name, getattr(r1, name), getattr(r0, name))
+             for name in ("times", "pose", "velocity", "end_tensions", "anchor_tensions",
+                          "unstretched_lengths")]
+    pairs += [(f"nodes {i}", a, b) for i, (a, b) in enumerate(zip(r1.nodes, r0.nodes))]
+    for name, a, b in pairs:
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-10 * np.abs(b).max(), err_msg=name)
     scale = np.abs(r0.energy.gravity).max()          # the residual is a difference of these
     for name in ("kinetic", "elastic", "gravity", "external_work", "dissipated", "residual"):

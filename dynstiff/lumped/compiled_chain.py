@@ -1,6 +1,6 @@
 """Compiled (numba) kernels of the lumped robot's time stepping (theory.md §7.1, §7.3,
-§14.4, §14.5): the spring, weight and axial-dashpot forces of every chain of equal N in one
-pass over the segments (with the extreme tension and strain the step checks), the ledger
+§14.4, §14.5): the spring, weight and axial-dashpot forces of every chain in one pass over
+the segments (with the extreme tension and strain the step checks), the ledger
 energies, and a whole explicit run (velocity Verlet with its records, ledger and checks).
 
 Imported only by :mod:`dynstiff.lumped.time_dynamics` when numba is installed (``pip
@@ -20,23 +20,24 @@ _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
 @numba.njit(**_JIT)
-def _chain_pass(anchors, X, B, r, vn, twist, l0, EA, c_ax, weight, inner, dash, W, Wd):
-    """Forces of n chains of N segments, in place.
+def _chain_pass(anchors, X, B, r, vn, twist, seg, l0, EA, c_ax, weight, inner, dash, W, Wd):
+    """Forces of n chains of seg[i] = N_i segments, in place.
 
-    Node s of chain i is the anchor (s = 0), the attachment B_i (s = N) or the interior node
-    X[3 ((N - 1) i + s - 1):...] between. ``inner`` and ``dash`` (3 n (N - 1),) receive the
-    spring + weight and the axial-dashpot forces on the interior nodes [N]; the forces of
-    the last segments on the platform, -T_N n_N + weight / 2 and the dashpot's, and their
-    moments r_i x f about P are added to ``W`` and ``Wd`` (6,). The dashpot c_ax
-    d(eps)/dt acts on taut segments only; B_i moves with the twist (v_P, w).
+    Node s of chain i is the anchor (s = 0), the attachment B_i (s = N_i) or the interior
+    node X[o_i + 3 (s - 1):...] between, o_i = 3 sum_{j < i} (N_j - 1). ``inner`` and
+    ``dash`` (3 sum (N_i - 1),) receive the spring + weight and the axial-dashpot forces on
+    the interior nodes [N]; the forces of the last segments on the platform,
+    -T_N n_N + weight / 2 and the dashpot's, and their moments r_i x f about P are added to
+    ``W`` and ``Wd`` (6,). The dashpot c_ax d(eps)/dt acts on taut segments only; B_i moves
+    with the twist (v_P, w).
     Returns the largest and smallest tension [N] and the largest strain l / l0 - 1 [-].
     """
     n = anchors.shape[0]
-    N = X.size // (3 * n) + 1
     t_max, t_min, strain_max = 0.0, np.inf, -np.inf
+    o = 0
     for i in range(n):
         damped = c_ax[i] > 0.0
-        o = 3 * (N - 1) * i
+        N = seg[i]
         vb0 = vb1 = vb2 = 0.0
         if damped:
             vb0 = twist[0] + twist[4] * r[i, 2] - twist[5] * r[i, 1]
@@ -77,6 +78,7 @@ def _chain_pass(anchors, X, B, r, vn, twist, l0, EA, c_ax, weight, inner, dash, 
                 inner[j + 2] = f2 - p2 + weight[i, 2]
                 dash[j], dash[j + 1], dash[j + 2] = g0 - q0, g1 - q1, g2 - q2
             p0, p1, p2, q0, q1, q2 = f0, f1, f2, g0, g1, g2
+        o += 3 * (N - 1)
         for src, dst in (((-p0 + 0.5 * weight[i, 0], -p1 + 0.5 * weight[i, 1],
                            -p2 + 0.5 * weight[i, 2]), W), ((-q0, -q1, -q2), Wd)):
             e0, e1, e2 = src
@@ -101,19 +103,21 @@ def _weight_wrench(platform_weight, rG, W, Wd):
 
 
 @numba.njit(**_JIT)
-def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, platform_weight,
-                       rG):
-    """The chains' generalised forces on a robot (chains of equal N, interior nodes flat),
+def robot_chain_forces(anchors, X, B, r, v_nodes, twist, seg, l0, EA, c_ax, weight,
+                       platform_weight, rG):
+    """The chains' generalised forces on a robot (interior nodes flat, chain after chain),
     with the platform's weight (:func:`_chain_pass` with fresh outputs).
 
     Parameters
     ----------
     anchors, B, r : ndarray, shape (n, 3)
         Anchors, attachment points and lever arms r_i = R_p b_i [m].
-    X, v_nodes : ndarray, shape (3 n (N - 1),)
+    X, v_nodes : ndarray, shape (3 sum (N_i - 1),)
         Interior node positions [m] and velocities [m/s], chain after chain.
     twist : ndarray, shape (6,)
         Platform twist (v_P [m/s], w [rad/s]).
+    seg : ndarray of int, shape (n,)
+        Segments N_i of every chain.
     l0, EA, c_ax : ndarray, shape (n,)
         Unstretched segment length [m], axial stiffness [N], axial dashpot [N s].
     weight : ndarray, shape (n, 3)
@@ -125,7 +129,7 @@ def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, p
 
     Returns
     -------
-    inner, dash_inner : ndarray, shape (3 n (N - 1),)
+    inner, dash_inner : ndarray, shape (3 sum (N_i - 1),)
         Residual (spring + weight) and axial-dashpot forces on the interior nodes [N].
     W, W_dash : ndarray, shape (6,)
         Wrench about P [N, N m] of the chains and the platform weight, and of the dashpots.
@@ -135,8 +139,8 @@ def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, p
     inner, dash = np.empty(X.size), np.empty(X.size)
     W, Wd = np.empty(6), np.empty(6)
     _weight_wrench(platform_weight, rG, W, Wd)
-    t_max, t_min, strain = _chain_pass(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight,
-                                       inner, dash, W, Wd)
+    t_max, t_min, strain = _chain_pass(anchors, X, B, r, v_nodes, twist, seg, l0, EA, c_ax,
+                                       weight, inner, dash, W, Wd)
     return inner, dash, W, Wd, t_max, t_min, strain
 
 
@@ -221,13 +225,12 @@ def _platform(rot, attachments, half, mass, com, inertia, R, r, M, rG, first):
 
 
 @numba.njit(**_JIT)
-def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, mass, com,
+def energies(pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
              inertia, mu):
     """Ledger quantities of a state (as time_dynamics.potential_energy and
     Dynamics.kinetic): elastic, gravity and kinetic energy [J], end and anchor tensions (n,)
     [N], largest strain [-], and the first slack segment (cable, segment) or (-1, -1)."""
     n = anchors.shape[0]
-    N = X.size // (3 * n) + 1
     R, r, M6 = np.empty((3, 3)), np.empty((n, 3)), np.empty((6, 6))
     rG, first = np.empty(3), np.empty(3)
     _platform(rot, attachments, 0.5 * node_mass, mass, com, inertia, R, r, M6, rG, first)
@@ -235,9 +238,10 @@ def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, ma
     gravity = mass * g * (pos[2] + rG[2])
     t_end, t_anchor = np.empty(n), np.empty(n)
     slack_cable, slack_segment = -1, -1
+    o = 0
     for i in range(n):
         zsum = 0.0
-        o = 3 * (N - 1) * i
+        N = seg[i]
         for s in range(N):
             if s == 0:
                 a0, a1, a2 = anchors[i, 0], anchors[i, 1], anchors[i, 2]
@@ -261,6 +265,7 @@ def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, ma
                 slack_cable, slack_segment = i, s
             strain = max(strain, length / l0[i] - 1.0)
         gravity += node_mass[i] * g * (zsum + 0.5 * (pos[2] + r[i, 2]))
+        o += 3 * (N - 1)
     kinetic = 0.0
     for j in range(6):
         for k in range(6):
@@ -321,12 +326,12 @@ def _cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
 
 
 @numba.njit(**_JIT)
-def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachments, l0, EA,
-                 c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
-                 c_visc, cv, ledger, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E,
-                 rec_X):
+def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
+                 EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
+                 c_visc, cv, beta, K0, ledger, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
+                 rec_E, rec_X):
     """A whole velocity-Verlet run of the lumped robot with fixed lengths (as
-    time_stepping.explicit_step with beta = 0, step after step; theory.md §7.3, §14.5).
+    time_stepping.explicit_step, step after step; theory.md §7.3, §14.5).
 
     Parameters
     ----------
@@ -341,7 +346,7 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
     loads : ndarray, shape (n_steps, 6) or (0, 6)
         External load at the end of every step (held DOFs 0), or none.
     free : ndarray of bool, shape (6,)
-    anchors, attachments, l0, EA, c_ax, weight, platform_weight : as robot_chain_forces
+    anchors, attachments, seg, l0, EA, c_ax, weight, platform_weight : as robot_chain_forces
     node_mass : ndarray, shape (n,)
         m l0 of every cable [kg]; half of it rides at B_i.
     g, mass, com, inertia : gravity [m/s^2], the platform's mass, centre of mass, inertia.
@@ -351,6 +356,9 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
         Mass-proportional damping [1/s].
     c_visc : ndarray, shape (n,)
         Cable viscous damping c [N s / m^2].
+    beta, K0 : float [s], (indptr, indices, data)
+        Stiffness-proportional damping -beta K0 v, K0 in CSR form in the model's DOF order
+        (free platform DOFs, then the interior nodes) [N/m]; unused when beta is 0.
     ledger : ndarray, shape (7,)
         (E0, |E0 - V_eq|, floor, W_ext, D, peak |W_ext|, peak |D|) [J]; the last four
         are updated in place.
@@ -383,6 +391,10 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
     inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
     fd1p, Fp, a1p, load = np.empty(6), np.empty(6), np.empty(6), np.zeros(6)
     A, b = np.empty((6, 6)), np.empty(6)
+    indptr, indices, data = K0
+    fi = np.flatnonzero(free)
+    nf = fi.size
+    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
     E0, excess, floor = ledger[0], ledger[1], ledger[2]
     ext, diss, peak_ext, peak_diss = ledger[3], ledger[4], ledger[5], ledger[6]
     h = 0.5 * dt
@@ -411,10 +423,22 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
                 load[j] = loads[k - 1, j]
         # ---- forces at the new configuration, dampers at the half-step velocity
         _weight_wrench(platform_weight, rG, W, Wd)
-        _, t_min, strain = _chain_pass(anchors, X, B, r, vhn, vhp, l0, EA, c_ax, weight,
+        _, t_min, strain = _chain_pass(anchors, X, B, r, vhn, vhp, seg, l0, EA, c_ax, weight,
                                        inner, dash, W, Wd)
         for j in range(6):
             fd1p[j] = Wd[j]
+        if beta != 0.0:
+            for j in range(nf):
+                vm[j] = vhp[fi[j]]
+            for j in range(nx):
+                vm[nf + j] = vhn[j]
+            for j in range(nf + nx):
+                s = 0.0
+                for q in range(indptr[j], indptr[j + 1]):
+                    s += data[q] * vm[indices[q]]
+                Kv[j] = beta * s
+            for j in range(nf):
+                fd1p[fi[j]] -= Kv[j]
         if alpha != 0.0:
             for j in range(6):
                 s = 0.0
@@ -461,7 +485,7 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
             dd += dp[j] * (fd_p[j] + fd1p[j])
             fe_p[j], fd_p[j] = load[j], fd1p[j]
         for j in range(nx):
-            fn = dash[j] - alpha * mu[j] * vhn[j] - cv[j] * vhn[j]
+            fn = dash[j] - alpha * mu[j] * vhn[j] - cv[j] * vhn[j] - Kv[nf + j]
             an[j] = (inner[j] + fn) / mu[j]
             vn[j] = vhn[j] + h * an[j]
             finite = finite and np.isfinite(vn[j])
@@ -483,7 +507,7 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
             continue
         # ---- the ledger row and its checks (records, slack steps, the last step)
         el, gr, kin, t_end, t_anchor, strain, sc, ss = energies(
-            pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, mass, com,
+            pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
             inertia, mu)
         res = kin + el + gr - E0 - (ext - diss)
         scale = excess + peak_ext + peak_diss

@@ -439,8 +439,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
     fast = compiled_kernels()
-    if scheme == "explicit" and fast is not None and length_fn is None and not damping.beta \
-            and np.all(m.segments == m.segments[0]) and m.segments[0] > 1:
+    if scheme == "explicit" and fast is not None and length_fn is None:
         slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,
                                             SlackSegmentWarning, table)

@@ -10,8 +10,7 @@ import numpy as np
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
-from .time_dynamics import (FastPose, Frame, advance, interior_views, load_at,
-                            potential_energy, twist_of)
+from .time_dynamics import FastPose, advance, interior_views, load_at, twist_of
 from .time_response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
@@ -251,7 +250,7 @@ def excitation_loads(excitation, table, free, dt, n_steps):
 
 def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
                           ledger, damping, slack_warning, table):
-    """The velocity-Verlet steps of a run with fixed lengths, beta = 0 and chains of equal N
+    """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
     in one call of the compiled kernel (:func:`dynstiff.lumped.compiled_chain.explicit_run`,
     theory.md §14.5), records, ledger rows and checks included; the warnings and the
     failure it reports are raised here as in the stepwise loop. ``table``: the excitation
@@ -273,16 +272,21 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
     led = np.array([ledger.E0, ledger.excess, ledger.floor, ledger.ext, ledger.diss,
                     ledger.peaks[0], ledger.peaks[3]])
     rec_X = np.empty((rec.t.size if rec.nodes is not None else 0, X.size))
+    if dyn.beta:
+        K = dyn.K0.tocsr()
+        K0 = (K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data.astype(float))
+    else:
+        K0 = (np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0))
     (status, step, strain, residual, _, slack_steps, slack_step, cable, segment, warn_step,
      warn_res, warn_scale) = fast.explicit_run(
         n_steps, dt, record_every, state,
         excitation_loads(dyn.excitation, table, free, dt, n_steps), free,
-        rob.anchors.astype(float), rob.attachments.astype(float), m.segment_lengths, dyn.EA,
-        np.asarray(dyn.c_ax, dtype=float), dyn.node_weights, dyn.platform_weight,
+        rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg, m.segment_lengths,
+        dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights, dyn.platform_weight,
         m.node_masses, float(rob.g), float(p.mass), np.asarray(p.center_of_mass, dtype=float),
         np.asarray(p.inertia, dtype=float), dyn.mu, float(dyn.alpha),
-        np.asarray(dyn.c_visc, dtype=float), dyn.cv, led, rec.pose, rec.vel, rec.t_end,
-        rec.t_anchor, rec.E, rec_X)
+        np.asarray(dyn.c_visc, dtype=float), dyn.cv, float(dyn.beta), K0, led, rec.pose,
+        rec.vel, rec.t_end, rec.t_anchor, rec.E, rec_X)
     ledger.ext, ledger.diss = led[3], led[4]
     ledger.peaks[0], ledger.peaks[3] = led[5], led[6]
     events = []                                   # warnings in the order of their steps
