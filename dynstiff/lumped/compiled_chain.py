@@ -326,7 +326,7 @@ def _cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
 
 
 @numba.njit(**_JIT)
-def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
+def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
                  EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
                  c_visc, cv, beta, K0, ledger, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
                  rec_E, rec_X):
@@ -335,15 +335,18 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
 
     Parameters
     ----------
-    n_steps, dt, record_every : int, float [s], int
-        Steps k = 1 ... n_steps; the state after step k is recorded in row k //
-        record_every when record_every divides k.
+    steps : tuple of int
+        (k0, k1, n_steps): steps k = k0 + 1 ... k1 of a run of n_steps (a run may be taken in
+        blocks).
+    dt, record_every : float [s], int
+        The state after step k is recorded in row k // record_every when record_every
+        divides k.
     state : tuple of ndarray
         (pos (3,) [m], rot (3,) rotation vector, X (n_x,) interior nodes [m], vp (6,)
         twist, vn (n_x,) node velocities, ap (6,), an (n_x,) accelerations, fe_p (6,)
         external and fd_p (6,), fd_n (n_x,) damping forces of the current step), platform
         DOFs as full 6-vectors with the held ones 0; updated in place.
-    loads : ndarray, shape (n_steps, 6) or (0, 6)
+    loads : ndarray, shape (k1 - k0, 6) or (0, 6)
         External load at the end of every step (held DOFs 0), or none.
     free : ndarray of bool, shape (6,)
     anchors, attachments, seg, l0, EA, c_ax, weight, platform_weight : as robot_chain_forces
@@ -369,7 +372,7 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
     Returns
     -------
     status, step : int
-        0 done; or the step k where the run stopped: 1 a non-finite state, 2 a strain
+        0 done (step k1); or the step k where the run stopped: 1 a non-finite state, 2 a strain
         above 1, 3 an energy residual above 10 times the energy scale (plus the floor).
     strain, residual, scale : float
         Largest strain at that step, the residual and the energy scale there [J] (0 where
@@ -401,8 +404,9 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
     slack_steps = slack_step = 0
     slack_cable = slack_segment = -1
     warn_step, warn_res, warn_scale = 0, 0.0, 0.0
-    status, step, strain, res, scale = 0, n_steps, -np.inf, 0.0, 0.0
-    for k in range(1, n_steps + 1):
+    k0, k1, n_steps = steps
+    status, step, strain, res, scale = 0, k1, -np.inf, 0.0, 0.0
+    for k in range(k0 + 1, k1 + 1):
         for j in range(6):
             vhp[j] = vp[j] + h * ap[j]
             dp[j] = dt * vhp[j]
@@ -420,7 +424,7 @@ def explicit_run(n_steps, dt, record_every, state, loads, free, anchors, attachm
                 B[i, j] = pos[j] + r[i, j]
         if loads.shape[0]:
             for j in range(6):
-                load[j] = loads[k - 1, j]
+                load[j] = loads[k - k0 - 1, j]
         # ---- forces at the new configuration, dampers at the half-step velocity
         _weight_wrench(platform_weight, rG, W, Wd)
         _, t_min, strain = _chain_pass(anchors, X, B, r, vhn, vhp, seg, l0, EA, c_ax, weight,

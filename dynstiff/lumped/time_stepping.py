@@ -225,13 +225,18 @@ class Recorder:
                             **info)
 
 
-def excitation_loads(excitation, table, free, dt, n_steps):
-    """External loads at the end of every step, shape (n_steps, 6), held DOFs 0 (or (0, 6)
-    without excitation): the table interpolated at all steps at once, or the callable called
-    step by step (checked as :func:`load_at`)."""
+#: Steps per call of the compiled explicit run (its load table: 1.5 MB).
+_BLOCK = 32768
+
+
+def excitation_loads(excitation, table, free, dt, k0, k1):
+    """External loads at the end of steps k0 + 1 ... k1, shape (k1 - k0, 6), held DOFs 0 (or
+    (0, 6) without excitation): the table interpolated at all steps at once, or the callable
+    called step by step (checked as :func:`load_at`)."""
     if excitation is None:
         return np.zeros((0, 6))
-    times = np.arange(1, n_steps + 1) * dt
+    times = np.arange(k0 + 1, k1 + 1) * dt
+    n_steps = times.size
     if table is not None:
         loads = np.column_stack([np.interp(times, table[0], table[1][:, j]) for j in range(6)])
     else:
@@ -251,8 +256,9 @@ def excitation_loads(excitation, table, free, dt, n_steps):
 def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
                           ledger, damping, slack_warning, table):
     """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
-    in one call of the compiled kernel (:func:`dynstiff.lumped.compiled_chain.explicit_run`,
-    theory.md §14.5), records, ledger rows and checks included; the warnings and the
+    in calls of ``_BLOCK`` steps of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.explicit_run`, theory.md §14.5), records, ledger
+    rows and checks included; the warnings and the
     failure it reports are raised here as in the stepwise loop. ``table``: the excitation
     as (times, loads), or None. Returns the number of steps with a slack segment."""
     m = dyn.model
@@ -277,16 +283,27 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
         K0 = (K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data.astype(float))
     else:
         K0 = (np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0))
-    (status, step, strain, residual, _, slack_steps, slack_step, cable, segment, warn_step,
-     warn_res, warn_scale) = fast.explicit_run(
-        n_steps, dt, record_every, state,
-        excitation_loads(dyn.excitation, table, free, dt, n_steps), free,
-        rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg, m.segment_lengths,
-        dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights, dyn.platform_weight,
-        m.node_masses, float(rob.g), float(p.mass), np.asarray(p.center_of_mass, dtype=float),
-        np.asarray(p.inertia, dtype=float), dyn.mu, float(dyn.alpha),
-        np.asarray(dyn.c_visc, dtype=float), dyn.cv, float(dyn.beta), K0, led, rec.pose,
-        rec.vel, rec.t_end, rec.t_anchor, rec.E, rec_X)
+    consts = (free, rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg,
+              m.segment_lengths, dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
+              dyn.platform_weight, m.node_masses, float(rob.g), float(p.mass),
+              np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
+              dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv,
+              float(dyn.beta), K0, led, rec.pose, rec.vel, rec.t_end, rec.t_anchor, rec.E,
+              rec_X)
+    k, status, slack_steps = 0, 0, 0
+    slack_step = warn_step = 0
+    while k < n_steps and not status:
+        k1 = min(n_steps, k + _BLOCK)
+        out = fast.explicit_run((k, k1, n_steps), dt, record_every, state,
+                                excitation_loads(dyn.excitation, table, free, dt, k, k1),
+                                *consts)
+        status, k, strain, residual, _, n_slack = out[:6]
+        slack_steps += n_slack
+        if out[6] and not slack_step:
+            slack_step, cable, segment = out[6:9]
+        if out[9] and not warn_step:
+            warn_step, warn_res, warn_scale = out[9:12]
+    step = k
     ledger.ext, ledger.diss = led[3], led[4]
     ledger.peaks[0], ledger.peaks[3] = led[5], led[6]
     events = []                                   # warnings in the order of their steps
