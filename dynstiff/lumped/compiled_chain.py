@@ -326,6 +326,77 @@ def _cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
 
 
 @numba.njit(**_JIT)
+def _forces(vp, vn, load, free, fi, anchors, X, B, r, M6, rG, first, seg, l0, EA, c_ax, weight,
+            platform_weight, mu, alpha, c_visc, cv, beta, K0, inner, dash, W, Wd, Fp, fdp, fdn,
+            vm, Kv):
+    """Generalised forces at a configuration (nodes X, frame B, r, M6, rG, first moment of
+    :func:`_platform`) and velocity (twist vp (6,), node velocities vn), in place (as
+    time_dynamics.Dynamics.forces): ``Fp`` (6,) the platform's total force (chains, weight,
+    ``load``, damping, minus the gyroscopic terms; 0 on held DOFs), ``fdp`` its damping part,
+    ``inner`` the spring + weight and ``fdn`` the damping forces on the nodes (their total is
+    inner + fdn). Damping: axial dashpots, -alpha M v, -beta K0 v (K0 as CSR (indptr,
+    indices, data) in the model's DOF order, with the scratch ``vm``, ``Kv``), the cable
+    viscous dashpots (c l0 on the nodes ``cv``, c l0 / 2 at B_i). Returns the largest and
+    smallest tension [N] and the largest strain [-]."""
+    nf, nx = fi.size, vn.size
+    _weight_wrench(platform_weight, rG, W, Wd)
+    t_max, t_min, strain = _chain_pass(anchors, X, B, r, vn, vp, seg, l0, EA, c_ax, weight,
+                                       inner, dash, W, Wd)
+    for j in range(6):
+        fdp[j] = Wd[j]
+    if beta != 0.0:
+        indptr, indices, data = K0
+        for j in range(nf):
+            vm[j] = vp[fi[j]]
+        for j in range(nx):
+            vm[nf + j] = vn[j]
+        for j in range(nf + nx):
+            s = 0.0
+            for q in range(indptr[j], indptr[j + 1]):
+                s += data[q] * vm[indices[q]]
+            Kv[j] = beta * s
+        for j in range(nf):
+            fdp[fi[j]] -= Kv[j]
+    if alpha != 0.0:
+        for j in range(6):
+            s = 0.0
+            for m in range(6):
+                s += M6[j, m] * vp[m]
+            fdp[j] -= alpha * s
+    for i in range(c_visc.size):
+        if c_visc[i] != 0.0:
+            # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
+            j0 = vp[0] + vp[4] * r[i, 2] - vp[5] * r[i, 1]
+            j1 = vp[1] + vp[5] * r[i, 0] - vp[3] * r[i, 2]
+            j2 = vp[2] + vp[3] * r[i, 1] - vp[4] * r[i, 0]
+            c = 0.5 * c_visc[i] * l0[i]
+            fdp[0] -= c * j0
+            fdp[1] -= c * j1
+            fdp[2] -= c * j2
+            _cross_add(r[i, 0], r[i, 1], r[i, 2], j0, j1, j2, -c, fdp, 3)
+    for j in range(6):
+        Fp[j] = W[j] + load[j] + fdp[j]
+    w0, w1, w2 = vp[3], vp[4], vp[5]
+    if w0 != 0.0 or w1 != 0.0 or w2 != 0.0:
+        # g = [w x (w x S); w x (I_P w)]
+        c0 = w1 * first[2] - w2 * first[1]
+        c1 = w2 * first[0] - w0 * first[2]
+        c2 = w0 * first[1] - w1 * first[0]
+        _cross_add(w0, w1, w2, c0, c1, c2, -1.0, Fp, 0)
+        i0 = M6[3, 3] * w0 + M6[3, 4] * w1 + M6[3, 5] * w2
+        i1 = M6[4, 3] * w0 + M6[4, 4] * w1 + M6[4, 5] * w2
+        i2 = M6[5, 3] * w0 + M6[5, 4] * w1 + M6[5, 5] * w2
+        _cross_add(w0, w1, w2, i0, i1, i2, -1.0, Fp, 3)
+    for j in range(6):
+        if not free[j]:
+            Fp[j] = 0.0
+            fdp[j] = 0.0
+    for j in range(nx):
+        fdn[j] = dash[j] - alpha * mu[j] * vn[j] - cv[j] * vn[j] - Kv[nf + j]
+    return t_max, t_min, strain
+
+
+@numba.njit(**_JIT)
 def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
                  EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
                  c_visc, cv, beta, K0, ledger, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
@@ -394,10 +465,9 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
     inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
     fd1p, Fp, a1p, load = np.empty(6), np.empty(6), np.empty(6), np.zeros(6)
     A, b = np.empty((6, 6)), np.empty(6)
-    indptr, indices, data = K0
     fi = np.flatnonzero(free)
     nf = fi.size
-    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
+    vm, Kv, fdn = np.zeros(nf + nx), np.zeros(nf + nx), np.empty(nx)
     E0, excess, floor = ledger[0], ledger[1], ledger[2]
     ext, diss, peak_ext, peak_diss = ledger[3], ledger[4], ledger[5], ledger[6]
     h = 0.5 * dt
@@ -426,57 +496,10 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
             for j in range(6):
                 load[j] = loads[k - k0 - 1, j]
         # ---- forces at the new configuration, dampers at the half-step velocity
-        _weight_wrench(platform_weight, rG, W, Wd)
-        _, t_min, strain = _chain_pass(anchors, X, B, r, vhn, vhp, seg, l0, EA, c_ax, weight,
-                                       inner, dash, W, Wd)
-        for j in range(6):
-            fd1p[j] = Wd[j]
-        if beta != 0.0:
-            for j in range(nf):
-                vm[j] = vhp[fi[j]]
-            for j in range(nx):
-                vm[nf + j] = vhn[j]
-            for j in range(nf + nx):
-                s = 0.0
-                for q in range(indptr[j], indptr[j + 1]):
-                    s += data[q] * vm[indices[q]]
-                Kv[j] = beta * s
-            for j in range(nf):
-                fd1p[fi[j]] -= Kv[j]
-        if alpha != 0.0:
-            for j in range(6):
-                s = 0.0
-                for m in range(6):
-                    s += M6[j, m] * vhp[m]
-                fd1p[j] -= alpha * s
-        for i in range(n):
-            if c_visc[i] != 0.0:
-                # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
-                j0 = vhp[0] + vhp[4] * r[i, 2] - vhp[5] * r[i, 1]
-                j1 = vhp[1] + vhp[5] * r[i, 0] - vhp[3] * r[i, 2]
-                j2 = vhp[2] + vhp[3] * r[i, 1] - vhp[4] * r[i, 0]
-                c = 0.5 * c_visc[i] * l0[i]
-                fd1p[0] -= c * j0
-                fd1p[1] -= c * j1
-                fd1p[2] -= c * j2
-                _cross_add(r[i, 0], r[i, 1], r[i, 2], j0, j1, j2, -c, fd1p, 3)
-        for j in range(6):
-            Fp[j] = W[j] + load[j] + fd1p[j]
-        w0, w1, w2 = vhp[3], vhp[4], vhp[5]
-        if w0 != 0.0 or w1 != 0.0 or w2 != 0.0:
-            # g = [w x (w x S); w x (I_P w)]
-            c0 = w1 * first[2] - w2 * first[1]
-            c1 = w2 * first[0] - w0 * first[2]
-            c2 = w0 * first[1] - w1 * first[0]
-            _cross_add(w0, w1, w2, c0, c1, c2, -1.0, Fp, 0)
-            i0 = M6[3, 3] * w0 + M6[3, 4] * w1 + M6[3, 5] * w2
-            i1 = M6[4, 3] * w0 + M6[4, 4] * w1 + M6[4, 5] * w2
-            i2 = M6[5, 3] * w0 + M6[5, 4] * w1 + M6[5, 5] * w2
-            _cross_add(w0, w1, w2, i0, i1, i2, -1.0, Fp, 3)
-        for j in range(6):
-            if not free[j]:
-                Fp[j] = 0.0
-                fd1p[j] = 0.0
+        _, t_min, strain = _forces(vhp, vhn, load, free, fi, anchors, X, B, r, M6, rG, first,
+                                   seg, l0, EA, c_ax, weight, platform_weight, mu, alpha,
+                                   c_visc, cv, beta, K0, inner, dash, W, Wd, Fp, fd1p, fdn,
+                                   vm, Kv)
         _solve_free(M6, Fp, free, A, b, a1p)
         # ---- accelerations, velocities, ledger work terms
         finite = True
@@ -489,12 +512,11 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
             dd += dp[j] * (fd_p[j] + fd1p[j])
             fe_p[j], fd_p[j] = load[j], fd1p[j]
         for j in range(nx):
-            fn = dash[j] - alpha * mu[j] * vhn[j] - cv[j] * vhn[j] - Kv[nf + j]
-            an[j] = (inner[j] + fn) / mu[j]
+            an[j] = (inner[j] + fdn[j]) / mu[j]
             vn[j] = vhn[j] + h * an[j]
             finite = finite and np.isfinite(vn[j])
-            dd += dn[j] * (fd_n[j] + fn)
-            fd_n[j] = fn
+            dd += dn[j] * (fd_n[j] + fdn[j])
+            fd_n[j] = fdn[j]
         if not finite:
             status, step = 1, k
             break
