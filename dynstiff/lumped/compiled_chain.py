@@ -397,10 +397,67 @@ def _forces(vp, vn, load, free, fi, anchors, X, B, r, M6, rG, first, seg, l0, EA
 
 
 @numba.njit(**_JIT)
+def _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp, vn, anchors,
+                attachments, seg, l0, EA, node_mass, g, mass, com, inertia, mu, ledger, info,
+                out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """The bookkeeping after step k of a run (as the loop of time_domain.simulate).
+
+    ``de`` and ``dd`` are dx . (f_ext,n + f_ext,n+1) and dx . (f_d,n + f_d,n+1) of the step.
+    ``ledger`` (7,): (E0, |E0 - V_eq|, floor, W_ext, D, peak |W_ext|, peak |D|) [J], the last
+    four updated. ``info`` (5,) int: steps with a slack segment, the first of them (0 if
+    none) with its first slack (cable, segment), the first step whose energy residual passed
+    0.1 times the scale (0 if none). ``out`` (5,): the largest strain [-], the residual and
+    the scale [J] of the last ledger row, and those of the warning step. At a recorded step
+    (record_every divides k), a slack step and the last step the energies give the ledger
+    row, which is checked and, recorded, written into row k // record_every of ``rec_pose``
+    (6,), ``rec_vel`` (6,), ``rec_t_end``, ``rec_t_anchor`` (n,), ``rec_E`` (8,) and, when it
+    has rows, ``rec_X``. Returns 0, or 2 for a strain above 1, 3 for an energy residual
+    above 10 times the scale plus the floor.
+    """
+    ledger[3] += 0.5 * de
+    ledger[4] -= 0.5 * dd
+    ledger[5], ledger[6] = max(ledger[5], abs(ledger[3])), max(ledger[6], abs(ledger[4]))
+    out[0] = strain
+    if t_min <= 0.0:
+        info[0] += 1
+    if strain > 1.0:
+        return 2
+    record = k % record_every == 0
+    if not (record or t_min <= 0.0 or k == n_steps):
+        return 0
+    el, gr, kin, t_end, t_anchor, strain, sc, ss = energies(
+        pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
+        inertia, mu)
+    res = kin + el + gr - ledger[0] - (ledger[3] - ledger[4])
+    scale = ledger[1] + ledger[5] + ledger[6]
+    out[0], out[1], out[2] = strain, res, scale
+    if abs(res) > 0.1 * (scale + ledger[2]) and info[4] == 0:
+        info[4], out[3], out[4] = k, res, scale
+    if strain > 1.0 or abs(res) > 10.0 * (scale + ledger[2]):
+        return 2 if strain > 1.0 else 3
+    if sc >= 0 and info[1] == 0:
+        info[1], info[2], info[3] = k, sc, ss
+    if record:
+        o = k // record_every
+        for j in range(3):
+            rec_pose[o, j], rec_pose[o, 3 + j] = pos[j], rot[j]
+        for j in range(6):
+            rec_vel[o, j] = vp[j]
+        for i in range(t_end.size):
+            rec_t_end[o, i], rec_t_anchor[o, i] = t_end[i], t_anchor[i]
+        rec_E[o, 0], rec_E[o, 1], rec_E[o, 2], rec_E[o, 3] = kin, gr, el, ledger[3]
+        rec_E[o, 4], rec_E[o, 5], rec_E[o, 6], rec_E[o, 7] = 0.0, 0.0, ledger[4], res
+        if rec_X.shape[0]:
+            for j in range(X.size):
+                rec_X[o, j] = X[j]
+    return 0
+
+
+@numba.njit(**_JIT)
 def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
                  EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
-                 c_visc, cv, beta, K0, ledger, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
-                 rec_E, rec_X):
+                 c_visc, cv, beta, K0, ledger, info, out, rec_pose, rec_vel, rec_t_end,
+                 rec_t_anchor, rec_E, rec_X):
     """A whole velocity-Verlet run of the lumped robot with fixed lengths (as
     time_stepping.explicit_step, step after step; theory.md §7.3, §14.5).
 
@@ -433,27 +490,15 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
     beta, K0 : float [s], (indptr, indices, data)
         Stiffness-proportional damping -beta K0 v, K0 in CSR form in the model's DOF order
         (free platform DOFs, then the interior nodes) [N/m]; unused when beta is 0.
-    ledger : ndarray, shape (7,)
-        (E0, |E0 - V_eq|, floor, W_ext, D, peak |W_ext|, peak |D|) [J]; the last four
-        are updated in place.
-    rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X : ndarray
-        Record rows (pose (6,), twist (6,), end and anchor tensions (n,), the ledger row
-        (8,), X when rec_X has rows), row 0 the start, filled in place.
+    ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X : ndarray
+        The ledger, the run's counters and the records, updated in place (see
+        :func:`_after_step`).
 
     Returns
     -------
     status, step : int
-        0 done (step k1); or the step k where the run stopped: 1 a non-finite state, 2 a strain
-        above 1, 3 an energy residual above 10 times the energy scale (plus the floor).
-    strain, residual, scale : float
-        Largest strain at that step, the residual and the energy scale there [J] (0 where
-        not evaluated).
-    slack_steps, slack_step, slack_cable, slack_segment : int
-        Steps with a slack segment, the first of them (0 if none) and its first slack
-        (cable, segment).
-    warn_step : int
-        First step whose energy residual passed 0.1 times the scale (0 if none), with
-        ``warn_residual``, ``warn_scale`` [J].
+        0 done (step k1); or the step k where the run stopped: 1 a non-finite state, 2 a
+        strain above 1, 3 an energy residual above 10 times the energy scale (plus the floor).
     """
     pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n = state
     n, nx = anchors.shape[0], X.size
@@ -468,14 +513,9 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
     fi = np.flatnonzero(free)
     nf = fi.size
     vm, Kv, fdn = np.zeros(nf + nx), np.zeros(nf + nx), np.empty(nx)
-    E0, excess, floor = ledger[0], ledger[1], ledger[2]
-    ext, diss, peak_ext, peak_diss = ledger[3], ledger[4], ledger[5], ledger[6]
     h = 0.5 * dt
-    slack_steps = slack_step = 0
-    slack_cable = slack_segment = -1
-    warn_step, warn_res, warn_scale = 0, 0.0, 0.0
     k0, k1, n_steps = steps
-    status, step, strain, res, scale = 0, k1, -np.inf, 0.0, 0.0
+    status, step = 0, k1
     for k in range(k0 + 1, k1 + 1):
         for j in range(6):
             vhp[j] = vp[j] + h * ap[j]
@@ -520,43 +560,11 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
         if not finite:
             status, step = 1, k
             break
-        ext += 0.5 * de
-        diss -= 0.5 * dd
-        peak_ext, peak_diss = max(peak_ext, abs(ext)), max(peak_diss, abs(diss))
-        if t_min <= 0.0:
-            slack_steps += 1
-        if strain > 1.0:
-            status, step = 2, k
+        status = _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp,
+                             vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
+                             inertia, mu, ledger, info, out, rec_pose, rec_vel, rec_t_end,
+                             rec_t_anchor, rec_E, rec_X)
+        if status:
+            step = k
             break
-        record = k % record_every == 0
-        if not (record or t_min <= 0.0 or k == n_steps):
-            continue
-        # ---- the ledger row and its checks (records, slack steps, the last step)
-        el, gr, kin, t_end, t_anchor, strain, sc, ss = energies(
-            pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
-            inertia, mu)
-        res = kin + el + gr - E0 - (ext - diss)
-        scale = excess + peak_ext + peak_diss
-        if abs(res) > 0.1 * (scale + floor) and warn_step == 0:
-            warn_step, warn_res, warn_scale = k, res, scale
-        if strain > 1.0 or abs(res) > 10.0 * (scale + floor):
-            status, step = (2 if strain > 1.0 else 3), k
-            break
-        if sc >= 0 and slack_step == 0:
-            slack_step, slack_cable, slack_segment = k, sc, ss
-        if record:
-            o = k // record_every
-            for j in range(3):
-                rec_pose[o, j], rec_pose[o, 3 + j] = pos[j], rot[j]
-            for j in range(6):
-                rec_vel[o, j] = vp[j]
-            for i in range(n):
-                rec_t_end[o, i], rec_t_anchor[o, i] = t_end[i], t_anchor[i]
-            rec_E[o, 0], rec_E[o, 1], rec_E[o, 2], rec_E[o, 3] = kin, gr, el, ext
-            rec_E[o, 4], rec_E[o, 5], rec_E[o, 6], rec_E[o, 7] = 0.0, 0.0, diss, res
-            if rec_X.shape[0]:
-                for j in range(nx):
-                    rec_X[o, j] = X[j]
-    ledger[3], ledger[4], ledger[5], ledger[6] = ext, diss, peak_ext, peak_diss
-    return (status, step, strain, res, scale, slack_steps, slack_step, slack_cable,
-            slack_segment, warn_step, warn_res, warn_scale)
+    return status, step

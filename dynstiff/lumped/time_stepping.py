@@ -283,49 +283,55 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
         K0 = (K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data.astype(float))
     else:
         K0 = (np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0))
+    info, out = np.zeros(5, dtype=np.int64), np.zeros(5)
     consts = (free, rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg,
               m.segment_lengths, dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
               dyn.platform_weight, m.node_masses, float(rob.g), float(p.mass),
               np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
               dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv,
-              float(dyn.beta), K0, led, rec.pose, rec.vel, rec.t_end, rec.t_anchor, rec.E,
-              rec_X)
-    k, status, slack_steps = 0, 0, 0
-    slack_step = warn_step = 0
+              float(dyn.beta), K0, led, info, out, rec.pose, rec.vel, rec.t_end, rec.t_anchor,
+              rec.E, rec_X)
+    k, status = 0, 0
     while k < n_steps and not status:
         k1 = min(n_steps, k + _BLOCK)
-        out = fast.explicit_run((k, k1, n_steps), dt, record_every, state,
-                                excitation_loads(dyn.excitation, table, free, dt, k, k1),
-                                *consts)
-        status, k, strain, residual, _, n_slack = out[:6]
-        slack_steps += n_slack
-        if out[6] and not slack_step:
-            slack_step, cable, segment = out[6:9]
-        if out[9] and not warn_step:
-            warn_step, warn_res, warn_scale = out[9:12]
-    step = k
+        status, k = fast.explicit_run((k, k1, n_steps), dt, record_every, state,
+                                      excitation_loads(dyn.excitation, table, free, dt, k, k1),
+                                      *consts)
+    return finish_compiled_run(status, k, info, out, led, ledger, rec, rec_X, m, dt,
+                               record_every, damping, slack_warning, "explicit")
+
+
+def finish_compiled_run(status, step, info, out, led, ledger, rec, rec_X, m, dt, record_every,
+                        damping, slack_warning, scheme):
+    """After a compiled run: the ledger back, the warnings in the order of their steps, the
+    failure the kernel reported, the record times, lengths and nodes. Returns the number of
+    steps with a slack segment."""
+    slack_steps, slack_step, cable, segment, warn_step = (int(x) for x in info)
+    strain, residual, _, warn_res, warn_scale = out
     ledger.ext, ledger.diss = led[3], led[4]
     ledger.peaks[0], ledger.peaks[3] = led[5], led[6]
     events = []                                   # warnings in the order of their steps
     if warn_step:
         events.append((warn_step, 0, lambda: ledger_warning(warn_step, warn_step * dt,
-                                                            warn_res, warn_scale, dt)))
+                                                            warn_res, warn_scale, dt, 6)))
     if slack_step:
         events.append((slack_step, 1, lambda: warnings.warn(
             f"simulate: cable {cable} segment {segment} went slack at step {slack_step} "
             f"(t = {slack_step * dt:g} s); tension-only springs carry no force until it is "
-            f"taut again", slack_warning, stacklevel=4)))
+            f"taut again", slack_warning, stacklevel=5)))
     for *_, warn in sorted(events, key=lambda e: e[:2]):
         warn()
     ledger.warned = ledger.warned or warn_step > 0
     if status == 1:
         raise IntegrationError(
-            f"simulate: non-finite state at step {step} (t = {step * dt:g} s) with explicit "
+            f"simulate: non-finite state at step {step} (t = {step * dt:g} s) with {scheme} "
             f"dt = {dt:g} s; the predicted stability limit is "
-            f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)",
-            step=step, time=step * dt, dt=dt)
+            f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)"
+            if scheme == "explicit" else
+            f"simulate: non-finite state at step {step} (t = {step * dt:g} s) with {scheme} "
+            f"dt = {dt:g} s", step=step, time=step * dt, dt=dt)
     if status:
-        check_blow_up(strain, residual, ledger, "explicit", dt, step, step * dt, m, damping, 4)
+        check_blow_up(strain, residual, ledger, scheme, dt, step, step * dt, m, damping, 5)
     n_rec = rec.t.size
     rec.t[1:] = np.arange(1, n_rec) * record_every * dt
     rec.L[1:] = m.unstretched_lengths
