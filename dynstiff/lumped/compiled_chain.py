@@ -14,7 +14,7 @@ nothing.
 import numba
 import numpy as np
 
-__all__ = ["energies", "explicit_run", "robot_chain_forces"]
+__all__ = ["energies", "explicit_run", "implicit_run", "robot_chain_forces"]
 
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 
@@ -568,3 +568,185 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
             step = k
             break
     return status, step
+
+
+@numba.njit(**_JIT)
+def _lu_solve(lu, b, y, x):
+    """x <- A^-1 b from the SuperLU factors Pr A Pc = L U (scipy's ``splu``): ``lu`` =
+    (L, U as CSR indptr, indices, data, then perm_r, perm_c); ``y`` scratch (n,)."""
+    Lp, Li, Lx, Up, Ui, Ux, perm_r, perm_c = lu
+    n = b.size
+    for i in range(n):
+        y[perm_r[i]] = b[i]
+    for i in range(n):
+        s, diag = y[i], 1.0
+        for q in range(Lp[i], Lp[i + 1]):
+            j = Li[q]
+            if j < i:
+                s -= Lx[q] * y[j]
+            elif j == i:
+                diag = Lx[q]
+        y[i] = s / diag
+    for i in range(n - 1, -1, -1):
+        s, diag = y[i], 1.0
+        for q in range(Up[i], Up[i + 1]):
+            j = Ui[q]
+            if j > i:
+                s -= Ux[q] * y[j]
+            elif j == i:
+                diag = Ux[q]
+        y[i] = s / diag
+    for i in range(n):
+        x[i] = y[perm_c[i]]
+
+
+@numba.njit(**_JIT)
+def implicit_run(steps, dt, record_every, state, newton, loads, free, anchors, attachments, seg,
+                 l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu,
+                 alpha, c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger,
+                 info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """Newmark average-acceleration steps of the lumped robot with fixed lengths, solved by
+    modified Newton iterations with kept LU factors (as time_stepping.implicit_step, step
+    after step; theory.md §7.3, §14.4, §14.6).
+
+    Parameters as :func:`explicit_run`, and:
+
+    state : tuple of ndarray
+        As in :func:`explicit_run`, then the acceleration of the previous step (6,), (n_x,)
+        (the predictor's a_{n-1}), then the increment d of the current step (6,), (n_x,).
+    newton : tuple of ndarray
+        (int64 (5,): LU given, a_{n-1} given, Newton iterations so far, resume flag, the
+        iteration to resume at; float (1,): the residual where Newton failed).
+    lu : tuple
+        The factors of K + 4 M / dt^2 + 2 C / dt in the model's DOF order (see
+        :func:`_lu_solve`).
+    tol, max_iter : float, int
+        Newton tolerance on the relative residual and iterations per step.
+    arm, force_weight : float
+        Moment arm [m] and weight [N] of the relative residual (LumpedMassModel.
+        residual_scales).
+
+    Returns
+    -------
+    status, step : int
+        As :func:`explicit_run`, and 4: Newton did not converge at ``step`` (residual in
+        newton[1][0]); 5: the LU factors are missing or Newton slowed down at ``step``: the
+        caller factorises the Newton matrix at the configuration advanced by the increment
+        in ``state``, sets the resume flag and calls again from that step.
+    """
+    pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, app, apn, dp, dn = state
+    nint, nflt = newton
+    n, nx = anchors.shape[0], X.size
+    fi = np.flatnonzero(free)
+    nf = fi.size
+    R, r, B = np.empty((3, 3)), np.empty((n, 3)), np.empty((n, 3))
+    M6, rG, first = np.empty((6, 6)), np.empty(3), np.empty(3)
+    half = 0.5 * node_mass
+    frot = rot.copy()                              # the rotation of the frame buffers
+    _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+    pos1, rot1, X1 = np.empty(3), np.empty(3), np.empty(nx)
+    a1p, a1n, v1p, v1n = np.empty(6), np.empty(nx), np.empty(6), np.empty(nx)
+    inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
+    Fp, fd1p, fdn, load = np.empty(6), np.empty(6), np.empty(nx), np.zeros(6)
+    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
+    G, y, x = np.empty(nf + nx), np.empty(nf + nx), np.empty(nf + nx)
+    c0 = 4.0 / dt ** 2
+    k0, k1, n_steps = steps
+    for k in range(k0 + 1, k1 + 1):
+        if loads.shape[0]:
+            for j in range(6):
+                load[j] = loads[k - k0 - 1, j]
+        fresh = nint[3] == 1
+        if fresh:                                  # new factors at the kept increment
+            it0 = nint[4]
+            nint[3] = 0
+        else:                                      # predictor: a_{n+1} = 2 a_n - a_{n-1}
+            it0 = 0
+            for j in range(6):
+                pred = 2.0 * ap[j] - app[j] if nint[1] else ap[j]
+                dp[j] = dt * vp[j] + 0.25 * dt ** 2 * (ap[j] + pred)
+                app[j] = ap[j]
+            for j in range(nx):
+                pred = 2.0 * an[j] - apn[j] if nint[1] else an[j]
+                dn[j] = dt * vn[j] + 0.25 * dt ** 2 * (an[j] + pred)
+                apn[j] = an[j]
+            nint[1] = 1
+        prev = np.inf
+        t_min, strain = np.inf, -np.inf
+        for it in range(it0, max_iter + 1):
+            # ---- the configuration, accelerations and velocities of the increment d
+            for j in range(3):
+                pos1[j], rot1[j] = pos[j] + dp[j], rot[j]
+            if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
+                _compose(dp[3], dp[4], dp[5], rot1)
+            if rot1[0] != frot[0] or rot1[1] != frot[1] or rot1[2] != frot[2]:
+                frot[:] = rot1
+                _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+            for i in range(n):
+                for j in range(3):
+                    B[i, j] = pos1[j] + r[i, j]
+            finite = True
+            for j in range(6):
+                a1p[j] = c0 * (dp[j] - dt * vp[j]) - ap[j]
+                v1p[j] = vp[j] + 0.5 * dt * (ap[j] + a1p[j])
+                finite = finite and np.isfinite(dp[j])
+            for j in range(nx):
+                X1[j] = X[j] + dn[j]
+                a1n[j] = c0 * (dn[j] - dt * vn[j]) - an[j]
+                v1n[j] = vn[j] + 0.5 * dt * (an[j] + a1n[j])
+                finite = finite and np.isfinite(dn[j])
+            t_max, t_min, strain = _forces(v1p, v1n, load, free, fi, anchors, X1, B, r, M6, rG,
+                                           first, seg, l0, EA, c_ax, weight, platform_weight,
+                                           mu, alpha, c_visc, cv, beta, K0, inner, dash, W, Wd,
+                                           Fp, fd1p, fdn, vm, Kv)
+            # ---- residual G = M a_{n+1} - F and its relative size
+            big = 0.0
+            for q in range(nf):
+                j = fi[q]
+                s = 0.0
+                for m in range(6):
+                    s += M6[j, m] * a1p[m]
+                G[q] = s - Fp[j]
+                big = max(big, abs(G[q]) / arm if j >= 3 else abs(G[q]))
+                finite = finite and np.isfinite(G[q])
+            for j in range(nx):
+                G[nf + j] = mu[j] * a1n[j] - (inner[j] + fdn[j])
+                big = max(big, abs(G[nf + j]))
+                finite = finite and np.isfinite(G[nf + j])
+            if not finite:
+                return 1, k
+            res = big / max(force_weight + t_max, np.finfo(np.float64).tiny)
+            if res <= tol:
+                break
+            if it == max_iter:
+                nflt[0] = res
+                return 4, k
+            if not fresh and (nint[0] == 0 or res > 0.1 * prev):
+                nint[4] = it
+                return 5, k
+            fresh = False
+            prev = res
+            _lu_solve(lu, G, y, x)
+            for q in range(nf):
+                dp[fi[q]] -= x[q]
+            for j in range(nx):
+                dn[j] -= x[nf + j]
+        nint[2] += it
+        # ---- the step is taken
+        de = dd = 0.0
+        for j in range(6):
+            de += dp[j] * (fe_p[j] + load[j])
+            dd += dp[j] * (fd_p[j] + fd1p[j])
+            vp[j], ap[j], fe_p[j], fd_p[j] = v1p[j], a1p[j], load[j], fd1p[j]
+        for j in range(3):
+            pos[j], rot[j] = pos1[j], rot1[j]
+        for j in range(nx):
+            dd += dn[j] * (fd_n[j] + fdn[j])
+            X[j], vn[j], an[j], fd_n[j] = X1[j], v1n[j], a1n[j], fdn[j]
+        status = _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp,
+                             vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
+                             inertia, mu, ledger, info, out, rec_pose, rec_vel, rec_t_end,
+                             rec_t_anchor, rec_E, rec_X)
+        if status:
+            return status, k
+    return 0, k1

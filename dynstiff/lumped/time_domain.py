@@ -114,6 +114,7 @@ from .time_stepping import (
     carried_energy,
     check_blow_up,
     compiled_explicit_run,
+    compiled_implicit_run,
     explicit_step,
     implicit_step,
     Ledger,
@@ -443,6 +444,11 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,
                                             SlackSegmentWarning, table)
+        n_steps_done = n_steps
+    elif fast is not None and length_fn is None:
+        slack_steps = compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
+                                            record_every, rec, ledger, damping,
+                                            SlackSegmentWarning, table, newton)
         n_steps_done = n_steps
     else:
         n_steps_done = 0

@@ -253,28 +253,25 @@ def excitation_loads(excitation, table, free, dt, k0, k1):
     return loads
 
 
-def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
-                          ledger, damping, slack_warning, table):
-    """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
-    in calls of ``_BLOCK`` steps of the compiled kernel
-    (:func:`dynstiff.lumped.compiled_chain.explicit_run`, theory.md §14.5), records, ledger
-    rows and checks included; the warnings and the
-    failure it reports are raised here as in the stepwise loop. ``table``: the excitation
-    as (times, loads), or None. Returns the number of steps with a slack segment."""
+def _six(model, x):
+    """The free-DOF part of x as a full 6-vector (0 on the held DOFs)."""
+    out = np.zeros(6)
+    out[model.free_index] = x[:model.n_free]
+    return out
+
+
+def _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger):
+    """(free (6,) bool, state, constants, tail) of the compiled runs: the state arrays as
+    in :func:`dynstiff.lumped.compiled_chain.explicit_run`, the model's constants from free
+    to K0, then the ledger, counters and records (ledger, info, out, records, rec_X)."""
     m = dyn.model
     rob, p = m.robot, m.robot.platform
-    nf, fi = m.n_free, m.free_index
+    nf = m.n_free
     free = np.zeros(6, dtype=bool)
-    free[fi] = True
-
-    def six(x):
-        out = np.zeros(6)
-        out[fi] = x[:nf]
-        return out
-
+    free[m.free_index] = True
     state = (np.array(pose.position, dtype=float), np.array(pose.rotation, dtype=float),
-             np.array(X, dtype=float), six(v), v[nf:].copy(), six(a), a[nf:].copy(), six(fe),
-             six(fd), fd[nf:].copy())
+             np.array(X, dtype=float), _six(m, v), v[nf:].copy(), _six(m, a), a[nf:].copy(),
+             _six(m, fe), _six(m, fd), fd[nf:].copy())
     led = np.array([ledger.E0, ledger.excess, ledger.floor, ledger.ext, ledger.diss,
                     ledger.peaks[0], ledger.peaks[3]])
     rec_X = np.empty((rec.t.size if rec.nodes is not None else 0, X.size))
@@ -283,29 +280,98 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
         K0 = (K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data.astype(float))
     else:
         K0 = (np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0))
-    info, out = np.zeros(5, dtype=np.int64), np.zeros(5)
     consts = (free, rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg,
               m.segment_lengths, dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
               dyn.platform_weight, m.node_masses, float(rob.g), float(p.mass),
               np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
               dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv,
-              float(dyn.beta), K0, led, info, out, rec.pose, rec.vel, rec.t_end, rec.t_anchor,
-              rec.E, rec_X)
+              float(dyn.beta), K0)
+    tail = (led, np.zeros(5, dtype=np.int64), np.zeros(5), rec.pose, rec.vel, rec.t_end,
+            rec.t_anchor, rec.E, rec_X)
+    return free, state, consts, tail
+
+
+def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning, table):
+    """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
+    in calls of ``_BLOCK`` steps of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.explicit_run`, theory.md §14.5), records, ledger
+    rows and checks included; the warnings and the failure it reports are raised here as in
+    the stepwise loop. ``table``: the excitation as (times, loads), or None. Returns the
+    number of steps with a slack segment."""
+    free, state, consts, tail = _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger)
     k, status = 0, 0
     while k < n_steps and not status:
         k1 = min(n_steps, k + _BLOCK)
         status, k = fast.explicit_run((k, k1, n_steps), dt, record_every, state,
                                       excitation_loads(dyn.excitation, table, free, dt, k, k1),
-                                      *consts)
-    return finish_compiled_run(status, k, info, out, led, ledger, rec, rec_X, m, dt,
-                               record_every, damping, slack_warning, "explicit")
+                                      *consts, *tail)
+    return finish_compiled_run(status, k, tail, ledger, rec, dyn.model, dt, record_every,
+                               damping, slack_warning, "explicit")
 
 
-def finish_compiled_run(status, step, info, out, led, ledger, rec, rec_X, m, dt, record_every,
-                        damping, slack_warning, scheme):
+def _lu_arrays(lu):
+    """The SuperLU factors as arrays for compiled_chain._lu_solve (L, U in CSR, perms)."""
+    L, U = lu.L.tocsr(), lu.U.tocsr()
+    return (L.indptr.astype(np.int64), L.indices.astype(np.int64), L.data.astype(float),
+            U.indptr.astype(np.int64), U.indices.astype(np.int64), U.data.astype(float),
+            lu.perm_r.astype(np.int64), lu.perm_c.astype(np.int64))
+
+
+def compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning, table, newton):
+    """The Newmark steps of a run with fixed lengths in calls of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.implicit_run`, theory.md §14.6): Newton with the
+    kept LU factors runs in the kernel; when they are missing or Newton slows down, the
+    kernel returns, the Newton matrix is assembled and factorised here (as in
+    :func:`implicit_step`) and the kernel resumes the same step. Records, ledger, checks,
+    warnings and failures as in the stepwise loop. Returns the number of steps with a slack
+    segment."""
+    import scipy.sparse.linalg
+    m = dyn.model
+    free, state, consts, tail = _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger)
+    nx = state[2].size
+    state = state + (np.zeros(6), np.zeros(nx), np.zeros(6), np.zeros(nx))
+    counters = (np.zeros(5, dtype=np.int64), np.zeros(1))
+    z = np.zeros(1, dtype=np.int64)
+    lu = (z, z[:0], np.zeros(0), z, z[:0], np.zeros(0), z[:0], z[:0])
+    arm, weight = m.residual_scales()
+    k, status = 0, 0
+    while k < n_steps and not status:
+        k1 = min(n_steps, k + _BLOCK)
+        loads = excitation_loads(dyn.excitation, table, free, dt, k, k1)
+        start = k
+        while True:
+            status, k = fast.implicit_run(
+                (start, k1, n_steps), dt, record_every, state, counters,
+                loads[start - (k1 - loads.shape[0]):] if loads.shape[0] else loads, *consts,
+                lu, newton.tol, newton.max_iter, arm, weight, *tail)
+            if status != 5:
+                break
+            d = np.concatenate([state[12][m.free_index], state[13]])
+            pose1, X1 = advance(m, FastPose(state[0].copy(), state[1].copy()), state[2], d)
+            lu = _lu_arrays(scipy.sparse.linalg.splu(dyn.newton_matrix(pose1, X1, dt)))
+            newton.updates += 1
+            counters[0][0] = counters[0][3] = 1
+            start = k - 1
+    newton.iterations += int(counters[0][2])
+    slack_steps = finish_compiled_run(0 if status == 4 else status, k, tail, ledger, rec, m,
+                                      dt, record_every, damping, slack_warning, "implicit")
+    if status == 4:
+        res = counters[1][0]
+        raise ConvergenceError(
+            f"simulate: Newton did not converge in {newton.max_iter} iterations at step "
+            f"{k} (t = {k * dt:g} s) with dt = {dt:g} s: relative residual {res:.3e} > tol "
+            f"{newton.tol:g}; reduce dt (slack snapping or a blow-up)", residual=res)
+    return slack_steps
+
+
+def finish_compiled_run(status, step, tail, ledger, rec, m, dt, record_every, damping,
+                        slack_warning, scheme):
     """After a compiled run: the ledger back, the warnings in the order of their steps, the
     failure the kernel reported, the record times, lengths and nodes. Returns the number of
     steps with a slack segment."""
+    led, info, out, rec_X = tail[0], tail[1], tail[2], tail[-1]
     slack_steps, slack_step, cable, segment, warn_step = (int(x) for x in info)
     strain, residual, _, warn_res, warn_scale = out
     ledger.ext, ledger.diss = led[3], led[4]
@@ -318,7 +384,7 @@ def finish_compiled_run(status, step, info, out, led, ledger, rec, rec_X, m, dt,
         events.append((slack_step, 1, lambda: warnings.warn(
             f"simulate: cable {cable} segment {segment} went slack at step {slack_step} "
             f"(t = {slack_step * dt:g} s); tension-only springs carry no force until it is "
-            f"taut again", slack_warning, stacklevel=5)))
+            f"taut again", slack_warning, stacklevel=5)))  # user > simulate > run > here
     for *_, warn in sorted(events, key=lambda e: e[:2]):
         warn()
     ledger.warned = ledger.warned or warn_step > 0
