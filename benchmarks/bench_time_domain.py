@@ -15,9 +15,9 @@ Cases (equal segments, N = 20 per cable, ``T_END`` = 10 s simulated by default)
   steps of 1 ms.
 
 Accuracy: the RMS difference of the signal from the code's own fine-step run, relative to
-the RMS fluctuation of that run (``TOLERANCE`` = 2 %). dynstiff implicit (Newmark) at several
-dt against its fine run at 0.25 ms; dynstiff explicit (velocity Verlet, the compiled whole-run
-kernel) at fractions ``EXPLICIT_FRACTIONS`` of its predicted stability limit against its own
+the RMS fluctuation of that run (``TOLERANCE`` = 2 %). dynstiff implicit (Newmark, the
+compiled run with numba) at several dt against its fine run at 0.25 ms; dynstiff explicit
+(velocity Verlet, the compiled run) at fractions ``EXPLICIT_FRACTIONS`` of its predicted stability limit against its own
 fine run at ``EXPLICIT_FINE`` of the limit; MoorDyn RK2 at several dtM (larger ones give NaN)
 against its fine run at dtM / 4 of the smallest. The two dynstiff fine runs are compared with
 each other as a check of the physics. Every run covers the whole ``t_end``.
