@@ -1,7 +1,8 @@
 """Compiled (numba) kernels of the lumped robot's time stepping (theory.md §7.1, §7.3,
 §14.4, §14.5): the spring, weight and axial-dashpot forces of every chain in one pass over
 the segments (with the extreme tension and strain the step checks), the ledger
-energies, and a whole explicit run (velocity Verlet with its records, ledger and checks).
+energies, and whole runs with their records, ledger and checks: explicit (velocity Verlet)
+and implicit (Newmark, Newton with LU factors made by scipy; theory.md §14.6).
 
 Imported only by :mod:`dynstiff.lumped.time_dynamics` when numba is installed (``pip
 install "dynstiff[fast]"``); without it the numpy path (``LumpedMassModel.residual_unchecked``
