@@ -203,3 +203,16 @@ def test_compiled_implicit_run_warns_and_fails_as_the_stepwise_loop(robot_model,
         (r0.newton_iterations, r0.jacobian_updates)
     # the snaps amplify rounding: 2.3e-11 m measured (Newton stops at tol 1e-9 either way)
     np.testing.assert_allclose(r1.pose, r0.pose, rtol=0, atol=1e-10 * np.abs(r0.pose).max())
+
+
+def test_compiled_implicit_run_reports_newton_failure_as_the_stepwise_loop(robot_model,
+                                                                          monkeypatch):
+    """Two Newton iterations cannot reach a relative residual of 1e-15: both paths raise the
+    same ConvergenceError (step, residual, message)."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.lumped import simulate
+    m = robot_model(5)
+    (e1, _), (e0, _) = _both_paths(monkeypatch, lambda: simulate(
+        m, 0.01, 1e-3, initial=[1e-3, 0, 0, 0, 0, 0], tol=1e-15, max_iter=2))
+    assert isinstance(e1, ConvergenceError) and isinstance(e0, ConvergenceError)
+    assert str(e1) == str(e0) and "step 1 " in str(e1)
