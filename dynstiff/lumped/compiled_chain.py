@@ -20,6 +20,7 @@ __all__ = ["energies", "explicit_run", "implicit_run", "robot_chain_forces"]
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
+
 @numba.njit(**_JIT)
 def _chain_pass(anchors, X, B, r, vn, twist, seg, l0, EA, c_ax, weight, inner, dash, W, Wd):
     """Forces of n chains of seg[i] = N_i segments, in place.
@@ -327,94 +328,16 @@ def _cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
 
 
 @numba.njit(**_JIT)
-def _forces(vp, vn, load, free, fi, anchors, X, B, r, M6, rG, first, seg, l0, EA, c_ax, weight,
-            platform_weight, mu, alpha, c_visc, cv, beta, K0, inner, dash, W, Wd, Fp, fdp, fdn,
-            vm, Kv):
-    """Generalised forces at a configuration (nodes X, frame B, r, M6, rG, first moment of
-    :func:`_platform`) and velocity (twist vp (6,), node velocities vn), in place (as
-    time_dynamics.Dynamics.forces): ``Fp`` (6,) the platform's total force (chains, weight,
-    ``load``, damping, minus the gyroscopic terms; 0 on held DOFs), ``fdp`` its damping part,
-    ``inner`` the spring + weight and ``fdn`` the damping forces on the nodes (their total is
-    inner + fdn). Damping: axial dashpots, -alpha M v, -beta K0 v (K0 as CSR (indptr,
-    indices, data) in the model's DOF order, with the scratch ``vm``, ``Kv``), the cable
-    viscous dashpots (c l0 on the nodes ``cv``, c l0 / 2 at B_i). Returns the largest and
-    smallest tension [N] and the largest strain [-]."""
-    nf, nx = fi.size, vn.size
-    _weight_wrench(platform_weight, rG, W, Wd)
-    t_max, t_min, strain = _chain_pass(anchors, X, B, r, vn, vp, seg, l0, EA, c_ax, weight,
-                                       inner, dash, W, Wd)
-    for j in range(6):
-        fdp[j] = Wd[j]
-    if beta != 0.0:
-        indptr, indices, data = K0
-        for j in range(nf):
-            vm[j] = vp[fi[j]]
-        for j in range(nx):
-            vm[nf + j] = vn[j]
-        for j in range(nf + nx):
-            s = 0.0
-            for q in range(indptr[j], indptr[j + 1]):
-                s += data[q] * vm[indices[q]]
-            Kv[j] = beta * s
-        for j in range(nf):
-            fdp[fi[j]] -= Kv[j]
-    if alpha != 0.0:
-        for j in range(6):
-            s = 0.0
-            for m in range(6):
-                s += M6[j, m] * vp[m]
-            fdp[j] -= alpha * s
-    for i in range(c_visc.size):
-        if c_visc[i] != 0.0:
-            # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
-            j0 = vp[0] + vp[4] * r[i, 2] - vp[5] * r[i, 1]
-            j1 = vp[1] + vp[5] * r[i, 0] - vp[3] * r[i, 2]
-            j2 = vp[2] + vp[3] * r[i, 1] - vp[4] * r[i, 0]
-            c = 0.5 * c_visc[i] * l0[i]
-            fdp[0] -= c * j0
-            fdp[1] -= c * j1
-            fdp[2] -= c * j2
-            _cross_add(r[i, 0], r[i, 1], r[i, 2], j0, j1, j2, -c, fdp, 3)
-    for j in range(6):
-        Fp[j] = W[j] + load[j] + fdp[j]
-    w0, w1, w2 = vp[3], vp[4], vp[5]
-    if w0 != 0.0 or w1 != 0.0 or w2 != 0.0:
-        # g = [w x (w x S); w x (I_P w)]
-        c0 = w1 * first[2] - w2 * first[1]
-        c1 = w2 * first[0] - w0 * first[2]
-        c2 = w0 * first[1] - w1 * first[0]
-        _cross_add(w0, w1, w2, c0, c1, c2, -1.0, Fp, 0)
-        i0 = M6[3, 3] * w0 + M6[3, 4] * w1 + M6[3, 5] * w2
-        i1 = M6[4, 3] * w0 + M6[4, 4] * w1 + M6[4, 5] * w2
-        i2 = M6[5, 3] * w0 + M6[5, 4] * w1 + M6[5, 5] * w2
-        _cross_add(w0, w1, w2, i0, i1, i2, -1.0, Fp, 3)
-    for j in range(6):
-        if not free[j]:
-            Fp[j] = 0.0
-            fdp[j] = 0.0
-    for j in range(nx):
-        fdn[j] = dash[j] - alpha * mu[j] * vn[j] - cv[j] * vn[j] - Kv[nf + j]
-    return t_max, t_min, strain
-
-
-@numba.njit(**_JIT)
-def _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp, vn, anchors,
-                attachments, seg, l0, EA, node_mass, g, mass, com, inertia, mu, ledger, info,
-                out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
-    """The bookkeeping after step k of a run (as the loop of time_domain.simulate).
-
+def _step_done(k, n_steps, record_every, t_min, strain, de, dd, ledger, info, out):
+    """The running bookkeeping after step k of a run (as the loop of time_domain.simulate):
     ``de`` and ``dd`` are dx . (f_ext,n + f_ext,n+1) and dx . (f_d,n + f_d,n+1) of the step.
     ``ledger`` (7,): (E0, |E0 - V_eq|, floor, W_ext, D, peak |W_ext|, peak |D|) [J], the last
-    four updated. ``info`` (5,) int: steps with a slack segment, the first of them (0 if
+    four updated; ``info`` (5,) int: steps with a slack segment, the first of them (0 if
     none) with its first slack (cable, segment), the first step whose energy residual passed
-    0.1 times the scale (0 if none). ``out`` (5,): the largest strain [-], the residual and
-    the scale [J] of the last ledger row, and those of the warning step. At a recorded step
-    (record_every divides k), a slack step and the last step the energies give the ledger
-    row, which is checked and, recorded, written into row k // record_every of ``rec_pose``
-    (6,), ``rec_vel`` (6,), ``rec_t_end``, ``rec_t_anchor`` (n,), ``rec_E`` (8,) and, when it
-    has rows, ``rec_X``. Returns 0, or 2 for a strain above 1, 3 for an energy residual
-    above 10 times the scale plus the floor.
-    """
+    0.1 times the scale (0 if none); ``out`` (5,): the largest strain [-], the residual and
+    the scale [J] of the last ledger row, and those of the warning step. Returns 2 for a
+    strain above 1, 1 when the step needs its ledger row (:func:`_ledger_row`: a recorded
+    step, a slack step, the last step), else 0."""
     ledger[3] += 0.5 * de
     ledger[4] -= 0.5 * dd
     ledger[5], ledger[6] = max(ledger[5], abs(ledger[3])), max(ledger[6], abs(ledger[4]))
@@ -423,9 +346,19 @@ def _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp
         info[0] += 1
     if strain > 1.0:
         return 2
+    return 1 if (k % record_every == 0 or t_min <= 0.0 or k == n_steps) else 0
+
+
+@numba.njit(**_JIT)
+def _ledger_row(k, record_every, pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA,
+                node_mass, g, mass, com, inertia, mu, ledger, info, out, rec_pose, rec_vel,
+                rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """The ledger row of step k (:func:`_step_done`): the energies, the checks and, at a
+    recorded step (record_every divides k), row k // record_every of ``rec_pose`` (6,),
+    ``rec_vel`` (6,), ``rec_t_end``, ``rec_t_anchor`` (n,), ``rec_E`` (8,) and, when it has
+    rows, ``rec_X``. Returns 0, or 2 for a strain above 1, 3 for an energy residual above 10
+    times the scale plus the floor."""
     record = k % record_every == 0
-    if not (record or t_min <= 0.0 or k == n_steps):
-        return 0
     el, gr, kin, t_end, t_anchor, strain, sc, ss = energies(
         pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
         inertia, mu)
@@ -452,6 +385,243 @@ def _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp
             for j in range(X.size):
                 rec_X[o, j] = X[j]
     return 0
+
+
+@numba.njit(**_JIT)
+def _lu_solve(lu, b, y, x):
+    """x <- A^-1 b from the SuperLU factors Pr A Pc = L U (scipy's ``splu``): ``lu`` =
+    (L, U as CSR indptr, indices, data, then perm_r, perm_c); ``y`` scratch (n,)."""
+    Lp, Li, Lx, Up, Ui, Ux, perm_r, perm_c = lu
+    n = b.size
+    for i in range(n):
+        y[perm_r[i]] = b[i]
+    for i in range(n):
+        s, diag = y[i], 1.0
+        for q in range(Lp[i], Lp[i + 1]):
+            j = Li[q]
+            if j < i:
+                s -= Lx[q] * y[j]
+            elif j == i:
+                diag = Lx[q]
+        y[i] = s / diag
+    for i in range(n - 1, -1, -1):
+        s, diag = y[i], 1.0
+        for q in range(Up[i], Up[i + 1]):
+            j = Ui[q]
+            if j > i:
+                s -= Ux[q] * y[j]
+            elif j == i:
+                diag = Ux[q]
+        y[i] = s / diag
+    for i in range(n):
+        x[i] = y[perm_c[i]]
+
+
+@numba.njit(**_JIT)
+def _run(implicit, steps, dt, record_every, state, newton, loads, free, anchors, attachments,
+         seg, l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
+         c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger, info, out,
+         rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """The steps of :func:`explicit_run` (``implicit`` False) or :func:`implicit_run` (True):
+    one loop for both schemes, so that the force evaluation, the most expensive part of a
+    step, is written once and compiled inline (a call of a separate compiled function with
+    its thirty arrays cost more than the whole step of a 20-segment line)."""
+    pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, app, apn, dp, dn = state
+    nint, nflt = newton
+    Kp, Ki, Kx = K0
+    n, nx = anchors.shape[0], X.size
+    fi = np.flatnonzero(free)
+    nf = fi.size
+    R, r, B = np.empty((3, 3)), np.empty((n, 3)), np.empty((n, 3))
+    M6, rG, first = np.empty((6, 6)), np.empty(3), np.empty(3)
+    half = 0.5 * node_mass
+    frot = rot.copy()                              # the rotation of the frame buffers
+    _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+    pos1, rot1, X1 = np.empty(3), np.empty(3), np.empty(nx)
+    a1p, a1n, v1p, v1n = np.zeros(6), np.empty(nx), np.empty(6), np.empty(nx)
+    inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
+    Fp, fdp, fdn, load = np.empty(6), np.empty(6), np.empty(nx), np.zeros(6)
+    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
+    G, y, x = np.empty(nf + nx), np.empty(nf + nx), np.empty(nf + nx)
+    A, b = np.empty((6, 6)), np.empty(6)
+    c0, h = 4.0 / dt ** 2, 0.5 * dt
+    k0, k1, n_steps = steps
+    for k in range(k0 + 1, k1 + 1):
+        if loads.shape[0]:
+            for j in range(6):
+                load[j] = loads[k - k0 - 1, j]
+        it0, fresh = 0, False
+        if not implicit:                           # d = dt v_{n+1/2}
+            for j in range(6):
+                v1p[j] = vp[j] + h * ap[j]
+                dp[j] = dt * v1p[j]
+            for j in range(nx):
+                v1n[j] = vn[j] + h * an[j]
+                dn[j] = dt * v1n[j]
+        elif nint[3] == 1:                         # new factors at the kept increment
+            it0, fresh = nint[4], True
+            nint[3] = 0
+        else:                                      # predictor: a_{n+1} = 2 a_n - a_{n-1}
+            for j in range(6):
+                pred = 2.0 * ap[j] - app[j] if nint[1] else ap[j]
+                dp[j] = dt * vp[j] + 0.25 * dt ** 2 * (ap[j] + pred)
+                app[j] = ap[j]
+            for j in range(nx):
+                pred = 2.0 * an[j] - apn[j] if nint[1] else an[j]
+                dn[j] = dt * vn[j] + 0.25 * dt ** 2 * (an[j] + pred)
+                apn[j] = an[j]
+            nint[1] = 1
+        prev = np.inf
+        it = it0
+        for it in range(it0, max_iter + 1 if implicit else 1):
+            # ---- the configuration of the increment d (rotation composed exactly)
+            for j in range(3):
+                pos1[j], rot1[j] = pos[j] + dp[j], rot[j]
+            if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
+                _compose(dp[3], dp[4], dp[5], rot1)
+            if rot1[0] != frot[0] or rot1[1] != frot[1] or rot1[2] != frot[2]:
+                frot[:] = rot1
+                _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+            for i in range(n):
+                for j in range(3):
+                    B[i, j] = pos1[j] + r[i, j]
+            finite = True
+            for j in range(nx):
+                X1[j] = X[j] + dn[j]
+            if implicit:                           # a_{n+1}, v_{n+1} of the increment
+                for j in range(6):
+                    a1p[j] = c0 * (dp[j] - dt * vp[j]) - ap[j]
+                    v1p[j] = vp[j] + h * (ap[j] + a1p[j])
+                    finite = finite and np.isfinite(dp[j])
+                for j in range(nx):
+                    a1n[j] = c0 * (dn[j] - dt * vn[j]) - an[j]
+                    v1n[j] = vn[j] + h * (an[j] + a1n[j])
+                    finite = finite and np.isfinite(dn[j])
+            # ---- forces at (pos1, rot1, X1) and the velocity (v1p, v1n), as
+            # time_dynamics.Dynamics.forces: chains, weights, load, damping (axial
+            # dashpots, -alpha M v, -beta K0 v, cable viscous c l0 on the nodes and c l0 / 2
+            # at B_i), minus the gyroscopic terms; Fp 0 on the held DOFs
+            _weight_wrench(platform_weight, rG, W, Wd)
+            t_max, t_min, strain = _chain_pass(anchors, X1, B, r, v1n, v1p, seg, l0, EA, c_ax,
+                                               weight, inner, dash, W, Wd)
+            for j in range(6):
+                fdp[j] = Wd[j]
+            if beta != 0.0:
+                for j in range(nf):
+                    vm[j] = v1p[fi[j]]
+                for j in range(nx):
+                    vm[nf + j] = v1n[j]
+                for j in range(nf + nx):
+                    s = 0.0
+                    for q in range(Kp[j], Kp[j + 1]):
+                        s += Kx[q] * vm[Ki[q]]
+                    Kv[j] = beta * s
+                for j in range(nf):
+                    fdp[fi[j]] -= Kv[j]
+            if alpha != 0.0:
+                for j in range(6):
+                    s = 0.0
+                    for m in range(6):
+                        s += M6[j, m] * v1p[m]
+                    fdp[j] -= alpha * s
+            for i in range(n):
+                if c_visc[i] != 0.0:
+                    # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
+                    j0 = v1p[0] + v1p[4] * r[i, 2] - v1p[5] * r[i, 1]
+                    j1 = v1p[1] + v1p[5] * r[i, 0] - v1p[3] * r[i, 2]
+                    j2 = v1p[2] + v1p[3] * r[i, 1] - v1p[4] * r[i, 0]
+                    c = 0.5 * c_visc[i] * l0[i]
+                    fdp[0] -= c * j0
+                    fdp[1] -= c * j1
+                    fdp[2] -= c * j2
+                    _cross_add(r[i, 0], r[i, 1], r[i, 2], j0, j1, j2, -c, fdp, 3)
+            for j in range(6):
+                Fp[j] = W[j] + load[j] + fdp[j]
+            w0, w1, w2 = v1p[3], v1p[4], v1p[5]
+            if w0 != 0.0 or w1 != 0.0 or w2 != 0.0:
+                # g = [w x (w x S); w x (I_P w)]
+                e0 = w1 * first[2] - w2 * first[1]
+                e1 = w2 * first[0] - w0 * first[2]
+                e2 = w0 * first[1] - w1 * first[0]
+                _cross_add(w0, w1, w2, e0, e1, e2, -1.0, Fp, 0)
+                i0 = M6[3, 3] * w0 + M6[3, 4] * w1 + M6[3, 5] * w2
+                i1 = M6[4, 3] * w0 + M6[4, 4] * w1 + M6[4, 5] * w2
+                i2 = M6[5, 3] * w0 + M6[5, 4] * w1 + M6[5, 5] * w2
+                _cross_add(w0, w1, w2, i0, i1, i2, -1.0, Fp, 3)
+            for j in range(6):
+                if not free[j]:
+                    Fp[j] = 0.0
+                    fdp[j] = 0.0
+            for j in range(nx):
+                fdn[j] = dash[j] - alpha * mu[j] * v1n[j] - cv[j] * v1n[j] - Kv[nf + j]
+            if not implicit:
+                break
+            # ---- Newton: residual G = M a_{n+1} - F, its relative size, the kept factors
+            big = 0.0
+            for q in range(nf):
+                j = fi[q]
+                s = 0.0
+                for m in range(6):
+                    s += M6[j, m] * a1p[m]
+                G[q] = s - Fp[j]
+                big = max(big, abs(G[q]) / arm if j >= 3 else abs(G[q]))
+                finite = finite and np.isfinite(G[q])
+            for j in range(nx):
+                G[nf + j] = mu[j] * a1n[j] - (inner[j] + fdn[j])
+                big = max(big, abs(G[nf + j]))
+                finite = finite and np.isfinite(G[nf + j])
+            if not finite:
+                return 1, k
+            res = big / max(force_weight + t_max, np.finfo(np.float64).tiny)
+            if res <= tol:
+                break
+            if it == max_iter:
+                nflt[0] = res
+                return 4, k
+            if not fresh and (nint[0] == 0 or res > 0.1 * prev):
+                nint[4] = it
+                return 5, k
+            fresh = False
+            prev = res
+            _lu_solve(lu, G, y, x)
+            for q in range(nf):
+                dp[fi[q]] -= x[q]
+            for j in range(nx):
+                dn[j] -= x[nf + j]
+        if implicit:
+            nint[2] += it
+        else:                                      # a_{n+1} = M^-1 F, v_{n+1}
+            _solve_free(M6, Fp, free, A, b, a1p)
+            finite = True
+            for j in range(6):
+                v1p[j] += h * a1p[j]
+                finite = finite and np.isfinite(a1p[j]) and np.isfinite(v1p[j])
+            for j in range(nx):
+                a1n[j] = (inner[j] + fdn[j]) / mu[j]
+                v1n[j] += h * a1n[j]
+                finite = finite and np.isfinite(a1n[j]) and np.isfinite(v1n[j])
+            if not finite:
+                return 1, k
+        # ---- the step is taken: state, ledger work terms, checks, records
+        de = dd = 0.0
+        for j in range(6):
+            de += dp[j] * (fe_p[j] + load[j])
+            dd += dp[j] * (fd_p[j] + fdp[j])
+            vp[j], ap[j], fe_p[j], fd_p[j] = v1p[j], a1p[j], load[j], fdp[j]
+        for j in range(3):
+            pos[j], rot[j] = pos1[j], rot1[j]
+        for j in range(nx):
+            dd += dn[j] * (fd_n[j] + fdn[j])
+            X[j], vn[j], an[j], fd_n[j] = X1[j], v1n[j], a1n[j], fdn[j]
+        status = _step_done(k, n_steps, record_every, t_min, strain, de, dd, ledger, info, out)
+        if status == 1:
+            status = _ledger_row(k, record_every, pos, rot, X, vp, vn, anchors, attachments,
+                                 seg, l0, EA, node_mass, g, mass, com, inertia, mu, ledger,
+                                 info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E,
+                                 rec_X)
+        if status:
+            return status, k
+    return 0, k1
 
 
 @numba.njit(**_JIT)
@@ -493,7 +663,7 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
         (free platform DOFs, then the interior nodes) [N/m]; unused when beta is 0.
     ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X : ndarray
         The ledger, the run's counters and the records, updated in place (see
-        :func:`_after_step`).
+        :func:`_step_done`).
 
     Returns
     -------
@@ -502,103 +672,16 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
         strain above 1, 3 an energy residual above 10 times the energy scale (plus the floor).
     """
     pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n = state
-    n, nx = anchors.shape[0], X.size
-    R, r, B = np.empty((3, 3)), np.empty((n, 3)), np.empty((n, 3))
-    M6, rG, first = np.empty((6, 6)), np.empty(3), np.empty(3)
-    half = 0.5 * node_mass
-    _platform(rot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
-    vhp, vhn, dp, dn = np.empty(6), np.empty(nx), np.empty(6), np.empty(nx)
-    inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
-    fd1p, Fp, a1p, load = np.empty(6), np.empty(6), np.empty(6), np.zeros(6)
-    A, b = np.empty((6, 6)), np.empty(6)
-    fi = np.flatnonzero(free)
-    nf = fi.size
-    vm, Kv, fdn = np.zeros(nf + nx), np.zeros(nf + nx), np.empty(nx)
-    h = 0.5 * dt
-    k0, k1, n_steps = steps
-    status, step = 0, k1
-    for k in range(k0 + 1, k1 + 1):
-        for j in range(6):
-            vhp[j] = vp[j] + h * ap[j]
-            dp[j] = dt * vhp[j]
-        for j in range(nx):
-            vhn[j] = vn[j] + h * an[j]
-            dn[j] = dt * vhn[j]
-            X[j] += dn[j]
-        if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
-            _compose(dp[3], dp[4], dp[5], rot)
-            _platform(rot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
-        for j in range(3):
-            pos[j] += dp[j]
-        for i in range(n):
-            for j in range(3):
-                B[i, j] = pos[j] + r[i, j]
-        if loads.shape[0]:
-            for j in range(6):
-                load[j] = loads[k - k0 - 1, j]
-        # ---- forces at the new configuration, dampers at the half-step velocity
-        _, t_min, strain = _forces(vhp, vhn, load, free, fi, anchors, X, B, r, M6, rG, first,
-                                   seg, l0, EA, c_ax, weight, platform_weight, mu, alpha,
-                                   c_visc, cv, beta, K0, inner, dash, W, Wd, Fp, fd1p, fdn,
-                                   vm, Kv)
-        _solve_free(M6, Fp, free, A, b, a1p)
-        # ---- accelerations, velocities, ledger work terms
-        finite = True
-        de = dd = 0.0
-        for j in range(6):
-            ap[j] = a1p[j]
-            vp[j] = vhp[j] + h * a1p[j]
-            finite = finite and np.isfinite(vp[j])
-            de += dp[j] * (fe_p[j] + load[j])
-            dd += dp[j] * (fd_p[j] + fd1p[j])
-            fe_p[j], fd_p[j] = load[j], fd1p[j]
-        for j in range(nx):
-            an[j] = (inner[j] + fdn[j]) / mu[j]
-            vn[j] = vhn[j] + h * an[j]
-            finite = finite and np.isfinite(vn[j])
-            dd += dn[j] * (fd_n[j] + fdn[j])
-            fd_n[j] = fdn[j]
-        if not finite:
-            status, step = 1, k
-            break
-        status = _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp,
-                             vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
-                             inertia, mu, ledger, info, out, rec_pose, rec_vel, rec_t_end,
-                             rec_t_anchor, rec_E, rec_X)
-        if status:
-            step = k
-            break
-    return status, step
-
-
-@numba.njit(**_JIT)
-def _lu_solve(lu, b, y, x):
-    """x <- A^-1 b from the SuperLU factors Pr A Pc = L U (scipy's ``splu``): ``lu`` =
-    (L, U as CSR indptr, indices, data, then perm_r, perm_c); ``y`` scratch (n,)."""
-    Lp, Li, Lx, Up, Ui, Ux, perm_r, perm_c = lu
-    n = b.size
-    for i in range(n):
-        y[perm_r[i]] = b[i]
-    for i in range(n):
-        s, diag = y[i], 1.0
-        for q in range(Lp[i], Lp[i + 1]):
-            j = Li[q]
-            if j < i:
-                s -= Lx[q] * y[j]
-            elif j == i:
-                diag = Lx[q]
-        y[i] = s / diag
-    for i in range(n - 1, -1, -1):
-        s, diag = y[i], 1.0
-        for q in range(Up[i], Up[i + 1]):
-            j = Ui[q]
-            if j > i:
-                s -= Ux[q] * y[j]
-            elif j == i:
-                diag = Ux[q]
-        y[i] = s / diag
-    for i in range(n):
-        x[i] = y[perm_c[i]]
+    nx = X.size
+    full = (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, np.zeros(6), np.zeros(nx),
+            np.zeros(6), np.zeros(nx))
+    z = np.zeros(1, dtype=np.int64)
+    lu = (z, z[:0], np.zeros(0), z, z[:0], np.zeros(0), z[:0], z[:0])
+    return _run(False, steps, dt, record_every, full, (np.zeros(5, dtype=np.int64), np.zeros(1)),
+                loads, free, anchors, attachments, seg, l0, EA, c_ax, weight, platform_weight,
+                node_mass, g, mass, com, inertia, mu, alpha, c_visc, cv, beta, K0, lu, 0.0, 0,
+                1.0, 1.0, ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E,
+                rec_X)
 
 
 @numba.njit(**_JIT)
@@ -635,119 +718,8 @@ def implicit_run(steps, dt, record_every, state, newton, loads, free, anchors, a
         caller factorises the Newton matrix at the configuration advanced by the increment
         in ``state``, sets the resume flag and calls again from that step.
     """
-    pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, app, apn, dp, dn = state
-    nint, nflt = newton
-    n, nx = anchors.shape[0], X.size
-    fi = np.flatnonzero(free)
-    nf = fi.size
-    R, r, B = np.empty((3, 3)), np.empty((n, 3)), np.empty((n, 3))
-    M6, rG, first = np.empty((6, 6)), np.empty(3), np.empty(3)
-    half = 0.5 * node_mass
-    frot = rot.copy()                              # the rotation of the frame buffers
-    _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
-    pos1, rot1, X1 = np.empty(3), np.empty(3), np.empty(nx)
-    a1p, a1n, v1p, v1n = np.empty(6), np.empty(nx), np.empty(6), np.empty(nx)
-    inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
-    Fp, fd1p, fdn, load = np.empty(6), np.empty(6), np.empty(nx), np.zeros(6)
-    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
-    G, y, x = np.empty(nf + nx), np.empty(nf + nx), np.empty(nf + nx)
-    c0 = 4.0 / dt ** 2
-    k0, k1, n_steps = steps
-    for k in range(k0 + 1, k1 + 1):
-        if loads.shape[0]:
-            for j in range(6):
-                load[j] = loads[k - k0 - 1, j]
-        fresh = nint[3] == 1
-        if fresh:                                  # new factors at the kept increment
-            it0 = nint[4]
-            nint[3] = 0
-        else:                                      # predictor: a_{n+1} = 2 a_n - a_{n-1}
-            it0 = 0
-            for j in range(6):
-                pred = 2.0 * ap[j] - app[j] if nint[1] else ap[j]
-                dp[j] = dt * vp[j] + 0.25 * dt ** 2 * (ap[j] + pred)
-                app[j] = ap[j]
-            for j in range(nx):
-                pred = 2.0 * an[j] - apn[j] if nint[1] else an[j]
-                dn[j] = dt * vn[j] + 0.25 * dt ** 2 * (an[j] + pred)
-                apn[j] = an[j]
-            nint[1] = 1
-        prev = np.inf
-        t_min, strain = np.inf, -np.inf
-        for it in range(it0, max_iter + 1):
-            # ---- the configuration, accelerations and velocities of the increment d
-            for j in range(3):
-                pos1[j], rot1[j] = pos[j] + dp[j], rot[j]
-            if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
-                _compose(dp[3], dp[4], dp[5], rot1)
-            if rot1[0] != frot[0] or rot1[1] != frot[1] or rot1[2] != frot[2]:
-                frot[:] = rot1
-                _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
-            for i in range(n):
-                for j in range(3):
-                    B[i, j] = pos1[j] + r[i, j]
-            finite = True
-            for j in range(6):
-                a1p[j] = c0 * (dp[j] - dt * vp[j]) - ap[j]
-                v1p[j] = vp[j] + 0.5 * dt * (ap[j] + a1p[j])
-                finite = finite and np.isfinite(dp[j])
-            for j in range(nx):
-                X1[j] = X[j] + dn[j]
-                a1n[j] = c0 * (dn[j] - dt * vn[j]) - an[j]
-                v1n[j] = vn[j] + 0.5 * dt * (an[j] + a1n[j])
-                finite = finite and np.isfinite(dn[j])
-            t_max, t_min, strain = _forces(v1p, v1n, load, free, fi, anchors, X1, B, r, M6, rG,
-                                           first, seg, l0, EA, c_ax, weight, platform_weight,
-                                           mu, alpha, c_visc, cv, beta, K0, inner, dash, W, Wd,
-                                           Fp, fd1p, fdn, vm, Kv)
-            # ---- residual G = M a_{n+1} - F and its relative size
-            big = 0.0
-            for q in range(nf):
-                j = fi[q]
-                s = 0.0
-                for m in range(6):
-                    s += M6[j, m] * a1p[m]
-                G[q] = s - Fp[j]
-                big = max(big, abs(G[q]) / arm if j >= 3 else abs(G[q]))
-                finite = finite and np.isfinite(G[q])
-            for j in range(nx):
-                G[nf + j] = mu[j] * a1n[j] - (inner[j] + fdn[j])
-                big = max(big, abs(G[nf + j]))
-                finite = finite and np.isfinite(G[nf + j])
-            if not finite:
-                return 1, k
-            res = big / max(force_weight + t_max, np.finfo(np.float64).tiny)
-            if res <= tol:
-                break
-            if it == max_iter:
-                nflt[0] = res
-                return 4, k
-            if not fresh and (nint[0] == 0 or res > 0.1 * prev):
-                nint[4] = it
-                return 5, k
-            fresh = False
-            prev = res
-            _lu_solve(lu, G, y, x)
-            for q in range(nf):
-                dp[fi[q]] -= x[q]
-            for j in range(nx):
-                dn[j] -= x[nf + j]
-        nint[2] += it
-        # ---- the step is taken
-        de = dd = 0.0
-        for j in range(6):
-            de += dp[j] * (fe_p[j] + load[j])
-            dd += dp[j] * (fd_p[j] + fd1p[j])
-            vp[j], ap[j], fe_p[j], fd_p[j] = v1p[j], a1p[j], load[j], fd1p[j]
-        for j in range(3):
-            pos[j], rot[j] = pos1[j], rot1[j]
-        for j in range(nx):
-            dd += dn[j] * (fd_n[j] + fdn[j])
-            X[j], vn[j], an[j], fd_n[j] = X1[j], v1n[j], a1n[j], fdn[j]
-        status = _after_step(k, n_steps, record_every, t_min, strain, de, dd, pos, rot, X, vp,
-                             vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
-                             inertia, mu, ledger, info, out, rec_pose, rec_vel, rec_t_end,
-                             rec_t_anchor, rec_E, rec_X)
-        if status:
-            return status, k
-    return 0, k1
+    return _run(True, steps, dt, record_every, state, newton, loads, free, anchors,
+                attachments, seg, l0, EA, c_ax, weight, platform_weight, node_mass, g, mass,
+                com, inertia, mu, alpha, c_visc, cv, beta, K0, lu, tol, max_iter, arm,
+                force_weight, ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
+                rec_E, rec_X)
