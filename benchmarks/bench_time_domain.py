@@ -17,10 +17,11 @@ Cases (equal segments, N = 20 per cable, ``T_END`` = 10 s simulated by default)
 Accuracy: the RMS difference of the signal from the code's own fine-step run, relative to
 the RMS fluctuation of that run (``TOLERANCE`` = 2 %). dynstiff implicit (Newmark, the
 compiled run with numba) at several dt against its fine run at 0.25 ms; dynstiff explicit
-(velocity Verlet, the compiled run) at fractions ``EXPLICIT_FRACTIONS`` of its predicted stability limit against its own
-fine run at ``EXPLICIT_FINE`` of the limit; MoorDyn RK2 at several dtM (larger ones give NaN)
-against its fine run at dtM / 4 of the smallest. The two dynstiff fine runs are compared with
-each other as a check of the physics. Every run covers the whole ``t_end``.
+(velocity Verlet, the compiled run) at fractions ``EXPLICIT_FRACTIONS`` of its predicted
+stability limit against its own fine run at ``EXPLICIT_FINE`` of the limit; MoorDyn RK2 at
+several dtM (larger ones give NaN) against its fine run at dtM / 4 of the smallest. The two
+dynstiff fine runs are compared with each other as a check of the physics. Every run covers
+the whole ``t_end``.
 
 Speed: simulated seconds per wall second, the best of ``REPEATS`` runs (the machine may be
 shared). dynstiff: the whole ``simulate`` call (start, initial offset, stepping, records) plus
@@ -276,14 +277,15 @@ def case_rows(case, t_end, repeats=REPEATS):
     """Rows (case, code / scheme, dt, speed, error, passes) for one case, and whether MoorDyn
     ran."""
     rows = []
+    limit = explicit_limit(case)
+    dynstiff_run(case, DT_IMPLICIT[0], 0.02)               # compile / load the kernels
+    dynstiff_run(case, limit / 2, 0.01, "explicit")
     _, t_ref, ref, r_ref = dynstiff_run(case, DT_FINE, t_end)
     rows.append((case, "dynstiff implicit (fine)", DT_FINE, r_ref.speed_ratio, 0.0, True))
     for dt in DT_IMPLICIT:
         speed, t, sig, _ = dynstiff_run(case, dt, t_end, repeats=repeats)
         err = relative_error(t, sig, t_ref, ref)
         rows.append((case, "dynstiff implicit", dt, speed, err, err <= TOLERANCE))
-    limit = explicit_limit(case)
-    dynstiff_run(case, limit / 2, 0.01, "explicit")       # compile / load the kernel
     _, t_ex, ref_ex, _ = dynstiff_run(case, EXPLICIT_FINE * limit, t_end, "explicit")
     err = relative_error(t_ex, ref_ex, t_ref, ref)
     rows.append((case, "dynstiff explicit (fine)", EXPLICIT_FINE * limit, np.nan, err,
