@@ -385,6 +385,29 @@ def test_bad_inputs_raise_typed_errors_naming_the_argument(robot_model, lengths0
         simulate(m.robot, 1.0, 1e-3)
 
 
+@pytest.mark.parametrize("scheme", ["implicit", "explicit"])
+def test_excitation_table_equals_its_interpolating_callable(robot_model, scheme):
+    """A load table (times, loads) is the callable that interpolates it linearly and holds its
+    last row (the explicit scheme evaluates the table at all steps at once)."""
+    m = robot_model(3)
+    rng = np.random.default_rng(3)
+    times = np.r_[-0.01, np.sort(rng.uniform(0.0, 0.05, 9))]
+    loads = rng.uniform(-20.0, 20.0, (times.size, 6))
+
+    def fn(t):
+        return np.array([np.interp(t, times, loads[:, j]) for j in range(6)])
+    dt = 0.5 * explicit_step_limit(m.mass_model)
+    r_tab = simulate(m, 0.08, dt, excitation=(times, loads), scheme=scheme, record_every=3)
+    r_fn = simulate(m, 0.08, dt, excitation=fn, scheme=scheme, record_every=3)
+    assert np.abs(r_fn.displacement).max() > 1e-6                       # it moved
+    np.testing.assert_array_equal(r_tab.pose, r_fn.pose)
+    np.testing.assert_array_equal(r_tab.energy.external_work, r_fn.energy.external_work)
+    for bad in ((times, loads[:, :3]), (times[::-1], loads), (times + 1.0, loads),
+                (times, np.where(loads > 15, np.nan, loads)), "table"):
+        with pytest.raises(InvalidParameterError, match="excitation"):
+            simulate(m, 0.01, dt, excitation=bad, scheme=scheme)
+
+
 def test_absurd_starts_and_run_lengths_are_refused_before_any_step():
     """A 1000 m offset stretches a segment 567 times its length: the error names the offset
     (it used to blame dt after a blown-up step). A 1e9 s run at 1 ms would ask for 1e12

@@ -1,99 +1,129 @@
-"""Compiled (numba) kernel of the lumped chains' forces for the time stepping (theory.md
-§7.1, §7.3, §14.4): spring, weight and axial-dashpot forces of every chain of equal N in one
-pass over the segments, with the extreme tension and strain the step checks.
+"""Compiled (numba) kernels of the lumped robot's time stepping (theory.md §7.1, §7.3,
+§14.4, §14.5): the spring, weight and axial-dashpot forces of every chain in one pass over
+the segments (with the extreme tension and strain the step checks), the ledger
+energies, and whole runs with their records, ledger and checks: explicit (velocity Verlet)
+and implicit (Newmark, Newton with LU factors made by scipy; theory.md §14.6).
 
 Imported only by :mod:`dynstiff.lumped.time_dynamics` when numba is installed (``pip
 install "dynstiff[fast]"``); without it the numpy path (``LumpedMassModel.residual_unchecked``
-and the stacked axial dashpot) is used, and stays the reference the kernel is tested
-against. Compiled on first use and cached on disk.
+and the stacked axial dashpot, the stepwise loop of :mod:`dynstiff.lumped.time_domain`) is
+used, and stays the reference the kernels are tested against. Compiled on first use and
+cached on disk. The stepping functions write into buffers they are given: a step allocates
+nothing.
 """
 
 import numba
 import numpy as np
 
-__all__ = ["chain_forces", "robot_chain_forces", "explicit_steps", "energies"]
+__all__ = ["energies", "explicit_run", "implicit_run", "robot_chain_forces"]
+
+_JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def chain_forces(nodes, vel, l0, EA, c_ax, weight):
-    """Forces of n chains of N segments.
 
-    Parameters
-    ----------
-    nodes : ndarray, shape (n, N + 1, 3)
-        Node positions [m], anchor first, attachment B last.
-    vel : ndarray, shape (n, N + 1, 3)
-        Node velocities [m/s] (anchor 0); used only where c_ax > 0.
-    l0, EA, c_ax : ndarray, shape (n,)
-        Unstretched segment length [m], axial stiffness [N], axial dashpot [N s].
-    weight : ndarray, shape (n, 3)
-        Weight of one node, m l0 g [N].
+@numba.njit(**_JIT)
+def _chain_pass(anchors, X, B, r, vn, twist, seg, l0, EA, c_ax, weight, inner, dash, W, Wd):
+    """Forces of n chains of seg[i] = N_i segments, in place.
 
-    Returns
-    -------
-    inner : ndarray, shape (n, N - 1, 3)
-        Spring + weight force on every interior node [N] (as ``residual_unchecked``).
-    end : ndarray, shape (n, 3)
-        Force on the platform at B: -T_N n_N + weight / 2 [N].
-    dash_inner, dash_end : ndarray, shapes (n, N - 1, 3), (n, 3)
-        Axial-dashpot forces c_ax d(eps)/dt on the interior nodes and on the platform at B
-        (taut segments only).
-    t_max, t_min, strain_max : float
-        Largest and smallest tension [N], largest strain l / l0 - 1 [-].
+    Node s of chain i is the anchor (s = 0), the attachment B_i (s = N_i) or the interior
+    node X[o_i + 3 (s - 1):...] between, o_i = 3 sum_{j < i} (N_j - 1). ``inner`` and
+    ``dash`` (3 sum (N_i - 1),) receive the spring + weight and the axial-dashpot forces on
+    the interior nodes [N]; the forces of the last segments on the platform,
+    -T_N n_N + weight / 2 and the dashpot's, and their moments r_i x f about P are added to
+    ``W`` and ``Wd`` (6,). The dashpot c_ax d(eps)/dt acts on taut segments only; B_i moves
+    with the twist (v_P, w).
+    Returns the largest and smallest tension [N] and the largest strain l / l0 - 1 [-].
     """
-    n, N = nodes.shape[0], nodes.shape[1] - 1
-    inner = np.empty((n, N - 1, 3))
-    end = np.empty((n, 3))
-    dash_inner = np.zeros((n, N - 1, 3))
-    dash_end = np.zeros((n, 3))
-    f = np.empty((N, 3))
-    fd = np.empty((N, 3))
+    n = anchors.shape[0]
     t_max, t_min, strain_max = 0.0, np.inf, -np.inf
+    o = 0
     for i in range(n):
         damped = c_ax[i] > 0.0
+        N = seg[i]
+        vb0 = vb1 = vb2 = 0.0
+        if damped:
+            vb0 = twist[0] + twist[4] * r[i, 2] - twist[5] * r[i, 1]
+            vb1 = twist[1] + twist[5] * r[i, 0] - twist[3] * r[i, 2]
+            vb2 = twist[2] + twist[3] * r[i, 1] - twist[4] * r[i, 0]
+        p0 = p1 = p2 = q0 = q1 = q2 = 0.0             # force of the previous segment
         for s in range(N):
-            d0 = nodes[i, s + 1, 0] - nodes[i, s, 0]
-            d1 = nodes[i, s + 1, 1] - nodes[i, s, 1]
-            d2 = nodes[i, s + 1, 2] - nodes[i, s, 2]
+            if s == 0:
+                a0, a1, a2 = anchors[i, 0], anchors[i, 1], anchors[i, 2]
+                va0 = va1 = va2 = 0.0
+            else:
+                j = o + 3 * (s - 1)
+                a0, a1, a2 = X[j], X[j + 1], X[j + 2]
+                va0, va1, va2 = vn[j], vn[j + 1], vn[j + 2]
+            if s == N - 1:
+                b0, b1, b2 = B[i, 0], B[i, 1], B[i, 2]
+                wb0, wb1, wb2 = vb0, vb1, vb2
+            else:
+                j = o + 3 * s
+                b0, b1, b2 = X[j], X[j + 1], X[j + 2]
+                wb0, wb1, wb2 = vn[j], vn[j + 1], vn[j + 2]
+            d0, d1, d2 = b0 - a0, b1 - a1, b2 - a2
             length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
             u0, u1, u2 = d0 / length, d1 / length, d2 / length
             T = EA[i] * max(length / l0[i] - 1.0, 0.0)
             t_max, t_min = max(t_max, T), min(t_min, T)
             strain_max = max(strain_max, length / l0[i] - 1.0)
-            f[s, 0], f[s, 1], f[s, 2] = T * u0, T * u1, T * u2
+            f0, f1, f2 = T * u0, T * u1, T * u2
+            g0 = g1 = g2 = 0.0
             if damped:
-                rate = (u0 * (vel[i, s + 1, 0] - vel[i, s, 0])
-                        + u1 * (vel[i, s + 1, 1] - vel[i, s, 1])
-                        + u2 * (vel[i, s + 1, 2] - vel[i, s, 2])) / l0[i]
+                rate = (u0 * (wb0 - va0) + u1 * (wb1 - va1) + u2 * (wb2 - va2)) / l0[i]
                 c = c_ax[i] * rate if length > l0[i] else 0.0
-                fd[s, 0], fd[s, 1], fd[s, 2] = c * u0, c * u1, c * u2
-        for s in range(N - 1):
-            for k in range(3):
-                inner[i, s, k] = f[s + 1, k] - f[s, k] + weight[i, k]
-                if damped:
-                    dash_inner[i, s, k] = fd[s + 1, k] - fd[s, k]
-        for k in range(3):
-            end[i, k] = -f[N - 1, k] + 0.5 * weight[i, k]
-            if damped:
-                dash_end[i, k] = -fd[N - 1, k]
-    return inner, end, dash_inner, dash_end, t_max, t_min, strain_max
+                g0, g1, g2 = c * u0, c * u1, c * u2
+            if s >= 1:
+                j = o + 3 * (s - 1)
+                inner[j] = f0 - p0 + weight[i, 0]
+                inner[j + 1] = f1 - p1 + weight[i, 1]
+                inner[j + 2] = f2 - p2 + weight[i, 2]
+                dash[j], dash[j + 1], dash[j + 2] = g0 - q0, g1 - q1, g2 - q2
+            p0, p1, p2, q0, q1, q2 = f0, f1, f2, g0, g1, g2
+        o += 3 * (N - 1)
+        for src, dst in (((-p0 + 0.5 * weight[i, 0], -p1 + 0.5 * weight[i, 1],
+                           -p2 + 0.5 * weight[i, 2]), W), ((-q0, -q1, -q2), Wd)):
+            e0, e1, e2 = src
+            dst[0] += e0
+            dst[1] += e1
+            dst[2] += e2
+            dst[3] += r[i, 1] * e2 - r[i, 2] * e1
+            dst[4] += r[i, 2] * e0 - r[i, 0] * e2
+            dst[5] += r[i, 0] * e1 - r[i, 1] * e0
+    return t_max, t_min, strain_max
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, platform_weight,
-                       rG):
-    """The chains' generalised forces on a robot (chains of equal N, interior nodes flat),
-    with the platform's weight: what :func:`chain_forces` gives, assembled.
+@numba.njit(**_JIT)
+def _weight_wrench(platform_weight, rG, W, Wd):
+    """W = (m_p g, rG x m_p g), Wd = 0: the start of the wrench sums."""
+    for k in range(3):
+        W[k] = platform_weight[k]
+    W[3] = rG[1] * platform_weight[2] - rG[2] * platform_weight[1]
+    W[4] = rG[2] * platform_weight[0] - rG[0] * platform_weight[2]
+    W[5] = rG[0] * platform_weight[1] - rG[1] * platform_weight[0]
+    Wd[:] = 0.0
+
+
+@numba.njit(**_JIT)
+def robot_chain_forces(anchors, X, B, r, v_nodes, twist, seg, l0, EA, c_ax, weight,
+                       platform_weight, rG):
+    """The chains' generalised forces on a robot (interior nodes flat, chain after chain),
+    with the platform's weight (:func:`_chain_pass` with fresh outputs).
 
     Parameters
     ----------
     anchors, B, r : ndarray, shape (n, 3)
         Anchors, attachment points and lever arms r_i = R_p b_i [m].
-    X, v_nodes : ndarray, shape (3 n (N - 1),)
+    X, v_nodes : ndarray, shape (3 sum (N_i - 1),)
         Interior node positions [m] and velocities [m/s], chain after chain.
     twist : ndarray, shape (6,)
         Platform twist (v_P [m/s], w [rad/s]).
-    l0, EA, c_ax, weight : as :func:`chain_forces`
+    seg : ndarray of int, shape (n,)
+        Segments N_i of every chain.
+    l0, EA, c_ax : ndarray, shape (n,)
+        Unstretched segment length [m], axial stiffness [N], axial dashpot [N s].
+    weight : ndarray, shape (n, 3)
+        Weight of one node, m l0 g [N].
     platform_weight : ndarray, shape (3,)
         m_p g [N].
     rG : ndarray, shape (3,)
@@ -101,73 +131,42 @@ def robot_chain_forces(anchors, X, B, r, v_nodes, twist, l0, EA, c_ax, weight, p
 
     Returns
     -------
-    inner, dash_inner : ndarray, shape (3 n (N - 1),)
+    inner, dash_inner : ndarray, shape (3 sum (N_i - 1),)
         Residual (spring + weight) and axial-dashpot forces on the interior nodes [N].
     W, W_dash : ndarray, shape (6,)
         Wrench about P [N, N m] of the chains and the platform weight, and of the dashpots.
     t_max, t_min, strain_max : float
+        Largest and smallest tension [N], largest strain [-].
     """
-    n = anchors.shape[0]
-    N = X.size // (3 * n) + 1
-    nodes = np.empty((n, N + 1, 3))
-    vel = np.zeros((n, N + 1, 3))
-    damped = False
-    for i in range(n):
-        damped = damped or c_ax[i] > 0.0
-    for i in range(n):
-        for k in range(3):
-            nodes[i, 0, k] = anchors[i, k]
-            nodes[i, N, k] = B[i, k]
-        for s in range(N - 1):
-            for k in range(3):
-                nodes[i, s + 1, k] = X[3 * ((N - 1) * i + s) + k]
-                vel[i, s + 1, k] = v_nodes[3 * ((N - 1) * i + s) + k]
-        if damped:
-            w0, w1, w2 = twist[3], twist[4], twist[5]
-            vel[i, N, 0] = twist[0] + w1 * r[i, 2] - w2 * r[i, 1]
-            vel[i, N, 1] = twist[1] + w2 * r[i, 0] - w0 * r[i, 2]
-            vel[i, N, 2] = twist[2] + w0 * r[i, 1] - w1 * r[i, 0]
-    inner, end, d_inner, d_end, t_max, t_min, strain = chain_forces(nodes, vel, l0, EA, c_ax,
-                                                                    weight)
-    W = np.zeros(6)
-    Wd = np.zeros(6)
-    for k in range(3):
-        W[k] = platform_weight[k]
-    W[3] = rG[1] * platform_weight[2] - rG[2] * platform_weight[1]
-    W[4] = rG[2] * platform_weight[0] - rG[0] * platform_weight[2]
-    W[5] = rG[0] * platform_weight[1] - rG[1] * platform_weight[0]
-    for i in range(n):
-        for src, dst in ((end, W), (d_end, Wd)):
-            f0, f1, f2 = src[i, 0], src[i, 1], src[i, 2]
-            dst[0] += f0
-            dst[1] += f1
-            dst[2] += f2
-            dst[3] += r[i, 1] * f2 - r[i, 2] * f1
-            dst[4] += r[i, 2] * f0 - r[i, 0] * f2
-            dst[5] += r[i, 0] * f1 - r[i, 1] * f0
-    return inner.ravel(), d_inner.ravel(), W, Wd, t_max, t_min, strain
+    inner, dash = np.empty(X.size), np.empty(X.size)
+    W, Wd = np.empty(6), np.empty(6)
+    _weight_wrench(platform_weight, rG, W, Wd)
+    t_max, t_min, strain = _chain_pass(anchors, X, B, r, v_nodes, twist, seg, l0, EA, c_ax,
+                                       weight, inner, dash, W, Wd)
+    return inner, dash, W, Wd, t_max, t_min, strain
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _quat(v):
+@numba.njit(**_JIT)
+def _quat(v0, v1, v2):
     """Unit quaternion (x, y, z, w) of a rotation vector (as platform.rotvec_to_quaternion)."""
-    theta = np.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
+    theta = np.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
     if theta <= 1e-3:
         t2 = theta * theta
         scale = 0.5 - t2 / 48 + t2 * t2 / 3840
     else:
         scale = np.sin(theta / 2) / theta
-    return np.array([scale * v[0], scale * v[1], scale * v[2], np.cos(theta / 2)])
+    return scale * v0, scale * v1, scale * v2, np.cos(theta / 2)
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _compose(d, rot):
-    """Rotation vector of exp(d) R(rot) (as Pose.moved)."""
-    p, q = _quat(d), _quat(rot)
-    x = p[3] * q[0] + q[3] * p[0] + (p[1] * q[2] - p[2] * q[1])
-    y = p[3] * q[1] + q[3] * p[1] + (p[2] * q[0] - p[0] * q[2])
-    z = p[3] * q[2] + q[3] * p[2] + (p[0] * q[1] - p[1] * q[0])
-    w = p[3] * q[3] - (p[0] * q[0] + p[1] * q[1] + p[2] * q[2])
+@numba.njit(**_JIT)
+def _compose(d0, d1, d2, rot):
+    """rot <- the rotation vector of exp(d) R(rot) (as Pose.moved), in place."""
+    p0, p1, p2, p3 = _quat(d0, d1, d2)
+    q0, q1, q2, q3 = _quat(rot[0], rot[1], rot[2])
+    x = p3 * q0 + q3 * p0 + (p1 * q2 - p2 * q1)
+    y = p3 * q1 + q3 * p1 + (p2 * q0 - p0 * q2)
+    z = p3 * q2 + q3 * p2 + (p0 * q1 - p1 * q0)
+    w = p3 * q3 - (p0 * q0 + p1 * q1 + p2 * q2)
     if w < 0:
         x, y, z, w = -x, -y, -z, -w
     n = np.sqrt(x * x + y * y + z * z)
@@ -177,124 +176,85 @@ def _compose(d, rot):
         scale = 2 + t2 / 12 + 7 * t2 * t2 / 2880
     else:
         scale = theta / np.sin(theta / 2)
-    return np.array([scale * x, scale * y, scale * z])
+    rot[0], rot[1], rot[2] = scale * x, scale * y, scale * z
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _matrix(rot):
-    """Rotation matrix of a rotation vector (as platform.rotation_matrix)."""
-    q = _quat(rot)
-    x, y, z, w = q[0], q[1], q[2], q[3]
-    return np.array([
-        [w * w + x * x - y * y - z * z, 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), w * w - x * x + y * y - z * z, 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), w * w - x * x - y * y + z * z]])
-
-
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _cross(a, b):
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]])
-
-
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _skew(a):
-    return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-
-
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _platform(pos, rot, attachments, half, mass, com, inertia):
-    """Frame quantities (as time_dynamics.Frame): B, r, M6, rG, first moment."""
-    R = _matrix(rot)
-    r = attachments @ R.T
-    B = r + pos
-    rG = R @ com
-    S = _skew(rG)
-    M = np.zeros((6, 6))
-    for k in range(3):
-        M[k, k] = mass
-    M[:3, 3:] = -mass * S
-    M[3:, :3] = mass * S
-    M[3:, 3:] = R @ inertia @ R.T - mass * (S @ S)
-    hr = half @ r
-    Sh = _skew(hr)
-    hs = half.sum()
-    for k in range(3):
-        M[k, k] += hs
-    M[:3, 3:] -= Sh
-    M[3:, :3] += Sh
-    rr = 0.0
-    for i in range(half.size):
-        rr += half[i] * (r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2)
+@numba.njit(**_JIT)
+def _platform(rot, attachments, half, mass, com, inertia, R, r, M, rG, first):
+    """Rotation-dependent frame quantities (as time_dynamics.Frame), in place: R_p (3, 3),
+    lever arms r (n, 3), the 6x6 mass about P of the body and the half node masses ``half``
+    at B_i (M6), rG = R_p c_G and the first moment m_p rG + sum half_i r_i."""
+    x, y, z, w = _quat(rot[0], rot[1], rot[2])
+    R[0, 0], R[0, 1], R[0, 2] = w * w + x * x - y * y - z * z, 2 * (x * y - z * w), \
+        2 * (x * z + y * w)
+    R[1, 0], R[1, 1], R[1, 2] = 2 * (x * y + z * w), w * w - x * x + y * y - z * z, \
+        2 * (y * z - x * w)
+    R[2, 0], R[2, 1], R[2, 2] = 2 * (x * z - y * w), 2 * (y * z + x * w), \
+        w * w - x * x - y * y + z * z
+    n = attachments.shape[0]
+    h = np.zeros(3)                                # sum half_i r_i
+    hs = rr = 0.0
     outer = np.zeros((3, 3))
-    for i in range(half.size):
+    for i in range(n):
         for j in range(3):
+            r[i, j] = R[j, 0] * attachments[i, 0] + R[j, 1] * attachments[i, 1] \
+                + R[j, 2] * attachments[i, 2]
+        hs += half[i]
+        rr += half[i] * (r[i, 0] ** 2 + r[i, 1] ** 2 + r[i, 2] ** 2)
+        for j in range(3):
+            h[j] += half[i] * r[i, j]
             for k in range(3):
                 outer[j, k] += half[i] * r[i, j] * r[i, k]
-    for k in range(3):
-        M[3 + k, 3 + k] += rr
-    M[3:, 3:] -= outer
-    return B, r, M, rG, mass * rG + hr
+    for j in range(3):
+        rG[j] = R[j, 0] * com[0] + R[j, 1] * com[1] + R[j, 2] * com[2]
+        first[j] = mass * rG[j] + h[j]
+    g2 = rG[0] ** 2 + rG[1] ** 2 + rG[2] ** 2
+    M[:, :] = 0.0
+    for j in range(3):
+        M[j, j] = mass + hs
+        for k in range(3):
+            RI = 0.0
+            for a in range(3):
+                for b in range(3):
+                    RI += R[j, a] * inertia[a, b] * R[k, b]
+            # -m [rG]x [rG]x = m (|rG|^2 I - rG rG^T); - sum h [r]x [r]x likewise
+            M[3 + j, 3 + k] = RI + mass * ((g2 if j == k else 0.0) - rG[j] * rG[k]) \
+                + (rr if j == k else 0.0) - outer[j, k]
+    # [S]x = skew(m rG + h): M[:3, 3:] = -[S]x, M[3:, :3] = [S]x
+    s0, s1, s2 = mass * rG[0] + h[0], mass * rG[1] + h[1], mass * rG[2] + h[2]
+    M[0, 4], M[0, 5], M[1, 3], M[1, 5], M[2, 3], M[2, 4] = s2, -s1, -s2, s0, s1, -s0
+    M[4, 0], M[5, 0], M[3, 1], M[5, 1], M[3, 2], M[4, 2] = s2, -s1, -s2, s0, s1, -s0
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def _forces(pos, rot, X, vp, vn, load, free, anchors, attachments, l0, EA, c_ax, weight,
-            platform_weight, half, mass, com, inertia, mu, alpha, c_visc, cv):
-    """Generalised forces of the explicit step (as Dynamics.forces with beta = 0), platform
-    part as a full 6-vector (0 on held DOFs): F, fe, fd (each platform (6,), nodes),
-    M6, strain, t_min, and the slack (cable, segment) or (-1, -1)."""
-    B, r, M6, rG, first = _platform(pos, rot, attachments, half, mass, com, inertia)
-    inner, d_inner, W, Wd, t_max, t_min, strain = robot_chain_forces(
-        anchors, X, B, r, vn, vp, l0, EA, c_ax, weight, platform_weight, rG)
-    fd_p = Wd.copy()
-    fd_n = d_inner.copy()
-    if alpha != 0.0:
-        fd_p -= alpha * (M6 @ vp)
-        fd_n -= alpha * mu * vn
-    for i in range(c_visc.size):
-        if c_visc[i] != 0.0:
-            # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
-            jv = vp[:3] + _cross(vp[3:], r[i])
-            c = 0.5 * c_visc[i] * l0[i]
-            fd_p[:3] -= c * jv
-            fd_p[3:] -= c * _cross(r[i], jv)
-    fd_n -= cv * vn
-    w = vp[3:]
-    g = np.zeros(6)
-    if w[0] != 0.0 or w[1] != 0.0 or w[2] != 0.0:
-        g[:3] = _cross(w, _cross(w, first))
-        Iw = np.zeros(3)
-        for j in range(3):
-            for k in range(3):
-                Iw[j] += M6[3 + j, 3 + k] * w[k]
-        g[3:] = _cross(w, Iw)
-    Fp = W + load + fd_p - g
-    for k in range(6):
-        if not free[k]:
-            Fp[k] = 0.0
-            fd_p[k] = 0.0
-    return Fp, inner + fd_n, load, fd_p, fd_n, M6, strain, t_min, B
-
-
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, mass, com,
+@numba.njit(**_JIT)
+def energies(pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
              inertia, mu):
     """Ledger quantities of a state (as time_dynamics.potential_energy and
     Dynamics.kinetic): elastic, gravity and kinetic energy [J], end and anchor tensions (n,)
-    [N], largest strain [-]."""
+    [N], largest strain [-], and the first slack segment (cable, segment) or (-1, -1)."""
     n = anchors.shape[0]
-    N = X.size // (3 * n) + 1
-    B, r, M6, rG, first = _platform(pos, rot, attachments, 0.5 * node_mass, mass, com,
-                                    inertia)
+    R, r, M6 = np.empty((3, 3)), np.empty((n, 3)), np.empty((6, 6))
+    rG, first = np.empty(3), np.empty(3)
+    _platform(rot, attachments, 0.5 * node_mass, mass, com, inertia, R, r, M6, rG, first)
     elastic, strain = 0.0, -np.inf
     gravity = mass * g * (pos[2] + rG[2])
     t_end, t_anchor = np.empty(n), np.empty(n)
+    slack_cable, slack_segment = -1, -1
+    o = 0
     for i in range(n):
         zsum = 0.0
+        N = seg[i]
         for s in range(N):
-            a = anchors[i] if s == 0 else X[3 * ((N - 1) * i + s - 1):3 * ((N - 1) * i + s)]
-            b = B[i] if s == N - 1 else X[3 * ((N - 1) * i + s):3 * ((N - 1) * i + s + 1)]
-            d0, d1, d2 = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+            if s == 0:
+                a0, a1, a2 = anchors[i, 0], anchors[i, 1], anchors[i, 2]
+            else:
+                a0, a1, a2 = X[o + 3 * s - 3], X[o + 3 * s - 2], X[o + 3 * s - 1]
+            if s == N - 1:
+                b0, b1, b2 = pos[0] + r[i, 0], pos[1] + r[i, 1], pos[2] + r[i, 2]
+            else:
+                b0, b1, b2 = X[o + 3 * s], X[o + 3 * s + 1], X[o + 3 * s + 2]
+                zsum += b2
+            d0, d1, d2 = b0 - a0, b1 - a1, b2 - a2
             length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
             stretch = max(length - l0[i], 0.0)
             elastic += 0.5 * EA[i] / l0[i] * stretch * stretch
@@ -303,85 +263,463 @@ def energies(pos, rot, X, vp, vn, anchors, attachments, l0, EA, node_mass, g, ma
                 t_anchor[i] = T
             if s == N - 1:
                 t_end[i] = T
+            if T <= 0.0 and slack_cable < 0:
+                slack_cable, slack_segment = i, s
             strain = max(strain, length / l0[i] - 1.0)
-            if s < N - 1:
-                zsum += b[2]
-        gravity += node_mass[i] * g * (zsum + 0.5 * B[i, 2])
-    kinetic = 0.5 * (vp @ (M6 @ vp) + vn @ (mu * vn))
-    return elastic, gravity, kinetic, t_end, t_anchor, strain
+        gravity += node_mass[i] * g * (zsum + 0.5 * (pos[2] + r[i, 2]))
+        o += 3 * (N - 1)
+    kinetic = 0.0
+    for j in range(6):
+        for k in range(6):
+            kinetic += vp[j] * M6[j, k] * vp[k]
+    for j in range(vn.size):
+        kinetic += vn[j] * mu[j] * vn[j]
+    return (elastic, gravity, 0.5 * kinetic, t_end, t_anchor, strain, slack_cable,
+            slack_segment)
 
 
-@numba.njit(cache=True, error_model="numpy", nogil=True)
-def explicit_steps(n_steps, dt, pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, loads, free,
-                   anchors, attachments, l0, EA, c_ax, weight, platform_weight, half, mass,
-                   com, inertia, mu, alpha, c_visc, cv, ext, diss, stop_at_slack):
-    """``n_steps`` velocity-Verlet steps of the lumped robot (as time_stepping.explicit_step
-    with beta = 0 and fixed lengths; theory.md §7.3, §14.4), platform DOFs as full 6-vectors
-    with the held ones 0.
-
-    ``loads`` (n_steps, 6) are the external loads at the end of each step. ``ext`` and
-    ``diss`` are the running work terms of the ledger. Returns the state after the steps
-    taken, the last fe, fd, the updated ext, diss, their peaks, the largest strain, the number
-    of steps with a slack segment and the first of them (step, cable, segment), and the
-    number of steps taken (fewer when the state became non-finite or a strain exceeded 1).
-    """
-    n_free = 0
-    for k in range(6):
-        n_free += 1 if free[k] else 0
-    fi = np.empty(n_free, dtype=np.int64)
-    j = 0
+@numba.njit(**_JIT)
+def _solve_free(M, F, free, A, b, out):
+    """out <- M_ff^-1 F_f on the free DOFs (0 on held ones): Gaussian elimination with
+    partial pivoting of the (n_free, n_free) block copied into the scratch ``A``, ``b``."""
+    n = 0
     for k in range(6):
         if free[k]:
-            fi[j] = k
-            j += 1
-    peak_ext, peak_diss = abs(ext), abs(diss)
-    strain_max = -np.inf
-    slack_steps = 0
-    taken = 0
-    status = 0
-    for s in range(n_steps):
-        vhp = vp + 0.5 * dt * ap
-        vhn = vn + 0.5 * dt * an
-        dp, dn = dt * vhp, dt * vhn
-        if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
-            rot = _compose(dp[3:], rot)
-        pos = pos + dp[:3]
-        X = X + dn
-        Fp, Fn, fe1, fd1_p, fd1_n, M6, strain, t_min, B = _forces(
-            pos, rot, X, vhp, vhn, loads[s], free, anchors, attachments, l0, EA, c_ax,
-            weight, platform_weight, half, mass, com, inertia, mu, alpha, c_visc, cv)
-        a1p = np.zeros(6)
-        if n_free:
-            Mff = np.empty((n_free, n_free))
-            Ff = np.empty(n_free)
-            for i in range(n_free):
-                Ff[i] = Fp[fi[i]]
-                for k in range(n_free):
-                    Mff[i, k] = M6[fi[i], fi[k]]
-            sol = np.linalg.solve(Mff, Ff)
-            for i in range(n_free):
-                a1p[fi[i]] = sol[i]
-        a1n = Fn / mu
-        v1p = vhp + 0.5 * dt * a1p
-        v1n = vhn + 0.5 * dt * a1n
-        if not (np.isfinite(a1p).all() and np.isfinite(a1n).all()
-                and np.isfinite(v1p).all() and np.isfinite(v1n).all()):
-            status = 1
-            break
-        ext += 0.5 * (dp @ (fe_p + fe1))
-        diss -= 0.5 * (dp @ (fd_p + fd1_p) + dn @ (fd_n + fd1_n))
-        peak_ext, peak_diss = max(peak_ext, abs(ext)), max(peak_diss, abs(diss))
-        strain_max = max(strain_max, strain)
-        if t_min <= 0.0:
-            slack_steps += 1
-        vp, vn, ap, an = v1p, v1n, a1p, a1n
-        fe_p, fd_p, fd_n = fe1, fd1_p, fd1_n
-        taken = s + 1
-        if strain > 1.0:
-            status = 2
-            break
-        if t_min <= 0.0 and stop_at_slack:
-            status = 3
-            break
-    return (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, ext, diss, peak_ext, peak_diss,
-            strain_max, slack_steps, taken, status)
+            m = 0
+            for j in range(6):
+                if free[j]:
+                    A[n, m] = M[k, j]
+                    m += 1
+            b[n] = F[k]
+            n += 1
+    for c in range(n):
+        p = c
+        for i in range(c + 1, n):
+            if abs(A[i, c]) > abs(A[p, c]):
+                p = i
+        if p != c:
+            for j in range(n):
+                A[c, j], A[p, j] = A[p, j], A[c, j]
+            b[c], b[p] = b[p], b[c]
+        for i in range(c + 1, n):
+            f = A[i, c] / A[c, c]
+            for j in range(c, n):
+                A[i, j] -= f * A[c, j]
+            b[i] -= f * b[c]
+    for c in range(n - 1, -1, -1):
+        s = b[c]
+        for j in range(c + 1, n):
+            s -= A[c, j] * b[j]
+        b[c] = s / A[c, c]
+    n = 0
+    for k in range(6):
+        out[k] = 0.0
+        if free[k]:
+            out[k] = b[n]
+            n += 1
+
+
+@numba.njit(**_JIT)
+def _cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
+    """out[o:o + 3] += scale (a x b)."""
+    out[o] += scale * (a1 * b2 - a2 * b1)
+    out[o + 1] += scale * (a2 * b0 - a0 * b2)
+    out[o + 2] += scale * (a0 * b1 - a1 * b0)
+
+
+@numba.njit(**_JIT)
+def _step_done(k, n_steps, record_every, t_min, strain, de, dd, ledger, info, out):
+    """The running bookkeeping after step k of a run (as the loop of time_domain.simulate):
+    ``de`` and ``dd`` are dx . (f_ext,n + f_ext,n+1) and dx . (f_d,n + f_d,n+1) of the step.
+    ``ledger`` (7,): (E0, |E0 - V_eq|, floor, W_ext, D, peak |W_ext|, peak |D|) [J], the last
+    four updated; ``info`` (5,) int: steps with a slack segment, the first of them (0 if
+    none) with its first slack (cable, segment), the first step whose energy residual passed
+    0.1 times the scale (0 if none); ``out`` (5,): the largest strain [-], the residual and
+    the scale [J] of the last ledger row, and those of the warning step. Returns 2 for a
+    strain above 1, 1 when the step needs its ledger row (:func:`_ledger_row`: a recorded
+    step, a slack step, the last step), else 0."""
+    ledger[3] += 0.5 * de
+    ledger[4] -= 0.5 * dd
+    ledger[5], ledger[6] = max(ledger[5], abs(ledger[3])), max(ledger[6], abs(ledger[4]))
+    out[0] = strain
+    if t_min <= 0.0:
+        info[0] += 1
+    if strain > 1.0:
+        return 2
+    return 1 if (k % record_every == 0 or t_min <= 0.0 or k == n_steps) else 0
+
+
+@numba.njit(**_JIT)
+def _ledger_row(k, record_every, pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA,
+                node_mass, g, mass, com, inertia, mu, ledger, info, out, rec_pose, rec_vel,
+                rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """The ledger row of step k (:func:`_step_done`): the energies, the checks and, at a
+    recorded step (record_every divides k), row k // record_every of ``rec_pose`` (6,),
+    ``rec_vel`` (6,), ``rec_t_end``, ``rec_t_anchor`` (n,), ``rec_E`` (8,) and, when it has
+    rows, ``rec_X``. Returns 0, or 2 for a strain above 1, 3 for an energy residual above 10
+    times the scale plus the floor."""
+    record = k % record_every == 0
+    el, gr, kin, t_end, t_anchor, strain, sc, ss = energies(
+        pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, g, mass, com,
+        inertia, mu)
+    res = kin + el + gr - ledger[0] - (ledger[3] - ledger[4])
+    scale = ledger[1] + ledger[5] + ledger[6]
+    out[0], out[1], out[2] = strain, res, scale
+    if abs(res) > 0.1 * (scale + ledger[2]) and info[4] == 0:
+        info[4], out[3], out[4] = k, res, scale
+    if strain > 1.0 or abs(res) > 10.0 * (scale + ledger[2]):
+        return 2 if strain > 1.0 else 3
+    if sc >= 0 and info[1] == 0:
+        info[1], info[2], info[3] = k, sc, ss
+    if record:
+        o = k // record_every
+        for j in range(3):
+            rec_pose[o, j], rec_pose[o, 3 + j] = pos[j], rot[j]
+        for j in range(6):
+            rec_vel[o, j] = vp[j]
+        for i in range(t_end.size):
+            rec_t_end[o, i], rec_t_anchor[o, i] = t_end[i], t_anchor[i]
+        rec_E[o, 0], rec_E[o, 1], rec_E[o, 2], rec_E[o, 3] = kin, gr, el, ledger[3]
+        rec_E[o, 4], rec_E[o, 5], rec_E[o, 6], rec_E[o, 7] = 0.0, 0.0, ledger[4], res
+        if rec_X.shape[0]:
+            for j in range(X.size):
+                rec_X[o, j] = X[j]
+    return 0
+
+
+@numba.njit(**_JIT)
+def _lu_solve(lu, b, y, x):
+    """x <- A^-1 b from the SuperLU factors Pr A Pc = L U (scipy's ``splu``): ``lu`` =
+    (L, U as CSR indptr, indices, data, then perm_r, perm_c); ``y`` scratch (n,)."""
+    Lp, Li, Lx, Up, Ui, Ux, perm_r, perm_c = lu
+    n = b.size
+    for i in range(n):
+        y[perm_r[i]] = b[i]
+    for i in range(n):
+        s, diag = y[i], 1.0
+        for q in range(Lp[i], Lp[i + 1]):
+            j = Li[q]
+            if j < i:
+                s -= Lx[q] * y[j]
+            elif j == i:
+                diag = Lx[q]
+        y[i] = s / diag
+    for i in range(n - 1, -1, -1):
+        s, diag = y[i], 1.0
+        for q in range(Up[i], Up[i + 1]):
+            j = Ui[q]
+            if j > i:
+                s -= Ux[q] * y[j]
+            elif j == i:
+                diag = Ux[q]
+        y[i] = s / diag
+    for i in range(n):
+        x[i] = y[perm_c[i]]
+
+
+@numba.njit(**_JIT)
+def _run(implicit, steps, dt, record_every, state, newton, loads, free, anchors, attachments,
+         seg, l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
+         c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger, info, out,
+         rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """The steps of :func:`explicit_run` (``implicit`` False) or :func:`implicit_run` (True):
+    one loop for both schemes, so that the force evaluation, the most expensive part of a
+    step, is written once and compiled inline (a call of a separate compiled function with
+    its thirty arrays cost more than the whole step of a 20-segment line)."""
+    pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, app, apn, dp, dn = state
+    nint, nflt = newton
+    Kp, Ki, Kx = K0
+    n, nx = anchors.shape[0], X.size
+    fi = np.flatnonzero(free)
+    nf = fi.size
+    R, r, B = np.empty((3, 3)), np.empty((n, 3)), np.empty((n, 3))
+    M6, rG, first = np.empty((6, 6)), np.empty(3), np.empty(3)
+    half = 0.5 * node_mass
+    frot = rot.copy()                              # the rotation of the frame buffers
+    _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+    pos1, rot1, X1 = np.empty(3), np.empty(3), np.empty(nx)
+    a1p, a1n, v1p, v1n = np.zeros(6), np.empty(nx), np.empty(6), np.empty(nx)
+    inner, dash, W, Wd = np.empty(nx), np.empty(nx), np.empty(6), np.empty(6)
+    Fp, fdp, fdn, load = np.empty(6), np.empty(6), np.empty(nx), np.zeros(6)
+    vm, Kv = np.zeros(nf + nx), np.zeros(nf + nx)
+    G, y, x = np.empty(nf + nx), np.empty(nf + nx), np.empty(nf + nx)
+    A, b = np.empty((6, 6)), np.empty(6)
+    c0, h = 4.0 / dt ** 2, 0.5 * dt
+    k0, k1, n_steps = steps
+    for k in range(k0 + 1, k1 + 1):
+        if loads.shape[0]:
+            for j in range(6):
+                load[j] = loads[k - k0 - 1, j]
+        it0, fresh = 0, False
+        if not implicit:                           # d = dt v_{n+1/2}
+            for j in range(6):
+                v1p[j] = vp[j] + h * ap[j]
+                dp[j] = dt * v1p[j]
+            for j in range(nx):
+                v1n[j] = vn[j] + h * an[j]
+                dn[j] = dt * v1n[j]
+        elif nint[3] == 1:                         # new factors at the kept increment
+            it0, fresh = nint[4], True
+            nint[3] = 0
+        else:                                      # predictor: a_{n+1} = 2 a_n - a_{n-1}
+            for j in range(6):
+                pred = 2.0 * ap[j] - app[j] if nint[1] else ap[j]
+                dp[j] = dt * vp[j] + 0.25 * dt ** 2 * (ap[j] + pred)
+                app[j] = ap[j]
+            for j in range(nx):
+                pred = 2.0 * an[j] - apn[j] if nint[1] else an[j]
+                dn[j] = dt * vn[j] + 0.25 * dt ** 2 * (an[j] + pred)
+                apn[j] = an[j]
+            nint[1] = 1
+        prev = np.inf
+        it = it0
+        for it in range(it0, max_iter + 1 if implicit else 1):
+            # ---- the configuration of the increment d (rotation composed exactly)
+            for j in range(3):
+                pos1[j], rot1[j] = pos[j] + dp[j], rot[j]
+            if dp[3] != 0.0 or dp[4] != 0.0 or dp[5] != 0.0:
+                _compose(dp[3], dp[4], dp[5], rot1)
+            if rot1[0] != frot[0] or rot1[1] != frot[1] or rot1[2] != frot[2]:
+                frot[:] = rot1
+                _platform(frot, attachments, half, mass, com, inertia, R, r, M6, rG, first)
+            for i in range(n):
+                for j in range(3):
+                    B[i, j] = pos1[j] + r[i, j]
+            finite = True
+            for j in range(nx):
+                X1[j] = X[j] + dn[j]
+            if implicit:                           # a_{n+1}, v_{n+1} of the increment
+                for j in range(6):
+                    a1p[j] = c0 * (dp[j] - dt * vp[j]) - ap[j]
+                    v1p[j] = vp[j] + h * (ap[j] + a1p[j])
+                    finite = finite and np.isfinite(dp[j])
+                for j in range(nx):
+                    a1n[j] = c0 * (dn[j] - dt * vn[j]) - an[j]
+                    v1n[j] = vn[j] + h * (an[j] + a1n[j])
+                    finite = finite and np.isfinite(dn[j])
+            # ---- forces at (pos1, rot1, X1) and the velocity (v1p, v1n), as
+            # time_dynamics.Dynamics.forces: chains, weights, load, damping (axial
+            # dashpots, -alpha M v, -beta K0 v, cable viscous c l0 on the nodes and c l0 / 2
+            # at B_i), minus the gyroscopic terms; Fp 0 on the held DOFs
+            _weight_wrench(platform_weight, rG, W, Wd)
+            t_max, t_min, strain = _chain_pass(anchors, X1, B, r, v1n, v1p, seg, l0, EA, c_ax,
+                                               weight, inner, dash, W, Wd)
+            for j in range(6):
+                fdp[j] = Wd[j]
+            if beta != 0.0:
+                for j in range(nf):
+                    vm[j] = v1p[fi[j]]
+                for j in range(nx):
+                    vm[nf + j] = v1n[j]
+                for j in range(nf + nx):
+                    s = 0.0
+                    for q in range(Kp[j], Kp[j + 1]):
+                        s += Kx[q] * vm[Ki[q]]
+                    Kv[j] = beta * s
+                for j in range(nf):
+                    fdp[fi[j]] -= Kv[j]
+            if alpha != 0.0:
+                for j in range(6):
+                    s = 0.0
+                    for m in range(6):
+                        s += M6[j, m] * v1p[m]
+                    fdp[j] -= alpha * s
+            for i in range(n):
+                if c_visc[i] != 0.0:
+                    # 0.5 c l0 J^T J v, J = [I, -[r]x]: J v = v_P + w x r
+                    j0 = v1p[0] + v1p[4] * r[i, 2] - v1p[5] * r[i, 1]
+                    j1 = v1p[1] + v1p[5] * r[i, 0] - v1p[3] * r[i, 2]
+                    j2 = v1p[2] + v1p[3] * r[i, 1] - v1p[4] * r[i, 0]
+                    c = 0.5 * c_visc[i] * l0[i]
+                    fdp[0] -= c * j0
+                    fdp[1] -= c * j1
+                    fdp[2] -= c * j2
+                    _cross_add(r[i, 0], r[i, 1], r[i, 2], j0, j1, j2, -c, fdp, 3)
+            for j in range(6):
+                Fp[j] = W[j] + load[j] + fdp[j]
+            w0, w1, w2 = v1p[3], v1p[4], v1p[5]
+            if w0 != 0.0 or w1 != 0.0 or w2 != 0.0:
+                # g = [w x (w x S); w x (I_P w)]
+                e0 = w1 * first[2] - w2 * first[1]
+                e1 = w2 * first[0] - w0 * first[2]
+                e2 = w0 * first[1] - w1 * first[0]
+                _cross_add(w0, w1, w2, e0, e1, e2, -1.0, Fp, 0)
+                i0 = M6[3, 3] * w0 + M6[3, 4] * w1 + M6[3, 5] * w2
+                i1 = M6[4, 3] * w0 + M6[4, 4] * w1 + M6[4, 5] * w2
+                i2 = M6[5, 3] * w0 + M6[5, 4] * w1 + M6[5, 5] * w2
+                _cross_add(w0, w1, w2, i0, i1, i2, -1.0, Fp, 3)
+            for j in range(6):
+                if not free[j]:
+                    Fp[j] = 0.0
+                    fdp[j] = 0.0
+            for j in range(nx):
+                fdn[j] = dash[j] - alpha * mu[j] * v1n[j] - cv[j] * v1n[j] - Kv[nf + j]
+            if not implicit:
+                break
+            # ---- Newton: residual G = M a_{n+1} - F, its relative size, the kept factors
+            big = 0.0
+            for q in range(nf):
+                j = fi[q]
+                s = 0.0
+                for m in range(6):
+                    s += M6[j, m] * a1p[m]
+                G[q] = s - Fp[j]
+                big = max(big, abs(G[q]) / arm if j >= 3 else abs(G[q]))
+                finite = finite and np.isfinite(G[q])
+            for j in range(nx):
+                G[nf + j] = mu[j] * a1n[j] - (inner[j] + fdn[j])
+                big = max(big, abs(G[nf + j]))
+                finite = finite and np.isfinite(G[nf + j])
+            if not finite:
+                return 1, k
+            res = big / max(force_weight + t_max, np.finfo(np.float64).tiny)
+            if res <= tol:
+                break
+            if it == max_iter:
+                nflt[0] = res
+                return 4, k
+            if not fresh and (nint[0] == 0 or res > 0.1 * prev):
+                nint[4] = it
+                return 5, k
+            fresh = False
+            prev = res
+            _lu_solve(lu, G, y, x)
+            for q in range(nf):
+                dp[fi[q]] -= x[q]
+            for j in range(nx):
+                dn[j] -= x[nf + j]
+        if implicit:
+            nint[2] += it
+        else:                                      # a_{n+1} = M^-1 F, v_{n+1}
+            _solve_free(M6, Fp, free, A, b, a1p)
+            finite = True
+            for j in range(6):
+                v1p[j] += h * a1p[j]
+                finite = finite and np.isfinite(a1p[j]) and np.isfinite(v1p[j])
+            for j in range(nx):
+                a1n[j] = (inner[j] + fdn[j]) / mu[j]
+                v1n[j] += h * a1n[j]
+                finite = finite and np.isfinite(a1n[j]) and np.isfinite(v1n[j])
+            if not finite:
+                return 1, k
+        # ---- the step is taken: state, ledger work terms, checks, records
+        de = dd = 0.0
+        for j in range(6):
+            de += dp[j] * (fe_p[j] + load[j])
+            dd += dp[j] * (fd_p[j] + fdp[j])
+            vp[j], ap[j], fe_p[j], fd_p[j] = v1p[j], a1p[j], load[j], fdp[j]
+        for j in range(3):
+            pos[j], rot[j] = pos1[j], rot1[j]
+        for j in range(nx):
+            dd += dn[j] * (fd_n[j] + fdn[j])
+            X[j], vn[j], an[j], fd_n[j] = X1[j], v1n[j], a1n[j], fdn[j]
+        status = _step_done(k, n_steps, record_every, t_min, strain, de, dd, ledger, info, out)
+        if status == 1:
+            status = _ledger_row(k, record_every, pos, rot, X, vp, vn, anchors, attachments,
+                                 seg, l0, EA, node_mass, g, mass, com, inertia, mu, ledger,
+                                 info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E,
+                                 rec_X)
+        if status:
+            return status, k
+    return 0, k1
+
+
+@numba.njit(**_JIT)
+def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachments, seg, l0,
+                 EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
+                 c_visc, cv, beta, K0, ledger, info, out, rec_pose, rec_vel, rec_t_end,
+                 rec_t_anchor, rec_E, rec_X):
+    """A whole velocity-Verlet run of the lumped robot with fixed lengths (as
+    time_stepping.explicit_step, step after step; theory.md §7.3, §14.5).
+
+    Parameters
+    ----------
+    steps : tuple of int
+        (k0, k1, n_steps): steps k = k0 + 1 ... k1 of a run of n_steps (a run may be taken in
+        blocks).
+    dt, record_every : float [s], int
+        The state after step k is recorded in row k // record_every when record_every
+        divides k.
+    state : tuple of ndarray
+        (pos (3,) [m], rot (3,) rotation vector, X (n_x,) interior nodes [m], vp (6,)
+        twist, vn (n_x,) node velocities, ap (6,), an (n_x,) accelerations, fe_p (6,)
+        external and fd_p (6,), fd_n (n_x,) damping forces of the current step), platform
+        DOFs as full 6-vectors with the held ones 0; updated in place.
+    loads : ndarray, shape (k1 - k0, 6) or (0, 6)
+        External load at the end of every step (held DOFs 0), or none.
+    free : ndarray of bool, shape (6,)
+    anchors, attachments, seg, l0, EA, c_ax, weight, platform_weight : as robot_chain_forces
+    node_mass : ndarray, shape (n,)
+        m l0 of every cable [kg]; half of it rides at B_i.
+    g, mass, com, inertia : gravity [m/s^2], the platform's mass, centre of mass, inertia.
+    mu, cv : ndarray, shape (n_x,)
+        Node masses [kg] and cable viscous dashpots c l0 [N s / m].
+    alpha : float
+        Mass-proportional damping [1/s].
+    c_visc : ndarray, shape (n,)
+        Cable viscous damping c [N s / m^2].
+    beta, K0 : float [s], (indptr, indices, data)
+        Stiffness-proportional damping -beta K0 v, K0 in CSR form in the model's DOF order
+        (free platform DOFs, then the interior nodes) [N/m]; unused when beta is 0.
+    ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X : ndarray
+        The ledger, the run's counters and the records, updated in place (see
+        :func:`_step_done`).
+
+    Returns
+    -------
+    status, step : int
+        0 done (step k1); or the step k where the run stopped: 1 a non-finite state, 2 a
+        strain above 1, 3 an energy residual above 10 times the energy scale (plus the floor).
+    """
+    pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n = state
+    nx = X.size
+    full = (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, np.zeros(6), np.zeros(nx),
+            np.zeros(6), np.zeros(nx))
+    z = np.zeros(1, dtype=np.int64)
+    lu = (z, z[:0], np.zeros(0), z, z[:0], np.zeros(0), z[:0], z[:0])
+    return _run(False, steps, dt, record_every, full, (np.zeros(5, dtype=np.int64), np.zeros(1)),
+                loads, free, anchors, attachments, seg, l0, EA, c_ax, weight, platform_weight,
+                node_mass, g, mass, com, inertia, mu, alpha, c_visc, cv, beta, K0, lu, 0.0, 0,
+                1.0, 1.0, ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E,
+                rec_X)
+
+
+@numba.njit(**_JIT)
+def implicit_run(steps, dt, record_every, state, newton, loads, free, anchors, attachments, seg,
+                 l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu,
+                 alpha, c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger,
+                 info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+    """Newmark average-acceleration steps of the lumped robot with fixed lengths, solved by
+    modified Newton iterations with kept LU factors (as time_stepping.implicit_step, step
+    after step; theory.md §7.3, §14.4, §14.6).
+
+    Parameters as :func:`explicit_run`, and:
+
+    state : tuple of ndarray
+        As in :func:`explicit_run`, then the acceleration of the previous step (6,), (n_x,)
+        (the predictor's a_{n-1}), then the increment d of the current step (6,), (n_x,).
+    newton : tuple of ndarray
+        (int64 (5,): LU given, a_{n-1} given, Newton iterations so far, resume flag, the
+        iteration to resume at; float (1,): the residual where Newton failed).
+    lu : tuple
+        The factors of K + 4 M / dt^2 + 2 C / dt in the model's DOF order (see
+        :func:`_lu_solve`).
+    tol, max_iter : float, int
+        Newton tolerance on the relative residual and iterations per step.
+    arm, force_weight : float
+        Moment arm [m] and weight [N] of the relative residual (LumpedMassModel.
+        residual_scales).
+
+    Returns
+    -------
+    status, step : int
+        As :func:`explicit_run`, and 4: Newton did not converge at ``step`` (residual in
+        newton[1][0]); 5: the LU factors are missing or Newton slowed down at ``step``: the
+        caller factorises the Newton matrix at the configuration advanced by the increment
+        in ``state``, sets the resume flag and calls again from that step.
+    """
+    return _run(True, steps, dt, record_every, state, newton, loads, free, anchors,
+                attachments, seg, l0, EA, c_ax, weight, platform_weight, node_mass, g, mass,
+                com, inertia, mu, alpha, c_visc, cv, beta, K0, lu, tol, max_iter, arm,
+                force_weight, ledger, info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor,
+                rec_E, rec_X)

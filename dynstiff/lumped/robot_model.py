@@ -354,6 +354,11 @@ class LumpedMassModel:
             extremes.append((t_min, float(strain)))
         return np.concatenate(inner), F, t_max
 
+    def residual_scales(self):
+        """(moment arm [m], weight [N]) of :meth:`relative_residual`: moments are divided by
+        the arm, and the force scale is weight + t_max."""
+        return self._moment_arm, self._force_scale(0.0)
+
     def _force_scale(self, t_max):
         rob = self.robot
         weight = rob.g * (rob.platform.mass + np.sum(

@@ -114,6 +114,7 @@ from .time_stepping import (
     carried_energy,
     check_blow_up,
     compiled_explicit_run,
+    compiled_implicit_run,
     explicit_step,
     implicit_step,
     Ledger,
@@ -182,6 +183,33 @@ def _lengths_function(lengths, n):
     return checked
 
 
+def _excitation_function(excitation):
+    """(callable t -> (6,) or None, the table (times, loads) or None) from ``excitation``."""
+    if excitation is None or callable(excitation):
+        return excitation, None
+    try:
+        times, loads = excitation
+        times = np.asarray(times, dtype=float)
+        loads = np.asarray(loads, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(
+            f"excitation must be a callable t -> (6,) load, a table (times (k,) [s], loads "
+            f"(k, 6) [N, N m]) or None, got {excitation!r}") from None
+    if times.ndim != 1 or times.size < 1 or loads.shape != (times.size, 6) or \
+            not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0) or \
+            not np.all(np.isfinite(loads)):
+        raise InvalidParameterError(
+            f"excitation table must be (times (k,) strictly increasing [s], loads (k, 6) "
+            f"finite [N, N m]), got shapes {times.shape} and {loads.shape}")
+    if times[0] > 0:
+        raise InvalidParameterError(
+            f"excitation table must start at t <= 0, starts at {times[0]:g} s")
+
+    def fn(t):
+        return np.array([np.interp(t, times, loads[:, j]) for j in range(6)])
+    return fn, (times, loads)
+
+
 def _initial(initial, model):
     """(offset (6,), velocity (6,)) from ``initial``."""
     zero = np.zeros(6)
@@ -237,9 +265,12 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         Time step [s], > 0. The implicit scheme is stable for any dt (its accuracy needs
         about 20 steps per period of interest); the explicit one needs
         dt < :func:`explicit_step_limit`.
-    excitation : callable, optional
+    excitation : callable or (times, loads), optional
         t [s] -> platform load (fx, fy, fz [N], mx, my, mz [N m]) about P, base axes,
-        shape (6,); loads on held DOFs are ignored.
+        shape (6,), or a table (times (k,) [s] strictly increasing, from t <= 0; loads
+        (k, 6)) interpolated linearly and held after its end (the compiled explicit run
+        evaluates a table at all steps at once, a callable step by step); loads on held
+        DOFs are ignored.
     lengths : callable or (times, lengths), optional
         Unstretched lengths L0_i(t) [m], shape (n_cables,), as a callable or a table
         (times (k,) [s] strictly increasing, from t <= 0; lengths (k, n_cables) [m]),
@@ -329,9 +360,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
             f"{n_records} records, more than max_records = {max_records}; raise record_every "
             f"or max_records, or shorten t_end")
     tol = positive_scalar("tol", tol)
-    if excitation is not None and not callable(excitation):
-        raise InvalidParameterError(
-            f"excitation must be a callable t -> (6,) load or None, got {excitation!r}")
+    excitation, table = _excitation_function(excitation)
     if excitation is not None:
         load_at(excitation, 0.0)
     if damping is None:
@@ -411,11 +440,15 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
     fast = compiled_kernels()
-    if scheme == "explicit" and fast is not None and length_fn is None and not damping.beta \
-            and np.all(m.segments == m.segments[0]) and m.segments[0] > 1:
+    if scheme == "explicit" and fast is not None and length_fn is None:
         slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,
-                                            SlackSegmentWarning)
+                                            SlackSegmentWarning, table)
+        n_steps_done = n_steps
+    elif fast is not None and length_fn is None:
+        slack_steps = compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
+                                            record_every, rec, ledger, damping,
+                                            SlackSegmentWarning, table, newton)
         n_steps_done = n_steps
     else:
         n_steps_done = 0

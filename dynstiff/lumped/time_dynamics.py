@@ -232,6 +232,7 @@ class Dynamics:
         self.node_weights = model.node_masses[:, None] * model.robot.gravity_vector
         self.platform_weight = model.robot.platform.mass * model.robot.gravity_vector
         self._any_c_ax = bool(np.any(self.c_ax))
+        self.seg = np.asarray(model.segments, dtype=np.int64)
         self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
@@ -265,7 +266,7 @@ class Dynamics:
         frame = self._last = Frame(m, pose, self._last)
         tw = twist_of(m, v)
         nf = m.n_free
-        fast = _compiled() if np.all(m.segments == m.segments[0]) else None
+        fast = _compiled()
         if fast is not None:
             R, dash, t_max = self._compiled_chain_forces(fast, frame, pose, X, v, tw)
         else:
@@ -290,13 +291,13 @@ class Dynamics:
 
     def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
         """Residual R, axial-dashpot force and largest tension from the compiled chain kernel
-        (:mod:`dynstiff.lumped.compiled_chain`), chains of equal N; sets ``extremes``."""
+        (:mod:`dynstiff.lumped.compiled_chain`); sets ``extremes``."""
         m = self.model
         rob = m.robot
         nf = m.n_free
         inner, d_inner, W, Wd, t_max, t_min, strain = fast.robot_chain_forces(
-            rob.anchors, X, frame.B, frame.r, v[nf:], tw, m.segment_lengths, self.EA,
-            self.c_ax, self.node_weights, self.platform_weight, frame.rG)
+            rob.anchors, X, frame.B, frame.r, v[nf:], tw, self.seg, m.segment_lengths,
+            self.EA, self.c_ax, self.node_weights, self.platform_weight, frame.rG)
         self.extremes = (t_min, strain)
         fi = m.free_index
         return np.concatenate([W[fi], inner]), np.concatenate([Wd[fi], d_inner]), t_max

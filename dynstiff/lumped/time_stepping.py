@@ -10,8 +10,7 @@ import numpy as np
 from .._vec import cross
 from ..errors import ConvergenceError, DynstiffError
 from .time_damping import explicit_step_limit
-from .time_dynamics import (FastPose, Frame, advance, interior_views, load_at,
-                            potential_energy, twist_of)
+from .time_dynamics import FastPose, advance, interior_views, load_at, twist_of
 from .time_response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
@@ -122,13 +121,7 @@ def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stack
     axial chain modes (their period below dt), which leaves the motion itself accurate."""
     if abs(residual) > _LEDGER_WARN * ledger.limit() and not ledger.warned:
         ledger.warned = True
-        warnings.warn(
-            f"simulate: at step {k} (t = {t1:g} s) the energy balance residual {residual:.3g} "
-            f"J is {abs(residual) / ledger.scale():.2g} of the energy scale "
-            f"{ledger.scale():.3g} J: the energy ledger is inaccurate at dt = {dt:g} s "
-            f"(axial chain modes faster than 1 / dt, typically with winches, or an unstable "
-            f"explicit step); halve dt to "
-            f"check the motion", EnergyBalanceWarning, stacklevel=stacklevel)
+        ledger_warning(k, t1, residual, ledger.scale(), dt, stacklevel + 1)
     if strain <= _STRAIN_LIMIT and abs(residual) <= _BLOW_UP * ledger.limit():
         return
     why = (f"a segment is stretched to {1 + strain:.3g} l0" if strain > _STRAIN_LIMIT
@@ -140,6 +133,17 @@ def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stack
     raise IntegrationError(
         f"simulate: blow-up at step {k} (t = {t1:g} s) with {scheme} dt = {dt:g} s: "
         f"{why}{hint}", step=k, time=t1, dt=dt)
+
+
+def ledger_warning(k, t1, residual, scale, dt, stacklevel=5):
+    """The :class:`EnergyBalanceWarning` of step k (residual and energy scale [J])."""
+    warnings.warn(
+        f"simulate: at step {k} (t = {t1:g} s) the energy balance residual {residual:.3g} "
+        f"J is {abs(residual) / scale:.2g} of the energy scale "
+        f"{scale:.3g} J: the energy ledger is inaccurate at dt = {dt:g} s "
+        f"(axial chain modes faster than 1 / dt, typically with winches, or an unstable "
+        f"explicit step); halve dt to "
+        f"check the motion", EnergyBalanceWarning, stacklevel=stacklevel)
 
 
 def carried_energy(m, m_prev, frame, v, dmu):
@@ -203,9 +207,12 @@ class Recorder:
         self.L[j] = model.unstretched_lengths
         self.E[j] = row
         if self.nodes is not None:
-            B, _ = model.robot.attachment_points(pose)
-            for i, xi in enumerate(interior_views(model, X)):
-                self.nodes[i][j] = np.vstack((model.robot.anchors[i], xi, B[i]))
+            self.store_nodes(j, pose, model, X)
+
+    def store_nodes(self, j, pose, model, X):
+        B, _ = model.robot.attachment_points(pose)
+        for i, xi in enumerate(interior_views(model, X)):
+            self.nodes[i][j] = np.vstack((model.robot.anchors[i], xi, B[i]))
 
     def result(self, model, eq_pose, static_energy, **info):
         self.E.setflags(write=False)
@@ -218,78 +225,184 @@ class Recorder:
                             **info)
 
 
-def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
-                          ledger, damping, slack_warning):
-    """The velocity-Verlet steps of a run with fixed lengths, beta = 0 and chains of equal N,
-    ``record_every`` steps per call of the compiled kernel
-    (:func:`dynstiff.lumped.compiled_chain.explicit_steps`, theory.md §14.4); the ledger
-    rows, records, checks and warnings at the recorded steps as in the stepwise loop.
-    Returns the number of steps with a slack segment."""
+#: Steps per call of the compiled explicit run (its load table: 1.5 MB).
+_BLOCK = 32768
+
+
+def excitation_loads(excitation, table, free, dt, k0, k1):
+    """External loads at the end of steps k0 + 1 ... k1, shape (k1 - k0, 6), held DOFs 0 (or
+    (0, 6) without excitation): the table interpolated at all steps at once, or the callable
+    called step by step (checked as :func:`load_at`)."""
+    if excitation is None:
+        return np.zeros((0, 6))
+    times = np.arange(k0 + 1, k1 + 1) * dt
+    n_steps = times.size
+    if table is not None:
+        loads = np.column_stack([np.interp(times, table[0], table[1][:, j]) for j in range(6)])
+    else:
+        loads = np.empty((n_steps, 6))
+        for j, t in enumerate(times):
+            f = np.asarray(excitation(t), dtype=float)
+            if f.shape != (6,):
+                load_at(excitation, t)                     # raises, naming t
+            loads[j] = f
+        bad = ~np.all(np.isfinite(loads), axis=1)
+        if np.any(bad):
+            load_at(excitation, times[np.argmax(bad)])
+    loads[:, ~free] = 0.0
+    return loads
+
+
+def _six(model, x):
+    """The free-DOF part of x as a full 6-vector (0 on the held DOFs)."""
+    out = np.zeros(6)
+    out[model.free_index] = x[:model.n_free]
+    return out
+
+
+def _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger):
+    """(free (6,) bool, state, constants, tail) of the compiled runs: the state arrays as
+    in :func:`dynstiff.lumped.compiled_chain.explicit_run`, the model's constants from free
+    to K0, then the ledger, counters and records (ledger, info, out, records, rec_X)."""
     m = dyn.model
     rob, p = m.robot, m.robot.platform
-    nf, fi = m.n_free, m.free_index
+    nf = m.n_free
     free = np.zeros(6, dtype=bool)
-    free[fi] = True
-
-    def six(x):
-        out = np.zeros(6)
-        out[fi] = x[:nf]
-        return out
-
-    pos, rot = np.array(pose.position, dtype=float), np.array(pose.rotation, dtype=float)
-    vp, vn, ap, an = six(v), v[nf:].copy(), six(a), a[nf:].copy()
-    fe_p, fd_p, fd_n = six(fe), six(fd), fd[nf:].copy()
-    consts = (rob.anchors.astype(float), rob.attachments.astype(float), m.segment_lengths,
-              dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
-              dyn.platform_weight, 0.5 * m.node_masses, float(p.mass),
+    free[m.free_index] = True
+    state = (np.array(pose.position, dtype=float), np.array(pose.rotation, dtype=float),
+             np.array(X, dtype=float), _six(m, v), v[nf:].copy(), _six(m, a), a[nf:].copy(),
+             _six(m, fe), _six(m, fd), fd[nf:].copy())
+    led = np.array([ledger.E0, ledger.excess, ledger.floor, ledger.ext, ledger.diss,
+                    ledger.peaks[0], ledger.peaks[3]])
+    rec_X = np.empty((rec.t.size if rec.nodes is not None else 0, X.size))
+    if dyn.beta:
+        K = dyn.K0.tocsr()
+        K0 = (K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data.astype(float))
+    else:
+        K0 = (np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.zeros(0))
+    consts = (free, rob.anchors.astype(float), rob.attachments.astype(float), dyn.seg,
+              m.segment_lengths, dyn.EA, np.asarray(dyn.c_ax, dtype=float), dyn.node_weights,
+              dyn.platform_weight, m.node_masses, float(rob.g), float(p.mass),
               np.asarray(p.center_of_mass, dtype=float), np.asarray(p.inertia, dtype=float),
-              dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv)
-    k, slack_steps, warned = 0, 0, False
-    while k < n_steps:
-        count = min(n_steps, (k // record_every + 1) * record_every) - k
-        loads = np.zeros((count, 6))
-        if dyn.excitation is not None:
-            for j in range(count):
-                loads[j] = load_at(dyn.excitation, (k + 1 + j) * dt)
-            loads[:, ~free] = 0.0
-        (pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, ledger.ext, ledger.diss, pk_ext,
-         pk_diss, strain, n_slack, taken, status) = fast.explicit_steps(
-            count, dt, pos, rot, X, vp, vn, ap, an, fe_p, fd_p, fd_n, loads, free, *consts,
-            ledger.ext, ledger.diss, not warned)
-        ledger.peaks[0] = max(ledger.peaks[0], pk_ext)
-        ledger.peaks[3] = max(ledger.peaks[3], pk_diss)
-        slack_steps += n_slack
-        k += taken
-        t1 = k * dt
-        if status == 1:
-            raise IntegrationError(
-                f"simulate: non-finite state at step {k + 1} (t = {t1 + dt:g} s) with explicit "
-                f"dt = {dt:g} s; the predicted stability limit is "
-                f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)",
-                step=k + 1, time=t1 + dt, dt=dt)
-        pose = FastPose(pos, rot)
-        v = np.concatenate([vp[fi], vn])
-        if status == 2:
-            check_blow_up(strain, 0.0, ledger, "explicit", dt, k, t1, m, damping, 4)
-        pot = None
-        if status == 3:
-            pot = potential_energy(m, Frame(m, pose), X)
-            row = ledger.row(dyn.kinetic(Frame(m, pose), v), pot)
-            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
-        elif k % record_every == 0 or k == n_steps:
-            elastic, gravity, kinetic, t_end, t_anchor, strain = fast.energies(
-                pos, rot, X, vp, vn, consts[0], consts[1], m.segment_lengths, dyn.EA,
-                m.node_masses, rob.g, *consts[8:12])
-            pot = (elastic, gravity, t_end, t_anchor, [], strain)
-            row = ledger.row(kinetic, pot)
-            check_blow_up(pot[5], row[-1], ledger, "explicit", dt, k, t1, m, damping, 4)
-        if status == 3:
-            warned = True
-            i, s = pot[4][0]
-            warnings.warn(
-                f"simulate: cable {i} segment {s} went slack at step {k} (t = {t1:g} s); "
-                f"tension-only springs carry no force until it is taut again",
-                slack_warning, stacklevel=3)
-        if k % record_every == 0:
-            rec.store(k // record_every, t1, pose, v, m, pot, row, X)
+              dyn.mu, float(dyn.alpha), np.asarray(dyn.c_visc, dtype=float), dyn.cv,
+              float(dyn.beta), K0)
+    tail = (led, np.zeros(5, dtype=np.int64), np.zeros(5), rec.pose, rec.vel, rec.t_end,
+            rec.t_anchor, rec.E, rec_X)
+    return free, state, consts, tail
+
+
+def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning, table):
+    """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
+    in calls of ``_BLOCK`` steps of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.explicit_run`, theory.md §14.5), records, ledger
+    rows and checks included; the warnings and the failure it reports are raised here as in
+    the stepwise loop. ``table``: the excitation as (times, loads), or None. Returns the
+    number of steps with a slack segment."""
+    free, state, consts, tail = _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger)
+    k, status = 0, 0
+    while k < n_steps and not status:
+        k1 = min(n_steps, k + _BLOCK)
+        status, k = fast.explicit_run((k, k1, n_steps), dt, record_every, state,
+                                      excitation_loads(dyn.excitation, table, free, dt, k, k1),
+                                      *consts, *tail)
+    return finish_compiled_run(status, k, tail, ledger, rec, dyn.model, dt, record_every,
+                               damping, slack_warning, "explicit")
+
+
+def _lu_arrays(lu):
+    """The SuperLU factors as arrays for compiled_chain._lu_solve (L, U in CSR, perms)."""
+    L, U = lu.L.tocsr(), lu.U.tocsr()
+    return (L.indptr.astype(np.int64), L.indices.astype(np.int64), L.data.astype(float),
+            U.indptr.astype(np.int64), U.indices.astype(np.int64), U.data.astype(float),
+            lu.perm_r.astype(np.int64), lu.perm_c.astype(np.int64))
+
+
+def compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
+                          ledger, damping, slack_warning, table, newton):
+    """The Newmark steps of a run with fixed lengths in calls of the compiled kernel
+    (:func:`dynstiff.lumped.compiled_chain.implicit_run`, theory.md §14.6): Newton with the
+    kept LU factors runs in the kernel; when they are missing or Newton slows down, the
+    kernel returns, the Newton matrix is assembled and factorised here (as in
+    :func:`implicit_step`) and the kernel resumes the same step. Records, ledger, checks,
+    warnings and failures as in the stepwise loop. Returns the number of steps with a slack
+    segment."""
+    import scipy.sparse.linalg
+    m = dyn.model
+    free, state, consts, tail = _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger)
+    nx = state[2].size
+    state = state + (np.zeros(6), np.zeros(nx), np.zeros(6), np.zeros(nx))
+    counters = (np.zeros(5, dtype=np.int64), np.zeros(1))
+    z = np.zeros(1, dtype=np.int64)
+    lu = (z, z[:0], np.zeros(0), z, z[:0], np.zeros(0), z[:0], z[:0])
+    arm, weight = m.residual_scales()
+    k, status = 0, 0
+    while k < n_steps and not status:
+        k1 = min(n_steps, k + _BLOCK)
+        loads = excitation_loads(dyn.excitation, table, free, dt, k, k1)
+        start = k
+        while True:
+            status, k = fast.implicit_run(
+                (start, k1, n_steps), dt, record_every, state, counters,
+                loads[start - (k1 - loads.shape[0]):] if loads.shape[0] else loads, *consts,
+                lu, newton.tol, newton.max_iter, arm, weight, *tail)
+            if status != 5:
+                break
+            d = np.concatenate([state[12][m.free_index], state[13]])
+            pose1, X1 = advance(m, FastPose(state[0].copy(), state[1].copy()), state[2], d)
+            lu = _lu_arrays(scipy.sparse.linalg.splu(dyn.newton_matrix(pose1, X1, dt)))
+            newton.updates += 1
+            counters[0][0] = counters[0][3] = 1
+            start = k - 1
+    newton.iterations += int(counters[0][2])
+    slack_steps = finish_compiled_run(0 if status == 4 else status, k, tail, ledger, rec, m,
+                                      dt, record_every, damping, slack_warning, "implicit")
+    if status == 4:
+        res = counters[1][0]
+        raise ConvergenceError(
+            f"simulate: Newton did not converge in {newton.max_iter} iterations at step "
+            f"{k} (t = {k * dt:g} s) with dt = {dt:g} s: relative residual {res:.3e} > tol "
+            f"{newton.tol:g}; reduce dt (slack snapping or a blow-up)", residual=res)
+    return slack_steps
+
+
+def finish_compiled_run(status, step, tail, ledger, rec, m, dt, record_every, damping,
+                        slack_warning, scheme):
+    """After a compiled run: the ledger back, the warnings in the order of their steps, the
+    failure the kernel reported, the record times, lengths and nodes. Returns the number of
+    steps with a slack segment."""
+    led, info, out, rec_X = tail[0], tail[1], tail[2], tail[-1]
+    slack_steps, slack_step, cable, segment, warn_step = (int(x) for x in info)
+    strain, residual, _, warn_res, warn_scale = out
+    ledger.ext, ledger.diss = led[3], led[4]
+    ledger.peaks[0], ledger.peaks[3] = led[5], led[6]
+    events = []                                   # warnings in the order of their steps
+    if warn_step:
+        events.append((warn_step, 0, lambda: ledger_warning(warn_step, warn_step * dt,
+                                                            warn_res, warn_scale, dt, 6)))
+    if slack_step:
+        events.append((slack_step, 1, lambda: warnings.warn(
+            f"simulate: cable {cable} segment {segment} went slack at step {slack_step} "
+            f"(t = {slack_step * dt:g} s); tension-only springs carry no force until it is "
+            f"taut again", slack_warning, stacklevel=5)))  # user > simulate > run > here
+    for *_, warn in sorted(events, key=lambda e: e[:2]):
+        warn()
+    ledger.warned = ledger.warned or warn_step > 0
+    if status == 1:
+        raise IntegrationError(
+            f"simulate: non-finite state at step {step} (t = {step * dt:g} s) with {scheme} "
+            f"dt = {dt:g} s; the predicted stability limit is "
+            f"{explicit_step_limit(m, damping=damping):g} s (theory.md §7.3)"
+            if scheme == "explicit" else
+            f"simulate: non-finite state at step {step} (t = {step * dt:g} s) with {scheme} "
+            f"dt = {dt:g} s", step=step, time=step * dt, dt=dt)
+    if status:
+        check_blow_up(strain, residual, ledger, scheme, dt, step, step * dt, m, damping, 5)
+    n_rec = rec.t.size
+    rec.t[1:] = np.arange(1, n_rec) * record_every * dt
+    rec.L[1:] = m.unstretched_lengths
+    if rec.nodes is not None:
+        for j in range(1, n_rec):
+            p6 = rec.pose[j]
+            rec.store_nodes(j, FastPose(p6[:3], p6[3:]), m, rec_X[j])
     return slack_steps
