@@ -170,3 +170,43 @@ def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies
     near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
     got = wsmod.platform_participation(m, res.freq_hz)
     np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
+
+
+def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
+    """A 5 x 4 x 3 grid of CoGiRo poses over the frame (edges, infeasible poses and active
+    tension limits included), warm-started along chunks, with the compiled Newton and the
+    warm active set (theory.md §13.6) against the numpy Newton with LP-started tension
+    distributions: the same feasibility, reasons and verdicts; tensions, lengths, sag,
+    frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
+    finite-difference derivative (§13.3), which magnifies round-off."""
+    from dynstiff import statics
+    from dynstiff.workspace_map import evaluate_chunk
+
+    grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
+                                np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)
+    X = np.hstack([grid, np.zeros_like(grid)])
+
+    def run():
+        parts = [evaluate_chunk(robot, X[s:s + 12], 12, BAND, 0.05, 0.03, 0.02, "dsm", {})
+                 for s in range(0, len(X), 12)]
+        return {k: (sum((p[k] for p in parts), []) if k == "reason"
+                    else np.concatenate([p[k] for p in parts])) for k in parts[0]}
+    fast = run()
+    batched, dist = statics.taut_catenaries, statics._distribution
+    monkeypatch.setattr(statics, "taut_catenaries",
+                        lambda *a, **k: batched(*a, **{**k, "compiled": False}))
+    monkeypatch.setattr(statics, "_distribution",
+                        lambda W, w, lo, hi, r=None, sides=None: dist(W, w, lo, hi, r))
+    ref = run()
+    assert 0 < ref["feasible"].sum() < len(X)
+    assert np.sum(np.isclose(ref["min_tension"], robot.tension_limits[0], rtol=1e-9)) > 5
+    assert fast["reason"] == ref["reason"]
+    for k in ("feasible", "is_global", "passed"):
+        np.testing.assert_array_equal(fast[k], ref[k])
+    for k in ("tension", "unstretched_length", "min_tension", "max_tension", "sag_ratio",
+              "freq", "first_global_hz"):
+        np.testing.assert_allclose(fast[k], ref[k], rtol=1e-12, atol=0, err_msg=k)
+    for k in ("band_margin", "proximity_gap"):
+        np.testing.assert_allclose(fast[k], ref[k], rtol=0, atol=1e-12, err_msg=k)
+    np.testing.assert_allclose(fast["platform_participation"], ref["platform_participation"],
+                               rtol=0, atol=1e-7)
