@@ -189,7 +189,7 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     def run():
         parts = [evaluate_chunk(robot, X[s:s + 12], 12, BAND, 0.05, 0.03, 0.02, "dsm", {})
                  for s in range(0, len(X), 12)]
-        return {k: (sum((p[k] for p in parts), []) if k == "reason"
+        return {k: ([r for p in parts for r in p[k]] if k == "reason"
                     else np.concatenate([p[k] for p in parts])) for k in parts[0]}
     fast = run()
     batched, dist = statics.taut_catenaries, statics._distribution
