@@ -210,3 +210,50 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
         np.testing.assert_allclose(fast[k], ref[k], rtol=0, atol=1e-12, err_msg=k)
     np.testing.assert_allclose(fast["platform_participation"], ref["platform_participation"],
                                rtol=0, atol=1e-7)
+
+
+def _participation_mode_by_mode(model, freq_hz):
+    """platform_participation written one mode at a time (its first form, theory.md
+    §13.3), the reference of the batched one."""
+    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
+    n, h = w.size, 1e-6
+    steps = np.array([1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
+    K = model.dynamic_stiffness(w)
+    Ks = model.dynamic_stiffness(np.outer(steps[:4], w).ravel()).reshape(4, n, *K.shape[1:])
+    J0 = model.cable_mode_count(np.outer(steps, w).ravel()).reshape(6, n)
+    Mp = model.platform_mass
+    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+    out = np.zeros(n)
+    for k in range(n):
+        if not np.all(np.isfinite(K[k])):
+            continue
+        ev, V = np.linalg.eigh(K[k])
+        if J0[4, k] > J0[5, k] and np.abs(ev).min() > 1e-6 * scale:
+            continue
+        x = V[:, np.argmin(np.abs(ev))]
+        x = x / np.sqrt(x @ Mp @ x)
+        if J0[0, k] != J0[1, k]:
+            full = np.zeros(6)
+            full[model.free_index] = x
+            out[k] = 1.0 / (1.0 + model.cable_kinetic_energies(w[k], full).sum())
+            continue
+        d1 = (Ks[0, k] - Ks[1, k]) / (w[k] ** 2 * ((1 + h) ** 2 - (1 - h) ** 2))
+        d2 = (Ks[2, k] - Ks[3, k]) / (w[k] ** 2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))
+        out[k] = 1.0 / -(x @ ((4.0 * d2 - d1) / 3.0) @ x)
+    return out
+
+
+@pytest.mark.parametrize("position", [[0.0, 0.0, 1.0], [-3.0, 2.0, 2.5], [4.0, -3.0, 0.8]])
+def test_batched_participation_equals_the_mode_by_mode_one(robot, position):
+    """The batched platform participation equals the mode-by-mode form to 1e-12 over 30
+    modes; at a cable pole (a local mode there, the platform at rest, and modes with a pole
+    within the steps) too."""
+    from dynstiff.workspace_map import platform_participation
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    f = ds.eigenfrequencies(m, n_modes=30)
+    np.testing.assert_allclose(platform_participation(m, f), _participation_mode_by_mode(m, f),
+                               rtol=0, atol=1e-12)
+    pole = np.pi * np.sqrt(m.params[0].T / m.params[0].m) / m.params[0].L / (2 * np.pi)
+    g = np.sort(np.concatenate([f[:5], [pole, pole * (1 + 3e-7)]]))
+    np.testing.assert_allclose(platform_participation(m, g), _participation_mode_by_mode(m, g),
+                               rtol=0, atol=1e-12)
