@@ -54,11 +54,12 @@ def _distribution(W, w, t_min, t_max, t_ref=None, sides=None):
     """:func:`tension_distribution` and the active set it ends with.
 
     ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),
-    e.g. the previous fixed-point iteration's, is tried as a start of the active-set method
-    when the minimum-distance solution leaves the limits: if the tensions it gives (the
-    held ones at their limits, the free ones the minimum-distance solution of the balance)
-    are within the limits, they replace the LP's feasible point. The optimum is unique and
-    the result a function of the final active set alone, so the start does not change it.
+    e.g. the previous fixed-point iteration's, then the limits that the minimum-distance
+    solution violates, are tried as starts of the active-set method when that solution
+    leaves the limits: if the tensions an active set gives (the held ones at their limits,
+    the free ones the minimum-distance solution of the balance) are within the limits, they
+    replace the LP's feasible point. The optimum is unique and the result a function of the
+    final active set alone, so the start does not change it.
 
     Returns
     -------
@@ -85,8 +86,11 @@ def _distribution(W, w, t_min, t_max, t_ref=None, sides=None):
     if np.all(t >= t_min - tol) and np.all(t <= t_max + tol):
         return t, np.zeros(n, dtype=int)
     ub = np.where(np.isfinite(t_max), t_max, np.inf)
-    if sides is not None and n > k and np.any(sides):
-        bound = np.where(sides < 0, t_min, np.where(sides > 0, ub, np.nan))
+    # active sets to start from: the given one, then the limits the solution violates
+    guesses = [] if sides is None or not np.any(sides) else [sides]
+    guesses.append(np.where(t < t_min, -1, np.where(t > t_max, 1, 0)))
+    for guess in guesses if n > k else ():
+        bound = np.where(guess < 0, t_min, np.where(guess > 0, ub, np.nan))
         start = _active_solution(W, w, bound, t_ref)
         if start is not None and np.all(start >= t_min) and np.all(start <= ub):
             return _closest_in_box(W, w, t_min, ub, t_ref, start, tol, bound)
