@@ -21,6 +21,7 @@ vertical or weightless is handed to the scalar bracketing solver
 cannot be reached.
 """
 
+import functools
 import importlib.util
 
 import numpy as np
@@ -99,6 +100,7 @@ def _newton(lh, h, L, t, EA, w0, H, V0, L0):
     return H, V0, L0, ok, res
 
 
+@functools.cache
 def _compiled_newton():
     """The compiled Newton (:func:`dynstiff.compiled_catenary.newton_taut`), or None
     without numba."""
