@@ -50,7 +50,7 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     return _distribution(W, w, t_min, t_max, t_ref)[0]
 
 
-def _distribution(W, w, t_min, t_max, t_ref=None, sides=None):
+def _distribution(W, w, t_min, t_max, t_ref=None, sides=None, warm=True):
     """:func:`tension_distribution` and the active set it ends with.
 
     ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),
@@ -59,7 +59,8 @@ def _distribution(W, w, t_min, t_max, t_ref=None, sides=None):
     leaves the limits: if the tensions an active set gives (the held ones at their limits,
     the free ones the minimum-distance solution of the balance) are within the limits, they
     replace the LP's feasible point. The optimum is unique and the result a function of the
-    final active set alone, so the start does not change it.
+    final active set alone, so the start does not change it. ``warm=False``: always the
+    LP's feasible point (the reference).
 
     Returns
     -------
@@ -89,7 +90,7 @@ def _distribution(W, w, t_min, t_max, t_ref=None, sides=None):
     # active sets to start from: the given one, then the limits the solution violates
     guesses = [] if sides is None or not np.any(sides) else [sides]
     guesses.append(np.where(t < t_min, -1, np.where(t > t_max, 1, 0)))
-    for guess in guesses if n > k else ():
+    for guess in guesses if n > k and warm else ():
         bound = np.where(guess < 0, t_min, np.where(guess > 0, ub, np.nan))
         start = _active_solution(W, w, bound, t_ref)
         if start is not None and np.all(start >= t_min) and np.all(start <= ub):

@@ -196,7 +196,8 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     monkeypatch.setattr(statics, "taut_catenaries",
                         lambda *a, **k: batched(*a, **{**k, "compiled": False}))
     monkeypatch.setattr(statics, "_distribution",
-                        lambda W, w, lo, hi, r=None, sides=None: dist(W, w, lo, hi, r))
+                        lambda W, w, lo, hi, r=None, sides=None: dist(W, w, lo, hi, r,
+                                                                      warm=False))
     ref = run()
     assert 0 < ref["feasible"].sum() < len(X)
     assert np.sum(np.isclose(ref["min_tension"], robot.tension_limits[0], rtol=1e-9)) > 5
