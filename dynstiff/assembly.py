@@ -25,7 +25,8 @@ from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_R
                         mode_count_nondimensional, stack_parameters)
 from .errors import ClosedFormWarning, InvalidParameterError
 from .model_base import PlatformModel, require_equilibrium
-from .platform import lever_map, platform_mass_matrix
+from .catenary import end_stiffnesses
+from .platform import lever_map, lever_maps, platform_mass_matrix
 
 __all__ = ["FrequencyModel"]
 
@@ -102,6 +103,7 @@ class FrequencyModel(PlatformModel):
         self.platform_damping_ratio = positive_scalar(
             "platform_damping_ratio", platform_damping_ratio, allow_zero=True)
         params = [chord_parameters(s, tension) for s in equilibrium.states]
+        own = params                         # before damping=False changes them
         if not damping:
             params = [replace(p, c=0.0, EA=float(np.real(p.EA))) for p in params]
             self.damped = False
@@ -110,7 +112,8 @@ class FrequencyModel(PlatformModel):
             self.damped = True
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
-        validity = [closed_form_validity(s, 0.0, tension) for s in equilibrium.states]
+        validity = [closed_form_validity(s, 0.0, tension, p)
+                    for s, p in zip(equilibrium.states, own)]
         self._validity = tuple(validity)
         self._axial_omega = np.array([AXIAL_MARGIN * 2 * np.pi * v.values["axial_hz"]
                                       for v in validity])
@@ -187,24 +190,21 @@ class FrequencyModel(PlatformModel):
 
         Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
         (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
-        it."""
-        fi = self.free_index
-        K_ex = self._K_geo_free.copy()
-        dK = []
-        K0 = self.cable_coefficients(np.zeros(1)).real.reshape(len(self.params), 5)
-        for i, (s, r) in enumerate(zip(self.equilibrium.states, self.lever_arms)):
-            J = lever_map(r, fi)
-            Ke = J.T @ s.end_stiffness @ J
-            K_ex += Ke
-            Kd = (K0[i] @ self._assembly[5 * i:5 * i + 5]).reshape(self.n_free, self.n_free)
-            dK.append(Kd - Ke)
+        it. All cables at once (:func:`dynstiff.catenary.end_stiffnesses`)."""
+        nf, n = self.n_free, len(self.params)
+        J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
+        Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
+        K_ex = self._K_geo_free + Ke.sum(axis=0)
+        K0 = self.cable_coefficients(np.zeros(1)).real.reshape(n, 1, 5)
+        Kd = np.matmul(K0, self._assembly.reshape(n, 5, nf * nf)).reshape(n, nf, nf)
+        dK = Kd - Ke
         from scipy.linalg import eigh
         lam, X = eigh(0.5 * (K_ex + K_ex.T), self.platform_mass)
         ok = lam > 0
         if not np.any(ok):
             return 0.0, None
         X, lam = X[:, ok], lam[ok]
-        per = np.array([np.einsum("ik,ij,jk->k", X, d, X) for d in dK]) / (2 * lam)
+        per = np.einsum("ik,cij,jk->ck", X, dK, X) / (2 * lam)
         total = np.abs(per.sum(axis=0))
         k = int(np.argmax(total))
         return float(total[k]), int(np.argmax(np.abs(per[:, k])))

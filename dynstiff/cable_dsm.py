@@ -689,15 +689,16 @@ class ClosedFormValidity:
         return [text[k] for k, e in self.causes.items() if e > rtol]
 
 
-def closed_form_validity(state, omega_max=0.0, tension="mean"):
+def closed_form_validity(state, omega_max=0.0, tension="mean", params=None):
     """How far the closed form can be trusted for this cable up to omega_max [rad/s]
-    (theory.md §11.5); omega_max decides whether axial modes enter the band.
+    (theory.md §11.5); omega_max decides whether axial modes enter the band. ``params``:
+    ``chord_parameters(state, tension)`` when the caller has it already.
 
     Returns
     -------
     ClosedFormValidity
     """
-    p = chord_parameters(state, tension)
+    p = chord_parameters(state, tension) if params is None else params
     delta = p.sag / p.L
     eps = state.total_weight * abs(state.chord[2]) / state.chord_length / p.T
     t_min, t_max = state.min_tension, state.max_tension

@@ -37,7 +37,7 @@ from .errors import ConvergenceError, InvalidParameterError, SlackCableError
 from .params import Cable
 
 __all__ = ["CatenaryState", "solve_catenary", "unstretched_length_for_tension",
-           "divided_differences"]
+           "divided_differences", "end_stiffnesses"]
 
 _RTOL = 1e-12
 _EZ = np.array([0.0, 0.0, 1.0])
@@ -343,6 +343,46 @@ class CatenaryState:
         B = np.column_stack([e_h, _EZ])
         K = B @ K2 @ B.T + self.out_of_plane_stiffness * np.outer(e_p, e_p)
         return 0.5 * (K + K.T)
+
+
+def end_stiffnesses(states):
+    """:attr:`CatenaryState.end_stiffness` of many cables at once [N/m], shape (n, 3, 3).
+
+    The same formulas on arrays (in-plane flexibility of §1.1 inverted, out-of-plane term
+    H / l_h, symmetrised); a cable with H = 0 (vertical chord) takes its own property.
+    Equal to the one-cable property to round-off."""
+    n = len(states)
+    H = np.array([s.H for s in states])
+    V0 = np.array([s.V0 for s in states])
+    L0 = np.array([s.unstretched_length for s in states])
+    EA = np.array([s.cable.EA for s in states])
+    w0 = np.array([s.cable.weight_per_length(s.g) for s in states])
+    d = np.array([s.end - s.anchor for s in states]).reshape(n, 3)
+    lh = np.hypot(d[:, 0], d[:, 1])
+    taut = H != 0.0
+    Hs = np.where(taut, H, 1.0)
+    W = w0 * L0
+    a, b = V0 / Hs, (V0 + W) / Hs
+    d_asinh, d_f, d_g, _ = divided_differences(a, b, W / Hs)
+    f11 = L0 / EA + (L0 / Hs) * (d_asinh - d_f)
+    f12 = (L0 / Hs) * d_g
+    f22 = L0 / EA + (L0 / Hs) * d_f
+    det = f11 * f22 - f12 * f12
+    k11, k12, k22 = f22 / det, -f12 / det, f11 / det          # inverse of the flexibility
+    vertical = lh <= 1e-14 * np.linalg.norm(d, axis=1)
+    lh_s = np.where(vertical, 1.0, lh)
+    eh = np.stack([np.where(vertical, 1.0, d[:, 0] / lh_s),
+                   np.where(vertical, 0.0, d[:, 1] / lh_s), np.zeros(n)], axis=1)
+    ep = np.stack([-eh[:, 1], eh[:, 0], np.zeros(n)], axis=1)           # e_z x e_h
+    ez = np.broadcast_to(_EZ, (n, 3))
+    K = (k11[:, None, None] * eh[:, :, None] * eh[:, None, :]
+         + k12[:, None, None] * (eh[:, :, None] * ez[:, None, :] + ez[:, :, None] * eh[:, None, :])
+         + k22[:, None, None] * ez[:, :, None] * ez[:, None, :]
+         + (Hs / lh_s)[:, None, None] * ep[:, :, None] * ep[:, None, :])
+    K = 0.5 * (K + np.swapaxes(K, 1, 2))
+    for i in np.flatnonzero(~taut):
+        K[i] = states[i].end_stiffness
+    return K
 
 
 # --------------------------------------------------------------------------- solver

@@ -21,6 +21,9 @@ vertical or weightless is handed to the scalar bracketing solver
 cannot be reached.
 """
 
+import functools
+import importlib.util
+
 import numpy as np
 
 from .catenary import CatenaryState, divided_differences, unstretched_length_for_tension
@@ -97,7 +100,25 @@ def _newton(lh, h, L, t, EA, w0, H, V0, L0):
     return H, V0, L0, ok, res
 
 
-def taut_catenaries(anchors, ends, tensions, EA, w0, start=None):
+@functools.cache
+def _compiled_newton():
+    """The compiled Newton (:func:`dynstiff.compiled_catenary.newton_taut`), or None
+    without numba."""
+    if importlib.util.find_spec("numba") is None:
+        return None
+    from .compiled_catenary import newton_taut
+    return newton_taut
+
+
+def _solve(compiled, args, guess):
+    """(H, V0, L0, ok, residual) of Newton from ``guess``: compiled or numpy."""
+    if compiled is not None:
+        return list(compiled(*args, *guess, _RTOL, _MAX_ITER))
+    with np.errstate(all="ignore"):       # a diverging cable shows as non-finite, not ok
+        return list(_newton(*args, *guess))
+
+
+def taut_catenaries(anchors, ends, tensions, EA, w0, start=None, compiled=True):
     """(H, V0, L0) of every cable with tension ``tensions`` at its end B (taut branch).
 
     Inputs are taken as valid (finite, ends distinct from anchors, tensions > 0): the
@@ -116,6 +137,9 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None):
     start : tuple of three ndarray, shape (n,), optional
         (H, V0, L0) to start Newton from (the previous outer iteration or a neighbouring
         pose); default the straight elastic cable with the prescribed tension.
+    compiled : bool
+        Use the compiled Newton (:mod:`dynstiff.compiled_catenary`, equal to round-off) when
+        numba is installed; False: the numpy Newton (the reference).
 
     Returns
     -------
@@ -146,14 +170,13 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None):
             guess = None
     if guess is None:
         guess = _straight_start(*args)
-    with np.errstate(all="ignore"):       # a diverging cable shows as non-finite, not ok
-        sol = list(_newton(*args, *guess))
+    fast = _compiled_newton() if compiled else None
+    sol = _solve(fast, args, guess)
     ok = sol[3]
     if start is not None and not np.all(ok):      # retry the others from the straight cable
         redo = np.flatnonzero(~ok)
         sub = tuple(a[redo] for a in args)
-        with np.errstate(all="ignore"):
-            again = _newton(*sub, *_straight_start(*sub))
+        again = _solve(fast, sub, _straight_start(*sub))
         for k, v in enumerate(again):
             sol[k][redo] = v
     H, V0, L0, ok, res = sol

@@ -27,8 +27,8 @@ from ._vec import cross
 from .constants import DOF_NAMES
 from .errors import InvalidParameterError
 
-__all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "rotation_matrix", "platform_mass_matrix",
-           "rotvec_to_quaternion", "quaternion_to_rotvec", "quaternion_product"]
+__all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "lever_maps", "rotation_matrix",
+           "platform_mass_matrix", "rotvec_to_quaternion", "quaternion_to_rotvec", "quaternion_product"]
 
 
 
@@ -46,6 +46,20 @@ def lever_map(r, free_index=None):
     """
     J = np.hstack([np.eye(3), -skew(r)])
     return J if free_index is None else J[:, free_index]
+
+
+def lever_maps(r, free_index=None):
+    """:func:`lever_map` of many lever arms at once: r of shape (n, 3) -> (n, 3, 6), or
+    (n, 3, n_free) restricted to ``free_index`` [-, m]."""
+    r = np.asarray(r, dtype=float)
+    n = r.shape[0]
+    J = np.zeros((n, 3, 6))
+    J[:, [0, 1, 2], [0, 1, 2]] = 1.0
+    z = np.zeros(n)
+    J[:, :, 3:] = -np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1),
+                             np.stack([r[:, 2], z, -r[:, 0]], 1),
+                             np.stack([-r[:, 1], r[:, 0], z], 1)], 1)
+    return J if free_index is None else J[:, :, free_index]
 
 
 def rotation_matrix(rotvec):

@@ -47,22 +47,54 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     SlackCableError
         No admissible distribution exists (the message names the violated limit).
     """
+    return _distribution(W, w, t_min, t_max, t_ref)[0]
+
+
+def _distribution(W, w, t_min, t_max, t_ref=None, sides=None, warm=True):
+    """:func:`tension_distribution` and the active set it ends with.
+
+    ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),
+    e.g. the previous fixed-point iteration's, then the limits that the minimum-distance
+    solution violates, are tried as starts of the active-set method when that solution
+    leaves the limits: if the tensions an active set gives (the held ones at their limits,
+    the free ones the minimum-distance solution of the balance) are within the limits, they
+    replace the LP's feasible point. The optimum is unique and the result a function of the
+    final active set alone, so the start does not change it. ``warm=False``: always the
+    LP's feasible point (the reference).
+
+    Returns
+    -------
+    t : ndarray, shape (n,)
+    sides : ndarray of int, shape (n,)
+        The final active set (all 0 when the minimum-distance solution is within limits).
+    """
     k, n = W.shape
     t_min = np.broadcast_to(np.asarray(t_min, dtype=float), (n,))
     t_max = np.broadcast_to(np.asarray(t_max, dtype=float), (n,))
     t_ref = t_min.copy() if t_ref is None else np.broadcast_to(
         np.asarray(t_ref, dtype=float), (n,)).copy()
-    rank = np.linalg.matrix_rank(W)
+    # minimum-distance solution of the equality (its SVD gives the rank, with
+    # np.linalg.matrix_rank's threshold: eps max(k, n) times the largest singular value);
+    # if it leaves the limits, a feasible point (the previous active set's solution, else an
+    # LP in the null space of W), then the exact closest one (active set)
+    dt, _, rank, _ = np.linalg.lstsq(W, w - W @ t_ref, rcond=None)
     if rank < k:
         raise SlackCableError(
             f"the cable directions span only {rank} of the {k} free DOFs "
             f"(singular configuration), no tension distribution balances the platform")
-    # minimum-distance solution of the equality; if it leaves the limits, a feasible point
-    # (LP in the null space of W), then the exact closest one (active set)
-    t = t_ref + np.linalg.lstsq(W, w - W @ t_ref, rcond=None)[0]
+    t = t_ref + dt
     tol = 1e-9 * max(1.0, np.abs(t).max())
     if np.all(t >= t_min - tol) and np.all(t <= t_max + tol):
-        return t
+        return t, np.zeros(n, dtype=int)
+    ub = np.where(np.isfinite(t_max), t_max, np.inf)
+    # active sets to start from: the given one, then the limits the solution violates
+    guesses = [] if sides is None or not np.any(sides) else [sides]
+    guesses.append(np.where(t < t_min, -1, np.where(t > t_max, 1, 0)))
+    for guess in guesses if n > k and warm else ():
+        bound = np.where(guess < 0, t_min, np.where(guess > 0, ub, np.nan))
+        start = _active_solution(W, w, bound, t_ref)
+        if start is not None and np.all(start >= t_min) and np.all(start <= ub):
+            return _closest_in_box(W, w, t_min, ub, t_ref, start, tol, bound)
     if n == k:
         raise SlackCableError(
             f"the unique tension distribution {np.round(t, 6).tolist()} N violates the "
@@ -70,21 +102,37 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     from scipy.linalg import null_space
     from scipy.optimize import linprog
     N = null_space(W)
-    ub = np.where(np.isfinite(t_max), t_max, 1e300)
     # feasibility: find lambda with t_min <= t + N lambda <= t_max
     A_ub = np.vstack([-N, N])
-    b_ub = np.concatenate([t - t_min, ub - t])
+    b_ub = np.concatenate([t - t_min, np.where(np.isfinite(t_max), t_max, 1e300) - t])
     lp = linprog(np.zeros(N.shape[1]), A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * N.shape[1],
                  method="highs")
     if lp.status != 0:
         raise SlackCableError(
             f"no tension distribution within {_limits(t_min, t_max)} N balances the platform "
             f"(the pose is outside the wrench-feasible workspace)")
-    return _closest_in_box(W, w, t_min, np.where(np.isfinite(t_max), t_max, np.inf), t_ref,
-                           lp.x @ N.T + t, tol)
+    return _closest_in_box(W, w, t_min, ub, t_ref, lp.x @ N.T + t, tol)
 
 
-def _closest_in_box(W, w, lb, ub, r, t, tol):
+def _active_solution(W, w, bound, r):
+    """Tensions with the active ones at ``bound`` (NaN: free) and the free ones the
+    minimum-distance solution of the balance (the target of :func:`_closest_in_box`), or
+    None when the free cables cannot balance the rest."""
+    act = ~np.isnan(bound)
+    free = ~act
+    target = np.where(act, bound, 0.0)
+    b = w - W[:, act] @ bound[act]
+    Wf = W[:, free]
+    if not np.any(free):
+        return None
+    sol, _, rank, _ = np.linalg.lstsq(Wf, b - Wf @ r[free], rcond=None)
+    if rank < W.shape[0]:
+        return None
+    target[free] = r[free] + sol
+    return target
+
+
+def _closest_in_box(W, w, lb, ub, r, t, tol, bound=None):
     """min ||t - r||^2 subject to W t = w, lb <= t <= ub, by a primal active-set method
     (Nocedal & Wright, Numerical Optimization, 2nd ed., Alg. 16.3) from the feasible t.
 
@@ -106,14 +154,20 @@ def _closest_in_box(W, w, lb, ub, r, t, tol):
         A feasible start [N].
     tol : float
         Feasibility and multiplier tolerance [N].
+    bound : ndarray, shape (n,), optional
+        Starting active set: the bound each active tension is held at (``t`` holds it
+        there), NaN for a free one; default none active.
 
     Returns
     -------
-    ndarray, shape (n,)
+    t : ndarray, shape (n,)
+    sides : ndarray of int, shape (n,)
+        -1 / +1 where the tension ends at its lower / upper bound (active), 0 free.
     """
     n = t.size
     t = t.copy()
-    bound = np.full(n, np.nan)            # the bound an active tension is held at, else nan
+    # the bound an active tension is held at, else nan
+    bound = np.full(n, np.nan) if bound is None else bound.copy()
     scale = max(1.0, np.abs(t).max(), np.abs(r).max())
     for _ in range(10 * n + 10):
         act = ~np.isnan(bound)
@@ -137,7 +191,7 @@ def _closest_in_box(W, w, lb, ub, r, t, tol):
                 continue
         t = target
         if not np.any(act):
-            return t
+            return t, np.zeros(n, dtype=int)
         nu = (np.linalg.lstsq(Wf.T, -(t - r)[free], rcond=None)[0] if np.any(free)
               else np.zeros(W.shape[0]))
         g = (t - r) + W.T @ nu                # = mu_lower - mu_upper
@@ -145,7 +199,7 @@ def _closest_in_box(W, w, lb, ub, r, t, tol):
         mu[free] = np.inf
         i = int(np.argmin(mu))
         if mu[i] >= -tol:
-            return t
+            return t, np.where(act, np.where(bound == lb, -1, 1), 0)
         bound[i] = np.nan
     raise ConvergenceError(
         f"tension distribution: the active-set method did not settle in {10 * n + 10} "
@@ -227,11 +281,12 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
         lo = np.zeros(n)
         hi = np.zeros(n)
     best, since_best = np.inf, 0
+    sides = None                          # the last distribution's active set
     for it in range(max_iter):
         W = np.vstack([u.T, cross(r, u).T])[fi]
         try:
-            t = tension_distribution(W, -wg[fi], t_min + lo, t_max - hi,
-                                     tension_reference)
+            t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
+                                     sides)
         except SlackCableError as exc:
             raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)

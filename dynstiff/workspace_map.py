@@ -109,6 +109,13 @@ def _margin(f_global, band_hz):
 _FD_STEP = 1e-6        # relative frequency step of the derivative of K(omega) in omega^2
 
 
+def _quadratic(x, A):
+    """x_k^T A_k x_k for x (n, m) and A (n, m, m), each as ``x[k] @ A[k] @ x[k]`` (the same
+    products, so the same rounding, as one mode at a time: the form is close to
+    cancellation, and the order of its sums moves it by 1e-9)."""
+    return np.array([xk @ Ak @ xk for xk, Ak in zip(x, A)])
+
+
 def platform_participation(model, freq_hz):
     """Platform share of the kinetic energy of the modes at ``freq_hz`` [-], shape (n,).
 
@@ -118,7 +125,8 @@ def platform_participation(model, freq_hz):
     1e-6 and 5e-7 (relative), Richardson-extrapolated: all modes in one call of
     ``dynamic_stiffness``. A mode with a cable pole within the steps takes the closed-form
     cable energies instead (``cable_kinetic_energies``, as :func:`dynstiff.modes`); a mode
-    on a cable pole with the platform at rest has share 0.
+    on a cable pole with the platform at rest has share 0. The modes' null vectors come
+    from one batched ``eigh`` (docs/theory.md §13.6).
 
     Parameters
     ----------
@@ -131,29 +139,33 @@ def platform_participation(model, freq_hz):
     if n == 0:
         return np.zeros(0)
     h = _FD_STEP
-    steps = np.array([1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
+    steps = np.array([1.0, 1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
     K = model.dynamic_stiffness(w)
-    Ks = model.dynamic_stiffness(np.outer(steps[:4], w).ravel()).reshape(4, n, *K.shape[1:])
-    J0 = model.cable_mode_count(np.outer(steps, w).ravel()).reshape(6, n)
+    Ks = model.dynamic_stiffness(np.outer(steps[1:5], w).ravel()).reshape(4, n, *K.shape[1:])
+    J0 = model.cable_mode_count(np.outer(steps[1:], w).ravel()).reshape(6, n)
     Mp = model.platform_mass
-    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
     out = np.zeros(n)
-    for k in range(n):
-        if not np.all(np.isfinite(K[k])):
-            continue
-        ev, V = np.linalg.eigh(K[k])
-        if J0[4, k] > J0[5, k] and np.abs(ev).min() > 1e-6 * scale:
-            continue                       # local mode on a cable pole, platform at rest
-        x = V[:, np.argmin(np.abs(ev))]
-        x = x / np.sqrt(x @ Mp @ x)
-        if J0[0, k] != J0[1, k]:           # a cable pole within the steps
-            full = np.zeros(6)
-            full[model.free_index] = x
-            out[k] = 1.0 / (1.0 + model.cable_kinetic_energies(w[k], full).sum())
-            continue
-        d1 = (Ks[0, k] - Ks[1, k]) / (w[k] ** 2 * ((1 + h) ** 2 - (1 - h) ** 2))
-        d2 = (Ks[2, k] - Ks[3, k]) / (w[k] ** 2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))
-        out[k] = 1.0 / -(x @ ((4.0 * d2 - d1) / 3.0) @ x)
+    fin = np.flatnonzero(np.all(np.isfinite(K), axis=(1, 2)))
+    if not fin.size:
+        return out
+    ev, V = np.linalg.eigh(K[fin])
+    least = np.abs(ev).min(axis=1)
+    pole = J0[4, fin] > J0[5, fin]             # a cable pole at the root
+    if np.any(pole):
+        scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+        keep = ~pole | (least <= 1e-6 * scale)
+        fin, ev, V = fin[keep], ev[keep], V[keep]  # else local mode, platform at rest
+    x = np.array([v[:, j] / np.sqrt(v[:, j] @ Mp @ v[:, j])
+                  for v, j in zip(V, np.argmin(np.abs(ev), axis=1))])
+    wk = w[fin]
+    d1 = (Ks[0, fin] - Ks[1, fin]) / (wk**2 * ((1 + h) ** 2 - (1 - h) ** 2))[:, None, None]
+    d2 = (Ks[2, fin] - Ks[3, fin]) / (wk**2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))[:, None,
+                                                                                    None]
+    out[fin] = 1.0 / -_quadratic(x, (4.0 * d2 - d1) / 3.0)
+    for j in np.flatnonzero(J0[0, fin] != J0[1, fin]):     # a cable pole within the steps
+        full = np.zeros(6)
+        full[model.free_index] = x[j]
+        out[fin[j]] = 1.0 / (1.0 + model.cable_kinetic_energies(w[fin[j]], full).sum())
     return out
 
 

@@ -141,6 +141,43 @@ def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogir
         ds.FrequencyModel(eq, guard_rtol=-1.0)
 
 
+def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):
+    """The guard's static check (all cables at once) against the sum written cable by
+    cable with each state's own end stiffness: error and cable equal on CoGiRo and on a
+    heavy sagging three-cable robot where it warns."""
+    from scipy.linalg import eigh
+
+    from dynstiff.platform import lever_map
+
+    def by_cable(m):
+        fi, nf = m.free_index, m.n_free
+        K_ex, dK = m.K_geo_free.copy(), []
+        K0 = m.cable_coefficients(np.zeros(1)).real.reshape(len(m.params), 5)
+        for i, (s, r) in enumerate(zip(m.equilibrium.states, m.lever_arms)):
+            J = lever_map(r, fi)
+            Ke = J.T @ s.end_stiffness @ J
+            K_ex += Ke
+            dK.append((K0[i] @ m.assembly_map[5 * i:5 * i + 5]).reshape(nf, nf) - Ke)
+        lam, X = eigh(0.5 * (K_ex + K_ex.T), m.platform_mass)
+        X, lam = X[:, lam > 0], lam[lam > 0]
+        per = np.array([np.einsum("ik,ij,jk->k", X, d, X) for d in dK]) / (2 * lam)
+        k = int(np.argmax(np.abs(per.sum(axis=0))))
+        return abs(per.sum(axis=0)[k]), int(np.argmax(np.abs(per[:, k])))
+
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    rob = ds.Robot(A, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
+    heavy = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    for eq in (cogiro_eq, heavy):
+        m = ds.FrequencyModel(eq, guard_rtol=None)
+        err, i = m.static_error()
+        ref, i_ref = by_cable(m)
+        assert i == i_ref
+        np.testing.assert_allclose(err, ref, rtol=1e-8)
+    assert ds.FrequencyModel(heavy, guard_rtol=None).static_error()[0] > 1e-2
+
+
 # ----------------------------------------------------------- damping of all cable motions
 def test_cable_loss_factor_damps_the_transverse_string_term(cogiro_eq):
     """Hysteretic damping of all stiffness forces (theory.md §12.2): the out-of-plane (ww)

@@ -312,3 +312,25 @@ def test_a_slack_cable_in_a_u_is_not_reported_as_a_taut_string():
     e = taut.chord / taut.chord_length
     line = np.max(np.linalg.norm(p - np.outer(p @ e, e), axis=1))
     assert taut.sag == pytest.approx(line, rel=1e-12)
+
+
+def test_end_stiffnesses_equal_each_cables_property():
+    """The batched end stiffness (all cables at once, used by the closed form's static
+    guard) equals CatenaryState.end_stiffness of every case above (slack, steep, near
+    vertical and rising included) and of an exactly vertical cable (H = 0), in any
+    horizontal direction of the chord."""
+    cable = cogiro_cable(17e9)
+    states = []
+    for _, A, B, ratio in CASES:
+        A, B = np.asarray(A, float), np.asarray(B, float)
+        for phi in (0.0, 2.1):
+            c, s = np.cos(phi), np.sin(phi)
+            R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+            states.append(ds.solve_catenary(R @ A, R @ B, ratio * np.linalg.norm(B - A),
+                                            cable))
+    states.append(ds.solve_catenary([0.0, 0.0, 10.0], [0.0, 0.0, 0.0], 9.99, cable))
+    assert states[-1].H == 0.0
+    K = ds.catenary.end_stiffnesses(states)
+    for Ki, s in zip(K, states):
+        ref = s.end_stiffness
+        np.testing.assert_allclose(Ki, ref, rtol=0, atol=1e-12 * np.abs(ref).max())

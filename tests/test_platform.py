@@ -43,3 +43,11 @@ def test_rotation_helpers_equal_scipy_rotation(angle):
         q = quaternion_product(rotvec_to_quaternion(w), rotvec_to_quaternion(v))
         ref = (Rotation.from_rotvec(w) * Rotation.from_rotvec(v)).as_rotvec()
         np.testing.assert_allclose(quaternion_to_rotvec(q), ref, rtol=0, atol=4e-15)
+
+
+def test_lever_maps_stack_lever_map():
+    """lever_maps of n arms is lever_map of each, all DOFs and a free subset."""
+    from dynstiff.platform import lever_map, lever_maps
+    r = np.random.default_rng(2).normal(size=(5, 3))
+    for fi in (None, np.array([0, 2, 3, 5])):
+        np.testing.assert_array_equal(lever_maps(r, fi), [lever_map(x, fi) for x in r])

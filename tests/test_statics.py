@@ -251,3 +251,66 @@ def test_infeasible_distributions_name_the_limits_uniform_or_per_cable():
     W3 = np.array([[1.0, -1.0, 0.5]])                       # redundant: LP finds none
     with pytest.raises(SlackCableError, match=r"no tension distribution within \[10, 20\] N"):
         tension_distribution(W3, np.array([100.0]), 10.0, 20.0)
+
+
+def test_warm_active_set_gives_the_lp_started_distribution_bitwise(monkeypatch):
+    """The fixed point starts each tension distribution from the previous iteration's active
+    set instead of the LP's feasible point: on CoGiRo grid poses where the limits are
+    active, the equilibria equal (bitwise) those of the LP-started distribution."""
+    from dynstiff import statics
+
+    robot = ds.load_scene("cogiro").robot
+    poses = [ds.Pose([x, y, z]) for x in (-5.0, -3.9, 3.9) for y in (-3.5, 0.4)
+             for z in (0.5, 1.6, 3.0)]
+    warm, used = [], []
+    plain = statics._distribution
+
+    def spy(W, w, t_min, t_max, t_ref=None, sides=None):
+        used.append(sides is not None and bool(np.any(sides)))
+        return plain(W, w, t_min, t_max, t_ref, sides)
+    monkeypatch.setattr(statics, "_distribution", spy)
+    for p in poses:
+        try:
+            warm.append(robot.equilibrium(pose=p))
+        except SlackCableError:
+            warm.append(None)
+    assert sum(used) >= 20                  # the warm start was tried
+    monkeypatch.setattr(statics, "_distribution",
+                        lambda W, w, lo, hi, r=None, sides=None: plain(W, w, lo, hi, r,
+                                                                       warm=False))
+    for p, eq in zip(poses, warm):
+        if eq is None:
+            with pytest.raises(SlackCableError):
+                robot.equilibrium(pose=p)
+            continue
+        cold = robot.equilibrium(pose=p)
+        np.testing.assert_array_equal(eq.tensions, cold.tensions)
+        np.testing.assert_array_equal(eq.unstretched_lengths, cold.unstretched_lengths)
+
+
+def test_distribution_from_any_active_set_is_the_optimum():
+    """Started from no active set (then from the violated limits), a right, a wrong or an
+    infeasible one, the distribution is the one started from the LP (bitwise: the result
+    depends on the final active set alone) and the brute-force optimum."""
+    from dynstiff import statics
+
+    rng = np.random.default_rng(7)
+    tried = 0
+    for _ in range(60):
+        W = rng.normal(size=(3, 6))
+        w = W @ rng.uniform(0.0, 3.0, 6)
+        lo, hi, r = 1.0, 2.5, rng.uniform(0.5, 2.0, 6)
+        try:
+            cold, sides = statics._distribution(W, w, lo, hi, r, warm=False)
+        except SlackCableError:
+            continue
+        if not np.any(sides):
+            continue
+        tried += 1
+        np.testing.assert_allclose(cold, brute_force(W, w, np.full(6, lo), np.full(6, hi), r),
+                                   rtol=0, atol=1e-8)
+        for start in (None, sides, -sides, np.roll(sides, 1), np.where(sides == 0, -1, sides)):
+            t, s = statics._distribution(W, w, lo, hi, r, start)
+            np.testing.assert_array_equal(t, cold)
+            np.testing.assert_array_equal(s, sides)
+    assert tried >= 10

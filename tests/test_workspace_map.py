@@ -170,3 +170,91 @@ def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies
     near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
     got = wsmod.platform_participation(m, res.freq_hz)
     np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
+
+
+def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
+    """A 5 x 4 x 3 grid of CoGiRo poses over the frame (edges, infeasible poses and active
+    tension limits included), warm-started along chunks, with the compiled Newton and the
+    warm active set (theory.md §13.6) against the numpy Newton with LP-started tension
+    distributions: the same feasibility, reasons and verdicts; tensions, lengths, sag,
+    frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
+    finite-difference derivative (§13.3), which magnifies round-off."""
+    from dynstiff import statics
+    from dynstiff.workspace_map import evaluate_chunk
+
+    grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
+                                np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)
+    X = np.hstack([grid, np.zeros_like(grid)])
+
+    def run():
+        parts = [evaluate_chunk(robot, X[s:s + 12], 12, BAND, 0.05, 0.03, 0.02, "dsm", {})
+                 for s in range(0, len(X), 12)]
+        return {k: ([r for p in parts for r in p[k]] if k == "reason"
+                    else np.concatenate([p[k] for p in parts])) for k in parts[0]}
+    fast = run()
+    batched, dist = statics.taut_catenaries, statics._distribution
+    monkeypatch.setattr(statics, "taut_catenaries",
+                        lambda *a, **k: batched(*a, **{**k, "compiled": False}))
+    monkeypatch.setattr(statics, "_distribution",
+                        lambda W, w, lo, hi, r=None, sides=None: dist(W, w, lo, hi, r,
+                                                                      warm=False))
+    ref = run()
+    assert 0 < ref["feasible"].sum() < len(X)
+    assert np.sum(np.isclose(ref["min_tension"], robot.tension_limits[0], rtol=1e-9)) > 5
+    assert fast["reason"] == ref["reason"]
+    for k in ("feasible", "is_global", "passed"):
+        np.testing.assert_array_equal(fast[k], ref[k])
+    for k in ("tension", "unstretched_length", "min_tension", "max_tension", "sag_ratio",
+              "freq", "first_global_hz"):
+        np.testing.assert_allclose(fast[k], ref[k], rtol=1e-12, atol=0, err_msg=k)
+    for k in ("band_margin", "proximity_gap"):
+        np.testing.assert_allclose(fast[k], ref[k], rtol=0, atol=1e-12, err_msg=k)
+    np.testing.assert_allclose(fast["platform_participation"], ref["platform_participation"],
+                               rtol=0, atol=1e-7)
+
+
+def _participation_mode_by_mode(model, freq_hz):
+    """platform_participation written one mode at a time (its first form, theory.md
+    §13.3), the reference of the batched one."""
+    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
+    n, h = w.size, 1e-6
+    steps = np.array([1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
+    K = model.dynamic_stiffness(w)
+    Ks = model.dynamic_stiffness(np.outer(steps[:4], w).ravel()).reshape(4, n, *K.shape[1:])
+    J0 = model.cable_mode_count(np.outer(steps, w).ravel()).reshape(6, n)
+    Mp = model.platform_mass
+    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+    out = np.zeros(n)
+    for k in range(n):
+        if not np.all(np.isfinite(K[k])):
+            continue
+        ev, V = np.linalg.eigh(K[k])
+        if J0[4, k] > J0[5, k] and np.abs(ev).min() > 1e-6 * scale:
+            continue
+        x = V[:, np.argmin(np.abs(ev))]
+        x = x / np.sqrt(x @ Mp @ x)
+        if J0[0, k] != J0[1, k]:
+            full = np.zeros(6)
+            full[model.free_index] = x
+            out[k] = 1.0 / (1.0 + model.cable_kinetic_energies(w[k], full).sum())
+            continue
+        d1 = (Ks[0, k] - Ks[1, k]) / (w[k] ** 2 * ((1 + h) ** 2 - (1 - h) ** 2))
+        d2 = (Ks[2, k] - Ks[3, k]) / (w[k] ** 2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))
+        out[k] = 1.0 / -(x @ ((4.0 * d2 - d1) / 3.0) @ x)
+    return out
+
+
+@pytest.mark.parametrize("position", [[0.0, 0.0, 1.0], [-3.0, 2.0, 2.5], [4.0, -3.0, 0.8]])
+def test_batched_participation_equals_the_mode_by_mode_one(robot, position):
+    """The batched platform participation equals the mode-by-mode form to 1e-12 over 30
+    modes; at a cable pole (a local mode there, the platform at rest, and modes with a pole
+    within the steps) too."""
+    from dynstiff.workspace_map import platform_participation
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    f = ds.eigenfrequencies(m, n_modes=30)
+    np.testing.assert_allclose(platform_participation(m, f), _participation_mode_by_mode(m, f),
+                               rtol=0, atol=1e-12)
+    pole = np.pi * np.sqrt(m.params[0].T / m.params[0].m) / m.params[0].L / (2 * np.pi)
+    g = np.sort(np.concatenate([f[:5], [pole, pole * (1 + 3e-7)]]))
+    np.testing.assert_allclose(platform_participation(m, g), _participation_mode_by_mode(m, g),
+                               rtol=0, atol=1e-12)
