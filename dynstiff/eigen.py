@@ -286,28 +286,37 @@ def _compiled():
     return compiled_dsm
 
 
-def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=100):
+def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=200):
     """Vectorised Illinois regula falsi on the eigenvalue of K that crosses zero in [lo, hi].
 
     In an isolated bracket without cable poles, s{K} goes from s_lo = J_lo - J0 to s_lo + 1,
     so eigenvalue number idx = s_lo (ascending) goes from f_lo >= 0 to f_hi < 0, decreasing
-    (W-W monotonicity). Falls back to bisection where the update leaves the bracket. Each
+    (W-W monotonicity). Falls back to bisection where the update leaves the bracket, and
+    where the bracket has not halved in three steps (a strongly curved function keeps regula
+    falsi creeping from one end), so that the width halves at least every fourth step. Each
     iterate x comes with a second point 0.45 rtol hi from it towards the far end of the
     bracket, in the same batched evaluation: once x is within that distance of the root the
     pair brackets it and the bracket closes to rtol at once. When the same end moves twice,
-    the retained end's value is scaled by the Anderson-Bjorck factor (theory.md §14.2).
-    Only the brackets still wider than rtol are evaluated. Returns roots [rad/s].
+    the retained end's value is scaled by the Anderson-Bjorck factor (theory.md §14.2). Only
+    the brackets still wider than rtol are evaluated. Returns roots [rad/s].
+
+    Raises
+    ------
+    ConvergenceError
+        A bracket still wider than rtol after ``max_iter`` steps (with its width).
     """
     lo, hi, f_lo, f_hi = (np.array(v, dtype=float) for v in (lo, hi, f_lo, f_hi))
     side = np.zeros(len(lo), dtype=int)
+    stall = np.zeros(len(lo), dtype=int)          # steps since the bracket last halved
     for _ in range(max_iter):
         act = np.flatnonzero(hi - lo > rtol * hi)
         if not act.size:
             break
         L, H, FL, FH, S = lo[act], hi[act], f_lo[act], f_hi[act], side[act]
+        width = H - L
         with np.errstate(divide="ignore", invalid="ignore"):
             x = (L * FH - H * FL) / (FH - FL)
-        bad = ~np.isfinite(x) | (x <= L) | (x >= H)
+        bad = ~np.isfinite(x) | (x <= L) | (x >= H) | (stall[act] >= 3)
         x = np.where(bad, 0.5 * (L + H), x)
         step = np.where(H - x > x - L, 1.0, -1.0) * 0.45 * rtol * H
         x2 = np.clip(x + step, np.nextafter(L, H), np.nextafter(H, L))
@@ -336,6 +345,14 @@ def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=100):
         xz = np.where(fa == 0, a, b)
         L, H = np.where(zero, xz, L), np.where(zero, xz, H)
         lo[act], hi[act], f_lo[act], f_hi[act], side[act] = L, H, FL, FH, S
+        stall[act] = np.where(H - L <= 0.5 * width, 0, stall[act] + 1)
+    else:
+        wide = hi - lo > rtol * hi
+        if np.any(wide):
+            k = int(np.flatnonzero(wide)[0])
+            raise ConvergenceError(
+                f"the regula falsi left the bracket [{lo[k]:.12g}, {hi[k]:.12g}] rad/s wider "
+                f"than rtol = {rtol:g} after {max_iter} steps", residual=(hi[k] - lo[k]) / hi[k])
     return 0.5 * (lo + hi)
 
 
