@@ -101,6 +101,16 @@ EQUIVALENT.update({
     f"{_CE}xǁExactCableǁ_self_check__mutmut_10":
         "err < instead of <= the tolerance: differs only at exactly 1e-6",
 })
+_EM = "dynstiff.exact_model.xǁExactModelǁ"
+EQUIVALENT.update({
+    f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
+    f"{_EM}_block__mutmut_36": _ERRSTATE, f"{_EM}_block__mutmut_37": _ERRSTATE,
+    f"{_EM}__init____mutmut_123": _EINSUM,
+    f"{_EM}__init____mutmut_132": "beta_dyads(ends='END'): any value but 'both' gives the "
+                                  "end block",
+    f"{_EM}dynamic_stiffness__mutmut_30": "the block of frequencies evaluated at once "
+                                          "(memory only; every block gives the same K)",
+})
 EQUIVALENT.update({f"{_CE}xǁExactCableǁlocal_coefficients__mutmut_{n}": _ERRSTATE
                    for n in (5, 6, 7, 8)})
 EQUIVALENT.update({f"{_CE}xǁExactCableǁend_response__mutmut_{n}": _ERRSTATE

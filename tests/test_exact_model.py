@@ -239,3 +239,34 @@ def test_with_damping_keeps_the_band_and_mesh_and_still_fields_every_cable(cogir
     assert not np.any(disp)
     for c, p in zip(m.cables, pos):
         np.testing.assert_allclose(p, c.state.profile(41), rtol=0, atol=0)
+
+
+def test_cable_damping_at_robot_level_is_the_undamped_model_at_a_complex_frequency():
+    """Viscous cable damping c is the complex mass m - i c / omega (theory.md §11.3): the
+    robot's K(omega) equals the undamped robot's at omega_c = sqrt(omega^2 - i omega c / m)
+    once the platform's own inertia term is put back at the real omega. Hysteretic damping
+    makes even the static stiffness complex. ``damping=False`` drops every damping option,
+    ``undamped`` keeps the band and the mesh, and any band above 0 Hz is accepted."""
+    from dynstiff.exact_model import ExactModel
+    base = ds.load_scene("cogiro")
+    c, m = 0.4, base.robot.cables[0].mass_per_length
+    viscous = dataclasses.replace(base.robot, cables=tuple(
+        dataclasses.replace(k, viscous_damping=c) for k in base.robot.cables))
+    eq_v = viscous.equilibrium(pose=base.pose)
+    md = ExactModel(eq_v, fmax_hz=6.0, half_waves=3.0)
+    mu = md.undamped()
+    assert md.damped and not mu.damped and (mu.fmax_hz, mu.half_waves) == (6.0, 3.0)
+    w = TWO_PI * np.array([0.7, 2.3, 4.9])
+    wc = np.sqrt(w**2 - 1j * w * c / m)
+    expected = mu.dynamic_stiffness(wc) + (wc**2 - w**2)[:, None, None] * mu.platform_mass
+    K = md.dynamic_stiffness(w)
+    np.testing.assert_allclose(K, expected, rtol=0, atol=1e-10 * np.abs(K).max())
+    hyst = dataclasses.replace(base.robot, cables=tuple(
+        dataclasses.replace(k, loss_factor=0.02) for k in base.robot.cables))
+    K0 = ExactModel(hyst.equilibrium(pose=base.pose), fmax_hz=2.0).dynamic_stiffness(0.0)[0]
+    assert np.abs(K0.imag).max() > 1e-3 * np.abs(K0.real).max()
+    off = ExactModel(eq_v, fmax_hz=6.0, half_waves=3.0, damping=False,
+                     cable_loss_factor=0.01, platform_damping_ratio=0.02)
+    assert not off.damped
+    np.testing.assert_array_equal(off.dynamic_stiffness(w), mu.dynamic_stiffness(w))
+    assert ExactModel(base.equilibrium(), fmax_hz=0.5, cable_loss_factor=0.5).damped
