@@ -339,3 +339,41 @@ def test_illinois_on_a_strongly_curved_function_halves_its_bracket_and_converges
                   np.array([0]), f[0](np.array([0.1])), f[0](np.array([3.0])), 1e-12,
                   max_iter=5)
     assert err.value.residual > 1e-3
+
+
+def test_purely_local_modes_sit_on_the_cable_poles_with_the_platform_at_rest():
+    """planar2 moves in x and z only: each cable's out-of-plane (y) modes leave the platform
+    at rest. They are found on the cables' clamped out-of-plane frequencies n pi sqrt(T/m)
+    / L (both cables, a double root), with a zero platform shape and all of the kinetic
+    energy in the cables (fraction exactly 1)."""
+    eq = ds.load_scene("planar2").equilibrium()
+    m = ds.FrequencyModel(eq)
+    r = ds.modes(m, 12)
+    p = m.params[0]
+    at_rest = np.flatnonzero(np.abs(r.platform_shapes).max(axis=1) == 0.0)
+    assert len(at_rest) == 6
+    np.testing.assert_array_equal(r.cable_energy_fraction[at_rest], 1.0)
+    assert all(r.kind[k] == "local" for k in at_rest)
+    f_oop = np.arange(1, 4) * np.sqrt(p.T / p.m) / (2 * p.L)
+    np.testing.assert_allclose(r.freq_hz[at_rest], np.repeat(f_oop, 2), rtol=1e-9)
+    moving = np.setdiff1d(np.arange(12), at_rest)
+    assert np.all(r.cable_energy_fraction[moving] < 1.0)
+
+
+def test_cable_fields_follow_the_mode_and_name_what_other_rungs_offer(cogiro_eq):
+    """``cable_fields`` is the model's cable displacement at the mode's own frequency and
+    platform shape, on ``n_points`` points; rungs without a continuous field say so."""
+    from dynstiff.errors import UnsupportedAnalysisError
+    m = ds.FrequencyModel(cogiro_eq)
+    r = ds.modes(m, 3)
+    pos, disp = ds.cable_fields(m, r, 2, n_points=11)
+    ref = m.cable_displacements(2 * np.pi * r.freq_hz[2], r.platform_shapes[2], 11)
+    assert pos.shape == disp.shape == (8, 11, 3)
+    np.testing.assert_array_equal(pos, ref[0])
+    np.testing.assert_array_equal(disp, ref[1])
+    for rung, tail in (("spring", " (massless cables)"),
+                       ("lumped", ": its node motions are modes(model, ...).node_shapes")):
+        other = ds.build_model(cogiro_eq, rung, **({"segments": 4} if rung == "lumped" else {}))
+        with pytest.raises(UnsupportedAnalysisError) as err:
+            ds.cable_fields(other, ds.modes(other, 2), 0)
+        assert str(err.value).endswith("model has none" + tail)
