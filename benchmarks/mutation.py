@@ -108,6 +108,26 @@ EQUIVALENT.update({
     "dynstiff.eigen.x_modes__mutmut_146":
         "cable fraction <= 0.5 instead of < 0.5 for 'global': differs only at exactly 0.5",
 })
+EQUIVALENT.update({
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_84":
+        "closed_form_validity computes the chord parameters itself when not given them",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_115":
+        "dtype=float dropped on lever arms that are float already",
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_8":
+        "a band equal to the one checked is checked again: the warnings are issued once",
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_53":
+        "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
+    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_3":
+        "every warning ignored while the undamped copy is built, not only the "
+        "ClosedFormWarning that the original already issued: no other warning arises there",
+    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_5":
+        "every warning ignored while the undamped copy is built, not only the "
+        "ClosedFormWarning that the original already issued: no other warning arises there",
+    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_19":
+        "np.asarray then float64 either way (the attribute is set from float arithmetic)",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_97":
+        "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,

@@ -260,3 +260,16 @@ def test_with_damping_keeps_the_options_and_the_fused_kernel_equals_two_calls(co
     np.testing.assert_allclose(K, 0.5 * ds.FrequencyModel(cogiro_eq).dynamic_stiffness(w),
                                rtol=1e-13, atol=1e-13 * np.abs(K).max())
     np.testing.assert_array_equal(J0, sub.cable_mode_count(w))
+
+
+def test_cable_fields_at_rest_give_every_chord(cogiro_eq):
+    """No platform motion: every cable's chord points from anchor to attachment (41 by
+    default, the closed form's fields live on the chord) and zero displacement."""
+    m = ds.FrequencyModel(cogiro_eq)
+    pos, disp = m.cable_displacements(3.0, np.zeros(6))
+    assert pos.shape == disp.shape == (8, 41, 3) and not np.any(disp)
+    for s, p in zip(cogiro_eq.states, pos):
+        np.testing.assert_allclose(p[0], s.anchor, atol=1e-12)
+        np.testing.assert_allclose(p[-1], s.end, atol=1e-12)
+        np.testing.assert_allclose(np.diff(p, axis=0), np.tile(s.chord / 40, (40, 1)),
+                                   atol=1e-12)

@@ -334,3 +334,17 @@ def test_end_stiffnesses_equal_each_cables_property():
     for Ki, s in zip(K, states):
         ref = s.end_stiffness
         np.testing.assert_allclose(Ki, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("V0, W", [(30.0, 50.0), (-80.0, 50.0), (-20.0, 50.0), (0.0, 50.0)])
+def test_mean_tension_of_a_vertical_cable_is_the_average_of_its_axial_force(V0, W):
+    """H = 0: T(s) = |V0 + w s|; its average over the length, in closed form, equals the
+    quadrature of |V0 + w s| — rising, hanging, and through zero (tension then compression
+    in magnitude, the kink at s = -V0 / w)."""
+    from dynstiff.catenary import _mean_tension
+    L0 = 10.0
+    w0 = W / L0
+    s = np.linspace(0.0, L0, 200001)
+    T = np.abs(V0 + w0 * s)
+    ref = np.sum(0.5 * (T[1:] + T[:-1]) * np.diff(s)) / L0
+    assert _mean_tension(0.0, V0, L0, w0) == pytest.approx(ref, rel=1e-9)

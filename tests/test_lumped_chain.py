@@ -204,3 +204,10 @@ def test_chain_equilibrium_rejects_bad_input(kwargs, name):
     args.update(kwargs)
     with pytest.raises(InvalidParameterError, match=name):
         chain_equilibrium(**args)
+
+
+def test_chain_functions_refuse_what_is_not_a_chain_state():
+    from dynstiff.lumped.chain import check_chain_state
+    with pytest.raises(InvalidParameterError) as err:
+        check_chain_state("chain")
+    assert str(err.value) == "state must be a ChainState, got str"

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
+from dynstiff.errors import InvalidParameterError
 from dynstiff.platform import rotation_matrix
 
 
@@ -51,3 +52,31 @@ def test_lever_maps_stack_lever_map():
     r = np.random.default_rng(2).normal(size=(5, 3))
     for fi in (None, np.array([0, 2, 3, 5])):
         np.testing.assert_array_equal(lever_maps(r, fi), [lever_map(x, fi) for x in r])
+
+
+def test_platform_input_is_checked_to_rounding_and_named():
+    """Mass, inertia shape, symmetry and definiteness are checked with tolerances relative
+    to the inertia's size: a rounding-level asymmetry (1e-13 of |I|) or negative eigenvalue
+    (1e-13 of |I|, translations only) is accepted; 1e-10 of |I| is not, and the messages name
+    the argument and the value. The centre of mass is stored as floats."""
+    big = np.diag([1e4, 1e4, 1e4])
+    skew = big.copy()
+    skew[0, 1] += 1e-9
+    ds.Platform(mass=2.0, inertia=skew)
+    skew[0, 1] += 1e-6
+    with pytest.raises(InvalidParameterError, match="^inertia must be symmetric, got"):
+        ds.Platform(mass=2.0, inertia=skew)
+    trans = ("x", "y", "z")
+    ds.Platform(mass=2.0, inertia=np.diag([1e4, 1e4, -1e-9]), free_dofs=trans)
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Platform(mass=2.0, inertia=np.diag([1e4, 1e4, -1e-6]), free_dofs=trans)
+    assert str(err.value) == ("inertia must be positive semi-definite, eigenvalues "
+                              "[-1e-06, 10000.0, 10000.0] [kg m^2]")
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Platform(mass=-1.0)
+    assert str(err.value) == "mass must be > 0, got -1.0"
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Platform(mass=1.0, inertia=np.ones((2, 2)))
+    assert str(err.value) == "inertia must be a finite 3x3 tensor [kg m^2], got shape (2, 2)"
+    p = ds.Platform(mass=2.0, center_of_mass=[1, 2, 3], inertia=np.eye(3))
+    assert p.center_of_mass.dtype == np.float64
