@@ -8,7 +8,7 @@ the lumped chain) and runs the tests that reach the mutated function. This scrip
 and prints the score per module (killed / (killed + survived), equivalent mutants listed in
 ``EQUIVALENT`` excluded) and every surviving mutant. ``module`` arguments restrict the run,
 e.g. ``dynstiff/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
-runs the survivors again after tests were added; ``--sample N`` judges a seeded uniform
+runs only the survivors again after tests were added; ``--sample N`` judges a seeded uniform
 sample of N mutants per module and gives each score a 95 % Wilson interval (the whole core,
 about 8800 mutants, takes several hours on two cores; a sample of 100 per module under one).
 
@@ -302,7 +302,7 @@ def main(argv):
                          "(score with its 95 %% interval) instead of every mutant")
     ap.add_argument("--seed", type=int, default=20261202)
     ap.add_argument("--recheck", action="store_true",
-                    help="run the surviving mutants again (after tests were added)")
+                    help="run only the surviving mutants again (after tests were added)")
     args = ap.parse_args(argv)
     prefixes = [m[:-3].replace("/", ".") + ".x" for m in args.modules]
     t0 = time.perf_counter()
@@ -317,8 +317,8 @@ def main(argv):
                  rng.choice(sorted(by_module[mod]), min(args.sample, len(by_module[mod])),
                             replace=False)]
     if not args.report_only:
-        todo = [n for n in names if _verdict(n, res[n]) == "unchecked"
-                or (args.recheck and _verdict(n, res[n]) == "survived")]
+        todo = [n for n in names
+                if _verdict(n, res[n]) == ("survived" if args.recheck else "unchecked")]
         for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
             subprocess.run(["mutmut", "run"] + todo[k:k + 2000], check=False)
         res = _results()
