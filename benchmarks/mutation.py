@@ -10,7 +10,7 @@ and prints the score per module (killed / (killed + survived), equivalent mutant
 e.g. ``dynstiff/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
 runs only the survivors again after tests were added; ``--sample N`` judges a seeded uniform
 sample of N mutants per module and gives each score a 95 % Wilson interval (the whole core,
-about 8800 mutants, takes several hours on two cores; a sample of 100 per module under one).
+about 9200 mutants, takes many hours on two cores; a sample of 100 per module one to two).
 
 Measured (2 cores): dynstiff/chord.py, 182 mutants in 9 min 49 s; 174 killed, 8 survived,
 of which 6 are equivalent (listed below) and 2 were killed by
