@@ -128,6 +128,20 @@ EQUIVALENT.update({
     "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_97":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
 })
+_START = ("the starting guess of the chain's Newton (its tension estimate or force-space "
+          "start): the equilibrium it converges to, checked by its residual, is the same")
+EQUIVALENT.update({f"dynstiff.lumped.chain.x__tension_estimate__mutmut_{n}": _START
+                   for n in (25, 29, 48, 77)})
+EQUIVALENT.update({f"dynstiff.lumped.chain.x__force_space_start__mutmut_{n}": _START
+                   for n in (28, 178, 184)})
+EQUIVALENT.update({
+    "dynstiff.lumped.chain.x__slack_segment__mutmut_30":
+        "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
+        "slack test far less than l0, so the same segment is found",
+    "dynstiff.lumped.chain.x__newton__mutmut_77":
+        "the iteration count reported for a failed line search: max_iter + 2 instead of + 1 "
+        "is still above max_iter, which is what the caller tests",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,

@@ -211,3 +211,15 @@ def test_chain_functions_refuse_what_is_not_a_chain_state():
     with pytest.raises(InvalidParameterError) as err:
         check_chain_state("chain")
     assert str(err.value) == "state must be a ChainState, got str"
+
+
+@pytest.mark.parametrize("drop, k", [(0.0, 5), (2.0, 6), (-4.0, 3)])
+def test_a_chain_hanging_from_both_ends_names_its_slack_segment_anywhere_in_space(drop, k):
+    """Two ends 0.3 m apart, B `drop` below A, 11 segments of 1 m: the chain hangs
+    vertically from both ends and segment k carries no force, where the hanging lengths k
+    and 10 - k [m] differ by the height of B over A (10 - 2k = -drop); the error names it,
+    wherever the anchor is."""
+    A = np.array([1.0, 2.0, 3.0])
+    B = A + np.array([0.3, 0.0, -drop])
+    with pytest.raises(SlackCableError, match=f"segment {k} of 11 has zero tension"):
+        chain_equilibrium(A, B, 11.0, Cable(0.5, 2e5), 11)
