@@ -139,7 +139,7 @@ EQUIVALENT.update({
         "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
         "slack test far less than l0, so the same segment is found",
     "dynstiff.lumped.chain.x__newton__mutmut_77":
-        "the iteration count reported for a failed line search: max_iter + 2 instead of + 1 "
+        "the iteration count reported when Newton did not converge: max_iter + 2 instead of + 1 "
         "is still above max_iter, which is what the caller tests",
 })
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
