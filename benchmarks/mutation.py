@@ -321,8 +321,8 @@ def main(argv):
     prefixes = [m[:-3].replace("/", ".") + ".x" for m in args.modules]
     t0 = time.perf_counter()
     res = _results()
-    names = [n for n in res if not prefixes or n.startswith(tuple(prefixes))]
-    if args.sample:
+    names = list(res)
+    if args.sample:          # drawn over every module, then filtered: the same sample always
         rng = np.random.default_rng(args.seed)
         by_module = collections.defaultdict(list)
         for n in names:
@@ -330,6 +330,7 @@ def main(argv):
         names = [n for mod in sorted(by_module) for n in
                  rng.choice(sorted(by_module[mod]), min(args.sample, len(by_module[mod])),
                             replace=False)]
+    names = [n for n in names if not prefixes or n.startswith(tuple(prefixes))]
     if not args.report_only:
         todo = [n for n in names
                 if _verdict(n, res[n]) == ("survived" if args.recheck else "unchecked")]
