@@ -223,3 +223,11 @@ def test_a_chain_hanging_from_both_ends_names_its_slack_segment_anywhere_in_spac
     B = A + np.array([0.3, 0.0, -drop])
     with pytest.raises(SlackCableError, match=f"segment {k} of 11 has zero tension"):
         chain_equilibrium(A, B, 11.0, Cable(0.5, 2e5), 11)
+
+
+def test_chain_input_and_weightless_slack_chains_are_named():
+    with pytest.raises(InvalidParameterError, match=r"^end must be finite, got \[1.0, 0.0, nan\]"):
+        chain_equilibrium((0, 0, 0), (1, 0, np.nan), 2.0, Cable(0.5, 2e5), 4)
+    with pytest.raises(SlackCableError, match="without gravity every segment is slack when "
+                                              r"L0 >= chord \(unstretched_length 2 m"):
+        chain_equilibrium((0, 0, 0), (1, 0, 0), 2.0, Cable(0.5, 2e5), 4, g=0.0)
