@@ -174,6 +174,28 @@ EQUIVALENT.update({
     "dynstiff.eigen.x__real_symmetric__mutmut_3": "K.real of a real K is K",
     "dynstiff.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
 })
+EQUIVALENT.update({
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_157": "reshape(5, -2) infers like -1",
+    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_17": _EINSUM,
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_179":
+        "the first row of K(0) at two zero frequencies is K(0)",
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_54":
+        "the memo of a cable checked within tolerance: without it the check is repeated "
+        "(cost only; a warning is still issued once)",
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_56":
+        "the memo of a cable checked within tolerance: without it the check is repeated "
+        "(cost only; a warning is still issued once)",
+    "dynstiff.catenary.x__mean_tension__mutmut_11":
+        "the sign of V0 / (V0 + W) is the sign of V0 (V0 + W)",
+    "dynstiff.catenary.x__initial_guesses__mutmut_36":
+        "a starting-guess branch boundary (lh <= or < 1e-6 L): the solution is the same",
+    "dynstiff.catenary.x__initial_guesses__mutmut_76":
+        "a starting-guess branch boundary (lam < or <= 700): the solution is the same",
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_38":
+        "the placeholder H of cables outside the taut mask, whose results are discarded",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_52":
+        "the start of the bracket on L0, which is widened until it brackets the tension",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,

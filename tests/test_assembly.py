@@ -137,8 +137,9 @@ def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogir
     with warnings.catch_warnings():
         warnings.simplefilter("error", ClosedFormWarning)
         ds.eigenfrequencies(ds.FrequencyModel(eq, guard_rtol=None), fmax_hz=1.5)
-    with pytest.raises(InvalidParameterError, match="guard_rtol"):
-        ds.FrequencyModel(eq, guard_rtol=-1.0)
+    for bad in (-1.0, 0.0, np.inf):
+        with pytest.raises(InvalidParameterError, match="guard_rtol"):
+            ds.FrequencyModel(eq, guard_rtol=bad)
 
 
 def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):

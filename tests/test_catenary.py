@@ -348,3 +348,21 @@ def test_mean_tension_of_a_vertical_cable_is_the_average_of_its_axial_force(V0, 
     T = np.abs(V0 + w0 * s)
     ref = np.sum(0.5 * (T[1:] + T[:-1]) * np.diff(s)) / L0
     assert _mean_tension(0.0, V0, L0, w0) == pytest.approx(ref, rel=1e-9)
+
+
+def test_profiles_of_two_points_and_of_a_vertical_cable():
+    """profile(2) is the two ends; an exactly vertical cable's profile lies on its chord,
+    its heights the stretched arc s + (V0 s + w s^2 / 2) / EA of §1.1 (theory.md §1.1);
+    one Newton iteration is a valid (if insufficient) request, refused by its residual."""
+    from dynstiff.errors import ConvergenceError
+    cab = ds.Cable(0.5, 2e4)
+    st = ds.solve_catenary((0, 0, 0), (0.0, 0, 10.0), 9.9, cab)
+    np.testing.assert_array_equal(st.profile(2), [st.anchor, st.end])
+    p = st.profile(5)
+    s = np.linspace(0.0, 9.9, 5)
+    w0 = cab.weight_per_length(st.g)
+    np.testing.assert_allclose(p[:, 2], s + (st.V0 * s + 0.5 * w0 * s * s) / cab.EA,
+                               rtol=1e-12, atol=1e-12)
+    np.testing.assert_array_equal(p[:, :2], 0.0)
+    with pytest.raises(ConvergenceError, match="relative residual"):
+        ds.solve_catenary((0, 0, 0), (8.0, 0, 3.0), 8.7, cab, max_iter=1)
