@@ -196,6 +196,20 @@ EQUIVALENT.update({
     "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_52":
         "the start of the bracket on L0, which is widened until it brackets the tension",
 })
+EQUIVALENT.update({
+    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_29":
+        "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 2e-16",
+    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_21":
+        "3841 for 3840 in the theta^4 term of the small-angle series: below 1e-19",
+    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_5": _FLOAT,
+    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_5": _FLOAT,
+    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_62":
+        "the floor of the symmetry test's absolute tolerance (2 instead of 1 kg m^2 x 1e-12)",
+    "dynstiff.statics.x_forward_statics__mutmut_106":
+        "res_t <= res instead of <: differs only when two trial residuals are equal",
+    "dynstiff.statics.x_inverse_statics__mutmut_128":
+        "change <= best instead of <: differs only at equal changes",
+})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,

@@ -78,5 +78,5 @@ def test_platform_input_is_checked_to_rounding_and_named():
     with pytest.raises(InvalidParameterError) as err:
         ds.Platform(mass=1.0, inertia=np.ones((2, 2)))
     assert str(err.value) == "inertia must be a finite 3x3 tensor [kg m^2], got shape (2, 2)"
-    p = ds.Platform(mass=2.0, center_of_mass=[1, 2, 3], inertia=np.eye(3))
-    assert p.center_of_mass.dtype == np.float64
+    p = ds.Platform(mass=2, center_of_mass=[1, 2, 3], inertia=np.eye(3))
+    assert p.center_of_mass.dtype == np.float64 and type(p.mass) is float
