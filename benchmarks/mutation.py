@@ -210,6 +210,14 @@ EQUIVALENT.update({
     "dynstiff.statics.x_inverse_statics__mutmut_128":
         "change <= best instead of <: differs only at equal changes",
 })
+_WARM = ("the warm start of the tension distribution (the guessed active set, its feasible "
+         "start, its tolerance or whether it is tried): a start is used only when it is "
+         "feasible, and the active-set method then ends at the unique minimiser of the "
+         "strictly convex problem, as from the LP's start (tested bitwise on random problems)")
+EQUIVALENT.update({f"dynstiff.statics.x__distribution__mutmut_{n}": _WARM
+                   for n in (45, 61, 76, 87, 89, 95, 97, 98, 103, 110)})
+EQUIVALENT.update({f"dynstiff.statics.x__active_solution__mutmut_{n}": _WARM
+                   for n in (2, 4, 28)})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
