@@ -241,7 +241,6 @@ def massless_pairing(model_modes, model, n):
     modes of a rung with cable mass split near cable frequencies; this pairing follows the
     platform motion through them (theory.md §15.5)."""
     from scipy.linalg import eigh
-    from scipy.optimize import linear_sum_assignment
     M = model.platform_mass
     lam, X0 = eigh(model.massless_stiffness(), M)
     if n > X0.shape[1]:
@@ -253,6 +252,13 @@ def massless_pairing(model_modes, model, n):
         np.einsum("ji,jk,ki->i", X0[:, :n], M, X0[:, :n])[:, None]
     with np.errstate(invalid="ignore", divide="ignore"):
         mac = np.nan_to_num(num / den)
+    return _assign_by_platform_mac(mac, model_modes, n)
+
+
+def _assign_by_platform_mac(mac, model_modes, n):
+    """Model mode paired with each of ``n`` rows of ``mac`` (n, n_modes): the Hungarian
+    assignment maximising MAC x platform share (1 - cable energy fraction), shape (n,)."""
+    from scipy.optimize import linear_sum_assignment
     score = mac * (1.0 - np.asarray(model_modes.cable_energy_fraction))[None, :]
     if score.shape[1] < n:
         raise InvalidParameterError(f"{n} measured modes but only {score.shape[1]} model "
@@ -289,13 +295,7 @@ def pair_modes(model_modes, measured, pairing=None):
         if measured.shapes is None:
             raise InvalidParameterError("pairing='mac' needs measured shapes")
         mac = mac_matrix(measured.shapes, model_modes.platform_shapes)
-        score = mac * (1.0 - np.asarray(model_modes.cable_energy_fraction))[None, :]
-        if score.shape[1] < n:
-            raise InvalidParameterError(f"{n} measured modes but only {score.shape[1]} model "
-                                        f"modes: compute more (fmax_hz)")
-        rows, cols = linear_sum_assignment(-score)
-        idx = np.empty(n, dtype=int)
-        idx[rows] = cols
+        idx = _assign_by_platform_mac(mac, model_modes, n)
         return idx, mac[np.arange(n), idx]
     if glob.size < n:
         raise InvalidParameterError(

@@ -161,17 +161,7 @@ def _lengths_function(lengths, n):
             raise InvalidParameterError(
                 "lengths must be a callable t -> (n_cables,) unstretched lengths [m] or a "
                 f"table (times (k,) [s], lengths (k, {n}) [m]), got {lengths!r}") from None
-        if times.ndim != 1 or table.shape != (times.size, n) or times.size < 1 or \
-                not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
-            raise InvalidParameterError(
-                f"lengths table must be (times (k,) strictly increasing [s], lengths "
-                f"(k, {n}) [m]), got shapes {times.shape} and {table.shape}")
-        if times[0] > 0:
-            raise InvalidParameterError(
-                f"lengths table must start at t <= 0, starts at {times[0]:g} s")
-
-        def fn(t):
-            return np.array([np.interp(t, times, table[:, i]) for i in range(n)])
+        fn = _interpolated_table(times, table, n, "lengths", "lengths", "m")
 
     def checked(t):
         L = np.asarray(fn(t), dtype=float)
@@ -195,19 +185,28 @@ def _excitation_function(excitation):
         raise InvalidParameterError(
             f"excitation must be a callable t -> (6,) load, a table (times (k,) [s], loads "
             f"(k, 6) [N, N m]) or None, got {excitation!r}") from None
-    if times.ndim != 1 or times.size < 1 or loads.shape != (times.size, 6) or \
+    fn = _interpolated_table(times, loads, 6, "excitation", "loads", "N, N m", finite=True)
+    return fn, (times, loads)
+
+
+def _interpolated_table(times, values, n, name, column, unit, finite=False):
+    """t -> values interpolated linearly in a table (times (k,) [s], values (k, n)), checked:
+    times finite, strictly increasing, starting at t <= 0 (and the values finite with
+    ``finite``); the error names ``name``."""
+    if times.ndim != 1 or times.size < 1 or values.shape != (times.size, n) or \
             not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0) or \
-            not np.all(np.isfinite(loads)):
+            (finite and not np.all(np.isfinite(values))):
         raise InvalidParameterError(
-            f"excitation table must be (times (k,) strictly increasing [s], loads (k, 6) "
-            f"finite [N, N m]), got shapes {times.shape} and {loads.shape}")
+            f"{name} table must be (times (k,) strictly increasing [s], {column} (k, {n})"
+            f"{' finite' if finite else ''} [{unit}]), got shapes {times.shape} and "
+            f"{values.shape}")
     if times[0] > 0:
         raise InvalidParameterError(
-            f"excitation table must start at t <= 0, starts at {times[0]:g} s")
+            f"{name} table must start at t <= 0, starts at {times[0]:g} s")
 
     def fn(t):
-        return np.array([np.interp(t, times, loads[:, j]) for j in range(6)])
-    return fn, (times, loads)
+        return np.array([np.interp(t, times, values[:, j]) for j in range(n)])
+    return fn
 
 
 def _initial(initial, model):
