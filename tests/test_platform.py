@@ -80,3 +80,35 @@ def test_platform_input_is_checked_to_rounding_and_named():
     assert str(err.value) == "inertia must be a finite 3x3 tensor [kg m^2], got shape (2, 2)"
     p = ds.Platform(mass=2, center_of_mass=[1, 2, 3], inertia=np.eye(3))
     assert p.center_of_mass.dtype == np.float64 and type(p.mass) is float
+
+
+def test_any_free_rotation_needs_a_positive_definite_physical_inertia():
+    """Each of rx, ry, rz alone makes the inertia matter: a singular one is refused (it is
+    accepted when only translations are free). The principal moments of a body obey
+    I3 <= I1 + I2, with equality for a thin plate: a plate whose I3 exceeds I1 + I2 by a
+    rounding-level 5e-10 of I3 (and a rotated plate) is accepted, 5e-9 of I3 is not. A
+    negative rounding-level eigenvalue is judged against the largest moment, not the middle
+    one, and an asymmetry against the largest entry (1e-12 of it), not against the product
+    of inertia itself. The messages name the argument and the value."""
+    singular = np.diag([0.0, 1.0, 4.0])
+    for dof in ("rx", "ry", "rz"):
+        with pytest.raises(InvalidParameterError,
+                           match="^inertia must be positive definite when a rotation is free"):
+            ds.Platform(mass=1.0, inertia=singular, free_dofs=("z", dof))
+    ds.Platform(mass=1.0, inertia=singular, free_dofs=("x", "y", "z"))
+    skew = np.array([[1e4, 100.0, 0.0], [100.0 + 1e-6, 1e4, 0.0], [0.0, 0.0, 1e4]])
+    with pytest.raises(InvalidParameterError, match="^inertia must be symmetric"):
+        ds.Platform(mass=1.0, inertia=skew)          # 1e-8 relative to the product 100
+    ds.Platform(mass=1.0, inertia=np.diag([1.0, 1e4, -1e-10]), free_dofs=("x", "y", "z"))
+    with pytest.raises(InvalidParameterError, match="positive semi-definite"):
+        ds.Platform(mass=1.0, inertia=np.diag([1.0, 1e4, -1e-7]), free_dofs=("x", "y", "z"))
+    ds.Platform(mass=1.0, inertia=np.diag([1000.0, 1000.0, 2000.0 + 1e-6]))
+    R = rotation_matrix([0.3, -1.1, 0.7])
+    ds.Platform(mass=1.0, inertia=R @ np.diag([300.0, 1700.0, 2000.0]) @ R.T)
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Platform(mass=1.0, inertia=np.diag([1000.0, 1000.0, 2000.0 + 1e-5]))
+    assert str(err.value).startswith("inertia violates the triangle inequality of principal "
+                                     "moments [1000.0, 1000.0, 2000.00001] [kg m^2]")
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Platform(mass=1.0, center_of_mass=[1.0, 2.0])
+    assert str(err.value) == "center_of_mass must be 3 finite numbers [m], got [1.0, 2.0]"

@@ -326,3 +326,74 @@ def test_forward_statics_with_its_defaults_inverts_inverse_statics():
     fe = forward_statics(rob, eq.unstretched_lengths)
     np.testing.assert_allclose(fe.pose.position, eq.pose.position, rtol=0, atol=1e-9)
     np.testing.assert_allclose(fe.tensions, eq.tensions, rtol=1e-9)
+
+
+def test_vertical_cable_on_the_moon_has_the_analytic_length_and_no_warning():
+    """A platform (10 kg, only z free) on one vertical cable (0.5 kg/m, EA 2e4 N) at
+    g = 1.62 m/s^2, chord 4 m: T_B = m g, and the unstretched length solves
+    L = L0 + (T_B L0 + w0 L0^2 / 2) / EA with w0 = m_c g (the tension grows linearly up a
+    vertical cable). The vertical cable is left to the scalar solver, which must get the
+    robot's g; no floating-point warning is raised on the way, and forward statics from
+    those lengths returns the pose."""
+    import warnings
+    g, m, mc, EA, L = 1.62, 10.0, 0.5, 2.0e4, 4.0
+    rob = ds.Robot([[0.0, 0.0, 5.0]], [[0.0, 0.0, 0.0]], [ds.Cable(mc, EA)],
+                   ds.Platform(mass=m, free_dofs=("z",)), g=g)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        eq = rob.equilibrium(pose=[0.0, 0.0, 1.0])
+        fe = rob.equilibrium(unstretched_lengths=eq.unstretched_lengths,
+                             initial_pose=[0.0, 0.0, 0.5])
+    a, b = mc * g / (2 * EA), 1.0 + m * g / EA
+    L0 = 2 * L / (b + np.sqrt(b * b + 4 * a * L))        # the root without cancellation
+    assert eq.tensions[0] == pytest.approx(m * g, rel=1e-14)
+    assert eq.unstretched_lengths[0] == pytest.approx(L0, rel=1e-13)
+    assert eq.states[0].H == 0.0
+    np.testing.assert_allclose(fe.pose.position, [0.0, 0.0, 1.0], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize("free", [("x", "z", "rx", "ry", "rz"), ("x", "y", "z", "ry", "rz"),
+                                  ("x", "y", "z", "rx", "ry")])
+def test_forward_statics_needs_initial_pose_for_any_held_coordinate(cogiro, cogiro_eq, free):
+    """One held translation (y) or one held rotation (rx or rz, with attachment points off
+    the reference point) alone makes the initial pose necessary: it fixes the held value."""
+    p = cogiro.robot.platform
+    rob = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments, cogiro.robot.cables,
+                   ds.Platform(p.mass, p.center_of_mass, p.inertia, free_dofs=free),
+                   tension_limits=cogiro.robot.tension_limits)
+    with pytest.raises(InvalidParameterError, match="^initial_pose is required when DOFs are"):
+        rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
+
+
+def test_equilibrium_states_carry_their_catenary_residuals(cogiro, cogiro_eq):
+    """Every cable state of inverse statics keeps the residual of its catenary solution
+    (a float at the solver's tolerance), batched or scalar."""
+    res = [s.residual for s in cogiro_eq.states]
+    assert all(type(r) is float for r in res) and max(res) < 1e-10
+
+
+def test_straight_chord_guess_is_near_the_sagging_equilibrium():
+    """The start of forward statics (straight chords of 0.999 L0 fitted to the lengths)
+    lands within 0.15 m and 0.02 rad of the CoGiRo equilibrium, rotation included."""
+    from dynstiff.statics import _kinematic_guess
+    rob = ds.load_scene("cogiro").robot
+    for pose in ([0.3, -0.2, 1.1, 0.02, -0.01, 0.03], [1.0, 0.5, 2.0, 0.1, -0.05, 0.25]):
+        eq = rob.equilibrium(pose=pose)
+        guess = _kinematic_guess(rob, eq.unstretched_lengths).as_vector()
+        assert np.abs(guess[:3] - pose[:3]).max() < 0.15
+        assert np.abs(guess[3:] - pose[3:]).max() < 0.02
+
+
+def test_active_set_method_that_cannot_settle_says_so_with_its_residual():
+    """With no multiplier ever accepted (tol = -inf) the active-set loop drops and retakes a
+    bound until its step limit: it raises ConvergenceError naming the balance residual of
+    its last (feasible) iterate, not a wrong distribution."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.statics import _closest_in_box
+    W = np.array([[1.0, 1.0, 1.0]])
+    lb, ub = np.array([2.0, 0.0, 0.0]), np.full(3, 5.0)
+    t, bound = np.array([2.0, 0.5, 0.5]), np.array([2.0, np.nan, np.nan])
+    with pytest.raises(ConvergenceError, match=r"did not settle in 40 steps \(balance "
+                                               r"residual 0\.000e\+00 N\)") as err:
+        _closest_in_box(W, np.array([3.0]), lb, ub, np.zeros(3), t, -np.inf, bound)
+    assert err.value.residual == 0.0
