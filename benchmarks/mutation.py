@@ -8,9 +8,10 @@ the lumped chain) and runs the tests that reach the mutated function. This scrip
 and prints the score per module (killed / (killed + survived), equivalent mutants listed in
 ``EQUIVALENT`` excluded) and every surviving mutant. ``module`` arguments restrict the run,
 e.g. ``dynstiff/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
-runs only the survivors again after tests were added; ``--sample N`` judges a seeded uniform
-sample of N mutants per module and gives each score a 95 % Wilson interval (the whole core,
-about 9200 mutants, takes many hours on two cores; a sample of 100 per module one to two).
+runs the survivors again too, after tests were added; ``--sample N`` judges a seeded uniform
+sample of N mutants per module (nested: a larger sample contains a smaller one) and gives
+each score a 95 % Wilson interval (the whole core, about 9200 mutants, takes many hours on
+two cores; a sample of 100 per module one to two).
 
 Measured (2 cores): dynstiff/chord.py, 182 mutants in 9 min 49 s; 174 killed, 8 survived,
 of which 6 are equivalent (listed below) and 2 were killed by
@@ -390,6 +391,27 @@ def _verdict(name, status):
     return "unchecked"
 
 
+def _sample(names, size, seed, chunk=100):
+    """A seeded uniform sample of ``size`` mutants per module, drawn without replacement in
+    rounds of ``chunk`` per module over every module (then filtered): each round draws from
+    the mutants not drawn yet (a partial last round takes the first of a whole round's
+    draw), so a larger sample contains the smaller one (the judged mutants are reused) and
+    stays uniform."""
+    rng = np.random.default_rng(seed)
+    pools = collections.defaultdict(list)
+    for n in names:
+        pools[_module(n)].append(n)
+    pools = {mod: sorted(pool) for mod, pool in sorted(pools.items())}
+    drawn = collections.defaultdict(list)
+    for start in range(0, size, chunk):
+        for mod, pool in pools.items():
+            if pool:             # a whole round is drawn always: the same draws for any size
+                pick = rng.choice(pool, min(chunk, len(pool)), replace=False)
+                drawn[mod].extend(pick[:size - start])
+                pools[mod] = sorted(set(pool) - set(pick))
+    return [n for mod in drawn for n in drawn[mod]]
+
+
 def _wilson(k, n, z=1.96):
     """95 % Wilson interval of a proportion k / n."""
     if n == 0:
@@ -409,24 +431,18 @@ def main(argv):
                          "(score with its 95 %% interval) instead of every mutant")
     ap.add_argument("--seed", type=int, default=20261202)
     ap.add_argument("--recheck", action="store_true",
-                    help="run only the surviving mutants again (after tests were added)")
+                    help="run the surviving mutants again too (after tests were added)")
     args = ap.parse_args(argv)
     prefixes = [m[:-3].replace("/", ".") + ".x" for m in args.modules]
     t0 = time.perf_counter()
     res = _results()
     names = list(res)
-    if args.sample:          # drawn over every module, then filtered: the same sample always
-        rng = np.random.default_rng(args.seed)
-        by_module = collections.defaultdict(list)
-        for n in names:
-            by_module[_module(n)].append(n)
-        names = [n for mod in sorted(by_module) for n in
-                 rng.choice(sorted(by_module[mod]), min(args.sample, len(by_module[mod])),
-                            replace=False)]
+    if args.sample:
+        names = _sample(names, args.sample, args.seed)
     names = [n for n in names if not prefixes or n.startswith(tuple(prefixes))]
     if not args.report_only:
-        todo = [n for n in names
-                if _verdict(n, res[n]) == ("survived" if args.recheck else "unchecked")]
+        redo = ("unchecked", "survived") if args.recheck else ("unchecked",)
+        todo = [n for n in names if _verdict(n, res[n]) in redo]
         for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
             subprocess.run(["mutmut", "run"] + todo[k:k + 2000], check=False)
         res = _results()
