@@ -593,16 +593,24 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
     L_hi_tension = L / (1.0 + 2.0 * T_target / cable.EA)
     while f(L_hi_tension) < 0:
         L_hi_tension *= 1.0 - 0.5 * min(0.5, 1.0 / np.log10(cable.EA))
+    # Lower bracket: grow L0 until the tension drops under the target; a straight (vertical)
+    # cable that goes slack first, at a length where the tension would be negative, is
+    # bisected back between the last length too tensioned and the first slack one.
     L_lo_tension = L / (1.0 + 0.5 * T_target / cable.EA)
+    taut, slack = L_hi_tension, np.inf
     k = 0
     while True:
         try:
             val = f(L_lo_tension)
-        except (ConvergenceError, SlackCableError):
+        except SlackCableError:
+            val, slack = None, L_lo_tension
+        except ConvergenceError:
             val = None
         if val is not None and val < 0:
             break
-        L_lo_tension *= 1.05
+        if val is not None:
+            taut = L_lo_tension
+        L_lo_tension = 1.05 * L_lo_tension if np.isinf(slack) else 0.5 * (taut + slack)
         k += 1
         if k > 200:
             raise SlackCableError(

@@ -278,7 +278,9 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
         warm = None
         u = A - B
         u /= np.linalg.norm(u, axis=1)[:, None]
-        lo = np.zeros(n)
+        # straight-cable lower margins (theory.md §4): along a catenary
+        # dT = w0 dz / (1 + T/EA), so a cable rising to B has about w0 h less tension at A
+        lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
         hi = np.zeros(n)
     best, since_best = np.inf, 0
     sides = None                          # the last distribution's active set

@@ -366,3 +366,21 @@ def test_profiles_of_two_points_and_of_a_vertical_cable():
     np.testing.assert_array_equal(p[:, :2], 0.0)
     with pytest.raises(ConvergenceError, match="relative residual"):
         ds.solve_catenary((0, 0, 0), (8.0, 0, 3.0), 8.7, cab, max_iter=1)
+
+
+def test_a_heavy_vertical_cable_is_found_for_a_tension_below_its_weight():
+    """A 0.5 kg/m cable (EA 2e4 N) hanging 4 m straight down to B, 5 N at B: its weight
+    (about 19.6 N) exceeds the tension asked, so the first lengths tried are slack (a
+    negative tension at B). The length is L = L0 + (T_B L0 + w0 L0^2 / 2) / EA, and the
+    anchor carries T_B + w0 L0. Rising 4 m from the anchor, a tension at B below the
+    cable's weight cannot be reached and is refused."""
+    cab = ds.Cable(0.5, 2e4)
+    w0, EA, L, T = 0.5 * 9.81, 2e4, 4.0, 5.0
+    s = ds.unstretched_length_for_tension([0, 0, 5.0], [0, 0, 1.0], T, cab)
+    a, b = w0 / (2 * EA), 1.0 + T / EA
+    L0 = 2 * L / (b + np.sqrt(b * b + 4 * a * L))
+    assert s.unstretched_length == pytest.approx(L0, rel=1e-13)
+    assert s.tension_at_end == pytest.approx(T, rel=1e-12)
+    assert s.tension_at_anchor == pytest.approx(T + w0 * L0, rel=1e-12)
+    with pytest.raises(SlackCableError, match="5.0 N at the end is not reachable"):
+        ds.unstretched_length_for_tension([0, 0, 0], [0, 0, 4.0], T, cab)

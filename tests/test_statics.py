@@ -397,3 +397,25 @@ def test_active_set_method_that_cannot_settle_says_so_with_its_residual():
                                                r"residual 0\.000e\+00 N\)") as err:
         _closest_in_box(W, np.array([3.0]), lb, ub, np.zeros(3), t, -np.inf, bound)
     assert err.value.residual == 0.0
+
+
+def test_a_vertical_cable_rising_from_a_floor_anchor_is_held_at_t_min_at_its_anchor():
+    """Three cables from above and one straight down to a floor anchor 5 m below a 1 kg
+    point mass: the distribution drives the lower cable to its least tension, which is at
+    its anchor, T_A = t_min (to the fixed point's 1e-8); at B it carries its whole weight on
+    top, T_B = T_A + w0 L0 (vertical cable). The first iteration must not ask it for t_min
+    at B, below its own weight, which no catenary can have."""
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    A = np.vstack([A, [0.3, -0.2, -4.0]])
+    cab = ds.Cable(0.064, 1.4e5)
+    rob = ds.Robot(A, np.zeros((4, 3)), cab, ds.Platform(1.0, free_dofs=("x", "y", "z")),
+                   tension_limits=(0.01, 1e6))
+    eq = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    low = eq.states[3]
+    w0 = cab.mass_per_length * rob.g
+    assert low.tension_at_anchor == pytest.approx(0.01, rel=1e-8)
+    assert low.tension_at_end == pytest.approx(low.tension_at_anchor
+                                               + w0 * low.unstretched_length, rel=1e-14)
+    assert eq.residual < 1e-10
+    assert all(s.min_tension >= 0.01 * (1 - 1e-8) for s in eq.states)
