@@ -2,6 +2,8 @@
 massless-cable limit against an independent straight-cable model, the geometric stiffness
 at equilibrium, and frequencies and mode shapes that turn and mirror with the robot."""
 
+import sys
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -274,3 +276,50 @@ def test_cable_fields_at_rest_give_every_chord(cogiro_eq):
         np.testing.assert_allclose(p[-1], s.end, atol=1e-12)
         np.testing.assert_allclose(np.diff(p, axis=0), np.tile(s.chord / 40, (40, 1)),
                                    atol=1e-12)
+
+
+def _three_cable_point_mass(g=9.81, lower=False):
+    """A 1 kg point mass on three heavy cables from 8 m around and 6 m up (0.064 kg/m,
+    EA 1.4e5 N), optionally a fourth straight down to a floor anchor, at (0.3, -0.2, 1)."""
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    if lower:
+        A = np.vstack([A, [0.3, -0.2, -4.0]])
+    rob = ds.Robot(A, np.zeros((len(A), 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6),
+                   g=g)
+    return rob.equilibrium(pose=[0.3, -0.2, 1.0])
+
+
+def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
+    """The lower cable of the four-cable robot is held at 0.01 N at its anchor and carries
+    its weight (3.1 N) at B: t_min / t_max < 0.1, the closed form does not apply (cause
+    'slack', cable 3), said once when the model is built. The warning is attributed to the
+    line of the user's call, not to the library."""
+    import warnings
+    from dynstiff.errors import ClosedFormWarning
+    eq = _three_cable_point_mass(lower=True)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        line = sys._getframe().f_lineno + 1
+        ds.FrequencyModel(eq)
+    got = [(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
+           if issubclass(w.category, ClosedFormWarning)]
+    assert got == [(3, "slack", __file__, line)]
+
+
+def test_the_guard_checks_bands_below_one_radian_per_second():
+    """At g = 0.3 m/s^2 the three heavy cables' local modes start at 0.76-0.84 rad/s; K at
+    0.99 rad/s reaches them, and the closed form's error there is above guard_rtol: a
+    'local' warning for each cable, from the evaluation's line."""
+    import warnings
+    from dynstiff.errors import ClosedFormWarning
+    with pytest.warns(ClosedFormWarning, match="static stiffness shifts a global mode"):
+        m = ds.FrequencyModel(_three_cable_point_mass(g=0.3), guard_rtol=1e-2)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        line = sys._getframe().f_lineno + 1
+        m.dynamic_stiffness([0.99])
+    got = {(w.message.cable, w.message.cause, w.lineno) for w in rec
+           if issubclass(w.category, ClosedFormWarning)}
+    assert got == {(i, "local", line) for i in range(3)}

@@ -485,3 +485,20 @@ def test_series_coefficients_are_the_taylor_series_of_the_psi_functions():
                                       (p * (c**2 - s**2) + (p**2 - 1) * s * c) / p**3)]
         for coef, r in zip((E, P, Q), ref):
             assert np.polyval(coef, x) == pytest.approx(r, rel=1e-15, abs=1e-16)
+
+
+@pytest.mark.parametrize("tension", ["mean", "chord"])
+def test_validity_and_exact_modes_use_the_tension_asked(state300, tension):
+    """closed_form_validity's weight ratio is W |h| / (L T) with the T of the tension asked
+    (theory.md §11.5), and the exact model's modes give Omega = omega L sqrt(m / T) with
+    that T, like the closed form's."""
+    from dynstiff.cable_dsm import closed_form_validity
+    s = state300
+    p = chord_parameters(s, tension)
+    v = closed_form_validity(s, tension=tension)
+    assert v.values["weight_ratio"] == pytest.approx(
+        s.total_weight * abs(s.chord[2]) / s.chord_length / p.T, rel=1e-14)
+    for model in ("closed-form", "exact"):
+        cm = ds.cable_natural_frequencies(s, 4, tension=tension, model=model)
+        np.testing.assert_allclose(cm.Omega, 2 * np.pi * cm.freq_hz * p.L * np.sqrt(p.m / p.T),
+                                   rtol=1e-13)

@@ -231,3 +231,52 @@ def test_chain_input_and_weightless_slack_chains_are_named():
     with pytest.raises(SlackCableError, match="without gravity every segment is slack when "
                                               r"L0 >= chord \(unstretched_length 2 m"):
         chain_equilibrium((0, 0, 0), (1, 0, 0), 2.0, Cable(0.5, 2e5), 4, g=0.0)
+
+
+def _dense_interior(ke):
+    """K_II of a chain assembled element by element ([[k, -k], [-k, k]] at nodes i, i+1),
+    the end nodes dropped."""
+    n_el = ke.shape[0]
+    K = np.zeros((3 * (n_el + 1),) * 2, dtype=ke.dtype)
+    for i, k in enumerate(ke):
+        s = slice(3 * i, 3 * i + 6)
+        K[s, s] += np.block([[k, -k], [-k, k]])
+    return K[3:-3, 3:-3]
+
+
+@pytest.mark.parametrize("factor, extra", [(1.0, 0.0), (1.0 + 0.02j, 0.0),
+                                           (1.0, -3.0 + 0.5j), (1.0 + 0.02j, 2.5)])
+def test_banded_interior_block_is_the_assembled_one(factor, extra):
+    """interior_banded in upper (symmetric) and general form holds K_II + extra I of the
+    element-by-element assembly, complex element stiffnesses (hysteretic damping) and
+    complex diagonal terms included."""
+    from dynstiff.lumped.chain import BANDWIDTH, interior_banded
+    rng = np.random.default_rng(5)
+    a = rng.normal(size=(5, 3, 3))
+    ke = (a + a.transpose(0, 2, 1)) * factor
+    K = _dense_interior(ke) + extra * np.eye(12)
+    for symmetric in (True, False):
+        ab = interior_banded(ke, extra, symmetric=symmetric)
+        dense = np.zeros_like(K)
+        for d in range(ab.shape[0]):
+            off = BANDWIDTH - d                    # ab[u + i - j, j] = A[i, j]
+            j = np.arange(max(0, off), 12 + min(0, off))
+            dense[j - off, j] = ab[d, j]
+        if symmetric:
+            dense = np.triu(dense) + np.triu(dense, 1).T
+        np.testing.assert_allclose(dense, K, rtol=0, atol=1e-14)
+
+
+def test_a_singular_chain_stiffness_is_solved_with_a_small_positive_shift():
+    """A straight chain at zero tension has only axial stiffness (k u u^T): K_II is
+    singular. The regularised solve shifts its diagonal by 1e-10 of its largest entry (and
+    grows the shift only if that fails): an axial load, in the range of K, is met to 1e-9
+    and the transverse motion stays 0."""
+    from dynstiff.lumped.chain import _regularised_solve, interior_banded
+    u = np.array([0.6, 0.0, 0.8])
+    ke = np.broadcast_to(1e4 * np.outer(u, u), (6, 3, 3)).copy()
+    rhs = np.outer(np.linspace(1.0, 2.0, 5), u).ravel()
+    x = _regularised_solve(interior_banded(ke), rhs)
+    assert x is not None
+    np.testing.assert_allclose(_dense_interior(ke) @ x, rhs, rtol=0, atol=1e-9 * np.abs(rhs).max())
+    np.testing.assert_allclose(x.reshape(5, 3)[:, 1], 0.0, atol=0)
