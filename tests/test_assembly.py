@@ -323,3 +323,19 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
     got = {(w.message.cable, w.message.cause, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
     assert got == {(i, "local", line) for i in range(3)}
+
+
+def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro_eq):
+    """CoGiRo's closed-form static error is 4.6e-5 (cable 1); at guard_rtol = 3e-5 it warns,
+    and the message lists the validity's reasons above 3e-6: the sag (9e-5), the chordwise
+    weight (5e-5) and the tension variation (2.3e-5, below guard_rtol itself)."""
+    from dynstiff.cable_dsm import closed_form_validity
+    from dynstiff.errors import ClosedFormWarning
+    err, i = ds.FrequencyModel(cogiro_eq, guard_rtol=None).static_error()
+    with pytest.warns(ClosedFormWarning) as rec:
+        ds.FrequencyModel(cogiro_eq, guard_rtol=3e-5)
+    reasons = closed_form_validity(cogiro_eq.states[i]).reasons(3e-6)
+    assert len(reasons) == 3 and "tension varies" in reasons[-1]
+    assert [str(w.message) for w in rec] == [
+        f"cable {i}: the closed form's static stiffness shifts a global mode by {err:.2g} "
+        f"(estimate, > guard_rtol 3e-05; {'; '.join(reasons)}): use the 'exact' rung"]

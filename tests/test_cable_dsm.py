@@ -502,3 +502,30 @@ def test_validity_and_exact_modes_use_the_tension_asked(state300, tension):
         cm = ds.cable_natural_frequencies(s, 4, tension=tension, model=model)
         np.testing.assert_allclose(cm.Omega, 2 * np.pi * cm.freq_hz * p.L * np.sqrt(p.m / p.T),
                                    rtol=1e-13)
+
+
+@pytest.mark.parametrize("step", [np.pi, 2 * np.pi])
+def test_multiples_below_count_ties_and_roundings_as_the_products_do(step):
+    """#{n >= 1 : n step < x} at x = m step (m - 1 of them) and at the next float above it
+    (m), for m up to 3000, including the ~10 % of those where x / step rounds back down onto
+    m; brute force compares the float products n step themselves."""
+    from dynstiff.cable_dsm import _count_multiples_below
+    m = np.arange(1, 3001)
+    on = m * step
+    above = np.nextafter(on, np.inf)
+    assert np.count_nonzero(above / step == m) > 100
+    for x, want in ((on, m - 1), (above, m)):
+        brute = np.array([np.count_nonzero(np.arange(1, k + 2) * step < v)
+                          for k, v in zip(m, x)])
+        np.testing.assert_array_equal(brute, want)
+        np.testing.assert_array_equal(_count_multiples_below(x, step), want)
+
+
+def test_a_complex_frequency_beyond_the_range_is_named_as_given(state300):
+    """check_frequency_range names the largest |omega| as given, complex included."""
+    from dynstiff.cable_dsm import check_frequency_range
+    p = chord_parameters(state300)
+    with pytest.raises(InvalidParameterError, match=r"got 1e\+09\+2j$"):
+        check_frequency_range(p, np.array([3.0 + 0.1j, 1e9 + 2j]))
+    with pytest.raises(InvalidParameterError, match=r"^w must be <= .*got 1e\+09$"):
+        check_frequency_range(p, np.array([3.0, 1e9]), name="w")

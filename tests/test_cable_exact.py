@@ -360,13 +360,15 @@ def test_a_long_cable_keeps_modes_below_one_radian_per_second():
 
 
 def test_undamped_stiffness_is_real_and_responses_are_linear_in_the_end_motion():
-    """Undamped (c = 0, eta = 0): K(omega) is real, float64, at both ends; a damped cable's
-    is complex. The interior response is linear in the (complex) end displacement, and a
-    refusal names the offending frequency, not the first one."""
+    """Undamped (c = 0, eta = 0): K(omega) and the static stiffnesses (exact and of the
+    discretisation) are real, float64, at both ends; a damped cable's K(omega) is complex.
+    The interior response is linear in the (complex) end displacement, and a refusal names
+    the offending frequency, not the first one."""
     s = state(HARD["sagging 10x5 m, d/L 0.10"])
     ec = ExactCable(s, 5.0)
     assert ec.dynamic_stiffness([1.0, 2.0]).dtype == np.float64
     assert ec.dynamic_stiffness(1.0, ends="both").dtype == np.float64
+    assert ec.static_stiffness.dtype == ec.discrete_static_stiffness().dtype == np.float64
     A, B, L0 = (0, 0, 0), (10.0, 0, 5.0), 11.5
     for cab in (ds.Cable(1.0, 1e6, loss_factor=0.01), ds.Cable(1.0, 1e6, viscous_damping=0.2)):
         K = ExactCable(ds.solve_catenary(A, B, L0, cab), 5.0).dynamic_stiffness(1.0)

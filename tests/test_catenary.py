@@ -384,3 +384,20 @@ def test_a_heavy_vertical_cable_is_found_for_a_tension_below_its_weight():
     assert s.tension_at_anchor == pytest.approx(T + w0 * L0, rel=1e-12)
     with pytest.raises(SlackCableError, match="5.0 N at the end is not reachable"):
         ds.unstretched_length_for_tension([0, 0, 0], [0, 0, 4.0], T, cab)
+
+
+def test_profile_defaults_and_the_point_one_metre_along(cable17):
+    """profile() gives 50 points by default, from A to B; profile_plane at s = 1 m exactly
+    is the catenary's own point there (the offsets of a 1 m cable with the same H and V0),
+    not the anchor; a bad g is named."""
+    from dynstiff.catenary import _end_offsets_and_flexibility
+    s = ds.solve_catenary(A0, B0, 8.5, cable17)
+    pts = s.profile()
+    assert pts.shape == (50, 3)
+    np.testing.assert_allclose(pts[[0, -1]], [A0, B0], rtol=0, atol=1e-9)
+    xz = s.profile_plane([0.0, 1.0, 2.0])
+    ref = [_end_offsets_and_flexibility(s.H, s.V0, sk, cable17.EA,
+                                        cable17.weight_per_length(s.g))[0] for sk in (1.0, 2.0)]
+    np.testing.assert_array_equal(xz, np.vstack([[0.0, 0.0], ref]))
+    with pytest.raises(InvalidParameterError, match="^g must be"):
+        ds.unstretched_length_for_tension(A0, B0, 437.0, cable17, g=-1.0)

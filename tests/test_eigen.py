@@ -377,3 +377,36 @@ def test_cable_fields_follow_the_mode_and_name_what_other_rungs_offer(cogiro_eq)
         with pytest.raises(UnsupportedAnalysisError) as err:
             ds.cable_fields(other, ds.modes(other, 2), 0)
         assert str(err.value).endswith("model has none" + tail)
+
+
+def test_mode_requests_at_the_limits_of_max_modes_and_of_the_exact_band(cogiro_eq, soft_exact):
+    """n_modes equal to max_modes is allowed even when fmax_hz holds more modes (the first
+    n_modes are returned); asking the exact rung for more modes than its band holds names
+    the band, not the cable's refusal of a frequency; Wittrick-Williams mode shapes of a
+    discrete rung name the method to use."""
+    from dynstiff.errors import UnsupportedAnalysisError
+    m, eq = soft_exact
+    dsm = ds.FrequencyModel(cogiro_eq)
+    assert ds.mode_count(dsm, 2 * np.pi * 15.0)[0] > 6
+    f = ds.eigenfrequencies(dsm, n_modes=6, fmax_hz=15.0, max_modes=6)
+    np.testing.assert_allclose(f, ds.eigenfrequencies(dsm, n_modes=6), rtol=1e-12)
+    with pytest.raises(InvalidParameterError,
+                       match=r"^n_modes = 10000 asks for more than the 'exact' model's band "
+                             r"holds \(\d+ modes below 3 Hz\); build it with a larger fmax_hz"):
+        ds.eigenfrequencies(m, n_modes=10000)
+    spring = ds.build_model(eq, "spring")
+    with pytest.raises(UnsupportedAnalysisError) as err:
+        ds.modes(spring, 2, method="wittrick-williams")
+    assert str(err.value) == ("modes by Wittrick-Williams need the cables' kinetic energy of "
+                              "a continuous rung; use method='matrix' for the 'spring' model")
+
+
+@pytest.fixture(scope="module")
+def soft_exact():
+    """planar2 with soft heavy cables (1 kg/m, EA 2e4 N), 10 m below the anchors, and its
+    exact model up to 3 Hz."""
+    import dataclasses
+    r = ds.load_scene("planar2").robot
+    rob = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2)
+    eq = rob.equilibrium(ds.Pose([0, 0, -10]))
+    return ds.build_model(eq, "exact", fmax_hz=3.0), eq

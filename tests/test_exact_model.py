@@ -270,3 +270,26 @@ def test_cable_damping_at_robot_level_is_the_undamped_model_at_a_complex_frequen
     assert not off.damped
     np.testing.assert_array_equal(off.dynamic_stiffness(w), mu.dynamic_stiffness(w))
     assert ExactModel(base.equilibrium(), fmax_hz=0.5, cable_loss_factor=0.5).damped
+
+
+def test_build_options_reach_every_cable_and_bad_ones_are_named(cogiro_eq):
+    """half_waves sets every cable's mesh (the edges of an ExactCable built with it), M_p is
+    the platform's 6x6 mass matrix about P at the pose (its free block the model's
+    platform_mass), and a negative damping option is refused by its own name."""
+    from dynstiff.cable_exact import ExactCable
+    from dynstiff.exact_model import ExactModel
+    from dynstiff.platform import platform_mass_matrix
+    m = ExactModel(cogiro_eq, fmax_hz=6.0, half_waves=5.0)
+    for c, s in zip(m.cables, cogiro_eq.states):
+        np.testing.assert_array_equal(c.edges, ExactCable(s, m.max_omega, half_waves=5.0).edges)
+    assert not np.array_equal(m.cables[0].edges, ExactModel(cogiro_eq, 6.0).cables[0].edges)
+    M = platform_mass_matrix(cogiro_eq.robot.platform, cogiro_eq.pose.matrix)
+    np.testing.assert_array_equal(m.M_p, M)
+    np.testing.assert_array_equal(m.platform_mass, M[np.ix_(m.free_index, m.free_index)])
+    for name in ("cable_loss_factor", "platform_damping_ratio"):
+        with pytest.raises(InvalidParameterError) as err:
+            ExactModel(cogiro_eq, fmax_hz=6.0, **{name: -0.5})
+        assert str(err.value) == f"{name} must be >= 0, got -0.5"
+        with pytest.raises(InvalidParameterError) as err:
+            ds.FrequencyModel(cogiro_eq, **{name: -0.5})
+        assert str(err.value) == f"{name} must be >= 0, got -0.5"

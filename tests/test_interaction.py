@@ -263,6 +263,8 @@ def test_sweep_user_values_and_progress():
                 progress=lambda *a: calls.append(a))
     assert calls == [(1, 3), (2, 3), (3, 3)]
     assert res.parameter == "x [cm]" and len(res) == 15
+    unnamed = sweep(rob, poses=[[0, 0, 1.0], [0.1, 0, 1.0]], values=[1.0, 2.0], n_modes=2)
+    assert unnamed.parameter == "value"             # user values without a name
     np.testing.assert_array_equal(res.value, np.repeat([10.0, 20.0, 30.0], 5))
     np.testing.assert_allclose(res.equilibria[2].pose.position, [0.2, 0, 1.0])
 

@@ -280,3 +280,18 @@ def test_a_singular_chain_stiffness_is_solved_with_a_small_positive_shift():
     assert x is not None
     np.testing.assert_allclose(_dense_interior(ke) @ x, rhs, rtol=0, atol=1e-9 * np.abs(rhs).max())
     np.testing.assert_allclose(x.reshape(5, 3)[:, 1], 0.0, atol=0)
+
+
+def test_a_newton_without_descent_step_says_so_with_its_residual(monkeypatch):
+    """When the tangent stiffness cannot be factorised even shifted, chain_equilibrium
+    raises ConvergenceError naming the failure and carrying the residual of its start
+    (nonzero: the start is not the equilibrium), instead of returning that start; a bad
+    tolerance is named."""
+    import dynstiff.lumped.chain as chain
+    good = chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20)
+    monkeypatch.setattr(chain, "_regularised_solve", lambda ab, rhs: None)
+    with pytest.raises(ConvergenceError, match="no descent step found") as err:
+        chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20)
+    assert isinstance(err.value.residual, float) and err.value.residual > good.residual
+    with pytest.raises(InvalidParameterError, match="^tol must be"):
+        chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20, tol=-1.0)

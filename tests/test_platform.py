@@ -58,7 +58,7 @@ def test_platform_input_is_checked_to_rounding_and_named():
     """Mass, inertia shape, symmetry and definiteness are checked with tolerances relative
     to the inertia's size: a rounding-level asymmetry (1e-13 of |I|) or negative eigenvalue
     (1e-13 of |I|, translations only) is accepted; 1e-10 of |I| is not, and the messages name
-    the argument and the value. The centre of mass is stored as floats."""
+    the argument and the value. The centre of mass and the inertia are stored as floats."""
     big = np.diag([1e4, 1e4, 1e4])
     skew = big.copy()
     skew[0, 1] += 1e-9
@@ -78,8 +78,8 @@ def test_platform_input_is_checked_to_rounding_and_named():
     with pytest.raises(InvalidParameterError) as err:
         ds.Platform(mass=1.0, inertia=np.ones((2, 2)))
     assert str(err.value) == "inertia must be a finite 3x3 tensor [kg m^2], got shape (2, 2)"
-    p = ds.Platform(mass=2, center_of_mass=[1, 2, 3], inertia=np.eye(3))
-    assert p.center_of_mass.dtype == np.float64 and type(p.mass) is float
+    p = ds.Platform(mass=2, center_of_mass=[1, 2, 3], inertia=[[2, 0, 0], [0, 3, 0], [0, 0, 4]])
+    assert p.center_of_mass.dtype == p.inertia.dtype == np.float64 and type(p.mass) is float
 
 
 def test_any_free_rotation_needs_a_positive_definite_physical_inertia():

@@ -352,24 +352,38 @@ def test_vertical_cable_on_the_moon_has_the_analytic_length_and_no_warning():
     np.testing.assert_allclose(fe.pose.position, [0.0, 0.0, 1.0], rtol=0, atol=1e-12)
 
 
-@pytest.mark.parametrize("free", [("x", "z", "rx", "ry", "rz"), ("x", "y", "z", "ry", "rz"),
-                                  ("x", "y", "z", "rx", "ry")])
-def test_forward_statics_needs_initial_pose_for_any_held_coordinate(cogiro, cogiro_eq, free):
+@pytest.mark.parametrize("free, com", [(("x", "z", "rx", "ry", "rz"), None),
+                                       (("x", "y", "z", "ry", "rz"), None),
+                                       (("x", "y", "z", "rx", "ry"), None),
+                                       (("x", "y", "z", "rx", "ry"), (0.0, 0.0, 0.0))])
+def test_forward_statics_needs_initial_pose_for_any_held_coordinate(cogiro, cogiro_eq, free,
+                                                                     com):
     """One held translation (y) or one held rotation (rx or rz, with attachment points off
-    the reference point) alone makes the initial pose necessary: it fixes the held value."""
+    the reference point, whatever the centre of mass) alone makes the initial pose
+    necessary: it fixes the held value."""
     p = cogiro.robot.platform
+    com = p.center_of_mass if com is None else com
     rob = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments, cogiro.robot.cables,
-                   ds.Platform(p.mass, p.center_of_mass, p.inertia, free_dofs=free),
+                   ds.Platform(p.mass, com, p.inertia, free_dofs=free),
                    tension_limits=cogiro.robot.tension_limits)
     with pytest.raises(InvalidParameterError, match="^initial_pose is required when DOFs are"):
         rob.equilibrium(unstretched_lengths=cogiro_eq.unstretched_lengths)
 
 
-def test_equilibrium_states_carry_their_catenary_residuals(cogiro, cogiro_eq):
+def test_equilibrium_states_carry_their_catenary_residuals_and_failures_theirs():
     """Every cable state of inverse statics keeps the residual of its catenary solution
-    (a float at the solver's tolerance), batched or scalar."""
-    res = [s.residual for s in cogiro_eq.states]
+    (a float at the solver's tolerance). A fixed point cut short by max_iter says how much
+    the cable directions still change, as its residual."""
+    from dynstiff.errors import ConvergenceError
+    rob = ds.load_scene("cogiro").robot
+    eq = rob.equilibrium(pose=[0.5, -0.3, 1.5])
+    res = [s.residual for s in eq.states]
     assert all(type(r) is float for r in res) and max(res) < 1e-10
+    with pytest.raises(ConvergenceError, match=r"^inverse statics: cable directions still "
+                                               r"change by \S+ after 1 iterations \(max_iter\)"
+                       ) as err:
+        rob.equilibrium(pose=[0.5, -0.3, 1.5], max_iter=1)
+    assert isinstance(err.value.residual, float) and 1e-15 < err.value.residual < 1.0
 
 
 def test_straight_chord_guess_is_near_the_sagging_equilibrium():
@@ -419,3 +433,14 @@ def test_a_vertical_cable_rising_from_a_floor_anchor_is_held_at_t_min_at_its_anc
                                                + w0 * low.unstretched_length, rel=1e-14)
     assert eq.residual < 1e-10
     assert all(s.min_tension >= 0.01 * (1 - 1e-8) for s in eq.states)
+
+
+def test_active_set_method_from_inside_the_box_returns_the_free_solution():
+    """From a feasible start whose minimum-distance solution is inside the box, no bound
+    becomes active: that solution, with every side 0."""
+    from dynstiff.statics import _closest_in_box
+    W = np.array([[1.0, 1.0, 1.0]])
+    t, sides = _closest_in_box(W, np.array([3.0]), np.zeros(3), np.full(3, 5.0),
+                               np.array([0.5, 1.0, 1.5]), np.array([1.0, 1.0, 1.0]), 1e-9)
+    np.testing.assert_allclose(t, [0.5, 1.0, 1.5], rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(sides, [0, 0, 0])
