@@ -278,6 +278,14 @@ def test_cable_fields_at_rest_give_every_chord(cogiro_eq):
                                    atol=1e-12)
 
 
+def _place(filename, line):
+    """A warning's place (file, line), compared with the caller's. A mutation-testing run
+    (MUTANT_UNDER_TEST set) puts a trampoline frame between caller and library, so there
+    the place is not compared (the normal run compares it)."""
+    import os
+    return (None, None) if "MUTANT_UNDER_TEST" in os.environ else (filename, line)
+
+
 def _three_cable_point_mass(g=9.81, lower=False):
     """A 1 kg point mass on three heavy cables from 8 m around and 6 m up (0.064 kg/m,
     EA 1.4e5 N), optionally a fourth straight down to a floor anchor, at (0.3, -0.2, 1)."""
@@ -303,9 +311,9 @@ def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
         warnings.simplefilter("always")
         line = sys._getframe().f_lineno + 1
         ds.FrequencyModel(eq)
-    got = [(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
+    got = [(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)]
-    assert got == [(3, "slack", __file__, line)]
+    assert got == [(3, "slack") + _place(__file__, line)]
 
 
 def test_the_guard_checks_bands_below_one_radian_per_second():
@@ -320,9 +328,9 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
         warnings.simplefilter("always")
         line = sys._getframe().f_lineno + 1
         m.dynamic_stiffness([0.99])
-    got = {(w.message.cable, w.message.cause, w.lineno) for w in rec
+    got = {(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
-    assert got == {(i, "local", line) for i in range(3)}
+    assert got == {(i, "local") + _place(__file__, line) for i in range(3)}
 
 
 def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro_eq):
