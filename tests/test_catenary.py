@@ -401,3 +401,32 @@ def test_profile_defaults_and_the_point_one_metre_along(cable17):
     np.testing.assert_array_equal(xz, np.vstack([[0.0, 0.0], ref]))
     with pytest.raises(InvalidParameterError, match="^g must be"):
         ds.unstretched_length_for_tension(A0, B0, 437.0, cable17, g=-1.0)
+
+
+def test_divided_differences_at_zero_width_are_the_derivatives():
+    """delta = 0 (a weightless cable): the four divided differences are the derivatives of
+    asinh t, t / sqrt(1 + t^2), 1 / sqrt(1 + t^2) and sqrt(1 + t^2) at a."""
+    from dynstiff.catenary import divided_differences
+    a = np.array([-3.0, -0.2, 0.0, 0.7, 40.0])
+    s = np.hypot(1.0, a)
+    got = divided_differences(a, a, np.zeros_like(a))
+    for g, want in zip(got, (1 / s, 1 / s**3, -a / s**3, a / s)):
+        np.testing.assert_allclose(g, want, rtol=1e-15, atol=0)
+
+
+def test_long_spans_converge_and_limits_are_exact():
+    """2 km spans (1 kg/m, EA 1e8 N) converge to the relative residual 1e-12 of the smaller
+    spans, and the residual reported is that relative one, max |offset error| / (l_h, max(L,
+    L0)), not metres. A weightless cable exactly
+    as long as its chord has no tension: slack, refused. A negative tension is named."""
+    from dynstiff.catenary import _end_offsets_and_flexibility
+    cab = ds.Cable(1.0, 1e8)
+    for L0 in (2001.0, 2019.0, 2100.0):
+        s = ds.solve_catenary((0, 0, 0), (2000.0, 0, 100.0), L0, cab)
+        xz = _end_offsets_and_flexibility(s.H, s.V0, L0, cab.EA, cab.weight_per_length(s.g))[0]
+        rel = np.max(np.abs(xz - [2000.0, 100.0]) / [2000.0, L0])
+        assert s.residual == pytest.approx(rel, rel=1e-12, abs=0) and s.residual < 1e-12
+    with pytest.raises(SlackCableError, match="weightless cable is slack"):
+        ds.solve_catenary((0, 0, 0), (3.0, 0, 4.0), 5.0, ds.Cable(1.0, 1e6), g=0.0)
+    with pytest.raises(InvalidParameterError, match="^tension must be"):
+        ds.unstretched_length_for_tension((0, 0, 0), (3.0, 0, 4.0), -5.0, ds.Cable(1.0, 1e6))

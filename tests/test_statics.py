@@ -444,3 +444,40 @@ def test_active_set_method_from_inside_the_box_returns_the_free_solution():
                                np.array([0.5, 1.0, 1.5]), np.array([1.0, 1.0, 1.0]), 1e-9)
     np.testing.assert_allclose(t, [0.5, 1.0, 1.5], rtol=0, atol=1e-15)
     np.testing.assert_array_equal(sides, [0, 0, 0])
+    assert sides.dtype.kind == "i"
+
+
+def test_the_upper_limit_holds_along_the_whole_cable():
+    """CoGiRo at (0.3, -0.2, 1.1) with t_max 5 % above the default solution's largest
+    tension and a reference tension far above it: the distribution presses the tensions up
+    to the limit, which binds where the tension is largest, at the upper anchor. Two cables
+    reach exactly t_max there, their platform ends t_max minus their weight's share (about
+    2.7 N), and no cable exceeds t_max anywhere."""
+    import dataclasses
+    rob = ds.load_scene("cogiro").robot
+    pose = [0.3, -0.2, 1.1]
+    t_max = 1.05 * max(s.max_tension for s in rob.equilibrium(pose=pose).states)
+    eq = dataclasses.replace(rob, tension_limits=(100.0, t_max)).equilibrium(
+        pose=pose, tension_reference=1e4)
+    top = np.array([s.max_tension for s in eq.states])
+    assert np.all(top <= t_max * (1 + 1e-9))
+    at_limit = np.flatnonzero(top > t_max * (1 - 1e-9))
+    assert len(at_limit) == 2
+    for i in at_limit:
+        s = eq.states[i]
+        assert s.tension_at_anchor == pytest.approx(t_max, rel=1e-9)
+        assert 2.0 < t_max - eq.tensions[i] < 3.0
+
+
+def test_forward_statics_whose_newton_cannot_descend_says_so(monkeypatch):
+    """With the platform stiffness of the wrong sign, no step of the line search lowers the
+    wrench residual: ConvergenceError with that residual, not a pose."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.statics import forward_statics
+    rob = ds.load_scene("cogiro").robot
+    L0 = rob.equilibrium(pose=[0.3, -0.2, 1.1]).unstretched_lengths
+    orig = ds.Robot.platform_stiffness
+    monkeypatch.setattr(ds.Robot, "platform_stiffness", lambda self, *a: -orig(self, *a))
+    with pytest.raises(ConvergenceError, match="^forward statics did not converge") as err:
+        forward_statics(rob, L0)
+    assert isinstance(err.value.residual, float) and err.value.residual > 1e-10
