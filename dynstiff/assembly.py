@@ -23,7 +23,7 @@ from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_R
                         chord_parameters, closed_form_local_error, closed_form_validity,
                         dyad_basis, end_block_coefficients, end_block_coefficients_and_count,
                         mode_count_nondimensional, stack_parameters)
-from .errors import ClosedFormWarning, InvalidParameterError
+from .errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from .model_base import PlatformModel, require_equilibrium
 from .catenary import end_stiffnesses
 from .platform import lever_map, lever_maps, platform_mass_matrix
@@ -262,7 +262,7 @@ class FrequencyModel(PlatformModel):
             return
         self._warned.add((cable, cause))
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
-                                        cause=cause), stacklevel=4)
+                                        cause=cause), stacklevel=user_stacklevel())
 
     def dynamic_stiffness_and_count(self, omega):
         """K(omega) and J0(omega) of the undamped model at real omega, from one evaluation of

@@ -51,7 +51,7 @@ import numpy as np
 from ._validate import omega_array
 from .cable_exact import ExactCable
 from .chord import ChordParameters, chord_parameters, stack_parameters
-from .errors import ClosedFormWarning, InvalidParameterError
+from .errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 
 __all__ = [
     "ChordParameters",
@@ -742,7 +742,7 @@ def _guard_cable(state, omega_max, tension, guard_rtol):
         "axial" if np.isinf(v.causes["axial"]) else "local")
     warnings.warn(ClosedFormWarning(
         f"{what} (" + "; ".join(v.reasons(0.1 * guard_rtol)) + "): use model='exact'",
-        cable=None, cause=cause), stacklevel=3)
+        cable=None, cause=cause), stacklevel=user_stacklevel())
 
 
 def closed_form_local_error(state, omega_max, tension="mean"):

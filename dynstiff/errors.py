@@ -53,3 +53,17 @@ class ClosedFormWarning(UserWarning):
         super().__init__(message)
         self.cable = cable
         self.cause = cause
+
+
+def user_stacklevel():
+    """``stacklevel`` for :func:`warnings.warn` called by the caller of this function that
+    attributes the warning to the first frame outside the dynstiff package: the user's line,
+    however deep in the package the warning arises (a model's guard runs from its
+    construction, from K(omega) and from the eigen search)."""
+    import os
+    import sys
+    package = os.path.dirname(os.path.abspath(__file__)) + os.sep
+    frame, level = sys._getframe(1), 1
+    while frame is not None and frame.f_code.co_filename.startswith(package):
+        frame, level = frame.f_back, level + 1
+    return level

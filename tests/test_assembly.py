@@ -278,14 +278,6 @@ def test_cable_fields_at_rest_give_every_chord(cogiro_eq):
                                    atol=1e-12)
 
 
-def _place(filename, line):
-    """A warning's place (file, line), compared with the caller's. A mutation-testing run
-    (MUTANT_UNDER_TEST set) puts a trampoline frame between caller and library, so there
-    the place is not compared (the normal run compares it)."""
-    import os
-    return (None, None) if "MUTANT_UNDER_TEST" in os.environ else (filename, line)
-
-
 def _three_cable_point_mass(g=9.81, lower=False):
     """A 1 kg point mass on three heavy cables from 8 m around and 6 m up (0.064 kg/m,
     EA 1.4e5 N), optionally a fourth straight down to a floor anchor, at (0.3, -0.2, 1)."""
@@ -311,9 +303,9 @@ def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
         warnings.simplefilter("always")
         line = sys._getframe().f_lineno + 1
         ds.FrequencyModel(eq)
-    got = [(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
+    got = [(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)]
-    assert got == [(3, "slack") + _place(__file__, line)]
+    assert got == [(3, "slack", __file__, line)]
 
 
 def test_the_guard_checks_bands_below_one_radian_per_second():
@@ -328,9 +320,9 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
         warnings.simplefilter("always")
         line = sys._getframe().f_lineno + 1
         m.dynamic_stiffness([0.99])
-    got = {(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
+    got = {(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
-    assert got == {(i, "local") + _place(__file__, line) for i in range(3)}
+    assert got == {(i, "local", __file__, line) for i in range(3)}
 
 
 def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro_eq):
@@ -347,3 +339,22 @@ def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro
     assert [str(w.message) for w in rec] == [
         f"cable {i}: the closed form's static stiffness shifts a global mode by {err:.2g} "
         f"(estimate, > guard_rtol 3e-05; {'; '.join(reasons)}): use the 'exact' rung"]
+
+
+def test_guard_warnings_from_deep_calls_point_at_the_callers_line_too():
+    """The guard also runs inside the eigen search and the cable-level functions: their
+    warnings are attributed to the user's line as well, not to a line of the package."""
+    import dataclasses
+    import warnings
+    from dynstiff.errors import ClosedFormWarning
+    r = ds.load_scene("planar2").robot
+    eq = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2).equilibrium(
+        ds.Pose([0, 0, -10]))
+    m = ds.FrequencyModel(eq)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        line = sys._getframe().f_lineno + 1
+        ds.eigenfrequencies(m, fmax_hz=40.0)
+        ds.cable_natural_frequencies(eq.states[0], 40)
+    places = {(w.filename, w.lineno) for w in rec if issubclass(w.category, ClosedFormWarning)}
+    assert places == {(__file__, line), (__file__, line + 1)}
