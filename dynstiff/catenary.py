@@ -591,7 +591,14 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
 
     # Upper bracket: a short cable is stiff, so tension is high; lower tension needs longer L0.
     L_hi_tension = L / (1.0 + 2.0 * T_target / cable.EA)
-    while f(L_hi_tension) < 0:
+
+    def too_long(L0):                  # tension under the target, or slack (vertical cable)
+        try:
+            return f(L0) < 0
+        except SlackCableError:
+            return True
+
+    while too_long(L_hi_tension):
         L_hi_tension *= 1.0 - 0.5 * min(0.5, 1.0 / np.log10(cable.EA))
     # Lower bracket: grow L0 until the tension drops under the target; a straight (vertical)
     # cable that goes slack first, at a length where the tension would be negative, is

@@ -306,6 +306,11 @@ def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
     got = [(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)]
     assert got == [(3, "slack", __file__, line)]
+    from dynstiff.cable_dsm import DEFAULT_GUARD_RTOL, closed_form_validity
+    reasons = closed_form_validity(eq.states[3]).reasons(DEFAULT_GUARD_RTOL)
+    slack = [str(w.message) for w in rec if issubclass(w.category, ClosedFormWarning)][0]
+    assert slack == ("cable 3: the closed form does not apply: " + "; ".join(reasons)
+                     + ": use the 'exact' rung")
 
 
 def test_the_guard_checks_bands_below_one_radian_per_second():
@@ -323,6 +328,33 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
     got = {(w.message.cable, w.message.cause, w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
     assert got == {(i, "local", __file__, line) for i in range(3)}
+    for w in rec:
+        i = w.message.cable
+        f_loc = m._local_omega[i] / (2 * np.pi)
+        assert f_loc < 0.99 / (2 * np.pi)
+        assert str(w.message).startswith(f"cable {i}: its local modes (from {f_loc:.4g} Hz) are "
+                                         f"in the band asked and the closed form's are ")
+
+
+def test_the_undamped_copy_keeps_the_guard_and_drops_the_loss_factor(cogiro_eq):
+    """undamped() of a model whose cables have a loss factor: real K (float64), equal to
+    the model of the same cables without damping, and the same guard tolerance."""
+    import dataclasses
+    rob = cogiro_eq.robot
+    c = rob.cables[0]
+    lossy = dataclasses.replace(rob, cables=(ds.Cable(c.mass_per_length, c.EA,
+                                                      loss_factor=0.02),) * rob.n_cables)
+    eq = lossy.equilibrium(pose=cogiro_eq.pose)
+    m = ds.FrequencyModel(eq, guard_rtol=0.05)
+    assert m.damped
+    u = m.undamped()
+    assert not u.damped and u.guard_rtol == 0.05
+    w = 2 * np.pi * np.array([0.5, 3.0, 9.0])
+    K = u.dynamic_stiffness(w)
+    assert K.dtype == np.float64
+    ref = ds.FrequencyModel(dataclasses.replace(lossy, cables=(c,) * rob.n_cables)
+                            .equilibrium(pose=cogiro_eq.pose))
+    np.testing.assert_allclose(K, ref.dynamic_stiffness(w), rtol=1e-12, atol=1e-9)
 
 
 def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro_eq):
@@ -358,3 +390,8 @@ def test_guard_warnings_from_deep_calls_point_at_the_callers_line_too():
         ds.cable_natural_frequencies(eq.states[0], 40)
     places = {(w.filename, w.lineno) for w in rec if issubclass(w.category, ClosedFormWarning)}
     assert places == {(__file__, line), (__file__, line + 1)}
+    f_ax = np.sqrt(2.0e4 / 1.0) / (2 * eq.states[0].unstretched_length)
+    axial = [str(w.message) for w in rec if getattr(w.message, "cause", "") == "axial"]
+    assert axial[0] == (f"cable 0: its axial modes from {f_ax:.4g} Hz lie in the band asked "
+                        f"(up to 40 Hz); the closed form has none, so mode counts and "
+                        f"frequencies above are wrong: use the 'exact' rung")

@@ -529,3 +529,35 @@ def test_a_complex_frequency_beyond_the_range_is_named_as_given(state300):
         check_frequency_range(p, np.array([3.0 + 0.1j, 1e9 + 2j]))
     with pytest.raises(InvalidParameterError, match=r"^w must be <= .*got 1e\+09$"):
         check_frequency_range(p, np.array([3.0, 1e9]), name="w")
+
+
+def test_the_measured_local_error_uses_the_tension_asked_for_its_band():
+    """closed_form_local_error over the modes below 8 omega_1, omega_1 = pi sqrt(T / m) / L
+    with the T asked (theory.md §11.5): on a steep sagging cable, whose chord tension is
+    34 % below its mean, the chord-tension error is the largest |f_closed / f_exact - 1| of
+    the exact cable's non-axial modes in that band, rebuilt here."""
+    from dynstiff.cable_dsm import closed_form_local_error
+    from dynstiff.cable_exact import ExactCable
+    s = ds.solve_catenary([0, 0, 0], [5.0, 0, 5 * np.sqrt(3)], 10.6, ds.Cable(1.0, 1e6))
+    p = chord_parameters(s, "chord")
+    band = 8 * np.pi * np.sqrt(p.T / p.m) / p.L
+    ec = ExactCable(s, band)
+    keep = (ec.eigenvalues <= band**2) & (np.array(ec.family) != "axial")
+    f_ex = np.sqrt(ec.eigenvalues[keep]) / (2 * np.pi)
+    f_cf = ds.cable_natural_frequencies(s, f_ex.size, "chord", guard_rtol=None).freq_hz
+    want = np.max(np.abs(f_cf / f_ex - 1))
+    assert closed_form_local_error(s, 0.0, "chord") == pytest.approx(want, rel=1e-12)
+    assert closed_form_local_error(s, 0.0, "mean") != pytest.approx(want, rel=1e-3)
+
+
+def test_exact_modes_are_numbered_within_their_family():
+    """The exact model's labels on a soft cable whose axial mode is among its first 12: in
+    each of the three families the orders are 1, 2, 3, ... by frequency."""
+    soft = ds.solve_catenary([0, 0, 0], [10.0, 0, -2.0], 9.8, ds.Cable(1.0, 2e3))
+    cm = ds.cable_natural_frequencies(soft, 12, model="exact")
+    fam = np.array(cm.family)
+    assert set(cm.family) == {"out-of-plane", "in-plane", "axial"}
+    for name in set(cm.family):
+        sel = fam == name
+        np.testing.assert_array_equal(cm.order[sel], np.arange(1, sel.sum() + 1))
+        assert np.all(np.diff(cm.freq_hz[sel]) > 0)

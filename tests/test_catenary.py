@@ -384,6 +384,12 @@ def test_a_heavy_vertical_cable_is_found_for_a_tension_below_its_weight():
     assert s.tension_at_anchor == pytest.approx(T + w0 * L0, rel=1e-12)
     with pytest.raises(SlackCableError, match="5.0 N at the end is not reachable"):
         ds.unstretched_length_for_tension([0, 0, 0], [0, 0, 4.0], T, cab)
+    # a short, very heavy one (50 kg/m over 0.5 m): the taut end of the bracket shrinks too
+    cab, L = ds.Cable(50.0, 2e4), 0.5
+    s = ds.unstretched_length_for_tension([0, 0, 5.0], [0, 0, 5.0 - L], T, cab)
+    a, b = 50.0 * 9.81 / (2 * EA), 1.0 + T / EA
+    assert s.unstretched_length == pytest.approx(2 * L / (b + np.sqrt(b * b + 4 * a * L)),
+                                                 rel=1e-13)
 
 
 def test_profile_defaults_and_the_point_one_metre_along(cable17):
@@ -430,3 +436,10 @@ def test_long_spans_converge_and_limits_are_exact():
         ds.solve_catenary((0, 0, 0), (3.0, 0, 4.0), 5.0, ds.Cable(1.0, 1e6), g=0.0)
     with pytest.raises(InvalidParameterError, match="^tension must be"):
         ds.unstretched_length_for_tension((0, 0, 0), (3.0, 0, 4.0), -5.0, ds.Cable(1.0, 1e6))
+
+
+def test_coincident_ends_are_judged_relative_to_their_coordinates():
+    """Ends 5e-11 m apart 100 m from the origin are one point to rounding (1e-12 of the
+    coordinates): refused, naming both."""
+    with pytest.raises(InvalidParameterError, match="^anchor and end must be distinct points"):
+        ds.solve_catenary([100.0, 0, 0], [100.0 + 5e-11, 0, 0], 1.0, ds.Cable(1.0, 1e6))

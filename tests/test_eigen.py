@@ -410,3 +410,14 @@ def soft_exact():
     rob = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2)
     eq = rob.equilibrium(ds.Pose([0, 0, -10]))
     return ds.build_model(eq, "exact", fmax_hz=3.0), eq
+
+
+@pytest.mark.parametrize("name, fmax_hz", [("planar2", 200.0), ("sixcable", 50.0)])
+def test_the_roots_do_not_depend_on_the_band_asked(name, fmax_hz):
+    """The lowest roots are the same whether 5 Hz or a wide band is asked, though in the
+    wide one the first mode lies below the first point of the count's grid (fmax / 64)."""
+    m = ds.FrequencyModel(ds.load_scene(name).equilibrium())
+    low = ds.eigenfrequencies(m, fmax_hz=5.0)
+    wide = ds.eigenfrequencies(m, fmax_hz=fmax_hz)
+    assert low[0] < fmax_hz / 64 and len(wide) > len(low) > 0
+    np.testing.assert_allclose(wide[:len(low)], low, rtol=1e-11)

@@ -295,3 +295,5 @@ def test_a_newton_without_descent_step_says_so_with_its_residual(monkeypatch):
     assert isinstance(err.value.residual, float) and err.value.residual > good.residual
     with pytest.raises(InvalidParameterError, match="^tol must be"):
         chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20, tol=-1.0)
+    with pytest.raises(InvalidParameterError, match="^anchor must be"):
+        chain_equilibrium([np.nan, 0, 0], B_11, L0_11, CABLE_11, 20)
