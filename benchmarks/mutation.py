@@ -371,6 +371,8 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_SEEDS = ("the seed grid of the eigen search (its uniform points, or the massless-cable "
+          "frequencies dropped): brackets are certified by the counts, the same roots")
 _VERTICAL = ("the horizontal direction of an exactly vertical chord in the batched end "
              "stiffness: such a cable has H = 0 and takes its state's own end stiffness")
 EQUIVALENT.update({
@@ -515,6 +517,49 @@ EQUIVALENT.update({
     "dynstiff.statics.x__end_quantities__mutmut_79":
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
     "dynstiff.statics.x_forward_statics__mutmut_61": _BOUNDARY,
+    "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
+    "dynstiff.cable_dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
+    "dynstiff.catenary.x__newton__mutmut_80": _BOUNDARY,
+    "dynstiff.catenary.x__newton__mutmut_70":
+        "the catenary Newton's line search accepts a short step only when converged: the "
+        "equilibrium for given L0 and ends is unique and checked by its residual",
+    "dynstiff.catenary.x__initial_guesses__mutmut_63": _CAT_START,
+    "dynstiff.catenary.x__initial_guesses__mutmut_71": _CAT_START,
+    "dynstiff.eigen.x__illinois__mutmut_49": _BOUNDARY,
+    "dynstiff.eigen.x__illinois__mutmut_125": _BOUNDARY,
+    "dynstiff.eigen.x__illinois__mutmut_74":
+        "the paired second point always on the low side of x: the pair still brackets a "
+        "root within 0.45 rtol above x, and bisection bounds the steps; the same roots",
+    "dynstiff.eigen.x__illinois__mutmut_205":
+        "the Anderson-Bjorck factor never applied at the low end: plain Illinois steps "
+        "there, the same roots in more steps",
+    "dynstiff.eigen.x__seed_grid__mutmut_7": _SEEDS,
+    "dynstiff.eigen.x__seed_grid__mutmut_31": _SEEDS,
+    "dynstiff.exact_model.xǁExactModelǁdynamic_stiffness__mutmut_36":
+        "the frequency blocks overlapping (step 1): every frequency written with the same "
+        "value again (memory and time only)",
+    "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_53":
+        "multiplication by 1 + i 0 (loss factor 0) in a damped model: the same values",
+    "dynstiff.lumped.chain.x__force_space_start__mutmut_112": _START,
+    "dynstiff.lumped.chain.x__force_space_start__mutmut_156": _START,
+    "dynstiff.lumped.chain.x__tension_estimate__mutmut_26": _START,
+    "dynstiff.lumped.chain.x__regularised_solve__mutmut_16":
+        "check_finite=None is falsy like False",
+    "dynstiff.lumped.chain.x__newton__mutmut_146": "61 halvings of the line search instead of 60",
+    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_102":
+        "the floor of the semi-definiteness test's tolerance (2 instead of 1 kg m^2 x 1e-12)",
+    "dynstiff.statics.x__closest_in_box__mutmut_15":
+        "the 1 N floor of the step threshold's scale: without it the threshold is 1e-12 of "
+        "tensions below 1 N, still far above their rounding; the same unique minimiser",
+    "dynstiff.statics.x__closest_in_box__mutmut_173":
+        "-2 instead of -1 for a lower side: only the sign of a side is used",
+    "dynstiff.statics.x__distribution__mutmut_9":
+        "dtype=float dropped on t_min: integer limits give the same float tensions",
+    "dynstiff.statics.x__distribution__mutmut_63":
+        "the all-free active set as floats instead of integers: only tested with np.any",
+    "dynstiff.statics.x_inverse_statics__mutmut_134":
+        "the stall counter reset at every step, so the stall exit is never taken: see "
+        "mutmut_133",
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

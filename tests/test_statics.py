@@ -324,6 +324,7 @@ def test_forward_statics_with_its_defaults_inverts_inverse_statics():
     rob = ds.load_scene("cogiro").robot
     eq = rob.equilibrium(pose=[0.3, -0.2, 1.1, 0.02, -0.01, 0.03])
     fe = forward_statics(rob, eq.unstretched_lengths)
+    assert type(fe.residual) is float and fe.residual <= 1e-10
     np.testing.assert_allclose(fe.pose.position, eq.pose.position, rtol=0, atol=1e-9)
     np.testing.assert_allclose(fe.tensions, eq.tensions, rtol=1e-9)
 
@@ -352,18 +353,20 @@ def test_vertical_cable_on_the_moon_has_the_analytic_length_and_no_warning():
     np.testing.assert_allclose(fe.pose.position, [0.0, 0.0, 1.0], rtol=0, atol=1e-12)
 
 
-@pytest.mark.parametrize("free, com", [(("x", "z", "rx", "ry", "rz"), None),
-                                       (("x", "y", "z", "ry", "rz"), None),
-                                       (("x", "y", "z", "rx", "ry"), None),
-                                       (("x", "y", "z", "rx", "ry"), (0.0, 0.0, 0.0))])
+@pytest.mark.parametrize("free, com, at_p", [(("x", "z", "rx", "ry", "rz"), None, False),
+                                             (("x", "y", "z", "ry", "rz"), None, False),
+                                             (("x", "y", "z", "rx", "ry"), None, False),
+                                             (("x", "y", "z", "rx", "ry"), (0, 0, 0), False),
+                                             (("x", "y", "z", "rx", "ry"), (0, 0, -0.3), True)])
 def test_forward_statics_needs_initial_pose_for_any_held_coordinate(cogiro, cogiro_eq, free,
-                                                                     com):
-    """One held translation (y) or one held rotation (rx or rz, with attachment points off
-    the reference point, whatever the centre of mass) alone makes the initial pose
-    necessary: it fixes the held value."""
+                                                                     com, at_p):
+    """One held translation (y) or one held rotation (rx or rz) alone makes the initial pose
+    necessary, when rotations matter: attachment points off the reference point (whatever
+    the centre of mass), or all cables at P and the centre of mass off it."""
     p = cogiro.robot.platform
     com = p.center_of_mass if com is None else com
-    rob = ds.Robot(cogiro.robot.anchors, cogiro.robot.attachments, cogiro.robot.cables,
+    attach = np.zeros_like(cogiro.robot.attachments) if at_p else cogiro.robot.attachments
+    rob = ds.Robot(cogiro.robot.anchors, attach, cogiro.robot.cables,
                    ds.Platform(p.mass, com, p.inertia, free_dofs=free),
                    tension_limits=cogiro.robot.tension_limits)
     with pytest.raises(InvalidParameterError, match="^initial_pose is required when DOFs are"):
@@ -372,13 +375,18 @@ def test_forward_statics_needs_initial_pose_for_any_held_coordinate(cogiro, cogi
 
 def test_equilibrium_states_carry_their_catenary_residuals_and_failures_theirs():
     """Every cable state of inverse statics keeps the residual of its catenary solution
-    (a float at the solver's tolerance). A fixed point cut short by max_iter says how much
-    the cable directions still change, as its residual."""
+    (a float at the solver's tolerance). A wrench residual above tol is refused with it, and
+    a fixed point cut short by max_iter says how much the cable directions still change."""
     from dynstiff.errors import ConvergenceError
     rob = ds.load_scene("cogiro").robot
     eq = rob.equilibrium(pose=[0.5, -0.3, 1.5])
     res = [s.residual for s in eq.states]
     assert all(type(r) is float for r in res) and max(res) < 1e-10
+    assert eq.residual > 1e-15                # rounding of the 8-cable wrench sum
+    with pytest.raises(ConvergenceError, match=r"^inverse statics: wrench residual \S+ "
+                                               r"\(relative to m g\) > tol 1e-15 at pose") as err:
+        rob.equilibrium(pose=[0.5, -0.3, 1.5], tol=1e-15)
+    assert err.value.residual == eq.residual
     with pytest.raises(ConvergenceError, match=r"^inverse statics: cable directions still "
                                                r"change by \S+ after 1 iterations \(max_iter\)"
                        ) as err:
