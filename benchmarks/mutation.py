@@ -126,7 +126,7 @@ EQUIVALENT.update({
         "ClosedFormWarning that the original already issued: no other warning arises there",
     "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_19":
         "np.asarray then float64 either way (the attribute is set from float arithmetic)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_107":
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_109":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
 })
 _START = ("the starting guess of the chain's Newton (its tension estimate or force-space "
@@ -448,19 +448,24 @@ EQUIVALENT.update({
     "dynstiff.statics.x_inverse_statics__mutmut_104":
         "the residual slot of a cable solved by the scalar solver: unused, its state is "
         "that solver's own (with its residual)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_121":
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_128":
+        "brentq's maxiter 201 instead of 200",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_53":
+        "the short end of the bracket on L0 far shorter (T EA instead of T / EA): still "
+        "above the target tension, the same root in more Brent steps",
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_123":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same root "
         "to a few ulps",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_79":
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_81":
         "the start of the lower bracket on L0, which is grown (or bisected back from slack) "
         "until the tension is under the target",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_99":
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_101":
         "the lower bracket grown by 2.05 instead of 1.05 per step: the taut solution and "
         "the deep loop's are far apart in L0, and a slack trial is bisected back",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_106":
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_108":
         "the bracket search gives up after 100 instead of 200 steps (1.05^100 = 130 chord "
         "lengths, or 100 halvings)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_90": _BOUNDARY,
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
     "dynstiff.catenary.x__initial_guesses__mutmut_37": _CAT_START,
     "dynstiff.catenary.x__initial_guesses__mutmut_40": _CAT_START,
     "dynstiff.catenary.x__initial_guesses__mutmut_74": _CAT_START,
