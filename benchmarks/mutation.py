@@ -569,6 +569,28 @@ EQUIVALENT.update({
     "dynstiff.statics.x_inverse_statics__mutmut_134":
         "the stall counter reset at every step, so the stall exit is never taken: see "
         "mutmut_133",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_83":
+        "closed_form_validity given the chord parameters: its tension argument is unused",
+    "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_5":
+        "the slack cause is 0 or inf: > 1 and > 0 agree",
+    "dynstiff.cable_dsm.x_irvine_symmetric_roots__mutmut_83":
+        "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same roots "
+        "to a few ulps",
+    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_25": _BOUNDARY,
+    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_35": _BOUNDARY,
+    "dynstiff.cable_dsm.xǁCableModesǁ__repr____mutmut_4":
+        "the repr of an empty mode table: never built (n_modes >= 1 is enforced)",
+    "dynstiff.catenary.x__initial_guesses__mutmut_44": _CAT_START,
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,
+    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_73":
+        "the short end of the bracket shrunk by a larger factor per step: the same root",
+    "dynstiff.catenary.x__newton__mutmut_72": _BOUNDARY,
+    "dynstiff.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
+    "dynstiff.platform.x_lever_maps__mutmut_3":
+        "dtype dropped on lever arms written into a float array: the same maps",
+    "dynstiff.platform.x_lever_maps__mutmut_5":
+        "dtype dropped on lever arms written into a float array: the same maps",
+    "dynstiff.statics.x__distribution__mutmut_1": _WARM,
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

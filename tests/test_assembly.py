@@ -333,6 +333,7 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
         warnings.simplefilter("always")
         line = sys._getframe().f_lineno + 1
         m.dynamic_stiffness([0.99])
+        m.dynamic_stiffness([1.2])                 # a wider band: said once per cable only
     got = {(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
     assert got == {(i, "local") + _place(__file__, line) for i in range(3)}
@@ -344,15 +345,17 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
                                          f"in the band asked and the closed form's are ")
 
 
-def test_the_undamped_copy_keeps_the_guard_and_drops_the_loss_factor(cogiro_eq):
-    """undamped() of a model whose cables have a loss factor: real K (float64), equal to
-    the model of the same cables without damping, and the same guard tolerance."""
+@pytest.mark.parametrize("damping", [{"loss_factor": 0.02}, {"viscous_damping": 0.5}])
+def test_the_undamped_copy_keeps_the_guard_and_drops_the_damping(cogiro_eq, damping):
+    """undamped() of a model whose cables have a loss factor or viscous damping: real K
+    (float64), equal to the model of the same cables without damping, and the same guard
+    tolerance."""
     import dataclasses
     rob = cogiro_eq.robot
     c = rob.cables[0]
-    lossy = dataclasses.replace(rob, cables=(ds.Cable(c.mass_per_length, c.EA,
-                                                      loss_factor=0.02),) * rob.n_cables)
-    eq = lossy.equilibrium(pose=cogiro_eq.pose)
+    damped = dataclasses.replace(rob, cables=(ds.Cable(c.mass_per_length, c.EA,
+                                                       **damping),) * rob.n_cables)
+    eq = damped.equilibrium(pose=cogiro_eq.pose)
     m = ds.FrequencyModel(eq, guard_rtol=0.05)
     assert m.damped
     u = m.undamped()
@@ -360,9 +363,18 @@ def test_the_undamped_copy_keeps_the_guard_and_drops_the_loss_factor(cogiro_eq):
     w = 2 * np.pi * np.array([0.5, 3.0, 9.0])
     K = u.dynamic_stiffness(w)
     assert K.dtype == np.float64
-    ref = ds.FrequencyModel(dataclasses.replace(lossy, cables=(c,) * rob.n_cables)
+    ref = ds.FrequencyModel(dataclasses.replace(damped, cables=(c,) * rob.n_cables)
                             .equilibrium(pose=cogiro_eq.pose))
     np.testing.assert_allclose(K, ref.dynamic_stiffness(w), rtol=1e-12, atol=1e-9)
+
+
+def test_the_tension_asked_reaches_every_cable(cogiro_eq):
+    """FrequencyModel(tension="chord") builds every cable's closed form with Irvine's chord
+    tension H / cos(theta), not the mean tension."""
+    from dynstiff.chord import chord_parameters
+    m = ds.FrequencyModel(cogiro_eq, tension="chord")
+    for p, s in zip(m.params, cogiro_eq.states):
+        assert p.T == chord_parameters(s, "chord").T != chord_parameters(s, "mean").T
 
 
 def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro_eq):

@@ -561,3 +561,15 @@ def test_exact_modes_are_numbered_within_their_family():
         sel = fam == name
         np.testing.assert_array_equal(cm.order[sel], np.arange(1, sel.sum() + 1))
         assert np.all(np.diff(cm.freq_hz[sel]) > 0)
+
+
+def test_coincident_closed_form_modes_are_listed_in_family_order(state300):
+    """Out-of-plane k pi and in-plane antisymmetric 2 j pi coincide for k = 2 j: such pairs
+    keep the documented family order, out-of-plane first, every one of them."""
+    cm = ds.cable_natural_frequencies(state300, 60, guard_rtol=None)
+    fam = np.array(cm.family)
+    ties = np.flatnonzero(np.diff(cm.Omega) == 0)
+    assert len(ties) >= 10
+    assert np.all(fam[ties] == "out-of-plane")
+    assert np.all(fam[ties + 1] == "in-plane antisymmetric")
+    np.testing.assert_array_equal(cm.order[ties + 1] * 2, cm.order[ties])

@@ -52,7 +52,7 @@ def test_lever_maps_stack_lever_map():
     r = np.random.default_rng(2).normal(size=(5, 3))
     for fi in (None, np.array([0, 2, 3, 5])):
         np.testing.assert_array_equal(lever_maps(r, fi), [lever_map(x, fi) for x in r])
-    whole = [[1, -2, 3], [0, 4, -1]]                        # integer arms give float maps
+    whole = [[1, -2, 3], [0, 4, -1]]                # integer arms give the same float maps
     assert lever_maps(whole).dtype == np.float64
     np.testing.assert_array_equal(lever_maps(whole), lever_maps(np.array(whole, dtype=float)))
 
