@@ -371,6 +371,9 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_ZERO_FORCE = ("never reached: the chord direction filled in where a start segment's force is "
+               "exactly zero, which needs a vertical chain whose force at A cancels a whole "
+               "number of segment weights")
 _SEEDS = ("the seed grid of the eigen search (its uniform points, or the massless-cable "
           "frequencies dropped): brackets are certified by the counts, the same roots")
 _VERTICAL = ("the horizontal direction of an exactly vertical chord in the batched end "
@@ -591,6 +594,11 @@ EQUIVALENT.update({
     "dynstiff.platform.x_lever_maps__mutmut_5":
         "dtype dropped on lever arms written into a float array: the same maps",
     "dynstiff.statics.x__distribution__mutmut_1": _WARM,
+    "dynstiff.lumped.chain.x__force_space_start__mutmut_77":
+        "never reached: the start's Newton stops early only on a zero segment force or a "
+        "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
+    "dynstiff.lumped.chain.x__force_space_start__mutmut_224": _ZERO_FORCE,
+    "dynstiff.lumped.chain.x__force_space_start__mutmut_228": _ZERO_FORCE,
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

@@ -337,6 +337,7 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
     got = {(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)}
     assert got == {(i, "local") + _place(__file__, line) for i in range(3)}
+    assert len(rec) == 3
     for w in rec:
         i = w.message.cable
         f_loc = m._local_omega[i] / (2 * np.pi)
