@@ -371,6 +371,9 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_CONST = ("the dtype of the zeros the cables' static stiffnesses are summed into: the sum "
+          "const + ... upcasts to complex where a cable is damped, and K.real follows for "
+          "an undamped model")
 _ZERO_FORCE = ("never reached: the chord direction filled in where a start segment's force is "
                "exactly zero, which needs a vertical chain whose force at A cancels a whole "
                "number of segment weights")
@@ -599,6 +602,33 @@ EQUIVALENT.update({
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
     "dynstiff.lumped.chain.x__force_space_start__mutmut_224": _ZERO_FORCE,
     "dynstiff.lumped.chain.x__force_space_start__mutmut_228": _ZERO_FORCE,
+    f"{_EM}__init____mutmut_130": "beta_dyads(ends=None): any value but 'both' gives the end "
+                                  "block",
+    f"{_EM}__init____mutmut_131": "beta_dyads(ends='XXendXX'): any value but 'both' gives the "
+                                  "end block",
+    f"{_EM}__init____mutmut_142":
+        "a zero platform damping matrix built (ratio >= 0) and added to a damped model's K: "
+        "the same values",
+    f"{_EM}__init____mutmut_76": "dtype dropped on lever arms that are float already",
+    f"{_EM}__init____mutmut_78": "dtype dropped on lever arms that are float already",
+    f"{_EM}__init____mutmut_96": _CONST,
+    f"{_EM}__init____mutmut_98": _CONST,
+    f"{_EM}__init____mutmut_99": _CONST,
+    f"{_EM}_block__mutmut_80": "reshape(-2, ...) infers like -1",
+    f"{_EM}_check__mutmut_4": _BOUNDARY,
+    f"{_EM}dynamic_stiffness__mutmut_24":
+        "frequency blocks of at least 2 instead of 1: every block gives the same K (memory "
+        "only)",
+    f"{_EM}undamped__mutmut_6": "damping=None is falsy like False",
+    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_24": _BOUNDARY,
+    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_9": _BOUNDARY,
+    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_7":
+        "q[3] <= 0 instead of < 0: at w = 0 exactly (a half turn) q and -q give the rotation "
+        "vectors +-pi n of the same rotation",
+    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_14":
+        "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
+    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_3":
+        "dtype=None on a rotation vector: integer input gives the same float quaternion",
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

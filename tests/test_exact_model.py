@@ -169,8 +169,11 @@ def test_damped_exact_model(cogiro):
 
 
 def test_requests_beyond_the_band_are_refused(cogiro_exact):
-    with pytest.raises(InvalidParameterError, match="fmax_hz = 8 Hz"):
-        cogiro_exact.dynamic_stiffness(TWO_PI * 9.0)
+    with pytest.raises(InvalidParameterError) as err:
+        cogiro_exact.dynamic_stiffness(TWO_PI * np.array([1.0, 9.5, 9.0]))
+    assert str(err.value) == (f"omega must be <= {TWO_PI * 8:.6g} rad/s: the exact model was "
+                              f"built for fmax_hz = 8 Hz, got {TWO_PI * 9.5:.6g} rad/s (9.5 Hz); "
+                              f"build it with a larger fmax_hz")
     with pytest.raises(InvalidParameterError, match="larger fmax_hz"):
         ds.eigenfrequencies(cogiro_exact, n_modes=500)
     with pytest.raises(InvalidParameterError, match="out of the 'exact' model's range"):
@@ -293,3 +296,18 @@ def test_build_options_reach_every_cable_and_bad_ones_are_named(cogiro_eq):
         with pytest.raises(InvalidParameterError) as err:
             ds.FrequencyModel(cogiro_eq, **{name: -0.5})
         assert str(err.value) == f"{name} must be >= 0, got -0.5"
+
+
+def test_platform_damping_is_hysteretic_and_proportional_to_the_static_stiffness(cogiro_eq):
+    """platform_damping_ratio alone (theory.md §12.2): the model is damped, and its K(omega)
+    is the undamped one plus 2 i zeta K(0), K(0) the model's static stiffness, geometric
+    part included, at every omega."""
+    from dynstiff.exact_model import ExactModel
+    base = ExactModel(cogiro_eq, fmax_hz=6.0)
+    damped = ExactModel(cogiro_eq, fmax_hz=6.0, platform_damping_ratio=0.02)
+    assert damped.damped and not base.damped
+    w = TWO_PI * np.array([0.0, 1.3, 4.7])
+    K0 = base.dynamic_stiffness(0.0)[0]
+    np.testing.assert_allclose(damped.dynamic_stiffness(w),
+                               base.dynamic_stiffness(w) + 0.04j * 0.5 * (K0 + K0.T),
+                               rtol=1e-12, atol=1e-12 * np.abs(K0).max())

@@ -92,7 +92,8 @@ def test_any_free_rotation_needs_a_positive_definite_physical_inertia():
     rounding-level 5e-10 of I3 (and a rotated plate) is accepted, 5e-9 of I3 is not. A
     negative rounding-level eigenvalue is judged against the largest moment, not the middle
     one, and an asymmetry against the largest entry (1e-12 of it), not against the product
-    of inertia itself. The messages name the argument and the value."""
+    of inertia itself (1e-10 on unit moments is refused). No free DOF is refused, and the
+    free DOFs are kept in canonical order. The messages name the argument and the value."""
     singular = np.diag([0.0, 1.0, 4.0])
     for dof in ("rx", "ry", "rz"):
         with pytest.raises(InvalidParameterError,
@@ -108,6 +109,14 @@ def test_any_free_rotation_needs_a_positive_definite_physical_inertia():
     ds.Platform(mass=1.0, inertia=np.diag([1000.0, 1000.0, 2000.0 + 1e-6]))
     R = rotation_matrix([0.3, -1.1, 0.7])
     ds.Platform(mass=1.0, inertia=R @ np.diag([300.0, 1700.0, 2000.0]) @ R.T)
+    with pytest.raises(InvalidParameterError, match="triangle inequality"):
+        ds.Platform(mass=1.0, inertia=np.diag([1.0, 10.0, 15.0]))     # 15 > 1 + 10
+    with pytest.raises(InvalidParameterError, match="^inertia must be symmetric"):
+        ds.Platform(mass=1.0, inertia=[[1.0, 0.0, 0.0], [1e-10, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    with pytest.raises(InvalidParameterError, match="^free_dofs must be distinct names"):
+        ds.Platform(mass=1.0, free_dofs=())
+    assert ds.Platform(1.0, inertia=np.eye(3), free_dofs=("rz", "z", "x")).free_dofs == (
+        "x", "z", "rz")
     with pytest.raises(InvalidParameterError) as err:
         ds.Platform(mass=1.0, inertia=np.diag([1000.0, 1000.0, 2000.0 + 1e-5]))
     assert str(err.value).startswith("inertia violates the triangle inequality of principal "
