@@ -371,6 +371,10 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_REMEASURE = ("which cables the guard measures against the exact cable: one already said, "
+              "already measured within guard_rtol, or estimated within it is measured again "
+              "(time only: a cable is said once, and a measured error never exceeds the "
+              "estimate on the 150 cables of theory.md §11.5)")
 _CONST = ("the dtype of the zeros the cables' static stiffnesses are summed into: the sum "
           "const + ... upcasts to complex where a cable is damped, and K.real follows for "
           "an undamped model")
@@ -629,6 +633,29 @@ EQUIVALENT.update({
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
     "dynstiff.platform.x_rotvec_to_quaternion__mutmut_3":
         "dtype=None on a rotation vector: integer input gives the same float quaternion",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_65":
+        "self.damped = None is falsy like False",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_88":
+        "closed_form_validity computes the chord parameters itself when not given them",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_89":
+        "the static validity asked up to 1 rad/s instead of 0: only its axial cause depends "
+        "on the band, and cables' axial modes are far above 1 rad/s",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_117":
+        "dtype=float dropped on lever arms that are float already",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_154": _EINSUM,
+    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_69":
+        "never reached: the value returned when no mode has a positive stiffness eigenvalue, "
+        "which a stable equilibrium does not have",
+    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_82": _EINSUM,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_13": _BOUNDARY,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_30": _BOUNDARY,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_40": _BOUNDARY,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_32": _REMEASURE,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_33": _REMEASURE,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_35": _REMEASURE,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
+    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
+    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_11": "damping=None is falsy like False",
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

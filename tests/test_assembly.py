@@ -172,7 +172,8 @@ def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):
     rob = ds.Robot(A, np.zeros((3, 3)), ds.Cable(0.064, 1.4e5),
                    ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
     heavy = rob.equilibrium(pose=[0.3, -0.2, 1.0])
-    for eq in (cogiro_eq, heavy):
+    slow = _three_cable_point_mass(g=0.3)          # global modes below 1 rad/s
+    for eq in (cogiro_eq, heavy, slow):
         m = ds.FrequencyModel(eq, guard_rtol=None)
         err, i = m.static_error()
         ref, i_ref = by_cable(m)
@@ -417,3 +418,85 @@ def test_guard_warnings_from_deep_calls_point_at_the_callers_line_too():
     assert axial[0] == (f"cable 0: its axial modes from {f_ax:.4g} Hz lie in the band asked "
                         f"(up to 40 Hz); the closed form has none, so mode counts and "
                         f"frequencies above are wrong: use the 'exact' rung")
+
+
+@pytest.mark.parametrize("tension", ["mean", "chord"])
+def test_a_cable_within_tolerance_does_not_stop_the_check_of_the_others(tension):
+    """At g = 0.3 m/s^2 a light taut cable (estimated error 1e-5) comes first, two heavy ones
+    after it: K at 30 rad/s reaches all their local modes, and the two heavy cables are
+    each said once, in full: the error measured against the exact cable with the model's
+    tension up to min(omega, axial), and every cause above a tenth of guard_rtol."""
+    import warnings
+    from dynstiff.cable_dsm import closed_form_local_error, closed_form_validity
+    from dynstiff.errors import ClosedFormWarning
+    ang = np.radians([90, 210, 330])
+    A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
+    heavy = ds.Cable(0.064, 1.4e5)
+    rob = ds.Robot(A, np.zeros((3, 3)), (ds.Cable(0.0005, 1.4e5), heavy, heavy),
+                   ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6),
+                   g=0.3)
+    eq = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    with pytest.warns(ClosedFormWarning, match="static stiffness"):
+        m = ds.FrequencyModel(eq, tension=tension, guard_rtol=1e-2)
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        m.dynamic_stiffness([30.0])
+    assert [w.message.cable for w in rec] == [1, 2]
+    for w in rec:
+        i = w.message.cable
+        s = eq.states[i]
+        f_ax = np.sqrt(s.cable.EA / s.cable.mass_per_length) / (2 * s.unstretched_length)
+        err = closed_form_local_error(s, min(30.0, 2 * np.pi * f_ax), tension)
+        reasons = "; ".join(closed_form_validity(s, tension=tension).reasons(1e-3))
+        f_loc = m._local_omega[i] / (2 * np.pi)
+        assert str(w.message) == (
+            f"cable {i}: its local modes (from {f_loc:.4g} Hz) are in the band asked and the "
+            f"closed form's are {err:.2g} off the exact model's (> guard_rtol 0.01; "
+            f"{reasons}): use the 'exact' rung")
+
+
+def test_cables_measured_within_tolerance_are_passed_over_and_the_rest_said(cogiro_eq):
+    """CoGiRo at guard_rtol = 3e-5 up to 20 Hz: every cable's estimate exceeds it, so each is
+    measured against the exact cable; cables 2 and 5 measure within it and are passed over,
+    the other six are said in full, each with every cause above a tenth of guard_rtol."""
+    import warnings
+    from dynstiff.cable_dsm import closed_form_local_error, closed_form_validity
+    from dynstiff.errors import ClosedFormWarning
+    with pytest.warns(ClosedFormWarning, match="static stiffness"):
+        m = ds.FrequencyModel(cogiro_eq, guard_rtol=3e-5)
+    top = 2 * np.pi * 20.0
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        m.dynamic_stiffness([top])
+    said = [w.message.cable for w in rec]
+    assert said == [0, 1, 3, 4, 6, 7]
+    for i in (2, 5):
+        assert closed_form_local_error(cogiro_eq.states[i], top) <= 3e-5
+    for w, i in zip(rec, said):
+        s = cogiro_eq.states[i]
+        err = closed_form_local_error(s, top)
+        f_loc = m._local_omega[i] / (2 * np.pi)
+        assert str(w.message) == (
+            f"cable {i}: its local modes (from {f_loc:.4g} Hz) are in the band asked and the "
+            f"closed form's are {err:.2g} off the exact model's (> guard_rtol 3e-05; "
+            + "; ".join(closed_form_validity(s).reasons(3e-6)) + "): use the 'exact' rung")
+
+
+def test_cable_fields_without_motion_and_the_loss_factor_with_chordwise_inertia_off(cogiro_eq):
+    """With no platform motion every cable's chord points are returned (anchor to end) with
+    zero displacement. With chordwise_inertia=False and a loss factor eta the cables' end
+    coefficients are (1 + i eta) times the undamped ones at omega / sqrt(1 + i eta), the
+    chordwise inertia still off (theory.md §12.2)."""
+    m = ds.FrequencyModel(cogiro_eq)
+    pos, disp = m.cable_displacements(2.0, np.zeros(6), n_points=5)
+    for p, s in zip(pos, cogiro_eq.states):
+        np.testing.assert_allclose(p[[0, -1]], [s.anchor, s.end], rtol=0, atol=1e-12)
+    assert not np.any(disp)
+    sq = np.sqrt(1 + 0.03j)
+    w = 2 * np.pi * np.array([0.7, 3.1, 11.0])
+    lossy = ds.FrequencyModel(cogiro_eq, chordwise_inertia=False, cable_loss_factor=0.03)
+    plain = ds.FrequencyModel(cogiro_eq, chordwise_inertia=False)
+    np.testing.assert_allclose(lossy.cable_coefficients(w),
+                               sq**2 * plain.cable_coefficients(w / sq), rtol=1e-12)
+    with_inertia = ds.FrequencyModel(cogiro_eq, cable_loss_factor=0.03)
+    assert np.abs(with_inertia.cable_coefficients(w) - lossy.cable_coefficients(w)).max() > 1.0
