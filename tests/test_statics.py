@@ -489,3 +489,33 @@ def test_forward_statics_whose_newton_cannot_descend_says_so(monkeypatch):
     with pytest.raises(ConvergenceError, match="^forward statics did not converge") as err:
         forward_statics(rob, L0)
     assert isinstance(err.value.residual, float) and err.value.residual > 1e-10
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2 ** 31 - 1), n=st.sampled_from([4, 6, 8]),
+       start=st.sampled_from(["interior", "active"]))
+def test_active_set_method_from_any_feasible_start_is_the_brute_force_optimum(seed, n, start):
+    """_closest_in_box itself (Nocedal & Wright Alg. 16.3) from a feasible start inside the
+    box, or from one with a random set of tensions held at their bounds: it takes steps,
+    adds and drops bounds, and ends at the brute-force optimum; the tensions it reports
+    held (-1, +1) are exactly at their lower or upper bound."""
+    from dynstiff.statics import _closest_in_box
+    rng = np.random.default_rng(seed)
+    k = 3
+    W = rng.normal(size=(k, n))
+    lo, hi = np.full(n, 100.0), np.full(n, 600.0)
+    t0 = rng.uniform(150.0, 550.0, n)
+    bound = np.full(n, np.nan)
+    if start == "active":
+        held = rng.random(n) < 0.3
+        bound[held] = np.where(rng.random(held.sum()) < 0.5, lo[held], hi[held])
+        t0[held] = bound[held]
+    w = W @ t0
+    r = rng.uniform(0.0, 800.0, n)           # references inside and outside the box
+    ref = brute_force(W, w, lo, hi, r)
+    t, sides = _closest_in_box(W, w, lo, hi, r, t0, 1e-9, bound if start == "active"
+                               else None)
+    np.testing.assert_allclose(t, ref, atol=1e-6)
+    assert sides.dtype.kind == "i" and set(sides.tolist()) <= {-1, 0, 1}
+    np.testing.assert_array_equal(t[sides == -1], lo[sides == -1])
+    np.testing.assert_array_equal(t[sides == 1], hi[sides == 1])
