@@ -13,9 +13,15 @@ sample of N mutants per module (nested: a larger sample contains a smaller one) 
 each score a 95 % Wilson interval (the whole core, about 9200 mutants, takes many hours on
 two cores; a sample of 100 per module one to two).
 
-Measured (2 cores): dynstiff/chord.py, 182 mutants in 9 min 49 s; 174 killed, 8 survived,
-of which 6 are equivalent (listed below) and 2 were killed by
-test_chord.py::test_weightless_inclined_cable_still_has_an_orthonormal_chord_frame.
+Measured (2 cores, mutmut 3.8.1, 2 children):
+- ``--sample 200`` (seed 20261202): 2382 mutants (chord has 182 in all), 2193 killed,
+  1 survived, 188 equivalent: 99.95 %; every module's 95 % interval starts at 97.1 % or
+  above. About 2.5 h of wall time in all, the rechecks after new tests included.
+- Every mutant of chord (182), platform (393), exact_model (410), frf (330) and assembly
+  (650): 100 % each but assembly, 99.8 %; the last four modules took 7 to 20 min each.
+- Per mutant, the tests alone take 0.8 s when they kill it, 13 s when it survives (every
+  test reaching it runs) and 3.5 min when it hangs to its timeout; the throughput was 11 to
+  57 mutants a minute. The whole core, 9251 mutants, is some 5 to 10 h on this machine.
 """
 
 import argparse
