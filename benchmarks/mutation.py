@@ -377,6 +377,14 @@ _CAT_START = ("the starting guesses of the elastic catenary's Newton: the equili
               "given L0 and ends is unique and checked by its residual, and two starts are "
               "tried")
 _BOUNDARY = "a strict comparison made inclusive: differs only at exactly equal floats"
+_ALL_CHORDS = ("the vertical test against 1e-14 of the norm of all chords instead of each "
+               "one: differs only for a chord between 1e-14 of its own length and of all "
+               "lengths from vertical")
+_STRAIGHT = ("each iteration's catenaries started from straight cables instead of the "
+             "previous iteration's: the same (unique, residual-checked) catenaries, more "
+             "Newton steps")
+_ARMS_WRITTEN = "dtype dropped on lever arms written into a float array: the same maps"
+_FALSY = "None given where False is meant: falsy all the same"
 _REMEASURE = ("which cables the guard measures against the exact cable: one already said, "
               "already measured within guard_rtol, or estimated within it is measured again "
               "(time only: a cable is said once, and a measured error never exceeds the "
@@ -409,10 +417,7 @@ EQUIVALENT.update({
     "dynstiff.cable_dsm.x__exact_modes__mutmut_24": _FIRST_BAND,
     f"{_CE}xǁExactCableǁend_response__mutmut_44": _ERRSTATE,
     "dynstiff.catenary.x_end_stiffnesses__mutmut_77": _BOUNDARY,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_83":
-        "the vertical test against 1e-14 of the norm of all chords instead of each one: "
-        "differs only for a chord between 1e-14 of its own length and of all lengths from "
-        "vertical",
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_83": _ALL_CHORDS,
     "dynstiff.catenary.x_end_stiffnesses__mutmut_159":
         "the symmetrisation of a matrix symmetric to rounding dropped (K + K instead of "
         "K + K^T): entries change by ~1e-16 relative",
@@ -462,9 +467,7 @@ EQUIVALENT.update({
         "the stall test's threshold 1e-9 -> 1.000000001: a contracting fixed point improves "
         "every step, so it stops only when stalled, and a stall above 1e-9 fails the final "
         "wrench residual check either way (ConvergenceError)",
-    "dynstiff.statics.x_inverse_statics__mutmut_82":
-        "each iteration's catenaries started from straight cables instead of the previous "
-        "iteration's: the same (unique, residual-checked) catenaries, more Newton steps",
+    "dynstiff.statics.x_inverse_statics__mutmut_82": _STRAIGHT,
     "dynstiff.statics.x_inverse_statics__mutmut_104":
         "the residual slot of a cable solved by the scalar solver: unused, its state is "
         "that solver's own (with its residual)",
@@ -491,10 +494,7 @@ EQUIVALENT.update({
     "dynstiff.catenary.x__initial_guesses__mutmut_74": _CAT_START,
     "dynstiff.catenary.x__initial_guesses__mutmut_77": _CAT_START,
     "dynstiff.catenary.x__initial_guesses__mutmut_81": _CAT_START,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_81":
-        "the vertical test against 1e-14 of the norm of all chords instead of each one: "
-        "differs only for a chord between 1e-14 of its own length and of all lengths from "
-        "vertical",
+    "dynstiff.catenary.x_end_stiffnesses__mutmut_81": _ALL_CHORDS,
     "dynstiff.catenary.x_end_stiffnesses__mutmut_92": _VERTICAL,
     "dynstiff.catenary.x_end_stiffnesses__mutmut_98": _VERTICAL,
     "dynstiff.catenary.x__mean_tension__mutmut_13":
@@ -530,9 +530,7 @@ EQUIVALENT.update({
         "the smallest change never recorded, so the stall exit is never taken: it is not "
         "needed on 300 random CoGiRo poses, every scene and every test (each fixed point "
         "reaches a change below 1e-15; planted and checked)",
-    "dynstiff.statics.x_inverse_statics__mutmut_105":
-        "each iteration's catenaries started from straight cables instead of the previous "
-        "iteration's: the same (unique, residual-checked) catenaries, more Newton steps",
+    "dynstiff.statics.x_inverse_statics__mutmut_105": _STRAIGHT,
     "dynstiff.statics.x_inverse_statics__mutmut_140": _BOUNDARY,
     "dynstiff.statics.x_inverse_statics__mutmut_143": _BOUNDARY,
     "dynstiff.statics.x__kinematic_guess__mutmut_8":
@@ -602,10 +600,8 @@ EQUIVALENT.update({
         "the short end of the bracket shrunk by a larger factor per step: the same root",
     "dynstiff.catenary.x__newton__mutmut_72": _BOUNDARY,
     "dynstiff.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
-    "dynstiff.platform.x_lever_maps__mutmut_3":
-        "dtype dropped on lever arms written into a float array: the same maps",
-    "dynstiff.platform.x_lever_maps__mutmut_5":
-        "dtype dropped on lever arms written into a float array: the same maps",
+    "dynstiff.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
+    "dynstiff.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
     "dynstiff.statics.x__distribution__mutmut_1": _WARM,
     "dynstiff.lumped.chain.x__force_space_start__mutmut_77":
         "never reached: the start's Newton stops early only on a zero segment force or a "
@@ -629,7 +625,7 @@ EQUIVALENT.update({
     f"{_EM}dynamic_stiffness__mutmut_24":
         "frequency blocks of at least 2 instead of 1: every block gives the same K (memory "
         "only)",
-    f"{_EM}undamped__mutmut_6": "damping=None is falsy like False",
+    f"{_EM}undamped__mutmut_6": _FALSY,
     "dynstiff.platform.x_quaternion_to_rotvec__mutmut_24": _BOUNDARY,
     "dynstiff.platform.x_rotvec_to_quaternion__mutmut_9": _BOUNDARY,
     "dynstiff.platform.x_quaternion_to_rotvec__mutmut_7":
@@ -639,8 +635,7 @@ EQUIVALENT.update({
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
     "dynstiff.platform.x_rotvec_to_quaternion__mutmut_3":
         "dtype=None on a rotation vector: integer input gives the same float quaternion",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_65":
-        "self.damped = None is falsy like False",
+    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_65": _FALSY,
     "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_88":
         "closed_form_validity computes the chord parameters itself when not given them",
     "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_89":
@@ -661,7 +656,7 @@ EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_35": _REMEASURE,
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_11": "damping=None is falsy like False",
+    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
     "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

@@ -459,8 +459,9 @@ def test_the_upper_limit_holds_along_the_whole_cable():
     """CoGiRo at (0.3, -0.2, 1.1) with t_max 5 % above the default solution's largest
     tension and a reference tension far above it: the distribution presses the tensions up
     to the limit, which binds where the tension is largest, at the upper anchor. Two cables
-    reach exactly t_max there, their platform ends t_max minus their weight's share (about
-    2.7 N), and no cable exceeds t_max anywhere."""
+    reach exactly t_max there, their platform ends t_max minus the weight of their drop h,
+    w0 h / (1 + T/EA) from dT = w0 dz / (1 + T/EA) (theory.md §4), and no cable exceeds
+    t_max anywhere."""
     import dataclasses
     rob = ds.load_scene("cogiro").robot
     pose = [0.3, -0.2, 1.1]
@@ -474,7 +475,9 @@ def test_the_upper_limit_holds_along_the_whole_cable():
     for i in at_limit:
         s = eq.states[i]
         assert s.tension_at_anchor == pytest.approx(t_max, rel=1e-9)
-        assert 2.0 < t_max - eq.tensions[i] < 3.0
+        drop = s.cable.weight_per_length(s.g) * (s.anchor[2] - s.end[2])
+        assert t_max - eq.tensions[i] == pytest.approx(drop / (1 + t_max / s.cable.EA),
+                                                       rel=1e-4)
 
 
 def test_forward_statics_whose_newton_cannot_descend_says_so(monkeypatch):
