@@ -11,17 +11,20 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 :func:`damped_modes`.
 """
 
-from .assembly import FrequencyModel
-from .cable_dsm import (
+from dynstiff.assembly import FrequencyModel
+from dynstiff.cable_dsm import (
     CableModes,
     cable_dynamic_stiffness,
     cable_mode_count,
     cable_natural_frequencies,
     chord_parameters,
 )
-from .catenary import CatenaryState, solve_catenary, unstretched_length_for_tension
-from .constants import STANDARD_GRAVITY
-from .errors import (
+from dynstiff.calibrate import CalibrationResult, calibrate
+from dynstiff.catenary import CatenaryState, solve_catenary, unstretched_length_for_tension
+from dynstiff.constants import STANDARD_GRAVITY
+from dynstiff.damped import DampedModes, damped_modes
+from dynstiff.eigen import ModalResult, cable_fields, eigenfrequencies, mode_count, modes
+from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
     InvalidParameterError,
@@ -29,28 +32,25 @@ from .errors import (
     SlackCableError,
     UnsupportedAnalysisError,
 )
-from .calibrate import CalibrationResult, calibrate
-from .damped import DampedModes, damped_modes
-from .eigen import ModalResult, cable_fields, eigenfrequencies, mode_count, modes
-from .frf import FRFResult, frf
-from .ladder import RUNGS, StaticCableModel, build_model
-from .lumped import LumpedLinearModel, LumpedMassModel
-from .measured import (
+from dynstiff.frf import FRFResult, frf
+from dynstiff.interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
+from dynstiff.ladder import RUNGS, StaticCableModel, build_model
+from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
+from dynstiff.measured import (
     MeasuredModes,
     compare_frf,
     compare_modes,
     read_measured_frf,
     read_measured_modes,
 )
-from .reduced import ModalModel, modal_model, to_statespace
-from .results import LumpedModalResult
-from .recommend import Recommendation, recommend_model
-from .interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
-from .params import Cable, Damping
-from .platform import Platform
-from .robot import Equilibrium, Pose, Robot
-from .scenes import Scene, SceneError, list_scenes, load_scene
-from .workspace_map import box_grid, workspace
+from dynstiff.params import Cable, Damping
+from dynstiff.platform import Platform
+from dynstiff.recommend import Recommendation, recommend_model
+from dynstiff.reduced import ModalModel, modal_model, to_statespace
+from dynstiff.results import LumpedModalResult
+from dynstiff.robot import Equilibrium, Pose, Robot
+from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
+from dynstiff.workspace_map import box_grid, workspace
 
 __version__ = "0.1.0"
 

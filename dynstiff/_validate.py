@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
 
 
 def positive_scalar(name, value, allow_zero=False):

@@ -16,17 +16,28 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._validate import omega_array, positive_scalar
-from ._vec import cross
-from .cable_dsm import (AXIAL_MARGIN, DEFAULT_CHORDWISE_INERTIA, DEFAULT_GUARD_RTOL,
-                        cable_field, cable_kinetic_energy, check_frequency_range,
-                        chord_parameters, closed_form_local_error, closed_form_validity,
-                        dyad_basis, end_block_coefficients, end_block_coefficients_and_count,
-                        mode_count_nondimensional, stack_parameters)
-from .errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
-from .model_base import PlatformModel, require_equilibrium
-from .catenary import end_stiffnesses
-from .platform import lever_map, lever_maps, platform_mass_matrix
+from dynstiff._validate import omega_array, positive_scalar
+from dynstiff._vec import cross
+from dynstiff.cable_dsm import (
+    AXIAL_MARGIN,
+    DEFAULT_CHORDWISE_INERTIA,
+    DEFAULT_GUARD_RTOL,
+    cable_field,
+    cable_kinetic_energy,
+    check_frequency_range,
+    chord_parameters,
+    closed_form_local_error,
+    closed_form_validity,
+    dyad_basis,
+    end_block_coefficients,
+    end_block_coefficients_and_count,
+    mode_count_nondimensional,
+    stack_parameters,
+)
+from dynstiff.catenary import end_stiffnesses
+from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
+from dynstiff.model_base import PlatformModel, require_equilibrium
+from dynstiff.platform import lever_map, lever_maps, platform_mass_matrix
 
 __all__ = ["FrequencyModel"]
 

@@ -48,10 +48,10 @@ from numbers import Integral
 
 import numpy as np
 
-from ._validate import omega_array
-from .cable_exact import ExactCable
-from .chord import ChordParameters, chord_parameters, stack_parameters
-from .errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
+from dynstiff._validate import omega_array
+from dynstiff.cable_exact import ExactCable
+from dynstiff.chord import ChordParameters, chord_parameters, stack_parameters
+from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 
 __all__ = [
     "ChordParameters",
@@ -550,7 +550,7 @@ class CableModes:
     def plot(self, ax=None):
         """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
         matplotlib Figure."""
-        from .plot import plot_cable_modes
+        from dynstiff.plot import plot_cable_modes
         return plot_cable_modes(self, ax=ax)
 
     def to_frame(self):

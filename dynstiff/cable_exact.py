@@ -31,9 +31,9 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from ._validate import omega_array
-from ._vec import cross
-from .errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff._validate import omega_array
+from dynstiff._vec import cross
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 
 __all__ = ["ExactCable", "DEFAULT_ORDER", "HALF_WAVES_PER_ELEMENT"]
 

@@ -45,12 +45,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .damped import damped_modes
-from .eigen import modes
-from .frf import frf as frf_of
-from .errors import ConvergenceError, InvalidParameterError
-from .ladder import build_model
-from .measured import MeasuredModes, massless_pairing, pair_modes
+from dynstiff.damped import damped_modes
+from dynstiff.eigen import modes
+from dynstiff.errors import ConvergenceError, InvalidParameterError
+from dynstiff.frf import frf as frf_of
+from dynstiff.ladder import build_model
+from dynstiff.measured import MeasuredModes, massless_pairing, pair_modes
 
 __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
 
@@ -274,7 +274,8 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         The least-squares search failed (its message and cost are named).
     """
     from scipy.optimize import least_squares
-    from scipy.stats import norm, t as student_t
+    from scipy.stats import norm
+    from scipy.stats import t as student_t
     robot = getattr(scene_or_robot, "robot", scene_or_robot)
     if pose is None:
         pose = getattr(scene_or_robot, "pose", None)

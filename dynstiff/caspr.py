@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import DynstiffError
+from dynstiff.errors import DynstiffError
 
 __all__ = [
     "INERTIA_CONVENTIONS",

@@ -29,12 +29,12 @@ from numbers import Integral
 
 import numpy as np
 
-from ._validate import point, positive_scalar
-from ._vec import cross
-from .chord import chord_parameters
-from .constants import MAX_COORDINATE, STANDARD_GRAVITY
-from .errors import ConvergenceError, InvalidParameterError, SlackCableError
-from .params import Cable
+from dynstiff._validate import point, positive_scalar
+from dynstiff._vec import cross
+from dynstiff.chord import chord_parameters
+from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.params import Cable
 
 __all__ = ["CatenaryState", "solve_catenary", "unstretched_length_for_tension",
            "divided_differences", "end_stiffnesses"]

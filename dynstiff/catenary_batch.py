@@ -26,7 +26,7 @@ import importlib.util
 
 import numpy as np
 
-from .catenary import CatenaryState, divided_differences, unstretched_length_for_tension
+from dynstiff.catenary import CatenaryState, divided_differences, unstretched_length_for_tension
 
 __all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 
@@ -106,7 +106,7 @@ def _compiled_newton():
     without numba."""
     if importlib.util.find_spec("numba") is None:
         return None
-    from .compiled_catenary import newton_taut
+    from dynstiff.compiled_catenary import newton_taut
     return newton_taut
 
 

@@ -8,15 +8,19 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .eigen import modes as modal
-from .errors import DynstiffError, InvalidParameterError
-from .interaction import proximity_warnings
-from .ladder import RUNGS, build_model
-from .params import DEFAULT_DAMPING, Damping
-from .participation import (FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD,
-                            platform_participation, receptance_amplification)
-from .recommend import recommend_model
+from dynstiff._validate import positive_scalar
+from dynstiff.eigen import modes as modal
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.interaction import proximity_warnings
+from dynstiff.ladder import RUNGS, build_model
+from dynstiff.params import DEFAULT_DAMPING, Damping
+from dynstiff.participation import (
+    FRF_AMPLIFICATION_LIMIT,
+    PLATFORM_SHARE_THRESHOLD,
+    platform_participation,
+    receptance_amplification,
+)
+from dynstiff.recommend import recommend_model
 
 __all__ = ["CheckResult", "design_checks", "damped_model"]
 
@@ -42,7 +46,7 @@ def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", **options):
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     eq = equilibrium
     if damping.cable_viscous_damping > 0 and rung in ("dsm", "exact", "lumped"):
-        from .robot import Robot
+        from dynstiff.robot import Robot
         rob = eq.robot
         cables = [replace(c, viscous_damping=c.viscous_damping + damping.cable_viscous_damping)
                   for c in rob.cables]

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._vec import cross
-from .errors import InvalidParameterError
+from dynstiff._vec import cross
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["ChordParameters", "chord_parameters", "irvine_lambda_sq", "stack_parameters"]
 

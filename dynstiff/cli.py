@@ -3,13 +3,13 @@
 import argparse
 import sys
 
-from .errors import DynstiffError
+from dynstiff.errors import DynstiffError
 
 
 def _settings(scene, args):
     """The analysis settings of ``scene`` with the command line's overrides
     (:func:`dynstiff.settings.analysis_settings`, the one source of defaults)."""
-    from .settings import analysis_settings
+    from dynstiff.settings import analysis_settings
     band = getattr(args, "band", None)
     fmax = getattr(args, "fmax", None)
     kw = {}
@@ -21,7 +21,7 @@ def _settings(scene, args):
     elif band:
         kw["band_hz"] = tuple(band)
     elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
-        from .settings import DEFAULT_BAND_HZ
+        from dynstiff.settings import DEFAULT_BAND_HZ
         lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
         kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
     if getattr(args, "model", None):
@@ -33,8 +33,8 @@ def _settings(scene, args):
 
 
 def _cmd_report(args):
-    from .demo import robot_report
-    from .scenes import load_scene
+    from dynstiff.demo import robot_report
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     settings = _settings(scene, args)
     text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
@@ -45,13 +45,13 @@ def _cmd_report(args):
 
 def _cmd_demo(args):
     if args.cable:
-        from .report import cable_report, write_report
+        from dynstiff.report import cable_report, write_report
         rep = cable_report(fmax_hz=args.fmax or 12.0, n_points=args.points)
         files = write_report(rep, args.out)
         _info(args).write(rep.text())
     else:
-        from .demo import robot_report
-        from .scenes import load_scene
+        from dynstiff.demo import robot_report
+        from dynstiff.scenes import load_scene
         scene = load_scene(args.scene)
         settings = _settings(scene, args)          # every input checked before any file
         text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
@@ -81,7 +81,7 @@ def _read_path(path, rotation):
     with ``#`` and a first line that is not numeric (a header) are skipped."""
     import numpy as np
 
-    from .errors import InvalidParameterError
+    from dynstiff.errors import InvalidParameterError
     poses, header = [], False
     with open(path) as fh:
         lines = fh.read().splitlines()
@@ -112,7 +112,7 @@ def _with_parameter(robot, name, value):
     the minimum tension t_min [N] of the tension distribution."""
     from dataclasses import replace
 
-    from .robot import Robot
+    from dynstiff.robot import Robot
     cables, platform, limits = robot.cables, robot.platform, robot.tension_limits
     if name == "EA":
         cables = [replace(c, EA=value) for c in cables]
@@ -127,9 +127,9 @@ def _with_parameter(robot, name, value):
 def _cmd_sweep(args):
     import numpy as np
 
-    from .errors import InvalidParameterError
-    from .interaction import sweep
-    from .scenes import load_scene
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.interaction import sweep
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)
     robot = scene.robot
@@ -166,7 +166,7 @@ def _cmd_sweep(args):
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
-        from .plot import plot_veering
+        from dynstiff.plot import plot_veering
         fig = plot_veering(res)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
@@ -192,16 +192,16 @@ def _cmd_simulate(args):
 
     import numpy as np
 
-    from .constants import DOF_NAMES
-    from .errors import InvalidParameterError
-    from .eigen import eigenfrequencies
-    from .ladder import build_model
-    from .lumped import SlackSegmentWarning, simulate
-    from .scenes import load_scene
+    from dynstiff.constants import DOF_NAMES
+    from dynstiff.eigen import eigenfrequencies
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.ladder import build_model
+    from dynstiff.lumped import SlackSegmentWarning, simulate
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
     if args.to is not None:
-        from .trajectory import line, track
+        from dynstiff.trajectory import line, track
         traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
                     ramp=args.ramp)
         bar = None if args.quiet else _ProgressBar("quasi-static lengths")
@@ -220,7 +220,7 @@ def _cmd_simulate(args):
         if args.plot:
             import matplotlib
             matplotlib.use("Agg")
-            from .plot import plot_tracking
+            from dynstiff.plot import plot_tracking
             fig = plot_tracking(tr)
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
@@ -269,12 +269,12 @@ def _cmd_simulate(args):
         if args.plot:
             import matplotlib
             matplotlib.use("Agg")
-            from .plot import plot_spectrum
+            from dynstiff.plot import plot_spectrum
             fig = plot_spectrum(sp, modes=f_model, band_hz=band)
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
-        from . import __version__
+        from dynstiff import __version__
         _write_table(df, args.csv, "csv", {
             "dynstiff": __version__, "scene": scene.name, "model": "lumped",
             "segments": args.segments, "dt [s]": args.dt,
@@ -293,7 +293,7 @@ _SPECTRUM_PROMINENCE = 0.03
 
 
 def _cmd_scenes(args):
-    from .scenes import list_scenes, load_scene
+    from dynstiff.scenes import list_scenes, load_scene
     for name in list_scenes():
         _info(args).write(f"{name:<12s} {load_scene(name).description}\n")
     return 0
@@ -302,9 +302,9 @@ def _cmd_scenes(args):
 def _exact_model(eq, n_modes, fmax_hz):
     """The exact rung with a band that holds the request: 1.05 fmax_hz, or, for n_modes, a
     band doubled from 25 Hz until it holds them (theory.md §11)."""
-    from .eigen import mode_count
-    from .errors import InvalidParameterError
-    from .ladder import build_model
+    from dynstiff.eigen import mode_count
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.ladder import build_model
     if fmax_hz is not None:
         return build_model(eq, "exact", fmax_hz=1.05 * fmax_hz)
     band = 25.0
@@ -321,10 +321,10 @@ def _exact_model(eq, n_modes, fmax_hz):
 def _cmd_modes(args):
     import numpy as np
 
-    from .eigen import modes
-    from .errors import InvalidParameterError
-    from .ladder import build_model
-    from .scenes import load_scene
+    from dynstiff.eigen import modes
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.ladder import build_model
+    from dynstiff.scenes import load_scene
     if args.segments is not None and args.segments < 1:
         raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
     scene = load_scene(args.scene)
@@ -344,7 +344,7 @@ def _cmd_modes(args):
     res = modes(model, n_modes=n, fmax_hz=args.fmax)
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
-    from .participation import platform_participation
+    from dynstiff.participation import platform_participation
     part = platform_participation(model, res, st.participation)
     df = res.to_frame()
     df.insert(3, "platform share [-]", part.platform_share)
@@ -373,7 +373,7 @@ def _equilibrium(scene, args):
         # held DOFs keep the values of the start pose: the scene's, when it has one
         start = scene.pose
         if start is None and len(scene.robot.platform.free_dofs) < 6:
-            from .errors import InvalidParameterError
+            from dynstiff.errors import InvalidParameterError
             raise InvalidParameterError(
                 f"--lengths: scene {scene.name!r} holds DOFs but gives no [pose] to hold them "
                 f"at; give --pose instead, or a [pose] position in the scene file")
@@ -384,10 +384,10 @@ def _equilibrium(scene, args):
 def _cmd_frf(args):
     import numpy as np
 
-    from .eigen import modes
-    from .freqgrid import refined_grid
-    from .frf import frf
-    from .scenes import load_scene
+    from dynstiff.eigen import modes
+    from dynstiff.freqgrid import refined_grid
+    from dynstiff.frf import frf
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)
     lo, hi = st.band_hz
@@ -405,7 +405,7 @@ def _cmd_frf(args):
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
-        from .plot import plot_frf
+        from dynstiff.plot import plot_frf
         fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
@@ -424,8 +424,8 @@ def _cmd_frf(args):
 
 
 def _cmd_check(args):
-    from .checks import design_checks
-    from .scenes import load_scene
+    from dynstiff.checks import design_checks
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)
     pose = args.pose if args.pose is not None else scene.pose
@@ -440,7 +440,7 @@ def _cmd_check(args):
                          "scene's [analysis])\n")
     _info(args).write(res.text())
     if args.csv:
-        from .robot import Pose
+        from dynstiff.robot import Pose
         _write_table(res.to_frame(), args.csv, "csv",
                      st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
                                  (pose if hasattr(pose, "position") else None)))
@@ -454,7 +454,7 @@ def build_parser():
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
     parser.add_argument("--debug", action="store_true",
                         help="show the full traceback of an error")
-    from . import __version__
+    from dynstiff import __version__
     parser.add_argument("--version", action="version", version=f"dynstiff {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     demo = sub.add_parser(
@@ -596,9 +596,9 @@ def build_parser():
     si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
     si.add_argument("--quiet", action="store_true", help="no progress bar")
     si.set_defaults(func=_cmd_simulate)
-    from .cli_exchange import add_commands
+    from dynstiff.cli_exchange import add_commands
     add_commands(sub)
-    from .cli_workspace import add_workspace_parser
+    from dynstiff.cli_workspace import add_workspace_parser
     add_workspace_parser(sub)
     return parser
 
@@ -655,7 +655,7 @@ def _check_outputs(args):
     matplotlib does not write. ``-`` (``--csv``, ``--json``) is standard output."""
     from pathlib import Path
 
-    from .errors import InvalidParameterError
+    from dynstiff.errors import InvalidParameterError
     for opt in ("csv", "json", "plot", "uff"):
         value = getattr(args, opt, None)
         if value is None or (value == "-" and opt not in ("plot", "uff")):

@@ -20,9 +20,9 @@ def _out(path, text):
 
 def cmd_import_caspr(args):
     """``dynstiff import-caspr BODIES CABLES --mass-per-length M --EA EA --out FILE``."""
-    from .caspr import InertiaConventionWarning
-    from .params import Cable
-    from .scenes.writer import caspr_comments, import_caspr, scene_text
+    from dynstiff.caspr import InertiaConventionWarning
+    from dynstiff.params import Cable
+    from dynstiff.scenes.writer import caspr_comments, import_caspr, scene_text
     cable = Cable(mass_per_length=args.mass_per_length, EA=args.EA)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InertiaConventionWarning)
@@ -48,17 +48,17 @@ def cmd_import_caspr(args):
 
 def cmd_calibrate(args):
     """``dynstiff calibrate SCENE --measured FILE --parameter EA [...]``."""
-    from .calibrate import calibrate
-    from .errors import InvalidParameterError
-    from .measured import read_measured_modes
-    from .scenes import load_scene
+    from dynstiff.calibrate import calibrate
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.measured import read_measured_modes
+    from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     measured = read_measured_modes(args.measured)
     pose = None
     if args.pose is not None:
         if len(args.pose) not in (3, 6):
             raise InvalidParameterError(f"--pose needs 3 or 6 numbers, got {len(args.pose)}")
-        from .pose import Pose
+        from dynstiff.pose import Pose
         pose = Pose(args.pose[:3], args.pose[3:] if len(args.pose) == 6 else [0, 0, 0])
     res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
                     rung=args.model, confidence=args.confidence)

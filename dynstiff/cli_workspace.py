@@ -46,7 +46,7 @@ def add_workspace_parser(sub):
 def _orientations(path):
     import numpy as np
 
-    from .errors import InvalidParameterError
+    from dynstiff.errors import InvalidParameterError
     try:
         rot = np.loadtxt(path, comments="#", ndmin=2, dtype=float)
     except ValueError as exc:
@@ -62,9 +62,9 @@ def _cmd_workspace(args):
 
     import numpy as np
 
-    from .errors import InvalidParameterError
-    from .scenes import load_scene
-    from .workspace_map import workspace
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.scenes import load_scene
+    from dynstiff.workspace_map import workspace
     out = Path(args.out)
     if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
         raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "

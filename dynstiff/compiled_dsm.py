@@ -15,7 +15,7 @@ cable at real omega (same formulas, same series branch for |psi| < 1); the assem
 import numba
 import numpy as np
 
-from .cable_dsm import PSI_SERIES
+from dynstiff.cable_dsm import PSI_SERIES
 
 __all__ = ["dsm_receptance", "dsm_count", "real_receptance", "symmetric_assembly",
            "model_arguments"]

@@ -6,8 +6,8 @@ Seeded by the undamped modes of :func:`dynstiff.eigen.modes`, for a model of any
 
 import numpy as np
 
-from .eigen import modes
-from .results import DampedModes
+from dynstiff.eigen import modes
+from dynstiff.results import DampedModes
 
 __all__ = ["damped_modes", "DampedModes"]
 

@@ -54,16 +54,16 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .checks import design_checks
-    from .eigen import modes as modal
-    from .freqgrid import refined_grid
-    from .frf import frf
-    from .htmlreport import figure_png, html_page
-    from .participation import platform_participation
-    from .plot import plot_frf
-    from .plot3d import plot_robot
-    from .recommend import recommend_model
-    from .settings import analysis_settings
+    from dynstiff.checks import design_checks
+    from dynstiff.eigen import modes as modal
+    from dynstiff.freqgrid import refined_grid
+    from dynstiff.frf import frf
+    from dynstiff.htmlreport import figure_png, html_page
+    from dynstiff.participation import platform_participation
+    from dynstiff.plot import plot_frf
+    from dynstiff.plot3d import plot_robot
+    from dynstiff.recommend import recommend_model
+    from dynstiff.settings import analysis_settings
 
     st = settings or analysis_settings(scene)
     eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing

@@ -27,13 +27,13 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from . import eigen_matrix
-from ._validate import omega_array
-from .assembly import FrequencyModel
-from .cable_dsm import check_frequency_range
-from .errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
-from .model_base import require_model
-from .results import ModalResult
+from dynstiff import eigen_matrix
+from dynstiff._validate import omega_array
+from dynstiff.assembly import FrequencyModel
+from dynstiff.cable_dsm import check_frequency_range
+from dynstiff.errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
+from dynstiff.model_base import require_model
+from dynstiff.results import ModalResult
 
 __all__ = ["eigenfrequencies", "modes", "mode_count", "cable_fields", "ModalResult",
            "METHODS"]
@@ -282,7 +282,7 @@ def _compiled():
     """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
     if importlib.util.find_spec("numba") is None:
         return None
-    from . import compiled_dsm
+    from dynstiff import compiled_dsm
     return compiled_dsm
 
 

@@ -7,8 +7,8 @@ Reached through :func:`dynstiff.eigen.eigenfrequencies` and :func:`dynstiff.eige
 
 import numpy as np
 
-from .errors import InvalidParameterError
-from .results import LumpedModalResult, ModalResult
+from dynstiff.errors import InvalidParameterError
+from dynstiff.results import LumpedModalResult, ModalResult
 
 __all__ = ["eig", "eigenfrequencies", "modes", "count_below"]
 

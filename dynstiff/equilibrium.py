@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import Pose
+from dynstiff.pose import Pose
 
 __all__ = ["Equilibrium"]
 
@@ -72,7 +72,7 @@ class Equilibrium:
     def plot(self, ax=None):
         """Cable tensions at B and A with the robot's limits:
         :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure."""
-        from .plot import plot_tensions
+        from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
     def to_frame(self):

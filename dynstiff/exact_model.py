@@ -10,11 +10,11 @@ so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) pro
 
 import numpy as np
 
-from ._validate import omega_array, positive_scalar
-from .cable_exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
-from .errors import InvalidParameterError
-from .model_base import PlatformModel, require_equilibrium
-from .platform import lever_map, platform_mass_matrix
+from dynstiff._validate import omega_array, positive_scalar
+from dynstiff.cable_exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
+from dynstiff.errors import InvalidParameterError
+from dynstiff.model_base import PlatformModel, require_equilibrium
+from dynstiff.platform import lever_map, platform_mass_matrix
 
 __all__ = ["ExactModel", "DEFAULT_FMAX_HZ"]
 

@@ -19,8 +19,8 @@ and ``kind`` (:class:`dynstiff.FRFResult`); the libraries are imported only here
 
 import numpy as np
 
-from .constants import DOF_NAMES, LOAD_NAMES
-from .errors import DynstiffError, InvalidParameterError
+from dynstiff.constants import DOF_NAMES, LOAD_NAMES
+from dynstiff.errors import DynstiffError, InvalidParameterError
 
 __all__ = ["MissingDependencyError", "UFF_DATA_TYPES", "frf_to_control", "require",
            "uff58_records", "write_uff58"]

@@ -11,8 +11,8 @@ the uniform count (theory.md §12.3).
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .errors import InvalidParameterError
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["refined_grid"]
 

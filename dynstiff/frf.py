@@ -11,13 +11,14 @@ import warnings
 
 import numpy as np
 
-from ._validate import omega_array, point as validated_point
-from .assembly import FrequencyModel
-from .cable_dsm import check_frequency_range
-from .errors import InvalidParameterError, PoleWarning
-from .model_base import require_model
-from .platform import skew
-from .results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
+from dynstiff._validate import omega_array
+from dynstiff._validate import point as validated_point
+from dynstiff.assembly import FrequencyModel
+from dynstiff.cable_dsm import check_frequency_range
+from dynstiff.errors import InvalidParameterError, PoleWarning
+from dynstiff.model_base import require_model
+from dynstiff.platform import skew
+from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
 
@@ -174,7 +175,7 @@ def _compiled():
     """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
     if importlib.util.find_spec("numba") is None:
         return None
-    from . import compiled_dsm
+    from dynstiff import compiled_dsm
     return compiled_dsm
 
 

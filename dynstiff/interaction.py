@@ -31,13 +31,13 @@ from numbers import Integral
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .eigen import modes
-from .errors import DynstiffError, InvalidParameterError
-from .equilibrium import Equilibrium
-from .ladder import build_model
-from .pose import as_pose
-from .robot import Robot
+from dynstiff._validate import positive_scalar
+from dynstiff.eigen import modes
+from dynstiff.equilibrium import Equilibrium
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.ladder import build_model
+from dynstiff.pose import as_pose
+from dynstiff.robot import Robot
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame", "SweepResult", "sweep"]
 
@@ -254,7 +254,7 @@ class SweepResult:
 
     def plot(self, ax=None, show_local=True):
         """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure."""
-        from .plot import plot_veering
+        from dynstiff.plot import plot_veering
         return plot_veering(self, ax=ax, show_local=show_local)
 
     @property

@@ -21,15 +21,15 @@ from numbers import Integral
 
 import numpy as np
 
-from ._validate import omega_array
-from .assembly import FrequencyModel
-from .errors import InvalidParameterError
-from .exact_model import ExactModel
-from .lumped.linear_model import LumpedLinearModel
-from .lumped.robot_model import LumpedMassModel
-from .model_base import PlatformModel, require_equilibrium
-from .platform import lever_map
-from .robot import geometric_stiffness
+from dynstiff._validate import omega_array
+from dynstiff.assembly import FrequencyModel
+from dynstiff.errors import InvalidParameterError
+from dynstiff.exact_model import ExactModel
+from dynstiff.lumped.linear_model import LumpedLinearModel
+from dynstiff.lumped.robot_model import LumpedMassModel
+from dynstiff.model_base import PlatformModel, require_equilibrium
+from dynstiff.platform import lever_map
+from dynstiff.robot import geometric_stiffness
 
 __all__ = ["RUNGS", "StaticCableModel", "build_model"]
 

@@ -22,9 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constants import DOF_NAMES
-from .errors import InvalidParameterError
-from .results import FRFResult
+from dynstiff.constants import DOF_NAMES
+from dynstiff.errors import InvalidParameterError
+from dynstiff.results import FRFResult
 
 __all__ = ["MeasuredModes", "ModeComparison", "FRFComparison", "PAIRINGS", "compare_frf",
            "compare_modes", "mac_matrix", "massless_pairing", "pair_modes",
@@ -156,7 +156,7 @@ def read_measured_frf(path):
     path = Path(path)
     if path.suffix.lower() == ".csv":
         return _frf_from_csv(path)
-    from .exchange import UFF_DATA_TYPES, require
+    from dynstiff.exchange import UFF_DATA_TYPES, require
     pyuff = require("pyuff")
     sets = pyuff.UFF(str(path)).read_sets()
     sets = [sets] if isinstance(sets, dict) else list(sets)
@@ -390,7 +390,7 @@ def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
     measured = measured if isinstance(measured, MeasuredModes) else MeasuredModes(measured)
     md = model_or_modes
     if not hasattr(md, "platform_shapes"):
-        from .eigen import modes
+        from dynstiff.eigen import modes
         md = modes(model_or_modes, fmax_hz=fmax_hz or 1.5 * measured.freq_hz.max())
     idx, mac = pair_modes(md, measured, pairing)
     return ModeComparison(measured_hz=measured.freq_hz, model_hz=md.freq_hz[idx],
@@ -461,7 +461,7 @@ def compare_frf(model, measured, point=None):
     -------
     FRFComparison
     """
-    from .frf import frf
+    from dynstiff.frf import frf
     if not isinstance(measured, FRFResult):
         raise InvalidParameterError(f"measured must be an FRFResult, got "
                                     f"{type(measured).__name__}")

@@ -48,10 +48,9 @@ What a rung can say about its own poles (one of)
 
 import numpy as np
 
-from .platform import platform_mass_matrix
-from .robot import geometric_stiffness
-
-from .errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
+from dynstiff.platform import platform_mass_matrix
+from dynstiff.robot import geometric_stiffness
 
 __all__ = ["PlatformModel", "require_model", "require_equilibrium"]
 

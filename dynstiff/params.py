@@ -14,7 +14,7 @@ symbol                 meaning                                      unit
 
 from dataclasses import dataclass
 
-from ._validate import positive_scalar
+from dynstiff._validate import positive_scalar
 
 __all__ = ["Cable", "Damping", "DEFAULT_DAMPING"]
 
@@ -97,7 +97,7 @@ class Damping:
         for name in ("platform_ratio", "cable_loss_factor", "cable_viscous_damping"):
             v = positive_scalar(name, getattr(self, name), allow_zero=True)
             if name != "cable_viscous_damping" and not v < 1:
-                from .errors import InvalidParameterError
+                from dynstiff.errors import InvalidParameterError
                 raise InvalidParameterError(f"{name} must be < 1, got {v!r}")
             object.__setattr__(self, name, v)
 

@@ -21,11 +21,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
-from .errors import InvalidParameterError
-from .freqgrid import refined_grid
-from .frf import frf
+from dynstiff._validate import positive_scalar
+from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
+from dynstiff.errors import InvalidParameterError
+from dynstiff.freqgrid import refined_grid
+from dynstiff.frf import frf
 
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
            "Participation", "platform_participation", "categories", "receptance_amplification"]
@@ -157,7 +157,7 @@ def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):
     """
     import warnings
 
-    from .errors import PoleWarning
+    from dynstiff.errors import PoleWarning
     f = refined_grid(band_hz, n_points, modes_hz)
     names = [DOF_NAMES[k] for k in model.free_index]
     loads = ["f" + n if len(n) == 1 else "m" + n[1] for n in names]

@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validate import positive_scalar
-from ._vec import cross
-from .constants import DOF_NAMES
-from .errors import InvalidParameterError
+from dynstiff._validate import positive_scalar
+from dynstiff._vec import cross
+from dynstiff.constants import DOF_NAMES
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "lever_maps", "rotation_matrix",
            "platform_mass_matrix", "rotvec_to_quaternion", "quaternion_to_rotvec", "quaternion_product"]

@@ -26,8 +26,8 @@ gid                 artist
 
 import numpy as np
 
-from .constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
-from .errors import InvalidParameterError
+from dynstiff.constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["plot_frf", "plot_veering", "plot_spectrum", "plot_speed_accuracy", "plot_modes",
            "plot_damped_modes", "plot_cable_modes", "plot_tensions", "plot_model_errors"]

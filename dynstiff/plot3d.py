@@ -21,11 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ._vec import cross
-from .assembly import FrequencyModel
-from .eigen import cable_fields
-from .errors import InvalidParameterError
-from .results import ModalResult
+from dynstiff._vec import cross
+from dynstiff.assembly import FrequencyModel
+from dynstiff.eigen import cable_fields
+from dynstiff.errors import InvalidParameterError
+from dynstiff.results import ModalResult
 
 __all__ = ["plot_robot", "animate_mode"]
 

@@ -9,7 +9,7 @@ only when every check passes for every orientation and value.
 
 import numpy as np
 
-from .errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["plot_workspace_3d", "plot_workspace_slices", "worst_case"]
 

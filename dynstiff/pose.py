@@ -8,10 +8,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .constants import MAX_COORDINATE
-from .errors import InvalidParameterError
-from .platform import (quaternion_product, quaternion_to_rotvec, rotation_matrix,
-                       rotvec_to_quaternion)
+from dynstiff.constants import MAX_COORDINATE
+from dynstiff.errors import InvalidParameterError
+from dynstiff.platform import (
+    quaternion_product,
+    quaternion_to_rotvec,
+    rotation_matrix,
+    rotvec_to_quaternion,
+)
 
 __all__ = ["Pose", "as_pose"]
 

@@ -25,11 +25,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .assembly import FrequencyModel
-from .cable_dsm import cable_mode_count, chord_parameters, closed_form_validity
-from .eigen import eigenfrequencies
-from .errors import ClosedFormWarning, InvalidParameterError
-from .ladder import RUNGS, StaticCableModel
+from dynstiff.assembly import FrequencyModel
+from dynstiff.cable_dsm import cable_mode_count, chord_parameters, closed_form_validity
+from dynstiff.eigen import eigenfrequencies
+from dynstiff.errors import ClosedFormWarning, InvalidParameterError
+from dynstiff.ladder import RUNGS, StaticCableModel
 
 __all__ = ["Recommendation", "recommend_model", "predicted_errors"]
 
@@ -70,7 +70,7 @@ class Recommendation:
     def plot(self, ax=None, rtol=None):
         """Predicted error of every rung: :func:`dynstiff.plot.plot_model_errors`. Returns
         the matplotlib Figure."""
-        from .plot import plot_model_errors
+        from dynstiff.plot import plot_model_errors
         return plot_model_errors(self, ax=ax, rtol=rtol)
 
     def text(self):
@@ -112,7 +112,7 @@ def _dsm_error(equilibrium, band_hz):
     chordwise weight ratio, causes of the cables the guard flags)."""
     import warnings
 
-    from .exact_model import ExactModel
+    from dynstiff.exact_model import ExactModel
     lo, hi = band_hz
     w_hi = 2 * np.pi * hi
     val = [closed_form_validity(s, w_hi) for s in equilibrium.states]

@@ -25,11 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .eigen import eigenfrequencies
-from .errors import InvalidParameterError
-from .exchange import require
-from .frf import channel_maps
-from .model_base import require_model
+from dynstiff.eigen import eigenfrequencies
+from dynstiff.errors import InvalidParameterError
+from dynstiff.exchange import require
+from dynstiff.frf import channel_maps
+from dynstiff.model_base import require_model
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]
 

@@ -9,11 +9,15 @@ from pathlib import Path
 
 import numpy as np
 
-from .cable_dsm import (DEFAULT_CHORDWISE_INERTIA, cable_dynamic_stiffness,
-                        cable_natural_frequencies, chord_parameters)
-from .catenary import unstretched_length_for_tension
-from .constants import STANDARD_GRAVITY
-from .params import Cable
+from dynstiff.cable_dsm import (
+    DEFAULT_CHORDWISE_INERTIA,
+    cable_dynamic_stiffness,
+    cable_natural_frequencies,
+    chord_parameters,
+)
+from dynstiff.catenary import unstretched_length_for_tension
+from dynstiff.constants import STANDARD_GRAVITY
+from dynstiff.params import Cable
 
 __all__ = ["CableReport", "cable_report", "demo_cable"]
 
@@ -97,7 +101,7 @@ class CableReport:
         -------
         matplotlib Figure
         """
-        from .plot import figure_axes
+        from dynstiff.plot import figure_axes
         fig, ax = figure_axes(ax)
         names = {(0, 0): "K_uu (chord)", (1, 1): "K_vv (in-plane)", (2, 2): "K_ww (out-of-plane)"}
         for (i, j), name in names.items():

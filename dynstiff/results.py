@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constants import DOF_NAMES, LOAD_NAMES
-from .errors import InvalidParameterError
+from dynstiff.constants import DOF_NAMES, LOAD_NAMES
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["FRFResult", "ModalResult", "LumpedModalResult", "DampedModes", "INPUT_NAMES",
            "OUTPUT_NAMES", "RESPONSE_KINDS", "response_factor"]
@@ -94,21 +94,21 @@ class FRFResult:
     def plot(self, ax=None, modes=None, pairs=None, phase=False):
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
         Returns the matplotlib Figure."""
-        from .plot import plot_frf
+        from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
     def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.exchange.write_uff58` (theory.md §15.3).
         Returns the path."""
-        from .exchange import write_uff58
+        from dynstiff.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
     def to_control(self):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
         [rad/s]): :func:`dynstiff.exchange.frf_to_control`."""
-        from .exchange import frf_to_control
+        from dynstiff.exchange import frf_to_control
         return frf_to_control(self)
 
     def to_frame(self):
@@ -172,7 +172,7 @@ class ModalResult:
     def plot(self, ax=None):
         """Frequencies against cable energy fraction, global and local modes coloured:
         :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure."""
-        from .plot import plot_modes
+        from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
     def to_frame(self):
@@ -255,7 +255,7 @@ class DampedModes:
     def plot(self, ax=None):
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.
         Returns the matplotlib Figure."""
-        from .plot import plot_damped_modes
+        from dynstiff.plot import plot_damped_modes
         return plot_damped_modes(self, ax=ax)
 
     def to_frame(self):

@@ -15,18 +15,18 @@ from numbers import Integral
 
 import numpy as np
 
-from . import _validate
-from ._validate import positive_scalar
-from ._vec import cross
-from .caspr import read_caspr
-from .catenary import solve_catenary
-from .constants import MAX_COORDINATE, STANDARD_GRAVITY
-from .equilibrium import Equilibrium
-from .errors import InvalidParameterError
-from .params import Cable
-from .platform import Platform, lever_map, skew
-from .pose import Pose, as_pose
-from .statics import forward_statics, inverse_statics
+from dynstiff import _validate
+from dynstiff._validate import positive_scalar
+from dynstiff._vec import cross
+from dynstiff.caspr import read_caspr
+from dynstiff.catenary import solve_catenary
+from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
+from dynstiff.equilibrium import Equilibrium
+from dynstiff.errors import InvalidParameterError
+from dynstiff.params import Cable
+from dynstiff.platform import Platform, lever_map, skew
+from dynstiff.pose import Pose, as_pose
+from dynstiff.statics import forward_statics, inverse_statics
 
 __all__ = ["Robot", "Pose", "Equilibrium", "as_pose", "geometric_stiffness"]
 

@@ -11,12 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .checks import damped_model
-from .errors import InvalidParameterError
-from .exact_model import DEFAULT_FMAX_HZ
-from .ladder import RUNGS
-from .params import Damping
-from .participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
+from dynstiff.checks import damped_model
+from dynstiff.errors import InvalidParameterError
+from dynstiff.exact_model import DEFAULT_FMAX_HZ
+from dynstiff.ladder import RUNGS
+from dynstiff.params import Damping
+from dynstiff.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 
 __all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL"]
 
@@ -116,7 +116,7 @@ class AnalysisSettings:
     def metadata(self, pose=None, units=None):
         """Dict for the header of a CSV/JSON output: scene, pose, model, damping, units,
         version."""
-        from . import __version__
+        from dynstiff import __version__
         d = {"dynstiff": __version__, "scene": self.scene, "model": self.rung,
              "band_hz": list(self.band_hz),
              "damping": {"platform_ratio": self.damping.platform_ratio,

@@ -14,12 +14,12 @@ with the analytic 6x6 stiffness (theory.md §4).
 
 import numpy as np
 
-from ._vec import cross
-from .catenary import CatenaryState, unstretched_length_for_tension
-from .catenary_batch import catenary_arrays, taut_catenaries
-from .equilibrium import Equilibrium
-from .pose import Pose
-from .errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from dynstiff._vec import cross
+from dynstiff.catenary import CatenaryState, unstretched_length_for_tension
+from dynstiff.catenary_batch import catenary_arrays, taut_catenaries
+from dynstiff.equilibrium import Equilibrium
+from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from dynstiff.pose import Pose
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
 

@@ -18,10 +18,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .errors import InvalidParameterError
-from .pose import as_pose
-from .robot import Robot
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import InvalidParameterError
+from dynstiff.pose import as_pose
+from dynstiff.robot import Robot
 
 __all__ = ["Trajectory", "line", "circle", "quasi_static_lengths", "TrackingResult", "track"]
 
@@ -307,8 +307,8 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     -------
     TrackingResult
     """
-    from .lumped.robot_model import LumpedMassModel
-    from .lumped.time_domain import simulate
+    from dynstiff.lumped.robot_model import LumpedMassModel
+    from dynstiff.lumped.time_domain import simulate
     if not isinstance(trajectory, Trajectory):
         raise InvalidParameterError(
             f"trajectory must be a Trajectory, got {type(trajectory).__name__}")

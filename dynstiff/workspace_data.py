@@ -10,7 +10,7 @@ import platform as _platform
 
 import numpy as np
 
-from .errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
 
 try:
     import xarray as xr
@@ -197,11 +197,11 @@ class WorkspaceAccessor:
     def plot(self, n_slices=4, fig=None):
         """Slices of the first global frequency, the band margin and the dynamic workspace:
         :func:`dynstiff.plot_workspace.plot_workspace_slices`. Returns the Figure."""
-        from .plot_workspace import plot_workspace_slices
+        from dynstiff.plot_workspace import plot_workspace_slices
         return plot_workspace_slices(self._ds, n_slices=n_slices, fig=fig)
 
     def plot_3d(self, ax=None):
         """3-D view of the first global frequency and the dynamic workspace:
         :func:`dynstiff.plot_workspace.plot_workspace_3d`. Returns the Figure."""
-        from .plot_workspace import plot_workspace_3d
+        from dynstiff.plot_workspace import plot_workspace_3d
         return plot_workspace_3d(self._ds, ax=ax)

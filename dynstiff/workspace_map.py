@@ -23,15 +23,15 @@ from numbers import Integral
 
 import numpy as np
 
-from ._validate import positive_scalar
-from .catenary_batch import catenary_arrays, sag_ratios
-from .eigen import eigenfrequencies
-from .eigen import modes as modal
-from .errors import DynstiffError, InvalidParameterError
-from .ladder import RUNGS, build_model
-from .params import Cable
-from .pose import as_pose
-from .robot import Robot
+from dynstiff._validate import positive_scalar
+from dynstiff.catenary_batch import catenary_arrays, sag_ratios
+from dynstiff.eigen import eigenfrequencies
+from dynstiff.eigen import modes as modal
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.ladder import RUNGS, build_model
+from dynstiff.params import Cable
+from dynstiff.pose import as_pose
+from dynstiff.robot import Robot
 
 __all__ = ["CHECKS", "box_grid", "evaluate_chunk", "platform_participation", "workspace"]
 
@@ -438,7 +438,7 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
     X, layout, values, band_hz = _validated(
         robot, poses, box, step, orientations, parameter, values, n_modes, band_hz, margin,
         proximity_rtol, max_sag_ratio, rung, chunk_size, workers, client)
-    from .workspace_data import to_dataset
+    from dynstiff.workspace_data import to_dataset
     robots = ([robot] if parameter is None
               else [_robot_with(robot, parameter, v) for v in values])
     tasks = []

@@ -3,17 +3,16 @@ closed-form dynamic stiffness (theory.md §7): one chain, the nonlinear robot
 (:class:`LumpedMassModel`), its linearisation (:class:`LumpedLinearModel`, the "lumped" rung)
 and its time-domain simulation."""
 
-from .chain import ChainState, chain_equilibrium
-from .chain_dynamics import (
+from dynstiff.lumped.chain import ChainState, chain_equilibrium
+from dynstiff.lumped.chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
     chain_matrices,
 )
-from .compare import compare_modes
-from ..results import LumpedModalResult
-from .linear_model import LumpedLinearModel
-from .robot_model import LumpedEquilibrium, LumpedMassModel
-from .time_domain import (
+from dynstiff.lumped.compare import compare_modes
+from dynstiff.lumped.linear_model import LumpedLinearModel
+from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff.lumped.time_domain import (
     EnergyBalance,
     EnergyBalanceWarning,
     IntegrationError,
@@ -25,6 +24,7 @@ from .time_domain import (
     explicit_step_limit,
     simulate,
 )
+from dynstiff.results import LumpedModalResult
 
 __all__ = [
     "LumpedEquilibrium",

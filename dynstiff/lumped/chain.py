@@ -35,10 +35,10 @@ from numbers import Integral
 
 import numpy as np
 
-from .._validate import point, positive_scalar
-from ..constants import STANDARD_GRAVITY
-from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
-from ..params import Cable
+from dynstiff._validate import point, positive_scalar
+from dynstiff.constants import STANDARD_GRAVITY
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.params import Cable
 
 __all__ = ["ChainState", "chain_equilibrium"]
 

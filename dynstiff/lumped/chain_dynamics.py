@@ -6,14 +6,14 @@ import warnings
 
 import numpy as np
 
-from .._validate import omega_array
-from ..errors import InvalidParameterError, PoleWarning
-from .chain import (
+from dynstiff._validate import omega_array
+from dynstiff.errors import InvalidParameterError, PoleWarning
+from dynstiff.lumped.chain import (
     BANDWIDTH,
     block_tridiagonal_entries,
     check_chain_state,
-    element_stiffness,
     checked_integer,
+    element_stiffness,
     interior_banded,
 )
 

@@ -3,8 +3,8 @@ global modes paired by mass-weighted MAC of the platform shapes, the others by f
 
 import numpy as np
 
-from ..results import ModalResult
-from ..errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
+from dynstiff.results import ModalResult
 
 __all__ = ["compare_modes"]
 

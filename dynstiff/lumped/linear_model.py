@@ -18,11 +18,11 @@ import functools
 
 import numpy as np
 
-from .._validate import omega_array
-from ..errors import InvalidParameterError
-from ..model_base import PlatformModel
-from ..platform import lever_map
-from .robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff._validate import omega_array
+from dynstiff.errors import InvalidParameterError
+from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff.model_base import PlatformModel
+from dynstiff.platform import lever_map
 
 __all__ = ["LumpedLinearModel"]
 

@@ -47,14 +47,14 @@ from numbers import Integral
 
 import numpy as np
 
-from .. import _validate
-from .._validate import positive_scalar
-from .._vec import cross
-from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
-from ..platform import lever_map, platform_mass_matrix, skew
-from ..pose import Pose, as_pose
-from ..robot import Robot
-from .chain import block_tridiagonal_entries, chain_equilibrium, element_stiffness
+from dynstiff import _validate
+from dynstiff._validate import positive_scalar
+from dynstiff._vec import cross
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.lumped.chain import block_tridiagonal_entries, chain_equilibrium, element_stiffness
+from dynstiff.platform import lever_map, platform_mass_matrix, skew
+from dynstiff.pose import Pose, as_pose
+from dynstiff.robot import Robot
 
 __all__ = ["LumpedMassModel", "LumpedEquilibrium", "segment_forces"]
 
@@ -145,7 +145,7 @@ class LumpedEquilibrium:
     def plot(self, ax=None):
         """Tensions of the end segments at B and A: :func:`dynstiff.plot.plot_tensions`.
         Returns the matplotlib Figure."""
-        from ..plot import plot_tensions
+        from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
     @property

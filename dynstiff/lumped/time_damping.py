@@ -5,8 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import positive_scalar
-from ..errors import InvalidParameterError
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["TimeDamping", "explicit_step_limit"]
 

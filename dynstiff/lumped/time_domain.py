@@ -90,36 +90,36 @@ from numbers import Integral
 
 import numpy as np
 
-from .._validate import positive_scalar
-from ..constants import DOF_NAMES as OUTPUT_NAMES
-from ..errors import ConvergenceError, InvalidParameterError, SlackCableError
-from .chain import chain_equilibrium
-from .linear_model import LumpedLinearModel
-from .robot_model import LumpedEquilibrium, LumpedMassModel
-from .time_damping import TimeDamping, explicit_step_limit
-from .time_dynamics import (
-    compiled_kernels,
+from dynstiff._validate import positive_scalar
+from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.lumped.chain import chain_equilibrium
+from dynstiff.lumped.linear_model import LumpedLinearModel
+from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff.lumped.time_damping import TimeDamping, explicit_step_limit
+from dynstiff.lumped.time_dynamics import (
     Dynamics,
+    FastPose,
     Frame,
+    compiled_kernels,
     load_at,
     model_at,
     node_mass_vector,
-    FastPose,
     potential_energy,
 )
-from .time_response import EnergyBalance, Spectrum, TimeResponse
-from .time_stepping import (
+from dynstiff.lumped.time_response import EnergyBalance, Spectrum, TimeResponse
+from dynstiff.lumped.time_stepping import (
     EnergyBalanceWarning,
     IntegrationError,
+    Ledger,
+    Recorder,
+    StepNewton,
     carried_energy,
     check_blow_up,
     compiled_explicit_run,
     compiled_implicit_run,
     explicit_step,
     implicit_step,
-    Ledger,
-    StepNewton,
-    Recorder,
 )
 
 __all__ = [

@@ -8,12 +8,18 @@ import importlib.util
 
 import numpy as np
 
-from .._vec import cross
-from ..errors import InvalidParameterError
-from ..platform import (lever_map, platform_mass_matrix, quaternion_product,
-                        quaternion_to_rotvec, rotvec_to_quaternion, skew)
-from ..robot import Pose
-from .robot_model import LumpedMassModel, segment_forces
+from dynstiff._vec import cross
+from dynstiff.errors import InvalidParameterError
+from dynstiff.lumped.robot_model import LumpedMassModel, segment_forces
+from dynstiff.platform import (
+    lever_map,
+    platform_mass_matrix,
+    quaternion_product,
+    quaternion_to_rotvec,
+    rotvec_to_quaternion,
+    skew,
+)
+from dynstiff.robot import Pose
 
 
 def model_at(model, L0):
@@ -340,7 +346,7 @@ def _compiled():
     numba."""
     if importlib.util.find_spec("numba") is None:
         return None
-    from . import compiled_chain
+    from dynstiff.lumped import compiled_chain
     return compiled_chain
 
 

@@ -5,8 +5,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidParameterError
-from ..constants import DOF_NAMES as OUTPUT_NAMES
+from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
+from dynstiff.errors import InvalidParameterError
 
 __all__ = ["EnergyBalance", "TimeResponse", "Spectrum"]
 

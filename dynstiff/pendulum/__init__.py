@@ -61,11 +61,11 @@ cables snap and flap); there the growth per period is measured along the respons
 (see :func:`floquet`).
 """
 
-from .dynamics import jacobian, rest_state, rhs
-from .floquet import FloquetResult, floquet
-from .maps import stability_map, unstable_intervals
-from .model import CablePendulum, from_scene
-from .simulate import PendulumResponse, simulate
+from dynstiff.pendulum.dynamics import jacobian, rest_state, rhs
+from dynstiff.pendulum.floquet import FloquetResult, floquet
+from dynstiff.pendulum.maps import stability_map, unstable_intervals
+from dynstiff.pendulum.model import CablePendulum, from_scene
+from dynstiff.pendulum.simulate import PendulumResponse, simulate
 
 __all__ = [
     "CablePendulum",

@@ -5,7 +5,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InvalidParameterError
+from dynstiff.errors import InvalidParameterError
 
 
 @dataclass(frozen=True)
@@ -234,8 +234,8 @@ def rest_state(model, phi=0.0):
     y[0] = phi
     n = model.n_masses
     if n:
-        from ..lumped.chain import chain_equilibrium
-        from ..params import Cable
+        from dynstiff.lumped.chain import chain_equilibrium
+        from dynstiff.params import Cable
         L0 = model.unstretched_length
         cable = Cable(model.cable_mass / L0, model.stiffness * L0)
         D = np.array([0.0, 0.0, model.attach_distance])

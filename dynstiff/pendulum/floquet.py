@@ -5,11 +5,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import positive_scalar
-from ..errors import ConvergenceError
-from .dynamics import evaluate_rhs, excitation_at, start_state
-from .model import checked_integer
-from .radau import RADAU_C, mirror_bases, period_map, stage_matrix, steps_per_period_of
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import ConvergenceError
+from dynstiff.pendulum.dynamics import evaluate_rhs, excitation_at, start_state
+from dynstiff.pendulum.model import checked_integer
+from dynstiff.pendulum.radau import (
+    RADAU_C,
+    mirror_bases,
+    period_map,
+    stage_matrix,
+    steps_per_period_of,
+)
 
 
 @dataclass(frozen=True)

@@ -6,9 +6,9 @@ from numbers import Integral
 
 import numpy as np
 
-from .._validate import positive_scalar
-from ..constants import STANDARD_GRAVITY
-from ..errors import InvalidParameterError
+from dynstiff._validate import positive_scalar
+from dynstiff.constants import STANDARD_GRAVITY
+from dynstiff.errors import InvalidParameterError
 
 
 @dataclass(frozen=True)

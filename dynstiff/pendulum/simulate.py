@@ -4,10 +4,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validate import positive_scalar
-from ..errors import ConvergenceError, InvalidParameterError
-from .dynamics import evaluate_rhs, excitation_at, segment_geometry, start_state
-from .model import CablePendulum, checked_integer
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import ConvergenceError, InvalidParameterError
+from dynstiff.pendulum.dynamics import evaluate_rhs, excitation_at, segment_geometry, start_state
+from dynstiff.pendulum.model import CablePendulum, checked_integer
 
 
 @dataclass(frozen=True)

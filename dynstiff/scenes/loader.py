@@ -6,12 +6,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..constants import DOF_NAMES, STANDARD_GRAVITY
-from ..errors import DynstiffError, InvalidParameterError
-from ..params import DEFAULT_DAMPING, Cable, Damping
-from ..platform import Platform
-from ..pose import Pose
-from ..robot import Robot
+from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
+from dynstiff.platform import Platform
+from dynstiff.pose import Pose
+from dynstiff.robot import Robot
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 

@@ -10,13 +10,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ..caspr import InertiaConventionWarning, read_caspr
-from ..constants import DOF_NAMES, STANDARD_GRAVITY
-from ..errors import InvalidParameterError
-from ..params import Cable
-from ..pose import Pose
-from ..robot import Robot
-from .loader import Scene
+from dynstiff.caspr import InertiaConventionWarning, read_caspr
+from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
+from dynstiff.errors import InvalidParameterError
+from dynstiff.params import Cable
+from dynstiff.pose import Pose
+from dynstiff.robot import Robot
+from dynstiff.scenes.loader import Scene
 
 __all__ = ["import_caspr", "scene_text", "write_scene"]
 
