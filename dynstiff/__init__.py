@@ -11,6 +11,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 :func:`damped_modes`.
 """
 
+from dynstiff._version import __version__
 from dynstiff.assembly import FrequencyModel
 from dynstiff.cable_dsm import (
     CableModes,
@@ -20,10 +21,20 @@ from dynstiff.cable_dsm import (
     chord_parameters,
 )
 from dynstiff.calibrate import CalibrationResult, calibrate
-from dynstiff.catenary import CatenaryState, solve_catenary, unstretched_length_for_tension
+from dynstiff.catenary import (
+    CatenaryState,
+    solve_catenary,
+    unstretched_length_for_tension,
+)
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.damped import DampedModes, damped_modes
-from dynstiff.eigen import ModalResult, cable_fields, eigenfrequencies, mode_count, modes
+from dynstiff.eigen import (
+    ModalResult,
+    cable_fields,
+    eigenfrequencies,
+    mode_count,
+    modes,
+)
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
@@ -33,7 +44,12 @@ from dynstiff.errors import (
     UnsupportedAnalysisError,
 )
 from dynstiff.frf import FRFResult, frf
-from dynstiff.interaction import ProximityWarning, SweepResult, proximity_warnings, sweep
+from dynstiff.interaction import (
+    ProximityWarning,
+    SweepResult,
+    proximity_warnings,
+    sweep,
+)
 from dynstiff.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
 from dynstiff.measured import (
@@ -51,8 +67,6 @@ from dynstiff.results import LumpedModalResult
 from dynstiff.robot import Equilibrium, Pose, Robot
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 from dynstiff.workspace_map import box_grid, workspace
-
-__version__ = "0.1.0"
 
 __all__ = [
     "calibrate",

@@ -22,6 +22,7 @@ from dynstiff.cable_dsm import (
     AXIAL_MARGIN,
     DEFAULT_CHORDWISE_INERTIA,
     DEFAULT_GUARD_RTOL,
+    PSI_SERIES,
     cable_field,
     cable_kinetic_energy,
     check_frequency_range,
@@ -39,7 +40,7 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stack
 from dynstiff.model_base import PlatformModel, require_equilibrium
 from dynstiff.platform import lever_map, lever_maps, platform_mass_matrix
 
-__all__ = ["FrequencyModel"]
+__all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]
 
 
 class FrequencyModel(PlatformModel):
@@ -366,3 +367,31 @@ class FrequencyModel(PlatformModel):
             disp[i] = np.real(cable_field(p, omega, p.rotation.T @ dB, xs)) @ p.rotation.T
         return pos, disp
 
+
+def compiled_arguments(model):
+    """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
+    (:mod:`dynstiff.compiled_dsm`) for an undamped :class:`FrequencyModel`: contiguous float
+    arrays, the psi series and the symmetric assembly map."""
+    p = model.stacked_params
+
+    def real(x):
+        return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
+
+    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
+            bool(model.chordwise_inertia), PSI_SERIES,
+            symmetric_assembly(model.assembly_map, model.n_free),
+            np.ascontiguousarray(model.K_geo_free, dtype=float),
+            np.ascontiguousarray(model.platform_mass, dtype=float))
+
+
+def symmetric_assembly(assembly_map, n_free):
+    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
+    share the coefficient -k_uv) summed, and the upper triangle of K kept.
+
+    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
+    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
+    """
+    A = assembly_map.reshape(-1, 5, n_free, n_free)
+    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
+    iu, ju = np.triu_indices(n_free)
+    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))

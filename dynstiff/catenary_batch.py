@@ -26,7 +26,11 @@ import importlib.util
 
 import numpy as np
 
-from dynstiff.catenary import CatenaryState, divided_differences, unstretched_length_for_tension
+from dynstiff.catenary import (
+    CatenaryState,
+    divided_differences,
+    unstretched_length_for_tension,
+)
 
 __all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 

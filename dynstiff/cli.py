@@ -274,7 +274,7 @@ def _cmd_simulate(args):
             fig.tight_layout()
             fig.savefig(args.plot, dpi=120)
     if args.csv:
-        from dynstiff import __version__
+        from dynstiff._version import __version__
         _write_table(df, args.csv, "csv", {
             "dynstiff": __version__, "scene": scene.name, "model": "lumped",
             "segments": args.segments, "dt [s]": args.dt,
@@ -454,7 +454,7 @@ def build_parser():
         description="Vibration analysis of cable-driven parallel robots with sagging cables.")
     parser.add_argument("--debug", action="store_true",
                         help="show the full traceback of an error")
-    from dynstiff import __version__
+    from dynstiff._version import __version__
     parser.add_argument("--version", action="version", version=f"dynstiff {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     demo = sub.add_parser(

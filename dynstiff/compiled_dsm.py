@@ -15,42 +15,11 @@ cable at real omega (same formulas, same series branch for |psi| < 1); the assem
 import numba
 import numpy as np
 
-from dynstiff.cable_dsm import PSI_SERIES
-
-__all__ = ["dsm_receptance", "dsm_count", "real_receptance", "symmetric_assembly",
-           "model_arguments"]
+__all__ = ["dsm_receptance", "dsm_count", "real_receptance"]
 
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 #: Frequencies per block of the fused kernel (its coefficients stay in cache).
 _BLOCK = 256
-
-
-def model_arguments(model):
-    """The arguments L .. M of :func:`dsm_receptance` and :func:`dsm_count` for an undamped
-    :class:`dynstiff.assembly.FrequencyModel` (contiguous float arrays)."""
-    p = model.stacked_params
-
-    def real(x):
-        return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
-
-    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
-            bool(model.chordwise_inertia), PSI_SERIES,
-            symmetric_assembly(model.assembly_map, model.n_free),
-            np.ascontiguousarray(model.K_geo_free, dtype=float),
-            np.ascontiguousarray(model.platform_mass, dtype=float))
-
-
-def symmetric_assembly(assembly_map, n_free):
-    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
-    share the coefficient -k_uv) summed, and the upper triangle of K kept.
-
-    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
-    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
-    """
-    A = assembly_map.reshape(-1, 5, n_free, n_free)
-    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
-    iu, ju = np.triu_indices(n_free)
-    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))
 
 
 @numba.njit(**_JIT)
@@ -153,7 +122,7 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
     series : tuple (radius, E_coef, P_coef)
         ``cable_dsm.PSI_SERIES``.
     assembly : ndarray, shape (4 n_cables, nf (nf + 1) / 2)
-        :func:`symmetric_assembly` of ``FrequencyModel.assembly_map``.
+        :func:`dynstiff.assembly.symmetric_assembly` of ``FrequencyModel.assembly_map``.
     K_static, M : ndarray, shape (nf, nf)
         Geometric stiffness and platform mass on the free DOFs.
     B, C : ndarray, shape (nf, n_in), (n_out, nf)

@@ -29,9 +29,13 @@ import numpy as np
 
 from dynstiff import eigen_matrix
 from dynstiff._validate import omega_array
-from dynstiff.assembly import FrequencyModel
+from dynstiff.assembly import FrequencyModel, compiled_arguments
 from dynstiff.cable_dsm import check_frequency_range
-from dynstiff.errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
+from dynstiff.errors import (
+    ConvergenceError,
+    InvalidParameterError,
+    UnsupportedAnalysisError,
+)
 from dynstiff.model_base import require_model
 from dynstiff.results import ModalResult
 
@@ -116,7 +120,7 @@ def _counter(m):
     fast = _compiled()
     # exactly the closed-form class: a subclass may change the cable kernels
     if fast is not None and type(m) is FrequencyModel and not m.damped:
-        args = fast.model_arguments(m)
+        args = compiled_arguments(m)
 
         def count(omega):
             omega = omega_array(omega)

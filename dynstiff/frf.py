@@ -13,7 +13,7 @@ import numpy as np
 
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
-from dynstiff.assembly import FrequencyModel
+from dynstiff.assembly import FrequencyModel, compiled_arguments
 from dynstiff.cable_dsm import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.model_base import require_model
@@ -193,7 +193,7 @@ def _receptance(model, omega, B, C):
         check_frequency_range(model.stacked_params, omega)
         model.guard_band(omega)
         H, kmax, singular = fast.dsm_receptance(np.ascontiguousarray(omega, dtype=float),
-                                                *fast.model_arguments(model), B, C)
+                                                *compiled_arguments(model), B, C)
         return H, kmax, singular
     K = model.dynamic_stiffness(omega)
     H, singular = _solve(K, B, C, fast)

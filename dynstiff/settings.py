@@ -116,7 +116,7 @@ class AnalysisSettings:
     def metadata(self, pose=None, units=None):
         """Dict for the header of a CSV/JSON output: scene, pose, model, damping, units,
         version."""
-        from dynstiff import __version__
+        from dynstiff._version import __version__
         d = {"dynstiff": __version__, "scene": self.scene, "model": self.rung,
              "band_hz": list(self.band_hz),
              "damping": {"platform_ratio": self.damping.platform_ratio,

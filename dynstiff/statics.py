@@ -18,7 +18,12 @@ from dynstiff._vec import cross
 from dynstiff.catenary import CatenaryState, unstretched_length_for_tension
 from dynstiff.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.equilibrium import Equilibrium
-from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from dynstiff.errors import (
+    ConvergenceError,
+    DynstiffError,
+    InvalidParameterError,
+    SlackCableError,
+)
 from dynstiff.pose import Pose
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]

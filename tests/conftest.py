@@ -7,7 +7,12 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
+from dynstiff.lumped import (
+    LumpedLinearModel,
+    LumpedMassModel,
+    chain_equilibrium,
+    chain_matrices,
+)
 from dynstiff.params import Cable
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).

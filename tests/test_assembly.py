@@ -117,6 +117,7 @@ def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogir
     tolerance; a ClosedFormWarning names the cable and the cause on a heavy sagging robot, and
     guard_rtol=None turns it off."""
     import warnings
+
     from dynstiff.errors import ClosedFormWarning
     with warnings.catch_warnings():
         warnings.simplefilter("error", ClosedFormWarning)
@@ -306,6 +307,7 @@ def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
     'slack', cable 3), said once when the model is built. The warning is attributed to the
     line of the user's call, not to the library."""
     import warnings
+
     from dynstiff.errors import ClosedFormWarning
     eq = _three_cable_point_mass(lower=True)
     with warnings.catch_warnings(record=True) as rec:
@@ -327,6 +329,7 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
     0.99 rad/s reaches them, and the closed form's error there is above guard_rtol: a
     'local' warning for each cable, from the evaluation's line."""
     import warnings
+
     from dynstiff.errors import ClosedFormWarning
     with pytest.warns(ClosedFormWarning, match="static stiffness shifts a global mode"):
         m = ds.FrequencyModel(_three_cable_point_mass(g=0.3), guard_rtol=1e-2)
@@ -401,6 +404,7 @@ def test_guard_warnings_from_deep_calls_point_at_the_callers_line_too():
     warnings are attributed to the user's line as well, not to a line of the package."""
     import dataclasses
     import warnings
+
     from dynstiff.errors import ClosedFormWarning
     r = ds.load_scene("planar2").robot
     eq = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2).equilibrium(
@@ -428,6 +432,7 @@ def test_a_cable_within_tolerance_does_not_stop_the_check_of_the_others(tension)
     each said once, in full: the error measured against the exact cable with the model's
     tension up to min(omega, axial), and every cause above a tenth of guard_rtol."""
     import warnings
+
     from dynstiff.cable_dsm import closed_form_local_error, closed_form_validity
     from dynstiff.errors import ClosedFormWarning
     ang = np.radians([90, 210, 330])
@@ -462,6 +467,7 @@ def test_cables_measured_within_tolerance_are_passed_over_and_the_rest_said(cogi
     measured against the exact cable; cables 2 and 5 measure within it and are passed over,
     the other six are said in full, each with every cause above a tenth of guard_rtol."""
     import warnings
+
     from dynstiff.cable_dsm import closed_form_local_error, closed_form_validity
     from dynstiff.errors import ClosedFormWarning
     with pytest.warns(ClosedFormWarning, match="static stiffness"):

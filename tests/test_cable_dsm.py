@@ -2,15 +2,18 @@
 
 import numpy as np
 import pytest
+from conftest import A0, B0, cogiro_cable
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.cable_dsm import (chord_parameters, irvine_symmetric_roots,
-                                local_end_stiffness, local_two_end_stiffness)
+from dynstiff.cable_dsm import (
+    chord_parameters,
+    irvine_symmetric_roots,
+    local_end_stiffness,
+    local_two_end_stiffness,
+)
 from dynstiff.errors import InvalidParameterError
-
-from conftest import A0, B0, cogiro_cable
 
 TWO_PI = 2 * np.pi
 
@@ -329,6 +332,7 @@ def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
         assert closed_form_local_error(s, 2 * np.pi * 20.0) <= v.error
     # the cable-level functions warn too, and stay silent on CoGiRo
     import warnings
+
     from dynstiff.errors import ClosedFormWarning
     with pytest.warns(ClosedFormWarning, match="off the exact model's") as rec:
         ds.cable_natural_frequencies(steep, 5)
@@ -403,8 +407,11 @@ def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_st
     :func:`end_block_coefficients` and :func:`cable_mode_count`, for one cable (shapes
     (n, 5), (n,)) and a stack ((n, n_cables, 5), (n, n_cables)); damped cables or complex
     omega are refused (theory.md §14.2)."""
-    from dynstiff.cable_dsm import (cable_mode_count, end_block_coefficients,
-                                    end_block_coefficients_and_count)
+    from dynstiff.cable_dsm import (
+        cable_mode_count,
+        end_block_coefficients,
+        end_block_coefficients_and_count,
+    )
     from dynstiff.chord import stack_parameters
     states = [ds.solve_catenary((0, 0, 0), B, L0, ds.Cable(0.064, 139486.7))
               for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]
@@ -475,6 +482,7 @@ def test_series_coefficients_are_the_taylor_series_of_the_psi_functions():
     """The series branch of the psi functions (|psi| < 1): its coefficients, recomputed
     here, evaluate E, P~ and Q~ to 1e-15 of their mpmath values at psi^2 = 0.0 .. 1."""
     import mpmath
+
     from dynstiff.cable_dsm import _series_coefficients
     E, P, Q = _series_coefficients()
     for x in (0.0, 0.05, 0.3, 0.7, 1.0):

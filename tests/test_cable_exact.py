@@ -10,8 +10,10 @@ from dynstiff.cable_dsm import cable_dynamic_stiffness, cable_natural_frequencie
 from dynstiff.cable_exact import ExactCable, gll
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.lumped.chain import chain_equilibrium
-from dynstiff.lumped.chain_dynamics import (chain_end_dynamic_stiffness,
-                                            chain_fixed_end_frequencies)
+from dynstiff.lumped.chain_dynamics import (
+    chain_end_dynamic_stiffness,
+    chain_fixed_end_frequencies,
+)
 
 TWO_PI = 2 * np.pi
 # (anchor, end, L0, cable): the hard cases of theory.md §11.3

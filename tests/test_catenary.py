@@ -2,13 +2,12 @@
 
 import numpy as np
 import pytest
+from conftest import A0, B0, cogiro_cable
 from scipy.integrate import quad
 from scipy.optimize import fsolve
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, SlackCableError
-
-from conftest import A0, B0, cogiro_cable
 
 G = ds.STANDARD_GRAVITY
 

@@ -8,14 +8,13 @@ roots of a symmetric robot. Cable displacement fields of a mode meet the platfor
 
 import numpy as np
 import pytest
+from conftest import lumped_point_mass_frequencies, point_mass_robot
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff.eigen import cable_fields
 from dynstiff.errors import InvalidParameterError, SlackCableError
-from conftest import lumped_point_mass_frequencies, point_mass_robot
-
 
 N_SEG = 40                    # lumped segments per cable
 M_CABLE = 0.064               # [kg/m], CoGiRo cable (theory.md §8.1)
@@ -328,8 +327,8 @@ def test_illinois_on_a_strongly_curved_function_halves_its_bracket_and_converges
     the flat end (0.2 % per step; 100 steps left [0.1, 2.96]). A bracket that has not halved
     in three steps is bisected, so the root 1 is found to 1e-12 in at most 4 log2(2.9 / 1e-12)
     steps (measured: 16), and a search that cannot finish says so with its width."""
-    from dynstiff.errors import ConvergenceError
     from dynstiff.eigen import _illinois
+    from dynstiff.errors import ConvergenceError
     f = [lambda x: np.exp(8.0 * (1.0 - x)) - 1.0]
     roots, calls = _run_illinois(f, [0.1], [3.0])
     assert roots[0] == pytest.approx(1.0, rel=1e-12)

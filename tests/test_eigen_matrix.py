@@ -3,11 +3,11 @@ shift-invert equals dense, platform shapes are mass-normalised with the held DOF
 the cable energies and node shapes of the lumped model."""
 
 import numpy as np
+from conftest import linearised, point_mass_robot
 
 import dynstiff as ds
 from dynstiff import eigen_matrix
 from dynstiff.lumped import LumpedModalResult
-from conftest import linearised, point_mass_robot
 
 
 def test_sparse_shift_invert_equals_dense(lumped, monkeypatch):

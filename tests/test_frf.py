@@ -4,10 +4,10 @@ the lumped model alike."""
 
 import numpy as np
 import pytest
+from conftest import linearised
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, PoleWarning
-from conftest import linearised
 
 
 def test_receptance_is_symmetric(cogiro_eq):

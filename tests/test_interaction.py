@@ -7,8 +7,13 @@ import scipy.linalg
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, SlackCableError
-from dynstiff.interaction import (UNTRACKED, ProximityWarning, proximity_warnings, sweep,
-                                  to_frame)
+from dynstiff.interaction import (
+    UNTRACKED,
+    ProximityWarning,
+    proximity_warnings,
+    sweep,
+    to_frame,
+)
 
 COLUMNS = ["step", "value", "mode", "track", "freq [Hz]", "kind", "cable energy fraction [-]",
            "massless freq [Hz]"]

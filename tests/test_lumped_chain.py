@@ -6,14 +6,23 @@ that the physics fixes. The test cables are in conftest.py.
 
 import numpy as np
 import pytest
+from conftest import (
+    A_11,
+    A_92,
+    B_11,
+    B_92,
+    BEAD_L,
+    CABLE_11,
+    CABLE_92,
+    L0_11,
+    beaded_string,
+)
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.lumped import ChainState, chain_equilibrium
 from dynstiff.params import Cable
-from conftest import A_11, A_92, B_11, B_92, BEAD_L, CABLE_11, CABLE_92, L0_11, beaded_string
-
 
 G = 9.81
 EZ = np.array([0.0, 0.0, 1.0])

@@ -10,6 +10,19 @@ import numpy as np
 import pytest
 import scipy.linalg
 import scipy.optimize
+from conftest import (
+    A_11,
+    A_92,
+    B_11,
+    B_92,
+    BEAD,
+    BEAD_L,
+    BEAD_L0,
+    CABLE_11,
+    CABLE_92,
+    L0_11,
+    beaded_string,
+)
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.lumped import (
@@ -19,9 +32,6 @@ from dynstiff.lumped import (
     chain_matrices,
 )
 from dynstiff.params import Cable
-from conftest import (A_11, A_92, B_11, B_92, BEAD, BEAD_L, BEAD_L0, CABLE_11, CABLE_92, L0_11,
-                      beaded_string)
-
 
 G = 9.81
 EZ = np.array([0.0, 0.0, 1.0])

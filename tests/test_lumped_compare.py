@@ -3,11 +3,11 @@ frequency and platform-shape MAC, unmatched rows kept, bad inputs named."""
 
 import numpy as np
 import pytest
+from conftest import linearised, point_mass_robot
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
 from dynstiff.lumped import compare_modes
-from conftest import linearised, point_mass_robot
 
 
 def test_compare_modes_keeps_unmatched_rows():

@@ -8,9 +8,8 @@ import warnings
 import numpy as np
 import pytest
 
-from dynstiff.lumped import LumpedMassModel, TimeDamping
+from dynstiff.lumped import LumpedMassModel, TimeDamping, time_stepping
 from dynstiff.lumped import time_dynamics as td
-from dynstiff.lumped import time_stepping
 
 pytest.importorskip("numba")
 

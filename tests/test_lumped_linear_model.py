@@ -12,10 +12,10 @@ import dataclasses
 
 import numpy as np
 import pytest
+from conftest import linearised, lumped_point_mass_frequencies, point_mass_robot
 
 import dynstiff as ds
 from dynstiff.lumped import compare_modes
-from conftest import linearised, lumped_point_mass_frequencies, point_mass_robot
 
 
 @pytest.fixture(scope="module")

@@ -12,11 +12,11 @@ import time
 
 import numpy as np
 import pytest
+from conftest import point_mass_robot
 
 import dynstiff as ds
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
-from conftest import point_mass_robot
 
 
 def central_difference_jacobian(model, pose, interior, h=1e-6):

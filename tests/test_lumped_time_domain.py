@@ -13,9 +13,9 @@ import warnings
 import numpy as np
 import pytest
 import scipy.special
+from conftest import linearised, point_mass_robot
 
 import dynstiff as ds
-from conftest import linearised, point_mass_robot
 from dynstiff.errors import InvalidParameterError, SlackCableError
 from dynstiff.lumped import (
     EnergyBalanceWarning,

@@ -8,8 +8,13 @@ import pytest
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
-from dynstiff.participation import (GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD, categories,
-                                    platform_participation, receptance_amplification)
+from dynstiff.participation import (
+    GLOBAL_SHARE,
+    PLATFORM_SHARE_THRESHOLD,
+    categories,
+    platform_participation,
+    receptance_amplification,
+)
 
 
 def with_mass(robot, mass):

@@ -10,8 +10,8 @@ import pytest
 
 import dynstiff as ds
 from dynstiff import pendulum as pdl
-from dynstiff.pendulum.dynamics import excitation_at, segment_geometry
 from dynstiff.errors import InvalidParameterError
+from dynstiff.pendulum.dynamics import excitation_at, segment_geometry
 
 #: Paper, Sec. 3: l = 1 m, m = 9.864 kg, I_A = 3.288 kg m^2, a = 1.2 m, d = 0.75 m,
 #: k = 8.264e4 N/m.

@@ -30,8 +30,12 @@ def test_rotation_helpers_equal_scipy_rotation(angle):
     """rotation_matrix and the quaternion composition of Pose.moved against scipy's
     Rotation, on both sides of the series threshold (1e-3 rad) and near pi."""
     from scipy.spatial.transform import Rotation
-    from dynstiff.platform import (quaternion_product, quaternion_to_rotvec,
-                                   rotvec_to_quaternion)
+
+    from dynstiff.platform import (
+        quaternion_product,
+        quaternion_to_rotvec,
+        rotvec_to_quaternion,
+    )
     rng = np.random.default_rng(int(1e6 * angle) % 2**32)
     for _ in range(20):
         axis = rng.standard_normal(3)

@@ -5,10 +5,10 @@ Every test reads the artists back (axis labels, line data, gids) and compares th
 results that were plotted; none only checks that a figure exists.
 """
 
+import matplotlib
 import numpy as np
 import pandas as pd
 import pytest
-import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -169,6 +169,7 @@ def test_spectrum_of_a_simulation_marks_model_modes():
     """A short lumped-mass run of the point-mass robot: its z spectrum peaks near a
     frequency-domain eigenfrequency, which the figure marks (coloured by kind)."""
     from conftest import point_mass_robot
+
     from dynstiff.lumped import LumpedMassModel
     from dynstiff.lumped.time_domain import simulate
     rob = point_mass_robot()

@@ -5,16 +5,16 @@ Every test reads the artists back (line data, gids, titles, frames) and compares
 the equilibrium and modes that were drawn; none only checks that a figure exists.
 """
 
+import matplotlib
 import numpy as np
 import pytest
-import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
-from dynstiff.errors import InvalidParameterError  # noqa: E402
 from dynstiff.eigen import cable_fields  # noqa: E402
+from dynstiff.errors import InvalidParameterError  # noqa: E402
 from dynstiff.plot3d import animate_mode, plot_robot  # noqa: E402
 
 

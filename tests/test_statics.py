@@ -319,8 +319,8 @@ def test_distribution_from_any_active_set_is_the_optimum():
 def test_forward_statics_with_its_defaults_inverts_inverse_statics():
     """statics.forward_statics called with its own defaults (tol 1e-10) returns the pose
     whose inverse statics gave the lengths, to 1e-9 m, and the same tensions."""
-    from dynstiff.statics import forward_statics
     import dynstiff as ds
+    from dynstiff.statics import forward_statics
     rob = ds.load_scene("cogiro").robot
     eq = rob.equilibrium(pose=[0.3, -0.2, 1.1, 0.02, -0.01, 0.03])
     fe = forward_statics(rob, eq.unstretched_lengths)

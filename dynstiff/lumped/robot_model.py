@@ -51,7 +51,11 @@ from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
-from dynstiff.lumped.chain import block_tridiagonal_entries, chain_equilibrium, element_stiffness
+from dynstiff.lumped.chain import (
+    block_tridiagonal_entries,
+    chain_equilibrium,
+    element_stiffness,
+)
 from dynstiff.platform import lever_map, platform_mass_matrix, skew
 from dynstiff.pose import Pose, as_pose
 from dynstiff.robot import Robot

@@ -6,7 +6,12 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import ConvergenceError, InvalidParameterError
-from dynstiff.pendulum.dynamics import evaluate_rhs, excitation_at, segment_geometry, start_state
+from dynstiff.pendulum.dynamics import (
+    evaluate_rhs,
+    excitation_at,
+    segment_geometry,
+    start_state,
+)
 from dynstiff.pendulum.model import CablePendulum, checked_integer
 
 
