@@ -11,7 +11,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 :func:`damped_modes`.
 """
 
-from dynstiff._version import __version__
+from dynstiff._version import __version__ as __version__
 from dynstiff.assembly import FrequencyModel
 from dynstiff.cable_dsm import (
     CableModes,

@@ -21,11 +21,10 @@ vertical or weightless is handed to the scalar bracketing solver
 cannot be reached.
 """
 
-import functools
-import importlib.util
 
 import numpy as np
 
+from dynstiff import compiled as compiled_kernels
 from dynstiff.catenary import (
     CatenaryState,
     divided_differences,
@@ -104,16 +103,6 @@ def _newton(lh, h, L, t, EA, w0, H, V0, L0):
     return H, V0, L0, ok, res
 
 
-@functools.cache
-def _compiled_newton():
-    """The compiled Newton (:func:`dynstiff.compiled_catenary.newton_taut`), or None
-    without numba."""
-    if importlib.util.find_spec("numba") is None:
-        return None
-    from dynstiff.compiled_catenary import newton_taut
-    return newton_taut
-
-
 def _solve(compiled, args, guess):
     """(H, V0, L0, ok, residual) of Newton from ``guess``: compiled or numpy."""
     if compiled is not None:
@@ -174,7 +163,8 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None, compiled=True):
             guess = None
     if guess is None:
         guess = _straight_start(*args)
-    fast = _compiled_newton() if compiled else None
+    kernels = compiled_kernels.load("catenary") if compiled else None
+    fast = kernels.newton_taut if kernels is not None else None
     sol = _solve(fast, args, guess)
     ok = sol[3]
     if start is not None and not np.all(ok):      # retry the others from the straight cable

@@ -21,13 +21,11 @@ search works for every rung (``method="wittrick-williams"``), which is how the t
 checked against each other.
 """
 
-import functools
-import importlib.util
 from numbers import Integral, Real
 
 import numpy as np
 
-from dynstiff import eigen_matrix
+from dynstiff import compiled, eigen_matrix
 from dynstiff._validate import omega_array
 from dynstiff.assembly import FrequencyModel, compiled_arguments
 from dynstiff.cable_dsm import check_frequency_range
@@ -117,7 +115,7 @@ def _counter(m):
     model ``m``, with the cable kernels evaluated once per frequency: the compiled kernel of
     the "dsm" rung when numba is installed, else ``dynamic_stiffness_and_count`` where the
     model has it, else K(omega) and the model's cable count (theory.md §14.2)."""
-    fast = _compiled()
+    fast = compiled.load("dsm")
     # exactly the closed-form class: a subclass may change the cable kernels
     if fast is not None and type(m) is FrequencyModel and not m.damped:
         args = compiled_arguments(m)
@@ -279,15 +277,6 @@ def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
         f_hi = ev_hi[k, idx]
         out[k] = _illinois(count, lo[k], hi[k], idx, f_lo, f_hi, rtol)
     return out
-
-
-@functools.cache
-def _compiled():
-    """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
-    if importlib.util.find_spec("numba") is None:
-        return None
-    from dynstiff import compiled_dsm
-    return compiled_dsm
 
 
 def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=200):

@@ -5,12 +5,11 @@ the platform (about P, base axes) and the motion of a platform point c (platform
 d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
 """
 
-import functools
-import importlib.util
 import warnings
 
 import numpy as np
 
+from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
 from dynstiff.assembly import FrequencyModel, compiled_arguments
@@ -170,15 +169,6 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
                      kind=kind)
 
 
-@functools.cache
-def _compiled():
-    """The compiled kernels (:mod:`dynstiff.compiled_dsm`), or None without numba."""
-    if importlib.util.find_spec("numba") is None:
-        return None
-    from dynstiff import compiled_dsm
-    return compiled_dsm
-
-
 def _receptance(model, omega, B, C):
     """C K(omega)^-1 B of ``model`` at omega (n,) [rad/s], shape (n, n_out, n_in), complex.
 
@@ -187,7 +177,7 @@ def _receptance(model, omega, B, C):
     compiled kernel when numba is installed; every other model solves its K(omega) batched
     over frequency, in real arithmetic when K is real (theory.md §14.1).
     """
-    fast = _compiled()
+    fast = compiled.load("dsm")
     # exactly the closed-form class: a subclass may change the cable kernels
     if fast is not None and type(model) is FrequencyModel and not model.damped:
         check_frequency_range(model.stacked_params, omega)

@@ -1,4 +1,4 @@
-"""Compiled FRF kernels (dynstiff/compiled_dsm.py, theory.md §14.1) against the numpy path:
+"""Compiled FRF kernels (dynstiff/compiled/dsm.py, theory.md §14.1) against the numpy path:
 the fused K(omega) + solve of the "dsm" rung, the batched real solve, the reduced assembly
 map, and exact singularity."""
 
@@ -9,7 +9,7 @@ import dynstiff as ds
 from dynstiff.assembly import compiled_arguments, symmetric_assembly
 from dynstiff.frf import channel_maps
 
-cf = pytest.importorskip("dynstiff.compiled_dsm", exc_type=ImportError)
+cf = pytest.importorskip("dynstiff.compiled.dsm", exc_type=ImportError)
 
 
 def _fused(model, omega, B, C):
@@ -97,3 +97,18 @@ def test_count_kernel_equals_numpy_eigenvalues_and_cable_count(cogiro_eq):
     # Weyl: both are within a few eps ||K|| of the exact eigenvalues
     scale = np.abs(ev_ref).max(axis=1, keepdims=True)
     assert np.all(np.abs(ev - ev_ref) <= 50 * np.finfo(float).eps * scale)
+
+
+def test_one_loader_gives_every_kernel_or_none(monkeypatch):
+    """dynstiff.compiled.load returns the kernel module, None when switched off by the
+    environment, and refuses an unknown name."""
+    from dynstiff import compiled
+    assert compiled.load("dsm") is cf
+    compiled.load.cache_clear()
+    monkeypatch.setenv("DYNSTIFF_DISABLE_NUMBA", "1")
+    try:
+        assert all(compiled.load(name) is None for name in compiled.KERNELS)
+    finally:
+        compiled.load.cache_clear()
+    with pytest.raises(ValueError, match="'nope'"):
+        compiled.load("nope")

@@ -7,6 +7,7 @@ import pytest
 from conftest import linearised
 
 import dynstiff as ds
+from dynstiff import compiled
 from dynstiff.errors import InvalidParameterError, PoleWarning
 
 
@@ -151,13 +152,12 @@ def test_frf_exactly_on_a_cable_pole_is_the_finite_limit(cogiro_eq):
 def test_numpy_fallback_equals_the_compiled_path(cogiro_eq, monkeypatch, rung):
     """Without numba the FRF is K(omega) batched then a real np.linalg.solve: the same H
     (to a few eps x cond K) as the compiled kernels, channels and output point included."""
-    import sys
     pytest.importorskip("numba")
     m = ds.build_model(cogiro_eq, rung)
     omega = 2 * np.pi * np.linspace(0.05, 12.0, 800)
     kw = {"inputs": ["fx", "fz", "mz"], "outputs": ["z", "rx"], "point": [0.2, 0.1, -0.3]}
     H = ds.frf(m, omega, **kw).H
-    monkeypatch.setattr(sys.modules["dynstiff.frf"], "_compiled", lambda: None)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
     H0 = ds.frf(m, omega, **kw).H
     assert H.dtype == H0.dtype == complex
     cond = np.linalg.cond(m.dynamic_stiffness(omega))
@@ -171,8 +171,7 @@ def test_numpy_path_isolates_an_exactly_singular_frequency(cogiro_eq, monkeypatc
     """Without the compiled kernels an exactly singular K(omega) at one frequency of the
     batch (real K, and complex K of a damped model) gives inf there and, at every other
     frequency, C K^-1 B solved on its own (theory.md §4)."""
-    import sys
-    monkeypatch.setattr(sys.modules["dynstiff.frf"], "_compiled", lambda: None)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
     m = ds.FrequencyModel(cogiro_eq)
     if damped:
         m = m.with_damping(platform_damping_ratio=0.02)

@@ -1,4 +1,4 @@
-"""Compiled kernels of the time stepping (dynstiff/lumped/compiled_chain.py, theory.md §14.4,
+"""Compiled kernels of the time stepping (dynstiff/compiled/chain.py, theory.md §14.4,
 §14.5) against the numpy path: the residual, the axial-dashpot force, the largest tension and
 the extreme tension and strain of a displaced, moving CoGiRo configuration; the whole
 compiled explicit run against the stepwise loop (records, nodes, ledger, warnings, failure)."""
@@ -8,6 +8,7 @@ import warnings
 import numpy as np
 import pytest
 
+from dynstiff import compiled
 from dynstiff.lumped import LumpedMassModel, TimeDamping, time_stepping
 from dynstiff.lumped import time_dynamics as td
 
@@ -29,7 +30,7 @@ def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_
     out = {}
     for fast in (True, False):
         if not fast:
-            monkeypatch.setattr(td, "_compiled", lambda: None)
+            monkeypatch.setattr(compiled, "load", lambda name: None)
         dyn = td.Dynamics(mm, TimeDamping(axial=c_ax), None, None)
         F, fe, fd, t_max, _ = dyn.forces(pose, X, v, 0.0)
         out[fast] = (F, fd, t_max, dyn.extremes)
@@ -43,7 +44,7 @@ def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_
 
 def test_extremes_see_a_slack_segment(cogiro, cogiro_eq):
     """A chain pushed together has a slack segment: smallest tension 0, strain < 0 there."""
-    from dynstiff.lumped.compiled_chain import robot_chain_forces
+    from dynstiff.compiled.chain import robot_chain_forces
     X = np.array([1.0, 0, 0, 1.5, 0, 0])                 # segments 1, 0.5, 1.5 m
     z3 = np.zeros((1, 3))
     inner, _, W, _, t_max, t_min, strain = robot_chain_forces(
@@ -80,7 +81,7 @@ def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
           "record_nodes": True}
     monkeypatch.setattr(time_stepping, "_BLOCK", 37)          # the run in 9 calls
     r1 = simulate(mm, 300 * dt, dt, **kw)
-    monkeypatch.setattr(td, "_compiled", lambda: None)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
     r0 = simulate(mm, 300 * dt, dt, **kw)
     assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
     pairs = [(name, getattr(r1, name), getattr(r0, name))
@@ -98,11 +99,10 @@ def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
 def _both_paths(monkeypatch, run):
     """run() with the compiled kernels, then with the numpy path: [(result or exception,
     [(category, message) of the warnings])] * 2."""
-    from dynstiff.lumped import time_dynamics
     out = []
     for fast in (True, False):
         if not fast:
-            monkeypatch.setattr(time_dynamics, "_compiled", lambda: None)
+            monkeypatch.setattr(compiled, "load", lambda name: None)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
@@ -165,7 +165,7 @@ def test_compiled_implicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
           "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1])}
     monkeypatch.setattr(time_stepping, "_BLOCK", 37)
     r1 = simulate(mm, 100 * dt, dt, **kw)
-    monkeypatch.setattr(td, "_compiled", lambda: None)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
     r0 = simulate(mm, 100 * dt, dt, **kw)
     assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
     assert (r1.newton_iterations, r1.jacobian_updates) == \

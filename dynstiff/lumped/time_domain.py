@@ -90,6 +90,7 @@ from numbers import Integral
 
 import numpy as np
 
+from dynstiff import compiled
 from dynstiff._validate import positive_scalar
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
@@ -101,7 +102,6 @@ from dynstiff.lumped.time_dynamics import (
     Dynamics,
     FastPose,
     Frame,
-    compiled_kernels,
     load_at,
     model_at,
     node_mass_vector,
@@ -438,7 +438,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
-    fast = compiled_kernels()
+    fast = compiled.load("chain")
     if scheme == "explicit" and fast is not None and length_fn is None:
         slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,

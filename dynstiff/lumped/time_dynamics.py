@@ -4,10 +4,10 @@ potential energy and the :class:`Dynamics` that assembles forces, mass and the N
 matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
 
 import functools
-import importlib.util
 
 import numpy as np
 
+from dynstiff import compiled
 from dynstiff._vec import cross
 from dynstiff.errors import InvalidParameterError
 from dynstiff.lumped.robot_model import LumpedMassModel, segment_forces
@@ -272,7 +272,7 @@ class Dynamics:
         frame = self._last = Frame(m, pose, self._last)
         tw = twist_of(m, v)
         nf = m.n_free
-        fast = _compiled()
+        fast = compiled.load("chain")
         if fast is not None:
             R, dash, t_max = self._compiled_chain_forces(fast, frame, pose, X, v, tw)
         else:
@@ -333,21 +333,6 @@ class Dynamics:
 
     def kinetic(self, frame, v):
         return 0.5 * float(v @ self.mass_times(frame, v))
-
-
-def compiled_kernels():
-    """The compiled kernels (:mod:`dynstiff.lumped.compiled_chain`), or None without numba."""
-    return _compiled()
-
-
-@functools.cache
-def _compiled():
-    """The compiled chain kernel (:mod:`dynstiff.lumped.compiled_chain`), or None without
-    numba."""
-    if importlib.util.find_spec("numba") is None:
-        return None
-    from dynstiff.lumped import compiled_chain
-    return compiled_chain
 
 
 def load_at(excitation, t):
