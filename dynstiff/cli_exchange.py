@@ -20,7 +20,7 @@ def _out(path, text):
 
 def cmd_import_caspr(args):
     """``dynstiff import-caspr BODIES CABLES --mass-per-length M --EA EA --out FILE``."""
-    from dynstiff.caspr import InertiaConventionWarning
+    from dynstiff.io.caspr import InertiaConventionWarning
     from dynstiff.params import Cable
     from dynstiff.scenes.writer import caspr_comments, import_caspr, scene_text
     cable = Cable(mass_per_length=args.mass_per_length, EA=args.EA)

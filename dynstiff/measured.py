@@ -156,7 +156,7 @@ def read_measured_frf(path):
     path = Path(path)
     if path.suffix.lower() == ".csv":
         return _frf_from_csv(path)
-    from dynstiff.exchange import UFF_DATA_TYPES, require
+    from dynstiff.io.exchange import UFF_DATA_TYPES, require
     pyuff = require("pyuff")
     sets = pyuff.UFF(str(path)).read_sets()
     sets = [sets] if isinstance(sets, dict) else list(sets)

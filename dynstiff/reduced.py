@@ -27,7 +27,7 @@ import numpy as np
 
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import InvalidParameterError
-from dynstiff.exchange import require
+from dynstiff.io.exchange import require
 from dynstiff.frf import channel_maps
 from dynstiff.model_base import require_model
 

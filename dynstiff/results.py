@@ -99,16 +99,16 @@ class FRFResult:
 
     def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
-        binary with exact doubles): :func:`dynstiff.exchange.write_uff58` (theory.md §15.3).
+        binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
         Returns the path."""
-        from dynstiff.exchange import write_uff58
+        from dynstiff.io.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
     def to_control(self):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
-        [rad/s]): :func:`dynstiff.exchange.frf_to_control`."""
-        from dynstiff.exchange import frf_to_control
+        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`."""
+        from dynstiff.io.exchange import frf_to_control
         return frf_to_control(self)
 
     def to_frame(self):

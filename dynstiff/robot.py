@@ -18,7 +18,7 @@ import numpy as np
 from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
-from dynstiff.caspr import read_caspr
+from dynstiff.io.caspr import read_caspr
 from dynstiff.catenary import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
 from dynstiff.equilibrium import Equilibrium

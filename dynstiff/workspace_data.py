@@ -196,12 +196,12 @@ class WorkspaceAccessor:
 
     def plot(self, n_slices=4, fig=None):
         """Slices of the first global frequency, the band margin and the dynamic workspace:
-        :func:`dynstiff.plot_workspace.plot_workspace_slices`. Returns the Figure."""
-        from dynstiff.plot_workspace import plot_workspace_slices
+        :func:`dynstiff.plot.workspace.plot_workspace_slices`. Returns the Figure."""
+        from dynstiff.plot.workspace import plot_workspace_slices
         return plot_workspace_slices(self._ds, n_slices=n_slices, fig=fig)
 
     def plot_3d(self, ax=None):
         """3-D view of the first global frequency and the dynamic workspace:
-        :func:`dynstiff.plot_workspace.plot_workspace_3d`. Returns the Figure."""
-        from dynstiff.plot_workspace import plot_workspace_3d
+        :func:`dynstiff.plot.workspace.plot_workspace_3d`. Returns the Figure."""
+        from dynstiff.plot.workspace import plot_workspace_3d
         return plot_workspace_3d(self._ds, ax=ax)

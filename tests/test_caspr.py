@@ -1,4 +1,4 @@
-"""CASPR model import (dynstiff/caspr.py, Robot.from_caspr; theory.md §15.1-15.2): CASPR's own
+"""CASPR model import (dynstiff/io/caspr.py, Robot.from_caspr; theory.md §15.1-15.2): CASPR's own
 CoGiRo files (tests/data/caspr/, copied unchanged, SOURCE.md) give the built-in scene's robot
 and frequencies; IPAnema 1 (8 cables, not suspended) imports and solves in both of its cable
 sets; the two file layouts, the joint types, the inertia conventions and malformed files."""
@@ -11,7 +11,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import dynstiff as ds
-from dynstiff.caspr import CasprError, InertiaConventionWarning, read_caspr
+from dynstiff.io.caspr import CasprError, InertiaConventionWarning, read_caspr
 
 DATA = Path(__file__).parent / "data" / "caspr"
 COG = (DATA / "CoGiRo_bodies.xml", DATA / "CoGiRo_cables.xml")

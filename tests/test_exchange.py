@@ -1,4 +1,4 @@
-"""FRFs out (dynstiff/exchange.py, FRFResult.to_uff / to_control; theory.md §15.3): UFF 58
+"""FRFs out (dynstiff/io/exchange.py, FRFResult.to_uff / to_control; theory.md §15.3): UFF 58
 files read back through pyuff with the same values, function and data types, units and DOF
 labels; python-control's FrequencyResponseData holds the same matrix."""
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.exchange import MissingDependencyError, require, uff58_records
+from dynstiff.io.exchange import MissingDependencyError, require, uff58_records
 
 pyuff = pytest.importorskip("pyuff")
 control = pytest.importorskip("control")

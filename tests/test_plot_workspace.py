@@ -1,4 +1,4 @@
-"""Figures of a workspace map (dynstiff/plot_workspace.py): the worst case over orientations
+"""Figures of a workspace map (dynstiff/plot/workspace.py): the worst case over orientations
 and parameter values, and the figures' content (cells, colour limits, counts in titles)."""
 
 import numpy as np
@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot_workspace import (
+from dynstiff.plot.workspace import (
     plot_workspace_3d,
     plot_workspace_slices,
     worst_case,

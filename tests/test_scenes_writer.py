@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.caspr import InertiaConventionWarning
+from dynstiff.io.caspr import InertiaConventionWarning
 from dynstiff.scenes import import_caspr, write_scene
 
 DATA = Path(__file__).parent / "data" / "caspr"

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dynstiff.caspr import InertiaConventionWarning, read_caspr
+from dynstiff.io.caspr import InertiaConventionWarning, read_caspr
 from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
 from dynstiff.params import Cable
