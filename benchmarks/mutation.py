@@ -7,7 +7,7 @@ the core modules (cable statics and DSM, platform, assembly, statics, eigen, frf
 the lumped chain) and runs the tests that reach the mutated function. This script runs it
 and prints the score per module (killed / (killed + survived), equivalent mutants listed in
 ``EQUIVALENT`` excluded) and every surviving mutant. ``module`` arguments restrict the run,
-e.g. ``dynstiff/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
+e.g. ``dynstiff/cable/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
 runs the survivors again too, after tests were added; ``--sample N`` judges a seeded uniform
 sample of N mutants per module (nested: a larger sample contains a smaller one) and gives
 each score a 95 % Wilson interval (the whole core, about 9200 mutants, takes many hours on
@@ -35,17 +35,17 @@ import numpy as np
 
 #: Mutants with no observable effect, with the reason (mutant name -> why).
 EQUIVALENT = {
-    "dynstiff.chord.xǁChordParametersǁpsi__mutmut_3":
+    "dynstiff.cable.chord.xǁChordParametersǁpsi__mutmut_3":
         "complex branch for an undamped cable: the same psi with a zero imaginary part",
-    "dynstiff.chord.xǁChordParametersǁpsi__mutmut_13":
+    "dynstiff.cable.chord.xǁChordParametersǁpsi__mutmut_13":
         "c >= 0 instead of c > 0: the complex branch again, same values",
-    "dynstiff.chord.x_chord_parameters__mutmut_23":
+    "dynstiff.cable.chord.x_chord_parameters__mutmut_23":
         "gp >= instead of gp >: differs only when gp equals the threshold exactly",
-    "dynstiff.chord.x_chord_parameters__mutmut_24":
+    "dynstiff.cable.chord.x_chord_parameters__mutmut_24":
         "threshold 1e-12/g instead of 1e-12 g: both far below any non-vertical chord's gp",
-    "dynstiff.chord.x_chord_parameters__mutmut_30":
+    "dynstiff.cable.chord.x_chord_parameters__mutmut_30":
         "max(g, 1) instead of max(g, 1e-300): differs only for 0 < g < 1 m/s^2 and gp tiny",
-    "dynstiff.chord.x_chord_parameters__mutmut_49":
+    "dynstiff.cable.chord.x_chord_parameters__mutmut_49":
         "cos_theta >= instead of >: differs only at cos_theta = 1e-12 exactly",
 }
 _FRF_FILTER = ("the pre-filter of the pole averaging (frf.py): a changed threshold moves only "
@@ -66,7 +66,7 @@ EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FLOAT for n in (2
 EQUIVALENT.update({f"dynstiff.frf.x__solve__mutmut_{n}": _FLOAT for n in (15, 17)})
 _RESULT_TYPE = ("one of the four entries dropped from np.result_type: any damping makes at "
                 "least two of them complex (planted and checked), so the dtype is unchanged")
-EQUIVALENT.update({f"dynstiff.cable_dsm.x_{f}__mutmut_{n}": _RESULT_TYPE
+EQUIVALENT.update({f"dynstiff.cable.dsm.x_{f}__mutmut_{n}": _RESULT_TYPE
                    for f in ("local_end_stiffness", "local_two_end_stiffness")
                    for n in range(15, 23)})
 _EINSUM = "upper-case einsum subscripts: the same contraction"
@@ -74,9 +74,9 @@ _MESH = ("the sampling of the mesh measure Phi (theory.md §11.2): the extra poi
          "asinh grading, their clipping to [0, L0], a floor of 1 N under T, or the last but "
          "one sample deciding the element count change the edges by less than the 4e-7 of "
          "the 4001-point sums (test_elements_are_spread_evenly_in_the_mesh_measure)")
-EQUIVALENT.update({f"dynstiff.cable_exact.x__mesh__mutmut_{n}": _MESH
+EQUIVALENT.update({f"dynstiff.cable.exact.x__mesh__mutmut_{n}": _MESH
                    for n in (12, 15, 17, 34, 38, 39, 51, 63, 76, 110)})
-_CE = "dynstiff.cable_exact."
+_CE = "dynstiff.cable.exact."
 EQUIVALENT.update({f"{_CE}xǁExactCableǁ__init____mutmut_{n}": _EINSUM
                    for n in (139, 153, 164, 175, 186, 218, 232, 245)})
 EQUIVALENT.update({f"{_CE}xǁExactCableǁ_build_modes__mutmut_{n}": _EINSUM
@@ -132,32 +132,32 @@ EQUIVALENT.update({
         "ClosedFormWarning that the original already issued: no other warning arises there",
     "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_19":
         "np.asarray then float64 either way (the attribute is set from float arithmetic)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_109":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_109":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
 })
 _START = ("the starting guess of the chain's Newton (its tension estimate or force-space "
           "start): the equilibrium it converges to, checked by its residual, is the same")
-EQUIVALENT.update({f"dynstiff.lumped.chain.x__tension_estimate__mutmut_{n}": _START
+EQUIVALENT.update({f"dynstiff.cable.lumped_chain.x__tension_estimate__mutmut_{n}": _START
                    for n in (25, 29, 48, 77)})
-EQUIVALENT.update({f"dynstiff.lumped.chain.x__force_space_start__mutmut_{n}": _START
+EQUIVALENT.update({f"dynstiff.cable.lumped_chain.x__force_space_start__mutmut_{n}": _START
                    for n in (28, 178, 184)})
 EQUIVALENT.update({
-    "dynstiff.lumped.chain.x__slack_segment__mutmut_30":
+    "dynstiff.cable.lumped_chain.x__slack_segment__mutmut_30":
         "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
         "slack test far less than l0, so the same segment is found",
-    "dynstiff.lumped.chain.x__potential_energy__mutmut_22":
+    "dynstiff.cable.lumped_chain.x__potential_energy__mutmut_22":
         "the merit function of the chain Newton's line search (1.5 instead of 0.5 EA l0 "
         "strain^2): a step is accepted a little differently, the equilibrium is the same",
-    "dynstiff.lumped.chain.x__newton__mutmut_77":
+    "dynstiff.cable.lumped_chain.x__newton__mutmut_77":
         "the iteration count reported when Newton did not converge: max_iter + 2 instead of + 1 "
         "is still above max_iter, which is what the caller tests",
 })
 EQUIVALENT.update({
-    "dynstiff.cable_dsm.xǁClosedFormValidityǁreasons__mutmut_23":
+    "dynstiff.cable.dsm.xǁClosedFormValidityǁreasons__mutmut_23":
         "e >= rtol instead of e > rtol: differs only at exactly rtol",
-    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_11":
+    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_11":
         "c / (+-1) equals c * (+-1)",
-    "dynstiff.catenary.x__initial_guesses__mutmut_29":
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_29":
         "one of the catenary Newton's starting guesses: the solution it converges to, "
         "checked by its residual, is the same",
     "dynstiff.exact_model.xǁExactModelǁ__init____mutmut_94":
@@ -192,15 +192,15 @@ EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_56":
         "the memo of a cable checked within tolerance: without it the check is repeated "
         "(cost only; a warning is still issued once)",
-    "dynstiff.catenary.x__mean_tension__mutmut_11":
+    "dynstiff.cable.catenary.x__mean_tension__mutmut_11":
         "the sign of V0 / (V0 + W) is the sign of V0 (V0 + W)",
-    "dynstiff.catenary.x__initial_guesses__mutmut_36":
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_36":
         "a starting-guess branch boundary (lh <= or < 1e-6 L): the solution is the same",
-    "dynstiff.catenary.x__initial_guesses__mutmut_76":
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_76":
         "a starting-guess branch boundary (lam < or <= 700): the solution is the same",
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_38":
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_38":
         "the placeholder H of cables outside the taut mask, whose results are discarded",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_52":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_52":
         "the start of the bracket on L0, which is widened until it brackets the tension",
 })
 EQUIVALENT.update({
@@ -259,17 +259,17 @@ EQUIVALENT.update({f"{_CE}xǁExactCableǁend_response__mutmut_{n}": _ERRSTATE
 _GROW = ("the first band tried for the exact clamped modes (or the loop bound, or one more "
          "mode than needed): the band grows by 1.5 until it holds n modes, and modes inside "
          "the band are exact whatever band was asked")
-EQUIVALENT.update({f"dynstiff.cable_dsm.x__exact_modes__mutmut_{n}": _GROW
+EQUIVALENT.update({f"dynstiff.cable.dsm.x__exact_modes__mutmut_{n}": _GROW
                    for n in (2, 3, 4, 5, 6, 9, 17, 19)})
 EQUIVALENT.update({
-    "dynstiff.cable_dsm.x_block_coefficients__mutmut_1":
+    "dynstiff.cable.dsm.x_block_coefficients__mutmut_1":
         "default blocks='end' changed: any value but 'both' gives the end block",
-    "dynstiff.cable_dsm.x_block_coefficients__mutmut_2":
+    "dynstiff.cable.dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
-    "dynstiff.cable_dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
-    "dynstiff.cable_dsm.x__guard_cable__mutmut_17":
+    "dynstiff.cable.dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
+    "dynstiff.cable.dsm.x__guard_cable__mutmut_17":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
-    "dynstiff.cable_dsm.x__guard_cable__mutmut_26":
+    "dynstiff.cable.dsm.x__guard_cable__mutmut_26":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
     "dynstiff.interaction.x__mac__mutmut_3":
         "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
@@ -282,29 +282,29 @@ EQUIVALENT.update({
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
     "dynstiff.statics.x__limits__mutmut_9":
         "t_max[1] instead of t_max[0] inside the branch where all t_max are equal",
-    "dynstiff.catenary.xǁCatenaryStateǁtension__mutmut_3":
+    "dynstiff.cable.catenary.xǁCatenaryStateǁtension__mutmut_3":
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
-    "dynstiff.catenary.xǁCatenaryStateǁtension__mutmut_5":
+    "dynstiff.cable.catenary.xǁCatenaryStateǁtension__mutmut_5":
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
-    "dynstiff.catenary.x__vertical_solution__mutmut_3":
+    "dynstiff.cable.catenary.x__vertical_solution__mutmut_3":
         "h <= 0 instead of h < 0: a vertical chord of zero length is refused before",
-    "dynstiff.catenary.x__vertical_solution__mutmut_13":
+    "dynstiff.cable.catenary.x__vertical_solution__mutmut_13":
         "> 0 instead of >= 0 at the slack boundary: differs only when V0 + W is exactly 0",
-    "dynstiff.catenary.x__vertical_solution__mutmut_24":
+    "dynstiff.cable.catenary.x__vertical_solution__mutmut_24":
         "< 0 instead of <= 0 at the slack boundary: differs only when V0 is exactly 0",
-    "dynstiff.cable_dsm.x__real_if_undamped__mutmut_4":
+    "dynstiff.cable.dsm.x__real_if_undamped__mutmut_4":
         "the kernels are already real for an undamped cable at real omega: np.real is a no-op",
-    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_79":
+    "dynstiff.cable.dsm.x_cable_dynamic_stiffness__mutmut_79":
         "omega is real here (complex omega is refused by the validation)",
-    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_154":
+    "dynstiff.cable.dsm.x_cable_dynamic_stiffness__mutmut_154":
         "omega is real here (complex omega is refused by the validation)",
-    "dynstiff.cable_dsm.x_cable_dynamic_stiffness__mutmut_29":
+    "dynstiff.cable.dsm.x_cable_dynamic_stiffness__mutmut_29":
         "the exact cable's band floored at 1 rad/s: modes inside any band are exact",
-    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_1":
+    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_1":
         "the floor of the exact cable's band only: results inside any band are exact",
-    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_2":
+    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_2":
         "the floor of the exact cable's band only: results inside any band are exact",
-    "dynstiff.cable_dsm.x__lowest_string_omega__mutmut_4":
+    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_4":
         "the floor of the exact cable's band only: results inside any band are exact",
 })
 EQUIVALENT.update({"dynstiff.interaction.x__mac__mutmut_16": _EINSUM,
@@ -407,25 +407,25 @@ EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_65":
         "lam >= 0 instead of > 0: differs only for an exactly zero eigenvalue of the "
         "positive definite static stiffness",
-    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_24":
+    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_24":
         "-2 instead of -1 in a factor whose sign alone is tested",
-    "dynstiff.cable_dsm.x_check_frequency_range__mutmut_34":
+    "dynstiff.cable.dsm.x_check_frequency_range__mutmut_34":
         "omega as a column for a single cable too: psi is elementwise, the same maximum",
-    "dynstiff.cable_dsm.x__guard_cable__mutmut_55":
+    "dynstiff.cable.dsm.x__guard_cable__mutmut_55":
         "cable=None dropped: None is the warning's default",
-    "dynstiff.cable_dsm.x__exact_modes__mutmut_22": _FIRST_BAND,
-    "dynstiff.cable_dsm.x__exact_modes__mutmut_24": _FIRST_BAND,
+    "dynstiff.cable.dsm.x__exact_modes__mutmut_22": _FIRST_BAND,
+    "dynstiff.cable.dsm.x__exact_modes__mutmut_24": _FIRST_BAND,
     f"{_CE}xǁExactCableǁend_response__mutmut_44": _ERRSTATE,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_77": _BOUNDARY,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_83": _ALL_CHORDS,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_159":
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_77": _BOUNDARY,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_83": _ALL_CHORDS,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_159":
         "the symmetrisation of a matrix symmetric to rounding dropped (K + K instead of "
         "K + K^T): entries change by ~1e-16 relative",
-    "dynstiff.catenary.x__initial_guesses__mutmut_9": _BOUNDARY,
-    "dynstiff.catenary.x__initial_guesses__mutmut_38": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_73": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_79": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_80": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_9": _BOUNDARY,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_38": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_73": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_79": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_80": _CAT_START,
     "dynstiff.eigen.x__search__mutmut_43": _BOUNDARY,
     "dynstiff.eigen.x__illinois__mutmut_44":
         "x outside (L, H) no longer sent to bisection: the regula falsi point is a convex "
@@ -441,19 +441,19 @@ EQUIVALENT.update({
         "follows",
     "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_29":
         "division by 1 + i 0 (loss factor 0): the same values, K.real follows when undamped",
-    "dynstiff.lumped.chain.x_block_tridiagonal_entries__mutmut_9":
+    "dynstiff.cable.lumped_chain.x_block_tridiagonal_entries__mutmut_9":
         "meshgrid's 'xy' indexing transposes each element block: element stiffnesses are "
         "symmetric",
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_101": _START,
-    "dynstiff.lumped.chain.x__update_segments__mutmut_27":
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_101": _START,
+    "dynstiff.cable.lumped_chain.x__update_segments__mutmut_27":
         "the |dd|^2 term of the length change summed over all segments: Newton's steps "
         "from the force-space start are so small that their squares do not reach the "
         "strain (segment lengths equal the node distances to 7e-15 either way, planted "
         "and checked)",
-    "dynstiff.lumped.chain.x__slack_segment__mutmut_23":
+    "dynstiff.cable.lumped_chain.x__slack_segment__mutmut_23":
         "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
         "slack test far less than l0, so the same segment is found",
-    "dynstiff.lumped.chain.x__potential_energy__mutmut_20":
+    "dynstiff.cable.lumped_chain.x__potential_energy__mutmut_20":
         "the line search's merit (energy) with EA / l0 instead of EA l0: a step is also "
         "accepted when it lowers the force residual, and the equilibrium is checked by "
         "that residual",
@@ -471,41 +471,41 @@ EQUIVALENT.update({
     "dynstiff.statics.x_inverse_statics__mutmut_104":
         "the residual slot of a cable solved by the scalar solver: unused, its state is "
         "that solver's own (with its residual)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_128":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_128":
         "brentq's maxiter 201 instead of 200",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_53":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_53":
         "the short end of the bracket on L0 far shorter (T EA instead of T / EA): still "
         "above the target tension, the same root in more Brent steps",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_123":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_123":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same root "
         "to a few ulps",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_81":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_81":
         "the start of the lower bracket on L0, which is grown (or bisected back from slack) "
         "until the tension is under the target",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_101":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_101":
         "the lower bracket grown by 2.05 instead of 1.05 per step: the taut solution and "
         "the deep loop's are far apart in L0, and a slack trial is bisected back",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_108":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_108":
         "the bracket search gives up after 100 instead of 200 steps (1.05^100 = 130 chord "
         "lengths, or 100 halvings)",
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
-    "dynstiff.catenary.x__initial_guesses__mutmut_37": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_40": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_74": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_77": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_81": _CAT_START,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_81": _ALL_CHORDS,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_92": _VERTICAL,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_98": _VERTICAL,
-    "dynstiff.catenary.x__mean_tension__mutmut_13":
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_37": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_40": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_74": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_77": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_81": _CAT_START,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_81": _ALL_CHORDS,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_92": _VERTICAL,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_98": _VERTICAL,
+    "dynstiff.cable.catenary.x__mean_tension__mutmut_13":
         "V0 (V0 + W) > 0 instead of >= 0: where it is 0 (V0 or V0 + W zero) both forms give "
         "W / 2",
-    "dynstiff.catenary.x__mean_tension__mutmut_36": _BOUNDARY,
-    "dynstiff.catenary.x__newton__mutmut_28":
+    "dynstiff.cable.catenary.x__mean_tension__mutmut_36": _BOUNDARY,
+    "dynstiff.cable.catenary.x__newton__mutmut_28":
         "the starting guess's residual (only) multiplied by the span scale instead of "
         "divided: a start is never converged already, and every later residual is relative "
         "(test_long_spans_converge_and_limits_are_exact)",
-    "dynstiff.catenary.x_divided_differences__mutmut_14":
+    "dynstiff.cable.catenary.x_divided_differences__mutmut_14":
         "a b >= 0 instead of > 0: where a or b is 0 both branches give the same quotient",
     "dynstiff.statics.x__distribution__mutmut_189": "method='highs' is linprog's default",
     "dynstiff.statics.x__distribution__mutmut_178": "1e300 written as 1e+300: the same float",
@@ -541,13 +541,13 @@ EQUIVALENT.update({
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
     "dynstiff.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
-    "dynstiff.cable_dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
-    "dynstiff.catenary.x__newton__mutmut_80": _BOUNDARY,
-    "dynstiff.catenary.x__newton__mutmut_70":
+    "dynstiff.cable.dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
+    "dynstiff.cable.catenary.x__newton__mutmut_80": _BOUNDARY,
+    "dynstiff.cable.catenary.x__newton__mutmut_70":
         "the catenary Newton's line search accepts a short step only when converged: the "
         "equilibrium for given L0 and ends is unique and checked by its residual",
-    "dynstiff.catenary.x__initial_guesses__mutmut_63": _CAT_START,
-    "dynstiff.catenary.x__initial_guesses__mutmut_71": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_63": _CAT_START,
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_71": _CAT_START,
     "dynstiff.eigen.x__illinois__mutmut_49": _BOUNDARY,
     "dynstiff.eigen.x__illinois__mutmut_125": _BOUNDARY,
     "dynstiff.eigen.x__illinois__mutmut_74":
@@ -563,12 +563,12 @@ EQUIVALENT.update({
         "value again (memory and time only)",
     "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_53":
         "multiplication by 1 + i 0 (loss factor 0) in a damped model: the same values",
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_112": _START,
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_156": _START,
-    "dynstiff.lumped.chain.x__tension_estimate__mutmut_26": _START,
-    "dynstiff.lumped.chain.x__regularised_solve__mutmut_16":
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_112": _START,
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_156": _START,
+    "dynstiff.cable.lumped_chain.x__tension_estimate__mutmut_26": _START,
+    "dynstiff.cable.lumped_chain.x__regularised_solve__mutmut_16":
         "check_finite=None is falsy like False",
-    "dynstiff.lumped.chain.x__newton__mutmut_146": "61 halvings of the line search instead of 60",
+    "dynstiff.cable.lumped_chain.x__newton__mutmut_146": "61 halvings of the line search instead of 60",
     "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_102":
         "the floor of the semi-definiteness test's tolerance (2 instead of 1 kg m^2 x 1e-12)",
     "dynstiff.statics.x__closest_in_box__mutmut_15":
@@ -587,27 +587,27 @@ EQUIVALENT.update({
         "closed_form_validity given the chord parameters: its tension argument is unused",
     "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_5":
         "the slack cause is 0 or inf: > 1 and > 0 agree",
-    "dynstiff.cable_dsm.x_irvine_symmetric_roots__mutmut_83":
+    "dynstiff.cable.dsm.x_irvine_symmetric_roots__mutmut_83":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same roots "
         "to a few ulps",
-    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_25": _BOUNDARY,
-    "dynstiff.cable_dsm.x__mode_count_psi__mutmut_35": _BOUNDARY,
-    "dynstiff.cable_dsm.xǁCableModesǁ__repr____mutmut_4":
+    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_25": _BOUNDARY,
+    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_35": _BOUNDARY,
+    "dynstiff.cable.dsm.xǁCableModesǁ__repr____mutmut_4":
         "the repr of an empty mode table: never built (n_modes >= 1 is enforced)",
-    "dynstiff.catenary.x__initial_guesses__mutmut_44": _CAT_START,
-    "dynstiff.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,
-    "dynstiff.catenary.x_unstretched_length_for_tension__mutmut_73":
+    "dynstiff.cable.catenary.x__initial_guesses__mutmut_44": _CAT_START,
+    "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,
+    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_73":
         "the short end of the bracket shrunk by a larger factor per step: the same root",
-    "dynstiff.catenary.x__newton__mutmut_72": _BOUNDARY,
-    "dynstiff.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
+    "dynstiff.cable.catenary.x__newton__mutmut_72": _BOUNDARY,
+    "dynstiff.cable.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
     "dynstiff.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
     "dynstiff.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
     "dynstiff.statics.x__distribution__mutmut_1": _WARM,
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_77":
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_77":
         "never reached: the start's Newton stops early only on a zero segment force or a "
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_224": _ZERO_FORCE,
-    "dynstiff.lumped.chain.x__force_space_start__mutmut_228": _ZERO_FORCE,
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_224": _ZERO_FORCE,
+    "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_228": _ZERO_FORCE,
     f"{_EM}__init____mutmut_130": "beta_dyads(ends=None): any value but 'both' gives the end "
                                   "block",
     f"{_EM}__init____mutmut_131": "beta_dyads(ends='XXendXX'): any value but 'both' gives the "

@@ -13,7 +13,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 
 from dynstiff._version import __version__ as __version__
 from dynstiff.assembly import FrequencyModel
-from dynstiff.cable_dsm import (
+from dynstiff.cable.dsm import (
     CableModes,
     cable_dynamic_stiffness,
     cable_mode_count,
@@ -21,7 +21,7 @@ from dynstiff.cable_dsm import (
     chord_parameters,
 )
 from dynstiff.calibrate import CalibrationResult, calibrate
-from dynstiff.catenary import (
+from dynstiff.cable.catenary import (
     CatenaryState,
     solve_catenary,
     unstretched_length_for_tension,

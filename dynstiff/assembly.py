@@ -18,7 +18,7 @@ import numpy as np
 
 from dynstiff._validate import omega_array, positive_scalar
 from dynstiff._vec import cross
-from dynstiff.cable_dsm import (
+from dynstiff.cable.dsm import (
     AXIAL_MARGIN,
     DEFAULT_CHORDWISE_INERTIA,
     DEFAULT_GUARD_RTOL,
@@ -35,7 +35,7 @@ from dynstiff.cable_dsm import (
     mode_count_nondimensional,
     stack_parameters,
 )
-from dynstiff.catenary import end_stiffnesses
+from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.model_base import PlatformModel, require_equilibrium
 from dynstiff.platform import lever_map, lever_maps, platform_mass_matrix
@@ -53,7 +53,7 @@ class FrequencyModel(PlatformModel):
     equilibrium : Equilibrium
         From :meth:`Robot.equilibrium`.
     tension : {"mean", "chord"}
-        Tension of the cables' linear theory (see :func:`dynstiff.chord.chord_parameters`).
+        Tension of the cables' linear theory (see :func:`dynstiff.cable.chord.chord_parameters`).
     chordwise_inertia : bool
         Include the consistent chordwise mass of the cables (theory.md §3.6).
     damping : bool
@@ -202,7 +202,7 @@ class FrequencyModel(PlatformModel):
 
         Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
         (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
-        it. All cables at once (:func:`dynstiff.catenary.end_stiffnesses`)."""
+        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`)."""
         nf, n = self.n_free, len(self.params)
         J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
         Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)

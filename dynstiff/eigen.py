@@ -28,7 +28,7 @@ import numpy as np
 from dynstiff import compiled, eigen_matrix
 from dynstiff._validate import omega_array
 from dynstiff.assembly import FrequencyModel, compiled_arguments
-from dynstiff.cable_dsm import check_frequency_range
+from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import (
     ConvergenceError,
     InvalidParameterError,

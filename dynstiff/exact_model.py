@@ -3,7 +3,7 @@
     K(omega) = sum_i J_i^T E_i K_BB,i(omega) E_i^T J_i + K_geo - omega^2 M_p     (theory.md §4)
 
 with K_BB,i the end-B block of cable i's dynamic stiffness about its true elastic catenary
-(:class:`dynstiff.cable_exact.ExactCable`, theory.md §11), E_i its local frame and J_i the
+(:class:`dynstiff.cable.exact.ExactCable`, theory.md §11), E_i its local frame and J_i the
 lever map. Each K_BB,i is K_s - w^2 M_psi - w^4 sum_j beta_j beta_j^T mu_j / (1 - w^2 mu_j),
 so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) product.
 """
@@ -11,7 +11,7 @@ so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) pro
 import numpy as np
 
 from dynstiff._validate import omega_array, positive_scalar
-from dynstiff.cable_exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
+from dynstiff.cable.exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
 from dynstiff.errors import InvalidParameterError
 from dynstiff.model_base import PlatformModel, require_equilibrium
 from dynstiff.platform import lever_map, platform_mass_matrix

@@ -13,7 +13,7 @@ from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
 from dynstiff.assembly import FrequencyModel, compiled_arguments
-from dynstiff.cable_dsm import check_frequency_range
+from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.model_base import require_model
 from dynstiff.platform import skew

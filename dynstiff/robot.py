@@ -19,7 +19,7 @@ from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
 from dynstiff.io.caspr import read_caspr
-from dynstiff.catenary import solve_catenary
+from dynstiff.cable.catenary import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
 from dynstiff.equilibrium import Equilibrium
 from dynstiff.errors import InvalidParameterError

@@ -15,8 +15,8 @@ with the analytic 6x6 stiffness (theory.md §4).
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.catenary import CatenaryState, unstretched_length_for_tension
-from dynstiff.catenary_batch import catenary_arrays, taut_catenaries
+from dynstiff.cable.catenary import CatenaryState, unstretched_length_for_tension
+from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.equilibrium import Equilibrium
 from dynstiff.errors import (
     ConvergenceError,
@@ -244,7 +244,7 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
 
     The fixed point of cable directions and tension distribution is iterated; each
     iteration solves all catenaries for their end tensions at once
-    (:func:`dynstiff.catenary_batch.taut_catenaries`, docs/theory.md §13.1), warm-started
+    (:func:`dynstiff.cable.catenary_batch.taut_catenaries`, docs/theory.md §13.1), warm-started
     from the previous iteration.
 
     Parameters

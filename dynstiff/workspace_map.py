@@ -24,7 +24,7 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.catenary_batch import catenary_arrays, sag_ratios
+from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.eigen import modes as modal
 from dynstiff.errors import DynstiffError, InvalidParameterError

@@ -1,4 +1,4 @@
-"""The exact cable (dynstiff/cable_exact.py, theory.md §11): static limit, weightless limit,
+"""The exact cable (dynstiff/cable/exact.py, theory.md §11): static limit, weightless limit,
 symmetries, spectral convergence, damping, and agreement with an independent model, the
 lumped-mass chain (theory.md §7) extrapolated by Richardson."""
 
@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.cable_dsm import cable_dynamic_stiffness, cable_natural_frequencies
-from dynstiff.cable_exact import ExactCable, gll
+from dynstiff.cable.dsm import cable_dynamic_stiffness, cable_natural_frequencies
+from dynstiff.cable.exact import ExactCable, gll
 from dynstiff.errors import DynstiffError, InvalidParameterError
-from dynstiff.lumped.chain import chain_equilibrium
-from dynstiff.lumped.chain_dynamics import (
+from dynstiff.cable.lumped_chain import chain_equilibrium
+from dynstiff.cable.lumped_chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
 )
@@ -281,7 +281,7 @@ def test_bad_input_and_too_slack_cables_are_refused():
 def test_tangent_integrals_match_quadrature(case):
     """int t t^T ds over the arc in closed form (theory.md §11.3, damped static stiffness)
     against 2000-point Gauss quadrature of t(s) = (H, V0 + w s) / T(s)."""
-    from dynstiff.cable_exact import _tangent_integrals
+    from dynstiff.cable.exact import _tangent_integrals
     if case == "sagging":
         s = state(HARD["sagging 10x5 m, d/L 0.10"])
     elif case == "weightless":

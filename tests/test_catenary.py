@@ -305,7 +305,7 @@ def test_a_slack_cable_in_a_u_is_not_reported_as_a_taut_string():
     assert s.sag == pytest.approx(drop, rel=2e-2) and s.sag > 0.04
     assert s.lambda_sq > 50                            # not a taut string (was 2e-9)
     taut = ds.solve_catenary(A0, B0, 1.0001 * np.linalg.norm(np.subtract(B0, A0)), cogiro_cable())
-    from dynstiff.chord import chord_parameters
+    from dynstiff.cable.chord import chord_parameters
     assert taut.lambda_sq == chord_parameters(taut).lambda_sq
     p = taut.profile(401) - taut.anchor
     e = taut.chord / taut.chord_length
@@ -329,7 +329,7 @@ def test_end_stiffnesses_equal_each_cables_property():
                                             cable))
     states.append(ds.solve_catenary([0.0, 0.0, 10.0], [0.0, 0.0, 0.0], 9.99, cable))
     assert states[-1].H == 0.0
-    K = ds.catenary.end_stiffnesses(states)
+    K = ds.cable.catenary.end_stiffnesses(states)
     for Ki, s in zip(K, states):
         ref = s.end_stiffness
         np.testing.assert_allclose(Ki, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
@@ -340,7 +340,7 @@ def test_mean_tension_of_a_vertical_cable_is_the_average_of_its_axial_force(V0, 
     """H = 0: T(s) = |V0 + w s|; its average over the length, in closed form, equals the
     quadrature of |V0 + w s| — rising, hanging, and through zero (tension then compression
     in magnitude, the kink at s = -V0 / w)."""
-    from dynstiff.catenary import _mean_tension
+    from dynstiff.cable.catenary import _mean_tension
     L0 = 10.0
     w0 = W / L0
     s = np.linspace(0.0, L0, 200001)
@@ -395,7 +395,7 @@ def test_profile_defaults_and_the_point_one_metre_along(cable17):
     """profile() gives 50 points by default, from A to B; profile_plane at s = 1 m exactly
     is the catenary's own point there (the offsets of a 1 m cable with the same H and V0),
     not the anchor; a bad g is named."""
-    from dynstiff.catenary import _end_offsets_and_flexibility
+    from dynstiff.cable.catenary import _end_offsets_and_flexibility
     s = ds.solve_catenary(A0, B0, 8.5, cable17)
     pts = s.profile()
     assert pts.shape == (50, 3)
@@ -411,7 +411,7 @@ def test_profile_defaults_and_the_point_one_metre_along(cable17):
 def test_divided_differences_at_zero_width_are_the_derivatives():
     """delta = 0 (a weightless cable): the four divided differences are the derivatives of
     asinh t, t / sqrt(1 + t^2), 1 / sqrt(1 + t^2) and sqrt(1 + t^2) at a."""
-    from dynstiff.catenary import divided_differences
+    from dynstiff.cable.catenary import divided_differences
     a = np.array([-3.0, -0.2, 0.0, 0.7, 40.0])
     s = np.hypot(1.0, a)
     got = divided_differences(a, a, np.zeros_like(a))
@@ -424,7 +424,7 @@ def test_long_spans_converge_and_limits_are_exact():
     spans, and the residual reported is that relative one, max |offset error| / (l_h, max(L,
     L0)), not metres. A weightless cable exactly
     as long as its chord has no tension: slack, refused. A negative tension is named."""
-    from dynstiff.catenary import _end_offsets_and_flexibility
+    from dynstiff.cable.catenary import _end_offsets_and_flexibility
     cab = ds.Cable(1.0, 1e8)
     for L0 in (2001.0, 2019.0, 2100.0):
         s = ds.solve_catenary((0, 0, 0), (2000.0, 0, 100.0), L0, cab)

@@ -1,5 +1,5 @@
-"""Batched elastic catenaries for prescribed end tensions (dynstiff/catenary_batch.py,
-docs/theory.md §13.1): against the scalar bracketing solver of dynstiff/catenary.py, the
+"""Batched elastic catenaries for prescribed end tensions (dynstiff/cable/catenary_batch.py,
+docs/theory.md §13.1): against the scalar bracketing solver of dynstiff/cable/catenary.py, the
 analytic Jacobian against finite differences, the taut branch, and the hand-over of the
 cases the batch does not take (vertical chord, weightless cable, unreachable tension)."""
 
@@ -9,8 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.catenary import solve_catenary, unstretched_length_for_tension
-from dynstiff.catenary_batch import states_for_tensions, taut_catenaries
+from dynstiff.cable.catenary import solve_catenary, unstretched_length_for_tension
+from dynstiff.cable.catenary_batch import states_for_tensions, taut_catenaries
 from dynstiff.errors import SlackCableError
 
 G = 9.81
@@ -57,7 +57,7 @@ def test_solution_is_a_catenary_with_the_prescribed_tension():
 
 
 def test_jacobian_matches_finite_differences():
-    from dynstiff import catenary_batch as cb
+    from dynstiff.cable import catenary_batch as cb
     x0 = np.array([400.0, -900.0, 11.0])
     EA, w0 = np.array([1.39487e5]), np.array([0.064 * G])
 
@@ -122,7 +122,7 @@ def test_vertical_weightless_and_unreachable_cables_go_to_the_scalar_solver():
 def test_sag_ratios_equal_the_profile_of_each_state():
     """The batched sag equals CatenaryState.sag / chord (same 401 points) on every CoGiRo
     cable at a central and an edge pose."""
-    from dynstiff.catenary_batch import catenary_arrays, sag_ratios
+    from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
     robot = ds.load_scene("cogiro").robot
     for p in ([0.0, 0.0, 1.0], [5.0, 3.0, 1.0]):
         eq = robot.equilibrium(pose=p)

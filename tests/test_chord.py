@@ -1,4 +1,4 @@
-"""Chord-frame parameters of the linear cable theory (dynstiff/chord.py, theory.md §1.2,
+"""Chord-frame parameters of the linear cable theory (dynstiff/cable/chord.py, theory.md §1.2,
 §3.1): conventions checked against the exact catenary they come from."""
 
 import dataclasses
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.chord import chord_parameters, irvine_lambda_sq, stack_parameters
+from dynstiff.cable.chord import chord_parameters, irvine_lambda_sq, stack_parameters
 from dynstiff.errors import InvalidParameterError
 
 

@@ -1,5 +1,5 @@
 """Compiled Newton of the batched catenaries (dynstiff/compiled/catenary.py, theory.md
-§13.6) against the numpy Newton of dynstiff/catenary_batch.py it replaces: the same
+§13.6) against the numpy Newton of dynstiff/cable/catenary_batch.py it replaces: the same
 (H, V0, L0) to round-off from straight and warm starts, deep sag and a start on the hanging
 branch included, the same taut-branch verdicts, and CoGiRo inverse statics and map numbers
 equal to those of the numpy path."""
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff import catenary_batch
-from dynstiff.catenary_batch import taut_catenaries
+from dynstiff.cable import catenary_batch
+from dynstiff.cable.catenary_batch import taut_catenaries
 
 cc = pytest.importorskip("dynstiff.compiled.catenary", exc_type=ImportError)
 G = 9.81

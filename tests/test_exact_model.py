@@ -279,7 +279,7 @@ def test_build_options_reach_every_cable_and_bad_ones_are_named(cogiro_eq):
     """half_waves sets every cable's mesh (the edges of an ExactCable built with it), M_p is
     the platform's 6x6 mass matrix about P at the pose (its free block the model's
     platform_mass), and a negative damping option is refused by its own name."""
-    from dynstiff.cable_exact import ExactCable
+    from dynstiff.cable.exact import ExactCable
     from dynstiff.exact_model import ExactModel
     from dynstiff.platform import platform_mass_matrix
     m = ExactModel(cogiro_eq, fmax_hz=6.0, half_waves=5.0)

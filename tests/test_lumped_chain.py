@@ -1,4 +1,4 @@
-"""Tests of the lumped-mass chain statics (dynstiff.lumped.chain): chain_equilibrium.
+"""Tests of the lumped-mass chain statics (dynstiff.cable.lumped_chain): chain_equilibrium.
 
 References: theory.md §7 (lumped-mass model), §1.1 (test cable). Every test asserts a number
 that the physics fixes. The test cables are in conftest.py.
@@ -216,7 +216,7 @@ def test_chain_equilibrium_rejects_bad_input(kwargs, name):
 
 
 def test_chain_functions_refuse_what_is_not_a_chain_state():
-    from dynstiff.lumped.chain import check_chain_state
+    from dynstiff.cable.lumped_chain import check_chain_state
     with pytest.raises(InvalidParameterError) as err:
         check_chain_state("chain")
     assert str(err.value) == "state must be a ChainState, got str"
@@ -259,7 +259,7 @@ def test_banded_interior_block_is_the_assembled_one(factor, extra):
     """interior_banded in upper (symmetric) and general form holds K_II + extra I of the
     element-by-element assembly, complex element stiffnesses (hysteretic damping) and
     complex diagonal terms included."""
-    from dynstiff.lumped.chain import BANDWIDTH, interior_banded
+    from dynstiff.cable.lumped_chain import BANDWIDTH, interior_banded
     rng = np.random.default_rng(5)
     a = rng.normal(size=(5, 3, 3))
     ke = (a + a.transpose(0, 2, 1)) * factor
@@ -281,7 +281,7 @@ def test_a_singular_chain_stiffness_is_solved_with_a_small_positive_shift():
     singular. The regularised solve shifts its diagonal by 1e-10 of its largest entry (and
     grows the shift only if that fails): an axial load, in the range of K, is met to 1e-9
     and the transverse motion stays 0."""
-    from dynstiff.lumped.chain import _regularised_solve, interior_banded
+    from dynstiff.cable.lumped_chain import _regularised_solve, interior_banded
     u = np.array([0.6, 0.0, 0.8])
     ke = np.broadcast_to(1e4 * np.outer(u, u), (6, 3, 3)).copy()
     rhs = np.outer(np.linspace(1.0, 2.0, 5), u).ravel()
@@ -296,7 +296,7 @@ def test_a_newton_without_descent_step_says_so_with_its_residual(monkeypatch):
     raises ConvergenceError naming the failure and carrying the residual of its start
     (nonzero: the start is not the equilibrium), instead of returning that start; a bad
     tolerance is named."""
-    import dynstiff.lumped.chain as chain
+    import dynstiff.cable.lumped_chain as chain
     good = chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20)
     monkeypatch.setattr(chain, "_regularised_solve", lambda ab, rhs: None)
     with pytest.raises(ConvergenceError, match="no descent step found") as err:

@@ -1,4 +1,4 @@
-"""Tests of the lumped-mass chain dynamics (dynstiff.lumped.chain_dynamics): chain_matrices,
+"""Tests of the lumped-mass chain dynamics (dynstiff.cable.lumped_chain_dynamics): chain_matrices,
 chain_end_dynamic_stiffness, chain_fixed_end_frequencies.
 
 References: theory.md §7 (lumped-mass model, beaded-string convergence), §1.1 (test cable),

@@ -1,4 +1,4 @@
-"""The mpmath reference (dynstiff.precision) and the float64 kernel checked against it.
+"""The mpmath reference (dynstiff.cable.mpmath_reference) and the float64 kernel checked against it.
 
 Tiers (STYLE.md §8): (a) analytic limits of the reference; (b) the equation-exact Irvine
 table of theory.md §9.1; (f) cross-model agreement: stable float64 closed forms
@@ -15,13 +15,13 @@ import mpmath
 import numpy as np
 import pytest
 
-from dynstiff.cable_dsm import (
+from dynstiff.cable.dsm import (
     ChordParameters,
     irvine_symmetric_roots,
     local_end_stiffness,
     local_two_end_stiffness,
 )
-from dynstiff.precision import (
+from dynstiff.cable.mpmath_reference import (
     end_stiffness_mp,
     irvine_symmetric_roots_mp,
     params_to_mp_args,
@@ -169,7 +169,7 @@ def test_params_to_mp_args_round_trip():
 
 @pytest.mark.integration
 def test_dynstiff_does_not_import_mpmath_reference():
-    code = "import sys, dynstiff; print('dynstiff.precision' in sys.modules)"
+    code = "import sys, dynstiff; print('dynstiff.cable.mpmath_reference' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=Path(__file__).resolve().parents[1], check=True)
     assert out.stdout.strip() == "False"

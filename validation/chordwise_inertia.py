@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.cable_dsm import chord_parameters
+from dynstiff.cable.dsm import chord_parameters
 from dynstiff.lumped import chain_end_dynamic_stiffness, chain_equilibrium
 
 ANCHOR = np.array([-7.1775, -5.4361, 5.3911])

@@ -27,14 +27,14 @@ import pandas as pd
 from scipy.optimize import brentq
 
 import dynstiff as ds
-from dynstiff.cable_dsm import (
+from dynstiff.cable.dsm import (
     cable_dynamic_stiffness,
     cable_natural_frequencies,
     closed_form_validity,
 )
 from dynstiff.errors import DynstiffError
 from dynstiff.lumped import chain_equilibrium, chain_fixed_end_frequencies
-from dynstiff.lumped.chain_dynamics import chain_end_dynamic_stiffness
+from dynstiff.cable.lumped_chain_dynamics import chain_end_dynamic_stiffness
 
 CHORD = 10.0                                   # [m]
 CABLE = ds.Cable(0.064, 1.395e5)               # [kg/m], [N]

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.cable_dsm import chord_parameters
+from dynstiff.cable.dsm import chord_parameters
 from dynstiff.lumped import chain_equilibrium, chain_fixed_end_frequencies
 
 SPAN = 10.0

@@ -1,11 +1,11 @@
 """Compiled (numba) Newton on (H, V0, L0) of many elastic catenaries with prescribed end
-tensions: the kernel of :func:`dynstiff.catenary_batch.taut_catenaries` (docs/theory.md
+tensions: the kernel of :func:`dynstiff.cable.catenary_batch.taut_catenaries` (docs/theory.md
 §13.1, §13.6), one cable at a time in a compiled loop instead of a handful of array
 operations per iteration.
 
 Imported only when numba is installed (``pip install "dynstiff[fast]"``); the numpy Newton of
 :mod:`dynstiff.catenary_batch` stays the reference it is tested against. Same equations,
-same divided differences (:func:`dynstiff.catenary.divided_differences`), same step limits,
+same divided differences (:func:`dynstiff.cable.catenary.divided_differences`), same step limits,
 stopping rule and taut-branch test; the 3 x 3 Newton step is an LU solve with partial
 pivoting written out (LAPACK's in the numpy path), so the two agree to round-off. A cable
 whose Newton matrix is exactly singular stops alone (the numpy path stops every cable).
@@ -24,7 +24,7 @@ _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 
 @numba.njit(**_JIT)
 def _divided(a, b, delta):
-    """Scalar :func:`dynstiff.catenary.divided_differences` (same branches and formulas)."""
+    """Scalar :func:`dynstiff.cable.catenary.divided_differences` (same branches and formulas)."""
     sa = math.hypot(1.0, a)
     sb = math.hypot(1.0, b)
     if delta == 0.0:

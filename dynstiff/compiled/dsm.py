@@ -7,7 +7,7 @@ install "dynstiff[fast]"``); :mod:`dynstiff.frf` and :mod:`dynstiff.eigen` fall 
 numpy paths (K(omega) batched over frequency, then ``np.linalg``), which stay the reference
 the kernels are tested against. Compiled on first use and cached on disk (``cache=True``).
 
-The cable entries are those of :func:`dynstiff.cable_dsm.local_entries` for an undamped
+The cable entries are those of :func:`dynstiff.cable.dsm.local_entries` for an undamped
 cable at real omega (same formulas, same series branch for |psi| < 1); the assembly is
 ``cable_coefficients(omega) @ assembly_map`` of :class:`dynstiff.assembly.FrequencyModel`.
 """
@@ -176,7 +176,7 @@ def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_st
         Eigenvalues of K(omega) [N/m ...], ascending; NaN where K is not finite.
     J0 : ndarray of int, shape (n,)
         Clamped-clamped cable modes strictly below omega, summed over the cables (as
-        :func:`dynstiff.cable_dsm.mode_count_nondimensional`).
+        :func:`dynstiff.cable.dsm.mode_count_nondimensional`).
     """
     n, nf = omega.size, K_static.shape[0]
     ev = np.empty((n, nf))
@@ -196,7 +196,7 @@ def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_st
 
 @numba.njit(**_JIT)
 def _count_multiples_below(x, step):
-    """#{n >= 1 : n step < x}, as :func:`dynstiff.cable_dsm._count_multiples_below`."""
+    """#{n >= 1 : n step < x}, as :func:`dynstiff.cable.dsm._count_multiples_below`."""
     n = max(int(np.ceil(x / step)) - 1, 0)
     if n >= 1 and n * step >= x:
         n -= 1

@@ -3,8 +3,8 @@ closed-form dynamic stiffness (theory.md §7): one chain, the nonlinear robot
 (:class:`LumpedMassModel`), its linearisation (:class:`LumpedLinearModel`, the "lumped" rung)
 and its time-domain simulation."""
 
-from dynstiff.lumped.chain import ChainState, chain_equilibrium
-from dynstiff.lumped.chain_dynamics import (
+from dynstiff.cable.lumped_chain import ChainState, chain_equilibrium
+from dynstiff.cable.lumped_chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
     chain_matrices,

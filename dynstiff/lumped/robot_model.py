@@ -51,7 +51,7 @@ from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
-from dynstiff.lumped.chain import (
+from dynstiff.cable.lumped_chain import (
     block_tridiagonal_entries,
     chain_equilibrium,
     element_stiffness,

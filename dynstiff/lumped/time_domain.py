@@ -94,7 +94,7 @@ from dynstiff import compiled
 from dynstiff._validate import positive_scalar
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
-from dynstiff.lumped.chain import chain_equilibrium
+from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.lumped.linear_model import LumpedLinearModel
 from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
 from dynstiff.lumped.time_damping import TimeDamping, explicit_step_limit

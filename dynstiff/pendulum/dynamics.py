@@ -234,7 +234,7 @@ def rest_state(model, phi=0.0):
     y[0] = phi
     n = model.n_masses
     if n:
-        from dynstiff.lumped.chain import chain_equilibrium
+        from dynstiff.cable.lumped_chain import chain_equilibrium
         from dynstiff.params import Cable
         L0 = model.unstretched_length
         cable = Cable(model.cable_mass / L0, model.stiffness * L0)

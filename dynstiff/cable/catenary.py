@@ -31,7 +31,7 @@ import numpy as np
 
 from dynstiff._validate import point, positive_scalar
 from dynstiff._vec import cross
-from dynstiff.chord import chord_parameters
+from dynstiff.cable.chord import chord_parameters
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.params import Cable
@@ -288,7 +288,7 @@ class CatenaryState:
 
     @property
     def lambda_sq(self):
-        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.chord.chord_parameters`).
+        """Irvine parameter lambda^2 [-] (see :func:`dynstiff.cable.chord.chord_parameters`).
 
         The chord theory's value (q L / T)^2 L EA / (T L_e) assumes the parabola of sag
         d = q L^2 / (8 T). Where the measured :attr:`sag` is more than twice that (a slack

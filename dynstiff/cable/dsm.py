@@ -49,8 +49,8 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import omega_array
-from dynstiff.cable_exact import ExactCable
-from dynstiff.chord import ChordParameters, chord_parameters, stack_parameters
+from dynstiff.cable.exact import ExactCable
+from dynstiff.cable.chord import ChordParameters, chord_parameters, stack_parameters
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 
 __all__ = [
@@ -288,7 +288,7 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     model : {"closed-form", "exact"}
         "closed-form": the shallow-cable theory above (``tension`` and ``chordwise_inertia``
         apply); "exact": linearised about the true catenary, no shallow-cable approximation
-        (:class:`dynstiff.cable_exact.ExactCable`, theory.md §11), discretised for the
+        (:class:`dynstiff.cable.exact.ExactCable`, theory.md §11), discretised for the
         largest |omega| asked.
     guard_rtol : float or None
         The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` when the cable

@@ -146,7 +146,7 @@ def chord_parameters(state, tension="mean"):
 
 def stack_parameters(params):
     """ChordParameters of several cables stacked into one with (n_cables,) array fields, for
-    evaluating all cables in one broadcast call (see :func:`dynstiff.cable_dsm.local_entries`)."""
+    evaluating all cables in one broadcast call (see :func:`dynstiff.cable.dsm.local_entries`)."""
     def arr(name):
         return np.array([getattr(p, name) for p in params])
     return ChordParameters(L=arr("L"), T=arr("T"), m=arr("m"), c=arr("c"), EA=arr("EA"),

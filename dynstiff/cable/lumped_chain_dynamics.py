@@ -8,7 +8,7 @@ import numpy as np
 
 from dynstiff._validate import omega_array
 from dynstiff.errors import InvalidParameterError, PoleWarning
-from dynstiff.lumped.chain import (
+from dynstiff.cable.lumped_chain import (
     BANDWIDTH,
     block_tridiagonal_entries,
     check_chain_state,

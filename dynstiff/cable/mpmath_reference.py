@@ -37,8 +37,8 @@ Omega, psi  beta L and Omega / 2                                         --
 m~          m - i c / omega, complex mass                                kg/m
 ==========  ===========================================================  ========
 
-Conventions are those of :func:`dynstiff.cable_dsm.local_end_stiffness` and
-:func:`dynstiff.cable_dsm.local_two_end_stiffness`: forces applied **to** the cable ends,
+Conventions are those of :func:`dynstiff.cable.dsm.local_end_stiffness` and
+:func:`dynstiff.cable.dsm.local_two_end_stiffness`: forces applied **to** the cable ends,
 local chord frame (u along A -> B, v sag direction, w out of plane), and, with
 ``chordwise_inertia``, the consistent axial mass -omega^2 m~ (L/6) [[2, 1], [1, 2]] on
 (u_A, u_B) (so -omega^2 m~ L / 3 on K_uu of the one-end matrix; theory.md §3.6).
@@ -66,7 +66,7 @@ _MAX_DPS = 4000
 
 
 def params_to_mp_args(params):
-    """Scalars of a :class:`dynstiff.cable_dsm.ChordParameters` in the order of this module.
+    """Scalars of a :class:`dynstiff.cable.dsm.ChordParameters` in the order of this module.
 
     Parameters
     ----------
