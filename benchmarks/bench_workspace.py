@@ -32,7 +32,7 @@ from contextlib import contextmanager
 import numpy as np
 
 import dynstiff as ds
-from dynstiff import statics
+from dynstiff.robot import statics
 from dynstiff.workspace_map import evaluate_chunk
 
 N_MODES = 20

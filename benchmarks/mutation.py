@@ -130,7 +130,7 @@ EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_5":
         "every warning ignored while the undamped copy is built, not only the "
         "ClosedFormWarning that the original already issued: no other warning arises there",
-    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_19":
+    "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_19":
         "np.asarray then float64 either way (the attribute is set from float arithmetic)",
     "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_109":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
@@ -163,7 +163,7 @@ EQUIVALENT.update({
     "dynstiff.exact_model.xǁExactModelǁ__init____mutmut_94":
         "the dtype of the zeros the static parts are summed into: const = const + K_s "
         "upcasts to complex anyway",
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_37":
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_37":
         "the theta^4 coefficient of the small-angle series (theta <= 1e-3): 1/2880 of "
         "theta^4 is below 2e-16 of the leading term",
 })
@@ -204,33 +204,33 @@ EQUIVALENT.update({
         "the start of the bracket on L0, which is widened until it brackets the tension",
 })
 EQUIVALENT.update({
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_29":
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_29":
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 2e-16",
-    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_21":
+    "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_21":
         "3841 for 3840 in the theta^4 term of the small-angle series: below 1e-19",
-    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_5": _FLOAT,
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_5": _FLOAT,
-    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_62":
+    "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_5": _FLOAT,
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_5": _FLOAT,
+    "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_62":
         "the floor of the symmetry test's absolute tolerance (2 instead of 1 kg m^2 x 1e-12)",
-    "dynstiff.statics.x_forward_statics__mutmut_106":
+    "dynstiff.robot.statics.x_forward_statics__mutmut_106":
         "res_t <= res instead of <: differs only when two trial residuals are equal",
-    "dynstiff.statics.x_inverse_statics__mutmut_136":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_136":
         "change <= best instead of <: differs only at equal changes",
-    "dynstiff.statics.x_inverse_statics__mutmut_126":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_126":
         "the fixed point's stop test with the margin change times t.max instead of over it: "
         "the iteration still ends at the same fixed point, bitwise on every scene and on a "
         "0.2 kg CoGiRo with 0.7 N tensions (planted and checked)",
-    "dynstiff.statics.x__closest_in_box__mutmut_56":
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_56":
         "a step tried when |p| > 1e-12 / scale instead of 1e-12 scale: every entry below "
         "1e-12 scale gets no room limit, so the step is the full one, as without the test",
-    "dynstiff.statics.x__kinematic_guess__mutmut_11":
+    "dynstiff.robot.statics.x__kinematic_guess__mutmut_11":
         "the start of the straight-chord fit moved by 1 m in y: the fit reaches the same "
         "minimum (to 1e-9 m) and forward statics' Newton the same pose; no held coordinate "
         "is taken from it (a held translation needs initial_pose)",
-    "dynstiff.statics.x__end_quantities__mutmut_41":
+    "dynstiff.robot.statics.x__end_quantities__mutmut_41":
         "the y component of the horizontal direction of an exactly vertical chord: it is "
         "multiplied by H = 0",
-    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_109":
+    "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_109":
         ">= instead of > in the triangle inequality test: differs only when I3 equals "
         "I1 + I2 + 1e-9 I3 exactly",
 })
@@ -238,9 +238,9 @@ _WARM = ("the warm start of the tension distribution (the guessed active set, it
          "start, its tolerance or whether it is tried): a start is used only when it is "
          "feasible, and the active-set method then ends at the unique minimiser of the "
          "strictly convex problem, as from the LP's start (tested bitwise on random problems)")
-EQUIVALENT.update({f"dynstiff.statics.x__distribution__mutmut_{n}": _WARM
+EQUIVALENT.update({f"dynstiff.robot.statics.x__distribution__mutmut_{n}": _WARM
                    for n in (45, 61, 76, 87, 89, 95, 97, 98, 103, 110)})
-EQUIVALENT.update({f"dynstiff.statics.x__active_solution__mutmut_{n}": _WARM
+EQUIVALENT.update({f"dynstiff.robot.statics.x__active_solution__mutmut_{n}": _WARM
                    for n in (2, 4, 28)})
 _EM = "dynstiff.exact_model.xǁExactModelǁ"
 EQUIVALENT.update({
@@ -278,9 +278,9 @@ EQUIVALENT.update({
         "of an empty MAC matrix is empty too",
     "dynstiff.interaction.x__assign__mutmut_26":
         "MAC > mac_min instead of >=: differs only at MAC exactly mac_min",
-    "dynstiff.statics.x__limits__mutmut_8":
+    "dynstiff.robot.statics.x__limits__mutmut_8":
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
-    "dynstiff.statics.x__limits__mutmut_9":
+    "dynstiff.robot.statics.x__limits__mutmut_9":
         "t_max[1] instead of t_max[0] inside the branch where all t_max are equal",
     "dynstiff.cable.catenary.xǁCatenaryStateǁtension__mutmut_3":
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
@@ -457,18 +457,18 @@ EQUIVALENT.update({
         "the line search's merit (energy) with EA / l0 instead of EA l0: a step is also "
         "accepted when it lowers the force residual, and the equilibrium is checked by "
         "that residual",
-    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_94": _BOUNDARY,
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_3":
+    "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_94": _BOUNDARY,
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_3":
         "dtype=None on a quaternion: integer input gives the same float result",
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_38":
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_38":
         "2881 for 2880 in the theta^4 term of the small-angle series (theta <= 1e-3): below "
         "1e-18",
-    "dynstiff.statics.x_inverse_statics__mutmut_144":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_144":
         "the stall test's threshold 1e-9 -> 1.000000001: a contracting fixed point improves "
         "every step, so it stops only when stalled, and a stall above 1e-9 fails the final "
         "wrench residual check either way (ConvergenceError)",
-    "dynstiff.statics.x_inverse_statics__mutmut_82": _STRAIGHT,
-    "dynstiff.statics.x_inverse_statics__mutmut_104":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_82": _STRAIGHT,
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_104":
         "the residual slot of a cable solved by the scalar solver: unused, its state is "
         "that solver's own (with its residual)",
     "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_128":
@@ -507,39 +507,39 @@ EQUIVALENT.update({
         "(test_long_spans_converge_and_limits_are_exact)",
     "dynstiff.cable.catenary.x_divided_differences__mutmut_14":
         "a b >= 0 instead of > 0: where a or b is 0 both branches give the same quotient",
-    "dynstiff.statics.x__distribution__mutmut_189": "method='highs' is linprog's default",
-    "dynstiff.statics.x__distribution__mutmut_178": "1e300 written as 1e+300: the same float",
-    "dynstiff.statics.x__distribution__mutmut_20":
+    "dynstiff.robot.statics.x__distribution__mutmut_189": "method='highs' is linprog's default",
+    "dynstiff.robot.statics.x__distribution__mutmut_178": "1e300 written as 1e+300: the same float",
+    "dynstiff.robot.statics.x__distribution__mutmut_20":
         "dtype=float dropped on t_max: integer limits give the same float tensions",
-    "dynstiff.statics.x__distribution__mutmut_99":
+    "dynstiff.robot.statics.x__distribution__mutmut_99":
         "the warm active sets tried always (n = k, or warm=False): see mutmut_100; with "
         "warm=False the reference path then ends at the same unique minimiser",
-    "dynstiff.statics.x__distribution__mutmut_101":
+    "dynstiff.robot.statics.x__distribution__mutmut_101":
         "the warm active sets tried when n = k too: see mutmut_100",
-    "dynstiff.statics.x__distribution__mutmut_109": _WARM,
-    "dynstiff.statics.x__distribution__mutmut_111": _WARM,
-    "dynstiff.statics.x__distribution__mutmut_118": _WARM,
-    "dynstiff.statics.x__closest_in_box__mutmut_171":
+    "dynstiff.robot.statics.x__distribution__mutmut_109": _WARM,
+    "dynstiff.robot.statics.x__distribution__mutmut_111": _WARM,
+    "dynstiff.robot.statics.x__distribution__mutmut_118": _WARM,
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_171":
         "the returned active set's sides flipped: they only seed the next iteration's "
         "distribution, whose start is used only when feasible and which ends at the unique "
         "minimiser (see _WARM)",
-    "dynstiff.statics.x__closest_in_box__mutmut_22":
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_22":
         "the step limit of the active-set method 10 n - 10 instead of 10 n + 10 (n >= 2 "
         "cables here): the problems met settle in far fewer steps",
-    "dynstiff.statics.x_inverse_statics__mutmut_133":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_133":
         "the smallest change never recorded, so the stall exit is never taken: it is not "
         "needed on 300 random CoGiRo poses, every scene and every test (each fixed point "
         "reaches a change below 1e-15; planted and checked)",
-    "dynstiff.statics.x_inverse_statics__mutmut_105": _STRAIGHT,
-    "dynstiff.statics.x_inverse_statics__mutmut_140": _BOUNDARY,
-    "dynstiff.statics.x_inverse_statics__mutmut_143": _BOUNDARY,
-    "dynstiff.statics.x__kinematic_guess__mutmut_8":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_105": _STRAIGHT,
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_140": _BOUNDARY,
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_143": _BOUNDARY,
+    "dynstiff.robot.statics.x__kinematic_guess__mutmut_8":
         "the start of the straight-chord fit at the mean of all anchor coordinates: the fit "
         "reaches the same minimum and forward statics the same pose",
-    "dynstiff.statics.x__end_quantities__mutmut_11": _BOUNDARY,
-    "dynstiff.statics.x__end_quantities__mutmut_79":
+    "dynstiff.robot.statics.x__end_quantities__mutmut_11": _BOUNDARY,
+    "dynstiff.robot.statics.x__end_quantities__mutmut_79":
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
-    "dynstiff.statics.x_forward_statics__mutmut_61": _BOUNDARY,
+    "dynstiff.robot.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
     "dynstiff.cable.dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
     "dynstiff.cable.catenary.x__newton__mutmut_80": _BOUNDARY,
@@ -569,18 +569,18 @@ EQUIVALENT.update({
     "dynstiff.cable.lumped_chain.x__regularised_solve__mutmut_16":
         "check_finite=None is falsy like False",
     "dynstiff.cable.lumped_chain.x__newton__mutmut_146": "61 halvings of the line search instead of 60",
-    "dynstiff.platform.xǁPlatformǁ__post_init____mutmut_102":
+    "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_102":
         "the floor of the semi-definiteness test's tolerance (2 instead of 1 kg m^2 x 1e-12)",
-    "dynstiff.statics.x__closest_in_box__mutmut_15":
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_15":
         "the 1 N floor of the step threshold's scale: without it the threshold is 1e-12 of "
         "tensions below 1 N, still far above their rounding; the same unique minimiser",
-    "dynstiff.statics.x__closest_in_box__mutmut_173":
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_173":
         "-2 instead of -1 for a lower side: only the sign of a side is used",
-    "dynstiff.statics.x__distribution__mutmut_9":
+    "dynstiff.robot.statics.x__distribution__mutmut_9":
         "dtype=float dropped on t_min: integer limits give the same float tensions",
-    "dynstiff.statics.x__distribution__mutmut_63":
+    "dynstiff.robot.statics.x__distribution__mutmut_63":
         "the all-free active set as floats instead of integers: only tested with np.any",
-    "dynstiff.statics.x_inverse_statics__mutmut_134":
+    "dynstiff.robot.statics.x_inverse_statics__mutmut_134":
         "the stall counter reset at every step, so the stall exit is never taken: see "
         "mutmut_133",
     "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_83":
@@ -600,9 +600,9 @@ EQUIVALENT.update({
         "the short end of the bracket shrunk by a larger factor per step: the same root",
     "dynstiff.cable.catenary.x__newton__mutmut_72": _BOUNDARY,
     "dynstiff.cable.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
-    "dynstiff.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
-    "dynstiff.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
-    "dynstiff.statics.x__distribution__mutmut_1": _WARM,
+    "dynstiff.robot.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
+    "dynstiff.robot.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
+    "dynstiff.robot.statics.x__distribution__mutmut_1": _WARM,
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_77":
         "never reached: the start's Newton stops early only on a zero segment force or a "
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
@@ -626,14 +626,14 @@ EQUIVALENT.update({
         "frequency blocks of at least 2 instead of 1: every block gives the same K (memory "
         "only)",
     f"{_EM}undamped__mutmut_6": _FALSY,
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_24": _BOUNDARY,
-    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_9": _BOUNDARY,
-    "dynstiff.platform.x_quaternion_to_rotvec__mutmut_7":
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_24": _BOUNDARY,
+    "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_9": _BOUNDARY,
+    "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_7":
         "q[3] <= 0 instead of < 0: at w = 0 exactly (a half turn) q and -q give the rotation "
         "vectors +-pi n of the same rotation",
-    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_14":
+    "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_14":
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
-    "dynstiff.platform.x_rotvec_to_quaternion__mutmut_3":
+    "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_3":
         "dtype=None on a rotation vector: integer input gives the same float quaternion",
     "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_65": _FALSY,
     "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_88":
@@ -657,12 +657,12 @@ EQUIVALENT.update({
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
     "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
     "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
-    "dynstiff.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
-    "dynstiff.statics.x__closest_in_box__mutmut_98":
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
+    "dynstiff.robot.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "
         "by such a rounding-level step is released by its multiplier, and the optimum of "
         "the strictly convex problem is unique",
-    "dynstiff.statics.x__distribution__mutmut_100":
+    "dynstiff.robot.statics.x__distribution__mutmut_100":
         "the warm active sets tried when n = k too: the free cables of an active set "
         "cannot balance the platform then (rank < k), so no start is found and the same "
         "error follows",

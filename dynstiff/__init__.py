@@ -60,11 +60,11 @@ from dynstiff.measured import (
     read_measured_modes,
 )
 from dynstiff.params import Cable, Damping
-from dynstiff.platform import Platform
+from dynstiff.robot.platform import Platform
 from dynstiff.recommend import Recommendation, recommend_model
 from dynstiff.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.results import LumpedModalResult
-from dynstiff.robot import Equilibrium, Pose, Robot
+from dynstiff.robot.robot import Equilibrium, Pose, Robot
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 from dynstiff.workspace_map import box_grid, workspace
 

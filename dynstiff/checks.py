@@ -46,7 +46,7 @@ def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", **options):
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     eq = equilibrium
     if damping.cable_viscous_damping > 0 and rung in ("dsm", "exact", "lumped"):
-        from dynstiff.robot import Robot
+        from dynstiff.robot.robot import Robot
         rob = eq.robot
         cables = [replace(c, viscous_damping=c.viscous_damping + damping.cable_viscous_damping)
                   for c in rob.cables]

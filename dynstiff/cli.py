@@ -112,7 +112,7 @@ def _with_parameter(robot, name, value):
     the minimum tension t_min [N] of the tension distribution."""
     from dataclasses import replace
 
-    from dynstiff.robot import Robot
+    from dynstiff.robot.robot import Robot
     cables, platform, limits = robot.cables, robot.platform, robot.tension_limits
     if name == "EA":
         cables = [replace(c, EA=value) for c in cables]
@@ -440,7 +440,7 @@ def _cmd_check(args):
                          "scene's [analysis])\n")
     _info(args).write(res.text())
     if args.csv:
-        from dynstiff.robot import Pose
+        from dynstiff.robot.robot import Pose
         _write_table(res.to_frame(), args.csv, "csv",
                      st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
                                  (pose if hasattr(pose, "position") else None)))

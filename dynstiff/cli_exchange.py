@@ -58,7 +58,7 @@ def cmd_calibrate(args):
     if args.pose is not None:
         if len(args.pose) not in (3, 6):
             raise InvalidParameterError(f"--pose needs 3 or 6 numbers, got {len(args.pose)}")
-        from dynstiff.pose import Pose
+        from dynstiff.robot.pose import Pose
         pose = Pose(args.pose[:3], args.pose[3:] if len(args.pose) == 6 else [0, 0, 0])
     res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
                     rung=args.model, confidence=args.confidence)

@@ -16,7 +16,7 @@ from dynstiff.assembly import FrequencyModel, compiled_arguments
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.model_base import require_model
-from dynstiff.platform import skew
+from dynstiff.robot.platform import skew
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]

@@ -33,11 +33,11 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.eigen import modes
-from dynstiff.equilibrium import Equilibrium
+from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.ladder import build_model
-from dynstiff.pose import as_pose
-from dynstiff.robot import Robot
+from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame", "SweepResult", "sweep"]
 

@@ -28,8 +28,8 @@ from dynstiff.exact_model import ExactModel
 from dynstiff.lumped.linear_model import LumpedLinearModel
 from dynstiff.lumped.robot_model import LumpedMassModel
 from dynstiff.model_base import PlatformModel, require_equilibrium
-from dynstiff.platform import lever_map
-from dynstiff.robot import geometric_stiffness
+from dynstiff.robot.platform import lever_map
+from dynstiff.robot.robot import geometric_stiffness
 
 __all__ = ["RUNGS", "StaticCableModel", "build_model"]
 

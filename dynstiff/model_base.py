@@ -49,8 +49,8 @@ What a rung can say about its own poles (one of)
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.platform import platform_mass_matrix
-from dynstiff.robot import geometric_stiffness
+from dynstiff.robot.platform import platform_mass_matrix
+from dynstiff.robot.robot import geometric_stiffness
 
 __all__ = ["PlatformModel", "require_model", "require_equilibrium"]
 

@@ -1,7 +1,7 @@
 """3-D views of a robot at equilibrium and of its mode shapes (matplotlib imported here).
 
 :func:`plot_robot` draws the anchors, the sagging cable profiles (elastic catenaries of the
-:class:`~dynstiff.robot.Equilibrium`) and the platform as the hull of its attachment points,
+:class:`~dynstiff.robot.robot.Equilibrium`) and the platform as the hull of its attachment points,
 with the point P marked; given a mode, also the exaggerated deformed shape. The platform moves
 by the small motion x = scale * (dp, dtheta), so an attachment point moves by
 

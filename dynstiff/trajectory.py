@@ -20,8 +20,8 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import InvalidParameterError
-from dynstiff.pose import as_pose
-from dynstiff.robot import Robot
+from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 __all__ = ["Trajectory", "line", "circle", "quasi_static_lengths", "TrackingResult", "track"]
 

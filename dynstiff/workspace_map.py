@@ -30,8 +30,8 @@ from dynstiff.eigen import modes as modal
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.ladder import RUNGS, build_model
 from dynstiff.params import Cable
-from dynstiff.pose import as_pose
-from dynstiff.robot import Robot
+from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 __all__ = ["CHECKS", "box_grid", "evaluate_chunk", "platform_participation", "workspace"]
 

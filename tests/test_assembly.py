@@ -151,7 +151,7 @@ def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):
     heavy sagging three-cable robot where it warns."""
     from scipy.linalg import eigh
 
-    from dynstiff.platform import lever_map
+    from dynstiff.robot.platform import lever_map
 
     def by_cable(m):
         fi, nf = m.free_index, m.n_free

@@ -88,6 +88,6 @@ def test_cogiro_statics_equal_the_numpy_path(monkeypatch):
     plain = catenary_batch.taut_catenaries
     monkeypatch.setattr(catenary_batch, "taut_catenaries",
                         lambda *a, **k: plain(*a, **{**k, "compiled": False}))
-    from dynstiff import statics
+    from dynstiff.robot import statics
     monkeypatch.setattr(statics, "taut_catenaries", catenary_batch.taut_catenaries)
     np.testing.assert_allclose(fast, run(), rtol=1e-12, atol=0)

@@ -22,7 +22,7 @@ def test_modes_normalisation_and_energy(cogiro, lumped):
     model = lumped(20)
     md = ds.modes(model, 12)
     assert isinstance(md, LumpedModalResult)
-    M_p = ds.platform.platform_mass_matrix(cogiro.robot.platform, model.pose.matrix)
+    M_p = ds.robot.platform.platform_mass_matrix(cogiro.robot.platform, model.pose.matrix)
     x = md.platform_shapes
     np.testing.assert_allclose(np.einsum("ni,ij,nj->n", x, M_p, x), 1.0, rtol=1e-10)
     np.testing.assert_allclose(md.cable_energy.sum(axis=1), md.cable_energy_fraction,

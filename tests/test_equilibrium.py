@@ -1,4 +1,4 @@
-"""The equilibrium record (dynstiff/equilibrium.py): its tensions, table and stiffness."""
+"""The equilibrium record (dynstiff/robot/equilibrium.py): its tensions, table and stiffness."""
 
 import numpy as np
 import pytest

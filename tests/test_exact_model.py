@@ -281,7 +281,7 @@ def test_build_options_reach_every_cable_and_bad_ones_are_named(cogiro_eq):
     platform_mass), and a negative damping option is refused by its own name."""
     from dynstiff.cable.exact import ExactCable
     from dynstiff.exact_model import ExactModel
-    from dynstiff.platform import platform_mass_matrix
+    from dynstiff.robot.platform import platform_mass_matrix
     m = ExactModel(cogiro_eq, fmax_hz=6.0, half_waves=5.0)
     for c, s in zip(m.cables, cogiro_eq.states):
         np.testing.assert_array_equal(c.edges, ExactCable(s, m.max_omega, half_waves=5.0).edges)

@@ -1,4 +1,4 @@
-"""Platform kinematics (dynstiff/platform.py): the lever map J = [I, -[r]x] moves a point of
+"""Platform kinematics (dynstiff/robot/platform.py): the lever map J = [I, -[r]x] moves a point of
 the platform by dp + dtheta x r, and its transpose carries a force to a wrench about P
 (theory.md §4)."""
 
@@ -7,22 +7,22 @@ import pytest
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
-from dynstiff.platform import rotation_matrix
+from dynstiff.robot.platform import rotation_matrix
 
 
 def test_lever_map_moves_a_point_by_dp_plus_dtheta_cross_r():
     rng = np.random.default_rng(3)
     r, dp, dth = rng.normal(size=(3, 3))
     x = np.concatenate([dp, dth])
-    np.testing.assert_allclose(ds.platform.lever_map(r) @ x, dp + np.cross(dth, r),
+    np.testing.assert_allclose(ds.robot.platform.lever_map(r) @ x, dp + np.cross(dth, r),
                                rtol=1e-14, atol=1e-15)
     # J^T f is the wrench about P of a force f at r
     f = rng.normal(size=3)
-    np.testing.assert_allclose(ds.platform.lever_map(r).T @ f,
+    np.testing.assert_allclose(ds.robot.platform.lever_map(r).T @ f,
                                np.concatenate([f, np.cross(r, f)]), rtol=1e-14, atol=1e-15)
     fi = [0, 2, 5]
-    np.testing.assert_array_equal(ds.platform.lever_map(r, fi),
-                                  ds.platform.lever_map(r)[:, fi])
+    np.testing.assert_array_equal(ds.robot.platform.lever_map(r, fi),
+                                  ds.robot.platform.lever_map(r)[:, fi])
 
 
 @pytest.mark.parametrize("angle", [0.0, 1e-9, 1e-4, 9.9e-4, 1.1e-3, 0.5, 2.0, np.pi - 1e-6])
@@ -31,7 +31,7 @@ def test_rotation_helpers_equal_scipy_rotation(angle):
     Rotation, on both sides of the series threshold (1e-3 rad) and near pi."""
     from scipy.spatial.transform import Rotation
 
-    from dynstiff.platform import (
+    from dynstiff.robot.platform import (
         quaternion_product,
         quaternion_to_rotvec,
         rotvec_to_quaternion,
@@ -52,7 +52,7 @@ def test_rotation_helpers_equal_scipy_rotation(angle):
 
 def test_lever_maps_stack_lever_map():
     """lever_maps of n arms is lever_map of each, all DOFs and a free subset."""
-    from dynstiff.platform import lever_map, lever_maps
+    from dynstiff.robot.platform import lever_map, lever_maps
     r = np.random.default_rng(2).normal(size=(5, 3))
     for fi in (None, np.array([0, 2, 3, 5])):
         np.testing.assert_array_equal(lever_maps(r, fi), [lever_map(x, fi) for x in r])

@@ -1,11 +1,11 @@
-"""Pose (dynstiff/pose.py): value semantics, validation, small motions."""
+"""Pose (dynstiff/robot/pose.py): value semantics, validation, small motions."""
 
 import numpy as np
 import pytest
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
-from dynstiff.pose import as_pose
+from dynstiff.robot.pose import as_pose
 
 
 def test_poses_compare_and_hash_by_value():

@@ -1,4 +1,4 @@
-"""The robot (dynstiff/robot.py): bad inputs raise naming the field, and each stiffness of a
+"""The robot (dynstiff/robot/robot.py): bad inputs raise naming the field, and each stiffness of a
 robot at a pose has its own name (theory.md §4)."""
 
 import numpy as np

@@ -30,7 +30,7 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
     p.write_text("\n".join(lines) + "\n")
     rob = ds.load_scene(p).robot
     assert rob.g == ds.STANDARD_GRAVITY
-    assert rob.platform.free_dofs == ds.platform.DOF_NAMES
+    assert rob.platform.free_dofs == ds.robot.platform.DOF_NAMES
 
 
 @pytest.mark.parametrize("edit,key,line", [

@@ -1,4 +1,4 @@
-"""Robot statics (dynstiff/statics.py, theory.md §4): inverse and forward statics, the
+"""Robot statics (dynstiff/robot/statics.py, theory.md §4): inverse and forward statics, the
 workspace edge, and the tension distribution.
 
 The tension distribution (closest to a reference within the limits) is checked against an
@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, SlackCableError
-from dynstiff.statics import tension_distribution
+from dynstiff.robot.statics import tension_distribution
 
 
 # ----------------------------------------------------------------- tension distribution
@@ -232,7 +232,7 @@ def test_batched_statics_equal_the_scalar_solver_on_a_1000_pose_cogiro_grid():
 def test_infeasible_distributions_name_the_limits_uniform_or_per_cable():
     """A square system has one distribution; when it leaves the limits the error gives it and
     the limits, as [lo, hi] when all cables share them, else per cable."""
-    from dynstiff.statics import tension_distribution
+    from dynstiff.robot.statics import tension_distribution
     W = np.array([[1.0, -1.0], [1.0, 1.0]])
     w = np.array([0.0, -2.0])                               # t = (-1, -1) N
     with pytest.raises(SlackCableError) as err:
@@ -257,7 +257,7 @@ def test_warm_active_set_gives_the_lp_started_distribution_bitwise(monkeypatch):
     """The fixed point starts each tension distribution from the previous iteration's active
     set instead of the LP's feasible point: on CoGiRo grid poses where the limits are
     active, the equilibria equal (bitwise) those of the LP-started distribution."""
-    from dynstiff import statics
+    from dynstiff.robot import statics
 
     robot = ds.load_scene("cogiro").robot
     poses = [ds.Pose([x, y, z]) for x in (-5.0, -3.9, 3.9) for y in (-3.5, 0.4)
@@ -292,7 +292,7 @@ def test_distribution_from_any_active_set_is_the_optimum():
     """Started from no active set (then from the violated limits), a right, a wrong or an
     infeasible one, the distribution is the one started from the LP (bitwise: the result
     depends on the final active set alone) and the brute-force optimum."""
-    from dynstiff import statics
+    from dynstiff.robot import statics
 
     rng = np.random.default_rng(7)
     tried = 0
@@ -320,7 +320,7 @@ def test_forward_statics_with_its_defaults_inverts_inverse_statics():
     """statics.forward_statics called with its own defaults (tol 1e-10) returns the pose
     whose inverse statics gave the lengths, to 1e-9 m, and the same tensions."""
     import dynstiff as ds
-    from dynstiff.statics import forward_statics
+    from dynstiff.robot.statics import forward_statics
     rob = ds.load_scene("cogiro").robot
     eq = rob.equilibrium(pose=[0.3, -0.2, 1.1, 0.02, -0.01, 0.03])
     fe = forward_statics(rob, eq.unstretched_lengths)
@@ -397,7 +397,7 @@ def test_equilibrium_states_carry_their_catenary_residuals_and_failures_theirs()
 def test_straight_chord_guess_is_near_the_sagging_equilibrium():
     """The start of forward statics (straight chords of 0.999 L0 fitted to the lengths)
     lands within 0.15 m and 0.02 rad of the CoGiRo equilibrium, rotation included."""
-    from dynstiff.statics import _kinematic_guess
+    from dynstiff.robot.statics import _kinematic_guess
     rob = ds.load_scene("cogiro").robot
     for pose in ([0.3, -0.2, 1.1, 0.02, -0.01, 0.03], [1.0, 0.5, 2.0, 0.1, -0.05, 0.25]):
         eq = rob.equilibrium(pose=pose)
@@ -411,7 +411,7 @@ def test_active_set_method_that_cannot_settle_says_so_with_its_residual():
     bound until its step limit: it raises ConvergenceError naming the balance residual of
     its last (feasible) iterate, not a wrong distribution."""
     from dynstiff.errors import ConvergenceError
-    from dynstiff.statics import _closest_in_box
+    from dynstiff.robot.statics import _closest_in_box
     W = np.array([[1.0, 1.0, 1.0]])
     lb, ub = np.array([2.0, 0.0, 0.0]), np.full(3, 5.0)
     t, bound = np.array([2.0, 0.5, 0.5]), np.array([2.0, np.nan, np.nan])
@@ -446,7 +446,7 @@ def test_a_vertical_cable_rising_from_a_floor_anchor_is_held_at_t_min_at_its_anc
 def test_active_set_method_from_inside_the_box_returns_the_free_solution():
     """From a feasible start whose minimum-distance solution is inside the box, no bound
     becomes active: that solution, with every side 0."""
-    from dynstiff.statics import _closest_in_box
+    from dynstiff.robot.statics import _closest_in_box
     W = np.array([[1.0, 1.0, 1.0]])
     t, sides = _closest_in_box(W, np.array([3.0]), np.zeros(3), np.full(3, 5.0),
                                np.array([0.5, 1.0, 1.5]), np.array([1.0, 1.0, 1.0]), 1e-9)
@@ -484,7 +484,7 @@ def test_forward_statics_whose_newton_cannot_descend_says_so(monkeypatch):
     """With the platform stiffness of the wrong sign, no step of the line search lowers the
     wrench residual: ConvergenceError with that residual, not a pose."""
     from dynstiff.errors import ConvergenceError
-    from dynstiff.statics import forward_statics
+    from dynstiff.robot.statics import forward_statics
     rob = ds.load_scene("cogiro").robot
     L0 = rob.equilibrium(pose=[0.3, -0.2, 1.1]).unstretched_lengths
     orig = ds.Robot.platform_stiffness
@@ -502,7 +502,7 @@ def test_active_set_method_from_any_feasible_start_is_the_brute_force_optimum(se
     box, or from one with a random set of tensions held at their bounds: it takes steps,
     adds and drops bounds, and ends at the brute-force optimum; the tensions it reports
     held (-1, +1) are exactly at their lower or upper bound."""
-    from dynstiff.statics import _closest_in_box
+    from dynstiff.robot.statics import _closest_in_box
     rng = np.random.default_rng(seed)
     k = 3
     W = rng.normal(size=(k, n))

@@ -179,7 +179,7 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     distributions: the same feasibility, reasons and verdicts; tensions, lengths, sag,
     frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
     finite-difference derivative (§13.3), which magnifies round-off."""
-    from dynstiff import statics
+    from dynstiff.robot import statics
     from dynstiff.workspace_map import evaluate_chunk
 
     grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),

@@ -22,7 +22,7 @@ from dynstiff._validate import omega_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
 from dynstiff.model_base import PlatformModel
-from dynstiff.platform import lever_map
+from dynstiff.robot.platform import lever_map
 
 __all__ = ["LumpedLinearModel"]
 

@@ -56,9 +56,9 @@ from dynstiff.cable.lumped_chain import (
     chain_equilibrium,
     element_stiffness,
 )
-from dynstiff.platform import lever_map, platform_mass_matrix, skew
-from dynstiff.pose import Pose, as_pose
-from dynstiff.robot import Robot
+from dynstiff.robot.platform import lever_map, platform_mass_matrix, skew
+from dynstiff.robot.pose import Pose, as_pose
+from dynstiff.robot.robot import Robot
 
 __all__ = ["LumpedMassModel", "LumpedEquilibrium", "segment_forces"]
 

@@ -11,7 +11,7 @@ from dynstiff import compiled
 from dynstiff._vec import cross
 from dynstiff.errors import InvalidParameterError
 from dynstiff.lumped.robot_model import LumpedMassModel, segment_forces
-from dynstiff.platform import (
+from dynstiff.robot.platform import (
     lever_map,
     platform_mass_matrix,
     quaternion_product,
@@ -19,7 +19,7 @@ from dynstiff.platform import (
     rotvec_to_quaternion,
     skew,
 )
-from dynstiff.robot import Pose
+from dynstiff.robot.robot import Pose
 
 
 def model_at(model, L0):

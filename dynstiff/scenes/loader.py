@@ -9,9 +9,9 @@ import numpy as np
 from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
-from dynstiff.platform import Platform
-from dynstiff.pose import Pose
-from dynstiff.robot import Robot
+from dynstiff.robot.platform import Platform
+from dynstiff.robot.pose import Pose
+from dynstiff.robot.robot import Robot
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 

@@ -14,8 +14,8 @@ from dynstiff.io.caspr import InertiaConventionWarning, read_caspr
 from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
 from dynstiff.params import Cable
-from dynstiff.pose import Pose
-from dynstiff.robot import Robot
+from dynstiff.robot.pose import Pose
+from dynstiff.robot.robot import Robot
 from dynstiff.scenes.loader import Scene
 
 __all__ = ["import_caspr", "scene_text", "write_scene"]

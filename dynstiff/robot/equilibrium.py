@@ -8,7 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dynstiff.pose import Pose
+from dynstiff.robot.pose import Pose
 
 __all__ = ["Equilibrium"]
 

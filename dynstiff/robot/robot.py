@@ -21,12 +21,12 @@ from dynstiff._vec import cross
 from dynstiff.io.caspr import read_caspr
 from dynstiff.cable.catenary import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
-from dynstiff.equilibrium import Equilibrium
+from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import InvalidParameterError
 from dynstiff.params import Cable
-from dynstiff.platform import Platform, lever_map, skew
-from dynstiff.pose import Pose, as_pose
-from dynstiff.statics import forward_statics, inverse_statics
+from dynstiff.robot.platform import Platform, lever_map, skew
+from dynstiff.robot.pose import Pose, as_pose
+from dynstiff.robot.statics import forward_statics, inverse_statics
 
 __all__ = ["Robot", "Pose", "Equilibrium", "as_pose", "geometric_stiffness"]
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from dynstiff.constants import MAX_COORDINATE
 from dynstiff.errors import InvalidParameterError
-from dynstiff.platform import (
+from dynstiff.robot.platform import (
     quaternion_product,
     quaternion_to_rotvec,
     rotation_matrix,
