@@ -24,8 +24,8 @@ import time
 import numpy as np
 
 import dynstiff as ds
-from dynstiff import exact_model
-from dynstiff.ladder import build_model
+from dynstiff.models import exact as exact_model
+from dynstiff.models.ladder import build_model
 
 FMAX_HZ = 10.0
 EXACT_BAND_HZ = 10.5

@@ -9,7 +9,7 @@ import timeit
 import numpy as np
 
 import dynstiff as ds
-from dynstiff.ladder import build_model
+from dynstiff.models.ladder import build_model
 
 
 def best(fn, number=1, repeat=3):

@@ -116,18 +116,18 @@ EQUIVALENT.update({
         "cable fraction <= 0.5 instead of < 0.5 for 'global': differs only at exactly 0.5",
 })
 EQUIVALENT.update({
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_84":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_84":
         "closed_form_validity computes the chord parameters itself when not given them",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_115":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_115":
         "dtype=float dropped on lever arms that are float already",
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_8":
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_8":
         "a band equal to the one checked is checked again: the warnings are issued once",
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_53":
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_53":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
-    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_3":
+    "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_3":
         "every warning ignored while the undamped copy is built, not only the "
         "ClosedFormWarning that the original already issued: no other warning arises there",
-    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_5":
+    "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_5":
         "every warning ignored while the undamped copy is built, not only the "
         "ClosedFormWarning that the original already issued: no other warning arises there",
     "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_19":
@@ -160,7 +160,7 @@ EQUIVALENT.update({
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_29":
         "one of the catenary Newton's starting guesses: the solution it converges to, "
         "checked by its residual, is the same",
-    "dynstiff.exact_model.xǁExactModelǁ__init____mutmut_94":
+    "dynstiff.models.exact.xǁExactModelǁ__init____mutmut_94":
         "the dtype of the zeros the static parts are summed into: const = const + K_s "
         "upcasts to complex anyway",
     "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_37":
@@ -182,14 +182,14 @@ EQUIVALENT.update({
     "dynstiff.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
 })
 EQUIVALENT.update({
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_157": "reshape(5, -2) infers like -1",
-    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_17": _EINSUM,
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_179":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_157": "reshape(5, -2) infers like -1",
+    "dynstiff.models.dsm.xǁFrequencyModelǁstatic_error__mutmut_17": _EINSUM,
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_179":
         "the first row of K(0) at two zero frequencies is K(0)",
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_54":
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_54":
         "the memo of a cable checked within tolerance: without it the check is repeated "
         "(cost only; a warning is still issued once)",
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_56":
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_56":
         "the memo of a cable checked within tolerance: without it the check is repeated "
         "(cost only; a warning is still issued once)",
     "dynstiff.cable.catenary.x__mean_tension__mutmut_11":
@@ -242,7 +242,7 @@ EQUIVALENT.update({f"dynstiff.robot.statics.x__distribution__mutmut_{n}": _WARM
                    for n in (45, 61, 76, 87, 89, 95, 97, 98, 103, 110)})
 EQUIVALENT.update({f"dynstiff.robot.statics.x__active_solution__mutmut_{n}": _WARM
                    for n in (2, 4, 28)})
-_EM = "dynstiff.exact_model.xǁExactModelǁ"
+_EM = "dynstiff.models.exact.xǁExactModelǁ"
 EQUIVALENT.update({
     f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
     f"{_EM}_block__mutmut_36": _ERRSTATE, f"{_EM}_block__mutmut_37": _ERRSTATE,
@@ -349,12 +349,12 @@ EQUIVALENT.update({
     "dynstiff.frf.x_frf__mutmut_46":
         "stacklevel=3 of the PoleWarning: under mutation the trampoline adds a frame, so the "
         "test of the caller's file cannot tell 2 from 3 (stacklevel 1 is killed)",
-    "dynstiff.assembly.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_2":
+    "dynstiff.models.dsm.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_2":
         "the fused kernel skipped for every model: K and J0 from the two separate calls, "
         "equal to 1e-13 (test_with_damping_keeps_the_options_and_the_fused_kernel_...)",
-    "dynstiff.assembly.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_3":
+    "dynstiff.models.dsm.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_3":
         "the fused kernel skipped for the base class: the same K and J0 from two calls",
-    "dynstiff.assembly.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_33":
+    "dynstiff.models.dsm.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_33":
         "reshape(n, -2) equals reshape(n, -1) (any negative size is inferred)",
     "dynstiff.interaction.xǁProximityWarningǁ__hash____mutmut_1":
         "a constant hash keeps set and dict semantics (equality decides); only slower",
@@ -400,11 +400,11 @@ _SEEDS = ("the seed grid of the eigen search (its uniform points, or the massles
 _VERTICAL = ("the horizontal direction of an exactly vertical chord in the batched end "
              "stiffness: such a cable has H = 0 and takes its state's own end stiffness")
 EQUIVALENT.update({
-    "dynstiff.assembly.xǁFrequencyModelǁ_warn_once__mutmut_6":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_warn_once__mutmut_6":
         "not observable under mutmut: stacklevel dropped, killed in the normal run by "
         "test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable (planted "
         "and checked), but mutmut's own frames move every warning's place",
-    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_65":
+    "dynstiff.models.dsm.xǁFrequencyModelǁstatic_error__mutmut_65":
         "lam >= 0 instead of > 0: differs only for an exactly zero eigenvalue of the "
         "positive definite static stiffness",
     "dynstiff.cable.dsm.x__mode_count_psi__mutmut_24":
@@ -436,10 +436,10 @@ EQUIVALENT.update({
         "bracket closes to rtol in a few more steps, at the same root",
     "dynstiff.eigen.x_modes__mutmut_87":
         "the pole count evaluated for an empty frequency list too: it is empty",
-    "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_20":
+    "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_20":
         "the viscous form of w^2 for an undamped model: its viscous rates are 0 and K.real "
         "follows",
-    "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_29":
+    "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_29":
         "division by 1 + i 0 (loss factor 0): the same values, K.real follows when undamped",
     "dynstiff.cable.lumped_chain.x_block_tridiagonal_entries__mutmut_9":
         "meshgrid's 'xy' indexing transposes each element block: element stiffnesses are "
@@ -540,7 +540,7 @@ EQUIVALENT.update({
     "dynstiff.robot.statics.x__end_quantities__mutmut_79":
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
     "dynstiff.robot.statics.x_forward_statics__mutmut_61": _BOUNDARY,
-    "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
     "dynstiff.cable.dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
     "dynstiff.cable.catenary.x__newton__mutmut_80": _BOUNDARY,
     "dynstiff.cable.catenary.x__newton__mutmut_70":
@@ -558,10 +558,10 @@ EQUIVALENT.update({
         "there, the same roots in more steps",
     "dynstiff.eigen.x__seed_grid__mutmut_7": _SEEDS,
     "dynstiff.eigen.x__seed_grid__mutmut_31": _SEEDS,
-    "dynstiff.exact_model.xǁExactModelǁdynamic_stiffness__mutmut_36":
+    "dynstiff.models.exact.xǁExactModelǁdynamic_stiffness__mutmut_36":
         "the frequency blocks overlapping (step 1): every frequency written with the same "
         "value again (memory and time only)",
-    "dynstiff.exact_model.xǁExactModelǁ_block__mutmut_53":
+    "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_53":
         "multiplication by 1 + i 0 (loss factor 0) in a damped model: the same values",
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_112": _START,
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_156": _START,
@@ -583,9 +583,9 @@ EQUIVALENT.update({
     "dynstiff.robot.statics.x_inverse_statics__mutmut_134":
         "the stall counter reset at every step, so the stall exit is never taken: see "
         "mutmut_133",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_83":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_83":
         "closed_form_validity given the chord parameters: its tension argument is unused",
-    "dynstiff.assembly.xǁFrequencyModelǁ_guard_static__mutmut_5":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_5":
         "the slack cause is 0 or inf: > 1 and > 0 agree",
     "dynstiff.cable.dsm.x_irvine_symmetric_roots__mutmut_83":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same roots "
@@ -635,28 +635,28 @@ EQUIVALENT.update({
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
     "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_3":
         "dtype=None on a rotation vector: integer input gives the same float quaternion",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_65": _FALSY,
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_88":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_65": _FALSY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_88":
         "closed_form_validity computes the chord parameters itself when not given them",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_89":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_89":
         "the static validity asked up to 1 rad/s instead of 0: only its axial cause depends "
         "on the band, and cables' axial modes are far above 1 rad/s",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_117":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_117":
         "dtype=float dropped on lever arms that are float already",
-    "dynstiff.assembly.xǁFrequencyModelǁ__init____mutmut_154": _EINSUM,
-    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_69":
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_154": _EINSUM,
+    "dynstiff.models.dsm.xǁFrequencyModelǁstatic_error__mutmut_69":
         "never reached: the value returned when no mode has a positive stiffness eigenvalue, "
         "which a stable equilibrium does not have",
-    "dynstiff.assembly.xǁFrequencyModelǁstatic_error__mutmut_82": _EINSUM,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_13": _BOUNDARY,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_30": _BOUNDARY,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_40": _BOUNDARY,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_32": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_33": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_35": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
-    "dynstiff.assembly.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁstatic_error__mutmut_82": _EINSUM,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_13": _BOUNDARY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_30": _BOUNDARY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_40": _BOUNDARY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_32": _REMEASURE,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_33": _REMEASURE,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_35": _REMEASURE,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
+    "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
+    "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
     "dynstiff.robot.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.robot.statics.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "

@@ -12,7 +12,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 """
 
 from dynstiff._version import __version__ as __version__
-from dynstiff.assembly import FrequencyModel
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.cable.dsm import (
     CableModes,
     cable_dynamic_stiffness,
@@ -50,7 +50,7 @@ from dynstiff.interaction import (
     proximity_warnings,
     sweep,
 )
-from dynstiff.ladder import RUNGS, StaticCableModel, build_model
+from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
 from dynstiff.measured import (
     MeasuredModes,

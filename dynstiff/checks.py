@@ -12,7 +12,7 @@ from dynstiff._validate import positive_scalar
 from dynstiff.eigen import modes as modal
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.interaction import proximity_warnings
-from dynstiff.ladder import RUNGS, build_model
+from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Damping
 from dynstiff.participation import (
     FRF_AMPLIFICATION_LIMIT,
@@ -138,10 +138,10 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         Modes are computed up to this frequency [Hz] (default: 1.5 x the band's top, or
         the 6th global mode).
     rung : str
-        The model the modal checks use, one of :data:`dynstiff.ladder.RUNGS` (default "dsm",
+        The model the modal checks use, one of :data:`dynstiff.models.ladder.RUNGS` (default "dsm",
         the closed-form dynamic stiffness).
     **model_options
-        Passed to :func:`dynstiff.ladder.build_model` (e.g. ``segments`` of "lumped").
+        Passed to :func:`dynstiff.models.ladder.build_model` (e.g. ``segments`` of "lumped").
     model_rtol : float
         Admissible relative frequency error of the cable model the checks use up to the
         highest mode checked [-]: the "cable model"

@@ -195,7 +195,7 @@ def _cmd_simulate(args):
     from dynstiff.constants import DOF_NAMES
     from dynstiff.eigen import eigenfrequencies
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.ladder import build_model
+    from dynstiff.models.ladder import build_model
     from dynstiff.lumped import SlackSegmentWarning, simulate
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
@@ -304,7 +304,7 @@ def _exact_model(eq, n_modes, fmax_hz):
     band doubled from 25 Hz until it holds them (theory.md §11)."""
     from dynstiff.eigen import mode_count
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.ladder import build_model
+    from dynstiff.models.ladder import build_model
     if fmax_hz is not None:
         return build_model(eq, "exact", fmax_hz=1.05 * fmax_hz)
     band = 25.0
@@ -323,7 +323,7 @@ def _cmd_modes(args):
 
     from dynstiff.eigen import modes
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.ladder import build_model
+    from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
     if args.segments is not None and args.segments < 1:
         raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")

@@ -27,14 +27,14 @@ import numpy as np
 
 from dynstiff import compiled, eigen_matrix
 from dynstiff._validate import omega_array
-from dynstiff.assembly import FrequencyModel, compiled_arguments
+from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import (
     ConvergenceError,
     InvalidParameterError,
     UnsupportedAnalysisError,
 )
-from dynstiff.model_base import require_model
+from dynstiff.models.base import require_model
 from dynstiff.results import ModalResult
 
 __all__ = ["eigenfrequencies", "modes", "mode_count", "cable_fields", "ModalResult",

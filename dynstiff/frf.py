@@ -12,10 +12,10 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
-from dynstiff.assembly import FrequencyModel, compiled_arguments
+from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
-from dynstiff.model_base import require_model
+from dynstiff.models.base import require_model
 from dynstiff.robot.platform import skew
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 

@@ -35,7 +35,7 @@ from dynstiff._validate import positive_scalar
 from dynstiff.eigen import modes
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import DynstiffError, InvalidParameterError
-from dynstiff.ladder import build_model
+from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
@@ -444,13 +444,13 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
     mac_min : float
         Least MAC, in (0, 1], for a global mode to continue a track (default 0.5).
     rung : str
-        Model of every step, one of :data:`dynstiff.ladder.RUNGS` (default "dsm").
+        Model of every step, one of :data:`dynstiff.models.ladder.RUNGS` (default "dsm").
     on_error : {"raise", "record"}
         A step whose statics or modes fail (an infeasible pose, a slack cable): "raise" the
         error (with a note naming the step), or "record" it as one row of kind
         "infeasible" (frequency NaN, the message in ``SweepResult.failures``) and go on.
     **model_options
-        Passed to :func:`dynstiff.ladder.build_model` (e.g. ``segments`` of "lumped").
+        Passed to :func:`dynstiff.models.ladder.build_model` (e.g. ``segments`` of "lumped").
 
     Returns
     -------

@@ -7,7 +7,7 @@ by the small motion x = scale * (dp, dtheta), so an attachment point moves by
 
     dB_i = scale * (dp + dtheta x r_i),      r_i = R_p b_i,
 
-and, with the :class:`~dynstiff.assembly.FrequencyModel` given, each cable by its closed-form
+and, with the :class:`~dynstiff.models.dsm.FrequencyModel` given, each cable by its closed-form
 displacement field (:func:`dynstiff.eigen.cable_fields`, theory.md §5.3) times the same scale.
 :func:`animate_mode` writes the oscillation shape * sin(2 pi t / T) over one period as a GIF.
 
@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.assembly import FrequencyModel
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.eigen import cable_fields
 from dynstiff.errors import InvalidParameterError
 from dynstiff.results import ModalResult

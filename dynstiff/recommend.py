@@ -25,11 +25,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dynstiff.assembly import FrequencyModel
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.cable.dsm import cable_mode_count, chord_parameters, closed_form_validity
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
-from dynstiff.ladder import RUNGS, StaticCableModel
+from dynstiff.models.ladder import RUNGS, StaticCableModel
 
 __all__ = ["Recommendation", "recommend_model", "predicted_errors"]
 
@@ -46,7 +46,7 @@ class Recommendation:
     Attributes
     ----------
     rung : str
-        One of :data:`dynstiff.ladder.RUNGS`.
+        One of :data:`dynstiff.models.ladder.RUNGS`.
     segments : int or None
         Segments per cable when ``rung == "lumped"``.
     predicted_error : float
@@ -112,7 +112,7 @@ def _dsm_error(equilibrium, band_hz):
     chordwise weight ratio, causes of the cables the guard flags)."""
     import warnings
 
-    from dynstiff.exact_model import ExactModel
+    from dynstiff.models.exact import ExactModel
     lo, hi = band_hz
     w_hi = 2 * np.pi * hi
     val = [closed_form_validity(s, w_hi) for s in equilibrium.states]

@@ -29,7 +29,7 @@ from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import InvalidParameterError
 from dynstiff.io.exchange import require
 from dynstiff.frf import channel_maps
-from dynstiff.model_base import require_model
+from dynstiff.models.base import require_model
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]
 

@@ -13,8 +13,8 @@ import numpy as np
 
 from dynstiff.checks import damped_model
 from dynstiff.errors import InvalidParameterError
-from dynstiff.exact_model import DEFAULT_FMAX_HZ
-from dynstiff.ladder import RUNGS
+from dynstiff.models.exact import DEFAULT_FMAX_HZ
+from dynstiff.models.ladder import RUNGS
 from dynstiff.params import Damping
 from dynstiff.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 

@@ -307,7 +307,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     -------
     TrackingResult
     """
-    from dynstiff.lumped.robot_model import LumpedMassModel
+    from dynstiff.models.lumped_robot import LumpedMassModel
     from dynstiff.lumped.time_domain import simulate
     if not isinstance(trajectory, Trajectory):
         raise InvalidParameterError(

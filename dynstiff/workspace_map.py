@@ -28,7 +28,7 @@ from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.eigen import modes as modal
 from dynstiff.errors import DynstiffError, InvalidParameterError
-from dynstiff.ladder import RUNGS, build_model
+from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import Cable
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
@@ -416,7 +416,7 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
     margin, proximity_rtol, max_sag_ratio : float
         Limits of the checks, as :func:`dynstiff.design_checks`.
     rung : str
-        Model of the modes, one of :data:`dynstiff.ladder.RUNGS` (default "dsm").
+        Model of the modes, one of :data:`dynstiff.models.ladder.RUNGS` (default "dsm").
     chunk_size : int
         Poses per task; statics are warm-started along a task.
     workers : int, optional
@@ -426,7 +426,7 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
     progress : bool
         Show a progress line on stderr.
     **model_options
-        Passed to :func:`dynstiff.ladder.build_model`.
+        Passed to :func:`dynstiff.models.ladder.build_model`.
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""The closed-form robot model (dynstiff/assembly.py, FrequencyModel; theory.md §4): the
+"""The closed-form robot model (dynstiff/models/dsm.py, FrequencyModel; theory.md §4): the
 massless-cable limit against an independent straight-cable model, the geometric stiffness
 at equilibrium, and frequencies and mode shapes that turn and mirror with the robot."""
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.assembly import compiled_arguments, symmetric_assembly
+from dynstiff.models.dsm import compiled_arguments, symmetric_assembly
 from dynstiff.frf import channel_maps
 
 cf = pytest.importorskip("dynstiff.compiled.dsm", exc_type=ImportError)

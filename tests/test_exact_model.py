@@ -1,6 +1,6 @@
-"""The "exact" rung at robot level (dynstiff/exact_model.py, theory.md §11): complete mode
+"""The "exact" rung at robot level (dynstiff/models/exact.py, theory.md §11): complete mode
 counts where the closed form misses axial modes, CoGiRo against the converged lumped model,
-and the model interface (dynstiff/model_base.py)."""
+and the model interface (dynstiff/models/base.py)."""
 
 import dataclasses
 import warnings
@@ -187,7 +187,7 @@ def test_requests_beyond_the_band_are_refused(cogiro_exact):
 def test_frequency_blocks_give_the_one_block_result(cogiro, monkeypatch, damped):
     """K(omega) is evaluated in blocks of frequencies (a cache-sized temporary); blocks of 7
     frequencies, the last one partial, give the single-block result, real and complex omega."""
-    import dynstiff.exact_model as em
+    import dynstiff.models.exact as em
     rob = cogiro.robot
     if damped:
         rob = dataclasses.replace(rob, cables=dataclasses.replace(
@@ -226,7 +226,7 @@ def test_with_damping_keeps_the_band_and_mesh_and_still_fields_every_cable(cogir
     """``with_damping`` keeps fmax_hz, order and half_waves (the same K as a direct build),
     its defaults undamped; ``cable_displacements`` with no motion gives every cable's
     static profile (41 points by default) and zero displacement."""
-    from dynstiff.exact_model import ExactModel
+    from dynstiff.models.exact import ExactModel
     m = ExactModel(cogiro_eq, fmax_hz=6.0, order=10, half_waves=3.0)
     direct = ExactModel(cogiro_eq, 6.0, 10, 3.0, cable_loss_factor=0.02,
                            platform_damping_ratio=0.01)
@@ -250,7 +250,7 @@ def test_cable_damping_at_robot_level_is_the_undamped_model_at_a_complex_frequen
     once the platform's own inertia term is put back at the real omega. Hysteretic damping
     makes even the static stiffness complex. ``damping=False`` drops every damping option,
     ``undamped`` keeps the band and the mesh, and any band above 0 Hz is accepted."""
-    from dynstiff.exact_model import ExactModel
+    from dynstiff.models.exact import ExactModel
     base = ds.load_scene("cogiro")
     c, m = 0.4, base.robot.cables[0].mass_per_length
     viscous = dataclasses.replace(base.robot, cables=tuple(
@@ -280,7 +280,7 @@ def test_build_options_reach_every_cable_and_bad_ones_are_named(cogiro_eq):
     the platform's 6x6 mass matrix about P at the pose (its free block the model's
     platform_mass), and a negative damping option is refused by its own name."""
     from dynstiff.cable.exact import ExactCable
-    from dynstiff.exact_model import ExactModel
+    from dynstiff.models.exact import ExactModel
     from dynstiff.robot.platform import platform_mass_matrix
     m = ExactModel(cogiro_eq, fmax_hz=6.0, half_waves=5.0)
     for c, s in zip(m.cables, cogiro_eq.states):
@@ -302,7 +302,7 @@ def test_platform_damping_is_hysteretic_and_proportional_to_the_static_stiffness
     """platform_damping_ratio alone (theory.md §12.2): the model is damped, and its K(omega)
     is the undamped one plus 2 i zeta K(0), K(0) the model's static stiffness, geometric
     part included, at every omega."""
-    from dynstiff.exact_model import ExactModel
+    from dynstiff.models.exact import ExactModel
     base = ExactModel(cogiro_eq, fmax_hz=6.0)
     damped = ExactModel(cogiro_eq, fmax_hz=6.0, platform_damping_ratio=0.02)
     assert damped.damped and not base.damped

@@ -1,6 +1,6 @@
-"""Every rung of the ladder (dynstiff/ladder.py) answers the same questions through the same
+"""Every rung of the ladder (dynstiff/models/ladder.py) answers the same questions through the same
 functions: frf, eigenfrequencies, modes, mode_count, damped_modes (the interface of
-dynstiff/model_base.py, theory.md §4, §5)."""
+dynstiff/models/base.py, theory.md §4, §5)."""
 
 import dataclasses
 

@@ -1,4 +1,4 @@
-"""Tests of the "lumped" rung (dynstiff.lumped.linear_model): the lumped-mass robot
+"""Tests of the "lumped" rung (dynstiff.models.lumped): the lumped-mass robot
 linearised about its own equilibrium, against an independent assembly, the elastic-catenary
 static stiffness and the closed-form FrequencyModel (modes and FRFs).
 

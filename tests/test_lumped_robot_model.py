@@ -1,4 +1,4 @@
-"""Tests of the whole-robot lumped-mass model (dynstiff.lumped.robot_model): the residual and
+"""Tests of the whole-robot lumped-mass model (dynstiff.models.lumped_robot): the residual and
 its analytic tangent, statics, inputs, and a model without hidden state.
 
 References: theory.md §4 (J_i, K_geo, M_p), §7.1 (lumped model), §7.2 (O(N^-2)), §1.1
@@ -164,7 +164,7 @@ def test_stacked_residual_equals_the_per_cable_loop(cogiro, cogiro_eq):
     assert np.abs(inner1 - inner2).max() < 1e-12 * np.abs(inner1).max()
     assert np.abs(F1 - F2).max() < 1e-12 * np.abs(F1).max()
     assert t1 == t2
-    from dynstiff.lumped.robot_model import segment_forces
+    from dynstiff.models.lumped_robot import segment_forces
     T = [segment_forces(x, model.segment_lengths[i], cogiro.robot.cables[i].EA)[2]
          for i, x in enumerate(nodes)]
     assert any(np.any(t == 0.0) for t in T)                     # slack segments among them

@@ -62,7 +62,7 @@ def test_axial_dashpot_stacked_equals_loop_and_dissipates_its_power(lumped):
     """The stacked axial dashpot (chains of equal N at once) gives the cable-by-cable forces,
     and its power is the dissipation -sum c_ax l0 (d eps/dt)^2 over the taut segments."""
     from dynstiff.lumped import time_dynamics as td
-    from dynstiff.lumped.robot_model import segment_forces
+    from dynstiff.models.lumped_robot import segment_forces
     mm, st = lumped
     rng = np.random.default_rng(5)
     pose, interior = mm.displaced(st.pose, st.interior, 1e-3 * rng.standard_normal(mm.n_dof))

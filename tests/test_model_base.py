@@ -1,11 +1,11 @@
-"""The interface every model shares (dynstiff/model_base.py)."""
+"""The interface every model shares (dynstiff/models/base.py)."""
 
 import numpy as np
 import pytest
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
-from dynstiff.model_base import PlatformModel, require_model
+from dynstiff.models.base import PlatformModel, require_model
 
 
 class Toy(PlatformModel):

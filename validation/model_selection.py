@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.ladder import RUNGS, build_model
+from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.recommend import recommend_model
 
 

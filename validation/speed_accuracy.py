@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.ladder import build_model
+from dynstiff.models.ladder import build_model
 
 LADDER = [("spring", None), ("catenary", None), ("dsm", None), ("lumped", 5), ("lumped", 10),
           ("lumped", 20), ("lumped", 40)]

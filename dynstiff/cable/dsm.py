@@ -657,7 +657,7 @@ class ClosedFormValidity:
     measured on 150 random cables (the largest ratio of measured to estimated error was
     0.83). It is not an envelope of the static end stiffness, whose error in the soft
     in-plane direction can exceed it 2.4x at 30-60 degrees; the robot model measures that
-    part exactly (:meth:`dynstiff.assembly.FrequencyModel.static_error`).
+    part exactly (:meth:`dynstiff.models.dsm.FrequencyModel.static_error`).
 
     Attributes
     ----------

@@ -10,8 +10,8 @@ from dynstiff.cable.lumped_chain_dynamics import (
     chain_matrices,
 )
 from dynstiff.lumped.compare import compare_modes
-from dynstiff.lumped.linear_model import LumpedLinearModel
-from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff.models.lumped import LumpedLinearModel
+from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
 from dynstiff.lumped.time_domain import (
     EnergyBalance,
     EnergyBalanceWarning,

@@ -95,8 +95,8 @@ from dynstiff._validate import positive_scalar
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.cable.lumped_chain import chain_equilibrium
-from dynstiff.lumped.linear_model import LumpedLinearModel
-from dynstiff.lumped.robot_model import LumpedEquilibrium, LumpedMassModel
+from dynstiff.models.lumped import LumpedLinearModel
+from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
 from dynstiff.lumped.time_damping import TimeDamping, explicit_step_limit
 from dynstiff.lumped.time_dynamics import (
     Dynamics,

@@ -37,7 +37,7 @@ from dynstiff.cable.dsm import (
 )
 from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
-from dynstiff.model_base import PlatformModel, require_equilibrium
+from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
 
 __all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]

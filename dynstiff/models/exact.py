@@ -13,7 +13,7 @@ import numpy as np
 from dynstiff._validate import omega_array, positive_scalar
 from dynstiff.cable.exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
 from dynstiff.errors import InvalidParameterError
-from dynstiff.model_base import PlatformModel, require_equilibrium
+from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, platform_mass_matrix
 
 __all__ = ["ExactModel", "DEFAULT_FMAX_HZ"]
