@@ -12,7 +12,11 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 """
 
 from dynstiff._version import __version__ as __version__
-from dynstiff.models.dsm import FrequencyModel
+from dynstiff.cable.catenary import (
+    CatenaryState,
+    solve_catenary,
+    unstretched_length_for_tension,
+)
 from dynstiff.cable.dsm import (
     CableModes,
     cable_dynamic_stiffness,
@@ -21,11 +25,6 @@ from dynstiff.cable.dsm import (
     chord_parameters,
 )
 from dynstiff.calibrate import CalibrationResult, calibrate
-from dynstiff.cable.catenary import (
-    CatenaryState,
-    solve_catenary,
-    unstretched_length_for_tension,
-)
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.damped import DampedModes, damped_modes
 from dynstiff.eigen import (
@@ -50,7 +49,6 @@ from dynstiff.interaction import (
     proximity_warnings,
     sweep,
 )
-from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
 from dynstiff.measured import (
     MeasuredModes,
@@ -59,11 +57,13 @@ from dynstiff.measured import (
     read_measured_frf,
     read_measured_modes,
 )
+from dynstiff.models.dsm import FrequencyModel
+from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.params import Cable, Damping
-from dynstiff.robot.platform import Platform
 from dynstiff.recommend import Recommendation, recommend_model
 from dynstiff.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.results import LumpedModalResult
+from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 from dynstiff.workspace_map import box_grid, workspace

@@ -49,8 +49,8 @@ from dynstiff.damped import damped_modes
 from dynstiff.eigen import modes
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.frf import frf as frf_of
-from dynstiff.models.ladder import build_model
 from dynstiff.measured import MeasuredModes, massless_pairing, pair_modes
+from dynstiff.models.ladder import build_model
 
 __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
 

@@ -195,13 +195,13 @@ def _cmd_simulate(args):
     from dynstiff.constants import DOF_NAMES
     from dynstiff.eigen import eigenfrequencies
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.models.ladder import build_model
     from dynstiff.lumped import SlackSegmentWarning, simulate
+    from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     eq = _equilibrium(scene, args)
     if args.to is not None:
-        from dynstiff.trajectory import line, track
+        from dynstiff.timedomain.trajectory import line, track
         traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
                     ramp=args.ramp)
         bar = None if args.quiet else _ProgressBar("quasi-static lengths")

@@ -27,7 +27,6 @@ import numpy as np
 
 from dynstiff import compiled, eigen_matrix
 from dynstiff._validate import omega_array
-from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import (
     ConvergenceError,
@@ -35,6 +34,7 @@ from dynstiff.errors import (
     UnsupportedAnalysisError,
 )
 from dynstiff.models.base import require_model
+from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import ModalResult
 
 __all__ = ["eigenfrequencies", "modes", "mode_count", "cable_fields", "ModalResult",

@@ -12,12 +12,12 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
-from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.models.base import require_model
-from dynstiff.robot.platform import skew
+from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
+from dynstiff.robot.platform import skew
 
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
 

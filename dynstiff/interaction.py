@@ -33,9 +33,9 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.eigen import modes
-from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
+from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 

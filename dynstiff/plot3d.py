@@ -22,9 +22,9 @@ from pathlib import Path
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.models.dsm import FrequencyModel
 from dynstiff.eigen import cable_fields
 from dynstiff.errors import InvalidParameterError
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.results import ModalResult
 
 __all__ = ["plot_robot", "animate_mode"]

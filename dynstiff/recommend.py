@@ -25,10 +25,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from dynstiff.models.dsm import FrequencyModel
 from dynstiff.cable.dsm import cable_mode_count, chord_parameters, closed_form_validity
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, StaticCableModel
 
 __all__ = ["Recommendation", "recommend_model", "predicted_errors"]

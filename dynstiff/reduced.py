@@ -27,8 +27,8 @@ import numpy as np
 
 from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import InvalidParameterError
-from dynstiff.io.exchange import require
 from dynstiff.frf import channel_maps
+from dynstiff.io.exchange import require
 from dynstiff.models.base import require_model
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]

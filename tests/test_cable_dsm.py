@@ -407,12 +407,12 @@ def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_st
     :func:`end_block_coefficients` and :func:`cable_mode_count`, for one cable (shapes
     (n, 5), (n,)) and a stack ((n, n_cables, 5), (n, n_cables)); damped cables or complex
     omega are refused (theory.md §14.2)."""
+    from dynstiff.cable.chord import stack_parameters
     from dynstiff.cable.dsm import (
         cable_mode_count,
         end_block_coefficients,
         end_block_coefficients_and_count,
     )
-    from dynstiff.cable.chord import stack_parameters
     states = [ds.solve_catenary((0, 0, 0), B, L0, ds.Cable(0.064, 139486.7))
               for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]
     w = np.linspace(0.0, 120.0, 57)

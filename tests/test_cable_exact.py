@@ -8,12 +8,12 @@ import pytest
 import dynstiff as ds
 from dynstiff.cable.dsm import cable_dynamic_stiffness, cable_natural_frequencies
 from dynstiff.cable.exact import ExactCable, gll
-from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.cable.lumped_chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
 )
+from dynstiff.errors import DynstiffError, InvalidParameterError
 
 TWO_PI = 2 * np.pi
 # (anchor, end, L0, cable): the hard cases of theory.md §11.3

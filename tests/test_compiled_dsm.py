@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.models.dsm import compiled_arguments, symmetric_assembly
 from dynstiff.frf import channel_maps
+from dynstiff.models.dsm import compiled_arguments, symmetric_assembly
 
 cf = pytest.importorskip("dynstiff.compiled.dsm", exc_type=ImportError)
 

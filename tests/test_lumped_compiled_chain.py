@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from dynstiff import compiled
-from dynstiff.lumped import LumpedMassModel, TimeDamping, time_stepping
-from dynstiff.lumped import time_dynamics as td
+from dynstiff.lumped import LumpedMassModel, TimeDamping
+from dynstiff.timedomain import dynamics as td
+from dynstiff.timedomain import stepping as time_stepping
 
 pytest.importorskip("numba")
 

@@ -1,5 +1,5 @@
 """Damping of the time-domain model and the explicit step limit
-(dynstiff/lumped/time_damping.py, theory.md §7.3)."""
+(dynstiff/timedomain/damping.py, theory.md §7.3)."""
 
 import numpy as np
 import pytest

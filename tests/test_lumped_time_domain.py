@@ -1,4 +1,4 @@
-"""Tests of the time-domain simulation of the lumped-mass robot (dynstiff.lumped.time_domain).
+"""Tests of the time-domain simulation of the lumped-mass robot (dynstiff.timedomain.simulation).
 
 References: theory.md §7.1 (lumped model), §7.3 (explicit limit dt < l0 / sqrt(EA / m), FFT
 resolution 1 / T); the Newmark average-acceleration period error (omega dt)^2 / 12 and its

@@ -1,4 +1,4 @@
-"""Forces and energy of the lumped time-domain model (dynstiff/lumped/time_dynamics.py):
+"""Forces and energy of the lumped time-domain model (dynstiff/timedomain/dynamics.py):
 the residual the time stepping integrates is minus the gradient of the potential energy the
 energy ledger books (theory.md §7.1, §7.3)."""
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from dynstiff.lumped import LumpedMassModel
-from dynstiff.lumped.time_dynamics import Frame, node_mass_vector, potential_energy
+from dynstiff.timedomain.dynamics import Frame, node_mass_vector, potential_energy
 
 
 @pytest.fixture(scope="module")
@@ -61,8 +61,8 @@ def test_potential_is_stationary_at_equilibrium_and_nodes_carry_their_mass(lumpe
 def test_axial_dashpot_stacked_equals_loop_and_dissipates_its_power(lumped):
     """The stacked axial dashpot (chains of equal N at once) gives the cable-by-cable forces,
     and its power is the dissipation -sum c_ax l0 (d eps/dt)^2 over the taut segments."""
-    from dynstiff.lumped import time_dynamics as td
     from dynstiff.models.lumped_robot import segment_forces
+    from dynstiff.timedomain import dynamics as td
     mm, st = lumped
     rng = np.random.default_rng(5)
     pose, interior = mm.displaced(st.pose, st.interior, 1e-3 * rng.standard_normal(mm.n_dof))

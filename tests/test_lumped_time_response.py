@@ -1,4 +1,4 @@
-"""Results of a time-domain run (dynstiff.lumped.time_response): TimeResponse and its
+"""Results of a time-domain run (dynstiff.timedomain.response): TimeResponse and its
 Spectrum as tables and figures, the recorded history read-only."""
 
 import numpy as np

@@ -1,5 +1,5 @@
 """Inverted pendulum on two cables with excited ends (seed paper 004, Polach & Hajzman;
-dynstiff.pendulum and the built-in scene ``pendulum``)."""
+dynstiff.timedomain.pendulum and the built-in scene ``pendulum``)."""
 
 import sys
 from dataclasses import replace
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff import pendulum as pdl
 from dynstiff.errors import InvalidParameterError
-from dynstiff.pendulum.dynamics import excitation_at, segment_geometry
+from dynstiff.timedomain import pendulum as pdl
+from dynstiff.timedomain.pendulum.dynamics import excitation_at, segment_geometry
 
 #: Paper, Sec. 3: l = 1 m, m = 9.864 kg, I_A = 3.288 kg m^2, a = 1.2 m, d = 0.75 m,
 #: k = 8.264e4 N/m.

@@ -16,7 +16,6 @@ from matplotlib.text import Annotation  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.lumped.time_response import Spectrum  # noqa: E402
 from dynstiff.plot import (  # noqa: E402
     plot_frf,
     plot_modes,
@@ -24,6 +23,7 @@ from dynstiff.plot import (  # noqa: E402
     plot_speed_accuracy,
     plot_veering,
 )
+from dynstiff.timedomain.response import Spectrum  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
@@ -171,7 +171,7 @@ def test_spectrum_of_a_simulation_marks_model_modes():
     from conftest import point_mass_robot
 
     from dynstiff.lumped import LumpedMassModel
-    from dynstiff.lumped.time_domain import simulate
+    from dynstiff.timedomain.simulation import simulate
     rob = point_mass_robot()
     eq = rob.equilibrium(pose=[0.0, 0.0, 1.0])
     m = LumpedMassModel(rob, eq.unstretched_lengths, segments=3)

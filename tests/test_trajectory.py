@@ -1,10 +1,10 @@
-"""Trajectories and their quasi-static cable lengths (dynstiff/trajectory.py)."""
+"""Trajectories and their quasi-static cable lengths (dynstiff/timedomain/trajectory.py)."""
 
 import numpy as np
 import pytest
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.trajectory import circle, line, quasi_static_lengths
+from dynstiff.timedomain.trajectory import circle, line, quasi_static_lengths
 
 
 def test_line_with_ramps_covers_its_length_at_its_speed():

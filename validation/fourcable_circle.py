@@ -7,7 +7,7 @@ along the circle and the trajectory errors "that arise due to the account of the
 of the cables", without printing their values. Here:
 
 * **lengths and tensions** along the circle from the quasi-static inverse kinematics with
-  elastic catenaries (:func:`dynstiff.trajectory.quasi_static_lengths`);
+  elastic catenaries (:func:`dynstiff.timedomain.trajectory.quasi_static_lengths`);
 * **errors from elasticity**: the winches are commanded with the rigid-cable lengths (chord
   lengths, as a controller ignoring elasticity would) and the time-domain model gives the
   trajectory error; commanded with the elastic-catenary lengths instead, only the dynamic
@@ -47,7 +47,7 @@ import pandas as pd
 
 import dynstiff as ds
 from dynstiff.lumped import TimeDamping
-from dynstiff.trajectory import circle, quasi_static_lengths, track
+from dynstiff.timedomain.trajectory import circle, quasi_static_lengths, track
 
 B_DAMPING = 20.0                 # paper: b_i = B sqrt(k_i) [N s/m], B [sqrt(N s^2 / m)]
 

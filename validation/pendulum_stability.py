@@ -22,7 +22,7 @@ Results of the full run (1894 s on one core; the tables below are its output):
   says cable mass does not destabilise: the one disagreement, see ``attrs["comparison"]``);
   slack point-mass cables move aperiodically (27, 9 and 0 % of these responses are
   periodic), so there the multiplier is the finite-time growth per period along the
-  aperiodic response (:func:`dynstiff.pendulum.floquet`);
+  aperiodic response (:func:`dynstiff.timedomain.pendulum.floquet`);
 * 30 deg phase shift: unstable on 50 % with, 62 % without; 3 % only with it (agrees);
 * taut cables (8264 N, x0 = 0.1 m): only the Mathieu tongue at twice the natural
   frequency is left, |mu| = 1.010 at 43.7 Hz undamped, 0.998 with b = 5e-5 s x k, 0.901
@@ -50,7 +50,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff import pendulum as pdl
+from dynstiff.timedomain import pendulum as pdl
 
 #: An angle above this [rad] counts as "the pendulum falls" (5.7 deg; a falling pendulum in
 #: these runs reaches 0.3 rad, the chaotic wobble of slack point-mass cables 0.003 rad).
@@ -151,7 +151,7 @@ def run(quick=False):
         predicts for that run, largest |phi| [rad], outcome "falls" / "grows, bounded" /
         "decays", and how many intervals that confirms) and at the most stable frequency
         (its growth must stay below 1), and the wall times [s].
-        ``attrs["maps"]``: all grid points (see :func:`dynstiff.pendulum.stability_map`);
+        ``attrs["maps"]``: all grid points (see :func:`dynstiff.timedomain.pendulum.stability_map`);
         ``attrs["comparison"]``: the paper's statements against dynstiff's findings;
         ``attrs["constants"]``: natural frequency, slack thresholds, damping ratio.
     """

@@ -50,7 +50,7 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.trajectory import circle, line, track
+from dynstiff.timedomain.trajectory import circle, line, track
 
 PAPER = {"line": 0.052, "circle": 0.027}          # [m] at 3 m/s
 DEPTH = -20.0

@@ -49,8 +49,8 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import omega_array
-from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.chord import ChordParameters, chord_parameters, stack_parameters
+from dynstiff.cable.exact import ExactCable
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 
 __all__ = [

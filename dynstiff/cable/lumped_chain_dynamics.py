@@ -7,7 +7,6 @@ import warnings
 import numpy as np
 
 from dynstiff._validate import omega_array
-from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.cable.lumped_chain import (
     BANDWIDTH,
     block_tridiagonal_entries,
@@ -16,6 +15,7 @@ from dynstiff.cable.lumped_chain import (
     element_stiffness,
     interior_banded,
 )
+from dynstiff.errors import InvalidParameterError, PoleWarning
 
 __all__ = ["chain_matrices", "chain_end_dynamic_stiffness", "chain_fixed_end_frequencies"]
 

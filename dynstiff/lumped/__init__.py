@@ -12,7 +12,8 @@ from dynstiff.cable.lumped_chain_dynamics import (
 from dynstiff.lumped.compare import compare_modes
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
-from dynstiff.lumped.time_domain import (
+from dynstiff.results import LumpedModalResult
+from dynstiff.timedomain.simulation import (
     EnergyBalance,
     EnergyBalanceWarning,
     IntegrationError,
@@ -24,7 +25,6 @@ from dynstiff.lumped.time_domain import (
     explicit_step_limit,
     simulate,
 )
-from dynstiff.results import LumpedModalResult
 
 __all__ = [
     "LumpedEquilibrium",

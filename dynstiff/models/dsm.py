@@ -18,6 +18,7 @@ import numpy as np
 
 from dynstiff._validate import omega_array, positive_scalar
 from dynstiff._vec import cross
+from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.cable.dsm import (
     AXIAL_MARGIN,
     DEFAULT_CHORDWISE_INERTIA,
@@ -35,7 +36,6 @@ from dynstiff.cable.dsm import (
     mode_count_nondimensional,
     stack_parameters,
 )
-from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix

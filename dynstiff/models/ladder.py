@@ -22,12 +22,12 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import omega_array
-from dynstiff.models.dsm import FrequencyModel
 from dynstiff.errors import InvalidParameterError
+from dynstiff.models.base import PlatformModel, require_equilibrium
+from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.exact import ExactModel
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedMassModel
-from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map
 from dynstiff.robot.robot import geometric_stiffness
 

@@ -664,7 +664,7 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
 
 
 def plot_tracking(tracking, ax=None):
-    """A commanded path (:class:`dynstiff.trajectory.TrackingResult`): the deviation of P
+    """A commanded path (:class:`dynstiff.timedomain.trajectory.TrackingResult`): the deviation of P
     from the desired path against time [mm], with the simulated and desired x y z [m] on a
     second axis. Returns the Figure."""
     fig, ax = figure_axes(ax, figsize=(8, 4.5))

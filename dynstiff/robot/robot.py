@@ -18,12 +18,12 @@ import numpy as np
 from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
-from dynstiff.io.caspr import read_caspr
 from dynstiff.cable.catenary import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
-from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import InvalidParameterError
+from dynstiff.io.caspr import read_caspr
 from dynstiff.params import Cable
+from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.platform import Platform, lever_map, skew
 from dynstiff.robot.pose import Pose, as_pose
 from dynstiff.robot.statics import forward_statics, inverse_statics

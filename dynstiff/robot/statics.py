@@ -17,13 +17,13 @@ import numpy as np
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import CatenaryState, unstretched_length_for_tension
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
-from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
     InvalidParameterError,
     SlackCableError,
 )
+from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.pose import Pose
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]

@@ -10,9 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from dynstiff.io.caspr import InertiaConventionWarning, read_caspr
 from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
+from dynstiff.io.caspr import InertiaConventionWarning, read_caspr
 from dynstiff.params import Cable
 from dynstiff.robot.pose import Pose
 from dynstiff.robot.robot import Robot

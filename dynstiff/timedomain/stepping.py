@@ -9,15 +9,15 @@ import numpy as np
 
 from dynstiff._vec import cross
 from dynstiff.errors import ConvergenceError, DynstiffError
-from dynstiff.lumped.time_damping import explicit_step_limit
-from dynstiff.lumped.time_dynamics import (
+from dynstiff.timedomain.damping import explicit_step_limit
+from dynstiff.timedomain.dynamics import (
     FastPose,
     advance,
     interior_views,
     load_at,
     twist_of,
 )
-from dynstiff.lumped.time_response import EnergyBalance, TimeResponse
+from dynstiff.timedomain.response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.
 _STRAIN_LIMIT = 1.0

@@ -308,7 +308,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     TrackingResult
     """
     from dynstiff.models.lumped_robot import LumpedMassModel
-    from dynstiff.lumped.time_domain import simulate
+    from dynstiff.timedomain.simulation import simulate
     if not isinstance(trajectory, Trajectory):
         raise InvalidParameterError(
             f"trajectory must be a Trajectory, got {type(trajectory).__name__}")

@@ -5,7 +5,7 @@ from dataclasses import replace
 import numpy as np
 
 from dynstiff.errors import ConvergenceError, InvalidParameterError
-from dynstiff.pendulum.floquet import FloquetResult, floquet
+from dynstiff.timedomain.pendulum.floquet import FloquetResult, floquet
 
 
 def stability_map(model, freqs_hz, amplitudes, preloads=None, cable_masses=None, phase=0.0,

@@ -61,11 +61,11 @@ cables snap and flap); there the growth per period is measured along the respons
 (see :func:`floquet`).
 """
 
-from dynstiff.pendulum.dynamics import jacobian, rest_state, rhs
-from dynstiff.pendulum.floquet import FloquetResult, floquet
-from dynstiff.pendulum.maps import stability_map, unstable_intervals
-from dynstiff.pendulum.model import CablePendulum, from_scene
-from dynstiff.pendulum.simulate import PendulumResponse, simulate
+from dynstiff.timedomain.pendulum.dynamics import jacobian, rest_state, rhs
+from dynstiff.timedomain.pendulum.floquet import FloquetResult, floquet
+from dynstiff.timedomain.pendulum.maps import stability_map, unstable_intervals
+from dynstiff.timedomain.pendulum.model import CablePendulum, from_scene
+from dynstiff.timedomain.pendulum.simulate import PendulumResponse, simulate
 
 __all__ = [
     "CablePendulum",

@@ -6,13 +6,13 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import ConvergenceError, InvalidParameterError
-from dynstiff.pendulum.dynamics import (
+from dynstiff.timedomain.pendulum.dynamics import (
     evaluate_rhs,
     excitation_at,
     segment_geometry,
     start_state,
 )
-from dynstiff.pendulum.model import CablePendulum, checked_integer
+from dynstiff.timedomain.pendulum.model import CablePendulum, checked_integer
 
 
 @dataclass(frozen=True)

@@ -4,7 +4,7 @@ the exact derivative of the discrete period map (the monodromy matrix)."""
 import numpy as np
 
 from dynstiff.errors import ConvergenceError
-from dynstiff.pendulum.dynamics import evaluate_rhs
+from dynstiff.timedomain.pendulum.dynamics import evaluate_rhs
 
 # two-stage Radau IIA (order 3, stiffly accurate)
 RADAU_C = np.array([1.0 / 3.0, 1.0])

@@ -92,13 +92,13 @@ import numpy as np
 
 from dynstiff import compiled
 from dynstiff._validate import positive_scalar
+from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
-from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
-from dynstiff.lumped.time_damping import TimeDamping, explicit_step_limit
-from dynstiff.lumped.time_dynamics import (
+from dynstiff.timedomain.damping import TimeDamping, explicit_step_limit
+from dynstiff.timedomain.dynamics import (
     Dynamics,
     FastPose,
     Frame,
@@ -107,8 +107,8 @@ from dynstiff.lumped.time_dynamics import (
     node_mass_vector,
     potential_energy,
 )
-from dynstiff.lumped.time_response import EnergyBalance, Spectrum, TimeResponse
-from dynstiff.lumped.time_stepping import (
+from dynstiff.timedomain.response import EnergyBalance, Spectrum, TimeResponse
+from dynstiff.timedomain.stepping import (
     EnergyBalanceWarning,
     IntegrationError,
     Ledger,
