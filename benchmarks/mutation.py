@@ -57,13 +57,13 @@ _FRF_NEAR = ("count at 2 w instead of w: the pole test becomes always true, so H
 _FRF_FAST = ("the compiled kernels switched off: the numpy path gives the same H to a few eps "
              "x cond K (test_numpy_fallback_equals_the_compiled_path)")
 _FLOAT = "dtype=float dropped on an array that is already float64"
-EQUIVALENT.update({f"dynstiff.frf.x_frf__mutmut_{n}": _FRF_FILTER
+EQUIVALENT.update({f"dynstiff.analyses.frf.x_frf__mutmut_{n}": _FRF_FILTER
                    for n in (48, 49, 50, 54, 56, 58, 61, 62, 63)})
-EQUIVALENT.update({f"dynstiff.frf.x_frf__mutmut_{n}": _FRF_NEAR for n in (69, 74)})
-EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FRF_FAST
+EQUIVALENT.update({f"dynstiff.analyses.frf.x_frf__mutmut_{n}": _FRF_NEAR for n in (69, 74)})
+EQUIVALENT.update({f"dynstiff.analyses.frf.x__receptance__mutmut_{n}": _FRF_FAST
                    for n in (1, 5, 32, 36)})
-EQUIVALENT.update({f"dynstiff.frf.x__receptance__mutmut_{n}": _FLOAT for n in (22, 24)})
-EQUIVALENT.update({f"dynstiff.frf.x__solve__mutmut_{n}": _FLOAT for n in (15, 17)})
+EQUIVALENT.update({f"dynstiff.analyses.frf.x__receptance__mutmut_{n}": _FLOAT for n in (22, 24)})
+EQUIVALENT.update({f"dynstiff.analyses.frf.x__solve__mutmut_{n}": _FLOAT for n in (15, 17)})
 _RESULT_TYPE = ("one of the four entries dropped from np.result_type: any damping makes at "
                 "least two of them complex (planted and checked), so the dtype is unchanged")
 EQUIVALENT.update({f"dynstiff.cable.dsm.x_{f}__mutmut_{n}": _RESULT_TYPE
@@ -109,10 +109,10 @@ EQUIVALENT.update({
         "err < instead of <= the tolerance: differs only at exactly 1e-6",
 })
 EQUIVALENT.update({
-    "dynstiff.eigen.x__search__mutmut_35":
+    "dynstiff.analyses.eigen.x__search__mutmut_35":
         "a bracket never counted as isolated is bisected on the count to rtol instead of "
         "refined by regula falsi: the same roots, more counts",
-    "dynstiff.eigen.x_modes__mutmut_146":
+    "dynstiff.analyses.eigen.x_modes__mutmut_146":
         "cable fraction <= 0.5 instead of < 0.5 for 'global': differs only at exactly 0.5",
 })
 EQUIVALENT.update({
@@ -171,15 +171,15 @@ _COST = ("the regula falsi's step rule (second point, Anderson-Bjorck factor, ha
          "or stopping width): every bracket still closes on the same root to rtol, only the "
          "number of evaluations changes (the root's value is tested, its cost bounded on "
          "smooth and curved functions)")
-EQUIVALENT.update({f"dynstiff.eigen.x__illinois__mutmut_{n}": _COST
+EQUIVALENT.update({f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _COST
                    for n in (22, 86, 155, 179, 202, 314)})
-EQUIVALENT.update({f"dynstiff.eigen.x__illinois__mutmut_{n}": _ERRSTATE for n in (31, 143)})
-EQUIVALENT.update({f"dynstiff.eigen.x__counter__mutmut_{n}": _ERRSTATE for n in (21, 43)})
+EQUIVALENT.update({f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _ERRSTATE for n in (31, 143)})
+EQUIVALENT.update({f"dynstiff.analyses.eigen.x__counter__mutmut_{n}": _ERRSTATE for n in (21, 43)})
 EQUIVALENT.update({
-    "dynstiff.eigen.x__illinois__mutmut_11": "the side flags as floats: compared with +-1 "
+    "dynstiff.analyses.eigen.x__illinois__mutmut_11": "the side flags as floats: compared with +-1 "
                                              "all the same",
-    "dynstiff.eigen.x__real_symmetric__mutmut_3": "K.real of a real K is K",
-    "dynstiff.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
+    "dynstiff.analyses.eigen.x__real_symmetric__mutmut_3": "K.real of a real K is K",
+    "dynstiff.analyses.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
 })
 EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_157": "reshape(5, -2) infers like -1",
@@ -271,12 +271,12 @@ EQUIVALENT.update({
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
     "dynstiff.cable.dsm.x__guard_cable__mutmut_26":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
-    "dynstiff.interaction.x__mac__mutmut_3":
+    "dynstiff.analyses.interaction.x__mac__mutmut_3":
         "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
-    "dynstiff.interaction.x__assign__mutmut_3":
+    "dynstiff.analyses.interaction.x__assign__mutmut_3":
         "X.shape[1] == 0 instead of X.shape[0] == 0: with no global mode the assignment "
         "of an empty MAC matrix is empty too",
-    "dynstiff.interaction.x__assign__mutmut_26":
+    "dynstiff.analyses.interaction.x__assign__mutmut_26":
         "MAC > mac_min instead of >=: differs only at MAC exactly mac_min",
     "dynstiff.robot.statics.x__limits__mutmut_8":
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
@@ -307,46 +307,46 @@ EQUIVALENT.update({
     "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_4":
         "the floor of the exact cable's band only: results inside any band are exact",
 })
-EQUIVALENT.update({"dynstiff.interaction.x__mac__mutmut_16": _EINSUM,
-                   "dynstiff.interaction.x__mac__mutmut_27": _EINSUM})
-EQUIVALENT.update({f"dynstiff.interaction.x_sweep__mutmut_{n}":
+EQUIVALENT.update({"dynstiff.analyses.interaction.x__mac__mutmut_16": _EINSUM,
+                   "dynstiff.analyses.interaction.x__mac__mutmut_27": _EINSUM})
+EQUIVALENT.update({f"dynstiff.analyses.interaction.x_sweep__mutmut_{n}":
                    "dtype of the one-element row arrays of an infeasible step: every column "
                    "is cast (astype float / int / str) when the result is built"
                    for n in (90, 92, 93, 94, 95, 96, 97)})
 EQUIVALENT.update({
-    "dynstiff.interaction.x_sweep__mutmut_159": "np.full of the int UNTRACKED is int64 anyway",
-    "dynstiff.interaction.x_sweep__mutmut_162": "np.full of the int UNTRACKED is int64 anyway",
-    "dynstiff.interaction.x_sweep__mutmut_204":
+    "dynstiff.analyses.interaction.x_sweep__mutmut_159": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.analyses.interaction.x_sweep__mutmut_162": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.analyses.interaction.x_sweep__mutmut_204":
         "reshape(None) of the 1-D kind array of length n leaves it as it is",
-    "dynstiff.interaction.x_sweep__mutmut_206":
+    "dynstiff.analyses.interaction.x_sweep__mutmut_206":
         "kind as a unicode instead of an object array: cast with astype(str) at the end",
-    "dynstiff.interaction.x_sweep__mutmut_208":
+    "dynstiff.analyses.interaction.x_sweep__mutmut_208":
         "kind as a unicode instead of an object array: cast with astype(str) at the end",
-    "dynstiff.interaction.x_sweep__mutmut_257": "astype(None) is astype(float64)",
-    "dynstiff.interaction.x_sweep__mutmut_266": "astype(None) is astype(float64)",
-    "dynstiff.interaction.x_sweep__mutmut_274": "astype(None) is astype(float64)",
-    "dynstiff.interaction.x_proximity_warnings__mutmut_33":
+    "dynstiff.analyses.interaction.x_sweep__mutmut_257": "astype(None) is astype(float64)",
+    "dynstiff.analyses.interaction.x_sweep__mutmut_266": "astype(None) is astype(float64)",
+    "dynstiff.analyses.interaction.x_sweep__mutmut_274": "astype(None) is astype(float64)",
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_33":
         "gap < rtol instead of <=: differs only at a gap of exactly rtol",
-    "dynstiff.interaction.x_proximity_warnings__mutmut_60":
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_60":
         "stacklevel=3 of the ProximityWarning: under mutation the trampoline adds a frame, so "
         "the test of the caller's file cannot tell 2 from 3 (stacklevel 1 is killed)",
-    "dynstiff.interaction.x__check_modes__mutmut_3":
+    "dynstiff.analyses.interaction.x__check_modes__mutmut_3":
         "dtype=float dropped on frequencies that are float already (ModalResult)",
-    "dynstiff.interaction.x__check_modes__mutmut_5":
+    "dynstiff.analyses.interaction.x__check_modes__mutmut_5":
         "dtype=float dropped on frequencies that are float already (ModalResult)",
-    "dynstiff.frf.x__solve__mutmut_31":
+    "dynstiff.analyses.frf.x__solve__mutmut_31":
         "the batched solve given None raises LinAlgError, so every frequency goes through the "
         "per-frequency fallback, which gives the same H",
 })
-EQUIVALENT.update({f"dynstiff.interaction.x_to_frame__mutmut_{n}":
+EQUIVALENT.update({f"dynstiff.analyses.interaction.x_to_frame__mutmut_{n}":
                    "dtype=float dropped on a list of Python floats (float64 even when empty)"
                    for n in (23, 25, 30, 32, 36, 38)})
 EQUIVALENT.update({
-    "dynstiff.frf.x_channel_maps__mutmut_42":
+    "dynstiff.analyses.frf.x_channel_maps__mutmut_42":
         "np.eye(7) instead of np.eye(6) indexed by DOF numbers < 6: the same entries",
-    "dynstiff.frf.x_channel_maps__mutmut_78":
+    "dynstiff.analyses.frf.x_channel_maps__mutmut_78":
         "np.moveaxis(mat, 0, +1) equals np.moveaxis(mat, 0, -1) on a 2-D matrix",
-    "dynstiff.frf.x_frf__mutmut_46":
+    "dynstiff.analyses.frf.x_frf__mutmut_46":
         "stacklevel=3 of the PoleWarning: under mutation the trampoline adds a frame, so the "
         "test of the caller's file cannot tell 2 from 3 (stacklevel 1 is killed)",
     "dynstiff.models.dsm.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_2":
@@ -356,17 +356,17 @@ EQUIVALENT.update({
         "the fused kernel skipped for the base class: the same K and J0 from two calls",
     "dynstiff.models.dsm.xǁFrequencyModelǁdynamic_stiffness_and_count__mutmut_33":
         "reshape(n, -2) equals reshape(n, -1) (any negative size is inferred)",
-    "dynstiff.interaction.xǁProximityWarningǁ__hash____mutmut_1":
+    "dynstiff.analyses.interaction.xǁProximityWarningǁ__hash____mutmut_1":
         "a constant hash keeps set and dict semantics (equality decides); only slower",
-    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_3":
+    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_3":
         "pd.array of an int64 array infers Int64 without being told",
-    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_5":
+    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_5":
         "pd.array of an int64 array infers Int64 without being told",
-    "dynstiff.interaction.xǁSweepResultǁto_frame__mutmut_9":
+    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_9":
         "None assigned into an Int64 array is <NA>, like pd.NA",
-    "dynstiff.frf.x_frf__mutmut_106":
+    "dynstiff.analyses.frf.x_frf__mutmut_106":
         "receptance multiplied by its own factor (i omega)^0 = 1",
-    "dynstiff.frf.x_frf__mutmut_107":
+    "dynstiff.analyses.frf.x_frf__mutmut_107":
         "receptance multiplied by its own factor (i omega)^0 = 1",
 })
 _FIRST_BAND = ("the growth of the band of the exact clamped modes and its failure message: "
@@ -426,15 +426,15 @@ EQUIVALENT.update({
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_73": _CAT_START,
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_79": _CAT_START,
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_80": _CAT_START,
-    "dynstiff.eigen.x__search__mutmut_43": _BOUNDARY,
-    "dynstiff.eigen.x__illinois__mutmut_44":
+    "dynstiff.analyses.eigen.x__search__mutmut_43": _BOUNDARY,
+    "dynstiff.analyses.eigen.x__illinois__mutmut_44":
         "x outside (L, H) no longer sent to bisection: the regula falsi point is a convex "
         "combination of L and H, on an end only where f is 0 there (then the bracket "
         "closes) or by rounding; a stalled bracket is still bisected after 3 steps",
-    "dynstiff.eigen.x__illinois__mutmut_247":
+    "dynstiff.analyses.eigen.x__illinois__mutmut_247":
         "the high end not moved to the second point when the pair brackets the root: the "
         "bracket closes to rtol in a few more steps, at the same root",
-    "dynstiff.eigen.x_modes__mutmut_87":
+    "dynstiff.analyses.eigen.x_modes__mutmut_87":
         "the pole count evaluated for an empty frequency list too: it is empty",
     "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_20":
         "the viscous form of w^2 for an undamped model: its viscous rates are 0 and K.real "
@@ -548,16 +548,16 @@ EQUIVALENT.update({
         "equilibrium for given L0 and ends is unique and checked by its residual",
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_63": _CAT_START,
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_71": _CAT_START,
-    "dynstiff.eigen.x__illinois__mutmut_49": _BOUNDARY,
-    "dynstiff.eigen.x__illinois__mutmut_125": _BOUNDARY,
-    "dynstiff.eigen.x__illinois__mutmut_74":
+    "dynstiff.analyses.eigen.x__illinois__mutmut_49": _BOUNDARY,
+    "dynstiff.analyses.eigen.x__illinois__mutmut_125": _BOUNDARY,
+    "dynstiff.analyses.eigen.x__illinois__mutmut_74":
         "the paired second point always on the low side of x: the pair still brackets a "
         "root within 0.45 rtol above x, and bisection bounds the steps; the same roots",
-    "dynstiff.eigen.x__illinois__mutmut_205":
+    "dynstiff.analyses.eigen.x__illinois__mutmut_205":
         "the Anderson-Bjorck factor never applied at the low end: plain Illinois steps "
         "there, the same roots in more steps",
-    "dynstiff.eigen.x__seed_grid__mutmut_7": _SEEDS,
-    "dynstiff.eigen.x__seed_grid__mutmut_31": _SEEDS,
+    "dynstiff.analyses.eigen.x__seed_grid__mutmut_7": _SEEDS,
+    "dynstiff.analyses.eigen.x__seed_grid__mutmut_31": _SEEDS,
     "dynstiff.models.exact.xǁExactModelǁdynamic_stiffness__mutmut_36":
         "the frequency blocks overlapping (step 1): every frequency written with the same "
         "value again (memory and time only)",
@@ -728,7 +728,7 @@ def _wilson(k, n, z=1.96):
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("modules", nargs="*", help="e.g. dynstiff/frf.py (default: all)")
+    ap.add_argument("modules", nargs="*", help="e.g. dynstiff/analyses/frf.py (default: all)")
     ap.add_argument("--report-only", action="store_true", help="print the last results")
     ap.add_argument("--sample", type=int, default=0,
                     help="judge a uniform random sample of this many mutants per module "

@@ -12,6 +12,31 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 """
 
 from dynstiff._version import __version__ as __version__
+from dynstiff.analyses.calibrate import CalibrationResult, calibrate
+from dynstiff.analyses.damped import DampedModes, damped_modes
+from dynstiff.analyses.eigen import (
+    ModalResult,
+    cable_fields,
+    eigenfrequencies,
+    mode_count,
+    modes,
+)
+from dynstiff.analyses.frf import FRFResult, frf
+from dynstiff.analyses.interaction import (
+    ProximityWarning,
+    SweepResult,
+    proximity_warnings,
+    sweep,
+)
+from dynstiff.analyses.measured import (
+    MeasuredModes,
+    compare_frf,
+    compare_modes,
+    read_measured_frf,
+    read_measured_modes,
+)
+from dynstiff.analyses.recommend import Recommendation, recommend_model
+from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.cable.catenary import (
     CatenaryState,
     solve_catenary,
@@ -24,16 +49,7 @@ from dynstiff.cable.dsm import (
     cable_natural_frequencies,
     chord_parameters,
 )
-from dynstiff.calibrate import CalibrationResult, calibrate
 from dynstiff.constants import STANDARD_GRAVITY
-from dynstiff.damped import DampedModes, damped_modes
-from dynstiff.eigen import (
-    ModalResult,
-    cable_fields,
-    eigenfrequencies,
-    mode_count,
-    modes,
-)
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
@@ -42,26 +58,10 @@ from dynstiff.errors import (
     SlackCableError,
     UnsupportedAnalysisError,
 )
-from dynstiff.frf import FRFResult, frf
-from dynstiff.interaction import (
-    ProximityWarning,
-    SweepResult,
-    proximity_warnings,
-    sweep,
-)
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
-from dynstiff.measured import (
-    MeasuredModes,
-    compare_frf,
-    compare_modes,
-    read_measured_frf,
-    read_measured_modes,
-)
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.params import Cable, Damping
-from dynstiff.recommend import Recommendation, recommend_model
-from dynstiff.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot

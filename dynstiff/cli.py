@@ -8,8 +8,8 @@ from dynstiff.errors import DynstiffError
 
 def _settings(scene, args):
     """The analysis settings of ``scene`` with the command line's overrides
-    (:func:`dynstiff.settings.analysis_settings`, the one source of defaults)."""
-    from dynstiff.settings import analysis_settings
+    (:func:`dynstiff.analyses.settings.analysis_settings`, the one source of defaults)."""
+    from dynstiff.analyses.settings import analysis_settings
     band = getattr(args, "band", None)
     fmax = getattr(args, "fmax", None)
     kw = {}
@@ -21,7 +21,7 @@ def _settings(scene, args):
     elif band:
         kw["band_hz"] = tuple(band)
     elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
-        from dynstiff.settings import DEFAULT_BAND_HZ
+        from dynstiff.analyses.settings import DEFAULT_BAND_HZ
         lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
         kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
     if getattr(args, "model", None):
@@ -127,8 +127,8 @@ def _with_parameter(robot, name, value):
 def _cmd_sweep(args):
     import numpy as np
 
+    from dynstiff.analyses.interaction import sweep
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.interaction import sweep
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)
@@ -192,8 +192,8 @@ def _cmd_simulate(args):
 
     import numpy as np
 
+    from dynstiff.analyses.eigen import eigenfrequencies
     from dynstiff.constants import DOF_NAMES
-    from dynstiff.eigen import eigenfrequencies
     from dynstiff.errors import InvalidParameterError
     from dynstiff.lumped import SlackSegmentWarning, simulate
     from dynstiff.models.ladder import build_model
@@ -302,7 +302,7 @@ def _cmd_scenes(args):
 def _exact_model(eq, n_modes, fmax_hz):
     """The exact rung with a band that holds the request: 1.05 fmax_hz, or, for n_modes, a
     band doubled from 25 Hz until it holds them (theory.md §11)."""
-    from dynstiff.eigen import mode_count
+    from dynstiff.analyses.eigen import mode_count
     from dynstiff.errors import InvalidParameterError
     from dynstiff.models.ladder import build_model
     if fmax_hz is not None:
@@ -321,7 +321,7 @@ def _exact_model(eq, n_modes, fmax_hz):
 def _cmd_modes(args):
     import numpy as np
 
-    from dynstiff.eigen import modes
+    from dynstiff.analyses.eigen import modes
     from dynstiff.errors import InvalidParameterError
     from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
@@ -344,7 +344,7 @@ def _cmd_modes(args):
     res = modes(model, n_modes=n, fmax_hz=args.fmax)
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
-    from dynstiff.participation import platform_participation
+    from dynstiff.analyses.participation import platform_participation
     part = platform_participation(model, res, st.participation)
     df = res.to_frame()
     df.insert(3, "platform share [-]", part.platform_share)
@@ -384,9 +384,9 @@ def _equilibrium(scene, args):
 def _cmd_frf(args):
     import numpy as np
 
-    from dynstiff.eigen import modes
-    from dynstiff.freqgrid import refined_grid
-    from dynstiff.frf import frf
+    from dynstiff.analyses.eigen import modes
+    from dynstiff.analyses.freqgrid import refined_grid
+    from dynstiff.analyses.frf import frf
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)
@@ -424,7 +424,7 @@ def _cmd_frf(args):
 
 
 def _cmd_check(args):
-    from dynstiff.checks import design_checks
+    from dynstiff.analyses.checks import design_checks
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = _settings(scene, args)

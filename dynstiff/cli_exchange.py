@@ -48,9 +48,9 @@ def cmd_import_caspr(args):
 
 def cmd_calibrate(args):
     """``dynstiff calibrate SCENE --measured FILE --parameter EA [...]``."""
-    from dynstiff.calibrate import calibrate
+    from dynstiff.analyses.calibrate import calibrate
+    from dynstiff.analyses.measured import read_measured_modes
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.measured import read_measured_modes
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     measured = read_measured_modes(args.measured)

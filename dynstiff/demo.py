@@ -2,7 +2,7 @@
 platform participation, the model the scene needs, design checks, damped FRFs with the modes
 marked and a 3-D view of the first platform mode, written as CSV tables, PNG figures and one
 self-contained ``report.html``. Every setting comes from
-:func:`dynstiff.settings.analysis_settings` (the same as ``dynstiff check``).
+:func:`dynstiff.analyses.settings.analysis_settings` (the same as ``dynstiff check``).
 
 pandas and matplotlib are imported here, on demand.
 """
@@ -37,7 +37,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     out : str or Path
         Output folder (created).
     settings : AnalysisSettings, optional
-        Default: :func:`dynstiff.settings.analysis_settings` of the scene.
+        Default: :func:`dynstiff.analyses.settings.analysis_settings` of the scene.
     n_points : int
         Uniform frequencies of the FRFs (refined around every mode in the band).
     html : bool
@@ -54,16 +54,16 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from dynstiff.checks import design_checks
-    from dynstiff.eigen import modes as modal
-    from dynstiff.freqgrid import refined_grid
-    from dynstiff.frf import frf
+    from dynstiff.analyses.checks import design_checks
+    from dynstiff.analyses.eigen import modes as modal
+    from dynstiff.analyses.freqgrid import refined_grid
+    from dynstiff.analyses.frf import frf
+    from dynstiff.analyses.participation import platform_participation
+    from dynstiff.analyses.recommend import recommend_model
+    from dynstiff.analyses.settings import analysis_settings
     from dynstiff.htmlreport import figure_png, html_page
-    from dynstiff.participation import platform_participation
     from dynstiff.plot import plot_frf
     from dynstiff.plot3d import plot_robot
-    from dynstiff.recommend import recommend_model
-    from dynstiff.settings import analysis_settings
 
     st = settings or analysis_settings(scene)
     eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing

@@ -24,9 +24,9 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import positive_scalar
+from dynstiff.analyses.eigen import eigenfrequencies
+from dynstiff.analyses.eigen import modes as modal
 from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
-from dynstiff.eigen import eigenfrequencies
-from dynstiff.eigen import modes as modal
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import Cable

@@ -1,4 +1,4 @@
-"""Calibration (dynstiff/calibrate.py, theory.md §15.6): a known EA recovered from noisy
+"""Calibration (dynstiff/analyses/calibrate.py, theory.md §15.6): a known EA recovered from noisy
 synthetic frequencies of the model itself (within the reported interval), and from the
 frequencies of the independent lumped model, whose discretisation bias falls at the rate of
 its convergence (O(1/N^2)); per-cable EA and platform mass; bad requests named."""
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.calibrate import calibrate
-from dynstiff.measured import MeasuredModes, massless_pairing
+from dynstiff.analyses.calibrate import calibrate
+from dynstiff.analyses.measured import MeasuredModes, massless_pairing
 
 AREA = 8.2051e-6          # CoGiRo cable cross-section [m^2] (theory.md §8.1)
 E_TRUE = 60e9             # [Pa], inside CoGiRo's 17-120 GPa

@@ -1,10 +1,10 @@
-"""Design checks (dynstiff/checks.py); the `dynstiff check` command is run in test_cli.py."""
+"""Design checks (dynstiff/analyses/checks.py); the `dynstiff check` command is run in test_cli.py."""
 
 import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.checks import design_checks
+from dynstiff.analyses.checks import design_checks
 from dynstiff.errors import InvalidParameterError
 
 
@@ -60,7 +60,7 @@ def test_cable_model_row_names_the_model_the_checks_need():
     """CoGiRo: the closed-form DSM meets 1 % up to the checked modes (its predicted error is
     recommend_model's); sixcable (20 m heavy cables, sag 2.4 %): it does not, and the row
     names the lumped model."""
-    from dynstiff.recommend import recommend_model
+    from dynstiff.analyses.recommend import recommend_model
     scene = ds.load_scene("cogiro")
     res = design_checks(scene.robot, scene.pose, band_hz=(0.0, 1.5))
     r = rows_by_name(res)["cable model"]

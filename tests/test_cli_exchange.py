@@ -62,7 +62,7 @@ def test_frf_uff_writes_records_that_pyuff_reads(tmp_path):
     assert all(s["ordinate_spec_data_type"] == 12 for s in sets)
     # the command's model is the scene's, damped as its settings say; its grid holds the 20
     # uniform points and is refined at every mode (theory.md §12): compare at the uniform ones
-    from dynstiff.settings import analysis_settings
+    from dynstiff.analyses.settings import analysis_settings
     sc = ds.load_scene("cogiro")
     model = analysis_settings(sc).model(sc.equilibrium())
     f = np.linspace(0.5, 4, 20)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.frf import channel_maps
+from dynstiff.analyses.frf import channel_maps
 from dynstiff.models.dsm import compiled_arguments, symmetric_assembly
 
 cf = pytest.importorskip("dynstiff.compiled.dsm", exc_type=ImportError)

@@ -1,11 +1,11 @@
-"""Damped complex natural frequencies (dynstiff/damped.py, theory.md §5.4)."""
+"""Damped complex natural frequencies (dynstiff/analyses/damped.py, theory.md §5.4)."""
 
 import numpy as np
 import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.damped import damped_modes
+from dynstiff.analyses.damped import damped_modes
 
 
 @pytest.fixture(scope="module")

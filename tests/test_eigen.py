@@ -1,4 +1,4 @@
-"""Wittrick-Williams eigenfrequencies, mode counts and cable fields (dynstiff/eigen.py,
+"""Wittrick-Williams eigenfrequencies, mode counts and cable fields (dynstiff/analyses/eigen.py,
 theory.md §5).
 
 W-W never misses a root: its count against an independent lumped-mass model (theory.md §7)
@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff import compiled
-from dynstiff.eigen import cable_fields
+from dynstiff.analyses.eigen import cable_fields
 from dynstiff.errors import InvalidParameterError, SlackCableError
 
 N_SEG = 40                    # lumped segments per cable
@@ -293,7 +293,7 @@ def test_numpy_count_path_finds_the_same_frequencies(cogiro_eq, monkeypatch):
 
 
 def _run_illinois(fs, lo, hi, rtol=1e-12):
-    from dynstiff.eigen import _illinois
+    from dynstiff.analyses.eigen import _illinois
     calls = []
 
     def count(x):
@@ -327,7 +327,7 @@ def test_illinois_on_a_strongly_curved_function_halves_its_bracket_and_converges
     the flat end (0.2 % per step; 100 steps left [0.1, 2.96]). A bracket that has not halved
     in three steps is bisected, so the root 1 is found to 1e-12 in at most 4 log2(2.9 / 1e-12)
     steps (measured: 16), and a search that cannot finish says so with its width."""
-    from dynstiff.eigen import _illinois
+    from dynstiff.analyses.eigen import _illinois
     from dynstiff.errors import ConvergenceError
     f = [lambda x: np.exp(8.0 * (1.0 - x)) - 1.0]
     roots, calls = _run_illinois(f, [0.1], [3.0])

@@ -1,4 +1,4 @@
-"""Modes of the discrete rungs (dynstiff/eigen_matrix.py, theory.md §7.1-§7.2): sparse
+"""Modes of the discrete rungs (dynstiff/analyses/eigen_matrix.py, theory.md §7.1-§7.2): sparse
 shift-invert equals dense, platform shapes are mass-normalised with the held DOFs zero, and
 the cable energies and node shapes of the lumped model."""
 
@@ -6,7 +6,7 @@ import numpy as np
 from conftest import linearised, point_mass_robot
 
 import dynstiff as ds
-from dynstiff import eigen_matrix
+from dynstiff.analyses import eigen_matrix
 from dynstiff.lumped import LumpedModalResult
 
 

@@ -1,10 +1,10 @@
-"""Refined frequency grids (dynstiff/freqgrid.py, theory.md §12.3)."""
+"""Refined frequency grids (dynstiff/analyses/freqgrid.py, theory.md §12.3)."""
 
 import numpy as np
 import pytest
 
+from dynstiff.analyses.freqgrid import refined_grid
 from dynstiff.errors import InvalidParameterError
-from dynstiff.freqgrid import refined_grid
 
 
 def lorentz_peak(f, f0, zeta):

@@ -1,4 +1,4 @@
-"""Frequency response functions (dynstiff/frf.py, theory.md §4): reciprocity, peaks at the
+"""Frequency response functions (dynstiff/analyses/frf.py, theory.md §4): reciprocity, peaks at the
 eigenfrequencies, an exact pole, and channels on held DOFs refused by the closed-form and
 the lumped model alike."""
 
@@ -49,7 +49,7 @@ def test_frf_exact_pole_warns_and_returns_inf(cogiro_eq):
     with pytest.warns(PoleWarning, match=r"e\.g\. 0\.159154943 Hz") as record:  # 1 rad/s
         H = ds.frf(Singular(ds.FrequencyModel(cogiro_eq)), [1.0, 2.0]).H
     # the warning points at the caller, not into the module
-    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/frf.py")
+    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/analyses/frf.py")
     assert np.all(np.isinf(H[0])) and np.all(np.isfinite(H[1]))
 
 

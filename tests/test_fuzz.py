@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.checks import design_checks
+from dynstiff.analyses.checks import design_checks
 from dynstiff.cli import main
 from dynstiff.errors import DynstiffError, PoleWarning
 

@@ -6,14 +6,14 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.errors import InvalidParameterError, SlackCableError
-from dynstiff.interaction import (
+from dynstiff.analyses.interaction import (
     UNTRACKED,
     ProximityWarning,
     proximity_warnings,
     sweep,
     to_frame,
 )
+from dynstiff.errors import InvalidParameterError, SlackCableError
 
 COLUMNS = ["step", "value", "mode", "track", "freq [Hz]", "kind", "cable energy fraction [-]",
            "massless freq [Hz]"]
@@ -136,7 +136,7 @@ def test_one_global_and_one_local_mode_make_one_pair():
     with pytest.warns(ProximityWarning) as record:
         proximity_warnings(m, rtol=0.01, warn=True)
     # issued at the caller, not inside the module
-    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/interaction.py")
+    assert not record[0].filename.replace("\\", "/").endswith("dynstiff/analyses/interaction.py")
 
 
 def test_proximity_without_local_modes_is_empty():
@@ -429,7 +429,7 @@ def test_veering_plot_draws_into_the_given_axes_with_or_without_local_modes(path
 def test_mac_is_one_for_a_mode_with_itself_and_zero_for_m_orthogonal_modes():
     """MAC(x, y) = (x^T M y)^2 / ((x^T M x)(y^T M y)) with M the mean of the two mass
     matrices: 1 on the diagonal for M-orthogonal modes, 0 off it, invariant to scaling."""
-    from dynstiff.interaction import _mac
+    from dynstiff.analyses.interaction import _mac
     rng = np.random.default_rng(3)
     A = rng.normal(size=(4, 4))
     M = A @ A.T + 4 * np.eye(4)

@@ -1,4 +1,4 @@
-"""Closed-form against lumped modes (dynstiff.lumped.compare.compare_modes): matched by
+"""Closed-form against lumped modes (dynstiff.analyses.compare_lumped.compare_modes): matched by
 frequency and platform-shape MAC, unmatched rows kept, bad inputs named."""
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Measurements in (dynstiff/measured.py, theory.md §15.5): measured-mode tables and FRF files
+"""Measurements in (dynstiff/analyses/measured.py, theory.md §15.5): measured-mode tables and FRF files
 read back, MAC pairing finds a shuffled set of modes, comparisons tabulate and plot."""
 
 import matplotlib
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.measured import (
+from dynstiff.analyses.measured import (
     MeasuredModes,
     compare_frf,
     compare_modes,

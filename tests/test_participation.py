@@ -1,4 +1,4 @@
-"""Platform participation and receptance amplification (dynstiff/participation.py,
+"""Platform participation and receptance amplification (dynstiff/analyses/participation.py,
 theory.md §12.1)."""
 
 import dataclasses
@@ -7,14 +7,14 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.errors import InvalidParameterError
-from dynstiff.participation import (
+from dynstiff.analyses.participation import (
     GLOBAL_SHARE,
     PLATFORM_SHARE_THRESHOLD,
     categories,
     platform_participation,
     receptance_amplification,
 )
+from dynstiff.errors import InvalidParameterError
 
 
 def with_mass(robot, mass):

@@ -244,7 +244,7 @@ def test_speed_accuracy_rejects_missing_column():
 def test_frf_units_on_axis_and_in_the_table():
     """One unit for all curves goes on the axis label; mixed units go into the legend; the
     tidy table carries the unit of every row."""
-    from dynstiff.frf import FRFResult
+    from dynstiff.analyses.frf import FRFResult
     H = np.ones((3, 2, 2), dtype=complex)
     f = np.array([1.0, 2.0, 3.0])
     res = FRFResult(freq_hz=f, H=H, inputs=("fz", "mx"), outputs=("z", "rx"), kind="mobility")

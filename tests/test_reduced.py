@@ -1,4 +1,4 @@
-"""Reduced modal model and its python-control StateSpace (dynstiff/reduced.py, theory.md
+"""Reduced modal model and its python-control StateSpace (dynstiff/analyses/reduced.py, theory.md
 §15.4): exact modal masses against the closed-form cable kinetic energies, the expansion's
 FRF against the full closed-form FRF below the highest kept mode, the residual flexibility,
 and the state-space realisation against the expansion."""
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.reduced import ModalModel, modal_model, to_statespace
+from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
 
 FMAX = 8.0            # [Hz]: CoGiRo's modes below it, 38 with the platform moving
 
@@ -23,7 +23,7 @@ def mm(dsm):
 
 
 def test_complex_step_derivative_matches_finite_differences(dsm):
-    from dynstiff.reduced import _dK_domega2
+    from dynstiff.analyses.reduced import _dK_domega2
     w = 2 * np.pi * 2.0
     h = 1e-5 * w
     fd = (dsm.dynamic_stiffness([w + h])[0] - dsm.dynamic_stiffness([w - h])[0]) / (4 * w * h)

@@ -1,12 +1,12 @@
-"""One source of the analysis defaults (dynstiff/settings.py)."""
+"""One source of the analysis defaults (dynstiff/analyses/settings.py)."""
 
 import dataclasses
 
 import pytest
 
 import dynstiff as ds
+from dynstiff.analyses.settings import DEFAULT_BAND_HZ, analysis_settings
 from dynstiff.errors import InvalidParameterError
-from dynstiff.settings import DEFAULT_BAND_HZ, analysis_settings
 
 
 def test_scene_values_then_defaults_then_overrides():

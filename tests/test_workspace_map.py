@@ -9,7 +9,7 @@ import pytest
 import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
-from dynstiff.checks import design_checks
+from dynstiff.analyses.checks import design_checks
 from dynstiff.workspace_map import CHECKS, box_grid, workspace
 
 N_MODES = 6

@@ -11,7 +11,7 @@ import dataclasses
 import numpy as np
 
 import dynstiff as ds
-from dynstiff.checks import damped_model
+from dynstiff.analyses.checks import damped_model
 
 
 def _with_mass(robot, mass):

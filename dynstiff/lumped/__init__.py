@@ -3,13 +3,13 @@ closed-form dynamic stiffness (theory.md §7): one chain, the nonlinear robot
 (:class:`LumpedMassModel`), its linearisation (:class:`LumpedLinearModel`, the "lumped" rung)
 and its time-domain simulation."""
 
+from dynstiff.analyses.compare_lumped import compare_modes
 from dynstiff.cable.lumped_chain import ChainState, chain_equilibrium
 from dynstiff.cable.lumped_chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
     chain_matrices,
 )
-from dynstiff.lumped.compare import compare_modes
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
 from dynstiff.results import LumpedModalResult

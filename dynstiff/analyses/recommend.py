@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.cable.dsm import cable_mode_count, chord_parameters, closed_form_validity
-from dynstiff.eigen import eigenfrequencies
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, StaticCableModel

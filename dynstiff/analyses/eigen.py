@@ -25,8 +25,9 @@ from numbers import Integral, Real
 
 import numpy as np
 
-from dynstiff import compiled, eigen_matrix
+from dynstiff import compiled
 from dynstiff._validate import omega_array
+from dynstiff.analyses import eigen_matrix
 from dynstiff.cable.dsm import check_frequency_range
 from dynstiff.errors import (
     ConvergenceError,
@@ -391,7 +392,7 @@ def modes(model, n_modes=None, fmax_hz=None, method="auto"):
     """Natural frequencies with platform shapes, energy fractions and global/local labels.
 
     For a discrete rung (``method`` "auto" or "matrix"), the mode vectors of the finite
-    eigenproblem (:func:`dynstiff.eigen_matrix.modes`). Otherwise the platform shape at
+    eigenproblem (:func:`dynstiff.analyses.eigen_matrix.modes`). Otherwise the platform shape at
     omega_r is the eigenvector of K(omega_r) with the smallest |eigenvalue|; at a root that
     sits on a cable pole with the platform at rest (a purely local mode, counted by J0), the
     platform shape is zero and the mode is all cable. Kinetic energies: platform x^T M_p x,

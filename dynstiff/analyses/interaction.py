@@ -32,7 +32,7 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.eigen import modes
+from dynstiff.analyses.eigen import modes
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.equilibrium import Equilibrium
@@ -121,7 +121,7 @@ def proximity_warnings(modes, rtol=0.05, warn=False):
     Parameters
     ----------
     modes : ModalResult
-        From :func:`dynstiff.eigen.modes`.
+        From :func:`dynstiff.analyses.eigen.modes`.
     rtol : float
         Largest relative gap [-], > 0 (default 0.05).
     warn : bool

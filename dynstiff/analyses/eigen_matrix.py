@@ -2,7 +2,7 @@
 
 For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.model_base`):
 dense ``eigh`` for small models, sparse shift-invert Lanczos otherwise (theory.md §7.1-§7.2).
-Reached through :func:`dynstiff.eigen.eigenfrequencies` and :func:`dynstiff.eigen.modes`.
+Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and :func:`dynstiff.analyses.eigen.modes`.
 """
 
 import numpy as np
@@ -100,7 +100,7 @@ def _lowest(model, n_modes, fmax_hz):
 
 def eigenfrequencies(model, n_modes=None, fmax_hz=None):
     """Lowest natural frequencies [Hz], ascending (validated request, see
-    :func:`dynstiff.eigen.eigenfrequencies`); an unstable equilibrium's negative eigenvalue
+    :func:`dynstiff.analyses.eigen.eigenfrequencies`); an unstable equilibrium's negative eigenvalue
     lambda is reported as -sqrt(-lambda) / 2 pi."""
     return _to_hz(_lowest(model, n_modes, fmax_hz)[0])
 

@@ -1,12 +1,12 @@
 """Complex natural frequencies of the damped robot (convention e^{i omega t}, theory.md §5.4).
 
-Seeded by the undamped modes of :func:`dynstiff.eigen.modes`, for a model of any rung whose
+Seeded by the undamped modes of :func:`dynstiff.analyses.eigen.modes`, for a model of any rung whose
 ``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.model_base`).
 """
 
 import numpy as np
 
-from dynstiff.eigen import modes
+from dynstiff.analyses.eigen import modes
 from dynstiff.results import DampedModes
 
 __all__ = ["damped_modes", "DampedModes"]
@@ -58,7 +58,7 @@ def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
     ----------
     model : model of any rung (:mod:`dynstiff.model_base`); its ``dynamic_stiffness``
         must accept complex omega.
-    n_modes, fmax_hz : as :func:`dynstiff.eigen.eigenfrequencies`
+    n_modes, fmax_hz : as :func:`dynstiff.analyses.eigen.eigenfrequencies`
     tol : float
         Relative step at which the secant iteration stops.
     max_iter : int

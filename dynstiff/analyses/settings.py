@@ -11,12 +11,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dynstiff.checks import damped_model
+from dynstiff.analyses.checks import damped_model
+from dynstiff.analyses.participation import (
+    FRF_AMPLIFICATION_LIMIT,
+    PLATFORM_SHARE_THRESHOLD,
+)
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.exact import DEFAULT_FMAX_HZ
 from dynstiff.models.ladder import RUNGS
 from dynstiff.params import Damping
-from dynstiff.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 
 __all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL"]
 
@@ -96,7 +99,7 @@ class AnalysisSettings:
                             self.rung, **self.model_options())
 
     def check_options(self):
-        """Keyword arguments of :func:`dynstiff.checks.design_checks`."""
+        """Keyword arguments of :func:`dynstiff.analyses.checks.design_checks`."""
         return dict(band_hz=self.forbidden_hz, margin=self.margin,
                     model_rtol=self.model_rtol, rung=self.rung,
                     participation=self.participation, frf_limit=self.frf_limit,

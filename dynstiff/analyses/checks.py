@@ -9,18 +9,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.eigen import modes as modal
-from dynstiff.errors import DynstiffError, InvalidParameterError
-from dynstiff.interaction import proximity_warnings
-from dynstiff.models.ladder import RUNGS, build_model
-from dynstiff.params import DEFAULT_DAMPING, Damping
-from dynstiff.participation import (
+from dynstiff.analyses.eigen import modes as modal
+from dynstiff.analyses.interaction import proximity_warnings
+from dynstiff.analyses.participation import (
     FRF_AMPLIFICATION_LIMIT,
     PLATFORM_SHARE_THRESHOLD,
     platform_participation,
     receptance_amplification,
 )
-from dynstiff.recommend import recommend_model
+from dynstiff.analyses.recommend import recommend_model
+from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.models.ladder import RUNGS, build_model
+from dynstiff.params import DEFAULT_DAMPING, Damping
 
 __all__ = ["CheckResult", "design_checks", "damped_model"]
 
@@ -120,11 +120,11 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         Relative frequency margin of the checked modes to the band [-].
     participation : float
         Platform share of the kinetic energy from which a mode is held to the margin [-]
-        (default :data:`dynstiff.participation.PLATFORM_SHARE_THRESHOLD`, theory.md §12.1).
+        (default :data:`dynstiff.analyses.participation.PLATFORM_SHARE_THRESHOLD`, theory.md §12.1).
     frf_limit : float
         Largest admissible |H_jj(f)| / |H_jj(0)| of a direct platform receptance in the
         forbidden band [-] (default
-        :data:`dynstiff.participation.FRF_AMPLIFICATION_LIMIT`).
+        :data:`dynstiff.analyses.participation.FRF_AMPLIFICATION_LIMIT`).
     damping : Damping
         Damping of the FRF check (closed-form model, :func:`damped_model`).
     model_band_hz : (float, float), optional

@@ -37,7 +37,7 @@ Every evaluation solves the inverse statics at the pose again (EA and mass chang
 equilibrium) and the modes of the chosen rung, paired with the measured ones at every
 evaluation: by MAC with the measured shapes when there are some, otherwise the k-th measured
 frequency with the continuation of the k-th platform mode of the massless-cable model
-(:func:`dynstiff.measured.massless_pairing`), which keeps its order while E moves the whole
+(:func:`dynstiff.analyses.measured.massless_pairing`), which keeps its order while E moves the whole
 spectrum. The sensitivities at the estimate are central differences (step 1e-4 in ln p).
 """
 
@@ -45,11 +45,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from dynstiff.damped import damped_modes
-from dynstiff.eigen import modes
+from dynstiff.analyses.damped import damped_modes
+from dynstiff.analyses.eigen import modes
+from dynstiff.analyses.frf import frf as frf_of
+from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
 from dynstiff.errors import ConvergenceError, InvalidParameterError
-from dynstiff.frf import frf as frf_of
-from dynstiff.measured import MeasuredModes, massless_pairing, pair_modes
 from dynstiff.models.ladder import build_model
 
 __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
@@ -238,9 +238,9 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     rung : str
         Model of the cables (:func:`dynstiff.build_model`); ``model_options`` go there.
     pairing : {"mac", "massless"}, optional
-        "mac" (default with measured shapes): :func:`dynstiff.measured.pair_modes`;
+        "mac" (default with measured shapes): :func:`dynstiff.analyses.measured.pair_modes`;
         "massless" (default without): the k-th measured mode is the continuation of the k-th
-        massless-cable platform mode (:func:`dynstiff.measured.massless_pairing`).
+        massless-cable platform mode (:func:`dynstiff.analyses.measured.massless_pairing`).
     confidence : float
         Level of the intervals, in (0, 1).
     bounds : (float, float)

@@ -25,9 +25,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dynstiff.eigen import eigenfrequencies
+from dynstiff.analyses.eigen import eigenfrequencies
+from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
-from dynstiff.frf import channel_maps
 from dynstiff.io.exchange import require
 from dynstiff.models.base import require_model
 

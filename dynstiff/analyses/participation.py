@@ -22,10 +22,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynstiff._validate import positive_scalar
+from dynstiff.analyses.freqgrid import refined_grid
+from dynstiff.analyses.frf import frf
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
-from dynstiff.freqgrid import refined_grid
-from dynstiff.frf import frf
 
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
            "Participation", "platform_participation", "categories", "receptance_amplification"]
@@ -133,7 +133,7 @@ def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 
     |H_jj(f)| / |H_jj(0)| over the free DOFs j and the frequencies of
-    :func:`dynstiff.freqgrid.refined_grid` (uniform, plus clusters at ``modes_hz``), for the
+    :func:`dynstiff.analyses.freqgrid.refined_grid` (uniform, plus clusters at ``modes_hz``), for the
     (damped) ``model``; an undamped model at a resonance gives inf.
 
     Parameters
