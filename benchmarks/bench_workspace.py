@@ -33,7 +33,7 @@ import numpy as np
 
 import dynstiff as ds
 from dynstiff.robot import statics
-from dynstiff.workspace_map import evaluate_chunk
+from dynstiff.maps.workspace import evaluate_chunk
 
 N_MODES = 20
 BAND = (0.0, 1.5)

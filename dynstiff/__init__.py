@@ -66,7 +66,7 @@ from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
-from dynstiff.workspace_map import box_grid, workspace
+from dynstiff.maps.workspace import box_grid, workspace
 
 __all__ = [
     "calibrate",

@@ -64,7 +64,7 @@ def _cmd_workspace(args):
 
     from dynstiff.errors import InvalidParameterError
     from dynstiff.scenes import load_scene
-    from dynstiff.workspace_map import workspace
+    from dynstiff.maps.workspace import workspace
     out = Path(args.out)
     if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
         raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "

@@ -17,7 +17,7 @@ def run(*args, cwd):
 
 @pytest.mark.integration
 def test_workspace_command_writes_map_figure_and_table(tmp_path):
-    from dynstiff.workspace_data import open_workspace
+    from dynstiff.maps.dataset import open_workspace
     (tmp_path / "rot.txt").write_text("# rx ry rz\n0 0 0\n0 0 0.1\n")
     r = run("cogiro", "--box", "-6", "6", "0", "0", "1", "1", "--step", "6",
             "--orientations", "rot.txt", "-n", "3", "--out", "map.nc", "--plot", "map.png",

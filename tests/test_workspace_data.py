@@ -1,4 +1,4 @@
-"""Workspace maps as data (dynstiff/workspace_data.py): units and provenance, the netCDF
+"""Workspace maps as data (dynstiff/maps/dataset.py): units and provenance, the netCDF
 round trip (bool verdicts and the reasons of failures restored), the tidy tables."""
 
 import numpy as np
@@ -7,7 +7,7 @@ import pytest
 import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
-from dynstiff.workspace_data import VARIABLES, open_workspace
+from dynstiff.maps.dataset import VARIABLES, open_workspace
 
 POSES = [[0.0, 0.0, 1.0], [9.0, 0.0, 1.0], [1.0, 1.0, 2.0]]
 

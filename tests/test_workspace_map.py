@@ -1,4 +1,4 @@
-"""Workspace maps (dynstiff/workspace_map.py, docs/theory.md §13): per-pose values against the
+"""Workspace maps (dynstiff/maps/workspace.py, docs/theory.md §13): per-pose values against the
 single-pose analyses, recorded failures in input order, the band margin's definition, the
 cable-parameter dimension, independence of the chunking, argument checks, and (integration
 tier) the same Dataset from local processes and from a real Dask cluster."""
@@ -10,7 +10,7 @@ import dynstiff as ds
 
 xr = pytest.importorskip("xarray")
 from dynstiff.analyses.checks import design_checks
-from dynstiff.workspace_map import CHECKS, box_grid, workspace
+from dynstiff.maps.workspace import CHECKS, box_grid, workspace
 
 N_MODES = 6
 BAND = (0.0, 1.5)
@@ -149,7 +149,7 @@ def test_platform_participation_from_the_derivative_of_k_equals_the_cable_energi
     """-x^T dK/d(omega^2) x is the total modal mass (docs/theory.md §13.3): the platform
     share from it equals 1 - the closed-form cable energy fraction of dynstiff.modes
     (1e-8) over 30 modes, global and local."""
-    from dynstiff.workspace_map import platform_participation
+    from dynstiff.maps.workspace import platform_participation
     m = ds.build_model(robot.equilibrium(pose=position), "dsm")
     res = ds.modes(m, n_modes=30)
     np.testing.assert_allclose(platform_participation(m, res.freq_hz),
@@ -161,7 +161,7 @@ def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies
     """With a step so wide that cable poles fall inside it, every such mode takes the
     closed-form cable energies: the result still equals dynstiff.modes."""
     import importlib
-    wsmod = importlib.import_module("dynstiff.workspace_map")
+    wsmod = importlib.import_module("dynstiff.maps.workspace")
     m = ds.build_model(robot.equilibrium(pose=[0.0, 0.0, 1.0]), "dsm")
     res = ds.modes(m, n_modes=12)
     monkeypatch.setattr(wsmod, "_FD_STEP", 0.2)
@@ -180,7 +180,7 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
     finite-difference derivative (§13.3), which magnifies round-off."""
     from dynstiff.robot import statics
-    from dynstiff.workspace_map import evaluate_chunk
+    from dynstiff.maps.workspace import evaluate_chunk
 
     grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
                                 np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)
@@ -249,7 +249,7 @@ def test_batched_participation_equals_the_mode_by_mode_one(robot, position):
     """The batched platform participation equals the mode-by-mode form to 1e-12 over 30
     modes; at a cable pole (a local mode there, the platform at rest, and modes with a pole
     within the steps) too."""
-    from dynstiff.workspace_map import platform_participation
+    from dynstiff.maps.workspace import platform_participation
     m = ds.build_model(robot.equilibrium(pose=position), "dsm")
     f = ds.eigenfrequencies(m, n_modes=30)
     np.testing.assert_allclose(platform_participation(m, f), _participation_mode_by_mode(m, f),

@@ -22,7 +22,7 @@ def worst_case(ds):
     if not all(d in ds.dims for d in ("x", "y", "z")):
         raise InvalidParameterError(
             "the workspace figures need a grid map (dimensions x, y, z): give box= to "
-            "dynstiff.workspace_map")
+            "dynstiff.maps.workspace")
     red = [d for d in _REDUCED if d in ds.dims]
     f1 = ds["first_global_hz"].min(red, skipna=False) if red else ds["first_global_hz"]
     mg = ds["band_margin"].min(red, skipna=False) if red else ds["band_margin"]

@@ -65,7 +65,7 @@ def to_dataset(robot, X, layout, parameter, values, results, settings):
         ``kind`` "grid" (with ``axes`` and ``orientations``) or "poses".
     parameter : str or None; values : ndarray or None
     results : list of dict
-        :func:`dynstiff.workspace_map.evaluate_chunk` outputs in task order (parameter value
+        :func:`dynstiff.maps.workspace.evaluate_chunk` outputs in task order (parameter value
         outer, poses inner).
     settings : dict
         Analysis settings, stored as attributes, and ``checks`` (the check names).

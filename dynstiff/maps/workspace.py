@@ -201,7 +201,7 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
     Returns
     -------
     dict of ndarray
-        Keys of :data:`dynstiff.workspace_data.VARIABLES` plus ``reason`` (list of str);
+        Keys of :data:`dynstiff.maps.dataset.VARIABLES` plus ``reason`` (list of str);
         leading axis k.
     """
     k, n, m = len(poses), robot.n_cables, n_modes
@@ -432,13 +432,13 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
     -------
     xarray.Dataset
         Dimensions ``x, y, z[, orientation]`` (or ``pose``) ``[, parameter], mode, cable,
-        check``; variables and attributes as :func:`dynstiff.workspace_data.to_dataset`.
+        check``; variables and attributes as :func:`dynstiff.maps.dataset.to_dataset`.
         Infeasible poses hold ``feasible = False``, their ``reason`` and NaN.
     """
     X, layout, values, band_hz = _validated(
         robot, poses, box, step, orientations, parameter, values, n_modes, band_hz, margin,
         proximity_rtol, max_sag_ratio, rung, chunk_size, workers, client)
-    from dynstiff.workspace_data import to_dataset
+    from dynstiff.maps.dataset import to_dataset
     robots = ([robot] if parameter is None
               else [_robot_with(robot, parameter, v) for v in values])
     tasks = []
