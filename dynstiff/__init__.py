@@ -59,6 +59,7 @@ from dynstiff.errors import (
     UnsupportedAnalysisError,
 )
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
+from dynstiff.maps.workspace import box_grid, workspace
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
 from dynstiff.params import Cable, Damping
@@ -66,7 +67,6 @@ from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
-from dynstiff.maps.workspace import box_grid, workspace
 
 __all__ = [
     "calibrate",

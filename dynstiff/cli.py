@@ -33,7 +33,7 @@ def _settings(scene, args):
 
 
 def _cmd_report(args):
-    from dynstiff.demo import robot_report
+    from dynstiff.report.robot import robot_report
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     settings = _settings(scene, args)
@@ -45,12 +45,12 @@ def _cmd_report(args):
 
 def _cmd_demo(args):
     if args.cable:
-        from dynstiff.report import cable_report, write_report
+        from dynstiff.report.cable import cable_report, write_report
         rep = cable_report(fmax_hz=args.fmax or 12.0, n_points=args.points)
         files = write_report(rep, args.out)
         _info(args).write(rep.text())
     else:
-        from dynstiff.demo import robot_report
+        from dynstiff.report.robot import robot_report
         from dynstiff.scenes import load_scene
         scene = load_scene(args.scene)
         settings = _settings(scene, args)          # every input checked before any file

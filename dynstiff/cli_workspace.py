@@ -63,8 +63,8 @@ def _cmd_workspace(args):
     import numpy as np
 
     from dynstiff.errors import InvalidParameterError
-    from dynstiff.scenes import load_scene
     from dynstiff.maps.workspace import workspace
+    from dynstiff.scenes import load_scene
     out = Path(args.out)
     if out.suffix not in (".nc", ".zarr") or not out.parent.is_dir():
         raise InvalidParameterError(f"--out {args.out}: give NAME.nc or NAME.zarr in an "

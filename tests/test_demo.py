@@ -1,4 +1,4 @@
-"""The main job of `dynstiff demo` (dynstiff/demo.py, robot_report), run in-process; the
+"""The main job of `dynstiff demo` (dynstiff/report/robot.py, robot_report), run in-process; the
 command itself is run in test_cli.py."""
 
 
@@ -7,7 +7,7 @@ def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
     below 12 Hz is marked on it (the W-W count up to 12 Hz), not only the table's."""
     import dynstiff as ds
     import dynstiff.plot
-    from dynstiff.demo import robot_report
+    from dynstiff.report.robot import robot_report
     seen = {}
     real = dynstiff.plot.plot_frf
 

@@ -1,4 +1,4 @@
-"""The self-contained HTML page (dynstiff/htmlreport.py)."""
+"""The self-contained HTML page (dynstiff/report/html.py)."""
 
 import base64
 from html.parser import HTMLParser
@@ -6,7 +6,7 @@ from html.parser import HTMLParser
 import pandas as pd
 import pytest
 
-from dynstiff.htmlreport import html_page
+from dynstiff.report.html import html_page
 
 
 class Parse(HTMLParser):

@@ -1,4 +1,4 @@
-"""3-D robot view and mode animation (dynstiff.plot3d): the figures hold the data they claim
+"""3-D robot view and mode animation (dynstiff.report.robot3d): the figures hold the data they claim
 to.
 
 Every test reads the artists back (line data, gids, titles, frames) and compares them with
@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import dynstiff as ds  # noqa: E402
 from dynstiff.analyses.eigen import cable_fields  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot3d import animate_mode, plot_robot  # noqa: E402
+from dynstiff.report.robot3d import animate_mode, plot_robot  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

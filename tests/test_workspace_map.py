@@ -179,8 +179,8 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     distributions: the same feasibility, reasons and verdicts; tensions, lengths, sag,
     frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
     finite-difference derivative (§13.3), which magnifies round-off."""
-    from dynstiff.robot import statics
     from dynstiff.maps.workspace import evaluate_chunk
+    from dynstiff.robot import statics
 
     grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
                                 np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)

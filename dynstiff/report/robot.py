@@ -61,9 +61,9 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     from dynstiff.analyses.participation import platform_participation
     from dynstiff.analyses.recommend import recommend_model
     from dynstiff.analyses.settings import analysis_settings
-    from dynstiff.htmlreport import figure_png, html_page
     from dynstiff.plot import plot_frf
-    from dynstiff.plot3d import plot_robot
+    from dynstiff.report.html import figure_png, html_page
+    from dynstiff.report.robot3d import plot_robot
 
     st = settings or analysis_settings(scene)
     eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing
