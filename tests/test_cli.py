@@ -1,4 +1,4 @@
-"""The command line (dynstiff/cli.py, `python -m dynstiff`), run in subprocesses: demo,
+"""The command line (dynstiff/cli/__init__.py, `python -m dynstiff`), run in subprocesses: demo,
 modes, frf, sweep, simulate and check; their tables and figures are read back and compared
 with the library, and bad arguments exit with status 2 and a message naming them."""
 

@@ -1,4 +1,4 @@
-"""The subcommands of dynstiff/cli_exchange.py run in subprocesses: import-caspr writes a
+"""The subcommands of dynstiff/cli/exchange.py run in subprocesses: import-caspr writes a
 scene that loads and equals the built-in CoGiRo; bad files fail in one line."""
 
 import subprocess

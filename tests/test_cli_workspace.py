@@ -1,4 +1,4 @@
-"""The ``dynstiff workspace`` command (dynstiff/cli_workspace.py): a small CoGiRo map
+"""The ``dynstiff workspace`` command (dynstiff/cli/workspace.py): a small CoGiRo map
 written to netCDF with its figure and table, in a subprocess; argument errors on one line."""
 
 import subprocess

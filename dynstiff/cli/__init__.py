@@ -596,9 +596,9 @@ def build_parser():
     si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
     si.add_argument("--quiet", action="store_true", help="no progress bar")
     si.set_defaults(func=_cmd_simulate)
-    from dynstiff.cli_exchange import add_commands
+    from dynstiff.cli.exchange import add_commands
     add_commands(sub)
-    from dynstiff.cli_workspace import add_workspace_parser
+    from dynstiff.cli.workspace import add_workspace_parser
     add_workspace_parser(sub)
     return parser
 
