@@ -43,8 +43,13 @@ import time
 import numpy as np
 
 import dynstiff as ds
-from dynstiff.lumped import (IntegrationError, LumpedMassModel, TimeDamping, explicit_step_limit,
-                             simulate)
+from dynstiff.lumped import (
+    IntegrationError,
+    LumpedMassModel,
+    TimeDamping,
+    explicit_step_limit,
+    simulate,
+)
 
 A0 = np.array([-7.1775, -5.4361, 5.3911])          # CoGiRo anchor a_0 (Table I) [m]
 B0 = np.array([0.5032, -0.4928, 1.0])              # b_0 with the platform at (0, 0, 1) m

@@ -32,8 +32,8 @@ from contextlib import contextmanager
 import numpy as np
 
 import dynstiff as ds
-from dynstiff.robot import statics
 from dynstiff.maps.workspace import evaluate_chunk
+from dynstiff.robot import statics
 
 N_MODES = 20
 BAND = (0.0, 1.5)

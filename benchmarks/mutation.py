@@ -153,9 +153,9 @@ EQUIVALENT.update({
         "is still above max_iter, which is what the caller tests",
 })
 EQUIVALENT.update({
-    "dynstiff.cable.dsm.xǁClosedFormValidityǁreasons__mutmut_23":
+    "dynstiff.cable.guard.xǁClosedFormValidityǁreasons__mutmut_23":
         "e >= rtol instead of e > rtol: differs only at exactly rtol",
-    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_11":
+    "dynstiff.cable.psi.x_mode_count_psi__mutmut_11":
         "c / (+-1) equals c * (+-1)",
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_29":
         "one of the catenary Newton's starting guesses: the solution it converges to, "
@@ -259,7 +259,7 @@ EQUIVALENT.update({f"{_CE}xǁExactCableǁend_response__mutmut_{n}": _ERRSTATE
 _GROW = ("the first band tried for the exact clamped modes (or the loop bound, or one more "
          "mode than needed): the band grows by 1.5 until it holds n modes, and modes inside "
          "the band are exact whatever band was asked")
-EQUIVALENT.update({f"dynstiff.cable.dsm.x__exact_modes__mutmut_{n}": _GROW
+EQUIVALENT.update({f"dynstiff.cable.modes.x__exact_modes__mutmut_{n}": _GROW
                    for n in (2, 3, 4, 5, 6, 9, 17, 19)})
 EQUIVALENT.update({
     "dynstiff.cable.dsm.x_block_coefficients__mutmut_1":
@@ -267,9 +267,9 @@ EQUIVALENT.update({
     "dynstiff.cable.dsm.x_block_coefficients__mutmut_2":
         "default blocks='end' changed: any value but 'both' gives the end block",
     "dynstiff.cable.dsm.x_block_coefficients__mutmut_35": "kw_s - 0 equals kw_s + 0",
-    "dynstiff.cable.dsm.x__guard_cable__mutmut_17":
+    "dynstiff.cable.guard.x_guard_cable__mutmut_17":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
-    "dynstiff.cable.dsm.x__guard_cable__mutmut_26":
+    "dynstiff.cable.guard.x_guard_cable__mutmut_26":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
     "dynstiff.analyses.interaction.x__mac__mutmut_3":
         "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
@@ -300,11 +300,11 @@ EQUIVALENT.update({
         "omega is real here (complex omega is refused by the validation)",
     "dynstiff.cable.dsm.x_cable_dynamic_stiffness__mutmut_29":
         "the exact cable's band floored at 1 rad/s: modes inside any band are exact",
-    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_1":
+    "dynstiff.cable.dsm.x_lowest_string_omega__mutmut_1":
         "the floor of the exact cable's band only: results inside any band are exact",
-    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_2":
+    "dynstiff.cable.dsm.x_lowest_string_omega__mutmut_2":
         "the floor of the exact cable's band only: results inside any band are exact",
-    "dynstiff.cable.dsm.x__lowest_string_omega__mutmut_4":
+    "dynstiff.cable.dsm.x_lowest_string_omega__mutmut_4":
         "the floor of the exact cable's band only: results inside any band are exact",
 })
 EQUIVALENT.update({"dynstiff.analyses.interaction.x__mac__mutmut_16": _EINSUM,
@@ -407,14 +407,14 @@ EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁstatic_error__mutmut_65":
         "lam >= 0 instead of > 0: differs only for an exactly zero eigenvalue of the "
         "positive definite static stiffness",
-    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_24":
+    "dynstiff.cable.psi.x_mode_count_psi__mutmut_24":
         "-2 instead of -1 in a factor whose sign alone is tested",
-    "dynstiff.cable.dsm.x_check_frequency_range__mutmut_34":
+    "dynstiff.cable.psi.x_check_frequency_range__mutmut_34":
         "omega as a column for a single cable too: psi is elementwise, the same maximum",
-    "dynstiff.cable.dsm.x__guard_cable__mutmut_55":
+    "dynstiff.cable.guard.x_guard_cable__mutmut_55":
         "cable=None dropped: None is the warning's default",
-    "dynstiff.cable.dsm.x__exact_modes__mutmut_22": _FIRST_BAND,
-    "dynstiff.cable.dsm.x__exact_modes__mutmut_24": _FIRST_BAND,
+    "dynstiff.cable.modes.x__exact_modes__mutmut_22": _FIRST_BAND,
+    "dynstiff.cable.modes.x__exact_modes__mutmut_24": _FIRST_BAND,
     f"{_CE}xǁExactCableǁend_response__mutmut_44": _ERRSTATE,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_77": _BOUNDARY,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_83": _ALL_CHORDS,
@@ -541,7 +541,7 @@ EQUIVALENT.update({
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
     "dynstiff.robot.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
-    "dynstiff.cable.dsm.x_check_frequency_range__mutmut_45": _BOUNDARY,
+    "dynstiff.cable.psi.x_check_frequency_range__mutmut_45": _BOUNDARY,
     "dynstiff.cable.catenary.x__newton__mutmut_80": _BOUNDARY,
     "dynstiff.cable.catenary.x__newton__mutmut_70":
         "the catenary Newton's line search accepts a short step only when converged: the "
@@ -587,12 +587,12 @@ EQUIVALENT.update({
         "closed_form_validity given the chord parameters: its tension argument is unused",
     "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_5":
         "the slack cause is 0 or inf: > 1 and > 0 agree",
-    "dynstiff.cable.dsm.x_irvine_symmetric_roots__mutmut_83":
+    "dynstiff.cable.psi.x_irvine_symmetric_roots__mutmut_83":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same roots "
         "to a few ulps",
-    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_25": _BOUNDARY,
-    "dynstiff.cable.dsm.x__mode_count_psi__mutmut_35": _BOUNDARY,
-    "dynstiff.cable.dsm.xǁCableModesǁ__repr____mutmut_4":
+    "dynstiff.cable.psi.x_mode_count_psi__mutmut_25": _BOUNDARY,
+    "dynstiff.cable.psi.x_mode_count_psi__mutmut_35": _BOUNDARY,
+    "dynstiff.cable.modes.xǁCableModesǁ__repr____mutmut_4":
         "the repr of an empty mode table: never built (n_modes >= 1 is enforced)",
     "dynstiff.cable.catenary.x__initial_guesses__mutmut_44": _CAT_START,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,

@@ -42,13 +42,9 @@ from dynstiff.cable.catenary import (
     solve_catenary,
     unstretched_length_for_tension,
 )
-from dynstiff.cable.dsm import (
-    CableModes,
-    cable_dynamic_stiffness,
-    cable_mode_count,
-    cable_natural_frequencies,
-    chord_parameters,
-)
+from dynstiff.cable.dsm import cable_dynamic_stiffness, chord_parameters
+from dynstiff.cable.modes import CableModes, cable_natural_frequencies
+from dynstiff.cable.psi import cable_mode_count
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import (
     ConvergenceError,

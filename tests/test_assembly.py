@@ -317,7 +317,7 @@ def test_guard_warnings_point_at_the_callers_line_and_name_the_slack_cable():
     got = [(w.message.cable, w.message.cause) + _place(w.filename, w.lineno) for w in rec
            if issubclass(w.category, ClosedFormWarning)]
     assert got == [(3, "slack") + _place(__file__, line)]
-    from dynstiff.cable.dsm import DEFAULT_GUARD_RTOL, closed_form_validity
+    from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, closed_form_validity
     reasons = closed_form_validity(eq.states[3]).reasons(DEFAULT_GUARD_RTOL)
     slack = [str(w.message) for w in rec if issubclass(w.category, ClosedFormWarning)][0]
     assert slack == ("cable 3: the closed form does not apply: " + "; ".join(reasons)
@@ -387,7 +387,7 @@ def test_the_static_warning_lists_every_cause_above_a_tenth_of_guard_rtol(cogiro
     """CoGiRo's closed-form static error is 4.6e-5 (cable 1); at guard_rtol = 3e-5 it warns,
     and the message lists the validity's reasons above 3e-6: the sag (9e-5), the chordwise
     weight (5e-5) and the tension variation (2.3e-5, below guard_rtol itself)."""
-    from dynstiff.cable.dsm import closed_form_validity
+    from dynstiff.cable.guard import closed_form_validity
     from dynstiff.errors import ClosedFormWarning
     err, i = ds.FrequencyModel(cogiro_eq, guard_rtol=None).static_error()
     with pytest.warns(ClosedFormWarning) as rec:
@@ -433,7 +433,7 @@ def test_a_cable_within_tolerance_does_not_stop_the_check_of_the_others(tension)
     tension up to min(omega, axial), and every cause above a tenth of guard_rtol."""
     import warnings
 
-    from dynstiff.cable.dsm import closed_form_local_error, closed_form_validity
+    from dynstiff.cable.guard import closed_form_local_error, closed_form_validity
     from dynstiff.errors import ClosedFormWarning
     ang = np.radians([90, 210, 330])
     A = np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)])
@@ -468,7 +468,7 @@ def test_cables_measured_within_tolerance_are_passed_over_and_the_rest_said(cogi
     the other six are said in full, each with every cause above a tenth of guard_rtol."""
     import warnings
 
-    from dynstiff.cable.dsm import closed_form_local_error, closed_form_validity
+    from dynstiff.cable.guard import closed_form_local_error, closed_form_validity
     from dynstiff.errors import ClosedFormWarning
     with pytest.warns(ClosedFormWarning, match="static stiffness"):
         m = ds.FrequencyModel(cogiro_eq, guard_rtol=3e-5)

@@ -9,10 +9,10 @@ from hypothesis import strategies as st
 import dynstiff as ds
 from dynstiff.cable.dsm import (
     chord_parameters,
-    irvine_symmetric_roots,
     local_end_stiffness,
     local_two_end_stiffness,
 )
+from dynstiff.cable.psi import irvine_symmetric_roots
 from dynstiff.errors import InvalidParameterError
 
 TWO_PI = 2 * np.pi
@@ -209,7 +209,7 @@ def test_count_equals_number_of_roots_below(lam2, ratio):
     sym = irvine_symmetric_roots(lam2, 25)
     n = np.arange(1, 60)
     expected = np.sum(n * np.pi < Om) + np.sum(2 * n * np.pi < Om) + np.sum(sym < Om)
-    assert ds.cable.dsm.mode_count_nondimensional(np.array([Om]), lam2)[0] == expected
+    assert ds.cable.psi.mode_count_nondimensional(np.array([Om]), lam2)[0] == expected
 
 
 def test_eigenvalues_decrease_between_poles(state300):
@@ -258,7 +258,7 @@ def test_frequencies_beyond_the_closed_forms_range_are_refused(state300):
     exact integers) is an error naming omega and the admissible bound, never an overflowed
     count or a NaN matrix."""
     p = ds.cable.dsm.chord_parameters(state300)
-    w_max = ds.cable.dsm.MAX_OMEGA_ND / (p.L * np.sqrt(p.m / p.T))
+    w_max = ds.cable.psi.MAX_OMEGA_ND / (p.L * np.sqrt(p.m / p.T))
     n = ds.cable_mode_count(state300, 0.999 * w_max)[0]
     assert 0 < n < 2**53
     for w in (1.001 * w_max, 1e20, 1e300):
@@ -313,7 +313,7 @@ def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
     """closed_form_validity (theory.md §11.5): the estimate bounds the measured error of the
     clamped frequencies against the exact model on the hard cases, is inf for a slack U and
     for axial modes in the band, and stays below 1e-3 on CoGiRo's cables."""
-    from dynstiff.cable.dsm import closed_form_local_error, closed_form_validity
+    from dynstiff.cable.guard import closed_form_local_error, closed_form_validity
     slack = ds.solve_catenary([0, 0, 0], [1e-6, 0, 10], 10.1, ds.Cable(0.064, 1.4e5))
     v = closed_form_validity(slack)
     assert np.isinf(v.error) and any("slack" in r for r in v.reasons(1e-2))
@@ -409,10 +409,10 @@ def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_st
     omega are refused (theory.md §14.2)."""
     from dynstiff.cable.chord import stack_parameters
     from dynstiff.cable.dsm import (
-        cable_mode_count,
         end_block_coefficients,
         end_block_coefficients_and_count,
     )
+    from dynstiff.cable.psi import cable_mode_count
     states = [ds.solve_catenary((0, 0, 0), B, L0, ds.Cable(0.064, 139486.7))
               for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]
     w = np.linspace(0.0, 120.0, 57)
@@ -483,7 +483,7 @@ def test_series_coefficients_are_the_taylor_series_of_the_psi_functions():
     here, evaluate E, P~ and Q~ to 1e-15 of their mpmath values at psi^2 = 0.0 .. 1."""
     import mpmath
 
-    from dynstiff.cable.dsm import _series_coefficients
+    from dynstiff.cable.psi import _series_coefficients
     E, P, Q = _series_coefficients()
     for x in (0.0, 0.05, 0.3, 0.7, 1.0):
         with mpmath.workdps(60):
@@ -500,7 +500,7 @@ def test_validity_and_exact_modes_use_the_tension_asked(state300, tension):
     """closed_form_validity's weight ratio is W |h| / (L T) with the T of the tension asked
     (theory.md §11.5), and the exact model's modes give Omega = omega L sqrt(m / T) with
     that T, like the closed form's."""
-    from dynstiff.cable.dsm import closed_form_validity
+    from dynstiff.cable.guard import closed_form_validity
     s = state300
     p = chord_parameters(s, tension)
     v = closed_form_validity(s, tension=tension)
@@ -517,7 +517,7 @@ def test_multiples_below_count_ties_and_roundings_as_the_products_do(step):
     """#{n >= 1 : n step < x} at x = m step (m - 1 of them) and at the next float above it
     (m), for m up to 3000, including the ~10 % of those where x / step rounds back down onto
     m; brute force compares the float products n step themselves."""
-    from dynstiff.cable.dsm import _count_multiples_below
+    from dynstiff.cable.psi import _count_multiples_below
     m = np.arange(1, 3001)
     on = m * step
     above = np.nextafter(on, np.inf)
@@ -531,7 +531,7 @@ def test_multiples_below_count_ties_and_roundings_as_the_products_do(step):
 
 def test_a_complex_frequency_beyond_the_range_is_named_as_given(state300):
     """check_frequency_range names the largest |omega| as given, complex included."""
-    from dynstiff.cable.dsm import check_frequency_range
+    from dynstiff.cable.psi import check_frequency_range
     p = chord_parameters(state300)
     with pytest.raises(InvalidParameterError, match=r"got 1e\+09\+2j$"):
         check_frequency_range(p, np.array([3.0 + 0.1j, 1e9 + 2j]))
@@ -544,8 +544,8 @@ def test_the_measured_local_error_uses_the_tension_asked_for_its_band():
     with the T asked (theory.md §11.5): on a steep sagging cable, whose chord tension is
     34 % below its mean, the chord-tension error is the largest |f_closed / f_exact - 1| of
     the exact cable's non-axial modes in that band, rebuilt here."""
-    from dynstiff.cable.dsm import closed_form_local_error
     from dynstiff.cable.exact import ExactCable
+    from dynstiff.cable.guard import closed_form_local_error
     s = ds.solve_catenary([0, 0, 0], [5.0, 0, 5 * np.sqrt(3)], 10.6, ds.Cable(1.0, 1e6))
     p = chord_parameters(s, "chord")
     band = 8 * np.pi * np.sqrt(p.T / p.m) / p.L

@@ -6,13 +6,14 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.cable.dsm import cable_dynamic_stiffness, cable_natural_frequencies
+from dynstiff.cable.dsm import cable_dynamic_stiffness
 from dynstiff.cable.exact import ExactCable, gll
 from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.cable.lumped_chain_dynamics import (
     chain_end_dynamic_stiffness,
     chain_fixed_end_frequencies,
 )
+from dynstiff.cable.modes import cable_natural_frequencies
 from dynstiff.errors import DynstiffError, InvalidParameterError
 
 TWO_PI = 2 * np.pi

@@ -17,7 +17,6 @@ import pytest
 
 from dynstiff.cable.dsm import (
     ChordParameters,
-    irvine_symmetric_roots,
     local_end_stiffness,
     local_two_end_stiffness,
 )
@@ -27,6 +26,7 @@ from dynstiff.cable.mpmath_reference import (
     params_to_mp_args,
     two_end_stiffness_mp,
 )
+from dynstiff.cable.psi import irvine_symmetric_roots
 
 EPS = np.finfo(float).eps
 _VALIDATION = Path(__file__).resolve().parents[1] / "validation" / "float64_vs_mpmath.py"

@@ -27,14 +27,12 @@ import pandas as pd
 from scipy.optimize import brentq
 
 import dynstiff as ds
-from dynstiff.cable.dsm import (
-    cable_dynamic_stiffness,
-    cable_natural_frequencies,
-    closed_form_validity,
-)
+from dynstiff.cable.dsm import cable_dynamic_stiffness
+from dynstiff.cable.guard import closed_form_validity
+from dynstiff.cable.lumped_chain_dynamics import chain_end_dynamic_stiffness
+from dynstiff.cable.modes import cable_natural_frequencies
 from dynstiff.errors import DynstiffError
 from dynstiff.lumped import chain_equilibrium, chain_fixed_end_frequencies
-from dynstiff.cable.lumped_chain_dynamics import chain_end_dynamic_stiffness
 
 CHORD = 10.0                                   # [m]
 CABLE = ds.Cable(0.064, 1.395e5)               # [kg/m], [N]

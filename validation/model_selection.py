@@ -14,8 +14,8 @@ import numpy as np
 import pandas as pd
 
 import dynstiff as ds
-from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.analyses.recommend import recommend_model
+from dynstiff.models.ladder import RUNGS, build_model
 
 
 def reference_frequencies(eq, fmax_hz, segments=(20, 40)):

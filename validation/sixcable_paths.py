@@ -222,6 +222,7 @@ if __name__ == "__main__":
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     from dynstiff.plot import plot_frf, plot_veering
 
     pd.set_option("display.width", 200)

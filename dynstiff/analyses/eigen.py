@@ -28,7 +28,7 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff.analyses import eigen_matrix
-from dynstiff.cable.dsm import check_frequency_range
+from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import (
     ConvergenceError,
     InvalidParameterError,

@@ -12,7 +12,7 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
-from dynstiff.cable.dsm import check_frequency_range
+from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning
 from dynstiff.models.base import require_model
 from dynstiff.models.dsm import FrequencyModel, compiled_arguments

@@ -15,7 +15,7 @@ Error estimates (relative frequency error, all modes in the band)
   robot dynamic stiffness; "spring" adds its measured gap to "catenary" (the sag effect).
 * "dsm": measured against the exact rung in the band (theory.md §11.5; the exact rung costs
   a few times the closed form); inf when a cable is slack or its axial modes reach the band
-  (the closed form has none, :func:`dynstiff.cable.dsm.closed_form_validity`).
+  (the closed form has none, :func:`dynstiff.cable.guard.closed_form_validity`).
 * "exact": 1e-8, the rounding floor of its discretisation (theory.md §11.2).
 * "lumped": the beaded-string error (n pi / N)^2 / 24 of the highest cable harmonic n in the
   band (theory.md §7.2), with N chosen so that it stays below rtol / 2.
@@ -26,7 +26,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from dynstiff.analyses.eigen import eigenfrequencies
-from dynstiff.cable.dsm import cable_mode_count, chord_parameters, closed_form_validity
+from dynstiff.cable.dsm import chord_parameters
+from dynstiff.cable.guard import closed_form_validity
+from dynstiff.cable.psi import cable_mode_count
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, StaticCableModel

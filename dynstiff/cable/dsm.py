@@ -43,126 +43,29 @@ All matrices give the forces applied **to** the cable ends per unit end displace
 """
 
 import functools
-from dataclasses import dataclass
-from numbers import Integral
 
 import numpy as np
 
 from dynstiff._validate import omega_array
 from dynstiff.cable.chord import ChordParameters, chord_parameters, stack_parameters
 from dynstiff.cable.exact import ExactCable
-from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
+from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
+from dynstiff.cable.psi import (
+    check_frequency_range,
+    mode_count_psi,
+    psi_functions,
+)
+from dynstiff.errors import InvalidParameterError
 
 __all__ = [
-    "ChordParameters",
-    "chord_parameters",
-    "stack_parameters",
-    "local_entries",
-    "end_block_coefficients",
-    "closed_form_validity",
-    "closed_form_local_error",
-    "ClosedFormValidity",
-    "DEFAULT_GUARD_RTOL",
-    "mode_count_nondimensional",
-    "check_frequency_range",
-    "MAX_OMEGA_ND",
-    "cable_field",
-    "cable_kinetic_energy",
-    "local_end_stiffness",
-    "local_two_end_stiffness",
-    "cable_dynamic_stiffness",
-    "cable_mode_count",
-    "CableModes",
-    "cable_natural_frequencies",
-    "DEFAULT_CHORDWISE_INERTIA",
-    "dyad_basis",
-    "block_coefficients",
-    "end_block_coefficients_and_count",
-    "PSI_SERIES",
+    "ChordParameters", "chord_parameters", "stack_parameters", "local_entries",
+    "end_block_coefficients", "cable_field", "cable_kinetic_energy", "local_end_stiffness",
+    "local_two_end_stiffness", "cable_dynamic_stiffness", "DEFAULT_CHORDWISE_INERTIA",
+    "dyad_basis", "block_coefficients", "end_block_coefficients_and_count"
 ]
 
 #: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
 DEFAULT_CHORDWISE_INERTIA = True
-
-_SERIES_RADIUS = 1.0
-_N_TERMS = 16
-
-#: Largest nondimensional frequency |Omega| = |omega| L sqrt(m/T) at which the closed forms
-#: are evaluated: there sin and cos of psi = Omega/2 still carry 9 correct digits (the phase
-#: error is ulp(psi) ~ 1e-9) and the mode counts are exact integers; about 3 million clamped
-#: modes of the cable lie below it.
-MAX_OMEGA_ND = 1e7
-#: Largest |Im psi| (damped or complex frequencies): sin and cos overflow near 710.
-MAX_IMAG_PSI = 350.0
-#: Estimated relative frequency error above which the closed form warns (theory.md §11.5).
-DEFAULT_GUARD_RTOL = 1e-2
-
-
-def check_frequency_range(params, omega, name="omega"):
-    """Raise InvalidParameterError naming ``name`` unless every omega [rad/s] keeps
-    |Omega| <= MAX_OMEGA_ND and |Im psi| <= MAX_IMAG_PSI for the cable(s) ``params``
-    (ChordParameters, single or stacked); the message gives the admissible bound [rad/s]."""
-    scale = np.max(np.atleast_1d(params.L * np.sqrt(params.m / params.T)))   # Omega per rad/s
-    w = np.abs(np.asarray(omega))
-    if w.size and w.max() * scale > MAX_OMEGA_ND:
-        bad = np.asarray(omega).ravel()[int(np.argmax(w))]
-        bad = complex(bad) if np.iscomplexobj(omega) else float(bad)
-        raise InvalidParameterError(
-            f"{name} must be <= {MAX_OMEGA_ND / scale:.6g} rad/s for this cable model "
-            f"(omega L sqrt(m/T) <= {MAX_OMEGA_ND:g}, beyond which the closed form loses its "
-            f"digits), got {bad:.6g}")
-    if np.iscomplexobj(omega) and w.size:
-        psi = np.abs(np.imag(params.psi(np.asarray(omega).reshape(-1, 1)
-                                        if np.ndim(params.L) else np.asarray(omega))))
-        if psi.max() > MAX_IMAG_PSI:
-            raise InvalidParameterError(
-                f"{name} has an imaginary part too large for the closed form (|Im psi| = "
-                f"{psi.max():.4g} > {MAX_IMAG_PSI:g}: sin and cos overflow)")
-
-
-# --------------------------------------------------------------------------- psi kernels
-def _series_coefficients():
-    """Taylor coefficients (in powers psi^(2k), k = 0..N-1) of E, P~ and Q~."""
-    from math import factorial
-    a = [(-1) ** k * 4**k / factorial(2 * k + 1) for k in range(_N_TERMS + 2)]  # sin2psi/2
-    b = [(-1) ** k * 4**k / factorial(2 * k) for k in range(_N_TERMS + 2)]      # cos 2psi
-    E = [(-1) ** n * 2 * n / factorial(2 * n + 1) for n in range(1, _N_TERMS + 1)]
-    P = [a[k] + a[k - 1] for k in range(1, _N_TERMS + 1)]
-    Q = [b[k] + a[k - 1] - a[k] for k in range(1, _N_TERMS + 1)]
-    # numpy.polyval wants the highest power first
-    return np.array(E[::-1]), np.array(P[::-1]), np.array(Q[::-1])
-
-
-_E_COEF, _P_COEF, _Q_COEF = _series_coefficients()
-#: (radius, E coefficients, P~ coefficients) of the series branch of :func:`_psi_functions`,
-#: highest power of psi^2 first, for compiled kernels that evaluate the same functions.
-PSI_SERIES = (_SERIES_RADIUS, _E_COEF, _P_COEF)
-
-
-def _psi_functions(psi):
-    """Cancellation-free functions of psi (real or complex array).
-
-    Returns (c, s_over_psi, cos2, E, Pt, Qt) with
-    E  = (psi cos psi - sin psi) / psi^3,
-    Pt = ((1 + psi^2) sin(2 psi)/2 - psi) / psi^3,
-    Qt = (psi cos 2psi + (psi^2 - 1) sin(2 psi)/2) / psi^3,
-    each by its Taylor series for |psi| < 1 (no cancellation) and directly otherwise.
-    """
-    s, c = np.sin(psi), np.cos(psi)
-    cos2 = c * c - s * s
-    small = np.abs(psi) < _SERIES_RADIUS
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s_over_psi = np.where(psi == 0, 1.0, s / np.where(psi == 0, 1.0, psi))
-        p3 = psi**3
-        E = (psi * c - s) / p3
-        Pt = ((1 + psi * psi) * s * c - psi) / p3
-        Qt = (psi * cos2 + (psi * psi - 1) * s * c) / p3
-    if np.any(small):
-        x = psi[small] ** 2
-        E[small] = np.polyval(_E_COEF, x)
-        Pt[small] = np.polyval(_P_COEF, x)
-        Qt[small] = np.polyval(_Q_COEF, x)
-    return c, s_over_psi, cos2, E, Pt, Qt
 
 
 def local_entries(p, omega, chordwise_inertia):
@@ -180,11 +83,11 @@ def local_entries(p, omega, chordwise_inertia):
     (den = 4 cos psi - lambda^2 E = Delta / psi^3).
     """
     psi = np.asarray(p.psi(omega))
-    return _entries_from(p, omega, psi, _psi_functions(psi), chordwise_inertia)
+    return _entries_from(p, omega, psi, psi_functions(psi), chordwise_inertia)
 
 
 def _entries_from(p, omega, psi, functions, chordwise_inertia):
-    """:func:`local_entries` from psi and its :func:`_psi_functions`."""
+    """:func:`local_entries` from psi and its :func:`psi_functions`."""
     lam2 = p.lambda_sq_complex
     K0, T, L = p.K0, p.T, p.L
     c, s_over_psi, cos2, E, Pt, Qt = functions
@@ -311,12 +214,12 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     if ends not in ("end", "both"):
         raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
     omega = omega_array(omega)
-    if _cable_model(model) == "exact":
-        band = max(float(np.max(omega, initial=0.0)), _lowest_string_omega(state))
+    if checked_cable_model(model) == "exact":
+        band = max(float(np.max(omega, initial=0.0)), lowest_string_omega(state))
         return ExactCable(state, band).dynamic_stiffness(omega, ends)
     p = chord_parameters(state, tension)
     check_frequency_range(p, omega)
-    _guard_cable(state, float(np.max(omega, initial=0.0)), tension, guard_rtol)
+    guard_cable(state, float(np.max(omega, initial=0.0)), tension, guard_rtol)
     dyads = dyad_basis(p.rotation)
     n = omega.size
     coef = block_coefficients(p, omega, chordwise_inertia, blocks=ends)
@@ -389,9 +292,9 @@ def end_block_coefficients_and_count(params, omega,
                                     "at real omega")
     om = omega if np.ndim(params.L) == 0 else omega[:, None]
     psi = np.asarray(params.psi(om))
-    functions = _psi_functions(psi)
+    functions = psi_functions(psi)
     coef = _end_block(_entries_from(params, om, psi, functions, chordwise_inertia), axis=-1)
-    return np.real(coef), _mode_count_psi(psi, functions[0], functions[3], params.lambda_sq)
+    return np.real(coef), mode_count_psi(psi, functions[0], functions[3], params.lambda_sq)
 
 
 def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
@@ -422,345 +325,21 @@ def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTI
     return {k: _real_if_undamped(params, v, omega) for k, v in out.items()}
 
 
-# --------------------------------------------------------------------------- fixed-end modes
-def cable_mode_count(state, omega, tension="mean"):
-    """Wittrick-Williams J0: number of clamped-clamped cable frequencies strictly below omega.
-
-    J0 = #{n pi < Omega} + #{2 n pi < Omega} + N_sym, N_sym = 0 if k = 0, else
-    (k - 1) + [g(psi) > 0], k = floor(psi/pi + 1/2), psi = Omega/2 (theory.md §5.2), where
-    g(psi) = tan psi - psi + 4 psi^3/lambda^2 > 0 is evaluated without division as
-    (4 cos psi - lambda^2 E(psi)) cos psi > 0 together with cos psi having the sign
-    (-1)^k of branch k (at a branch end, where rounding may give cos psi the wrong sign,
-    g -> -inf and the root of that branch is not yet passed). The chordwise-inertia
-    correction adds no clamped-clamped mode.
-
-    Parameters
-    ----------
-    state : CatenaryState
-    omega : float or array_like, shape (n_omega,)
-        Angular frequencies [rad/s].
-
-    Returns
-    -------
-    ndarray of int, shape (n_omega,)
-    """
-    omega = omega_array(omega)
-    p = chord_parameters(state, tension)
-    check_frequency_range(p, omega)
-    return mode_count_nondimensional(omega * p.L * np.sqrt(p.m / p.T), p.lambda_sq)
-
-
-def mode_count_nondimensional(Omega, lambda_sq):
-    """J0 as a function of the nondimensional frequency Omega >= 0 (see cable_mode_count)."""
-    psi = 0.5 * Omega
-    c, _, _, E, _, _ = _psi_functions(psi)
-    return _mode_count_psi(psi, c, E, lambda_sq)
-
-
-def _mode_count_psi(psi, c, E, lambda_sq):
-    """J0 from psi = Omega / 2 and its cos psi and E(psi) (see cable_mode_count)."""
-    Omega = 2.0 * psi
-    k = np.floor(psi / np.pi + 0.5).astype(int)
-    on_branch = c * np.where(k % 2 == 0, 1.0, -1.0) > 0
-    upper = (((4.0 * c - lambda_sq * E) * c > 0) & on_branch).astype(int)
-    n_sym = np.where(k == 0, 0, k - 1 + upper)
-    return _count_multiples_below(Omega, np.pi) + _count_multiples_below(Omega, 2 * np.pi) + n_sym
-
-
-def _count_multiples_below(x, step):
-    """#{n >= 1 : n * step < x}, with ties decided in the same float arithmetic as n * step."""
-    n = np.maximum(np.ceil(x / step).astype(int) - 1, 0)
-    n = n - ((n >= 1) & (n * step >= x))    # x / step rounded up past an integer
-    return n + ((n + 1) * step < x)         # x / step rounded down below one
-
-
-def irvine_symmetric_roots(lambda_sq, n_roots):
-    """First ``n_roots`` roots Omega of the Irvine-Caughey symmetric equation.
-
-    tan(Omega/2) = Omega/2 - (4/lambda^2)(Omega/2)^3, solved as 4 cos psi - lambda^2 E(psi) = 0,
-    psi = Omega/2, with exactly one root in each ((2k-1) pi/2, (2k+1) pi/2) (theory.md §2.2),
-    by Brent's method to machine precision. lambda_sq = 0 gives the taut string (2k-1) pi.
-
-    Returns
-    -------
-    ndarray, shape (n_roots,)
-    """
-    from scipy.optimize import brentq
-
-    lam2 = float(lambda_sq)
-    if not np.isfinite(lam2) or lam2 < 0:
-        raise InvalidParameterError(f"lambda_sq must be finite and >= 0, got {lambda_sq!r}")
-    out = np.empty(int(n_roots))
-    for k in range(1, int(n_roots) + 1):
-        lo, hi = (2 * k - 1) * np.pi / 2, (2 * k + 1) * np.pi / 2
-        if lam2 == 0.0:
-            out[k - 1] = 2 * lo
-            continue
-        # high branches: the root sits delta ~ lambda^2 / (4 psi^3) above the branch start,
-        # where 4 cos(psi) is below its own rounding (ulp(psi)); tan(lo + delta) = -1/delta
-        # + O(delta) then gives delta to O(delta^2), below the ulp of psi
-        delta = lam2 / (4.0 * lo**3)
-        if delta < 1e-8:
-            out[k - 1] = 2.0 * (lo + delta)
-            continue
-
-        def f(x):
-            c, _, _, E, _, _ = _psi_functions(np.array([x]))
-            return float(4.0 * c[0] - lam2 * E[0])
-
-        out[k - 1] = 2.0 * brentq(f, lo, hi, xtol=1e-15, rtol=1e-15, maxiter=500)
-    return out
-
-
-@dataclass(frozen=True)
-class CableModes:
-    """Clamped-clamped natural frequencies of one cable.
-
-    Attributes
-    ----------
-    freq_hz : ndarray, shape (n,)
-        Natural frequencies [Hz], ascending.
-    Omega : ndarray, shape (n,)
-        Nondimensional frequencies omega L sqrt(m/T) [-].
-    family : tuple of str
-        "out-of-plane", "in-plane antisymmetric" or "in-plane symmetric" (closed form);
-        "out-of-plane", "in-plane" or "axial" (exact model).
-    order : ndarray of int, shape (n,)
-        Index of the mode within its family, from 1.
-    """
-
-    freq_hz: np.ndarray
-    Omega: np.ndarray
-    family: tuple
-    order: np.ndarray
-
-    @property
-    def labels(self):
-        """Labels such as "in-plane symmetric 1"."""
-        return tuple(f"{f} {k}" for f, k in zip(self.family, self.order))
-
-    def __len__(self):
-        return len(self.freq_hz)
-
-    def __repr__(self):
-        f = self.freq_hz
-        span = f"{f.min():.4g}-{f.max():.4g} Hz" if len(f) else "none"
-        return f"CableModes({len(self)} modes {span}: {', '.join(self.labels[:3])}, ...)"
-
-    def plot(self, ax=None):
-        """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
-        matplotlib Figure."""
-        from dynstiff.plot import plot_cable_modes
-        return plot_cable_modes(self, ax=ax)
-
-    def to_frame(self):
-        """pandas DataFrame with columns freq [Hz], Omega [-], family, order."""
-        import pandas as pd
-        return pd.DataFrame({"freq [Hz]": self.freq_hz, "Omega [-]": self.Omega,
-                             "family": list(self.family), "order": self.order})
-
-
 #: Cable models of the cable-level functions.
 CABLE_MODELS = ("closed-form", "exact")
 
 
-def _cable_model(model):
+def checked_cable_model(model):
     if model not in CABLE_MODELS:
         raise InvalidParameterError(f"model must be one of {CABLE_MODELS}, got {model!r}")
     return model
 
 
-def _lowest_string_omega(state):
+def lowest_string_omega(state):
     """pi sqrt(T_mean / m) / L0 [rad/s]: the first taut-string frequency, a floor for the band
     of an exact cable asked for low frequencies only."""
     return np.pi * np.sqrt(state.mean_tension / state.cable.mass_per_length) \
         / state.unstretched_length
-
-
-def _exact_modes(state, n):
-    """First n clamped modes of the exact cable (theory.md §11), band grown until it holds
-    them; returns (omega_j [rad/s], family)."""
-    w = 1.2 * (n + 1) * _lowest_string_omega(state)
-    for _ in range(60):
-        cab = ExactCable(state, w)
-        lam = cab.eigenvalues
-        if np.count_nonzero(lam <= w * w) >= n:
-            return np.sqrt(lam[:n]), cab.family[:n]
-        w *= 1.5
-    raise InvalidParameterError(f"n_modes = {n} is more than the exact cable resolves")
-
-
-def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form",
-                              guard_rtol=DEFAULT_GUARD_RTOL):
-    """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
-
-    "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane
-    symmetric the Irvine-Caughey roots (theory.md §2.2, inclined-cable approximation).
-    "exact": the clamped spectrum about the true catenary (theory.md §11), families
-    "out-of-plane", "in-plane" and "axial" (in-plane, most of its strain energy axial). These
-    are the poles of :func:`cable_dynamic_stiffness` of the same ``model``.
-
-    Parameters
-    ----------
-    state : CatenaryState
-    n_modes : int
-        Number of modes, >= 1.
-    tension : {"mean", "chord"}
-        Tension of the closed form; Omega is always omega L sqrt(m / T) with this T.
-    model : {"closed-form", "exact"}
-    guard_rtol : float or None
-        As :func:`cable_dynamic_stiffness` (closed form only).
-
-    Returns
-    -------
-    CableModes
-    """
-    if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
-        raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
-    n = int(n_modes)
-    p = chord_parameters(state, tension)
-    to_hz = np.sqrt(p.T / p.m) / (2 * np.pi * p.L)
-    if _cable_model(model) == "exact":
-        w, fam = _exact_modes(state, n)
-        order = np.zeros(n, dtype=int)
-        for name in set(fam):
-            sel = np.array([f == name for f in fam])
-            order[sel] = np.arange(1, sel.sum() + 1)
-        f = w / (2 * np.pi)
-        return CableModes(freq_hz=f, Omega=f / to_hz, family=tuple(str(x) for x in fam),
-                          order=order)
-    k = np.arange(1, n + 1)
-    Om = np.concatenate([k * np.pi, 2 * k * np.pi, irvine_symmetric_roots(p.lambda_sq, n)])
-    if guard_rtol is not None:
-        top = np.sort(Om)[n - 1] * np.sqrt(p.T / p.m) / p.L
-        _guard_cable(state, top, tension, guard_rtol)
-    fam = (["out-of-plane"] * n + ["in-plane antisymmetric"] * n
-           + ["in-plane symmetric"] * n)
-    order = np.concatenate([k, k, k])
-    idx = np.argsort(Om, kind="stable")[:n]
-    return CableModes(freq_hz=Om[idx] * to_hz, Omega=Om[idx],
-                      family=tuple(fam[i] for i in idx), order=order[idx])
-
-
-# --------------------------------------------------------------------------- guard
-#: The closed form warns when the band reaches this fraction of a cable's first axial
-#: frequency sqrt(EA/m) / (2 L0) (it has no axial modes).
-AXIAL_MARGIN = 0.9
-#: Lowest-to-highest tension ratio below which a cable is called slack.
-SLACK_RATIO = 0.1
-
-
-@dataclass(frozen=True)
-class ClosedFormValidity:
-    """The closed form's estimated relative error for one cable and its causes (theory.md
-    §11.5): an envelope of the error of its clamped frequencies against the exact model,
-    measured on 150 random cables (the largest ratio of measured to estimated error was
-    0.83). It is not an envelope of the static end stiffness, whose error in the soft
-    in-plane direction can exceed it 2.4x at 30-60 degrees; the robot model measures that
-    part exactly (:meth:`dynstiff.models.dsm.FrequencyModel.static_error`).
-
-    Attributes
-    ----------
-    error : float
-        Estimated relative error [-]; inf when the closed form misses modes or does not
-        apply (slack cable).
-    causes : dict
-        Cause -> its estimate [-]: "sag" 15 delta^2 (delta = d/L), "chordwise weight"
-        2 delta eps (1 + 40 eps) (eps = W |sin theta| / T), "tension variation" 0.4 v^2
-        (v = (T_max - T_min) / T_mean), "slack" (inf when T_min < 0.1 T_max), "axial" (inf
-        when the band reaches 0.9 of the first axial frequency sqrt(EA/m) / (2 L0)).
-    values : dict
-        delta, eps, v, T_min / T_max and the first axial frequency [Hz].
-    """
-
-    error: float
-    causes: dict
-    values: dict
-
-    def reasons(self, rtol):
-        """Causes whose estimate exceeds ``rtol``, as readable text."""
-        v = self.values
-        text = {"sag": f"sag d/L = {v['sag_ratio']:.3g}",
-                "chordwise weight": f"chordwise weight W sin(theta)/T = {v['weight_ratio']:.3g}",
-                "tension variation": f"tension varies by {v['tension_variation']:.3g} of its "
-                                     f"mean along the cable",
-                "slack": f"slack (lowest tension {v['tension_ratio']:.3g} of the highest)",
-                "axial": f"axial modes from {v['axial_hz']:.4g} Hz are in the band"}
-        return [text[k] for k, e in self.causes.items() if e > rtol]
-
-
-def closed_form_validity(state, omega_max=0.0, tension="mean", params=None):
-    """How far the closed form can be trusted for this cable up to omega_max [rad/s]
-    (theory.md §11.5); omega_max decides whether axial modes enter the band. ``params``:
-    ``chord_parameters(state, tension)`` when the caller has it already.
-
-    Returns
-    -------
-    ClosedFormValidity
-    """
-    p = chord_parameters(state, tension) if params is None else params
-    delta = p.sag / p.L
-    eps = state.total_weight * abs(state.chord[2]) / state.chord_length / p.T
-    t_min, t_max = state.min_tension, state.max_tension
-    v = (t_max - t_min) / state.mean_tension
-    ratio = t_min / t_max
-    cab = state.cable
-    f_ax = np.sqrt(cab.EA / cab.mass_per_length) / (2.0 * state.unstretched_length)
-    causes = {"sag": 15 * delta**2, "chordwise weight": 2 * delta * eps * (1 + 40 * eps),
-              "tension variation": 0.4 * v**2,
-              "slack": np.inf if ratio < SLACK_RATIO else 0.0,
-              "axial": np.inf if omega_max >= AXIAL_MARGIN * 2 * np.pi * f_ax else 0.0}
-    values = {"sag_ratio": delta, "weight_ratio": eps, "tension_variation": v,
-              "tension_ratio": ratio, "axial_hz": f_ax}
-    err = causes["sag"] + causes["chordwise weight"] + causes["tension variation"]
-    err = max(err, causes["slack"], causes["axial"])
-    return ClosedFormValidity(error=float(err), causes=causes, values=values)
-
-
-def _guard_cable(state, omega_max, tension, guard_rtol):
-    """Warn (ClosedFormWarning) when the closed form is used outside its range for one cable
-    up to omega_max [rad/s]: slack, axial modes in the band, or a measured error of its
-    clamped frequencies above guard_rtol where the envelope exceeds it (theory.md §11.5)."""
-    if guard_rtol is None:
-        return
-    if not (isinstance(guard_rtol, (int, float)) and not isinstance(guard_rtol, bool)
-            and 0 < guard_rtol < np.inf):
-        raise InvalidParameterError(f"guard_rtol must be a number > 0 or None, got "
-                                    f"{guard_rtol!r}")
-    v = closed_form_validity(state, omega_max, tension)
-    if v.error <= guard_rtol:
-        return
-    if np.isfinite(v.error):
-        err = closed_form_local_error(state, omega_max, tension)
-        if err <= guard_rtol:
-            return
-        what = f"its clamped frequencies are {err:.2g} off the exact model's"
-    else:
-        what = "it is outside the closed form's range"
-    import warnings
-    cause = "slack" if np.isinf(v.causes["slack"]) else (
-        "axial" if np.isinf(v.causes["axial"]) else "local")
-    warnings.warn(ClosedFormWarning(
-        f"{what} (" + "; ".join(v.reasons(0.1 * guard_rtol)) + "): use model='exact'",
-        cable=None, cause=cause), stacklevel=user_stacklevel())
-
-
-def closed_form_local_error(state, omega_max, tension="mean"):
-    """Measured relative error of the closed form's clamped-cable frequencies against the
-    exact model (theory.md §11.5), over the modes below max(omega_max, 8 omega_1) [rad/s]
-    (omega_1 the first taut-string frequency); the exact model's axial modes are left out
-    (the guard reports them as missing). Returns the largest |f_closed / f_exact - 1| [-]."""
-    p = chord_parameters(state, tension)
-    w1 = np.pi * np.sqrt(p.T / p.m) / p.L
-    band = max(float(omega_max), 8.0 * w1)
-    cab = ExactCable(state, band)
-    sel = (cab.eigenvalues <= band**2) & (np.array(cab.family) != "axial")
-    f_ex = np.sqrt(cab.eigenvalues[sel])
-    n = f_ex.size
-    if n == 0:
-        return 0.0
-    f_cf = 2 * np.pi * cable_natural_frequencies(state, n, tension, guard_rtol=None).freq_hz
-    return float(np.max(np.abs(f_cf / f_ex - 1.0)))
 
 
 # --------------------------------------------------------------------------- fields

@@ -176,7 +176,7 @@ def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_st
         Eigenvalues of K(omega) [N/m ...], ascending; NaN where K is not finite.
     J0 : ndarray of int, shape (n,)
         Clamped-clamped cable modes strictly below omega, summed over the cables (as
-        :func:`dynstiff.cable.dsm.mode_count_nondimensional`).
+        :func:`dynstiff.cable.psi.mode_count_nondimensional`).
     """
     n, nf = omega.size, K_static.shape[0]
     ev = np.empty((n, nf))
@@ -196,7 +196,7 @@ def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_st
 
 @numba.njit(**_JIT)
 def _count_multiples_below(x, step):
-    """#{n >= 1 : n step < x}, as :func:`dynstiff.cable.dsm._count_multiples_below`."""
+    """#{n >= 1 : n step < x}, as :func:`dynstiff.cable.psi._count_multiples_below`."""
     n = max(int(np.ceil(x / step)) - 1, 0)
     if n >= 1 and n * step >= x:
         n -= 1

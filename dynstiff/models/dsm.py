@@ -20,21 +20,25 @@ from dynstiff._validate import omega_array, positive_scalar
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.cable.dsm import (
-    AXIAL_MARGIN,
     DEFAULT_CHORDWISE_INERTIA,
-    DEFAULT_GUARD_RTOL,
-    PSI_SERIES,
     cable_field,
     cable_kinetic_energy,
-    check_frequency_range,
     chord_parameters,
-    closed_form_local_error,
-    closed_form_validity,
     dyad_basis,
     end_block_coefficients,
     end_block_coefficients_and_count,
-    mode_count_nondimensional,
     stack_parameters,
+)
+from dynstiff.cable.guard import (
+    AXIAL_MARGIN,
+    DEFAULT_GUARD_RTOL,
+    closed_form_local_error,
+    closed_form_validity,
+)
+from dynstiff.cable.psi import (
+    PSI_SERIES,
+    check_frequency_range,
+    mode_count_nondimensional,
 )
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium

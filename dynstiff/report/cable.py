@@ -13,9 +13,9 @@ from dynstiff.cable.catenary import unstretched_length_for_tension
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
     cable_dynamic_stiffness,
-    cable_natural_frequencies,
     chord_parameters,
 )
+from dynstiff.cable.modes import cable_natural_frequencies
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.params import Cable
 
