@@ -132,7 +132,7 @@ EQUIVALENT.update({
         "ClosedFormWarning that the original already issued: no other warning arises there",
     "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_19":
         "np.asarray then float64 either way (the attribute is set from float arithmetic)",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_109":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_109":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
 })
 _START = ("the starting guess of the chain's Newton (its tension estimate or force-space "
@@ -157,7 +157,7 @@ EQUIVALENT.update({
         "e >= rtol instead of e > rtol: differs only at exactly rtol",
     "dynstiff.cable.psi.x_mode_count_psi__mutmut_11":
         "c / (+-1) equals c * (+-1)",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_29":
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_29":
         "one of the catenary Newton's starting guesses: the solution it converges to, "
         "checked by its residual, is the same",
     "dynstiff.models.exact.xǁExactModelǁ__init____mutmut_94":
@@ -194,13 +194,13 @@ EQUIVALENT.update({
         "(cost only; a warning is still issued once)",
     "dynstiff.cable.catenary.x__mean_tension__mutmut_11":
         "the sign of V0 / (V0 + W) is the sign of V0 (V0 + W)",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_36":
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_36":
         "a starting-guess branch boundary (lh <= or < 1e-6 L): the solution is the same",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_76":
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_76":
         "a starting-guess branch boundary (lam < or <= 700): the solution is the same",
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_38":
         "the placeholder H of cables outside the taut mask, whose results are discarded",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_52":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_52":
         "the start of the bracket on L0, which is widened until it brackets the tension",
 })
 EQUIVALENT.update({
@@ -286,11 +286,11 @@ EQUIVALENT.update({
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
     "dynstiff.cable.catenary.xǁCatenaryStateǁtension__mutmut_5":
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
-    "dynstiff.cable.catenary.x__vertical_solution__mutmut_3":
+    "dynstiff.cable.catenary_solve.x__vertical_solution__mutmut_3":
         "h <= 0 instead of h < 0: a vertical chord of zero length is refused before",
-    "dynstiff.cable.catenary.x__vertical_solution__mutmut_13":
+    "dynstiff.cable.catenary_solve.x__vertical_solution__mutmut_13":
         "> 0 instead of >= 0 at the slack boundary: differs only when V0 + W is exactly 0",
-    "dynstiff.cable.catenary.x__vertical_solution__mutmut_24":
+    "dynstiff.cable.catenary_solve.x__vertical_solution__mutmut_24":
         "< 0 instead of <= 0 at the slack boundary: differs only when V0 is exactly 0",
     "dynstiff.cable.dsm.x__real_if_undamped__mutmut_4":
         "the kernels are already real for an undamped cable at real omega: np.real is a no-op",
@@ -421,11 +421,11 @@ EQUIVALENT.update({
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_159":
         "the symmetrisation of a matrix symmetric to rounding dropped (K + K instead of "
         "K + K^T): entries change by ~1e-16 relative",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_9": _BOUNDARY,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_38": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_73": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_79": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_80": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_9": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_38": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_73": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_79": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_80": _CAT_START,
     "dynstiff.analyses.eigen.x__search__mutmut_43": _BOUNDARY,
     "dynstiff.analyses.eigen.x__illinois__mutmut_44":
         "x outside (L, H) no longer sent to bisection: the regula falsi point is a convex "
@@ -471,29 +471,29 @@ EQUIVALENT.update({
     "dynstiff.robot.statics.x_inverse_statics__mutmut_104":
         "the residual slot of a cable solved by the scalar solver: unused, its state is "
         "that solver's own (with its residual)",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_128":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_128":
         "brentq's maxiter 201 instead of 200",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_53":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_53":
         "the short end of the bracket on L0 far shorter (T EA instead of T / EA): still "
         "above the target tension, the same root in more Brent steps",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_123":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_123":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same root "
         "to a few ulps",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_81":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_81":
         "the start of the lower bracket on L0, which is grown (or bisected back from slack) "
         "until the tension is under the target",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_101":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_101":
         "the lower bracket grown by 2.05 instead of 1.05 per step: the taut solution and "
         "the deep loop's are far apart in L0, and a slack trial is bisected back",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_108":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_108":
         "the bracket search gives up after 100 instead of 200 steps (1.05^100 = 130 chord "
         "lengths, or 100 halvings)",
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_37": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_40": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_74": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_77": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_81": _CAT_START,
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_37": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_40": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_74": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_77": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_81": _CAT_START,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_81": _ALL_CHORDS,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_92": _VERTICAL,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_98": _VERTICAL,
@@ -501,7 +501,7 @@ EQUIVALENT.update({
         "V0 (V0 + W) > 0 instead of >= 0: where it is 0 (V0 or V0 + W zero) both forms give "
         "W / 2",
     "dynstiff.cable.catenary.x__mean_tension__mutmut_36": _BOUNDARY,
-    "dynstiff.cable.catenary.x__newton__mutmut_28":
+    "dynstiff.cable.catenary_solve.x__newton__mutmut_28":
         "the starting guess's residual (only) multiplied by the span scale instead of "
         "divided: a start is never converged already, and every later residual is relative "
         "(test_long_spans_converge_and_limits_are_exact)",
@@ -542,12 +542,12 @@ EQUIVALENT.update({
     "dynstiff.robot.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
     "dynstiff.cable.psi.x_check_frequency_range__mutmut_45": _BOUNDARY,
-    "dynstiff.cable.catenary.x__newton__mutmut_80": _BOUNDARY,
-    "dynstiff.cable.catenary.x__newton__mutmut_70":
+    "dynstiff.cable.catenary_solve.x__newton__mutmut_80": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x__newton__mutmut_70":
         "the catenary Newton's line search accepts a short step only when converged: the "
         "equilibrium for given L0 and ends is unique and checked by its residual",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_63": _CAT_START,
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_71": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_63": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_71": _CAT_START,
     "dynstiff.analyses.eigen.x__illinois__mutmut_49": _BOUNDARY,
     "dynstiff.analyses.eigen.x__illinois__mutmut_125": _BOUNDARY,
     "dynstiff.analyses.eigen.x__illinois__mutmut_74":
@@ -594,12 +594,12 @@ EQUIVALENT.update({
     "dynstiff.cable.psi.x_mode_count_psi__mutmut_35": _BOUNDARY,
     "dynstiff.cable.modes.xǁCableModesǁ__repr____mutmut_4":
         "the repr of an empty mode table: never built (n_modes >= 1 is enforced)",
-    "dynstiff.cable.catenary.x__initial_guesses__mutmut_44": _CAT_START,
+    "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_44": _CAT_START,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,
-    "dynstiff.cable.catenary.x_unstretched_length_for_tension__mutmut_73":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_73":
         "the short end of the bracket shrunk by a larger factor per step: the same root",
-    "dynstiff.cable.catenary.x__newton__mutmut_72": _BOUNDARY,
-    "dynstiff.cable.catenary.x__validate_ends__mutmut_27": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x__newton__mutmut_72": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x__validate_ends__mutmut_27": _BOUNDARY,
     "dynstiff.robot.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
     "dynstiff.robot.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
     "dynstiff.robot.statics.x__distribution__mutmut_1": _WARM,

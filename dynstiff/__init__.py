@@ -37,11 +37,8 @@ from dynstiff.analyses.measured import (
 )
 from dynstiff.analyses.recommend import Recommendation, recommend_model
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
-from dynstiff.cable.catenary import (
-    CatenaryState,
-    solve_catenary,
-    unstretched_length_for_tension,
-)
+from dynstiff.cable.catenary import CatenaryState
+from dynstiff.cable.catenary_solve import solve_catenary, unstretched_length_for_tension
 from dynstiff.cable.dsm import cable_dynamic_stiffness, chord_parameters
 from dynstiff.cable.modes import CableModes, cable_natural_frequencies
 from dynstiff.cable.psi import cable_mode_count

@@ -395,13 +395,13 @@ def test_profile_defaults_and_the_point_one_metre_along(cable17):
     """profile() gives 50 points by default, from A to B; profile_plane at s = 1 m exactly
     is the catenary's own point there (the offsets of a 1 m cable with the same H and V0),
     not the anchor; a bad g is named."""
-    from dynstiff.cable.catenary import _end_offsets_and_flexibility
+    from dynstiff.cable.catenary import end_offsets_and_flexibility
     s = ds.solve_catenary(A0, B0, 8.5, cable17)
     pts = s.profile()
     assert pts.shape == (50, 3)
     np.testing.assert_allclose(pts[[0, -1]], [A0, B0], rtol=0, atol=1e-9)
     xz = s.profile_plane([0.0, 1.0, 2.0])
-    ref = [_end_offsets_and_flexibility(s.H, s.V0, sk, cable17.EA,
+    ref = [end_offsets_and_flexibility(s.H, s.V0, sk, cable17.EA,
                                         cable17.weight_per_length(s.g))[0] for sk in (1.0, 2.0)]
     np.testing.assert_array_equal(xz, np.vstack([[0.0, 0.0], ref]))
     with pytest.raises(InvalidParameterError, match="^g must be"):
@@ -424,11 +424,11 @@ def test_long_spans_converge_and_limits_are_exact():
     spans, and the residual reported is that relative one, max |offset error| / (l_h, max(L,
     L0)), not metres. A weightless cable exactly
     as long as its chord has no tension: slack, refused. A negative tension is named."""
-    from dynstiff.cable.catenary import _end_offsets_and_flexibility
+    from dynstiff.cable.catenary import end_offsets_and_flexibility
     cab = ds.Cable(1.0, 1e8)
     for L0 in (2001.0, 2019.0, 2100.0):
         s = ds.solve_catenary((0, 0, 0), (2000.0, 0, 100.0), L0, cab)
-        xz = _end_offsets_and_flexibility(s.H, s.V0, L0, cab.EA, cab.weight_per_length(s.g))[0]
+        xz = end_offsets_and_flexibility(s.H, s.V0, L0, cab.EA, cab.weight_per_length(s.g))[0]
         rel = np.max(np.abs(xz - [2000.0, 100.0]) / [2000.0, L0])
         assert s.residual == pytest.approx(rel, rel=1e-12, abs=0) and s.residual < 1e-12
     with pytest.raises(SlackCableError, match="weightless cable is slack"):

@@ -9,8 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.cable.catenary import solve_catenary, unstretched_length_for_tension
 from dynstiff.cable.catenary_batch import states_for_tensions, taut_catenaries
+from dynstiff.cable.catenary_solve import solve_catenary, unstretched_length_for_tension
 from dynstiff.errors import SlackCableError
 
 G = 9.81

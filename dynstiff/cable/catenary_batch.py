@@ -17,7 +17,7 @@ of asinh and sqrt written without cancellation. Of the two lengths with the same
 (taut, and hanging deeper), the taut one is kept: the tension falls as L0 grows at fixed ends,
 dT_B/dL0 (total) < 0. A cable that does not converge, lands on the other branch, is exactly
 vertical or weightless is handed to the scalar bracketing solver
-:func:`dynstiff.cable.catenary.unstretched_length_for_tension`, which also says why a tension
+:func:`dynstiff.cable.catenary_solve.unstretched_length_for_tension`, which also says why a tension
 cannot be reached.
 """
 
@@ -25,11 +25,8 @@ cannot be reached.
 import numpy as np
 
 from dynstiff import compiled as compiled_kernels
-from dynstiff.cable.catenary import (
-    CatenaryState,
-    divided_differences,
-    unstretched_length_for_tension,
-)
+from dynstiff.cable.catenary import CatenaryState, divided_differences
+from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 
 __all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 
@@ -191,7 +188,7 @@ def catenary_arrays(states):
 def states_for_tensions(anchors, ends, tensions, cables, g, start=None):
     """CatenaryState of every cable for its tension at B: :func:`taut_catenaries`, the
     cables it leaves solved one by one by
-    :func:`dynstiff.cable.catenary.unstretched_length_for_tension` (which raises
+    :func:`dynstiff.cable.catenary_solve.unstretched_length_for_tension` (which raises
     :class:`SlackCableError` for a tension that cannot be reached).
 
     Returns

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dynstiff.cable.catenary import unstretched_length_for_tension
+from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
     cable_dynamic_stiffness,

@@ -18,7 +18,7 @@ import numpy as np
 from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
-from dynstiff.cable.catenary import solve_catenary
+from dynstiff.cable.catenary_solve import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
 from dynstiff.io.caspr import read_caspr

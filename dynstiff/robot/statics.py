@@ -15,8 +15,9 @@ with the analytic 6x6 stiffness (theory.md §4).
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.cable.catenary import CatenaryState, unstretched_length_for_tension
+from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
+from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
