@@ -3,7 +3,7 @@
 Compares :func:`dynstiff.cable.dsm.local_end_stiffness` (3x3) and
 :func:`dynstiff.cable.dsm.local_two_end_stiffness` (6x6), which use the stable closed forms
 of theory.md §3.5 and a Taylor series for |psi| < 1, with
-:mod:`dynstiff.precision`, which evaluates the textbook forms of theory.md §3.2-3.4 with
+:mod:`dynstiff.cable.mpmath_reference`, which evaluates the textbook forms of theory.md §3.2-3.4 with
 enough digits to absorb their cancellation (>= 50 significant digits).
 
 Grid (``run()``)

@@ -2,7 +2,7 @@
 Hajzman): where is the upright pendulum unstable, for massless and point-mass cables, as the
 preload, the amplitude, the cable mass and the phase of the excitation change?
 
-Model and choices: built-in scene ``pendulum`` and :mod:`dynstiff.pendulum` (symmetric
+Model and choices: built-in scene ``pendulum`` and :mod:`dynstiff.timedomain.pendulum` (symmetric
 outward excitation of B and C along BC, b = 5e-4 s x k, 10 point masses per cable). Method:
 Floquet multipliers of the linearisation about the periodic response (|mu| > 1: unstable),
 each unstable frequency interval checked by a nonlinear simulation from phi0 = 1e-6 rad at

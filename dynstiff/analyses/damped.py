@@ -1,7 +1,7 @@
 """Complex natural frequencies of the damped robot (convention e^{i omega t}, theory.md §5.4).
 
 Seeded by the undamped modes of :func:`dynstiff.analyses.eigen.modes`, for a model of any rung whose
-``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.model_base`).
+``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.models.base`).
 """
 
 import numpy as np
@@ -56,7 +56,7 @@ def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.model_base`); its ``dynamic_stiffness``
+    model : model of any rung (:mod:`dynstiff.models.base`); its ``dynamic_stiffness``
         must accept complex omega.
     n_modes, fmax_hz : as :func:`dynstiff.analyses.eigen.eigenfrequencies`
     tol : float

@@ -14,9 +14,9 @@ Illinois (regula falsi) iteration to a relative bracket width of ``rtol``. Multi
 roots on a cable pole are bisected to ``rtol``. This never misses a root, handles coincident
 roots, and finds purely local cable modes, which are not zeros of det K.
 
-Every function here takes a model of any rung (:mod:`dynstiff.model_base`). A discrete rung
+Every function here takes a model of any rung (:mod:`dynstiff.models.base`). A discrete rung
 (one with ``matrices()``: "spring", "catenary", "lumped") is solved by default as the finite
-eigenproblem K phi = omega^2 M phi (:mod:`dynstiff.eigen_matrix`); the Wittrick-Williams
+eigenproblem K phi = omega^2 M phi (:mod:`dynstiff.analyses.eigen_matrix`); the Wittrick-Williams
 search works for every rung (``method="wittrick-williams"``), which is how the two are
 checked against each other.
 """
@@ -147,7 +147,7 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.model_base`)
+    model : model of any rung (:mod:`dynstiff.models.base`)
     n_modes : int, optional
         Number of lowest frequencies wanted (>= 1).
     fmax_hz : float, optional

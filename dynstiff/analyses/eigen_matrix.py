@@ -1,6 +1,6 @@
 """Modes of a discrete rung: the finite eigenproblem K phi = omega^2 M phi.
 
-For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.model_base`):
+For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.models.base`):
 dense ``eigh`` for small models, sparse shift-invert Lanczos otherwise (theory.md §7.1-§7.2).
 Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and :func:`dynstiff.analyses.eigen.modes`.
 """

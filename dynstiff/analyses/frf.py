@@ -103,7 +103,7 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.model_base`)
+    model : model of any rung (:mod:`dynstiff.models.base`)
     omega : array_like, shape (n,)
         Angular frequencies [rad/s], >= 0.
     inputs : str or list of str, optional

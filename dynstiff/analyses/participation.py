@@ -104,7 +104,7 @@ def platform_participation(model, modes, threshold=PLATFORM_SHARE_THRESHOLD):
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.model_base`)
+    model : model of any rung (:mod:`dynstiff.models.base`)
         Gives the platform mass matrix on the free DOFs.
     modes : ModalResult
         From :func:`dynstiff.modes` of the same model.

@@ -3,7 +3,7 @@
 "Model no more than a scene needs": from cheap estimates (cable fixed-end frequencies
 against the band, sag ratio, along-chord weight, a first-order perturbation of the
 massless-cable modes by the cables' real dynamic stiffness) predict the frequency error of
-each rung of :mod:`dynstiff.ladder` in the band, and return the cheapest one whose
+each rung of :mod:`dynstiff.models.ladder` in the band, and return the cheapest one whose
 prediction meets ``rtol``.
 
 Error estimates (relative frequency error, all modes in the band)

@@ -102,7 +102,7 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.model_base`); its damping is ignored
+    model : model of any rung (:mod:`dynstiff.models.base`); its damping is ignored
     n_modes, fmax_hz : as :func:`dynstiff.eigenfrequencies`
         Which natural frequencies to keep (those with the platform at rest drop out).
     damping : float or array_like, shape (n_kept,)

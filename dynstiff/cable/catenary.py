@@ -45,7 +45,7 @@ def divided_differences(a, b, delta):
     Returns (D_asinh, D_f, D_g, D_sqrt), each (F(b) - F(a)) / delta for
     F = asinh(t), t / sqrt(1 + t^2), 1 / sqrt(1 + t^2), sqrt(1 + t^2), and the derivatives at
     a where delta = 0 (weightless cable). Scalars or arrays of one shape (n,), elementwise
-    (also the batched statics, :mod:`dynstiff.catenary_batch`). Uses
+    (also the batched statics, :mod:`dynstiff.cable.catenary_batch`). Uses
     asinh(b) - asinh(a) = asinh(b sqrt(1+a^2) - a sqrt(1+b^2)) and rationalised differences
     so nothing cancels when delta << |a|.
     """

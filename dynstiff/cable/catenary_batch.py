@@ -5,14 +5,14 @@ For each cable the unknowns (H, V0, L0) solve the three equations (docs/theory.m
     x(H, V0, L0) = l_h,    z(H, V0, L0) = h,    T_B(H, V0, L0) = sqrt(H^2 + Vb^2) = t
 
 with x, z the end offsets of the exact elastic catenary (docs/theory.md §1.1; notation of
-:mod:`dynstiff.catenary`: w0 weight per unstretched length, W = w0 L0, Vb = V0 + W). One
+:mod:`dynstiff.cable.catenary`: w0 weight per unstretched length, W = w0 L0, Vb = V0 + W). One
 Newton iteration on all cables together costs a handful of array operations; the Jacobian is
 analytic::
 
     dx/dL0 = H/EA + H/T_B,   dz/dL0 = Vb/EA + Vb/T_B,
     dT_B/dH = H/T_B,   dT_B/dV0 = Vb/T_B,   dT_B/dL0 = w0 Vb/T_B,
 
-and d(x, z)/d(H, V0) is the in-plane flexibility of :mod:`dynstiff.catenary`, its differences
+and d(x, z)/d(H, V0) is the in-plane flexibility of :mod:`dynstiff.cable.catenary`, its differences
 of asinh and sqrt written without cancellation. Of the two lengths with the same end tension
 (taut, and hanging deeper), the taut one is kept: the tension falls as L0 grows at fixed ends,
 dT_B/dL0 (total) < 0. A cable that does not converge, lands on the other branch, is exactly
@@ -128,7 +128,7 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None, compiled=True):
         (H, V0, L0) to start Newton from (the previous outer iteration or a neighbouring
         pose); default the straight elastic cable with the prescribed tension.
     compiled : bool
-        Use the compiled Newton (:mod:`dynstiff.compiled_catenary`, equal to round-off) when
+        Use the compiled Newton (:mod:`dynstiff.compiled.catenary`, equal to round-off) when
         numba is installed; False: the numpy Newton (the reference).
 
     Returns
@@ -215,7 +215,7 @@ def sag_ratios(anchors, ends, H, V0, L0, EA, w0, n_points=401):
     """Largest distance of each cable from its chord over the chord length [-], shape (n,).
 
     The profile (docs/theory.md §1.1) at ``n_points`` points equally spaced in unstretched
-    arc length, as :attr:`dynstiff.catenary.CatenaryState.sag` samples it, all cables and
+    arc length, as :attr:`dynstiff.cable.catenary.CatenaryState.sag` samples it, all cables and
     points at once. A cable with H = 0 (vertical chord) is straight: 0.
     """
     d = ends - anchors

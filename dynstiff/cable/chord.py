@@ -3,9 +3,9 @@
 One cable's equilibrium, seen from its chord A -> B: length, the tension the linear theory
 uses, mass and weight per chord length, compliance length and the Irvine parameter
 lambda^2 (docs/theory.md §1.2, §3.1). The closed-form dynamic stiffness
-(:mod:`dynstiff.cable_dsm`) and the catenary's own ``lambda_sq`` both read these, so the
+(:mod:`dynstiff.cable.dsm`) and the catenary's own ``lambda_sq`` both read these, so the
 conventions (mean tension, mass per chord length, compliance length L0 (1 + 8 (d/L)^2)) live
-here once; they are argued in the docstring of :mod:`dynstiff.cable_dsm`.
+here once; they are argued in the docstring of :mod:`dynstiff.cable.dsm`.
 """
 
 from dataclasses import dataclass

@@ -1,5 +1,5 @@
 """Lumped-mass (bead-and-spring) model of one heavy elastic cable: statics (the linear
-dynamics about the equilibrium are in :mod:`dynstiff.lumped.chain_dynamics`).
+dynamics about the equilibrium are in :mod:`dynstiff.cable.lumped_chain_dynamics`).
 
 This is the independent cross-check of the closed-form cable dynamic stiffness
 (theory.md §7, §9.2). It uses no catenary closed form: the equilibrium is found by its own

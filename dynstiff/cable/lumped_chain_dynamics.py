@@ -1,6 +1,6 @@
 """Linear dynamics of the lumped-mass cable about its equilibrium (theory.md §7.1): the
 chain's tangent stiffness and mass, its dynamic stiffness condensed onto the ends, and its
-fixed-end natural frequencies. Notation and conventions as :mod:`dynstiff.lumped.chain`."""
+fixed-end natural frequencies. Notation and conventions as :mod:`dynstiff.cable.lumped_chain`."""
 
 import warnings
 

@@ -1,6 +1,6 @@
 """High-precision (mpmath) reference of the dynamic stiffness of one sagging cable.
 
-Scalar, slow and independent of :mod:`dynstiff.cable_dsm`: it evaluates the *naive*
+Scalar, slow and independent of :mod:`dynstiff.cable.dsm`: it evaluates the *naive*
 textbook forms of theory.md §3.2-3.4 (Irvine & Caughey 1974 linear theory written as an
 end-force / end-displacement relation, Starossek 1991),
 

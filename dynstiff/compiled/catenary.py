@@ -4,7 +4,7 @@ tensions: the kernel of :func:`dynstiff.cable.catenary_batch.taut_catenaries` (d
 operations per iteration.
 
 Imported only when numba is installed (``pip install "dynstiff[fast]"``); the numpy Newton of
-:mod:`dynstiff.catenary_batch` stays the reference it is tested against. Same equations,
+:mod:`dynstiff.cable.catenary_batch` stays the reference it is tested against. Same equations,
 same divided differences (:func:`dynstiff.cable.catenary.divided_differences`), same step limits,
 stopping rule and taut-branch test; the 3 x 3 Newton step is an LU solve with partial
 pivoting written out (LAPACK's in the numpy path), so the two agree to round-off. A cable

@@ -4,9 +4,9 @@ the segments (with the extreme tension and strain the step checks), the ledger
 energies, and whole runs with their records, ledger and checks: explicit (velocity Verlet)
 and implicit (Newmark, Newton with LU factors made by scipy; theory.md §14.6).
 
-Imported only by :mod:`dynstiff.lumped.time_dynamics` when numba is installed (``pip
+Imported only by :mod:`dynstiff.timedomain.dynamics` when numba is installed (``pip
 install "dynstiff[fast]"``); without it the numpy path (``LumpedMassModel.residual_unchecked``
-and the stacked axial dashpot, the stepwise loop of :mod:`dynstiff.lumped.time_domain`) is
+and the stacked axial dashpot, the stepwise loop of :mod:`dynstiff.timedomain.simulation`) is
 used, and stays the reference the kernels are tested against. Compiled on first use and
 cached on disk. The stepping functions write into buffers they are given: a step allocates
 nothing.

@@ -3,7 +3,7 @@ solve C K^-1 B of an FRF (theory.md §4, §14.1), and with the eigenvalues and c
 a Wittrick-Williams count (theory.md §5, §14.2), one frequency at a time.
 
 Imported only when an FRF or an eigen search asks for it and numba is installed (``pip
-install "dynstiff[fast]"``); :mod:`dynstiff.frf` and :mod:`dynstiff.eigen` fall back to the
+install "dynstiff[fast]"``); :mod:`dynstiff.frf` and :mod:`dynstiff.analyses.eigen` fall back to the
 numpy paths (K(omega) batched over frequency, then ``np.linalg``), which stay the reference
 the kernels are tested against. Compiled on first use and cached on disk (``cache=True``).
 

@@ -13,7 +13,7 @@ The poses are cut into chunks in input order; a chunk is one task, and along a c
 pose's statics start from the previous pose's equilibrium
 (:meth:`dynstiff.Robot.equilibrium`, ``start=``). The chunking depends only on the input
 and ``chunk_size``, so a serial run, local processes and a Dask cluster compute the same
-numbers. Results come back as an ``xarray.Dataset`` (:mod:`dynstiff.workspace_data`).
+numbers. Results come back as an ``xarray.Dataset`` (:mod:`dynstiff.maps.dataset`).
 """
 
 import dataclasses
@@ -414,7 +414,7 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
         Forbidden band [Hz]; ``band_margin`` is the relative distance of the global modes
         (among the ``n_modes``) outside it, and its check asks for at least ``margin``.
     margin, proximity_rtol, max_sag_ratio : float
-        Limits of the checks, as :func:`dynstiff.design_checks`.
+        Limits of the checks, as :func:`dynstiff.analyses.checks.design_checks`.
     rung : str
         Model of the modes, one of :data:`dynstiff.models.ladder.RUNGS` (default "dsm").
     chunk_size : int

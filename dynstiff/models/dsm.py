@@ -50,7 +50,7 @@ __all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]
 class FrequencyModel(PlatformModel):
     """The "dsm" rung: closed-form dynamic stiffness of every cable, assembled (theory.md §4).
 
-    Immutable; the interface of every model is described in :mod:`dynstiff.model_base`.
+    Immutable; the interface of every model is described in :mod:`dynstiff.models.base`.
 
     Parameters
     ----------
@@ -84,7 +84,7 @@ class FrequencyModel(PlatformModel):
     Attributes
     ----------
     rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
-        As every model (:mod:`dynstiff.model_base`).
+        As every model (:mod:`dynstiff.models.base`).
     params : tuple of ChordParameters
         Chord-frame parameters of every cable.
     lever_arms : ndarray, shape (n_cables, 3)
@@ -374,7 +374,7 @@ class FrequencyModel(PlatformModel):
 
 def compiled_arguments(model):
     """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
-    (:mod:`dynstiff.compiled_dsm`) for an undamped :class:`FrequencyModel`: contiguous float
+    (:mod:`dynstiff.compiled.dsm`) for an undamped :class:`FrequencyModel`: contiguous float
     arrays, the psi series and the symmetric assembly map."""
     p = model.stacked_params
 

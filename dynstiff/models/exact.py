@@ -29,7 +29,7 @@ BLOCK_ELEMENTS = 2**16
 class ExactModel(PlatformModel):
     """The "exact" rung (theory.md §11): cables linearised about their true catenary.
 
-    Immutable; the interface of every model is described in :mod:`dynstiff.model_base`.
+    Immutable; the interface of every model is described in :mod:`dynstiff.models.base`.
 
     Parameters
     ----------
@@ -56,7 +56,7 @@ class ExactModel(PlatformModel):
     Attributes
     ----------
     rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
-        As every model (:mod:`dynstiff.model_base`).
+        As every model (:mod:`dynstiff.models.base`).
     cables : tuple of ExactCable
     fmax_hz, max_omega : float
         The band [Hz] and its angular frequency [rad/s].

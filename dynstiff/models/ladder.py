@@ -11,9 +11,9 @@ rung        cable model                                                        m
 ==========  =================================================================  ==============
 
 :func:`build_model` returns the model of a rung: an immutable object with the fields and
-methods of :mod:`dynstiff.model_base`. The analyses are plain functions of a model, the same
+methods of :mod:`dynstiff.models.base`. The analyses are plain functions of a model, the same
 for every rung: :func:`dynstiff.analyses.frf.frf`, :func:`dynstiff.analyses.eigen.eigenfrequencies`,
-:func:`dynstiff.analyses.eigen.modes`, :func:`dynstiff.analyses.eigen.damped_modes`. All rungs share the
+:func:`dynstiff.analyses.eigen.modes`, :func:`dynstiff.analyses.damped.damped_modes`. All rungs share the
 platform, the geometric stiffness K_geo and gravity.
 """
 
@@ -51,7 +51,7 @@ class StaticCableModel(PlatformModel):
     Attributes
     ----------
     rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
-        As every model (:mod:`dynstiff.model_base`); massless cables carry no damping, so
+        As every model (:mod:`dynstiff.models.base`); massless cables carry no damping, so
         ``damped`` is False.
     K : ndarray, shape (n_free, n_free)
         Stiffness [N/m, N, N m/rad] (symmetric part).

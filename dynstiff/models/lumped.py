@@ -2,7 +2,7 @@
 
 Built from a :class:`~dynstiff.lumped.LumpedMassModel` and one of its equilibria (the
 equilibrium is part of how the model is built; nothing changes it afterwards). It answers
-the interface of every model (:mod:`dynstiff.model_base`) from its finite matrices
+the interface of every model (:mod:`dynstiff.models.base`) from its finite matrices
 (theory.md §7.1):
 
     K(omega) = D_pp(omega) - K_pi D_ii(omega)^-1 K_ip,   D = K - omega^2 M + i omega C
@@ -11,7 +11,7 @@ the interface of every model (:mod:`dynstiff.model_base`) from its finite matric
 couples them to the platform), and its poles are the natural frequencies of the chains with
 the platform held, counted exactly from the eigenvalues of (K_ii, M_ii).
 
-Notation as :mod:`dynstiff.lumped.robot_model`.
+Notation as :mod:`dynstiff.models.lumped_robot`.
 """
 
 import functools
@@ -40,7 +40,7 @@ class LumpedLinearModel(PlatformModel):
     Attributes
     ----------
     rung, robot, equilibrium, pose, free_dofs, free_index, n_free, platform_mass, damped
-        As every model (:mod:`dynstiff.model_base`); ``equilibrium`` is ``state``.
+        As every model (:mod:`dynstiff.models.base`); ``equilibrium`` is ``state``.
     mass_model : LumpedMassModel
     unstretched_lengths : ndarray, shape (n_cables,)
         L0_i [m] (those of ``mass_model``).

@@ -38,7 +38,7 @@ small motion (dp, dtheta) about P, dtheta a rotation vector in the base frame), 
 interior nodes 1..N_i - 1 of cable 0 (node-major x, y, z), of cable 1, ...
 
 Conventions: the residual R(x) is the net *applied* force (zero at equilibrium) and the
-tangent stiffness is K = -dR/dx, so K u = f_applied, as in :mod:`dynstiff.lumped.chain`.
+tangent stiffness is K = -dR/dx, so K u = f_applied, as in :mod:`dynstiff.cable.lumped_chain`.
 Gravity is (0, 0, -g).
 """
 

@@ -1,4 +1,4 @@
-"""Plots of results (matplotlib is imported here and in :mod:`dynstiff.plot3d` only).
+"""Plots of results (matplotlib is imported here and in :mod:`dynstiff.report.robot3d` only).
 
 Each function takes ``ax=`` (an existing Axes) and returns the matplotlib Figure; none calls
 ``show()``. Artists that tests and users may want to find again carry a ``gid``:

@@ -1,6 +1,6 @@
 """Single-cable report: statics, fixed-end frequencies and the dynamic stiffness over a band.
 
-The numbers come from :mod:`dynstiff.catenary` and :mod:`dynstiff.cable_dsm`; this module only
+The numbers come from :mod:`dynstiff.cable.catenary` and :mod:`dynstiff.cable.dsm`; this module only
 formats them and writes files (pandas and matplotlib are imported here, on demand).
 """
 

@@ -1,7 +1,7 @@
 """Static equilibrium of a robot: the record the statics solvers return.
 
 It holds its robot and the exact elastic-catenary state of every cable (docs/theory.md §1.1);
-the models of :mod:`dynstiff.ladder` are built on it.
+the models of :mod:`dynstiff.models.ladder` are built on it.
 """
 
 from dataclasses import dataclass

@@ -108,7 +108,7 @@ class Robot:
     @classmethod
     def from_caspr(cls, bodies_xml, cables_xml, cable, cable_set=None,
                    inertia_convention="products", g=STANDARD_GRAVITY, min_tension=1.0):
-        """Robot of a single-body CASPR model (:mod:`dynstiff.caspr`, theory.md §15.1).
+        """Robot of a single-body CASPR model (:mod:`dynstiff.io.caspr`, theory.md §15.1).
 
         Parameters
         ----------
@@ -131,7 +131,7 @@ class Robot:
         -------
         Robot
             Its ``tension_limits`` are the tightest pair holding for every cable. The pose
-            ``q_initial`` is ``dynstiff.caspr.read_caspr(...).position`` / ``.rotation``
+            ``q_initial`` is ``dynstiff.io.caspr.read_caspr(...).position`` / ``.rotation``
             (or :func:`dynstiff.scenes.import_caspr`, which returns a Scene with it).
         """
         m = read_caspr(bodies_xml, cables_xml, cable_set, inertia_convention, stacklevel=3)

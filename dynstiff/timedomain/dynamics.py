@@ -1,7 +1,7 @@
 """Kernels of the lumped-mass time-domain model (theory.md §7.3): configuration updates
 with exactly composed rotations, the pose-dependent platform terms, damping forces, the
 potential energy and the :class:`Dynamics` that assembles forces, mass and the Newton
-matrix. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for the equations)."""
+matrix. Internal to :mod:`dynstiff.timedomain.simulation` (see its notes for the equations)."""
 
 import functools
 
@@ -297,7 +297,7 @@ class Dynamics:
 
     def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
         """Residual R, axial-dashpot force and largest tension from the compiled chain kernel
-        (:mod:`dynstiff.lumped.compiled_chain`); sets ``extremes``."""
+        (:mod:`dynstiff.compiled.chain`); sets ``extremes``."""
         m = self.model
         rob = m.robot
         nf = m.n_free

@@ -1,4 +1,4 @@
-"""Results of the time-domain simulation (:mod:`dynstiff.lumped.time_domain`): the energy
+"""Results of the time-domain simulation (:mod:`dynstiff.timedomain.simulation`): the energy
 ledger, the time response with its pandas and plot views, and its spectrum."""
 
 from dataclasses import dataclass

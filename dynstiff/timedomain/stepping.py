@@ -1,6 +1,6 @@
 """Stepping of the lumped-mass time-domain model (theory.md §7.3): the Newmark
 average-acceleration and velocity-Verlet steps, the blow-up checks, the running energy
-ledger and the recorder. Internal to :mod:`dynstiff.lumped.time_domain` (see its notes for
+ledger and the recorder. Internal to :mod:`dynstiff.timedomain.simulation` (see its notes for
 the schemes and the energy bookkeeping), except the failure types it raises."""
 
 import warnings

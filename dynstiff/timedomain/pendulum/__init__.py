@@ -22,7 +22,7 @@ cable keeps the stiffness k, the damping b and the unstretched length L0 = L - P
 massless model (the paper's rule). Segment tension T = max(0, k_s (l - l_s) + b_s dl/dt): it
 never pushes and is continuous in the state, so the linearisation needs no saltation matrix.
 Interior masses m_c / (n + 1), plus half masses at the ends (the lumping of
-:mod:`dynstiff.lumped.chain`): the one at D rides on the pendulum, the one at E is prescribed.
+:mod:`dynstiff.cable.lumped_chain`): the one at D rides on the pendulum, the one at E is prescribed.
 n = 0 is the massless cable (the paper's force model); the cable mass is then ignored.
 
 Notation

@@ -1,5 +1,5 @@
 """The cable pendulum's parameters and derived data, and its construction from a scene
-(notation: :mod:`dynstiff.pendulum`)."""
+(notation: :mod:`dynstiff.timedomain.pendulum`)."""
 
 from dataclasses import dataclass
 from numbers import Integral
