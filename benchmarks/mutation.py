@@ -145,7 +145,7 @@ EQUIVALENT.update({
     "dynstiff.cable.lumped_chain.x__slack_segment__mutmut_30":
         "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
         "slack test far less than l0, so the same segment is found",
-    "dynstiff.cable.lumped_chain.x__potential_energy__mutmut_22":
+    "dynstiff.cable.lumped_elements.x_potential_energy__mutmut_22":
         "the merit function of the chain Newton's line search (1.5 instead of 0.5 EA l0 "
         "strain^2): a step is accepted a little differently, the equilibrium is the same",
     "dynstiff.cable.lumped_chain.x__newton__mutmut_77":
@@ -441,11 +441,11 @@ EQUIVALENT.update({
         "follows",
     "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_29":
         "division by 1 + i 0 (loss factor 0): the same values, K.real follows when undamped",
-    "dynstiff.cable.lumped_chain.x_block_tridiagonal_entries__mutmut_9":
+    "dynstiff.cable.lumped_elements.x_block_tridiagonal_entries__mutmut_9":
         "meshgrid's 'xy' indexing transposes each element block: element stiffnesses are "
         "symmetric",
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_101": _START,
-    "dynstiff.cable.lumped_chain.x__update_segments__mutmut_27":
+    "dynstiff.cable.lumped_elements.x_update_segments__mutmut_27":
         "the |dd|^2 term of the length change summed over all segments: Newton's steps "
         "from the force-space start are so small that their squares do not reach the "
         "strain (segment lengths equal the node distances to 7e-15 either way, planted "
@@ -453,7 +453,7 @@ EQUIVALENT.update({
     "dynstiff.cable.lumped_chain.x__slack_segment__mutmut_23":
         "the stretch term of the hanging lengths (w/EA ~ 1e-5 of l0) moves the gap of the "
         "slack test far less than l0, so the same segment is found",
-    "dynstiff.cable.lumped_chain.x__potential_energy__mutmut_20":
+    "dynstiff.cable.lumped_elements.x_potential_energy__mutmut_20":
         "the line search's merit (energy) with EA / l0 instead of EA l0: a step is also "
         "accepted when it lowers the force residual, and the equilibrium is checked by "
         "that residual",

@@ -259,7 +259,7 @@ def test_banded_interior_block_is_the_assembled_one(factor, extra):
     """interior_banded in upper (symmetric) and general form holds K_II + extra I of the
     element-by-element assembly, complex element stiffnesses (hysteretic damping) and
     complex diagonal terms included."""
-    from dynstiff.cable.lumped_chain import BANDWIDTH, interior_banded
+    from dynstiff.cable.lumped_elements import BANDWIDTH, interior_banded
     rng = np.random.default_rng(5)
     a = rng.normal(size=(5, 3, 3))
     ke = (a + a.transpose(0, 2, 1)) * factor
@@ -281,7 +281,8 @@ def test_a_singular_chain_stiffness_is_solved_with_a_small_positive_shift():
     singular. The regularised solve shifts its diagonal by 1e-10 of its largest entry (and
     grows the shift only if that fails): an axial load, in the range of K, is met to 1e-9
     and the transverse motion stays 0."""
-    from dynstiff.cable.lumped_chain import _regularised_solve, interior_banded
+    from dynstiff.cable.lumped_chain import _regularised_solve
+    from dynstiff.cable.lumped_elements import interior_banded
     u = np.array([0.6, 0.0, 0.8])
     ke = np.broadcast_to(1e4 * np.outer(u, u), (6, 3, 3)).copy()
     rhs = np.outer(np.linspace(1.0, 2.0, 5), u).ravel()

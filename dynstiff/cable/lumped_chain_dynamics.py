@@ -7,11 +7,10 @@ import warnings
 import numpy as np
 
 from dynstiff._validate import omega_array
-from dynstiff.cable.lumped_chain import (
+from dynstiff.cable.lumped_chain import check_chain_state, checked_integer
+from dynstiff.cable.lumped_elements import (
     BANDWIDTH,
     block_tridiagonal_entries,
-    check_chain_state,
-    checked_integer,
     element_stiffness,
     interior_banded,
 )

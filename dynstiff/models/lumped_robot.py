@@ -50,11 +50,8 @@ import numpy as np
 from dynstiff import _validate
 from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
-from dynstiff.cable.lumped_chain import (
-    block_tridiagonal_entries,
-    chain_equilibrium,
-    element_stiffness,
-)
+from dynstiff.cable.lumped_chain import chain_equilibrium
+from dynstiff.cable.lumped_elements import block_tridiagonal_entries, element_stiffness
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.robot.platform import lever_map, platform_mass_matrix, skew
 from dynstiff.robot.pose import Pose, as_pose
