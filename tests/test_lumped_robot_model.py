@@ -158,13 +158,13 @@ def test_stacked_residual_equals_the_per_cable_loop(cogiro, cogiro_eq):
     rng = np.random.default_rng(7)
     pose, interior = model.displaced(st.pose, st.interior,
                                      2e-2 * rng.standard_normal(model.n_dof))
-    nodes, _ = model._full_nodes(pose, interior)
+    nodes, _ = model.full_nodes(pose, interior)
     inner1, F1, t1 = model._chain_forces_stacked(nodes)
     inner2, F2, t2 = model._chain_forces_loop(nodes)
     assert np.abs(inner1 - inner2).max() < 1e-12 * np.abs(inner1).max()
     assert np.abs(F1 - F2).max() < 1e-12 * np.abs(F1).max()
     assert t1 == t2
-    from dynstiff.models.lumped_robot import segment_forces
+    from dynstiff.models.lumped_statics import segment_forces
     T = [segment_forces(x, model.segment_lengths[i], cogiro.robot.cables[i].EA)[2]
          for i, x in enumerate(nodes)]
     assert any(np.any(t == 0.0) for t in T)                     # slack segments among them

@@ -61,7 +61,7 @@ def test_potential_is_stationary_at_equilibrium_and_nodes_carry_their_mass(lumpe
 def test_axial_dashpot_stacked_equals_loop_and_dissipates_its_power(lumped):
     """The stacked axial dashpot (chains of equal N at once) gives the cable-by-cable forces,
     and its power is the dissipation -sum c_ax l0 (d eps/dt)^2 over the taut segments."""
-    from dynstiff.models.lumped_robot import segment_forces
+    from dynstiff.models.lumped_statics import segment_forces
     from dynstiff.timedomain import dynamics as td
     mm, st = lumped
     rng = np.random.default_rng(5)

@@ -11,7 +11,8 @@ from dynstiff.cable.lumped_chain_dynamics import (
     chain_matrices,
 )
 from dynstiff.models.lumped import LumpedLinearModel
-from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
+from dynstiff.models.lumped_robot import LumpedMassModel
+from dynstiff.models.lumped_statics import LumpedEquilibrium
 from dynstiff.results import LumpedModalResult
 from dynstiff.timedomain.simulation import (
     EnergyBalance,

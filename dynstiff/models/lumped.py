@@ -21,7 +21,8 @@ import numpy as np
 from dynstiff._validate import omega_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel
-from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
+from dynstiff.models.lumped_robot import LumpedMassModel
+from dynstiff.models.lumped_statics import LumpedEquilibrium
 from dynstiff.robot.platform import lever_map
 
 __all__ = ["LumpedLinearModel"]

@@ -42,47 +42,23 @@ tangent stiffness is K = -dR/dx, so K u = f_applied, as in :mod:`dynstiff.cable.
 Gravity is (0, 0, -g).
 """
 
-from dataclasses import dataclass
 from numbers import Integral
 
 import numpy as np
 
 from dynstiff import _validate
-from dynstiff._validate import positive_scalar
 from dynstiff._vec import cross
-from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.cable.lumped_elements import block_tridiagonal_entries, element_stiffness
-from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.errors import InvalidParameterError
+from dynstiff.models.lumped_statics import (
+    lumped_equilibrium,
+    segment_forces,
+)
 from dynstiff.robot.platform import lever_map, platform_mass_matrix, skew
-from dynstiff.robot.pose import Pose, as_pose
+from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
-__all__ = ["LumpedMassModel", "LumpedEquilibrium", "segment_forces"]
-
-
-# ------------------------------------------------------------------------------ kernels
-def segment_forces(nodes, l0, EA):
-    """Segment geometry and tensions of one chain, or of a stack of chains.
-
-    Parameters
-    ----------
-    nodes : ndarray, shape (..., N+1, 3)
-        Node positions [m], anchor first.
-    l0, EA : float or ndarray broadcasting against shape (..., N)
-        Unstretched segment length [m], axial stiffness [N].
-
-    Returns
-    -------
-    units : ndarray, shape (..., N, 3)
-        n_i [-].
-    lengths : ndarray, shape (..., N)
-        l_i [m].
-    tensions : ndarray, shape (..., N)
-        T_i = EA (l_i / l0 - 1)_+ [N].
-    """
-    d = np.diff(nodes, axis=-2)
-    lengths = np.sqrt(np.sum(d * d, axis=-1))
-    return d / lengths[..., None], lengths, EA * np.maximum(lengths / l0 - 1.0, 0.0)
+__all__ = ["LumpedMassModel"]
 
 
 def _validatedsegment_forces(segments, n):
@@ -102,77 +78,6 @@ def _validatedsegment_forces(segments, n):
     if min(segs) < 1:
         raise InvalidParameterError(f"segments must be >= 1 for every cable, got {segs}")
     return np.array(segs, dtype=int)
-
-
-# ----------------------------------------------------------------------- result types
-@dataclass(frozen=True)
-class LumpedEquilibrium:
-    """Static equilibrium of the lumped-mass robot.
-
-    Attributes
-    ----------
-    pose : Pose
-        Platform pose.
-    nodes : list of ndarray, shape (N_i + 1, 3)
-        Node positions of every cable [m], anchor A_i first, attachment point B_i last.
-    tensions : list of ndarray, shape (N_i,)
-        Segment tensions [N], from the anchor to the platform.
-    residual : float
-        Largest unbalanced force on a node or the platform (moments divided by the platform
-        size), relative to the force scale m_p g + sum m L0 g + max T [-].
-    iterations : int
-        Newton iterations taken from the start.
-    start_pose : Pose
-        Elastic-catenary equilibrium pose the iteration started from.
-    platform_forces : ndarray, shape (n, 3)
-        Force F_i of every cable on the platform at B_i [N]: the last segment's pull plus
-        the weight of the half node mass carried by the platform (comparable with the
-        elastic catenary's ``force_on_end``).
-    """
-
-    pose: Pose
-    nodes: list
-    tensions: list
-    residual: float
-    iterations: int
-    start_pose: Pose
-    platform_forces: np.ndarray
-
-    def __repr__(self):
-        t = self.end_tensions
-        return (f"LumpedEquilibrium({len(self.nodes)} chains, {self.pose!r}, tensions at B "
-                f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
-
-    def plot(self, ax=None):
-        """Tensions of the end segments at B and A: :func:`dynstiff.plot.plot_tensions`.
-        Returns the matplotlib Figure."""
-        from dynstiff.plot import plot_tensions
-        return plot_tensions(self, ax=ax)
-
-    @property
-    def interior(self):
-        """Interior nodes of every cable, list of (N_i - 1, 3) arrays [m]."""
-        return [x[1:-1] for x in self.nodes]
-
-    @property
-    def end_tensions(self):
-        """Tension of the last segment of every cable (at the platform) [N], shape (n,)."""
-        return np.array([t[-1] for t in self.tensions])
-
-    @property
-    def anchor_tensions(self):
-        """Tension of the first segment of every cable (at the anchor) [N], shape (n,)."""
-        return np.array([t[0] for t in self.tensions])
-
-    def to_frame(self):
-        """pandas DataFrame, one row per cable: segments and end tensions [N]."""
-        import pandas as pd
-        return pd.DataFrame({
-            "cable": np.arange(len(self.nodes)),
-            "segments": [len(t) for t in self.tensions],
-            "tension at B [N]": self.end_tensions,
-            "tension at A [N]": self.anchor_tensions,
-        })
 
 
 # ------------------------------------------------------------------------------ model
@@ -237,7 +142,7 @@ class LumpedMassModel:
                 f"{np.round(self.unstretched_lengths, 6).tolist()} m)")
 
     # ---------------------------------------------------------------- configuration
-    def _full_nodes(self, pose, interior):
+    def full_nodes(self, pose, interior):
         B, r = self.robot.attachment_points(pose)
         nodes = [np.vstack((self.robot.anchors[i], interior[i], B[i]))
                  for i in range(self.robot.n_cables)]
@@ -310,7 +215,7 @@ class LumpedMassModel:
         the largest tension [N]: (R, shape (n_dof,) [N, N m]; t_max). With a list
         ``extremes``, (smallest tension [N], largest strain l / l0 - 1 [-]) is appended to it
         (what a time step checks: slack segments and blow-ups)."""
-        nodes, r = self._full_nodes(pose, interior)
+        nodes, r = self.full_nodes(pose, interior)
         uniform = np.all(self.segments == self.segments[0])
         inner, F, t_max = (self._chain_forces_stacked if uniform
                            else self._chain_forces_loop)(nodes, extremes)
@@ -427,7 +332,7 @@ class LumpedMassModel:
         rob = self.robot
         fi, nf = self.free_index, self.n_free
         gvec = rob.gravity_vector
-        nodes, r = self._full_nodes(pose, interior)
+        nodes, r = self.full_nodes(pose, interior)
         rows, cols, vals = [], [], []
         dtype = np.result_type(*[axial_of(i) for i in range(rob.n_cables)], float)
         Kpp = np.zeros((nf, nf), dtype=dtype)
@@ -544,67 +449,4 @@ class LumpedMassModel:
         SlackCableError
             A cable has a zero-tension segment (at the start or at the solution).
         """
-        import scipy.sparse.linalg
-        tol = positive_scalar("tol", tol)
-        if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
-            raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
-        rob = self.robot
-        start = rob.equilibrium(unstretched_lengths=self.unstretched_lengths,
-                                initial_pose=None if initial_pose is None
-                                else as_pose(initial_pose))
-        pose = start.pose
-        B, _ = rob.attachment_points(pose)
-        interior = [chain_equilibrium(rob.anchors[i], B[i], self.unstretched_lengths[i],
-                                      rob.cables[i], int(self.segments[i]), rob.g
-                                      ).nodes[1:-1].copy()
-                    for i in range(rob.n_cables)]
-        R, t_max = self.residual_unchecked(pose, interior)
-        res = self.relative_residual(R, t_max)
-        iteration = 0
-        while res > max(tol, self.rounding_floor(pose, t_max)):
-            if iteration == max_iter:
-                raise ConvergenceError(
-                    f"LumpedMassModel.equilibrium did not converge in {max_iter} Newton "
-                    f"iterations: relative residual {res:.3e} > tol {tol:g}", residual=res)
-            iteration += 1
-            K = self.tangent_unchecked(pose, interior, lambda i: 1.0)
-            try:
-                with np.errstate(all="raise"):
-                    dx = scipy.sparse.linalg.splu(K.tocsc()).solve(R)
-            except (RuntimeError, FloatingPointError):
-                raise ConvergenceError(
-                    f"LumpedMassModel.equilibrium: singular tangent stiffness (slack "
-                    f"segments or an unstable pose), relative residual {res:.3e}",
-                    residual=res) from None
-            alpha = 1.0
-            while True:
-                trial = self.displaced(pose, interior, alpha * dx)
-                R_t, t_t = self.residual_unchecked(*trial)
-                res_t = self.relative_residual(R_t, t_t)
-                if res_t < res or alpha < 1e-6:
-                    break
-                alpha *= 0.5
-            if not res_t < res:
-                if res <= 4 * self.rounding_floor(pose, t_max):
-                    break                      # stagnation at the rounding level: converged
-                raise ConvergenceError(
-                    f"LumpedMassModel.equilibrium: no step reduces the residual (stagnation "
-                    f"at rounding level or a wrong tangent), relative residual {res:.3e} > "
-                    f"tol {tol:g}", residual=res)
-            (pose, interior), R, t_max, res = trial, R_t, t_t, res_t
-        nodes, _ = self._full_nodes(pose, interior)
-        seg = [segment_forces(x, l0, c.EA) for x, l0, c in zip(nodes, self.segment_lengths,
-                                                          rob.cables)]
-        tensions = [T for _, _, T in seg]
-        forces = np.array([-T[-1] * n[-1] + 0.5 * mi * rob.gravity_vector
-                           for (n, _, T), mi in zip(seg, self.node_masses)])
-        slack = [i for i, t in enumerate(tensions) if np.any(t <= 0.0)]
-        if slack:
-            raise SlackCableError(
-                f"LumpedMassModel.equilibrium: cable(s) {slack} have zero-tension segments at "
-                f"equilibrium (pose {pose.as_vector().tolist()})")
-        for a in nodes + tensions + [forces]:
-            a.setflags(write=False)
-        return LumpedEquilibrium(pose=pose, nodes=nodes, tensions=tensions, residual=res,
-                                 iterations=iteration, start_pose=start.pose,
-                                 platform_forces=forces)
+        return lumped_equilibrium(self, initial_pose, tol, max_iter)

@@ -10,7 +10,8 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._vec import cross
 from dynstiff.errors import InvalidParameterError
-from dynstiff.models.lumped_robot import LumpedMassModel, segment_forces
+from dynstiff.models.lumped_robot import LumpedMassModel
+from dynstiff.models.lumped_statics import segment_forces
 from dynstiff.robot.platform import (
     lever_map,
     platform_mass_matrix,

@@ -96,7 +96,8 @@ from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.models.lumped import LumpedLinearModel
-from dynstiff.models.lumped_robot import LumpedEquilibrium, LumpedMassModel
+from dynstiff.models.lumped_robot import LumpedMassModel
+from dynstiff.models.lumped_statics import LumpedEquilibrium
 from dynstiff.timedomain.damping import TimeDamping, explicit_step_limit
 from dynstiff.timedomain.dynamics import (
     Dynamics,
