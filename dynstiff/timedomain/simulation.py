@@ -439,7 +439,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
     newton = StepNewton(tol, max_iter)
     slack_steps = 0
-    fast = compiled.load("chain")
+    fast = compiled.load("chain_run")
     if scheme == "explicit" and fast is not None and length_fn is None:
         slack_steps = compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,

@@ -268,7 +268,7 @@ def _six(model, x):
 
 def _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger):
     """(free (6,) bool, state, constants, tail) of the compiled runs: the state arrays as
-    in :func:`dynstiff.compiled.chain.explicit_run`, the model's constants from free
+    in :func:`dynstiff.compiled.chain_run.explicit_run`, the model's constants from free
     to K0, then the ledger, counters and records (ledger, info, out, records, rec_X)."""
     m = dyn.model
     rob, p = m.robot, m.robot.platform
@@ -301,7 +301,7 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
                           ledger, damping, slack_warning, table):
     """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
     in calls of ``_BLOCK`` steps of the compiled kernel
-    (:func:`dynstiff.compiled.chain.explicit_run`, theory.md §14.5), records, ledger
+    (:func:`dynstiff.compiled.chain_run.explicit_run`, theory.md §14.5), records, ledger
     rows and checks included; the warnings and the failure it reports are raised here as in
     the stepwise loop. ``table``: the excitation as (times, loads), or None. Returns the
     number of steps with a slack segment."""
@@ -327,7 +327,7 @@ def _lu_arrays(lu):
 def compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
                           ledger, damping, slack_warning, table, newton):
     """The Newmark steps of a run with fixed lengths in calls of the compiled kernel
-    (:func:`dynstiff.compiled.chain.implicit_run`, theory.md §14.6): Newton with the
+    (:func:`dynstiff.compiled.chain_run.implicit_run`, theory.md §14.6): Newton with the
     kept LU factors runs in the kernel; when they are missing or Newton slows down, the
     kernel returns, the Newton matrix is assembled and factorised here (as in
     :func:`implicit_step`) and the kernel resumes the same step. Records, ledger, checks,
