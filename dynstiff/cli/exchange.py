@@ -1,13 +1,13 @@
 """Subcommands that talk to other tools: ``import-caspr`` and ``calibrate``.
 
-Added to the ``dynstiff`` parser by :func:`add_commands`; errors are DynstiffError and are
+Added to the ``dynstiff`` parser by :func:`add_parsers`; errors are DynstiffError and are
 reported on one line by :func:`dynstiff.cli.main`.
 """
 
 import sys
 import warnings
 
-__all__ = ["add_commands"]
+__all__ = ["add_parsers"]
 
 
 def _out(path, text):
@@ -73,7 +73,7 @@ def cmd_calibrate(args):
     return 0
 
 
-def add_commands(sub):
+def add_parsers(sub):
     """Add ``import-caspr`` and ``calibrate`` to the subparsers ``sub``."""
     ic = sub.add_parser("import-caspr", help="write a scene file from CASPR's XML model files "
                                              "(single rigid body)")

@@ -3,10 +3,10 @@
 
 import sys
 
-__all__ = ["add_workspace_parser"]
+__all__ = ["add_parsers"]
 
 
-def add_workspace_parser(sub):
+def add_parsers(sub):
     """Add the ``workspace`` subcommand to the subparsers ``sub`` of the dynstiff parser."""
     ws = sub.add_parser(
         "workspace", help="map statics, modes and design checks over a box grid of positions "

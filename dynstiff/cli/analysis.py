@@ -1,0 +1,226 @@
+"""Analyses of one pose: ``scenes``, ``modes``, ``frf`` and ``check``."""
+
+
+from dynstiff.cli.common import (
+    damping_option,
+    equilibrium,
+    info,
+    scene_settings,
+    write_table,
+)
+
+__all__ = ["add_parsers"]
+
+
+def _cmd_scenes(args):
+    from dynstiff.scenes import list_scenes, load_scene
+    for name in list_scenes():
+        info(args).write(f"{name:<12s} {load_scene(name).description}\n")
+    return 0
+
+
+def _exact_model(eq, n_modes, fmax_hz):
+    """The exact rung with a band that holds the request: 1.05 fmax_hz, or, for n_modes, a
+    band doubled from 25 Hz until it holds them (theory.md §11)."""
+    from dynstiff.analyses.eigen import mode_count
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.models.ladder import build_model
+    if fmax_hz is not None:
+        return build_model(eq, "exact", fmax_hz=1.05 * fmax_hz)
+    band = 25.0
+    while True:
+        model = build_model(eq, "exact", fmax_hz=band)
+        if mode_count(model, 2 * 3.141592653589793 * band)[0] >= n_modes:
+            return model
+        band *= 2.0
+        if band > 1e4:
+            raise InvalidParameterError(f"-n {n_modes}: more modes than the exact model holds "
+                                        f"below 10 kHz")
+
+
+def _cmd_modes(args):
+    import numpy as np
+
+    from dynstiff.analyses.eigen import modes
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.models.ladder import build_model
+    from dynstiff.scenes import load_scene
+    if args.segments is not None and args.segments < 1:
+        raise InvalidParameterError(f"--segments must be >= 1, got {args.segments}")
+    scene = load_scene(args.scene)
+    st = scene_settings(scene, args)
+    eq = equilibrium(scene, args)
+    n = None if args.fmax and args.n is None else st.n_modes
+    args.model = st.rung
+    args.segments = st.segments
+    if st.rung == "exact":
+        model = _exact_model(eq, n, args.fmax)
+    else:
+        model = build_model(eq, st.rung, segments=st.segments)
+    note = ""
+    if hasattr(model, "matrices") and n is not None and n > model.n_dof:
+        note = f" (it has {model.n_dof} modes; {n} asked)"
+        n = model.n_dof
+    res = modes(model, n_modes=n, fmax_hz=args.fmax)
+    if len(res) == 0:
+        raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
+    from dynstiff.analyses.participation import platform_participation
+    part = platform_participation(model, res, st.participation)
+    df = res.to_frame()
+    df.insert(3, "platform share [-]", part.platform_share)
+    df.insert(4, "category", list(part.category))
+    meta = st.metadata(eq.pose, units="Hz; shapes normalised to unit platform kinetic energy")
+    info(args).write(f"{args.model} model")
+    info(args).write(f", {args.segments} segments per cable" if args.model == "lumped"
+                     else "")
+    info(args).write(f"{note} (undamped natural frequencies; {st.damping.text()}):\n")
+    if args.csv:
+        write_table(df, args.csv, "csv", meta)
+    if args.json:
+        write_table(df, args.json, "json", meta)
+    cols = [c for c in ("mode", "freq [Hz]", "kind", "platform share [-]", "category",
+                        "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
+    with np.printoptions(suppress=True):
+        info(args).write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
+    info(args).write("\n")
+    return 0
+
+
+def _cmd_frf(args):
+    import numpy as np
+
+    from dynstiff.analyses.eigen import modes
+    from dynstiff.analyses.freqgrid import refined_grid
+    from dynstiff.analyses.frf import frf
+    from dynstiff.scenes import load_scene
+    scene = load_scene(args.scene)
+    st = scene_settings(scene, args)
+    lo, hi = st.band_hz
+    eq = equilibrium(scene, args)
+    model = st.model(eq)
+    marks = modes(model, fmax_hz=hi)
+    f = refined_grid((lo, hi), args.points, marks.freq_hz)
+    res = frf(model, 2 * np.pi * f, inputs=args.source, outputs=args.to, point=args.point,
+              kind=args.kind)
+    df = res.to_frame()
+    if args.csv:
+        write_table(df, args.csv, "csv", st.metadata(eq.pose, units="in the unit column"))
+    if args.uff:
+        res.to_uff(args.uff)
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        from dynstiff.plot import plot_frf
+        fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+    h = np.abs(res.H[:, 0, 0])
+    k = int(np.argmax(h))
+    info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "
+                     f"{lo:g}-{hi:g} Hz ({args.points} uniform, refined at {len(marks)} "
+                     f"modes), largest |H| = {h[k]:.4g} at {f[k]:.5g} Hz\n"
+                     f"{st.rung} model; {st.damping.text()}\n"
+                     + ("" if model.damped else "undamped model: |H| is unbounded at every "
+                        "mode, the largest value is the grid's, not a peak\n"))
+    for name in (args.csv, args.plot, args.uff):
+        if name and name != "-":
+            info(args).write(f"wrote {name}\n")
+    return 0
+
+
+def _cmd_check(args):
+    from dynstiff.analyses.checks import design_checks
+    from dynstiff.scenes import load_scene
+    scene = load_scene(args.scene)
+    st = scene_settings(scene, args)
+    pose = args.pose if args.pose is not None else scene.pose
+    if pose is None:
+        pose = scene.equilibrium().pose
+    band = st.forbidden_hz
+    res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
+                        max_sag_ratio=args.max_sag, **st.check_options())
+    info(args).write("\n".join(st.lines()) + "\n")
+    if band is None:
+        info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
+                         "scene's [analysis])\n")
+    info(args).write(res.text())
+    if args.csv:
+        from dynstiff.robot.robot import Pose
+        write_table(res.to_frame(), args.csv, "csv",
+                     st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
+                                 (pose if hasattr(pose, "position") else None)))
+    return 0 if res.passed else 1
+
+
+def add_parsers(sub):
+    """Add the ``scenes``, ``modes``, ``frf``, ``check`` subcommands to the subparsers ``sub``."""
+    sc = sub.add_parser("scenes", help="list the built-in scenes")
+    sc.set_defaults(func=_cmd_scenes)
+    mo = sub.add_parser("modes", help="eigenfrequencies with global/local labels and energy "
+                                      "fractions (Wittrick-Williams: none missed)")
+    mo.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    grp = mo.add_mutually_exclusive_group()
+    grp.add_argument("--pose", type=float, nargs="+", metavar="X",
+                     help="platform pose: x y z [m] (and rx ry rz [rad]); inverse statics")
+    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0",
+                     help="unstretched cable lengths [m]; forward statics")
+    mo.add_argument("--fmax", type=float, help="all modes below this frequency [Hz]")
+    mo.add_argument("-n", type=int, help="number of modes (default: the scene's n_modes)")
+    mo.add_argument("--csv", help="write the full table (shapes included) to this CSV file")
+    mo.add_argument("--json", help="write the full table to this JSON file")
+    mo.add_argument("--model", choices=["dsm", "exact", "lumped", "catenary", "spring"],
+                    help="cable model (default: the scene's, else dsm): closed-form dynamic "
+                         "stiffness, the exact cable about its true catenary, lumped masses "
+                         "(--segments), or massless cables with the catenary's or the "
+                         "straight spring's stiffness (platform modes only)")
+    mo.add_argument("--segments", type=int,
+                    help="segments per cable of the lumped model (default: the scene's, "
+                         "else 30)")
+    mo.set_defaults(func=_cmd_modes)
+    fr = sub.add_parser("frf", help="frequency response functions of the platform")
+    fr.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    grp = fr.add_mutually_exclusive_group()
+    grp.add_argument("--pose", type=float, nargs="+", metavar="X")
+    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
+    fr.add_argument("--from", dest="source", nargs="+", default=["fz"],
+                    choices=["fx", "fy", "fz", "mx", "my", "mz"], help="load channel(s)")
+    fr.add_argument("--to", nargs="+", default=["z"], choices=["x", "y", "z", "rx", "ry", "rz"],
+                    help="response channel(s)")
+    fr.add_argument("--point", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="platform point whose translation is output [m, platform frame]")
+    fr.add_argument("--kind", default="receptance",
+                    choices=["receptance", "mobility", "accelerance"])
+    fr.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="frequency band [Hz] (default: the scene's band)")
+    fr.add_argument("--points", type=int, default=4000,
+                    help="uniform frequencies, refined around every mode in the band")
+    damping_option(fr)
+    fr.add_argument("--plot", help="write a figure (PNG) with the modes marked")
+    fr.add_argument("--csv", help="write the tidy FRF table (CSV)")
+    fr.add_argument("--uff", help="write the FRFs as UFF 58 records (needs dynstiff[exchange])")
+    fr.set_defaults(func=_cmd_frf)
+    ck = sub.add_parser("check", help="design checks with a pass/fail report; exit code 1 if "
+                                      "any check fails")
+    ck.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    ck.add_argument("--pose", type=float, nargs="+", metavar="X")
+    ck.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="forbidden band for global modes [Hz] (default: the scene's "
+                         "forbidden_band_hz)")
+    ck.add_argument("--rtol", type=float,
+                    help="admissible frequency error of the cable model (default: the "
+                         "scene's model_rtol, else 0.01)")
+    ck.add_argument("--margin", type=float,
+                    help="relative margin of the platform modes to the band (default 0.05)")
+    ck.add_argument("--participation", type=float,
+                    help="platform share of a mode's kinetic energy from which it is held to "
+                         "the margin (default 0.05)")
+    ck.add_argument("--frf-limit", type=float,
+                    help="largest admissible receptance / static value in the band "
+                         "(default 10)")
+    damping_option(ck)
+    ck.add_argument("--proximity", type=float, default=0.03,
+                    help="relative distance local-global mode that fails (default %(default)s)")
+    ck.add_argument("--max-sag", type=float, default=0.02,
+                    help="largest admissible sag/chord (default %(default)s)")
+    ck.add_argument("--csv", help="write the checks table (CSV)")
+    ck.set_defaults(func=_cmd_check)

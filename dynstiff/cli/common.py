@@ -1,0 +1,147 @@
+"""What every command shares: the analysis settings of a scene with the command line's
+overrides, the equilibrium asked for, the checks of output paths and options made before any
+work, the report stream, table writers and a progress bar."""
+
+import sys
+
+__all__ = ["FIGURE_SUFFIXES", "ProgressBar", "check_outputs", "damping_option", "equilibrium",
+           "info", "scene_settings", "write_table"]
+
+
+def scene_settings(scene, args):
+    """The analysis settings of ``scene`` with the command line's overrides
+    (:func:`dynstiff.analyses.settings.analysis_settings`, the one source of defaults)."""
+    from dynstiff.analyses.settings import analysis_settings
+    band = getattr(args, "band", None)
+    fmax = getattr(args, "fmax", None)
+    kw = {}
+    if getattr(args, "command", None) == "check":
+        kw = dict(forbidden_hz=tuple(band) if band else None, margin=args.margin,
+                  model_rtol=args.rtol, participation=args.participation,
+                  frf_limit=args.frf_limit)
+        band = None
+    elif band:
+        kw["band_hz"] = tuple(band)
+    elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
+        from dynstiff.analyses.settings import DEFAULT_BAND_HZ
+        lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
+        kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
+    if getattr(args, "model", None):
+        kw["rung"] = args.model
+    for name in ("segments", "n"):
+        if getattr(args, name, None) is not None:
+            kw["n_modes" if name == "n" else name] = getattr(args, name)
+    return analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
+
+
+class ProgressBar:
+    """A text progress bar on standard error: ``[#####.....] 5/10``."""
+
+    def __init__(self, label, width=30, stream=None):
+        self.label, self.width = label, width
+        self.stream = stream or sys.stderr
+
+    def __call__(self, done, total):
+        n = int(round(self.width * done / total))
+        self.stream.write(f"\r{self.label} [{'#' * n}{'.' * (self.width - n)}] {done}/{total}")
+        if done == total:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+def equilibrium(scene, args):
+    if getattr(args, "pose", None) is not None:
+        return scene.robot.equilibrium(pose=args.pose)
+    if getattr(args, "lengths", None) is not None:
+        # held DOFs keep the values of the start pose: the scene's, when it has one
+        start = scene.pose
+        if start is None and len(scene.robot.platform.free_dofs) < 6:
+            from dynstiff.errors import InvalidParameterError
+            raise InvalidParameterError(
+                f"--lengths: scene {scene.name!r} holds DOFs but gives no [pose] to hold them "
+                f"at; give --pose instead, or a [pose] position in the scene file")
+        return scene.equilibrium(unstretched_lengths=args.lengths, initial_pose=start)
+    return scene.equilibrium()
+
+
+def damping_option(p):
+    p.add_argument("--damping", type=float, nargs="+", metavar="V",
+                   help="ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss factor "
+                        "(all cable motions), cable viscous damping [N s/m^2]; values not "
+                        "given keep the scene's [damping] (defaults 0.01 0.01 0); "
+                        "--damping 0 0 0: undamped")
+
+
+#: Figure formats accepted by ``--plot`` (matplotlib's raster and vector writers).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff",
+                    ".webp")
+
+
+def check_outputs(args):
+    """Refuse an output path before any work: a folder, a missing folder, or a figure format
+    matplotlib does not write. ``-`` (``--csv``, ``--json``) is standard output."""
+    from pathlib import Path
+
+    from dynstiff.errors import InvalidParameterError
+    for opt in ("csv", "json", "plot", "uff"):
+        value = getattr(args, opt, None)
+        if value is None or (value == "-" and opt not in ("plot", "uff")):
+            continue
+        p = Path(value)
+        if p.is_dir():
+            raise InvalidParameterError(f"--{opt} {value}: is a folder; give a file name")
+        if not p.parent.is_dir():
+            raise InvalidParameterError(f"--{opt} {value}: folder {str(p.parent)!r} does not "
+                                        f"exist")
+        if opt == "plot" and p.suffix.lower() not in FIGURE_SUFFIXES:
+            raise InvalidParameterError(
+                f"--plot {value}: the file name must end in one of {FIGURE_SUFFIXES}")
+    for opt in ("points", "steps", "segments", "n"):
+        value = getattr(args, opt, None)
+        least = 2 if opt in ("points", "steps") else 1
+        if value is not None and value < least:
+            raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt} must be >= {least}, "
+                                        f"got {value}")
+    for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag",
+                "participation", "frf_limit"):
+        value = getattr(args, opt, None)
+        if value is not None and not (value > 0 and value < float("inf")):
+            raise InvalidParameterError(
+                f"--{opt.replace('_', '-')} must be finite and > 0, got {value}")
+    band = getattr(args, "band", None)
+    if band is not None and not (0 <= band[0] < band[1] < float("inf")):
+        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got "
+                                    f"{band[0]} {band[1]}")
+    pose = getattr(args, "pose", None)
+    if pose is not None and len(pose) not in (3, 6):
+        raise InvalidParameterError(
+            f"--pose needs 3 numbers (x y z [m]) or 6 (and rx ry rz [rad]), got {len(pose)}: "
+            f"{pose}")
+
+
+def info(args):
+    """Stream of a command's report: standard output, or standard error when a table goes
+    to standard output (``--csv -`` / ``--json -``), so that the data stays clean."""
+    to_stdout = "-" in (getattr(args, "csv", None), getattr(args, "json", None))
+    return sys.stderr if to_stdout else sys.stdout
+
+
+def write_table(df, path, kind, metadata=None):
+    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output). With
+    ``metadata`` (a dict: scene, pose, model, damping, units, version): CSV gets a header of
+    ``# key: value`` lines (``pandas.read_csv(path, comment="#")``), JSON is
+    ``{"metadata": {...}, "data": [records]}``."""
+    import json
+    if kind == "csv":
+        text = df.to_csv(index=False)
+        if metadata:
+            text = "".join(f"# {k}: {json.dumps(v)}\n" for k, v in metadata.items()) + text
+    else:
+        text = df.to_json(orient="records", indent=1)
+        if metadata:
+            text = json.dumps({"metadata": metadata, "data": json.loads(text)}, indent=1)
+    if path == "-":
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+    else:
+        with open(path, "w") as fh:
+            fh.write(text)

@@ -1,0 +1,147 @@
+"""``simulate``: the lumped-mass time domain (free vibration from an offset and its
+spectrum, or a line commanded through quasi-static cable lengths)."""
+
+
+from dynstiff.cli.common import (
+    ProgressBar,
+    equilibrium,
+    info,
+    write_table,
+)
+
+__all__ = ["add_parsers"]
+
+
+def _cmd_simulate(args):
+    import warnings
+
+    import numpy as np
+
+    from dynstiff.analyses.eigen import eigenfrequencies
+    from dynstiff.constants import DOF_NAMES
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.lumped import SlackSegmentWarning, simulate
+    from dynstiff.models.ladder import build_model
+    from dynstiff.scenes import load_scene
+    scene = load_scene(args.scene)
+    eq = equilibrium(scene, args)
+    if args.to is not None:
+        from dynstiff.timedomain.trajectory import line, track
+        traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
+                    ramp=args.ramp)
+        bar = None if args.quiet else ProgressBar("quasi-static lengths")
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", SlackSegmentWarning)
+            tr = track(scene.robot, traj, segments=args.segments, dt=args.dt,
+                       settle=args.time, progress=bar)
+        resp = tr.response
+        df = tr.to_frame()
+        info(args).write(
+            f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
+            f"{args.speed:g} m/s (ramp {args.ramp:g} s), {args.segments} segments per "
+            f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
+            f"{tr.max_deviation:.4g} m ({100 * tr.relative_max_deviation:.3g} % of the mean "
+            f"cable length)\n")
+        if args.plot:
+            import matplotlib
+            matplotlib.use("Agg")
+            from dynstiff.plot import plot_tracking
+            fig = plot_tracking(tr)
+            fig.tight_layout()
+            fig.savefig(args.plot, dpi=120)
+    else:
+        offset = np.zeros(6)
+        fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
+        if args.offset is not None:
+            if len(args.offset) != 6:
+                raise InvalidParameterError(
+                    f"--offset needs 6 values dx dy dz [m] drx dry drz [rad], got "
+                    f"{len(args.offset)}")
+            offset = np.array(args.offset)
+        else:
+            offset[fd[0]] = 1e-3
+        model = build_model(eq, "lumped", segments=args.segments)
+        resp = simulate(model, args.time, args.dt, initial=offset)
+        df = resp.to_frame().reset_index()
+        ch = args.channel or DOF_NAMES[fd[0]]
+        sp = resp.spectrum(ch, prominence=_SPECTRUM_PROMINENCE)
+        f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
+        if args.band is not None:
+            band = tuple(args.band)
+            if not 0 <= band[0] < band[1]:
+                raise InvalidParameterError(
+                    f"--band must be LO HI with 0 <= LO < HI [Hz], got {list(args.band)}")
+        else:
+            band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
+        info(args).write(
+            f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
+            f"{args.dt:g} s, {args.segments} segments per cable (damping: the cables' own, "
+            f"time domain): wall {resp.wall_time:.3g} s, "
+            f"energy residual {np.abs(resp.energy.relative_residual).max():.2e}\n")
+        peaks = np.sort(sp.peaks_hz[(sp.peaks_hz >= band[0]) & (sp.peaks_hz <= band[1])][:8])
+        inband = f_model[(f_model >= band[0]) & (f_model <= band[1])]
+        near = [f_model[int(np.argmin(np.abs(f_model - f)))] if f_model.size else np.nan
+                for f in peaks]
+        info(args).write(
+            f"spectrum peaks of {ch} in {band[0]:g}-{band[1]:g} Hz (Hann window, "
+            f"resolution {sp.resolution_hz:.3g} Hz, prominence >= "
+            f"{_SPECTRUM_PROMINENCE:.0%} of the largest), each with the nearest linearised "
+            f"mode:\n" + "".join(f"  {f:.4g} Hz ~ mode {m:.4g} Hz ({f - m:+.3g} Hz)\n"
+                                 for f, m in zip(peaks, near)))
+        info(args).write(f"linearised lumped-model frequencies in the band [Hz] "
+                         f"({inband.size}): " + ", ".join(f"{f:.4g}" for f in inband[:8])
+                         + (", ..." if inband.size > 8 else "") + "\n")
+        if args.plot:
+            import matplotlib
+            matplotlib.use("Agg")
+            from dynstiff.plot import plot_spectrum
+            fig = plot_spectrum(sp, modes=f_model, band_hz=band)
+            fig.tight_layout()
+            fig.savefig(args.plot, dpi=120)
+    if args.csv:
+        from dynstiff._version import __version__
+        write_table(df, args.csv, "csv", {
+            "dynstiff": __version__, "scene": scene.name, "model": "lumped",
+            "segments": args.segments, "dt [s]": args.dt,
+            "pose": {"position [m]": [float(v) for v in eq.pose.position],
+                     "rotation [rad]": [float(v) for v in eq.pose.rotation]},
+            "damping": "the cables' own (time domain)", "units": "SI, in the column names"})
+    for name in (args.csv, args.plot):
+        if name and name != "-":
+            info(args).write(f"wrote {name}\n")
+    return 0
+
+
+#: Smallest prominence of a reported spectrum peak, relative to the largest [-]: above the
+#: Hann window's highest side lobe (2.7 % of the main lobe), so leakage is not reported.
+_SPECTRUM_PROMINENCE = 0.03
+
+
+def add_parsers(sub):
+    """Add the ``simulate`` subcommands to the subparsers ``sub``."""
+    si = sub.add_parser("simulate", help="time domain (lumped-mass cables): free vibration "
+                                         "from an offset, or a line commanded through "
+                                         "quasi-static cable lengths")
+    si.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    grp = si.add_mutually_exclusive_group()
+    grp.add_argument("--pose", type=float, nargs="+", metavar="X")
+    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
+    si.add_argument("--time", type=float, default=5.0,
+                    help="duration [s] (after the path's end with --to; default %(default)s)")
+    si.add_argument("--dt", type=float, default=2e-3, help="time step [s] (default %(default)s)")
+    si.add_argument("--segments", type=int, default=10, help="segments per cable")
+    si.add_argument("--offset", type=float, nargs="+", metavar="D",
+                    help="initial platform offset dx dy dz [m] drx dry drz [rad] (default "
+                         "1 mm along the first free DOF)")
+    si.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
+                    help="band of the spectrum [Hz] (default: the scene's band)")
+    si.add_argument("--channel", choices=["x", "y", "z", "rx", "ry", "rz"],
+                    help="channel of the spectrum (default: the first free DOF)")
+    si.add_argument("--to", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="move P in a straight line to this point [m] instead")
+    si.add_argument("--speed", type=float, default=0.5, help="path speed [m/s]")
+    si.add_argument("--ramp", type=float, default=1.0, help="speed ramp duration [s]")
+    si.add_argument("--csv", help="write the time history (CSV)")
+    si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
+    si.add_argument("--quiet", action="store_true", help="no progress bar")
+    si.set_defaults(func=_cmd_simulate)

@@ -1,0 +1,148 @@
+"""``sweep``: modes along a path or over a parameter, global modes tracked, the veering
+diagram."""
+
+
+from dynstiff.cli.common import (
+    ProgressBar,
+    info,
+    scene_settings,
+    write_table,
+)
+
+__all__ = ["add_parsers"]
+
+
+def _read_path(path, rotation):
+    """Poses of a path file: one pose a line, ``x y z`` [m] (the scene's rotation) or
+    ``x y z rx ry rz`` [m, rad], separated by spaces or commas; blank lines, lines starting
+    with ``#`` and a first line that is not numeric (a header) are skipped."""
+    import numpy as np
+
+    from dynstiff.errors import InvalidParameterError
+    poses, header = [], False
+    with open(path) as fh:
+        lines = fh.read().splitlines()
+    for k, line in enumerate(lines, start=1):
+        text = line.split("#", 1)[0].replace(",", " ").split()
+        if not text:
+            continue
+        try:
+            vals = [float(v) for v in text]
+        except ValueError:
+            if not poses and not header:                    # one header line, first
+                header = True
+                continue
+            raise InvalidParameterError(
+                f"--path {path}: line {k}: expected numbers, got {line.strip()!r}") from None
+        if len(vals) not in (3, 6) or not np.all(np.isfinite(vals)):
+            raise InvalidParameterError(
+                f"--path {path}: line {k}: expected 3 (x y z [m]) or 6 (x y z rx ry rz) "
+                f"finite numbers, got {line.strip()!r}")
+        poses.append(np.concatenate([vals, rotation]) if len(vals) == 3 else np.array(vals))
+    if len(poses) < 2:
+        raise InvalidParameterError(f"--path {path}: needs at least 2 poses, got {len(poses)}")
+    return poses
+
+
+def _with_parameter(robot, name, value):
+    """The robot with one parameter changed: EA [N] of every cable, platform mass [kg], or
+    the minimum tension t_min [N] of the tension distribution."""
+    from dataclasses import replace
+
+    from dynstiff.robot.robot import Robot
+    cables, platform, limits = robot.cables, robot.platform, robot.tension_limits
+    if name == "EA":
+        cables = [replace(c, EA=value) for c in cables]
+    elif name == "mass":
+        platform = replace(platform, mass=value)
+    elif name == "t_min":
+        limits = (value, limits[1])
+    return Robot(robot.anchors, robot.attachments, cables, platform, g=robot.g,
+                 tension_limits=limits, name=robot.name)
+
+
+def _cmd_sweep(args):
+    import numpy as np
+
+    from dynstiff.analyses.interaction import sweep
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.scenes import load_scene
+    scene = load_scene(args.scene)
+    st = scene_settings(scene, args)
+    robot = scene.robot
+    bar = None if args.quiet else ProgressBar(f"sweep {scene.name}")
+    n_modes = None if args.fmax and args.n is None else st.n_modes
+    given = [name for name in ("line", "path", "parameter") if getattr(args, name) is not None]
+    if len(given) != 1:
+        raise InvalidParameterError(
+            f"give exactly one of --line, --path or --parameter, got {given or 'none'}")
+    rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
+    if args.line is not None:
+        if args.steps < 2:
+            raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
+        pts = np.linspace(args.line[:3], args.line[3:], args.steps)
+        res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
+    elif args.path is not None:
+        res = sweep(robot, poses=_read_path(args.path, rot), n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar, on_error="record")
+    else:
+        if not args.values:
+            raise InvalidParameterError("--parameter needs --values V1 V2 ...")
+        pose = scene.pose if scene.pose is not None else scene.equilibrium().pose
+        units = {"EA": "N", "mass": "kg", "t_min": "N"}
+
+        def build(v):
+            return _with_parameter(robot, args.parameter, v).equilibrium(pose=pose)
+        res = sweep(None, build=build, values=args.values, n_modes=n_modes,
+                    fmax_hz=args.fmax, progress=bar, on_error="record",
+                    parameter=f"{args.parameter} [{units[args.parameter]}]")
+    df = res.to_frame()
+    if args.csv:
+        write_table(df, args.csv, "csv", st.metadata(units="Hz; value in " + res.parameter))
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        from dynstiff.plot import plot_veering
+        fig = plot_veering(res)
+        fig.tight_layout()
+        fig.savefig(args.plot, dpi=120)
+    vt = res.veering_table()
+    vt.insert(0, res.parameter, res.values)
+    vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
+    info(args).write(f"{st.rung} model, undamped natural frequencies ({st.damping.text()} "
+                     f"applies to FRFs)\n")
+    info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
+                     f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
+    info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
+    for k, v, msg in res.failures:
+        info(args).write(f"step {k} ({res.parameter} = {v:g}): infeasible, skipped: "
+                         f"{msg.splitlines()[0]}\n")
+    for name in (args.csv, args.plot):
+        if name and name != "-":
+            info(args).write(f"wrote {name}\n")
+    return 0
+
+
+def add_parsers(sub):
+    """Add the ``sweep`` subcommands to the subparsers ``sub``."""
+    sw = sub.add_parser("sweep", help="modes along a straight path or over a parameter, global "
+                                      "modes tracked; table and veering diagram")
+    sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
+                    help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
+    sw.add_argument("--steps", type=int, default=11,
+                    help="poses along --line (default %(default)s)")
+    sw.add_argument("--path", metavar="FILE",
+                    help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
+                         "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
+    sw.add_argument("--parameter", choices=["EA", "mass", "t_min"],
+                    help="sweep a parameter at the scene's pose: EA of every cable [N], "
+                         "platform mass [kg], minimum tension [N]")
+    sw.add_argument("--values", type=float, nargs="+", metavar="V", help="parameter values")
+    sw.add_argument("-n", type=int, help="modes per step (default: the scene's n_modes)")
+    sw.add_argument("--fmax", type=float, help="all modes below this frequency [Hz]")
+    sw.add_argument("--csv", help="write the tidy table (one row per mode and step)")
+    sw.add_argument("--plot", help="write the veering diagram (PNG)")
+    sw.add_argument("--quiet", action="store_true", help="no progress bar")
+    sw.set_defaults(func=_cmd_sweep)
