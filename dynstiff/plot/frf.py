@@ -1,0 +1,114 @@
+"""Frequency response functions: magnitude (and phase) against frequency, the modes marked
+and named by class.
+"""
+
+import numpy as np
+
+from dynstiff.errors import InvalidParameterError
+from dynstiff.plot.common import (
+    CATEGORY_LABELS,
+    COLORS,
+    figure_axes,
+    mode_categories,
+    require,
+)
+
+__all__ = ["plot_frf"]
+
+
+# ------------------------------------------------------------------------------- FRF
+def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
+    """Magnitude (and phase) of FRFs against frequency, with the natural frequencies marked.
+
+    Parameters
+    ----------
+    result : FRFResult
+        ``H`` of shape (n_freq, n_out, n_in) at ``freq_hz``, shape (n_freq,) [Hz].
+    modes : ModalResult, optional
+        Marks each mode inside the band by a dashed vertical line coloured by its platform
+        share (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
+        blue (``mode-local``); the legend names the three.
+    pairs : list of (output, input), optional
+        Channels to draw, e.g. ``[("z", "fz")]`` (default: the pairs ``(outputs[k],
+        inputs[k])`` present in ``result``).
+    ax : matplotlib Axes, optional
+        Axes for the magnitude. When given, only the magnitude is drawn (``phase`` ignored).
+    phase : bool
+        With ``ax`` None, add a second axes below for the phase [deg] (default False).
+
+    Returns
+    -------
+    matplotlib Figure
+        Its first axes holds the magnitude, on a log scale, in the units of ``result.kind``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``result`` not an FRF result, ``modes`` not a modal result, or a channel of
+        ``pairs`` not in ``result``.
+    """
+    require(result, "result", ("freq_hz", "H", "inputs", "outputs", "kind"), "FRFResult")
+    if modes is not None:
+        require(modes, "modes", ("freq_hz", "kind"), "ModalResult")
+    if pairs is None:
+        pairs = list(zip(result.outputs, result.inputs))
+    idx = []
+    for pair in pairs:
+        try:
+            o, i = pair
+            idx.append((o, i, result.outputs.index(o), result.inputs.index(i)))
+        except (TypeError, ValueError):
+            raise InvalidParameterError(
+                f"pairs must hold (output, input) with outputs among {tuple(result.outputs)} "
+                f"and inputs among {tuple(result.inputs)}, got {pair!r}") from None
+    if ax is None and phase:
+        import matplotlib.pyplot as plt
+        fig, (ax, ax_ph) = plt.subplots(2, 1, sharex=True, figsize=(8, 6),
+                                        height_ratios=(2, 1))
+    else:
+        fig, ax = figure_axes(ax)
+        ax_ph = None
+    f = np.asarray(result.freq_hz)
+    unit = getattr(result, "unit", None)
+    units = {(o, i): unit(o, i) for o, i, _, _ in idx} if callable(unit) else {}
+    one_unit = len(set(units.values())) == 1
+    for o, i, ko, ki in idx:
+        h = result.H[:, ko, ki]
+        tag = "" if one_unit or not units else f" [{units[(o, i)]}]"
+        ax.semilogy(f, np.abs(h), lw=1.0, label=f"{o} / {i}{tag}")
+        if ax_ph is not None:
+            with np.errstate(invalid="ignore"):
+                ax_ph.plot(f, np.degrees(np.angle(h)), lw=1.0)
+    shown = []
+    if modes is not None:
+        cats = mode_categories(modes)
+        for a in (ax, ax_ph):
+            if a is None:
+                continue
+            for fm, cat in zip(modes.freq_hz, cats):
+                if f[0] <= fm <= f[-1]:
+                    a.axvline(fm, color=COLORS[cat], lw=0.6, alpha=0.6, ls="--",
+                              gid=f"mode-{cat}")
+                    if cat not in shown:
+                        shown.append(cat)
+    ax.set_ylabel(f"|{result.kind}|" + (f" [{next(iter(units.values()))}]" if one_unit
+                                         else " [units in the legend]" if units else ""))
+    ax.set_title(f"FRF ({result.kind}), natural frequencies dashed")
+    from matplotlib.lines import Line2D
+    handles, labels = ax.get_legend_handles_labels()
+    for cat in ("global", "mixed", "local"):
+        if cat in shown:
+            handles.append(Line2D([], [], color=COLORS[cat], lw=0.8, ls="--"))
+            labels.append(CATEGORY_LABELS[cat])
+    ax.legend(handles, labels, loc="upper right", fontsize=8)
+    ax.set_xlim(f[0], f[-1])
+    if ax_ph is None:
+        ax.set_xlabel("frequency [Hz]")
+    else:
+        ax_ph.set_xlabel("frequency [Hz]")
+        ax_ph.set_ylabel("phase [deg]")
+        ax_ph.set_ylim(-190.0, 190.0)
+        ax_ph.set_yticks([-180, -90, 0, 90, 180])
+        ax_ph.grid(True, alpha=0.3)
+        fig.tight_layout()
+    return fig

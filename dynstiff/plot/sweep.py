@@ -1,0 +1,92 @@
+"""The veering diagram of a sweep: tracked global modes and the local modes along a path or
+over a parameter.
+"""
+
+import numpy as np
+
+from dynstiff.plot.common import (
+    figure_axes,
+    require,
+)
+
+__all__ = ["plot_veering"]
+
+
+# --------------------------------------------------------------------------- veering
+def _gap_bridges(x, y):
+    """Segments bridging each interior run of NaN in y between its finite neighbours, as
+    one polyline with NaN separators: (xs, ys), empty when there is no such gap."""
+    ok = np.flatnonzero(np.isfinite(y))
+    xs, ys = [], []
+    for a, b in zip(ok[:-1], ok[1:]):
+        if b > a + 1:
+            xs += [x[a], x[b], np.nan]
+            ys += [y[a], y[b], np.nan]
+    return np.array(xs, dtype=float), np.array(ys, dtype=float)
+
+
+def plot_veering(sweep_result, ax=None, show_local=True):
+    """Veering diagram: natural frequencies against the swept quantity.
+
+    Each global track (a platform mode followed by MAC, :meth:`SweepResult.veering_table`)
+    is one coloured line with markers (gid ``track-<id>``, broken where the track has no
+    global mode); where the track is found again after such a gap (its mode shared its
+    energy with cable modes and was labelled local in between), a dotted line of its colour
+    bridges the gap (gid ``gap-<id>``); the local (cable) modes are small grey dots (gid
+    ``local-modes``).
+
+    Parameters
+    ----------
+    sweep_result : SweepResult
+        From :func:`dynstiff.sweep`; ``values`` of shape (n_steps,) in the unit named by
+        ``parameter``, frequencies [Hz].
+    ax : matplotlib Axes, optional
+    show_local : bool
+        Draw the local modes (default True).
+
+    Returns
+    -------
+    matplotlib Figure
+        x label ``sweep_result.parameter``, y label ``"frequency [Hz]"``.
+
+    Raises
+    ------
+    InvalidParameterError
+        ``sweep_result`` not a sweep result.
+    """
+    require(sweep_result, "sweep_result",
+             ("parameter", "values", "veering_table", "value", "freq_hz", "kind", "n_tracks"),
+             "SweepResult")
+    fig, ax = figure_axes(ax)
+    x = np.asarray(sweep_result.values, dtype=float)
+    table = sweep_result.veering_table()
+    n = sweep_result.n_tracks
+    import matplotlib.pyplot as plt
+    cmap = plt.get_cmap("tab10" if n <= 10 else "turbo")
+    any_gap = False
+    for t in range(n):
+        color = cmap(t % 10) if n <= 10 else cmap(t / max(n - 1, 1))
+        y = table[t].to_numpy()
+        ax.plot(x, y, "-o", ms=3.5, lw=1.4, color=color, gid=f"track-{t}",
+                label=f"track {t}")
+        gx, gy = _gap_bridges(x, y)
+        if gx.size:
+            any_gap = True
+            ax.plot(gx, gy, ":", lw=1.0, color=color, gid=f"gap-{t}")
+    if show_local:
+        loc = np.asarray(sweep_result.kind) == "local"
+        ax.scatter(np.asarray(sweep_result.value)[loc], np.asarray(sweep_result.freq_hz)[loc],
+                   s=6, color="0.55", zorder=1, gid="local-modes", label="local modes")
+    ax.set_xlabel(sweep_result.parameter)
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_title(f"Modes along the sweep: {n} global tracks"
+                 + (", grey dots local modes" if show_local else "")
+                 + ("\ndotted: a track through cable modes (its mode labelled local there)"
+                    if any_gap else ""))
+    if n <= 12:
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
+    ax.grid(True, alpha=0.3)
+    if x.size > 1:
+        pad = 0.02 * (x.max() - x.min())
+        ax.set_xlim(x.min() - pad, x.max() + pad)
+    return fig
