@@ -271,12 +271,12 @@ EQUIVALENT.update({
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
     "dynstiff.cable.guard.x_guard_cable__mutmut_26":
         "error < guard_rtol instead of <=: differs only at exactly guard_rtol",
-    "dynstiff.analyses.interaction.x__mac__mutmut_3":
+    "dynstiff.analyses.sweep.x__mac__mutmut_3":
         "MAC is invariant to the scale of M (1.5 (Mx + My) instead of 0.5 (Mx + My))",
-    "dynstiff.analyses.interaction.x__assign__mutmut_3":
+    "dynstiff.analyses.sweep.x__assign__mutmut_3":
         "X.shape[1] == 0 instead of X.shape[0] == 0: with no global mode the assignment "
         "of an empty MAC matrix is empty too",
-    "dynstiff.analyses.interaction.x__assign__mutmut_26":
+    "dynstiff.analyses.sweep.x__assign__mutmut_26":
         "MAC > mac_min instead of >=: differs only at MAC exactly mac_min",
     "dynstiff.robot.statics.x__limits__mutmut_8":
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
@@ -307,24 +307,24 @@ EQUIVALENT.update({
     "dynstiff.cable.dsm.x_lowest_string_omega__mutmut_4":
         "the floor of the exact cable's band only: results inside any band are exact",
 })
-EQUIVALENT.update({"dynstiff.analyses.interaction.x__mac__mutmut_16": _EINSUM,
-                   "dynstiff.analyses.interaction.x__mac__mutmut_27": _EINSUM})
-EQUIVALENT.update({f"dynstiff.analyses.interaction.x_sweep__mutmut_{n}":
+EQUIVALENT.update({"dynstiff.analyses.sweep.x__mac__mutmut_16": _EINSUM,
+                   "dynstiff.analyses.sweep.x__mac__mutmut_27": _EINSUM})
+EQUIVALENT.update({f"dynstiff.analyses.sweep.x_sweep__mutmut_{n}":
                    "dtype of the one-element row arrays of an infeasible step: every column "
                    "is cast (astype float / int / str) when the result is built"
                    for n in (90, 92, 93, 94, 95, 96, 97)})
 EQUIVALENT.update({
-    "dynstiff.analyses.interaction.x_sweep__mutmut_159": "np.full of the int UNTRACKED is int64 anyway",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_162": "np.full of the int UNTRACKED is int64 anyway",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_204":
+    "dynstiff.analyses.sweep.x_sweep__mutmut_159": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_162": "np.full of the int UNTRACKED is int64 anyway",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_204":
         "reshape(None) of the 1-D kind array of length n leaves it as it is",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_206":
+    "dynstiff.analyses.sweep.x_sweep__mutmut_206":
         "kind as a unicode instead of an object array: cast with astype(str) at the end",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_208":
+    "dynstiff.analyses.sweep.x_sweep__mutmut_208":
         "kind as a unicode instead of an object array: cast with astype(str) at the end",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_257": "astype(None) is astype(float64)",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_266": "astype(None) is astype(float64)",
-    "dynstiff.analyses.interaction.x_sweep__mutmut_274": "astype(None) is astype(float64)",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_257": "astype(None) is astype(float64)",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_266": "astype(None) is astype(float64)",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_274": "astype(None) is astype(float64)",
     "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_33":
         "gap < rtol instead of <=: differs only at a gap of exactly rtol",
     "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_60":
@@ -358,11 +358,11 @@ EQUIVALENT.update({
         "reshape(n, -2) equals reshape(n, -1) (any negative size is inferred)",
     "dynstiff.analyses.interaction.xǁProximityWarningǁ__hash____mutmut_1":
         "a constant hash keeps set and dict semantics (equality decides); only slower",
-    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_3":
+    "dynstiff.analyses.sweep.xǁSweepResultǁto_frame__mutmut_3":
         "pd.array of an int64 array infers Int64 without being told",
-    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_5":
+    "dynstiff.analyses.sweep.xǁSweepResultǁto_frame__mutmut_5":
         "pd.array of an int64 array infers Int64 without being told",
-    "dynstiff.analyses.interaction.xǁSweepResultǁto_frame__mutmut_9":
+    "dynstiff.analyses.sweep.xǁSweepResultǁto_frame__mutmut_9":
         "None assigned into an Int64 array is <NA>, like pd.NA",
     "dynstiff.analyses.frf.x_frf__mutmut_106":
         "receptance multiplied by its own factor (i omega)^0 = 1",

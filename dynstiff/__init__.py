@@ -22,12 +22,7 @@ from dynstiff.analyses.eigen import (
     modes,
 )
 from dynstiff.analyses.frf import FRFResult, frf
-from dynstiff.analyses.interaction import (
-    ProximityWarning,
-    SweepResult,
-    proximity_warnings,
-    sweep,
-)
+from dynstiff.analyses.interaction import ProximityWarning, proximity_warnings
 from dynstiff.analyses.measured import (
     MeasuredModes,
     compare_frf,
@@ -37,6 +32,7 @@ from dynstiff.analyses.measured import (
 )
 from dynstiff.analyses.recommend import Recommendation, recommend_model
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
+from dynstiff.analyses.sweep import SweepResult, sweep
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_solve import solve_catenary, unstretched_length_for_tension
 from dynstiff.cable.dsm import cable_dynamic_stiffness, chord_parameters

@@ -6,13 +6,8 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
-from dynstiff.analyses.interaction import (
-    UNTRACKED,
-    ProximityWarning,
-    proximity_warnings,
-    sweep,
-    to_frame,
-)
+from dynstiff.analyses.interaction import ProximityWarning, proximity_warnings, to_frame
+from dynstiff.analyses.sweep import UNTRACKED, sweep
 from dynstiff.errors import InvalidParameterError, SlackCableError
 
 COLUMNS = ["step", "value", "mode", "track", "freq [Hz]", "kind", "cable energy fraction [-]",
@@ -429,7 +424,7 @@ def test_veering_plot_draws_into_the_given_axes_with_or_without_local_modes(path
 def test_mac_is_one_for_a_mode_with_itself_and_zero_for_m_orthogonal_modes():
     """MAC(x, y) = (x^T M y)^2 / ((x^T M x)(y^T M y)) with M the mean of the two mass
     matrices: 1 on the diagonal for M-orthogonal modes, 0 off it, invariant to scaling."""
-    from dynstiff.analyses.interaction import _mac
+    from dynstiff.analyses.sweep import _mac
     rng = np.random.default_rng(3)
     A = rng.normal(size=(4, 4))
     M = A @ A.T + 4 * np.eye(4)

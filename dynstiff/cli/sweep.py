@@ -64,7 +64,7 @@ def _with_parameter(robot, name, value):
 def _cmd_sweep(args):
     import numpy as np
 
-    from dynstiff.analyses.interaction import sweep
+    from dynstiff.analyses.sweep import sweep
     from dynstiff.errors import InvalidParameterError
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
