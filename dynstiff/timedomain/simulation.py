@@ -93,7 +93,6 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import positive_scalar
 from dynstiff.cable.lumped_chain import chain_equilibrium
-from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedMassModel
@@ -107,6 +106,12 @@ from dynstiff.timedomain.dynamics import (
     model_at,
     node_mass_vector,
     potential_energy,
+)
+from dynstiff.timedomain.inputs import (
+    excitation_function,
+    initial_state,
+    lengths_function,
+    step_count,
 )
 from dynstiff.timedomain.response import EnergyBalance, Spectrum, TimeResponse
 from dynstiff.timedomain.stepping import (
@@ -124,16 +129,8 @@ from dynstiff.timedomain.stepping import (
 )
 
 __all__ = [
-    "simulate",
-    "TimeResponse",
-    "EnergyBalance",
-    "Spectrum",
-    "TimeDamping",
-    "IntegrationError",
-    "SlackSegmentWarning",
-    "TimeStepWarning",
-    "EnergyBalanceWarning",
-    "explicit_step_limit",
+    "simulate", "TimeResponse", "EnergyBalance", "Spectrum", "TimeDamping", "IntegrationError",
+    "SlackSegmentWarning", "TimeStepWarning", "EnergyBalanceWarning", "explicit_step_limit"
 ]
 
 _SCHEMES = ("implicit", "explicit")
@@ -145,102 +142,6 @@ class SlackSegmentWarning(RuntimeWarning):
 
 class TimeStepWarning(RuntimeWarning):
     """The explicit scheme was asked for a step above its predicted stability limit."""
-
-
-# -------------------------------------------------------------------------- inputs
-def _lengths_function(lengths, n):
-    if lengths is None:
-        return None
-    if callable(lengths):
-        fn = lengths
-    else:
-        try:
-            times, table = lengths
-            times = np.asarray(times, dtype=float)
-            table = np.asarray(table, dtype=float)
-        except (TypeError, ValueError):
-            raise InvalidParameterError(
-                "lengths must be a callable t -> (n_cables,) unstretched lengths [m] or a "
-                f"table (times (k,) [s], lengths (k, {n}) [m]), got {lengths!r}") from None
-        fn = _interpolated_table(times, table, n, "lengths", "lengths", "m")
-
-    def checked(t):
-        L = np.asarray(fn(t), dtype=float)
-        if L.shape != (n,) or not np.all(np.isfinite(L)) or np.any(L <= 0):
-            raise InvalidParameterError(
-                f"lengths(t) must give {n} finite positive unstretched lengths [m], got "
-                f"{L!r} at t = {t:g} s")
-        return L
-    return checked
-
-
-def _excitation_function(excitation):
-    """(callable t -> (6,) or None, the table (times, loads) or None) from ``excitation``."""
-    if excitation is None or callable(excitation):
-        return excitation, None
-    try:
-        times, loads = excitation
-        times = np.asarray(times, dtype=float)
-        loads = np.asarray(loads, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"excitation must be a callable t -> (6,) load, a table (times (k,) [s], loads "
-            f"(k, 6) [N, N m]) or None, got {excitation!r}") from None
-    fn = _interpolated_table(times, loads, 6, "excitation", "loads", "N, N m", finite=True)
-    return fn, (times, loads)
-
-
-def _interpolated_table(times, values, n, name, column, unit, finite=False):
-    """t -> values interpolated linearly in a table (times (k,) [s], values (k, n)), checked:
-    times finite, strictly increasing, starting at t <= 0 (and the values finite with
-    ``finite``); the error names ``name``."""
-    if times.ndim != 1 or times.size < 1 or values.shape != (times.size, n) or \
-            not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0) or \
-            (finite and not np.all(np.isfinite(values))):
-        raise InvalidParameterError(
-            f"{name} table must be (times (k,) strictly increasing [s], {column} (k, {n})"
-            f"{' finite' if finite else ''} [{unit}]), got shapes {times.shape} and "
-            f"{values.shape}")
-    if times[0] > 0:
-        raise InvalidParameterError(
-            f"{name} table must start at t <= 0, starts at {times[0]:g} s")
-
-    def fn(t):
-        return np.array([np.interp(t, times, values[:, j]) for j in range(n)])
-    return fn
-
-
-def _initial(initial, model):
-    """(offset (6,), velocity (6,)) from ``initial``."""
-    zero = np.zeros(6)
-    if initial is None:
-        return zero, zero
-    if isinstance(initial, (tuple, list)) and len(initial) == 2 and \
-            not np.isscalar(initial[0]):
-        parts = [zero if p is None else p for p in initial]
-    else:
-        parts = [initial, zero]
-    out = []
-    for name, p in zip(("initial offset", "initial velocity"), parts):
-        try:
-            p = np.asarray(p, dtype=float)
-        except (TypeError, ValueError):
-            p = None
-        if p is None or p.shape != (6,) or not np.all(np.isfinite(p)):
-            raise InvalidParameterError(
-                f"initial must be a platform offset (6,) [m, rad] or (offset, velocity) with "
-                f"velocity (6,) [m/s, rad/s]; the {name} is {parts[len(out)]!r}")
-        held = [k for k in range(6) if k not in model.free_index and p[k] != 0]
-        if held:
-            raise InvalidParameterError(
-                f"initial: the {name} is nonzero on held DOF(s) "
-                f"{[OUTPUT_NAMES[k] for k in held]}; only {model.free_dofs} are free")
-        out.append(p)
-    return out[0], out[1]
-
-
-def _step_count(t_end, dt):
-    return max(1, int(np.ceil(t_end / dt - 1e-9)))
 
 
 # -------------------------------------------------------------------------- simulate
@@ -353,14 +254,14 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     if isinstance(max_records, bool) or not isinstance(max_records, Integral) or \
             max_records < 1:
         raise InvalidParameterError(f"max_records must be an integer >= 1, got {max_records!r}")
-    n_records = _step_count(t_end, dt) // record_every + 1
+    n_records = step_count(t_end, dt) // record_every + 1
     if n_records > max_records:
         raise InvalidParameterError(
             f"t_end = {t_end:g} s at dt = {dt:g} s with record_every = {record_every} makes "
             f"{n_records} records, more than max_records = {max_records}; raise record_every "
             f"or max_records, or shorten t_end")
     tol = positive_scalar("tol", tol)
-    excitation, table = _excitation_function(excitation)
+    excitation, table = excitation_function(excitation)
     if excitation is not None:
         load_at(excitation, 0.0)
     if damping is None:
@@ -370,8 +271,8 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
             f"damping must be a TimeDamping or None, got {type(damping).__name__}")
     n = model.robot.n_cables
     damping.axial_per_cable(n)
-    length_fn = _lengths_function(lengths, n)
-    offset, velocity = _initial(initial, model)
+    length_fn = lengths_function(lengths, n)
+    offset, velocity = initial_state(initial, model)
 
     # ---- start: static equilibrium at L0(0), then the offset
     L_prev = model.unstretched_lengths if length_fn is None else length_fn(0.0)
@@ -433,7 +334,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
             TimeStepWarning, stacklevel=2)
 
     # ---- stepping
-    n_steps = _step_count(t_end, dt)
+    n_steps = step_count(t_end, dt)
     rec = Recorder(n_steps // record_every + 1, n, m, record_nodes)
     ledger = Ledger(dyn.kinetic(frame, v) + pot[0] + pot[1], V_eq[0] + V_eq[1], pot[0])
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
