@@ -50,7 +50,8 @@ from dynstiff.errors import (
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
 from dynstiff.maps.workspace import box_grid, workspace
 from dynstiff.models.dsm import FrequencyModel
-from dynstiff.models.ladder import RUNGS, StaticCableModel, build_model
+from dynstiff.models.ladder import RUNGS, build_model
+from dynstiff.models.static import StaticCableModel
 from dynstiff.params import Cable, Damping
 from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform

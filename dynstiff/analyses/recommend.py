@@ -31,7 +31,8 @@ from dynstiff.cable.guard import closed_form_validity
 from dynstiff.cable.psi import cable_mode_count
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
-from dynstiff.models.ladder import RUNGS, StaticCableModel
+from dynstiff.models.ladder import RUNGS
+from dynstiff.models.static import StaticCableModel
 
 __all__ = ["Recommendation", "recommend_model", "predicted_errors"]
 
