@@ -3,8 +3,6 @@
 import numpy as np
 import pytest
 from conftest import A0, B0, cogiro_cable
-from hypothesis import given, settings
-from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff.cable.dsm import (
@@ -12,7 +10,6 @@ from dynstiff.cable.dsm import (
     local_end_stiffness,
     local_two_end_stiffness,
 )
-from dynstiff.cable.psi import irvine_symmetric_roots
 from dynstiff.errors import InvalidParameterError
 
 TWO_PI = 2 * np.pi
@@ -22,17 +19,6 @@ def local(K, p):
     """Global (n, 3, 3) -> chord frame (u, v, w)."""
     R = p.rotation
     return R.T @ K @ R
-
-
-# ----------------------------------------------------------------------------- limits
-@pytest.mark.parametrize("omega", [0.0, 1e-9, 1e-4])
-def test_zero_frequency_is_parabolic_static_stiffness(state300, omega):
-    """omega -> 0: K_B = diag(K0/(1 + lambda^2/12), T/L, T/L) exactly (theory.md §3.6)."""
-    p = chord_parameters(state300)
-    K = local(ds.cable_dynamic_stiffness(state300, omega, chordwise_inertia=False), p)[0]
-    expected = np.diag([p.K0 / (1 + p.lambda_sq / 12), p.T / p.L, p.T / p.L])
-    rtol = 1e-13 if omega < 1e-6 else 1e-8   # at 1e-4 rad/s the O(omega^2) terms are 1e-9
-    np.testing.assert_allclose(K, expected, rtol=rtol, atol=rtol * p.K0)
 
 
 def shallow_error_bound(s):
@@ -46,6 +32,17 @@ def shallow_error_bound(s):
     delta = p.sag / p.L
     eps = s.total_weight * sin_t / p.T
     return 15 * delta**2 + 2 * delta * eps * (1 + 40 * eps)
+
+
+# ----------------------------------------------------------------------------- limits
+@pytest.mark.parametrize("omega", [0.0, 1e-9, 1e-4])
+def test_zero_frequency_is_parabolic_static_stiffness(state300, omega):
+    """omega -> 0: K_B = diag(K0/(1 + lambda^2/12), T/L, T/L) exactly (theory.md §3.6)."""
+    p = chord_parameters(state300)
+    K = local(ds.cable_dynamic_stiffness(state300, omega, chordwise_inertia=False), p)[0]
+    expected = np.diag([p.K0 / (1 + p.lambda_sq / 12), p.T / p.L, p.T / p.L])
+    rtol = 1e-13 if omega < 1e-6 else 1e-8   # at 1e-4 rad/s the O(omega^2) terms are 1e-9
+    np.testing.assert_allclose(K, expected, rtol=rtol, atol=rtol * p.K0)
 
 
 @pytest.mark.parametrize("E", [17e9, 120e9])
@@ -134,43 +131,6 @@ def test_light_damping_converges_to_undamped(state300):
         np.testing.assert_allclose(Kd.real, K, rtol=1e-6, atol=1e-6 * np.abs(K).max())
 
 
-# ----------------------------------------------------------------------------- poles & modes
-@pytest.mark.parametrize("lam2", [0.5, 1, 2, 5, 10, 20, 50, 100, 1000])
-def test_irvine_roots_reproduce_theory_table(lam2):
-    """theory.md §9.1 (Brent roots of the Irvine-Caughey equation, 7 significant digits)."""
-    table = {0.5: (3.205404, 9.427179, 15.708480), 1: (3.267886, 9.429603, 15.708999),
-             2: (3.389149, 9.434523, 15.710043), 5: (3.727496, 9.449882, 15.713225),
-             10: (4.225833, 9.477637, 15.718697), 20: (5.056508, 9.542616, 15.730323),
-             50: (6.793920, 9.850046, 15.771746), 100: (8.159296, 10.931722, 15.873408),
-             1000: (8.948084, 15.370464, 21.646868)}
-    np.testing.assert_allclose(irvine_symmetric_roots(lam2, 3), table[lam2], atol=6e-7)
-
-
-def test_irvine_crossovers_and_limits():
-    """Exact: lambda^2 = 4 n^2 pi^2 puts the n-th symmetric root on 2 n pi (theory.md §2.2);
-    lambda^2 -> 0 gives (2k-1) pi; lambda^2 -> inf gives 2 x roots of tan x = x."""
-    for n in (1, 2, 3):
-        roots = irvine_symmetric_roots(4 * n * n * np.pi**2, n)
-        assert roots[n - 1] == pytest.approx(2 * n * np.pi, rel=1e-12)
-    np.testing.assert_allclose(irvine_symmetric_roots(1e-12, 3), [np.pi, 3 * np.pi, 5 * np.pi],
-                               rtol=1e-12)
-    np.testing.assert_allclose(irvine_symmetric_roots(1e12, 3),
-                               2 * np.array([4.493409457909064, 7.725251836937707,
-                                             10.904121659428899]), rtol=1e-9)
-
-
-def test_string_families_are_exact(state300):
-    modes = ds.cable_natural_frequencies(state300, 12)
-    p = chord_parameters(state300)
-    for fam, mult in [("out-of-plane", np.pi), ("in-plane antisymmetric", TWO_PI)]:
-        sel = np.array([f == fam for f in modes.family])
-        np.testing.assert_allclose(modes.Omega[sel], mult * modes.order[sel], rtol=1e-15)
-    np.testing.assert_allclose(modes.freq_hz, modes.Omega / (TWO_PI * p.L) * np.sqrt(p.T / p.m),
-                               rtol=1e-15)
-    assert np.all(np.diff(modes.freq_hz) >= 0)
-    assert modes.labels[0] == "out-of-plane 1"
-
-
 def test_poles_sit_at_fixed_end_frequencies(state300):
     """Each clamped-clamped frequency is a pole: the entry of its family flips sign and grows
     like 1/(relative distance) across it."""
@@ -184,32 +144,6 @@ def test_poles_sit_at_fixed_end_frequencies(state300):
         K = local_end_stiffness(p, w, chordwise_inertia=False)[:, i, j]
         assert np.sign(K[0]) != np.sign(K[1]), fam
         assert abs(K[0]) > 50 * abs(K[2]) and abs(K[1]) > 50 * abs(K[3]), fam
-
-
-def test_mode_count_steps_at_each_natural_frequency(state300):
-    modes = ds.cable_natural_frequencies(state300, 40)
-    f = modes.freq_hz[:30]
-    w = TWO_PI * f
-    # out-of-plane 2n and antisymmetric n coincide exactly (Omega = 2 n pi): count multiplicity
-    below = ds.cable_mode_count(state300, w * (1 - 1e-9))
-    above = ds.cable_mode_count(state300, w * (1 + 1e-9))
-    np.testing.assert_array_equal(below, [np.sum(modes.freq_hz < fk * (1 - 1e-12)) for fk in f])
-    np.testing.assert_array_equal(above, [np.sum(modes.freq_hz <= fk * (1 + 1e-12)) for fk in f])
-    multiplicity = [np.sum(np.isclose(modes.freq_hz, fk, rtol=1e-12)) for fk in f]
-    np.testing.assert_array_equal(above - below, multiplicity)
-    assert max(multiplicity) == 2
-
-
-@settings(max_examples=60, deadline=None)
-@given(lam2=st.floats(1e-6, 1e4), ratio=st.one_of(st.floats(0.0, 40.0), st.integers(0, 40)))
-def test_count_equals_number_of_roots_below(lam2, ratio):
-    """J0 from the branch rule equals the number of roots strictly below Omega (any lambda^2,
-    including Omega exactly on a string root or a branch end)."""
-    Om = float(ratio) * np.pi
-    sym = irvine_symmetric_roots(lam2, 25)
-    n = np.arange(1, 60)
-    expected = np.sum(n * np.pi < Om) + np.sum(2 * n * np.pi < Om) + np.sum(sym < Om)
-    assert ds.cable.psi.mode_count_nondimensional(np.array([Om]), lam2)[0] == expected
 
 
 def test_eigenvalues_decrease_between_poles(state300):
@@ -251,113 +185,6 @@ def test_bad_options_raise(state300):
 def test_shapes(state300):
     assert ds.cable_dynamic_stiffness(state300, 3.0).shape == (1, 3, 3)
     assert ds.cable_dynamic_stiffness(state300, np.arange(7.0), ends="both").shape == (7, 6, 6)
-
-
-def test_frequencies_beyond_the_closed_forms_range_are_refused(state300):
-    """omega L sqrt(m/T) above 1e7 (sin and cos of psi lose their digits; mode counts leave
-    exact integers) is an error naming omega and the admissible bound, never an overflowed
-    count or a NaN matrix."""
-    p = ds.cable.dsm.chord_parameters(state300)
-    w_max = ds.cable.psi.MAX_OMEGA_ND / (p.L * np.sqrt(p.m / p.T))
-    n = ds.cable_mode_count(state300, 0.999 * w_max)[0]
-    assert 0 < n < 2**53
-    for w in (1.001 * w_max, 1e20, 1e300):
-        with pytest.raises(InvalidParameterError, match=r"omega must be <= .* rad/s"):
-            ds.cable_mode_count(state300, w)
-        with pytest.raises(InvalidParameterError, match="omega must be <="):
-            ds.cable_dynamic_stiffness(state300, [1.0, w])
-
-
-@pytest.mark.parametrize("lam2", [0.18, 5e3])
-def test_high_irvine_roots_match_a_multiprecision_bisection(lam2):
-    """Up to the 20000th symmetric root (where the root sits 1e-16 above its branch start and
-    4 cos(psi) is below its own rounding), against a 40-digit bisection of
-    4 cos(psi) - lambda^2 (psi cos psi - sin psi) / psi^3 = 0."""
-    import mpmath
-    roots = irvine_symmetric_roots(lam2, 20000)
-    with mpmath.workdps(40):
-        L2 = mpmath.mpf(lam2)
-
-        def g(x):
-            return 4 * mpmath.cos(x) - L2 * (x * mpmath.cos(x) - mpmath.sin(x)) / x**3
-        for k in (1, 40, 2000, 20000):
-            a = (2 * k - 1) * mpmath.pi / 2 + mpmath.mpf("1e-35")
-            b = (2 * k + 1) * mpmath.pi / 2 - mpmath.mpf("1e-35")
-            ga = g(a)
-            for _ in range(170):
-                c = (a + b) / 2
-                gc = g(c)
-                if ga * gc <= 0:
-                    b = c
-                else:
-                    a, ga = c, gc
-            assert abs(roots[k - 1] / float(a + b) - 1) < 4e-16
-
-
-@pytest.mark.parametrize("n", [np.nan, np.inf, None, 2.0, "3", 0])
-def test_cable_natural_frequencies_count_must_be_an_integer(state300, n):
-    with pytest.raises(InvalidParameterError, match="n_modes must be an integer >= 1"):
-        ds.cable_natural_frequencies(state300, n)
-
-
-def test_ten_thousand_labelled_cable_modes(state300):
-    """The high symmetric roots no longer fail in the root finder: 10000 modes come back
-    ascending, each family in its order, the out-of-plane ones at n pi exactly."""
-    cm = ds.cable_natural_frequencies(state300, 10000)
-    assert len(cm) == 10000 and np.all(np.diff(cm.Omega) >= 0)
-    oop = np.array(cm.family) == "out-of-plane"
-    np.testing.assert_allclose(cm.Omega[oop], np.pi * cm.order[oop], rtol=1e-15)
-
-
-def test_closed_form_guard_flags_slack_steep_and_axial_cables_and_not_cogiro():
-    """closed_form_validity (theory.md §11.5): the estimate bounds the measured error of the
-    clamped frequencies against the exact model on the hard cases, is inf for a slack U and
-    for axial modes in the band, and stays below 1e-3 on CoGiRo's cables."""
-    from dynstiff.cable.guard import closed_form_local_error, closed_form_validity
-    slack = ds.solve_catenary([0, 0, 0], [1e-6, 0, 10], 10.1, ds.Cable(0.064, 1.4e5))
-    v = closed_form_validity(slack)
-    assert np.isinf(v.error) and any("slack" in r for r in v.reasons(1e-2))
-    steep = ds.solve_catenary([0, 0, 0], [5.0, 0, 5 * np.sqrt(3)], 10.6, ds.Cable(1.0, 1e6))
-    v = closed_form_validity(steep)
-    measured = closed_form_local_error(steep, 0.0)
-    assert measured > 1e-2 and v.error >= measured
-    soft = ds.solve_catenary([0, 0, 0], [10.0, 0, -2.0], 9.8, ds.Cable(1.0, 2e3))
-    f_ax = np.sqrt(2e3 / 1.0) / (2 * 9.8)
-    assert np.isfinite(closed_form_validity(soft, 2 * np.pi * 0.8 * f_ax).error)
-    v = closed_form_validity(soft, 2 * np.pi * f_ax)
-    assert np.isinf(v.causes["axial"]) and "axial modes from" in v.reasons(1e-2)[-1]
-    for s in ds.load_scene("cogiro").equilibrium().states:
-        v = closed_form_validity(s, 2 * np.pi * 20.0)
-        assert v.error < 1e-3
-        assert closed_form_local_error(s, 2 * np.pi * 20.0) <= v.error
-    # the cable-level functions warn too, and stay silent on CoGiRo
-    import warnings
-
-    from dynstiff.errors import ClosedFormWarning
-    with pytest.warns(ClosedFormWarning, match="off the exact model's") as rec:
-        ds.cable_natural_frequencies(steep, 5)
-    assert rec[0].message.cause == "local" and rec[0].message.cable is None
-    with pytest.warns(ClosedFormWarning) as rec:
-        ds.cable_dynamic_stiffness(slack, [0.0, 1.0])
-    assert rec[0].message.cause == "slack" and rec[0].message.cable is None
-    # the message lists the validity's reasons above a tenth of guard_rtol (1e-2)
-    reasons = "; ".join(closed_form_validity(slack, 1.0).reasons(1e-3))
-    assert str(rec[0].message) == (f"it is outside the closed form's range ({reasons}): "
-                                   f"use model='exact'")
-    with pytest.warns(ClosedFormWarning) as rec:
-        ds.cable_dynamic_stiffness(soft, 2 * np.pi * f_ax)
-    assert rec[0].message.cause == "axial"
-    reasons = closed_form_validity(soft, 2 * np.pi * f_ax).reasons(1e-3)
-    assert len(reasons) > 1 and str(rec[0].message) == (
-        f"it is outside the closed form's range ({'; '.join(reasons)}): use model='exact'")
-    for bad in (0, 0.0, -1e-3, np.inf, True, "1e-2"):
-        with pytest.raises(InvalidParameterError,
-                           match=f"^guard_rtol must be a number > 0 or None, got {bad!r}$"):
-            ds.cable_dynamic_stiffness(steep, 1.0, guard_rtol=bad)
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", ClosedFormWarning)
-        ds.cable_natural_frequencies(s, 12)
-        ds.cable_dynamic_stiffness(steep, 1.0, guard_rtol=None)
 
 
 @pytest.mark.parametrize("chordwise", [True, False])
@@ -463,121 +290,48 @@ def test_cable_dsm_options_reach_the_kernels(state300):
     assert ds.cable_dynamic_stiffness(s, w, ends="both", model="exact").shape == (3, 6, 6)
 
 
-def test_cable_modes_table_repr_and_plot(state300):
-    import matplotlib.pyplot as plt
-    modes = ds.cable_natural_frequencies(state300, 5)
-    df = modes.to_frame()
-    assert list(df.columns) == ["freq [Hz]", "Omega [-]", "family", "order"]
-    np.testing.assert_array_equal(df["freq [Hz]"], modes.freq_hz)
-    assert list(df["family"]) == list(modes.family) and list(df["order"]) == list(modes.order)
-    assert repr(modes) == (f"CableModes(5 modes {modes.freq_hz[0]:.4g}-{modes.freq_hz[-1]:.4g}"
-                           f" Hz: {', '.join(modes.labels[:3])}, ...)")
-    fig, ax = plt.subplots()
-    assert modes.plot(ax=ax) is fig
-    assert any(str(a.get_gid()).startswith("cable-") for a in ax.get_children())
-    plt.close(fig)
 
 
-def test_series_coefficients_are_the_taylor_series_of_the_psi_functions():
-    """The series branch of the psi functions (|psi| < 1): its coefficients, recomputed
-    here, evaluate E, P~ and Q~ to 1e-15 of their mpmath values at psi^2 = 0.0 .. 1."""
-    import mpmath
-
-    from dynstiff.cable.psi import _series_coefficients
-    E, P, Q = _series_coefficients()
-    for x in (0.0, 0.05, 0.3, 0.7, 1.0):
-        with mpmath.workdps(60):
-            p = mpmath.sqrt(x) if x else mpmath.mpf("1e-15")
-            s, c = mpmath.sin(p), mpmath.cos(p)
-            ref = [float(r) for r in ((p * c - s) / p**3, ((1 + p**2) * s * c - p) / p**3,
-                                      (p * (c**2 - s**2) + (p**2 - 1) * s * c) / p**3)]
-        for coef, r in zip((E, P, Q), ref):
-            assert np.polyval(coef, x) == pytest.approx(r, rel=1e-15, abs=1e-16)
-
-
-@pytest.mark.parametrize("tension", ["mean", "chord"])
-def test_validity_and_exact_modes_use_the_tension_asked(state300, tension):
-    """closed_form_validity's weight ratio is W |h| / (L T) with the T of the tension asked
-    (theory.md §11.5), and the exact model's modes give Omega = omega L sqrt(m / T) with
-    that T, like the closed form's."""
-    from dynstiff.cable.guard import closed_form_validity
-    s = state300
-    p = chord_parameters(s, tension)
-    v = closed_form_validity(s, tension=tension)
-    assert v.values["weight_ratio"] == pytest.approx(
-        s.total_weight * abs(s.chord[2]) / s.chord_length / p.T, rel=1e-14)
-    for model in ("closed-form", "exact"):
-        cm = ds.cable_natural_frequencies(s, 4, tension=tension, model=model)
-        np.testing.assert_allclose(cm.Omega, 2 * np.pi * cm.freq_hz * p.L * np.sqrt(p.m / p.T),
-                                   rtol=1e-13)
-
-
-@pytest.mark.parametrize("step", [np.pi, 2 * np.pi])
-def test_multiples_below_count_ties_and_roundings_as_the_products_do(step):
-    """#{n >= 1 : n step < x} at x = m step (m - 1 of them) and at the next float above it
-    (m), for m up to 3000, including the ~10 % of those where x / step rounds back down onto
-    m; brute force compares the float products n step themselves."""
-    from dynstiff.cable.psi import _count_multiples_below
-    m = np.arange(1, 3001)
-    on = m * step
-    above = np.nextafter(on, np.inf)
-    assert np.count_nonzero(above / step == m) > 100
-    for x, want in ((on, m - 1), (above, m)):
-        brute = np.array([np.count_nonzero(np.arange(1, k + 2) * step < v)
-                          for k, v in zip(m, x)])
-        np.testing.assert_array_equal(brute, want)
-        np.testing.assert_array_equal(_count_multiples_below(x, step), want)
-
-
-def test_a_complex_frequency_beyond_the_range_is_named_as_given(state300):
-    """check_frequency_range names the largest |omega| as given, complex included."""
-    from dynstiff.cable.psi import check_frequency_range
+# ----------------------------------------------------------------------------- fields
+@pytest.mark.parametrize("f_hz", [0.37, 1.9, 4.4])
+def test_cable_field_solves_the_field_equations_with_its_end_motion(state300, f_hz):
+    """cable_field (theory.md §2.1, §5.3): v'' + beta^2 v is one constant h q / T^2 along the
+    chord (T v'' + h y'' = -m omega^2 v), w'' + beta^2 w = 0, the field meets the clamped end A
+    and the end motion at B, and h satisfies the compatibility condition
+    h L_e / EA = u_B + int y' v' dx = u_B - alpha v_B + (q / T) int v dx."""
+    from dynstiff.cable.dsm import cable_field
     p = chord_parameters(state300)
-    with pytest.raises(InvalidParameterError, match=r"got 1e\+09\+2j$"):
-        check_frequency_range(p, np.array([3.0 + 0.1j, 1e9 + 2j]))
-    with pytest.raises(InvalidParameterError, match=r"^w must be <= .*got 1e\+09$"):
-        check_frequency_range(p, np.array([3.0, 1e9]), name="w")
+    omega = 2 * np.pi * f_hz
+    d = np.array([2e-3, -3e-3, 1.5e-3])
+    x = np.linspace(0.0, p.L, 4001)
+    u, v, w = cable_field(p, omega, d, x).T
+    np.testing.assert_allclose([u[0], v[0], w[0]], 0.0, atol=1e-15)
+    np.testing.assert_allclose([u[-1], v[-1], w[-1]], d, rtol=1e-12, atol=1e-15)
+    beta = omega * np.sqrt(p.m / p.T)
+    dx = x[1] - x[0]
+    lhs_v = (v[2:] - 2 * v[1:-1] + v[:-2]) / dx**2 + beta**2 * v[1:-1]
+    lhs_w = (w[2:] - 2 * w[1:-1] + w[:-2]) / dx**2 + beta**2 * w[1:-1]
+    scale = beta**2 * np.abs(v).max()
+    assert np.ptp(lhs_v) < 1e-5 * scale                     # one constant along the chord
+    assert np.abs(lhs_w).max() < 1e-5 * beta**2 * np.abs(w).max()
+    h = np.mean(lhs_v) * p.T**2 / p.q                        # dynamic tension [N]
+    int_v = np.sum((v[1:] + v[:-1]) / 2) * dx
+    assert h / p.K0 == pytest.approx(d[0] - p.alpha * d[1] + p.q / p.T * int_v, rel=1e-6)
 
 
-def test_the_measured_local_error_uses_the_tension_asked_for_its_band():
-    """closed_form_local_error over the modes below 8 omega_1, omega_1 = pi sqrt(T / m) / L
-    with the T asked (theory.md §11.5): on a steep sagging cable, whose chord tension is
-    34 % below its mean, the chord-tension error is the largest |f_closed / f_exact - 1| of
-    the exact cable's non-axial modes in that band, rebuilt here."""
-    from dynstiff.cable.exact import ExactCable
-    from dynstiff.cable.guard import closed_form_local_error
-    s = ds.solve_catenary([0, 0, 0], [5.0, 0, 5 * np.sqrt(3)], 10.6, ds.Cable(1.0, 1e6))
-    p = chord_parameters(s, "chord")
-    band = 8 * np.pi * np.sqrt(p.T / p.m) / p.L
-    ec = ExactCable(s, band)
-    keep = (ec.eigenvalues <= band**2) & (np.array(ec.family) != "axial")
-    f_ex = np.sqrt(ec.eigenvalues[keep]) / (2 * np.pi)
-    f_cf = ds.cable_natural_frequencies(s, f_ex.size, "chord", guard_rtol=None).freq_hz
-    want = np.max(np.abs(f_cf / f_ex - 1))
-    assert closed_form_local_error(s, 0.0, "chord") == pytest.approx(want, rel=1e-12)
-    assert closed_form_local_error(s, 0.0, "mean") != pytest.approx(want, rel=1e-3)
+def test_cable_kinetic_energy_is_the_integral_of_its_field(state300):
+    """cable_kinetic_energy: m int (|v|^2 + |w|^2) dx by an independent adaptive quadrature of
+    cable_field, plus m L / 3 |u_B|^2 with the chordwise inertia (theory.md §3.6, §6)."""
+    from scipy.integrate import quad
 
+    from dynstiff.cable.dsm import cable_field, cable_kinetic_energy
+    p = chord_parameters(state300)
+    omega, d = 2 * np.pi * 2.7, np.array([1e-3, 2e-3, -1e-3])
 
-def test_exact_modes_are_numbered_within_their_family():
-    """The exact model's labels on a soft cable whose axial mode is among its first 12: in
-    each of the three families the orders are 1, 2, 3, ... by frequency."""
-    soft = ds.solve_catenary([0, 0, 0], [10.0, 0, -2.0], 9.8, ds.Cable(1.0, 2e3))
-    cm = ds.cable_natural_frequencies(soft, 12, model="exact")
-    fam = np.array(cm.family)
-    assert set(cm.family) == {"out-of-plane", "in-plane", "axial"}
-    for name in set(cm.family):
-        sel = fam == name
-        np.testing.assert_array_equal(cm.order[sel], np.arange(1, sel.sum() + 1))
-        assert np.all(np.diff(cm.freq_hz[sel]) > 0)
-
-
-def test_coincident_closed_form_modes_are_listed_in_family_order(state300):
-    """Out-of-plane k pi and in-plane antisymmetric 2 j pi coincide for k = 2 j: such pairs
-    keep the documented family order, out-of-plane first, every one of them."""
-    cm = ds.cable_natural_frequencies(state300, 60, guard_rtol=None)
-    fam = np.array(cm.family)
-    ties = np.flatnonzero(np.diff(cm.Omega) == 0)
-    assert len(ties) >= 10
-    assert np.all(fam[ties] == "out-of-plane")
-    assert np.all(fam[ties + 1] == "in-plane antisymmetric")
-    np.testing.assert_array_equal(cm.order[ties + 1] * 2, cm.order[ties])
+    def density(x):
+        f = cable_field(p, omega, d, np.array([x]))[0]
+        return p.m * (abs(f[1]) ** 2 + abs(f[2]) ** 2)
+    ref = quad(density, 0.0, p.L, limit=200, epsabs=0, epsrel=1e-12)[0]
+    assert cable_kinetic_energy(p, omega, d, False) == pytest.approx(ref, rel=1e-10)
+    assert cable_kinetic_energy(p, omega, d, True) == pytest.approx(
+        ref + p.m * p.L / 3 * d[0] ** 2, rel=1e-10)

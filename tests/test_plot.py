@@ -1,5 +1,5 @@
 """Plotting layer (dynstiff.plot): the figures hold the data they claim to; the 3-D view
-(dynstiff.report.robot3d) is tested in test_plot3d.py.
+(dynstiff.report.robot3d) is tested in test_report_robot3d.py.
 
 Every test reads the artists back (axis labels, line data, gids) and compares them with the
 results that were plotted; none only checks that a figure exists.
