@@ -1,8 +1,7 @@
 """Tests of the lumped-mass chain statics (dynstiff.cable.lumped_chain): chain_equilibrium.
 
 References: theory.md §7 (lumped-mass model), §1.1 (test cable). Every test asserts a number
-that the physics fixes. The test cables are in conftest.py.
-"""
+that the physics fixes. The test cables are in conftest.py."""
 
 import numpy as np
 import pytest
@@ -39,15 +38,6 @@ def _force_scale(state):
     return state.cable.mass_per_length * state.unstretched_length * state.g + state.tensions.max()
 
 
-# ---------------------------------------------------------------- beaded string (g = 0)
-def test_beaded_string_statics_on_chord():
-    state, tension = beaded_string(20)
-    x = np.linspace(0, BEAD_L, 21)
-    np.testing.assert_allclose(state.nodes[:, 0], x, rtol=0, atol=1e-13)
-    assert np.all(state.nodes[:, 1:] == 0.0)
-    np.testing.assert_allclose(state.tensions, tension, rtol=1e-12)
-
-
 # ------------------------------------------------------------------------------ statics
 STATIC_CASES = {
     # name: (anchor, end, L0 / chord, N)
@@ -68,6 +58,26 @@ def static_case(request):
     anchor, end, ratio, n_segments = STATIC_CASES[request.param]
     L0 = ratio * np.linalg.norm(end - anchor)
     return request.param, chain_equilibrium(anchor, end, L0, CABLE_11, n_segments)
+
+
+def _dense_interior(ke):
+    """K_II of a chain assembled element by element ([[k, -k], [-k, k]] at nodes i, i+1),
+    the end nodes dropped."""
+    n_el = ke.shape[0]
+    K = np.zeros((3 * (n_el + 1),) * 2, dtype=ke.dtype)
+    for i, k in enumerate(ke):
+        s = slice(3 * i, 3 * i + 6)
+        K[s, s] += np.block([[k, -k], [-k, k]])
+    return K[3:-3, 3:-3]
+
+
+# ---------------------------------------------------------------- beaded string (g = 0)
+def test_beaded_string_statics_on_chord():
+    state, tension = beaded_string(20)
+    x = np.linspace(0, BEAD_L, 21)
+    np.testing.assert_allclose(state.nodes[:, 0], x, rtol=0, atol=1e-13)
+    assert np.all(state.nodes[:, 1:] == 0.0)
+    np.testing.assert_allclose(state.tensions, tension, rtol=1e-12)
 
 
 def test_interior_nodes_in_force_balance(static_case):
@@ -240,40 +250,6 @@ def test_chain_input_and_weightless_slack_chains_are_named():
     with pytest.raises(SlackCableError, match="without gravity every segment is slack when "
                                               r"L0 >= chord \(unstretched_length 2 m"):
         chain_equilibrium((0, 0, 0), (1, 0, 0), 2.0, Cable(0.5, 2e5), 4, g=0.0)
-
-
-def _dense_interior(ke):
-    """K_II of a chain assembled element by element ([[k, -k], [-k, k]] at nodes i, i+1),
-    the end nodes dropped."""
-    n_el = ke.shape[0]
-    K = np.zeros((3 * (n_el + 1),) * 2, dtype=ke.dtype)
-    for i, k in enumerate(ke):
-        s = slice(3 * i, 3 * i + 6)
-        K[s, s] += np.block([[k, -k], [-k, k]])
-    return K[3:-3, 3:-3]
-
-
-@pytest.mark.parametrize("factor, extra", [(1.0, 0.0), (1.0 + 0.02j, 0.0),
-                                           (1.0, -3.0 + 0.5j), (1.0 + 0.02j, 2.5)])
-def test_banded_interior_block_is_the_assembled_one(factor, extra):
-    """interior_banded in upper (symmetric) and general form holds K_II + extra I of the
-    element-by-element assembly, complex element stiffnesses (hysteretic damping) and
-    complex diagonal terms included."""
-    from dynstiff.cable.lumped_elements import BANDWIDTH, interior_banded
-    rng = np.random.default_rng(5)
-    a = rng.normal(size=(5, 3, 3))
-    ke = (a + a.transpose(0, 2, 1)) * factor
-    K = _dense_interior(ke) + extra * np.eye(12)
-    for symmetric in (True, False):
-        ab = interior_banded(ke, extra, symmetric=symmetric)
-        dense = np.zeros_like(K)
-        for d in range(ab.shape[0]):
-            off = BANDWIDTH - d                    # ab[u + i - j, j] = A[i, j]
-            j = np.arange(max(0, off), 12 + min(0, off))
-            dense[j - off, j] = ab[d, j]
-        if symmetric:
-            dense = np.triu(dense) + np.triu(dense, 1).T
-        np.testing.assert_allclose(dense, K, rtol=0, atol=1e-14)
 
 
 def test_a_singular_chain_stiffness_is_solved_with_a_small_positive_shift():

@@ -10,91 +10,9 @@ import pytest
 
 from dynstiff import compiled
 from dynstiff.lumped import LumpedMassModel, TimeDamping
-from dynstiff.timedomain import dynamics as td
 from dynstiff.timedomain import stepping as time_stepping
 
 pytest.importorskip("numba")
-
-
-@pytest.mark.parametrize("c_first, segments", [(0.0, 6), (12.0, 6),
-                                               (12.0, [1, 2, 3, 4, 5, 6, 7, 3])])
-def test_compiled_forces_equal_the_numpy_path(cogiro, cogiro_eq, monkeypatch, c_first,
-                                              segments):
-    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segments)
-    st = mm.equilibrium(initial_pose=cogiro.pose)
-    rng = np.random.default_rng(11)
-    pose, interior = mm.displaced(st.pose, st.interior, 2e-3 * rng.standard_normal(mm.n_dof))
-    pose = td.FastPose(pose.position, pose.rotation)
-    X = np.concatenate([x.ravel() for x in interior])
-    v = rng.standard_normal(mm.n_dof)
-    c_ax = np.r_[c_first, np.linspace(5.0, 30.0, mm.robot.n_cables - 1)]
-    out = {}
-    for fast in (True, False):
-        if not fast:
-            monkeypatch.setattr(compiled, "load", lambda name: None)
-        dyn = td.Dynamics(mm, TimeDamping(axial=c_ax), None, None)
-        F, fe, fd, t_max, _ = dyn.forces(pose, X, v, 0.0)
-        out[fast] = (F, fd, t_max, dyn.extremes)
-    (F1, fd1, t1, e1), (F0, fd0, t0, e0) = out[True], out[False]
-    assert np.abs(fd0).max() > 1e-3 * np.abs(F0).max()           # the dashpots act
-    np.testing.assert_allclose(F1, F0, rtol=0, atol=1e-12 * np.abs(F0).max())
-    np.testing.assert_allclose(fd1, fd0, rtol=0, atol=1e-12 * np.abs(fd0).max())
-    assert t1 == pytest.approx(t0, rel=1e-14)
-    np.testing.assert_allclose(e1, e0, rtol=1e-12, atol=1e-15)
-
-
-def test_extremes_see_a_slack_segment(cogiro, cogiro_eq):
-    """A chain pushed together has a slack segment: smallest tension 0, strain < 0 there."""
-    from dynstiff.compiled.chain import robot_chain_forces
-    X = np.array([1.0, 0, 0, 1.5, 0, 0])                 # segments 1, 0.5, 1.5 m
-    z3 = np.zeros((1, 3))
-    inner, _, W, _, t_max, t_min, strain = robot_chain_forces(
-        z3, X, np.array([[3.0, 0, 0]]), z3, np.zeros(6), np.zeros(6), np.array([3]),
-        np.array([1.0]), np.array([100.0]), np.array([0.0]), z3, np.zeros(3), np.zeros(3))
-    assert t_min == 0.0 and t_max == pytest.approx(50.0) and strain == pytest.approx(0.5)
-    np.testing.assert_allclose(inner.reshape(2, 3), [[0.0, 0, 0], [50.0, 0, 0]])
-    np.testing.assert_allclose(W, [-50.0, 0, 0, 0, 0, 0])
-
-
-@pytest.mark.parametrize("viscous, beta, segments", [(0.0, 0.0, 6), (0.3, 0.0, 6),
-                                                     (0.3, 1e-4, [2, 3, 4, 5, 6, 7, 3, 5])])
-def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monkeypatch,
-                                                        viscous, beta, segments):
-    """The compiled velocity-Verlet run, taken in blocks of 37 steps, gives the stepwise
-    numpy run: a spinning, driven CoGiRo with Rayleigh (mass- and stiffness-proportional),
-    axial and cable viscous damping, chains of equal and of different N, records every 7
-    steps."""
-    import dataclasses
-
-    import dynstiff as ds
-    from dynstiff.lumped import explicit_step_limit, simulate
-    rob = cogiro.robot
-    cable = dataclasses.replace(rob.cables[0], viscous_damping=viscous)
-    robot = ds.Robot(rob.anchors, rob.attachments, cable, rob.platform)
-    mm = LumpedMassModel(robot, cogiro_eq.unstretched_lengths, segments=segments)
-    damping = TimeDamping(alpha=0.3, beta=beta, axial=np.linspace(0.0, 20.0, 8))
-    dt = 0.8 * explicit_step_limit(mm, damping=damping)
-    kw = {"scheme": "explicit", "damping": damping, "record_every": 7,
-          "start": mm.equilibrium(),
-          "initial": ([1e-3, -1e-3, 1e-3, 2e-3, -1e-3, 1e-3],
-                      [0.01, 0.0, -0.01, 0.02, 0.01, -0.03]),
-          "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1]),
-          "record_nodes": True}
-    monkeypatch.setattr(time_stepping, "_BLOCK", 37)          # the run in 9 calls
-    r1 = simulate(mm, 300 * dt, dt, **kw)
-    monkeypatch.setattr(compiled, "load", lambda name: None)
-    r0 = simulate(mm, 300 * dt, dt, **kw)
-    assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
-    pairs = [(name, getattr(r1, name), getattr(r0, name))
-             for name in ("times", "pose", "velocity", "end_tensions", "anchor_tensions",
-                          "unstretched_lengths")]
-    pairs += [(f"nodes {i}", a, b) for i, (a, b) in enumerate(zip(r1.nodes, r0.nodes))]
-    for name, a, b in pairs:
-        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10 * np.abs(b).max(), err_msg=name)
-    scale = np.abs(r0.energy.gravity).max()          # the residual is a difference of these
-    for name in ("kinetic", "elastic", "gravity", "external_work", "dissipated", "residual"):
-        a, b = getattr(r1.energy, name), getattr(r0.energy, name)
-        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * scale, err_msg=name)
 
 
 def _both_paths(monkeypatch, run):
@@ -144,6 +62,82 @@ def test_compiled_run_fails_as_the_stepwise_loop(robot_model, monkeypatch):
     assert w1 == w0 and len(w1) >= 2                  # the dt warning, then the ledger's
 
 
+def test_compiled_implicit_run_warns_and_fails_as_the_stepwise_loop(robot_model, monkeypatch):
+    """A 0.6 m/s kick snaps the cables of the point-mass robot: at dt = 2 ms both implicit
+    paths warn (slack segment, then the ledger) and stop with the same IntegrationError;
+    at 1 ms both complete with the same motion, slack count and Newton work."""
+    from dynstiff.lumped import IntegrationError, simulate
+    m = robot_model(5)
+    kick = ([0] * 6, [0, 0, 0.6, 0, 0, 0])
+    (e1, w1), (e0, w0) = _both_paths(monkeypatch, lambda: simulate(m, 0.3, 0.002,
+                                                                   initial=kick))
+    assert isinstance(e1, IntegrationError) and isinstance(e0, IntegrationError)
+    assert (e1.step, str(e1)) == (e0.step, str(e0)) and w1 == w0 and len(w1) == 2
+    monkeypatch.undo()
+    (r1, w1), (r0, w0) = _both_paths(monkeypatch, lambda: simulate(m, 0.3, 0.001,
+                                                                   initial=kick,
+                                                                   record_every=10))
+    assert w1 == w0 and r1.slack_steps == r0.slack_steps > 50
+    assert (r1.newton_iterations, r1.jacobian_updates) == \
+        (r0.newton_iterations, r0.jacobian_updates)
+    # the snaps amplify rounding: 2.3e-11 m measured (Newton stops at tol 1e-9 either way)
+    np.testing.assert_allclose(r1.pose, r0.pose, rtol=0, atol=1e-10 * np.abs(r0.pose).max())
+
+
+def test_compiled_implicit_run_reports_newton_failure_as_the_stepwise_loop(robot_model,
+                                                                          monkeypatch):
+    """Two Newton iterations cannot reach a relative residual of 1e-15: both paths raise the
+    same ConvergenceError (step, residual, message)."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.lumped import simulate
+    m = robot_model(5)
+    (e1, _), (e0, _) = _both_paths(monkeypatch, lambda: simulate(
+        m, 0.01, 1e-3, initial=[1e-3, 0, 0, 0, 0, 0], tol=1e-15, max_iter=2))
+    assert isinstance(e1, ConvergenceError) and isinstance(e0, ConvergenceError)
+    assert str(e1) == str(e0) and "step 1 " in str(e1)
+
+
+@pytest.mark.parametrize("viscous, beta, segments", [(0.0, 0.0, 6), (0.3, 0.0, 6),
+                                                     (0.3, 1e-4, [2, 3, 4, 5, 6, 7, 3, 5])])
+def test_compiled_explicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monkeypatch,
+                                                        viscous, beta, segments):
+    """The compiled velocity-Verlet run, taken in blocks of 37 steps, gives the stepwise
+    numpy run: a spinning, driven CoGiRo with Rayleigh (mass- and stiffness-proportional),
+    axial and cable viscous damping, chains of equal and of different N, records every 7
+    steps."""
+    import dataclasses
+
+    import dynstiff as ds
+    from dynstiff.lumped import explicit_step_limit, simulate
+    rob = cogiro.robot
+    cable = dataclasses.replace(rob.cables[0], viscous_damping=viscous)
+    robot = ds.Robot(rob.anchors, rob.attachments, cable, rob.platform)
+    mm = LumpedMassModel(robot, cogiro_eq.unstretched_lengths, segments=segments)
+    damping = TimeDamping(alpha=0.3, beta=beta, axial=np.linspace(0.0, 20.0, 8))
+    dt = 0.8 * explicit_step_limit(mm, damping=damping)
+    kw = {"scheme": "explicit", "damping": damping, "record_every": 7,
+          "start": mm.equilibrium(),
+          "initial": ([1e-3, -1e-3, 1e-3, 2e-3, -1e-3, 1e-3],
+                      [0.01, 0.0, -0.01, 0.02, 0.01, -0.03]),
+          "excitation": lambda t: np.array([1.0, -2.0, 3.0 * np.sin(10 * t), 0.5, -0.2, 0.1]),
+          "record_nodes": True}
+    monkeypatch.setattr(time_stepping, "_BLOCK", 37)          # the run in 9 calls
+    r1 = simulate(mm, 300 * dt, dt, **kw)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
+    r0 = simulate(mm, 300 * dt, dt, **kw)
+    assert np.abs(r0.pose[-1] - r0.pose[0]).max() > 1e-4               # it moved
+    pairs = [(name, getattr(r1, name), getattr(r0, name))
+             for name in ("times", "pose", "velocity", "end_tensions", "anchor_tensions",
+                          "unstretched_lengths")]
+    pairs += [(f"nodes {i}", a, b) for i, (a, b) in enumerate(zip(r1.nodes, r0.nodes))]
+    for name, a, b in pairs:
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-10 * np.abs(b).max(), err_msg=name)
+    scale = np.abs(r0.energy.gravity).max()          # the residual is a difference of these
+    for name in ("kinetic", "elastic", "gravity", "external_work", "dissipated", "residual"):
+        a, b = getattr(r1.energy, name), getattr(r0.energy, name)
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * scale, err_msg=name)
+
+
 @pytest.mark.parametrize("dt, segments", [(1e-3, 6), (4e-3, [2, 3, 4, 5, 6, 7, 3, 5])])
 def test_compiled_implicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monkeypatch, dt,
                                                         segments):
@@ -183,36 +177,3 @@ def test_compiled_implicit_run_equals_the_stepwise_loop(cogiro, cogiro_eq, monke
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-12 * scale, err_msg=name)
 
 
-def test_compiled_implicit_run_warns_and_fails_as_the_stepwise_loop(robot_model, monkeypatch):
-    """A 0.6 m/s kick snaps the cables of the point-mass robot: at dt = 2 ms both implicit
-    paths warn (slack segment, then the ledger) and stop with the same IntegrationError;
-    at 1 ms both complete with the same motion, slack count and Newton work."""
-    from dynstiff.lumped import IntegrationError, simulate
-    m = robot_model(5)
-    kick = ([0] * 6, [0, 0, 0.6, 0, 0, 0])
-    (e1, w1), (e0, w0) = _both_paths(monkeypatch, lambda: simulate(m, 0.3, 0.002,
-                                                                   initial=kick))
-    assert isinstance(e1, IntegrationError) and isinstance(e0, IntegrationError)
-    assert (e1.step, str(e1)) == (e0.step, str(e0)) and w1 == w0 and len(w1) == 2
-    monkeypatch.undo()
-    (r1, w1), (r0, w0) = _both_paths(monkeypatch, lambda: simulate(m, 0.3, 0.001,
-                                                                   initial=kick,
-                                                                   record_every=10))
-    assert w1 == w0 and r1.slack_steps == r0.slack_steps > 50
-    assert (r1.newton_iterations, r1.jacobian_updates) == \
-        (r0.newton_iterations, r0.jacobian_updates)
-    # the snaps amplify rounding: 2.3e-11 m measured (Newton stops at tol 1e-9 either way)
-    np.testing.assert_allclose(r1.pose, r0.pose, rtol=0, atol=1e-10 * np.abs(r0.pose).max())
-
-
-def test_compiled_implicit_run_reports_newton_failure_as_the_stepwise_loop(robot_model,
-                                                                          monkeypatch):
-    """Two Newton iterations cannot reach a relative residual of 1e-15: both paths raise the
-    same ConvergenceError (step, residual, message)."""
-    from dynstiff.errors import ConvergenceError
-    from dynstiff.lumped import simulate
-    m = robot_model(5)
-    (e1, _), (e0, _) = _both_paths(monkeypatch, lambda: simulate(
-        m, 0.01, 1e-3, initial=[1e-3, 0, 0, 0, 0, 0], tol=1e-15, max_iter=2))
-    assert isinstance(e1, ConvergenceError) and isinstance(e0, ConvergenceError)
-    assert str(e1) == str(e0) and "step 1 " in str(e1)
