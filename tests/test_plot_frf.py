@@ -1,0 +1,106 @@
+"""FRF figures (dynstiff/plot/frf.py): curves, mode lines by class, legend and phase."""
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import dynstiff as ds  # noqa: E402
+from dynstiff.errors import InvalidParameterError  # noqa: E402
+from dynstiff.plot import (  # noqa: E402
+    plot_frf,
+)
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    yield
+    plt.close("all")
+
+
+# ------------------------------------------------------------------------------- FRF
+def test_frf_marks_band_modes_and_draws_phase(cogiro_model, cogiro_modes):
+    band = (0.5, 3.3)
+    res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(*band, 600), inputs=["fz", "fx"],
+                           outputs=["z", "x"])
+    fig = plot_frf(res, cogiro_modes, phase=True)
+    mag, ph = fig.axes
+    in_band = (cogiro_modes.freq_hz >= band[0]) & (cogiro_modes.freq_hz <= band[1])
+    assert 0 < in_band.sum() < len(cogiro_modes)          # the band cuts the mode list
+    for ax in (mag, ph):
+        marks = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("mode-")]
+        assert len(marks) == in_band.sum()
+        np.testing.assert_allclose(sorted(ln.get_xdata()[0] for ln in marks),
+                                   cogiro_modes.freq_hz[in_band])
+        n_global = sum(k == "global" for k, b in zip(cogiro_modes.kind, in_band) if b)
+        assert sum(ln.get_gid() == "mode-global" for ln in marks) == n_global
+    curves = [ln for ln in mag.get_lines() if ln.get_gid() is None]
+    assert [c.get_label() for c in curves] == ["z / fz", "x / fx"]
+    np.testing.assert_allclose(curves[0].get_ydata(), np.abs(res.H[:, 0, 0]))
+    assert mag.get_yscale() == "log" and "receptance" in mag.get_ylabel()
+    assert ph.get_xlabel() == "frequency [Hz]" and ph.get_ylabel() == "phase [deg]"
+    phase = np.concatenate([ln.get_ydata() for ln in ph.get_lines() if ln.get_gid() is None])
+    np.testing.assert_allclose(phase[:5], np.degrees(np.angle(res.H[:5, 0, 0])))
+    assert np.nanmax(np.abs(phase)) <= 180.0
+
+
+def test_frf_honours_ax_and_rejects_bad_input(cogiro_model, cogiro_modes):
+    res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(1.0, 2.0, 50), inputs=["fz"],
+                           outputs=["z"])
+    fig0, ax = plt.subplots()
+    fig = plot_frf(res, cogiro_modes, ax=ax, phase=True)      # ax given: magnitude only
+    assert fig is ax.figure and fig.axes == [ax]
+    with pytest.raises(InvalidParameterError, match="result must be a FRFResult"):
+        plot_frf(cogiro_modes)
+    with pytest.raises(InvalidParameterError, match=r"pairs.*\('q', 'fz'\)"):
+        plot_frf(res, pairs=[("q", "fz")])
+    with pytest.raises(InvalidParameterError, match="modes must be a ModalResult"):
+        plot_frf(res, modes=[1.0, 2.0])
+
+
+def test_frf_units_on_axis_and_in_the_table():
+    """One unit for all curves goes on the axis label; mixed units go into the legend; the
+    tidy table carries the unit of every row."""
+    from dynstiff.analyses.frf import FRFResult
+    H = np.ones((3, 2, 2), dtype=complex)
+    f = np.array([1.0, 2.0, 3.0])
+    res = FRFResult(freq_hz=f, H=H, inputs=("fz", "mx"), outputs=("z", "rx"), kind="mobility")
+    assert res.unit("z", "fz") == "m/(N s)" and res.unit("rx", "mx") == "rad/(N m s)"
+    assert FRFResult(f, H, ("fx",), ("x",), "receptance").unit("x", "fx") == "m/N"
+    assert FRFResult(f, H, ("fx",), ("x",), "accelerance").unit("ry", "fx") == "rad/(N s^2)"
+    fig = plot_frf(res)                                    # pairs (z, fz), (rx, mx)
+    ax = fig.axes[0]
+    assert ax.get_ylabel() == "|mobility| [units in the legend]"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["z / fz [m/(N s)]", "rx / mx [rad/(N m s)]"]
+    fig = plot_frf(res, pairs=[("z", "fz")])
+    assert fig.axes[0].get_ylabel() == "|mobility| [m/(N s)]"
+    df = res.to_frame()
+    assert set(zip(df["output"], df["input"], df["unit"])) == {
+        ("z", "fz", "m/(N s)"), ("z", "mx", "m/(N m s)"), ("rx", "fz", "rad/(N s)"),
+        ("rx", "mx", "rad/(N m s)")}
+    with pytest.raises(InvalidParameterError, match="unit needs"):
+        res.unit("q", "fz")
+
+
+def test_frf_legend_names_the_mode_markers():
+    """The dashed mode lines have legend entries by platform share; CoGiRo at 50 kg has a
+    mixed mode (2.216 Hz, 42 %) drawn purple, not blue as a cable mode."""
+    import dataclasses
+    sc = ds.load_scene("cogiro")
+    r = sc.robot
+    rob = ds.Robot(r.anchors, r.attachments, r.cables,
+                   dataclasses.replace(r.platform, mass=50.0), tension_limits=r.tension_limits)
+    m = ds.FrequencyModel(rob.equilibrium(pose=sc.pose))
+    modes = ds.modes(m, fmax_hz=2.6)
+    res = ds.frf(m, 2 * np.pi * np.linspace(2.0, 2.6, 50), inputs=["fy"], outputs=["y"])
+    fig = plot_frf(res, modes)
+    ax = fig.axes[0]
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels[0] == "y / fy"
+    assert any(lb.startswith("mixed mode (platform share 5%-50%)") for lb in labels)
+    assert any(lb.startswith("local mode") for lb in labels)
+    mixed = [ln for ln in ax.get_lines() if ln.get_gid() == "mode-mixed"]
+    assert any(abs(ln.get_xdata()[0] - 2.216) < 1e-3 for ln in mixed)

@@ -1,0 +1,78 @@
+"""Figures of modes and statics (dynstiff/plot/modes.py): natural frequencies by class, damped
+roots, cable modes by family, tensions and model errors."""
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+import dynstiff as ds  # noqa: E402
+from dynstiff.errors import InvalidParameterError  # noqa: E402
+from dynstiff.plot import (  # noqa: E402
+    plot_modes,
+)
+
+
+@pytest.fixture(autouse=True)
+def close_figures():
+    yield
+    plt.close("all")
+
+
+def by_gid(ax, prefix):
+    return [a for a in ax.get_children() if (a.get_gid() or "").startswith(prefix)]
+
+
+def test_cable_modes_and_damped_modes_plot(cogiro_eq):
+    st = cogiro_eq.states[0]
+    cm = ds.cable_natural_frequencies(st, 7)
+    ax = cm.plot().axes[0]
+    xs = np.concatenate([np.concatenate([s[:, 0] for s in c.get_segments()])
+                         for c in by_gid(ax, "cable-")])
+    np.testing.assert_allclose(np.unique(xs), np.unique(cm.freq_hz), rtol=1e-12)
+    dm = ds.DampedModes(undamped_freq_hz=np.array([1.0, 2.0]),
+                        omega=np.array([2 * np.pi * (1 + 0.01j), np.nan]),
+                        residual=np.array([1e-12, np.nan]))
+    pts = by_gid(dm.plot().axes[0], "damped-modes")[0]
+    np.testing.assert_allclose(pts.get_xdata(), [1.0])
+    np.testing.assert_allclose(pts.get_ydata(), [100 * 0.01 / np.hypot(1, 0.01)])
+    with pytest.raises(InvalidParameterError, match="modes"):
+        plot_modes(np.array([1.0]))
+
+
+# ----------------------------------------------------------- results that draw themselves
+def test_modal_result_plot_shows_each_mode_at_its_cable_share(cogiro_model):
+    md = ds.modes(cogiro_model, 12)
+    ax = md.plot().axes[0]
+    glob, loc = by_gid(ax, "modes-global"), by_gid(ax, "modes-local")
+    assert len(glob) == 1 and len(loc) == 1
+    segs = np.concatenate([glob[0].get_segments(), loc[0].get_segments()])
+    assert len(segs) == len(md)
+    # each stem stands at its mode's frequency and rises to its cable energy fraction
+    got = sorted((s[0, 0], s[1, 1]) for s in segs)
+    want = sorted(zip(md.freq_hz, md.cable_energy_fraction))
+    np.testing.assert_allclose(got, want, rtol=1e-12)
+
+
+def test_equilibrium_plot_bars_are_the_tensions_and_the_limits(cogiro_eq):
+    ax = cogiro_eq.plot().axes[0]
+    heights = [p.get_height() for p in by_gid(ax, "tension-B")]
+    np.testing.assert_allclose(heights, cogiro_eq.tensions, rtol=1e-12)
+    heights = [p.get_height() for p in by_gid(ax, "tension-A")]
+    np.testing.assert_allclose(heights, cogiro_eq.anchor_tensions, rtol=1e-12)
+    limits = sorted(line.get_ydata()[0] for line in by_gid(ax, "limit-"))
+    assert limits == sorted(v for v in cogiro_eq.robot.tension_limits if np.isfinite(v))
+
+
+def test_recommendation_plot_marks_rungs_that_miss_modes(cogiro_eq):
+    rec = ds.recommend_model(cogiro_eq, band_hz=(0.0, 12.0), rtol=1e-3)
+    ax = rec.plot(rtol=1e-3).axes[0]
+    bars = by_gid(ax, "rung-errors")
+    assert [b.get_height() for b in bars][2] == pytest.approx(rec.errors["dsm"], rel=1e-12)
+    misses = [t.get_text() for t in ax.texts]
+    assert misses.count("misses modes") == sum(not np.isfinite(e) for e in rec.errors.values())
+    assert by_gid(ax, "limit-rtol")[0].get_ydata()[0] == 1e-3
+
+
