@@ -2,6 +2,9 @@
 models built once per module, and the test cables of the lumped chain tests (theory.md
 §1.1, §7.2, §9.2)."""
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -148,3 +151,22 @@ def beaded_string(n_segments, cable=BEAD):
     state = chain_equilibrium([0, 0, 0], [BEAD_L, 0, 0], BEAD_L0, cable, n_segments, g=0)
     tension = cable.EA * (BEAD_L / BEAD_L0 - 1)
     return state, tension
+
+
+def run_cli(*args):
+    """``python -m dynstiff ARGS`` in a subprocess (text output captured)."""
+    return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
+                          text=True)
+
+@pytest.fixture
+def no_traceback(monkeypatch):
+    """Every command line run here (subprocess or in-process) may fail, but with one line:
+    a traceback without --debug fails the test."""
+    run = subprocess.run
+
+    def checked(args, *a, **kw):
+        out = run(args, *a, **kw)
+        err = out.stderr.decode() if isinstance(out.stderr, bytes) else (out.stderr or "")
+        assert "Traceback" not in err or "--debug" in args, err[-2000:]
+        return out
+    monkeypatch.setattr(subprocess, "run", checked)

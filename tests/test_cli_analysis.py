@@ -1,0 +1,164 @@
+"""The `dynstiff` command line, run in subprocesses: `scenes`, `modes`, `frf` and `check` (dynstiff/cli/analysis.py)."""
+
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from conftest import run_cli
+
+import dynstiff as ds
+
+pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
+
+
+
+
+
+def test_cli_modes_table_and_csv(tmp_path):
+    out = run_cli("modes", "cogiro", "-n", "6", "--csv", str(tmp_path / "m.csv"))
+    assert out.returncode == 0, out.stderr
+    assert "global" in out.stdout and "freq [Hz]" in out.stdout
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "m.csv", comment="#")
+    assert len(df) == 6 and df["freq [Hz]"].is_monotonic_increasing
+    assert df["kind"].isin(["global", "local"]).all()
+
+
+def test_cli_modes_model_choice(tmp_path):
+    """--model: the 30-segment lumped model lands within 1e-3 of the closed form on CoGiRo's
+    first modes, the exact cable within 3e-4 (the closed form's error); the massless rungs give platform modes only, the straight spring stiffer
+    than the catenary (sag softens the cable)."""
+    import pandas as pd
+    tables = {}
+    for m in ("dsm", "exact", "lumped", "catenary", "spring"):
+        out = run_cli("modes", "cogiro", "-n", "3", "--model", m, "--csv",
+                      str(tmp_path / f"{m}.csv"))
+        assert out.returncode == 0, out.stderr
+        assert out.stdout.startswith(f"{m} model")
+        tables[m] = pd.read_csv(tmp_path / f"{m}.csv", comment="#")["freq [Hz]"].to_numpy()
+    assert abs(tables["lumped"] / tables["dsm"] - 1).max() < 1e-3
+    assert 1e-6 < abs(tables["exact"] / tables["dsm"] - 1).max() < 3e-4   # theory.md §11.5
+    assert (tables["spring"] > tables["catenary"]).all()
+    assert (pd.read_csv(tmp_path / "spring.csv", comment="#")["kind"] == "global").all()
+    bad = run_cli("modes", "cogiro", "--model", "lumped", "--segments", "0")
+    assert bad.returncode == 2 and "--segments" in bad.stderr
+    bad = run_cli("modes", "cogiro", "--model", "beam")
+    assert bad.returncode == 2 and "beam" in bad.stderr
+
+
+def test_cli_frf_writes_table_and_figure(tmp_path):
+    out = run_cli("frf", "cogiro", "--from", "fz", "--to", "z", "--band", "1", "3", "--points",
+                  "400", "--csv", str(tmp_path / "f.csv"), "--plot", str(tmp_path / "f.png"))
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "f.csv", comment="#")
+    assert len(df) > 400 and set(df["output"]) == {"z"} and set(df["input"]) == {"fz"}
+    # the largest response in 1-3 Hz is the first (vertical) global mode of CoGiRo
+    import dynstiff as ds
+    f1 = ds.eigenfrequencies(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), 1)[0]
+    peak = df.loc[df["magnitude"].idxmax(), "freq [Hz]"]
+    assert abs(peak / f1 - 1) < 1e-3              # the grid is refined at the mode
+    assert (tmp_path / "f.png").stat().st_size > 10_000
+    bad = run_cli("frf", "cogiro", "--band", "5", "1")
+    assert bad.returncode == 2 and "--band" in bad.stderr
+    bad = run_cli("frf", "cogiro", "--from", "fq")
+    assert bad.returncode == 2 and "fq" in bad.stderr
+
+
+def test_frf_of_a_held_dof_is_refused_not_zero():
+    """The pendulum has one free DOF (ry): naming fx or the output y would give an FRF that
+    is identically 0; that is an error naming the channel, and x of D = (0, 0, d) is not."""
+    import dynstiff as ds
+    from dynstiff.errors import InvalidParameterError
+    model = ds.FrequencyModel(ds.load_scene("pendulum").equilibrium())
+    with pytest.raises(InvalidParameterError, match=r"inputs \['fx'\].*\('ry',\)"):
+        ds.frf(model, [1.0], inputs="fx", outputs="x")
+    with pytest.raises(InvalidParameterError, match=r"outputs \['y'\]"):
+        ds.frf(model, [1.0], inputs="my", outputs=["x", "y"], point=[0, 0, 0.75])
+    # x of D moves by d dphi: H_x,my = d H_ry,my
+    h = ds.frf(model, [1.0], inputs="my", outputs=["x", "ry"], point=[0, 0, 0.75]).H[0, :, 0]
+    assert h[0] == pytest.approx(0.75 * h[1], rel=1e-12) and abs(h[1]) > 0
+    assert ds.frf(model, [1.0]).H.shape == (1, 6, 6)           # the default keeps zero channels
+    bad = run_cli("frf", "pendulum", "--from", "fx", "--to", "x")
+    assert bad.returncode == 2 and "held DOFs only" in bad.stderr and "fx" in bad.stderr
+
+
+# -------------------------------------------------------------------------------- check
+def test_cli_check_exit_codes():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    assert run("cogiro", "--band", "1", "2").returncode == 0
+    out = run("cogiro", "--band", "4", "5")
+    assert out.returncode == 1 and "FAIL  platform modes outside band" in out.stdout
+    out = run("cogiro", "--pose", "9", "0", "1")
+    assert out.returncode == 1 and "FAIL  workspace" in out.stdout
+
+
+def test_cli_check_fails_a_mixed_platform_mode_in_band(tmp_path):
+    """CoGiRo with a 50 kg platform, band 2.0-2.3 Hz: exit 1, naming the 2.216 Hz mode and
+    its 42 % platform share (it passed when only > 50 % shares counted)."""
+    from dynstiff.scenes.loader import SCENE_DIR
+    text = (SCENE_DIR / "cogiro.toml").read_text().replace("mass = 91.058", "mass = 50.0")
+    (tmp_path / "m50.toml").write_text(text)
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
+                          "--band", "2.0", "2.3"], capture_output=True, text=True)
+    assert out.returncode == 1, out.stdout + out.stderr
+    line = [ln for ln in out.stdout.splitlines() if "platform modes outside band" in ln][0]
+    assert line.startswith("FAIL") and "2.216 Hz" in line and "platform share 42 %" in line
+    assert "FAIL  platform receptance in band" in out.stdout
+    # --participation above the share and --frf-limit above the amplification: passes
+    out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
+                          "--band", "2.0", "2.3", "--participation", "0.45", "--frf-limit",
+                          "100"], capture_output=True, text=True)
+    assert "PASS  platform modes outside band" in out.stdout
+    assert "PASS  platform receptance in band" in out.stdout
+
+
+def test_cli_frf_peak_does_not_depend_on_points():
+    """The damped CoGiRo z/fz receptance: the largest |H| from 300 and from 4000 uniform
+    points differ by < 1 % (the grid is refined at every mode); --damping 0 0 0 gives the
+    undamped model, whose peak is far higher."""
+    def peak(*a):
+        out = subprocess.run([sys.executable, "-m", "dynstiff", "frf", "cogiro", "--band",
+                              "0.5", "6", *a], capture_output=True, text=True)
+        assert out.returncode == 0, out.stderr
+        assert "damping: platform modal ratio" in out.stdout
+        return float(re.search(r"largest \|H\| = ([0-9.e+-]+)", out.stdout).group(1))
+    p300, p4000 = peak("--points", "300"), peak("--points", "4000")
+    assert abs(p300 / p4000 - 1) < 0.01
+    assert peak("--points", "300", "--damping", "0.03") < 0.6 * p300
+    assert peak("--points", "300", "--damping", "0", "0", "0") > 10 * p300
+
+
+def test_cli_check_defaults_to_the_scenes_forbidden_band():
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    out = run("cogiro")                                    # forbidden_band_hz = [0, 1.5]
+    assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
+    out = run("sixcable")                                  # no forbidden band in the scene
+    assert out.returncode == 1 and "no forbidden band" in out.stdout
+    # the closed form's error on sixcable, measured against the exact rung, is 5e-3 < 1e-2
+    assert "PASS  cable model" in out.stdout and "FAIL  local modes near" in out.stdout
+    assert "platform modes outside band" not in out.stdout
+
+
+def test_lengths_on_a_scene_with_held_dofs_hold_them_at_the_scene_pose(capsys):
+    """planar2 holds y and the rotations: forward statics from --lengths starts from (and
+    keeps the held DOFs of) the scene's pose instead of asking for an option that does not
+    exist; the lengths of the scene's own pose give back its frequencies."""
+    from dynstiff.cli import main
+    scene = ds.load_scene("planar2")
+    L0 = scene.equilibrium().unstretched_lengths
+    assert main(["modes", "planar2", "-n", "3", "--csv", "-", "--lengths",
+                 *[repr(float(x)) for x in L0]]) == 0
+    via_lengths = capsys.readouterr().out
+    assert main(["modes", "planar2", "-n", "3", "--csv", "-"]) == 0
+    at_pose = capsys.readouterr().out
+
+    def rows(text):
+        return [ln for ln in text.splitlines() if not ln.startswith("# ")][1:4]
+    f1 = [float(r.split(",")[1]) for r in rows(via_lengths)]
+    f2 = [float(r.split(",")[1]) for r in rows(at_pose)]
+    np.testing.assert_allclose(f1, f2, rtol=1e-7)
