@@ -173,7 +173,8 @@ _COST = ("the regula falsi's step rule (second point, Anderson-Bjorck factor, ha
          "smooth and curved functions)")
 EQUIVALENT.update({f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _COST
                    for n in (22, 86, 155, 179, 202, 314)})
-EQUIVALENT.update({f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _ERRSTATE for n in (31, 143)})
+EQUIVALENT.update({f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _ERRSTATE
+                   for n in (31, 143)})
 EQUIVALENT.update({f"dynstiff.analyses.eigen.x__counter__mutmut_{n}": _ERRSTATE for n in (21, 43)})
 EQUIVALENT.update({
     "dynstiff.analyses.eigen.x__illinois__mutmut_11": "the side flags as floats: compared with +-1 "
@@ -568,7 +569,8 @@ EQUIVALENT.update({
     "dynstiff.cable.lumped_chain.x__tension_estimate__mutmut_26": _START,
     "dynstiff.cable.lumped_chain.x__regularised_solve__mutmut_16":
         "check_finite=None is falsy like False",
-    "dynstiff.cable.lumped_chain.x__newton__mutmut_146": "61 halvings of the line search instead of 60",
+    "dynstiff.cable.lumped_chain.x__newton__mutmut_146":
+        "61 halvings of the line search instead of 60",
     "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_102":
         "the floor of the semi-definiteness test's tolerance (2 instead of 1 kg m^2 x 1e-12)",
     "dynstiff.robot.statics.x__closest_in_box__mutmut_15":

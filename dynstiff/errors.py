@@ -18,7 +18,6 @@ __all__ = [
 class DynstiffError(Exception):
     """Base class of all dynstiff errors."""
 
-
 class InvalidParameterError(DynstiffError, ValueError):
     """An argument has the wrong type, shape, sign or is not finite."""
 

@@ -1,4 +1,5 @@
-"""Design checks (dynstiff/analyses/checks.py); the `dynstiff check` command is run in test_cli.py."""
+"""Design checks (dynstiff/analyses/checks.py); the `dynstiff check` command is run in
+test_cli.py."""
 
 import numpy as np
 import pytest
@@ -106,7 +107,7 @@ def test_mixed_platform_mode_in_band_fails_with_its_share():
     """CoGiRo with a 50 kg platform: the 2.216 Hz mode holds 42 % of its kinetic energy in
     the platform (a "local" mode by the old > 50 % rule, which let the check pass). Both the
     margin check and the receptance check fail, the margin row naming the mode and share."""
-    from test_participation import with_mass
+    from test_analyses_participation import with_mass
     scene = ds.load_scene("cogiro")
     rob = with_mass(scene.robot, 50.0)
     res = design_checks(rob, scene.pose, band_hz=(2.0, 2.3))

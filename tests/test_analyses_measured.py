@@ -1,4 +1,5 @@
-"""Measurements in (dynstiff/analyses/measured.py, theory.md §15.5): measured-mode tables and FRF files
+"""Measurements in (dynstiff/analyses/measured.py, theory.md §15.5): measured-mode tables and FRF
+files
 read back, MAC pairing finds a shuffled set of modes, comparisons tabulate and plot."""
 
 import matplotlib

@@ -1,4 +1,5 @@
-"""The `dynstiff` command line, run in subprocesses: `scenes`, `modes`, `frf` and `check` (dynstiff/cli/analysis.py)."""
+"""The `dynstiff` command line, run in subprocesses: `scenes`, `modes`, `frf` and `check`
+(dynstiff/cli/analysis.py)."""
 
 import re
 import subprocess
@@ -28,8 +29,9 @@ def test_cli_modes_table_and_csv(tmp_path):
 
 def test_cli_modes_model_choice(tmp_path):
     """--model: the 30-segment lumped model lands within 1e-3 of the closed form on CoGiRo's
-    first modes, the exact cable within 3e-4 (the closed form's error); the massless rungs give platform modes only, the straight spring stiffer
-    than the catenary (sag softens the cable)."""
+    first modes, the exact cable within 3e-4 (the closed form's error); the massless rungs
+    give platform modes only, the straight spring stiffer than the catenary (sag softens the
+    cable)."""
     import pandas as pd
     tables = {}
     for m in ("dsm", "exact", "lumped", "catenary", "spring"):

@@ -1,4 +1,5 @@
-"""The `dynstiff` command line, run in subprocesses: the main job `demo` and `report` (dynstiff/cli/report.py)."""
+"""The `dynstiff` command line, run in subprocesses: the main job `demo` and `report`
+(dynstiff/cli/report.py)."""
 
 import re
 import subprocess

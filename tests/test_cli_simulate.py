@@ -1,4 +1,5 @@
-"""The `dynstiff` command line, run in subprocesses: the simulate commands (dynstiff/cli/simulate.py)."""
+"""The `dynstiff` command line, run in subprocesses: the simulate commands
+(dynstiff/cli/simulate.py)."""
 
 import re
 

@@ -1,6 +1,5 @@
 """The `dynstiff` command line, run in subprocesses: the sweep commands (dynstiff/cli/sweep.py)."""
 
-
 import numpy as np
 import pytest
 from conftest import run_cli

@@ -1,7 +1,6 @@
 """Compiled kernels of the lumped-mass chains (dynstiff/compiled/chain.py, theory.md §14.4)
 against the numpy path: forces, dashpots, extreme tensions and strains."""
 
-
 import numpy as np
 import pytest
 

@@ -128,7 +128,6 @@ CABLES = """<cables default_cable_set="s"><cable_set id="s">
   <attachment><link>1</link><location>0.1 0.2 0.3</location></attachment>
   </attachments></cable_ideal></cable_set></cables>"""
 
-
 def write(tmp_path, jtype="SPATIAL_EULER_XYZ", q="1 2 3 0.1 0.2 0.3", extra="", ref="joint"):
     b, c = tmp_path / "b.xml", tmp_path / "c.xml"
     b.write_text(BODY.format(jtype=jtype, q=q, extra=extra))

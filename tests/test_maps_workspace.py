@@ -64,7 +64,8 @@ def test_infeasible_pose_is_recorded_in_place_with_its_reason(listed):
 
 
 def test_verdicts_match_the_design_checks(robot, listed):
-    """Tension and sag verdicts and values as dynstiff.analyses.checks.design_checks at the same pose."""
+    """Tension and sag verdicts and values as dynstiff.analyses.checks.design_checks at the same
+    pose."""
     rows = {r["check"]: r for r in design_checks(robot, POSES[0], band_hz=BAND).rows}
     p = listed.isel(pose=0)
     assert bool(p["passed"].sel(check="tension limits")) == rows["tension limits"]["passed"]

@@ -1,7 +1,6 @@
 """The single-cable report (dynstiff/report/cable.py): its figure holds the stiffness curves and a
 marker at every pole of the band."""
 
-
 def test_report_figure_content():
     import matplotlib
     matplotlib.use("Agg")

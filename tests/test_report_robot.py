@@ -1,7 +1,6 @@
 """The main job of `dynstiff demo` (dynstiff/report/robot.py, robot_report), run in-process; the
 command itself is run in test_cli.py."""
 
-
 def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
     """The table holds the first 40 modes (to 9.6 Hz); the FRF runs to 12 Hz, and every mode
     below 12 Hz is marked on it (the W-W count up to 12 Hz), not only the table's."""

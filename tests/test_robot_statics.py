@@ -119,7 +119,8 @@ def test_bad_tolerance_and_iteration_count_name_the_argument(cogiro):
 # ------------------------------------------- the batched statics against the scalar solver
 def reference_inverse_statics(robot, pose, max_iter=500):
     """The fixed point with every cable solved alone by the bracketing (Brent) search of
-    :func:`dynstiff.cable.catenary_solve.unstretched_length_for_tension`, as inverse statics did before
+    :func:`dynstiff.cable.catenary_solve.unstretched_length_for_tension`, as inverse statics did
+    before
     the batched Newton on (H, V0, L0): the reference the batched solver must equal."""
     from dynstiff._vec import cross
     from dynstiff.cable.catenary_solve import unstretched_length_for_tension

@@ -45,7 +45,7 @@ def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     p = tmp_path / "bad.toml"
     p.write_text(text)
     with pytest.raises(ds.SceneError, match=key) as exc:
-        ds.load_scene(p).robot
+        _ = ds.load_scene(p).robot
     if line is not None:
         assert f"line {line}" in str(exc.value)
     else:
@@ -106,7 +106,8 @@ def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
     ("anchor = [-15.0, 0.0, 0.0]", "anchor = [-15.0, 0.0]", "anchor"),
     ('free_dofs = ["x", "z"]', 'free_dofs = "xz"', "free_dofs"),
     ("mass = ", "mass = true #", "mass"),
-    ("position = [0.0, 0.0, -10.0]", "position = [0.0, 0.0, -10.0]\nunstretched_lengths = [18.0, 18.0]",
+    ("position = [0.0, 0.0, -10.0]",
+     "position = [0.0, 0.0, -10.0]\nunstretched_lengths = [18.0, 18.0]",
      "unstretched_lengths"),
 ])
 def test_toml_values_are_not_coerced(tmp_path, old, new, key):

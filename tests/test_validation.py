@@ -71,7 +71,8 @@ def test_cogiro_modes(E):
                    tension_limits=scene.robot.tension_limits)
     m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose))
     import scipy.linalg
-    f0 = np.sqrt(scipy.linalg.eigh(m.massless_stiffness(), m.platform_mass, eigvals_only=True)) / (2 * np.pi)
+    f0 = np.sqrt(scipy.linalg.eigh(m.massless_stiffness(), m.platform_mass,
+                                   eigvals_only=True)) / (2 * np.pi)
     assert len(glob) == np.sum(f0 < df["freq [Hz]"].max())
     assert glob["shift from massless [-]"].abs().max() < 0.1
 
@@ -98,7 +99,7 @@ def test_speed_accuracy_quick():
     models miss the cable modes, the lumped model converges at O(N^-2), and the closed form
     is both cheaper and more accurate than the lumped model at N = 10."""
     df = load("speed_accuracy").run(quick=True)
-    for E, d in df.groupby("E [GPa]"):
+    for _, d in df.groupby("E [GPa]"):
         d = d.set_index("model")
         assert np.isinf(d.loc["spring", "err first 10"]) and np.isinf(
             d.loc["catenary", "err first 10"])

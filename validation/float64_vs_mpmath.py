@@ -3,8 +3,8 @@
 Compares :func:`dynstiff.cable.dsm.local_end_stiffness` (3x3) and
 :func:`dynstiff.cable.dsm.local_two_end_stiffness` (6x6), which use the stable closed forms
 of theory.md §3.5 and a Taylor series for |psi| < 1, with
-:mod:`dynstiff.cable.mpmath_reference`, which evaluates the textbook forms of theory.md §3.2-3.4 with
-enough digits to absorb their cancellation (>= 50 significant digits).
+:mod:`dynstiff.cable.mpmath_reference`, which evaluates the textbook forms of theory.md §3.2-3.4
+with enough digits to absorb their cancellation (>= 50 significant digits).
 
 Grid (``run()``)
 ----------------
@@ -12,7 +12,8 @@ Grid (``run()``)
   first symmetric root meets the first antisymmetric pole Omega = 2 pi (theory.md §2.2).
 * Omega = omega L sqrt(m/T): 40 values (15 log-spaced in [1e-6, 1], 25 linear in [1, 60]),
   plus, for each pole Omega_p < 60 (out-of-plane n pi, antisymmetric 2 n pi, Irvine
-  symmetric roots of that lambda^2 from :func:`dynstiff.cable.mpmath_reference.irvine_symmetric_roots_mp`),
+  symmetric roots of that lambda^2 from
+  :func:`dynstiff.cable.mpmath_reference.irvine_symmetric_roots_mp`),
   the points Omega_p (1 +- 1e-8) and Omega_p (1 +- 1e-6).
 * Damping cases: "undamped"; "loss_factor" (EA -> EA (1 + 0.02 i)); "viscous" (c chosen for
   a damping ratio c / (2 m omega_1) = 1 % at the first string frequency omega_1 = pi c_s / L,

@@ -89,7 +89,7 @@ def run(quick=False):
                 rec = recommend_model(eq, band, rtol)
                 actual = {r: band_error(f_rung[r], ref, band) for r in f_rung}
                 if rec.rung == "lumped" and rec.segments <= 400:
-                    fl = ds.eigenfrequencies(build_model(eq, "lumped", rec.segments), 
+                    fl = ds.eigenfrequencies(build_model(eq, "lumped", rec.segments),
                         fmax_hz=band[1] * 1.5)
                     actual["lumped"] = band_error(fl, ref, band)
                 else:

@@ -3,8 +3,8 @@ quasi-static path when the quasi-static cable lengths are fed to the dynamic mod
 
 The mass (100 kg, pulleys 30 m apart, cable 0.1 kg/m) moves at constant speed along a
 horizontal straight line 10 m below the pulleys. The unstretched lengths come from the
-quasi-static inverse kinematics with sagging cables (:func:`dynstiff.timedomain.trajectory.track`) and
-drive the winches of the lumped-mass model (10 segments per cable, implicit Newmark). The
+quasi-static inverse kinematics with sagging cables (:func:`dynstiff.timedomain.trajectory.track`)
+and drive the winches of the lumped-mass model (10 segments per cable, implicit Newmark). The
 deviation is the distance of the mass from the desired (quasi-static) position; the paper
 reports a largest deviation of 0.13 % (its model) and 0.14 % (Adams) of the mean cable length
 at EA = 1e7 N and 1 m/s.

@@ -6,8 +6,8 @@ The paper builds a port-Hamiltonian model whose cables change mass, stiffness an
 as they are wound (total cable mass / platform mass = 3/4) and whose motors carry drums of
 kinetic energy 1/2 m_d r_d^2 theta'^2; it gives no numbers. Here the platform moves 5 m along
 x at 1 m/s (1 s speed ramps); the winches follow the quasi-static cable lengths
-(:func:`dynstiff.timedomain.trajectory.track`), which winds about 2.8 m onto four drums and pays as much
-off the other four (a quarter of the cable mass changes hands). The balance of the
+(:func:`dynstiff.timedomain.trajectory.track`), which winds about 2.8 m onto four drums and pays as
+much off the other four (a quarter of the cable mass changes hands). The balance of the
 lumped-mass model (4 segments per cable; see :mod:`dynstiff.timedomain.simulation`)::
 
     E(t) - E(0) = W_winch + E_carried - D + residual

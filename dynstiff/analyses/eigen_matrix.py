@@ -2,7 +2,8 @@
 
 For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.models.base`):
 dense ``eigh`` for small models, sparse shift-invert Lanczos otherwise (theory.md §7.1-§7.2).
-Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and :func:`dynstiff.analyses.eigen.modes`.
+Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and
+:func:`dynstiff.analyses.eigen.modes`.
 """
 
 import numpy as np

@@ -26,7 +26,6 @@ symbol              meaning                                                unit
 No plotting here; pandas is imported only by the ``to_frame`` helpers.
 """
 
-
 import numpy as np
 
 from dynstiff._validate import positive_scalar

@@ -133,8 +133,8 @@ def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 
     |H_jj(f)| / |H_jj(0)| over the free DOFs j and the frequencies of
-    :func:`dynstiff.analyses.freqgrid.refined_grid` (uniform, plus clusters at ``modes_hz``), for the
-    (damped) ``model``; an undamped model at a resonance gives inf.
+    :func:`dynstiff.analyses.freqgrid.refined_grid` (uniform, plus clusters at ``modes_hz``), for
+    the (damped) ``model``; an undamped model at a resonance gives inf.
 
     Parameters
     ----------

@@ -21,7 +21,6 @@ vertical or weightless is handed to the scalar bracketing solver
 cannot be reached.
 """
 
-
 import numpy as np
 
 from dynstiff import compiled as compiled_kernels

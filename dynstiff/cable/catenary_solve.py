@@ -116,8 +116,8 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
 
     Solves x(L0) = l_h, z(L0) = h of the exact elastic catenary (theory.md §1.1, Irvine 1981)
     for (H, V0) by Newton's method with the analytic Jacobian, to relative residuals
-    |x - l_h| / l_h <= 1e-12 and |z - h| / max(|B - A|, L0) <= 1e-12. Exactly vertical chords use the closed
-    form of a straight hanging cable.
+    |x - l_h| / l_h <= 1e-12 and |z - h| / max(|B - A|, L0) <= 1e-12. Exactly vertical chords use
+    the closed form of a straight hanging cable.
 
     Parameters
     ----------
@@ -257,6 +257,7 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
         if k > 200:
             raise SlackCableError(
                 f"tension {T_target!r} N at the {at} is not reachable between anchor "
-                f"{A.tolist()} and end {B.tolist()}: no unstretched length gives a tension this low")
+                f"{A.tolist()} and end {B.tolist()}: no unstretched length gives a tension "
+                f"this low")
     L0 = brentq(f, L_hi_tension, L_lo_tension, xtol=1e-15 * L, rtol=1e-15, maxiter=200)
     return solve_catenary(A, B, L0, cable, g)

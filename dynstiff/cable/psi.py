@@ -3,7 +3,6 @@ kernels with their Taylor branch, the admissible frequency range, the Wittrick-W
 count J0 of the clamped cable and the clamped spectrum (the Irvine-Caughey roots).
 """
 
-
 import numpy as np
 
 from dynstiff._validate import omega_array

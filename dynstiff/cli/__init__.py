@@ -58,7 +58,6 @@ def main(argv=None):
 class _UsageError(Exception):
     """A command line argparse rejects (one line instead of the usage block)."""
 
-
 class _Parser(argparse.ArgumentParser):
     def error(self, message):
         raise _UsageError(f"{self.prog}: {message}")

@@ -1,6 +1,5 @@
 """Analyses of one pose: ``scenes``, ``modes``, ``frf`` and ``check``."""
 
-
 from dynstiff.cli.common import (
     damping_option,
     equilibrium,

@@ -1,7 +1,6 @@
 """``simulate``: the lumped-mass time domain (free vibration from an offset and its
 spectrum, or a line commanded through quasi-static cable lengths)."""
 
-
 from dynstiff.cli.common import (
     ProgressBar,
     equilibrium,

@@ -1,7 +1,6 @@
 """``sweep``: modes along a path or over a parameter, global modes tracked, the veering
 diagram."""
 
-
 from dynstiff.cli.common import (
     ProgressBar,
     info,

@@ -66,7 +66,6 @@ class CasprError(DynstiffError, ValueError):
     """A CASPR file is malformed or describes a robot dynstiff does not model; the message
     names the file and what is wrong."""
 
-
 class InertiaConventionWarning(UserWarning):
     """Off-diagonal inertia values were read under a stated convention (products of inertia
     or tensor entries) that the file itself cannot confirm."""

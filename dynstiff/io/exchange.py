@@ -36,7 +36,6 @@ _TIME = {"receptance": "", "mobility": "/s", "accelerance": "/s^2"}
 class MissingDependencyError(DynstiffError, ImportError):
     """An optional library is not installed; the message names the extra that brings it."""
 
-
 def require(module):
     """Import an optional library of the ``exchange`` extra, or raise
     :class:`MissingDependencyError` naming it."""

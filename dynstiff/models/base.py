@@ -1,7 +1,8 @@
 """What every model of the ladder is: the one interface the analyses use.
 
 A model is an immutable linearisation of a cable robot about a static equilibrium. The
-analyses (:mod:`dynstiff.frf`, :mod:`dynstiff.analyses.eigen`, :mod:`dynstiff.analyses.interaction`, ...) are
+analyses (:mod:`dynstiff.frf`, :mod:`dynstiff.analyses.eigen`,
+:mod:`dynstiff.analyses.interaction`, ...) are
 plain functions of a model and use only what this page lists, so every rung answers every
 question it can, and says so in an :class:`~dynstiff.errors.UnsupportedAnalysisError` where
 it cannot.

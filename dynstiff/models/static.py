@@ -3,7 +3,6 @@ stiffness, (EA/L0) u u^T + (T/L)(I - u u^T) for a straight spring or the elastic
 exact 3x3 end stiffness, assembled with the platform's mass; global modes only.
 """
 
-
 import numpy as np
 
 from dynstiff._validate import omega_array

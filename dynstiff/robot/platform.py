@@ -28,7 +28,8 @@ from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
 
 __all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "lever_maps", "rotation_matrix",
-           "platform_mass_matrix", "rotvec_to_quaternion", "quaternion_to_rotvec", "quaternion_product"]
+           "platform_mass_matrix", "rotvec_to_quaternion", "quaternion_to_rotvec",
+           "quaternion_product"]
 
 
 

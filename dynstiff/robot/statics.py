@@ -290,7 +290,7 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
         hi = np.zeros(n)
     best, since_best = np.inf, 0
     sides = None                          # the last distribution's active set
-    for it in range(max_iter):
+    for _ in range(max_iter):
         W = np.vstack([u.T, cross(r, u).T])[fi]
         try:
             t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
@@ -392,7 +392,7 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
 
     states, w = evaluate(pose)
     res = np.linalg.norm(w) / scale
-    for it in range(max_iter):
+    for _ in range(max_iter):
         if res <= tol:
             return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0,
                                states=tuple(states), residual=float(res))

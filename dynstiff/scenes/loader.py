@@ -81,7 +81,6 @@ def _type_error(value, kind):
 class SceneError(DynstiffError, ValueError):
     """A scene file is malformed; the message names the file, the key and its line."""
 
-
 @dataclass(frozen=True)
 class Scene:
     """A robot with the pose (or cable lengths) and analysis settings of a scene file.

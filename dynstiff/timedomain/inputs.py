@@ -3,7 +3,6 @@ time or a table interpolated in time), the platform excitation, the initial offs
 velocity, and the number of steps.
 """
 
-
 import numpy as np
 
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES

@@ -139,7 +139,6 @@ _SCHEMES = ("implicit", "explicit")
 class SlackSegmentWarning(RuntimeWarning):
     """A cable segment went slack (l < l0, zero tension) during a simulation."""
 
-
 class TimeStepWarning(RuntimeWarning):
     """The explicit scheme was asked for a step above its predicted stability limit."""
 

@@ -43,7 +43,6 @@ class EnergyBalanceWarning(RuntimeWarning):
     """The energy balance residual passed 10 % of the run's energy scale: the ledger (not
     necessarily the motion) is inaccurate at this dt; halve dt to check."""
 
-
 class StepNewton:
     """Newton options, the kept LU factors and the iteration counters of a run."""
 

@@ -268,7 +268,7 @@ def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_s
     yT, M, err, step = evaluate(y)
     lam = np.ones(c)
     picard = np.zeros(c, dtype=bool)
-    for it in range(max_shooting - 1):
+    for _ in range(max_shooting - 1):
         done = err <= orbit_tol
         if np.all(done):
             break

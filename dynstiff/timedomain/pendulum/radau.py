@@ -42,7 +42,7 @@ def _radau_step(model, t, y, h, exc, scale, U=None, derivative=(), tol=1e-10, ma
     Z = RADAU_C[None, :, None] * h[:, None, None] * f0[:, None, :]
     m = Z.shape[2]
     err = np.inf
-    for it in range(max_iter):
+    for _ in range(max_iter):
         dY = Z if U is None else Z @ U.T
         Y = (y[:, None, :] + dY).transpose(1, 0, 2).reshape(2 * c, ny)
         F, J = evaluate_rhs(model, tt, Y, exc2, True)
