@@ -10,6 +10,7 @@ __all__ = [
     "ConvergenceError",
     "SlackCableError",
     "UnsupportedAnalysisError",
+    "DynstiffWarning",
     "PoleWarning",
     "ClosedFormWarning",
 ]
@@ -17,6 +18,12 @@ __all__ = [
 
 class DynstiffError(Exception):
     """Base class of all dynstiff errors."""
+
+
+class DynstiffWarning(Warning):
+    """Base class of all dynstiff warnings (each also subclasses the built-in warning of its
+    kind: RuntimeWarning or UserWarning)."""
+
 
 class InvalidParameterError(DynstiffError, ValueError):
     """An argument has the wrong type, shape, sign or is not finite."""
@@ -39,11 +46,11 @@ class UnsupportedAnalysisError(DynstiffError, TypeError):
     massless-cable model); the message names the rung and one that can."""
 
 
-class PoleWarning(RuntimeWarning):
+class PoleWarning(DynstiffWarning, RuntimeWarning):
     """A quantity was evaluated exactly on a pole; the value returned is inf."""
 
 
-class ClosedFormWarning(UserWarning):
+class ClosedFormWarning(DynstiffWarning, UserWarning):
     """The closed-form (shallow-cable) theory is used outside its range for the question
     asked: the message names the cable, the cause and the estimated error, and points to the
     "exact" rung. ``cable`` (index) and ``cause`` are attributes."""

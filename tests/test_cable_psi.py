@@ -42,7 +42,7 @@ def test_irvine_crossovers_and_limits():
 
 
 def test_mode_count_steps_at_each_natural_frequency(state300):
-    modes = ds.cable_natural_frequencies(state300, 40)
+    modes = ds.cable_natural_frequencies(state300, 40, guard_rtol=None)  # the closed form alone
     f = modes.freq_hz[:30]
     w = TWO_PI * f
     # out-of-plane 2n and antisymmetric n coincide exactly (Omega = 2 n pi): count multiplicity

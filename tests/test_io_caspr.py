@@ -92,7 +92,10 @@ def test_ipanema_imports_and_solves_in_both_cable_sets():
         assert r.tension_limits[0] == 1.0                         # CASPR's 0 N raised
         eq = scene.equilibrium()
         assert np.all(eq.tensions >= 1.0 - 1e-9)
-        f = ds.eigenfrequencies(ds.build_model(eq, "dsm"), n_modes=6)
+        # the light cables sag (cable 4: 5 %): the closed form's guard warns there
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+            f = ds.eigenfrequencies(ds.build_model(eq, "dsm"), n_modes=6)
         assert np.all(np.isfinite(f)) and np.all(f > 0)
     # the IROS set has one cable limited to 200 N: the robot keeps the tightest pair
     assert scene.robot.tension_limits[1] == 200.0

@@ -2,7 +2,9 @@
 and the import-linter contracts of pyproject.toml hold (layers, no cycles)."""
 
 import ast
+import importlib
 import pathlib
+import re
 import subprocess
 import sys
 
@@ -65,3 +67,63 @@ def test_import_linter_contracts_hold():
                          cwd=ROOT, capture_output=True, text=True)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-2000:]
     assert "0 broken" in run.stdout
+
+
+def test_no_module_is_longer_than_500_lines():
+    """Small files with one job: no module of the package passes 500 lines."""
+    long = {str(p.relative_to(ROOT)): n for p in sorted(PACKAGE.rglob("*.py"))
+            if (n := len(p.read_text().splitlines())) > 500}
+    assert not long, long
+
+
+def test_numba_is_loaded_in_one_place_only():
+    """Every compiled kernel is reached through dynstiff.compiled.load: numba is imported
+    only by the kernels of dynstiff/compiled/, and looked for only by its loader."""
+    compiled = PACKAGE / "compiled"
+    found = []
+    for p in sorted(PACKAGE.rglob("*.py")):
+        text = p.read_text()
+        if p.parent != compiled and ("import numba" in text or "find_spec(\"numba\")" in text):
+            found.append(str(p.relative_to(ROOT)))
+        if p.parent == compiled and p.name != "__init__.py" and "find_spec" in text:
+            found.append(str(p.relative_to(ROOT)))
+    assert not found, found
+
+
+def _dotted_references(text):
+    """Every ``dynstiff.a.b`` written in ``text`` (docstrings, prose), without the xarray
+    accessor (``ds.dynstiff.x``) or file names."""
+    refs = re.findall(r"(?<![\w./])dynstiff((?:\.\w+)+)", text)
+    return {"dynstiff" + r for r in refs if not r.endswith((".py", ".toml", ".csv", ".nc"))}
+
+
+def _resolves(dotted):
+    parts = dotted.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            continue
+        for name in parts[i:]:
+            if not hasattr(obj, name):
+                return False
+            obj = getattr(obj, name)
+        return True
+    return False
+
+
+def test_every_dotted_reference_in_the_package_and_its_documents_resolves():
+    """A module or name that moved leaves no stale ``dynstiff.old.path`` behind in the
+    package's docstrings, the README or docs/ (the command line's module is not imported)."""
+    files = [*sorted(PACKAGE.rglob("*.py")), ROOT / "README.md",
+             *sorted((ROOT / "docs").glob("*.md"))]
+    stale = sorted({f"{p.relative_to(ROOT)}: {ref}" for p in files if p.exists()
+                    for ref in _dotted_references(p.read_text())
+                    if "__main__" not in ref and not _resolves(ref)})
+    assert not stale, "\n".join(stale)
+
+
+def test_the_reference_check_can_fail():
+    assert _dotted_references("see :func:`dynstiff.cable.dsm.nope` and dynstiff/x.py") == \
+        {"dynstiff.cable.dsm.nope"}
+    assert not _resolves("dynstiff.cable.dsm.nope") and _resolves("dynstiff.cable.dsm")

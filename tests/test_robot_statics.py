@@ -523,3 +523,15 @@ def test_active_set_method_from_any_feasible_start_is_the_brute_force_optimum(se
     assert sides.dtype.kind == "i" and set(sides.tolist()) <= {-1, 0, 1}
     np.testing.assert_array_equal(t[sides == -1], lo[sides == -1])
     np.testing.assert_array_equal(t[sides == 1], hi[sides == 1])
+
+
+def test_limits_equal_for_all_cables_are_written_once_also_when_unbounded():
+    """The limits in an infeasibility message: one [lo, hi] pair when every cable has the
+    same, an unbounded t_max included (inf - inf is not 0), else the lists per cable."""
+    import warnings
+
+    from dynstiff.robot.statics import _limits
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert _limits(np.array([1.0, 1.0]), np.array([np.inf, np.inf])) == "[1, inf]"
+        assert _limits(np.array([1.0, 2.0]), np.array([5.0, 5.0])) == "[[1.0, 2.0], [5.0, 5.0]]"

@@ -30,7 +30,7 @@ def case(sag_ratio, inclination_deg, E=17e9, n_modes=4, segments=(100, 200)):
     g = ds.STANDARD_GRAVITY
     T = cable.mass_per_length * g * np.cos(th) * SPAN / (8 * sag_ratio)
     s = ds.unstretched_length_for_tension(A, B, T, cable, at="end")
-    closed = ds.cable_natural_frequencies(s, n_modes)
+    closed = ds.cable_natural_frequencies(s, n_modes, guard_rtol=None)   # its error is measured
     fs = []
     for N in segments:
         ch = chain_equilibrium(A, B, s.unstretched_length, cable, N)

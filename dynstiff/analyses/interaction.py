@@ -29,13 +29,13 @@ No plotting here; pandas is imported only by the ``to_frame`` helpers.
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.errors import InvalidParameterError
+from dynstiff.errors import DynstiffWarning, InvalidParameterError
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame"]
 
 
 # ------------------------------------------------------------------------ proximity
-class ProximityWarning(UserWarning):
+class ProximityWarning(DynstiffWarning, UserWarning):
     """A local (cable) mode close in frequency to a global (platform) mode.
 
     A real :class:`Warning` (``warnings.warn(w)`` issues it; ``proximity_warnings(...,

@@ -36,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from dynstiff.errors import DynstiffError
+from dynstiff.errors import DynstiffError, DynstiffWarning
 
 __all__ = [
     "INERTIA_CONVENTIONS",
@@ -66,7 +66,7 @@ class CasprError(DynstiffError, ValueError):
     """A CASPR file is malformed or describes a robot dynstiff does not model; the message
     names the file and what is wrong."""
 
-class InertiaConventionWarning(UserWarning):
+class InertiaConventionWarning(DynstiffWarning, UserWarning):
     """Off-diagonal inertia values were read under a stated convention (products of inertia
     or tensor entries) that the file itself cannot confirm."""
 

@@ -215,7 +215,7 @@ def _closest_in_box(W, w, lb, ub, r, t, tol, bound=None):
 
 def _limits(t_min, t_max):
     """The limits as text: [lo, hi] when equal for all cables, else per cable."""
-    if np.ptp(t_min) == 0 and np.ptp(t_max) == 0:
+    if np.all(t_min == t_min[0]) and np.all(t_max == t_max[0]):     # inf limits included
         return f"[{t_min[0]:g}, {t_max[0]:g}]"
     return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
 

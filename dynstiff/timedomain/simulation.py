@@ -93,7 +93,12 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import positive_scalar
 from dynstiff.cable.lumped_chain import chain_equilibrium
-from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.errors import (
+    ConvergenceError,
+    DynstiffWarning,
+    InvalidParameterError,
+    SlackCableError,
+)
 from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedMassModel
 from dynstiff.models.lumped_statics import LumpedEquilibrium
@@ -136,10 +141,10 @@ __all__ = [
 _SCHEMES = ("implicit", "explicit")
 
 
-class SlackSegmentWarning(RuntimeWarning):
+class SlackSegmentWarning(DynstiffWarning, RuntimeWarning):
     """A cable segment went slack (l < l0, zero tension) during a simulation."""
 
-class TimeStepWarning(RuntimeWarning):
+class TimeStepWarning(DynstiffWarning, RuntimeWarning):
     """The explicit scheme was asked for a step above its predicted stability limit."""
 
 

@@ -8,7 +8,7 @@ import warnings
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.errors import ConvergenceError, DynstiffError
+from dynstiff.errors import ConvergenceError, DynstiffError, DynstiffWarning
 from dynstiff.timedomain.damping import explicit_step_limit
 from dynstiff.timedomain.dynamics import (
     FastPose,
@@ -39,7 +39,7 @@ class IntegrationError(DynstiffError, RuntimeError):
         self.step, self.time, self.dt = step, time, dt
 
 
-class EnergyBalanceWarning(RuntimeWarning):
+class EnergyBalanceWarning(DynstiffWarning, RuntimeWarning):
     """The energy balance residual passed 10 % of the run's energy scale: the ledger (not
     necessarily the motion) is inaccurate at this dt; halve dt to check."""
 
