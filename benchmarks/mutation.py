@@ -671,6 +671,41 @@ EQUIVALENT.update({
 })
 
 
+def _definitions():
+    """{top-level function or class name: [dotted modules defining it]} of the package."""
+    import ast
+    import pathlib
+    root = pathlib.Path(__file__).resolve().parents[1]
+    out = collections.defaultdict(list)
+    for path in sorted((root / "dynstiff").rglob("*.py")):
+        module = ".".join(path.relative_to(root).with_suffix("").parts)
+        for node in ast.parse(path.read_text()).body:
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+                out[node.name].append(module)
+    return out
+
+
+def _relocated(equivalent):
+    """The keys of ``equivalent`` moved to the module that defines their function today (a
+    module split moves functions; their mutant numbers, which count within a function, do
+    not change). Among several modules defining the name, the one sharing the old module's
+    name wins."""
+    defs = _definitions()
+    out = {}
+    for key, why in equivalent.items():
+        m = re.match(r"(dynstiff\.[\w.]+?)\.(x_(\w+?)__mutmut_\d+|xǁ(\w+)ǁ.*)$", key)
+        module, name = m.group(1), m.group(3) or m.group(4)
+        where = defs.get(name, [])
+        if where and module not in where:
+            module = max(where, key=lambda w: (w.rsplit(".", 1)[0] == module.rsplit(".", 1)[0],
+                                               w.startswith(module)))
+        out[f"{module}.{m.group(2)}"] = why
+    return out
+
+
+EQUIVALENT = _relocated(EQUIVALENT)
+
+
 def _results():
     """{mutant name: status} of every generated mutant (mutmut's last results)."""
     out = subprocess.run(["mutmut", "results", "--all", "true"], capture_output=True,
