@@ -420,3 +420,16 @@ def test_the_roots_do_not_depend_on_the_band_asked(name, fmax_hz):
     wide = ds.eigenfrequencies(m, fmax_hz=fmax_hz)
     assert low[0] < fmax_hz / 64 and len(wide) > len(low) > 0
     np.testing.assert_allclose(wide[:len(low)], low, rtol=1e-11)
+
+
+@pytest.mark.parametrize("rung", ["spring", "dsm", "lumped"])
+@pytest.mark.parametrize("fmax_hz", [1e152, 1e160, 1e300])
+def test_a_band_beyond_every_frequency_names_fmax_hz(cogiro_eq, rung, fmax_hz):
+    """fmax_hz whose omega^2 overflows (omega = 2 pi fmax_hz > 1e150 rad/s) is refused naming
+    fmax_hz, by the finite eigenproblem and by Wittrick-Williams alike (it named the internal
+    omega, or overflowed in the seed grid)."""
+    m = ds.build_model(cogiro_eq, rung, **({"segments": 4} if rung == "lumped" else {}))
+    with pytest.raises(InvalidParameterError, match=r"^fmax_hz must be <= 1\.59155e\+149 Hz"):
+        ds.eigenfrequencies(m, fmax_hz=fmax_hz)
+    with pytest.raises(InvalidParameterError, match=r"^fmax_hz must be <= "):
+        ds.modes(m, fmax_hz=fmax_hz)

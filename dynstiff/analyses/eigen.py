@@ -26,7 +26,7 @@ from numbers import Integral, Real
 import numpy as np
 
 from dynstiff import compiled
-from dynstiff._validate import omega_array
+from dynstiff._validate import MAX_OMEGA, omega_array
 from dynstiff.analyses import eigen_matrix
 from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import (
@@ -70,6 +70,10 @@ def _validated_request(n_modes, fmax_hz):
             f = np.inf
         if not np.isfinite(f) or f <= 0:
             raise InvalidParameterError(f"fmax_hz must be finite and > 0 [Hz], got {fmax_hz!r}")
+        if _TWO_PI * f > MAX_OMEGA:
+            raise InvalidParameterError(
+                f"fmax_hz must be <= {MAX_OMEGA / _TWO_PI:.6g} Hz (omega^2 times a mass must "
+                f"stay finite), got {fmax_hz!r}")
         fmax_hz = f
     return n_modes, fmax_hz
 
