@@ -112,7 +112,7 @@ EQUIVALENT.update({
     "dynstiff.analyses.eigen.x__search__mutmut_35":
         "a bracket never counted as isolated is bisected on the count to rtol instead of "
         "refined by regula falsi: the same roots, more counts",
-    "dynstiff.analyses.eigen.x_modes__mutmut_146":
+    "dynstiff.analyses.modes.x_modes__mutmut_146":
         "cable fraction <= 0.5 instead of < 0.5 for 'global': differs only at exactly 0.5",
 })
 EQUIVALENT.update({
@@ -180,7 +180,7 @@ EQUIVALENT.update({
     "dynstiff.analyses.eigen.x__illinois__mutmut_11": "the side flags as floats: compared with +-1 "
                                              "all the same",
     "dynstiff.analyses.eigen.x__real_symmetric__mutmut_3": "K.real of a real K is K",
-    "dynstiff.analyses.eigen.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
+    "dynstiff.analyses.modes.x_modes__mutmut_73": "K(omega) of an empty grid is the empty stack",
 })
 EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_157": "reshape(5, -2) infers like -1",
@@ -435,7 +435,7 @@ EQUIVALENT.update({
     "dynstiff.analyses.eigen.x__illinois__mutmut_247":
         "the high end not moved to the second point when the pair brackets the root: the "
         "bracket closes to rtol in a few more steps, at the same root",
-    "dynstiff.analyses.eigen.x_modes__mutmut_87":
+    "dynstiff.analyses.modes.x_modes__mutmut_87":
         "the pole count evaluated for an empty frequency list too: it is empty",
     "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_20":
         "the viscous form of w^2 for an undamped model: its viscous rates are 0 and K.real "

@@ -14,13 +14,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 from dynstiff._version import __version__ as __version__
 from dynstiff.analyses.calibrate import CalibrationResult, calibrate
 from dynstiff.analyses.damped import DampedModes, damped_modes
-from dynstiff.analyses.eigen import (
-    ModalResult,
-    cable_fields,
-    eigenfrequencies,
-    mode_count,
-    modes,
-)
+from dynstiff.analyses.eigen import ModalResult, eigenfrequencies, mode_count
 from dynstiff.analyses.frf import FRFResult, frf
 from dynstiff.analyses.interaction import ProximityWarning, proximity_warnings
 from dynstiff.analyses.measured import (
@@ -30,6 +24,7 @@ from dynstiff.analyses.measured import (
     read_measured_frf,
     read_measured_modes,
 )
+from dynstiff.analyses.modes import cable_fields, modes
 from dynstiff.analyses.recommend import Recommendation, recommend_model
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.analyses.sweep import SweepResult, sweep

@@ -12,11 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dynstiff.constants import DOF_NAMES, LOAD_NAMES
+from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, LOAD_NAMES, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
 
 __all__ = ["FRFResult", "ModalResult", "LumpedModalResult", "DampedModes", "INPUT_NAMES",
-           "OUTPUT_NAMES", "RESPONSE_KINDS", "response_factor"]
+           "OUTPUT_NAMES", "RESPONSE_KINDS", "mode_kinds", "response_factor"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -128,6 +128,22 @@ class FRFResult:
                                  "kind": self.kind})
 
 
+def mode_kinds(platform_share):
+    """The one labelling of modes (theory.md §12.1): "global" (platform share >=
+    ``GLOBAL_SHARE``, the platform holds most of the kinetic energy), "mixed" (from
+    ``PLATFORM_SHARE_THRESHOLD``: a cable mode that moves the platform) or "local" (the
+    cables vibrate, the platform hardly), for each platform share [-].
+
+    Examples
+    --------
+    >>> mode_kinds([0.99, 0.2, 0.01])
+    ('global', 'mixed', 'local')
+    """
+    s = np.asarray(platform_share, dtype=float).ravel()
+    return tuple("global" if v >= GLOBAL_SHARE else "mixed" if v >= PLATFORM_SHARE_THRESHOLD
+                 else "local" for v in s)
+
+
 @dataclass(frozen=True)
 class ModalResult:
     """Modes of the robot.
@@ -144,17 +160,60 @@ class ModalResult:
     cable_energy : ndarray, shape (n, n_cables)
         Kinetic-energy share of each cable [-] (sums to cable_energy_fraction).
     kind : tuple of str
-        "global" (platform holds most kinetic energy) or "local" (cables do).
+        "global", "mixed" or "local" by the platform share (:func:`mode_kinds`); derived
+        from ``cable_energy_fraction`` when not given.
     massless_freq_hz : ndarray, shape (n,)
-        Frequency of the matching mode of the massless-cable model (NaN for local modes).
+        Frequency of the mode of the massless-cable model paired with each global mode
+        (one-to-one, by mass-weighted MAC; NaN for the other modes).
+    platform_mass : ndarray, shape (6, 6), optional
+        The platform block of the robot's mass matrix about P [kg, kg m, kg m^2] (held
+        DOFs' rows and columns zero): the rigid platform, plus, for the lumped rung, the
+        half masses of the cables' last segments; it gives the modes' participation.
     """
 
     freq_hz: np.ndarray
     platform_shapes: np.ndarray
     cable_energy_fraction: np.ndarray
     cable_energy: np.ndarray
-    kind: tuple
-    massless_freq_hz: np.ndarray
+    kind: tuple = None
+    massless_freq_hz: np.ndarray = None
+    platform_mass: np.ndarray = None
+
+    def __post_init__(self):
+        if self.kind is None:
+            object.__setattr__(self, "kind", mode_kinds(self.platform_share))
+        if self.massless_freq_hz is None:
+            object.__setattr__(self, "massless_freq_hz", np.full(len(self.freq_hz), np.nan))
+
+    @property
+    def platform_share(self):
+        """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,)."""
+        return np.clip(1.0 - np.asarray(self.cable_energy_fraction, dtype=float), 0.0, 1.0)
+
+    @property
+    def participation(self):
+        """Effective-mass fraction of each free platform DOF in each mode [-], shape (n, 6):
+        p_kj = (M x_k)_j^2 s_k / M_jj with x_k the shape at unit platform kinetic energy,
+        s_k its platform share and M ``platform_mass`` (theory.md §12.1). Over all the modes
+        of the robot each column sums to 1; held DOFs are 0 (NaN without
+        ``platform_mass``)."""
+        n = len(self.freq_hz)
+        if self.platform_mass is None:
+            return np.full((n, 6), np.nan)
+        M = np.asarray(self.platform_mass, dtype=float)
+        d = np.diag(M)
+        g = np.asarray(self.platform_shapes, dtype=float) @ M
+        with np.errstate(invalid="ignore", divide="ignore"):
+            p = np.where(d > 0, g**2 * self.platform_share[:, None] / np.where(d > 0, d, 1.0),
+                         0.0)
+        return p
+
+    @property
+    def dominant_dof(self):
+        """Name of the DOF each mode moves most, by participation ("-" for none)."""
+        p = self.participation
+        return tuple(DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
+                     for r in np.nan_to_num(p))
 
     @property
     def shift_from_massless(self):
@@ -165,28 +224,34 @@ class ModalResult:
         return len(self.freq_hz)
 
     def __repr__(self):
-        n_glob = sum(k == "global" for k in self.kind)
-        return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: {n_glob} "
-                f"global, {len(self) - n_glob} local)")
+        n = {c: sum(k == c for k in self.kind) for c in ("global", "mixed", "local")}
+        return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
+                f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
 
     def plot(self, ax=None):
-        """Frequencies against cable energy fraction, global and local modes coloured:
+        """Frequencies against platform share, coloured by kind:
         :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure."""
         from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
     def to_frame(self):
-        """pandas DataFrame, one row per mode, units in the column names; the shape columns
-        are labelled for their energy normalisation (``SHAPE_UNITS``)."""
+        """pandas DataFrame, one row per mode, units in the column names: frequency, kind,
+        platform share, the participation of each DOF, the paired massless mode and the
+        platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``)."""
         import pandas as pd
         df = pd.DataFrame({
             "mode": np.arange(1, len(self) + 1),
             "freq [Hz]": self.freq_hz,
             "kind": list(self.kind),
+            "platform share [-]": self.platform_share,
+            "dominant dof": list(self.dominant_dof),
             "cable energy fraction [-]": self.cable_energy_fraction,
             "massless freq [Hz]": self.massless_freq_hz,
             "shift from massless [-]": self.shift_from_massless,
         })
+        p = self.participation
+        for k, name in enumerate(DOF_NAMES):
+            df[f"participation {name} [-]"] = p[:, k]
         for k, name in enumerate(DOF_NAMES):
             df[f"{name} {SHAPE_UNITS[k]}"] = self.platform_shapes[:, k]
         return df

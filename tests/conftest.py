@@ -2,21 +2,24 @@
 models built once per module, and the test cables of the lumped chain tests (theory.md
 §1.1, §7.2, §9.2)."""
 
+import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 import scipy.linalg
+from hypothesis import settings
 
 import dynstiff as ds
-from dynstiff.lumped import (
-    LumpedLinearModel,
-    LumpedMassModel,
-    chain_equilibrium,
-    chain_matrices,
-)
+from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
 from dynstiff.params import Cable
+
+# Property tests draw the same examples on every run (reproducible in CI); set
+# HYPOTHESIS_PROFILE=random to draw new ones.
+settings.register_profile("derandomized", derandomize=True, database=None)
+settings.register_profile("random")
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).
 COGIRO_AREA = 8.2051e-6

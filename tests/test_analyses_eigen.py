@@ -6,6 +6,8 @@ on a point-mass robot and as a property test on random 3-cable point-mass robots
 and close roots of a symmetric robot; a dense determinant scan that does miss the coincident
 roots of a symmetric robot. Cable displacement fields of a mode meet the platform."""
 
+import warnings
+
 import numpy as np
 import pytest
 from conftest import lumped_point_mass_frequencies, point_mass_robot
@@ -14,7 +16,7 @@ from hypothesis import strategies as st
 
 import dynstiff as ds
 from dynstiff import compiled
-from dynstiff.analyses.eigen import cable_fields
+from dynstiff.analyses.modes import cable_fields
 from dynstiff.errors import InvalidParameterError, SlackCableError
 
 N_SEG = 40                    # lumped segments per cable
@@ -148,7 +150,9 @@ def test_ww_count_equals_lumped_count_on_random_robots(radius, turn, jitter, hei
         eq = rob.equilibrium(pose=[xy[0], xy[1], z])
     except SlackCableError:
         assume(False)                 # a cable below T_MIN (or slack): outside the workspace
-    r = count_check(eq)
+    with warnings.catch_warnings():   # the counts are compared, not the closed form's
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)    # accuracy: its guard
+        r = count_check(eq)                                             # may warn here
     np.testing.assert_array_equal(r["J"], r["J_lumped"])
     # the comparison is not vacuous: many probes, up to at least 3/4 of the band, counting at
     # least half the modes compared (the top modes may sit within the gap of the band's end)

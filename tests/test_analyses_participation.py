@@ -1,5 +1,6 @@
 """Platform participation and receptance amplification (dynstiff/analyses/participation.py,
-theory.md §12.1)."""
+theory.md §12.1, docs/theory.md §13.3): shares, the per-DOF participation and its sum rule,
+the fast shares of the closed form, the modes every verdict uses."""
 
 import dataclasses
 
@@ -7,20 +8,18 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.analyses.participation import (
-    GLOBAL_SHARE,
-    PLATFORM_SHARE_THRESHOLD,
-    categories,
-    platform_participation,
-    receptance_amplification,
-)
-from dynstiff.errors import InvalidParameterError
+from dynstiff.analyses.participation import modal_data, platform_shares, receptance_amplification
 
 
 def with_mass(robot, mass):
     return ds.Robot(robot.anchors, robot.attachments, robot.cables,
                     dataclasses.replace(robot.platform, mass=mass), g=robot.g,
                     tension_limits=robot.tension_limits)
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return ds.load_scene("cogiro").robot
 
 
 @pytest.fixture(scope="module")
@@ -31,30 +30,119 @@ def cogiro50():
     return m, ds.modes(m, fmax_hz=3.0)
 
 
-def test_shares_sum_and_categories(cogiro50):
-    """Per-DOF shares are >= 0 and sum to the platform share 1 - cable fraction; the
-    50 kg CoGiRo's 2.216 Hz mode holds 42 % of its energy in the platform: "mixed"."""
+def test_kinds_shares_and_participation(cogiro50):
+    """The share is 1 - the cable fraction; participations are >= 0 and, for each mode,
+    sum over the DOFs to its share when M_p is diagonal in the DOFs a mode moves (CoGiRo's
+    platform: to 1e-2 with its centre of mass off P); the 50 kg CoGiRo's 2.216 Hz mode holds
+    42 % of its energy in the platform: "mixed", one label in every table."""
     m, mo = cogiro50
-    p = platform_participation(m, mo)
-    assert np.allclose(p.platform_share, 1 - mo.cable_energy_fraction, atol=1e-15)
-    assert np.allclose(p.dof_share.sum(axis=1), p.platform_share, rtol=1e-12, atol=1e-15)
-    assert np.all(p.dof_share >= 0)
-    k = int(np.argmin(np.abs(p.freq_hz - 2.216)))
-    assert abs(p.freq_hz[k] - 2.216) < 5e-4
-    assert 0.40 < p.platform_share[k] < 0.44 and p.category[k] == "mixed"
-    assert mo.kind[k] == "local"                   # the binary label missed it
-    assert p.checked[k] and "global" in p.category
-    df = p.to_frame()
-    assert list(df["category"]) == list(p.category) and "share y [-]" in df
+    assert np.allclose(mo.platform_share, 1 - mo.cable_energy_fraction, atol=1e-15)
+    p = mo.participation
+    assert np.all(p >= 0) and np.all(p[:, [k for k in range(6) if k not in m.free_index]] == 0)
+    k = int(np.argmin(np.abs(mo.freq_hz - 2.216)))
+    assert abs(mo.freq_hz[k] - 2.216) < 5e-4
+    assert 0.40 < mo.platform_share[k] < 0.44 and mo.kind[k] == "mixed"
+    df = mo.to_frame()
+    assert list(df["kind"]) == list(mo.kind) and "participation y [-]" in df
+    assert "category" not in df
 
 
-def test_categories_thresholds():
-    assert categories([0.0, 0.0499, 0.05, 0.4999, 0.5, 1.0]) == (
-        "local", "local", "mixed", "mixed", "global", "global")
-    assert categories([0.05], threshold=0.01) == ("mixed",)
-    assert PLATFORM_SHARE_THRESHOLD < GLOBAL_SHARE
-    with pytest.raises(InvalidParameterError, match="threshold"):
-        categories([0.2], threshold=0.6)
+def test_participations_of_all_the_modes_sum_to_one_per_dof():
+    """The effective-mass sum rule (theory.md §12.1): over every mode of a discrete model
+    each free DOF's participations sum to 1 (the lumped CoGiRo with 3 segments per cable,
+    all 54 modes), and over the modes below a frequency they grow towards it."""
+    sc = ds.load_scene("cogiro")
+    lm = ds.build_model(sc.equilibrium(), "lumped", segments=3)
+    res = ds.modes(lm, n_modes=lm.n_dof)
+    np.testing.assert_allclose(res.participation.sum(axis=0), 1.0, rtol=1e-10)
+    assert np.all(np.diff(np.cumsum(res.participation, axis=0), axis=0) >= -1e-15)
+
+
+def test_modal_data_of_the_closed_form_equals_the_modes(robot):
+    """The verdicts' modes of the closed form (fast shares) equal dynstiff.modes: the same
+    frequencies, shares to 1e-8, shapes to 1e-7 (up to sign), labels and participation."""
+    m = ds.build_model(robot.equilibrium(pose=[1.0, -0.5, 1.5]), "dsm")
+    fast, ref = modal_data(m, 6.0), ds.modes(m, fmax_hz=6.0)
+    np.testing.assert_array_equal(fast.freq_hz, ref.freq_hz)
+    np.testing.assert_allclose(fast.platform_share, ref.platform_share, atol=1e-8)
+    sign = np.sign(np.sum(fast.platform_shapes * ref.platform_shapes, axis=1))[:, None]
+    np.testing.assert_allclose(fast.platform_shapes * sign, ref.platform_shapes, atol=1e-7)
+    assert fast.kind == ref.kind
+    np.testing.assert_allclose(fast.participation, ref.participation, atol=1e-7)
+
+
+@pytest.mark.parametrize("position", [(0.0, 0.0, 1.0), (3.0, 2.0, 2.5), (5.0, 3.0, 1.0)])
+def test_platform_participation_from_the_derivative_of_k_equals_the_cable_energies(
+        robot, position):
+    """-x^T dK/d(omega^2) x is the total modal mass (docs/theory.md §13.3): the platform
+    share from it equals 1 - the closed-form cable energy fraction of dynstiff.modes
+    (1e-8) over 30 modes, global and local."""
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    res = ds.modes(m, n_modes=30)
+    np.testing.assert_allclose(platform_shares(m, res.freq_hz)[0],
+                               1.0 - res.cable_energy_fraction, rtol=0, atol=1e-8)
+
+
+def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies(
+        robot, monkeypatch):
+    """With a step so wide that cable poles fall inside it, every such mode takes the
+    closed-form cable energies: the result still equals dynstiff.modes."""
+    import importlib
+    wsmod = importlib.import_module("dynstiff.analyses.participation")
+    m = ds.build_model(robot.equilibrium(pose=[0.0, 0.0, 1.0]), "dsm")
+    res = ds.modes(m, n_modes=12)
+    monkeypatch.setattr(wsmod, "_FD_STEP", 0.2)
+    w = 2 * np.pi * res.freq_hz
+    assert np.any(m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w))
+    near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
+    got = wsmod.platform_shares(m, res.freq_hz)[0]
+    np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
+
+
+def _participation_mode_by_mode(model, freq_hz):
+    """platform_shares written one mode at a time (its first form, theory.md
+    §13.3), the reference of the batched one."""
+    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
+    n, h = w.size, 1e-6
+    steps = np.array([1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
+    K = model.dynamic_stiffness(w)
+    Ks = model.dynamic_stiffness(np.outer(steps[:4], w).ravel()).reshape(4, n, *K.shape[1:])
+    J0 = model.cable_mode_count(np.outer(steps, w).ravel()).reshape(6, n)
+    Mp = model.platform_mass
+    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+    out = np.zeros(n)
+    for k in range(n):
+        if not np.all(np.isfinite(K[k])):
+            continue
+        ev, V = np.linalg.eigh(K[k])
+        if J0[4, k] > J0[5, k] and np.abs(ev).min() > 1e-6 * scale:
+            continue
+        x = V[:, np.argmin(np.abs(ev))]
+        x = x / np.sqrt(x @ Mp @ x)
+        if J0[0, k] != J0[1, k]:
+            full = np.zeros(6)
+            full[model.free_index] = x
+            out[k] = 1.0 / (1.0 + model.cable_kinetic_energies(w[k], full).sum())
+            continue
+        d1 = (Ks[0, k] - Ks[1, k]) / (w[k] ** 2 * ((1 + h) ** 2 - (1 - h) ** 2))
+        d2 = (Ks[2, k] - Ks[3, k]) / (w[k] ** 2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))
+        out[k] = 1.0 / -(x @ ((4.0 * d2 - d1) / 3.0) @ x)
+    return out
+
+
+@pytest.mark.parametrize("position", [[0.0, 0.0, 1.0], [-3.0, 2.0, 2.5], [4.0, -3.0, 0.8]])
+def test_batched_participation_equals_the_mode_by_mode_one(robot, position):
+    """The batched platform participation equals the mode-by-mode form to 1e-12 over 30
+    modes; at a cable pole (a local mode there, the platform at rest, and modes with a pole
+    within the steps) too."""
+    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
+    f = ds.eigenfrequencies(m, n_modes=30)
+    np.testing.assert_allclose(platform_shares(m, f)[0], _participation_mode_by_mode(m, f),
+                               rtol=0, atol=1e-12)
+    pole = np.pi * np.sqrt(m.params[0].T / m.params[0].m) / m.params[0].L / (2 * np.pi)
+    g = np.sort(np.concatenate([f[:5], [pole, pole * (1 + 3e-7)]]))
+    np.testing.assert_allclose(platform_shares(m, g)[0], _participation_mode_by_mode(m, g),
+                               rtol=0, atol=1e-12)
 
 
 def test_receptance_amplification_of_a_massless_model():

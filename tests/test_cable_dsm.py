@@ -5,11 +5,7 @@ import pytest
 from conftest import A0, B0, cogiro_cable
 
 import dynstiff as ds
-from dynstiff.cable.dsm import (
-    chord_parameters,
-    local_end_stiffness,
-    local_two_end_stiffness,
-)
+from dynstiff.cable.dsm import chord_parameters, local_end_stiffness, local_two_end_stiffness
 from dynstiff.errors import InvalidParameterError
 
 TWO_PI = 2 * np.pi
@@ -235,10 +231,7 @@ def test_end_block_and_count_equal_their_separate_kernels_for_one_cable_and_a_st
     (n, 5), (n,)) and a stack ((n, n_cables, 5), (n, n_cables)); damped cables or complex
     omega are refused (theory.md §14.2)."""
     from dynstiff.cable.chord import stack_parameters
-    from dynstiff.cable.dsm import (
-        end_block_coefficients,
-        end_block_coefficients_and_count,
-    )
+    from dynstiff.cable.dsm import end_block_coefficients, end_block_coefficients_and_count
     from dynstiff.cable.psi import cable_mode_count
     states = [ds.solve_catenary((0, 0, 0), B, L0, ds.Cable(0.064, 139486.7))
               for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]

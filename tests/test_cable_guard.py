@@ -5,9 +5,7 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.cable.dsm import (
-    chord_parameters,
-)
+from dynstiff.cable.dsm import chord_parameters
 from dynstiff.errors import InvalidParameterError
 
 

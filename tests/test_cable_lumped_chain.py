@@ -5,17 +5,7 @@ that the physics fixes. The test cables are in conftest.py."""
 
 import numpy as np
 import pytest
-from conftest import (
-    A_11,
-    A_92,
-    B_11,
-    B_92,
-    BEAD_L,
-    CABLE_11,
-    CABLE_92,
-    L0_11,
-    beaded_string,
-)
+from conftest import A_11, A_92, B_11, B_92, BEAD_L, CABLE_11, CABLE_92, L0_11, beaded_string
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 

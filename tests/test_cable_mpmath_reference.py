@@ -15,11 +15,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from dynstiff.cable.dsm import (
-    ChordParameters,
-    local_end_stiffness,
-    local_two_end_stiffness,
-)
+from dynstiff.cable.dsm import ChordParameters, local_end_stiffness, local_two_end_stiffness
 from dynstiff.cable.mpmath_reference import (
     end_stiffness_mp,
     irvine_symmetric_roots_mp,

@@ -7,9 +7,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import dynstiff as ds
-from dynstiff.cable.dsm import (
-    chord_parameters,
-)
+from dynstiff.cable.dsm import chord_parameters
 from dynstiff.cable.psi import irvine_symmetric_roots
 from dynstiff.errors import InvalidParameterError
 

@@ -24,7 +24,7 @@ def test_cli_modes_table_and_csv(tmp_path):
     import pandas as pd
     df = pd.read_csv(tmp_path / "m.csv", comment="#")
     assert len(df) == 6 and df["freq [Hz]"].is_monotonic_increasing
-    assert df["kind"].isin(["global", "local"]).all()
+    assert df["kind"].isin(["global", "mixed", "local"]).all()
 
 
 def test_cli_modes_model_choice(tmp_path):
@@ -93,9 +93,9 @@ def test_cli_check_exit_codes():
                                     capture_output=True, text=True)
     assert run("cogiro", "--band", "1", "2").returncode == 0
     out = run("cogiro", "--band", "4", "5")
-    assert out.returncode == 1 and "FAIL  platform modes outside band" in out.stdout
+    assert out.returncode == 1 and "FAIL    platform modes outside band" in out.stdout
     out = run("cogiro", "--pose", "9", "0", "1")
-    assert out.returncode == 1 and "FAIL  workspace" in out.stdout
+    assert out.returncode == 1 and "FAIL    workspace" in out.stdout
 
 
 def test_cli_check_fails_a_mixed_platform_mode_in_band(tmp_path):
@@ -109,13 +109,13 @@ def test_cli_check_fails_a_mixed_platform_mode_in_band(tmp_path):
     assert out.returncode == 1, out.stdout + out.stderr
     line = [ln for ln in out.stdout.splitlines() if "platform modes outside band" in ln][0]
     assert line.startswith("FAIL") and "2.216 Hz" in line and "platform share 42 %" in line
-    assert "FAIL  platform receptance in band" in out.stdout
+    assert "FAIL    platform receptance in band" in out.stdout
     # --participation above the share and --frf-limit above the amplification: passes
     out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
                           "--band", "2.0", "2.3", "--participation", "0.45", "--frf-limit",
                           "100"], capture_output=True, text=True)
-    assert "PASS  platform modes outside band" in out.stdout
-    assert "PASS  platform receptance in band" in out.stdout
+    assert "PASS    platform modes outside band" in out.stdout
+    assert "PASS    platform receptance in band" in out.stdout
 
 
 def test_cli_frf_peak_does_not_depend_on_points():
@@ -142,8 +142,8 @@ def test_cli_check_defaults_to_the_scenes_forbidden_band():
     out = run("sixcable")                                  # no forbidden band in the scene
     assert out.returncode == 1 and "no forbidden band" in out.stdout
     # the closed form's error on sixcable, measured against the exact rung, is 5e-3 < 1e-2
-    assert "PASS  cable model" in out.stdout and "FAIL  local modes near" in out.stdout
-    assert "platform modes outside band" not in out.stdout
+    assert "PASS    cable model" in out.stdout and "FAIL    local modes near" in out.stdout
+    assert "n/a     platform modes outside band       no forbidden band given" in out.stdout
 
 
 def test_lengths_on_a_scene_with_held_dofs_hold_them_at_the_scene_pose(capsys):
@@ -164,3 +164,32 @@ def test_lengths_on_a_scene_with_held_dofs_hold_them_at_the_scene_pose(capsys):
     f1 = [float(r.split(",")[1]) for r in rows(via_lengths)]
     f2 = [float(r.split(",")[1]) for r in rows(at_pose)]
     np.testing.assert_allclose(f1, f2, rtol=1e-7)
+
+
+@pytest.mark.parametrize("scene", ds.list_scenes())
+def test_check_writes_its_table_on_every_built_in_scene(tmp_path, scene, capsys):
+    """`dynstiff check SCENE --csv FILE` at the scene's own pose: exit 0 or 1 (a verdict), a
+    table with one row per check whose verdicts are the printed ones, and the pose in its
+    metadata (the command crashed without --pose)."""
+    import json
+
+    import pandas as pd
+
+    from dynstiff.cli import main
+    out = tmp_path / "checks.csv"
+    code = main(["check", scene, "--csv", str(out)])
+    text = capsys.readouterr().out
+    assert code in (0, 1)
+    df = pd.read_csv(out, comment="#")
+    assert len(df) == 7 and set(df["passed"]) <= {True, False}
+    assert (code == 0) == bool(df["passed"].all())
+    flags = {"pass": "PASS", "fail": "FAIL", "unknown": "UNKNOWN", "not asked": "n/a"}
+    for row in df.itertuples():
+        assert f"{flags[row.verdict]:<7s} {row.check}" in text
+        assert row.passed == (row.verdict in ("pass", "not asked"))
+    meta = dict(line[2:].split(": ", 1) for line in out.read_text().splitlines()
+                if line.startswith("# "))
+    pose = json.loads(meta["pose"])
+    scn = ds.load_scene(scene)
+    expected = scn.pose if scn.pose is not None else scn.equilibrium().pose
+    np.testing.assert_allclose(pose["position [m]"], expected.position, atol=1e-12)

@@ -85,7 +85,8 @@ def test_demo_and_check_agree_on_every_scene(tmp_path):
     """One source of defaults: on every built-in scene `demo` and `check` print the same
     PASS/FAIL verdicts and the same recommended model (segments included)."""
     def verdicts(text):
-        return [ln[:40] for ln in text.splitlines() if ln.startswith(("PASS", "FAIL"))]
+        return [ln[:40] for ln in text.splitlines()
+                if ln.startswith(("PASS", "FAIL", "UNKNOWN", "n/a"))]
 
     def recommendation(text):
         m = re.findall(r"recommended model: (\w+)(?: with N = (\d+)| \((\d+) segments)?",

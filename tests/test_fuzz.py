@@ -144,7 +144,7 @@ def _statics_fuzzer(n):
                       ("unstretched_lengths", "slack", "converge", "residual"))
         obey_the_rule(lambda: rob.equilibrium(pose=scene.pose, tol=tol), ("tol",))
         obey_the_rule(lambda: design_checks(rob, scene.pose, margin=margin,
-                                            max_sag_ratio=sag, fmax_hz=2.0),
+                                            max_sag_ratio=sag, model_band_hz=(0.0, 2.0)),
                       ("margin", "max_sag_ratio"))
     return check
 

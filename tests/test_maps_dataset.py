@@ -43,7 +43,7 @@ def test_tables_have_one_row_per_pose_and_per_mode(wmap):
     df = wmap.dynstiff.to_frame()
     assert len(df) == 3 * 2
     assert df["feasible"].tolist() == [True, True, False, False, True, True]
-    assert {"check: tension limits", "first_global_hz", "reason",
+    assert {"check: tension limits", "first_platform_hz", "reason",
             "largest tension [N]"} <= set(df.columns)
     row = df[(df["pose"] == 2) & (df["parameter"] == 1.6e5)].iloc[0]
     assert row["largest tension [N]"] == pytest.approx(

@@ -30,25 +30,29 @@ def listed(robot):
 
 def test_each_pose_equals_the_single_pose_analyses(robot, listed):
     """Tensions and lengths equal cold inverse statics (1e-9; the map warm-starts), the
-    frequencies equal dynstiff.modes (1e-8) and the platform participation is
-    1 - the cable energy fraction."""
+    frequencies equal dynstiff.modes (1e-8), the platform share is 1 - the cable energy
+    fraction, and the platform modes and the first of them are those of
+    find_platform_modes at the pose."""
+    from dynstiff.analyses.platform_modes import find_platform_modes
     for i in (0, 2):
         eq = robot.equilibrium(pose=POSES[i])
-        res = ds.modes(ds.build_model(eq, "dsm"), n_modes=N_MODES)
+        m = ds.build_model(eq, "dsm")
+        res = ds.modes(m, n_modes=N_MODES)
+        pm = find_platform_modes(m)
         p = listed.isel(pose=i)
         np.testing.assert_allclose(p["tension"], eq.tensions, rtol=1e-9)
         np.testing.assert_allclose(p["unstretched_length"], eq.unstretched_lengths, rtol=1e-9)
         np.testing.assert_allclose(p["freq"], res.freq_hz, rtol=1e-8)
-        np.testing.assert_allclose(p["platform_participation"],
-                                   1.0 - res.cable_energy_fraction, rtol=1e-6, atol=1e-9)
-        glob = np.asarray(res.kind) == "global"
-        assert p["is_global"].values.tolist() == glob.tolist()
-        assert float(p["first_global_hz"]) == pytest.approx(res.freq_hz[glob][0], rel=1e-8)
+        np.testing.assert_allclose(p["platform_share"], res.platform_share, rtol=1e-6,
+                                   atol=1e-9)
+        assert p["is_platform"].values.tolist() == [k in pm.index for k in range(N_MODES)]
+        assert float(p["first_platform_hz"]) == pytest.approx(pm.first_hz, rel=1e-8)
 
 
 def test_band_margin_is_the_relative_distance_above_the_band(listed):
-    """Band (0, 1.5) Hz: the margin is f1 / 1.5 - 1 (every global mode lies above)."""
-    f1 = listed["first_global_hz"].values[[0, 2]]
+    """Band (0, 1.5) Hz: the margin is f1 / 1.5 - 1 (every mode held to it lies above, the
+    lowest the first platform mode)."""
+    f1 = listed["first_platform_hz"].values[[0, 2]]
     np.testing.assert_allclose(listed["band_margin"].values[[0, 2]], f1 / 1.5 - 1.0,
                                rtol=1e-14)
 
@@ -64,12 +68,17 @@ def test_infeasible_pose_is_recorded_in_place_with_its_reason(listed):
 
 
 def test_verdicts_match_the_design_checks(robot, listed):
-    """Tension and sag verdicts and values as dynstiff.analyses.checks.design_checks at the same
-    pose."""
+    """Every verdict, and the sag and tension values, as dynstiff.analyses.checks.
+    design_checks at the same pose with the same arguments; every check is mapped."""
+    for i in (0, 1, 2):
+        res = design_checks(robot, POSES[i], band_hz=BAND)
+        p = listed.isel(pose=i)
+        for r in res.rows:
+            assert bool(p["passed"].sel(check=r["check"])) == (r["verdict"] == "pass")
+            assert bool(p["unknown"].sel(check=r["check"])) == (r["verdict"] == "unknown")
+        assert bool(p["dynamic"]) == res.passed
     rows = {r["check"]: r for r in design_checks(robot, POSES[0], band_hz=BAND).rows}
     p = listed.isel(pose=0)
-    assert bool(p["passed"].sel(check="tension limits")) == rows["tension limits"]["passed"]
-    assert bool(p["passed"].sel(check="sag / chord")) == rows["sag / chord"]["passed"]
     assert float(p["sag_ratio"].max()) == pytest.approx(rows["sag / chord"]["value"],
                                                         rel=1e-9)
     assert float(p["max_tension"].max()) == pytest.approx(rows["tension limits"]["value"],
@@ -79,7 +88,7 @@ def test_verdicts_match_the_design_checks(robot, listed):
 
 def test_grid_with_a_cable_parameter_and_chunking_that_does_not_matter(robot):
     """A 2 x 1 x 2 grid x 2 orientations x 2 moduli: dimensions and coordinates in order; a
-    stiffer cable raises every first global frequency; chunks of 1 (cold statics at every
+    stiffer cable raises every first platform frequency; chunks of 1 (cold statics at every
     pose) give the warm-started chunk of 8 to 1e-8."""
     kw = {"box": (-1.0, 1.0, 0.0, 0.0, 1.0, 3.0), "step": 2.0, "n_modes": 4,
               "orientations": [[0, 0, 0], [0, 0, 0.1]], "parameter": "EA",
@@ -90,7 +99,7 @@ def test_grid_with_a_cable_parameter_and_chunking_that_does_not_matter(robot):
                                  "cable": 8, "check": len(CHECKS), "component": 3}
     assert a["feasible"].dims == ("x", "y", "z", "orientation", "parameter")
     np.testing.assert_array_equal(a["x"], [-1.0, 1.0])
-    f = a["first_global_hz"]
+    f = a["first_platform_hz"]
     assert np.all(f.isel(parameter=1) > 1.05 * f.isel(parameter=0))
     xr.testing.assert_allclose(a[["freq", "tension"]], b[["freq", "tension"]], rtol=1e-8)
 
@@ -144,35 +153,6 @@ def test_local_processes_and_a_dask_cluster_give_the_serial_dataset(robot):
     assert dask.attrs["engine"] == "dask"
 
 
-@pytest.mark.parametrize("position", [(0.0, 0.0, 1.0), (3.0, 2.0, 2.5), (5.0, 3.0, 1.0)])
-def test_platform_participation_from_the_derivative_of_k_equals_the_cable_energies(
-        robot, position):
-    """-x^T dK/d(omega^2) x is the total modal mass (docs/theory.md §13.3): the platform
-    share from it equals 1 - the closed-form cable energy fraction of dynstiff.modes
-    (1e-8) over 30 modes, global and local."""
-    from dynstiff.maps.workspace import platform_participation
-    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
-    res = ds.modes(m, n_modes=30)
-    np.testing.assert_allclose(platform_participation(m, res.freq_hz),
-                               1.0 - res.cable_energy_fraction, rtol=0, atol=1e-8)
-
-
-def test_platform_participation_near_a_cable_pole_takes_the_closed_form_energies(
-        robot, monkeypatch):
-    """With a step so wide that cable poles fall inside it, every such mode takes the
-    closed-form cable energies: the result still equals dynstiff.modes."""
-    import importlib
-    wsmod = importlib.import_module("dynstiff.maps.workspace")
-    m = ds.build_model(robot.equilibrium(pose=[0.0, 0.0, 1.0]), "dsm")
-    res = ds.modes(m, n_modes=12)
-    monkeypatch.setattr(wsmod, "_FD_STEP", 0.2)
-    w = 2 * np.pi * res.freq_hz
-    assert np.any(m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w))
-    near = m.cable_mode_count(1.2 * w) != m.cable_mode_count(0.8 * w)
-    got = wsmod.platform_participation(m, res.freq_hz)
-    np.testing.assert_allclose(got[near], 1.0 - res.cable_energy_fraction[near], atol=1e-12)
-
-
 def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     """A 5 x 4 x 3 grid of CoGiRo poses over the frame (edges, infeasible poses and active
     tension limits included), warm-started along chunks, with the compiled Newton and the
@@ -180,16 +160,18 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     distributions: the same feasibility, reasons and verdicts; tensions, lengths, sag,
     frequencies and margins to 1e-12; participation to 1e-7, the accuracy of its
     finite-difference derivative (§13.3), which magnifies round-off."""
+    from dynstiff.analyses.checks import check_options
     from dynstiff.maps.workspace import evaluate_chunk
     from dynstiff.robot import statics
+    options = check_options(BAND)
 
     grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
                                 np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)
     X = np.hstack([grid, np.zeros_like(grid)])
 
     def run():
-        parts = [evaluate_chunk(robot, X[s:s + 12], 12, BAND, 0.05, 0.03, 0.02, "dsm", {})
-                 for s in range(0, len(X), 12)]
+        parts = [evaluate_chunk(robot, X[s:s + 12], 12, options, "dsm", ds.Damping(), {},
+                                CHECKS) for s in range(0, len(X), 12)]
         return {k: ([r for p in parts for r in p[k]] if k == "reason"
                     else np.concatenate([p[k] for p in parts])) for k in parts[0]}
     fast = run()
@@ -203,59 +185,12 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     assert 0 < ref["feasible"].sum() < len(X)
     assert np.sum(np.isclose(ref["min_tension"], robot.tension_limits[0], rtol=1e-9)) > 5
     assert fast["reason"] == ref["reason"]
-    for k in ("feasible", "is_global", "passed"):
+    for k in ("feasible", "is_platform", "passed", "unknown"):
         np.testing.assert_array_equal(fast[k], ref[k])
     for k in ("tension", "unstretched_length", "min_tension", "max_tension", "sag_ratio",
-              "freq", "first_global_hz"):
+              "freq", "first_platform_hz"):
         np.testing.assert_allclose(fast[k], ref[k], rtol=1e-12, atol=0, err_msg=k)
     for k in ("band_margin", "proximity_gap"):
         np.testing.assert_allclose(fast[k], ref[k], rtol=0, atol=1e-12, err_msg=k)
-    np.testing.assert_allclose(fast["platform_participation"], ref["platform_participation"],
-                               rtol=0, atol=1e-7)
-
-
-def _participation_mode_by_mode(model, freq_hz):
-    """platform_participation written one mode at a time (its first form, theory.md
-    §13.3), the reference of the batched one."""
-    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
-    n, h = w.size, 1e-6
-    steps = np.array([1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
-    K = model.dynamic_stiffness(w)
-    Ks = model.dynamic_stiffness(np.outer(steps[:4], w).ravel()).reshape(4, n, *K.shape[1:])
-    J0 = model.cable_mode_count(np.outer(steps, w).ravel()).reshape(6, n)
-    Mp = model.platform_mass
-    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
-    out = np.zeros(n)
-    for k in range(n):
-        if not np.all(np.isfinite(K[k])):
-            continue
-        ev, V = np.linalg.eigh(K[k])
-        if J0[4, k] > J0[5, k] and np.abs(ev).min() > 1e-6 * scale:
-            continue
-        x = V[:, np.argmin(np.abs(ev))]
-        x = x / np.sqrt(x @ Mp @ x)
-        if J0[0, k] != J0[1, k]:
-            full = np.zeros(6)
-            full[model.free_index] = x
-            out[k] = 1.0 / (1.0 + model.cable_kinetic_energies(w[k], full).sum())
-            continue
-        d1 = (Ks[0, k] - Ks[1, k]) / (w[k] ** 2 * ((1 + h) ** 2 - (1 - h) ** 2))
-        d2 = (Ks[2, k] - Ks[3, k]) / (w[k] ** 2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))
-        out[k] = 1.0 / -(x @ ((4.0 * d2 - d1) / 3.0) @ x)
-    return out
-
-
-@pytest.mark.parametrize("position", [[0.0, 0.0, 1.0], [-3.0, 2.0, 2.5], [4.0, -3.0, 0.8]])
-def test_batched_participation_equals_the_mode_by_mode_one(robot, position):
-    """The batched platform participation equals the mode-by-mode form to 1e-12 over 30
-    modes; at a cable pole (a local mode there, the platform at rest, and modes with a pole
-    within the steps) too."""
-    from dynstiff.maps.workspace import platform_participation
-    m = ds.build_model(robot.equilibrium(pose=position), "dsm")
-    f = ds.eigenfrequencies(m, n_modes=30)
-    np.testing.assert_allclose(platform_participation(m, f), _participation_mode_by_mode(m, f),
-                               rtol=0, atol=1e-12)
-    pole = np.pi * np.sqrt(m.params[0].T / m.params[0].m) / m.params[0].L / (2 * np.pi)
-    g = np.sort(np.concatenate([f[:5], [pole, pole * (1 + 3e-7)]]))
-    np.testing.assert_allclose(platform_participation(m, g), _participation_mode_by_mode(m, g),
-                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(fast["platform_share"], ref["platform_share"], rtol=0,
+                               atol=1e-7)

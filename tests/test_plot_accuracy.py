@@ -10,9 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.text import Annotation  # noqa: E402
 
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import (  # noqa: E402
-    plot_speed_accuracy,
-)
+from dynstiff.plot import plot_speed_accuracy  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

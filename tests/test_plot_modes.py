@@ -10,9 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import (  # noqa: E402
-    plot_modes,
-)
+from dynstiff.plot import plot_modes  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
@@ -43,17 +41,21 @@ def test_cable_modes_and_damped_modes_plot(cogiro_eq):
 
 
 # ----------------------------------------------------------- results that draw themselves
-def test_modal_result_plot_shows_each_mode_at_its_cable_share(cogiro_model):
+def test_modal_result_plot_shows_each_mode_at_its_platform_share(cogiro_model):
+    """One stem per mode, at its frequency, up to its platform share, in the colour of its
+    kind (global, mixed, local: all three among CoGiRo's first 12 modes)."""
     md = ds.modes(cogiro_model, 12)
     ax = md.plot().axes[0]
-    glob, loc = by_gid(ax, "modes-global"), by_gid(ax, "modes-local")
-    assert len(glob) == 1 and len(loc) == 1
-    segs = np.concatenate([glob[0].get_segments(), loc[0].get_segments()])
+    groups = {k: by_gid(ax, f"modes-{k}") for k in ("global", "mixed", "local")}
+    assert all(len(g) == 1 for g in groups.values())
+    segs = np.concatenate([g[0].get_segments() for g in groups.values()])
     assert len(segs) == len(md)
-    # each stem stands at its mode's frequency and rises to its cable energy fraction
     got = sorted((s[0, 0], s[1, 1]) for s in segs)
-    want = sorted(zip(md.freq_hz, md.cable_energy_fraction))
+    want = sorted(zip(md.freq_hz, md.platform_share))
     np.testing.assert_allclose(got, want, rtol=1e-12)
+    for k, g in groups.items():
+        xs = np.sort([s[0, 0] for s in g[0].get_segments()])
+        np.testing.assert_allclose(xs, np.sort(md.freq_hz[np.array(md.kind) == k]))
 
 
 def test_equilibrium_plot_bars_are_the_tensions_and_the_limits(cogiro_eq):

@@ -10,9 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import (  # noqa: E402
-    plot_veering,
-)
+from dynstiff.plot import plot_veering  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

@@ -9,9 +9,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import (  # noqa: E402
-    plot_spectrum,
-)
+from dynstiff.plot import plot_spectrum  # noqa: E402
 from dynstiff.timedomain.response import Spectrum  # noqa: E402
 
 
@@ -74,6 +72,6 @@ def test_spectrum_of_a_simulation_marks_model_modes():
     marks = by_gid(ax, "mode-marker")
     assert len(marks) == np.sum(modes.freq_hz <= 10.0)
     colours = {matplotlib.colors.to_hex(m.get_color()) for m in marks}
-    assert colours <= {matplotlib.colors.to_hex(c) for c in ("tab:red", "tab:blue")}
+    assert colours <= {matplotlib.colors.to_hex(c) for c in ("tab:red", "tab:purple", "tab:blue")}
 
 

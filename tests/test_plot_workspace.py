@@ -11,11 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot.workspace import (
-    plot_workspace_3d,
-    plot_workspace_slices,
-    worst_case,
-)
+from dynstiff.plot.workspace import plot_workspace_3d, plot_workspace_slices, worst_case
 
 
 def synthetic_map():
@@ -28,7 +24,7 @@ def synthetic_map():
     f1 = np.where(feas, f1, np.nan)
     dyn = feas & (f1 > 3.2)
     dims = ("x", "y", "z", "parameter")
-    return xr.Dataset({"first_global_hz": (dims, f1), "band_margin": (dims, f1 / 1.5 - 1),
+    return xr.Dataset({"first_platform_hz": (dims, f1), "band_margin": (dims, f1 / 1.5 - 1),
                        "dynamic": (dims, dyn), "feasible": (dims, feas)},
                       coords={"x": x, "y": y, "z": z, "parameter": p},
                       attrs={"robot": "test", "margin": 0.05, "band_hz": [0.0, 1.5]})

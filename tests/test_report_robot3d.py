@@ -13,7 +13,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
-from dynstiff.analyses.eigen import cable_fields  # noqa: E402
+from dynstiff.analyses.modes import cable_fields
 from dynstiff.errors import InvalidParameterError  # noqa: E402
 from dynstiff.report.robot3d import animate_mode, plot_robot  # noqa: E402
 

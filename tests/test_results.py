@@ -73,3 +73,19 @@ def test_modal_table_units_and_shift(cogiro_model):
     np.testing.assert_allclose(md.shift_from_massless[g],
                                md.freq_hz[g] / md.massless_freq_hz[g] - 1, rtol=1e-15)
     assert np.all(np.isnan(md.shift_from_massless[~g]))
+
+
+def test_one_labelling_by_platform_share():
+    """mode_kinds: "global" from a platform share of 0.5, "mixed" from 0.05, "local" below
+    (theory.md §12.1); a ModalResult takes its kind from its cable fraction when none is
+    given."""
+    from dynstiff.constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
+    from dynstiff.results import mode_kinds
+    assert mode_kinds([0.0, 0.0499, 0.05, 0.4999, 0.5, 1.0]) == (
+        "local", "local", "mixed", "mixed", "global", "global")
+    assert (PLATFORM_SHARE_THRESHOLD, GLOBAL_SHARE) == (0.05, 0.5)
+    res = ds.ModalResult(freq_hz=np.array([1.0, 2.0, 3.0]), platform_shapes=np.zeros((3, 6)),
+                         cable_energy_fraction=np.array([0.01, 0.6, 0.97]),
+                         cable_energy=np.zeros((3, 1)))
+    assert res.kind == ("global", "mixed", "local")
+    assert np.isnan(res.massless_freq_hz).all() and np.isnan(res.participation).all()

@@ -49,11 +49,7 @@ import time
 import numpy as np
 import pandas as pd
 
-from dynstiff.cable.dsm import (
-    ChordParameters,
-    local_end_stiffness,
-    local_two_end_stiffness,
-)
+from dynstiff.cable.dsm import ChordParameters, local_end_stiffness, local_two_end_stiffness
 from dynstiff.cable.mpmath_reference import (
     end_stiffness_mp,
     irvine_symmetric_roots_mp,

@@ -46,9 +46,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from dynstiff.analyses.damped import damped_modes
-from dynstiff.analyses.eigen import modes
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
+from dynstiff.analyses.modes import modes
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 

@@ -1,12 +1,12 @@
 """Complex natural frequencies of the damped robot (convention e^{i omega t}, theory.md §5.4).
 
-Seeded by the undamped modes of :func:`dynstiff.analyses.eigen.modes`, for a model of any rung whose
+Seeded by the undamped modes of :func:`dynstiff.analyses.modes.modes`, for a model of any rung whose
 ``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.models.base`).
 """
 
 import numpy as np
 
-from dynstiff.analyses.eigen import modes
+from dynstiff.analyses.modes import modes
 from dynstiff.results import DampedModes
 
 __all__ = ["damped_modes", "DampedModes"]

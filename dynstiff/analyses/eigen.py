@@ -29,17 +29,12 @@ from dynstiff import compiled
 from dynstiff._validate import MAX_OMEGA, omega_array
 from dynstiff.analyses import eigen_matrix
 from dynstiff.cable.psi import check_frequency_range
-from dynstiff.errors import (
-    ConvergenceError,
-    InvalidParameterError,
-    UnsupportedAnalysisError,
-)
+from dynstiff.errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
 from dynstiff.models.base import require_model
 from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import ModalResult
 
-__all__ = ["eigenfrequencies", "modes", "mode_count", "cable_fields", "ModalResult",
-           "METHODS"]
+__all__ = ["eigenfrequencies", "mode_count", "ModalResult", "METHODS"]
 
 _TWO_PI = 2.0 * np.pi
 #: Eigen solvers: "auto" (the matrix solver for discrete rungs, W-W otherwise), "matrix",
@@ -53,7 +48,7 @@ def _real_symmetric(K):
     return 0.5 * (K + np.swapaxes(K, -1, -2))
 
 
-def _validated_request(n_modes, fmax_hz):
+def validated_request(n_modes, fmax_hz):
     """Check ``n_modes`` (integer >= 1 or None) and ``fmax_hz`` (finite > 0 or None), one
     given at least; returns them as (int or None, float or None)."""
     if n_modes is None and fmax_hz is None:
@@ -78,7 +73,7 @@ def _validated_request(n_modes, fmax_hz):
     return n_modes, fmax_hz
 
 
-def _method(model, method):
+def checked_method(model, method):
     require_model(model)
     if method not in METHODS:
         raise InvalidParameterError(f"method must be one of {METHODS}, got {method!r}")
@@ -177,7 +172,7 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
         Bad ``n_modes``, ``fmax_hz``, ``rtol`` or ``method``; ``n_modes`` larger than a
         discrete rung's number of DOFs.
     """
-    n_modes, fmax_hz = _validated_request(n_modes, fmax_hz)
+    n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
     if not (isinstance(rtol, Real) and 0 < rtol < 1e-2):
         raise InvalidParameterError(f"rtol must be a number in (0, 1e-2), got {rtol!r}")
     if isinstance(max_modes, bool) or not isinstance(max_modes, Integral) or max_modes < 1:
@@ -186,8 +181,13 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
         raise InvalidParameterError(
             f"n_modes = {n_modes} is more than max_modes = {max_modes}; raise max_modes to "
             f"compute them")
-    if _method(model, method) == "matrix":
-        return eigen_matrix.eigenfrequencies(model.undamped(), n_modes, fmax_hz)
+    if checked_method(model, method) == "matrix":
+        f = eigen_matrix.eigenfrequencies(model.undamped(), n_modes, fmax_hz)
+        if f.size > max_modes:
+            raise InvalidParameterError(
+                f"fmax_hz = {fmax_hz:g} Hz holds {f.size} modes, more than max_modes = "
+                f"{max_modes}; lower fmax_hz or raise max_modes")
+        return f
     m = model.undamped()
     count = _counter(m)
     if fmax_hz is not None:
@@ -352,119 +352,5 @@ def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=200):
                 f"the regula falsi left the bracket [{lo[k]:.12g}, {hi[k]:.12g}] rad/s wider "
                 f"than rtol = {rtol:g} after {max_iter} steps", residual=(hi[k] - lo[k]) / hi[k])
     return 0.5 * (lo + hi)
-
-
-
-# ------------------------------------------------------------------------- mode shapes
-def cable_fields(model, modes, k, n_points=41):
-    """Cable displacement fields of mode ``k`` (platform-moving modes), global frame.
-
-    Parameters
-    ----------
-    model : model with closed-form cable fields (the "dsm" rung)
-    modes : ModalResult
-        From :func:`modes` of the same model.
-    k : int
-        Mode index (0-based).
-    n_points : int
-        Points per cable, from anchor to attachment.
-
-    Returns
-    -------
-    positions : ndarray, shape (n_cables, n_points, 3)
-        Points on the chords [m].
-    displacements : ndarray, shape (n_cables, n_points, 3)
-        Mode displacement [m] for the platform shape ``modes.platform_shapes[k]``; zero for a
-        purely local mode (platform at rest), whose cable shape is the clamped-clamped one.
-
-    Raises
-    ------
-    UnsupportedAnalysisError
-        The rung has no continuous cable field (massless cables; the lumped rung gives its
-        node motions in ``modes(...).node_shapes``).
-    """
-    if not hasattr(model, "cable_displacements"):
-        raise UnsupportedAnalysisError(
-            f"cable_fields needs closed-form cable fields (rung 'dsm'); the {model.rung!r} "
-            f"model has none" + (": its node motions are modes(model, ...).node_shapes"
-                                 if model.rung == "lumped" else " (massless cables)"))
-    return model.cable_displacements(_TWO_PI * modes.freq_hz[k], modes.platform_shapes[k],
-                                     n_points)
-
-
-def modes(model, n_modes=None, fmax_hz=None, method="auto"):
-    """Natural frequencies with platform shapes, energy fractions and global/local labels.
-
-    For a discrete rung (``method`` "auto" or "matrix"), the mode vectors of the finite
-    eigenproblem (:func:`dynstiff.analyses.eigen_matrix.modes`). Otherwise the platform shape at
-    omega_r is the eigenvector of K(omega_r) with the smallest |eigenvalue|; at a root that
-    sits on a cable pole with the platform at rest (a purely local mode, counted by J0), the
-    platform shape is zero and the mode is all cable. Kinetic energies: platform x^T M_p x,
-    cables from the rung's ``cable_kinetic_energies`` (closed-form fields, theory.md §6).
-    Global modes are matched to the massless-cable model by mass-weighted MAC.
-
-    Parameters
-    ----------
-    model : model of any rung
-    n_modes, fmax_hz : as :func:`eigenfrequencies`
-    method : {"auto", "matrix", "wittrick-williams"}
-
-    Returns
-    -------
-    ModalResult (LumpedModalResult for the lumped rung, with node motions)
-    """
-    n_modes, fmax_hz = _validated_request(n_modes, fmax_hz)
-    if _method(model, method) == "matrix":
-        return eigen_matrix.modes(model.undamped(), n_modes, fmax_hz)
-    if not hasattr(model, "cable_kinetic_energies"):
-        raise UnsupportedAnalysisError(
-            f"modes by Wittrick-Williams need the cables' kinetic energy of a continuous rung; "
-            f"use method='matrix' for the {model.rung!r} model")
-    m = model.undamped()
-    f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz, method="wittrick-williams")
-    w = _TWO_PI * f
-    fi = m.free_index
-    nf = m.n_free
-    Mf = m.platform_mass
-    # massless model: generalized eigenproblem
-    from scipy.linalg import eigh
-    lam0, X0 = eigh(m.massless_stiffness(), Mf)       # massless-cable model
-    f0 = np.sqrt(np.maximum(lam0, 0.0)) / _TWO_PI
-    shapes = np.zeros((len(f), 6))
-    E_cab = np.zeros((len(f), m.robot.n_cables))
-    frac = np.zeros(len(f))
-    kinds, f_massless = [], np.full(len(f), np.nan)
-    K = m.dynamic_stiffness(w) if len(w) else np.zeros((0, nf, nf))
-    J0_lo = m.cable_mode_count(w * (1 - 1e-9)) if len(w) else []
-    J0_hi = m.cable_mode_count(w * (1 + 1e-9)) if len(w) else []
-    K_static = m.massless_stiffness()
-    scale = np.abs(np.linalg.eigvalsh(K_static)).max()
-    for k in range(len(f)):
-        Kk = K[k]
-        finite = np.all(np.isfinite(Kk))
-        ev, V = np.linalg.eigh(Kk) if finite else (None, None)
-        on_pole = J0_hi[k] > J0_lo[k]
-        if on_pole and (not finite or np.abs(ev).min() > 1e-6 * scale):
-            x = np.zeros(nf)             # purely local cable mode, platform at rest
-            frac[k] = 1.0
-            kinds.append("local")
-            continue
-        x = V[:, np.argmin(np.abs(ev))]
-        x = x / np.sqrt(x @ Mf @ x)
-        full = np.zeros(6)
-        full[fi] = x
-        shapes[k] = full
-        E_cab[k] = m.cable_kinetic_energies(w[k], full)
-        total = 1.0 + E_cab[k].sum()
-        frac[k] = E_cab[k].sum() / total
-        E_cab[k] /= total
-        if frac[k] < 0.5:
-            kinds.append("global")
-            mac = (X0.T @ Mf @ x) ** 2
-            f_massless[k] = f0[int(np.argmax(mac))]
-        else:
-            kinds.append("local")
-    return ModalResult(freq_hz=f, platform_shapes=shapes, cable_energy_fraction=frac,
-                       cable_energy=E_cab, kind=tuple(kinds), massless_freq_hz=f_massless)
 
 

@@ -3,7 +3,7 @@
 For models with ``matrices()`` ("spring", "catenary", "lumped"; :mod:`dynstiff.models.base`):
 dense ``eigh`` for small models, sparse shift-invert Lanczos otherwise (theory.md §7.1-§7.2).
 Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and
-:func:`dynstiff.analyses.eigen.modes`.
+:func:`dynstiff.analyses.modes.modes`.
 """
 
 import numpy as np
@@ -11,7 +11,7 @@ import numpy as np
 from dynstiff.errors import InvalidParameterError
 from dynstiff.results import LumpedModalResult, ModalResult
 
-__all__ = ["eig", "eigenfrequencies", "modes", "count_below"]
+__all__ = ["eig", "eigenfrequencies", "modes", "count_below", "massless_pairing"]
 
 _TWO_PI = 2.0 * np.pi
 #: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
@@ -122,7 +122,6 @@ def modes(model, n_modes=None, fmax_hz=None):
         Platform shapes (n, 6), held DOFs 0, normalised to x^T M_p x = 1 (0 if the
         platform does not move at all).
     """
-    import scipy.linalg
     lam, V = _lowest(model, n_modes, fmax_hz)
     n = lam.size
     nf, fi = model.n_free, model.free_index
@@ -136,17 +135,44 @@ def modes(model, n_modes=None, fmax_hz=None):
     moving = E_p > 1e-24 * total
     shapes = np.zeros((n, 6))
     shapes[np.ix_(moving, fi)] = (X[:, moving] / np.sqrt(E_p[moving])).T
-    kinds = tuple("global" if f < 0.5 else "local" for f in frac)
-    lam0, X0 = scipy.linalg.eigh(model.massless_stiffness(), Mp)
-    f0 = _to_hz(lam0)
-    f_massless = np.full(n, np.nan)
-    for k in np.flatnonzero(np.array(kinds) == "global"):
-        f_massless[k] = f0[int(np.argmax((X0.T @ Mp @ shapes[k, fi]) ** 2))]
+    M6 = np.zeros((6, 6))            # the platform block of the model's mass (participation)
+    M6[np.ix_(fi, fi)] = _dense(model.matrices()[1][:nf, :nf])
     fields = dict(freq_hz=freq, platform_shapes=shapes, cable_energy_fraction=frac,
-                  cable_energy=E_cab / total[:, None], kind=kinds, massless_freq_hz=f_massless)
+                  cable_energy=E_cab / total[:, None], platform_mass=M6)
+    fields["massless_freq_hz"] = massless_pairing(ModalResult(**fields),
+                                                  model.massless_stiffness(), Mp, fi)
     if not hasattr(model, "node_shapes"):
         return ModalResult(**fields)
     node_shapes = model.node_shapes(V)
     for a in node_shapes:
         a.setflags(write=False)
     return LumpedModalResult(**fields, node_shapes=node_shapes)
+
+
+def massless_pairing(modes, K0, Mp, free_index):
+    """The frequency [Hz] of the massless-cable mode paired with each global mode of
+    ``modes``, NaN for the others: a one-to-one assignment (Hungarian) that maximises the
+    summed mass-weighted MAC (x_k^T M_p X0_j)^2 of the pairs, a pair kept from MAC 0.5.
+
+    Parameters
+    ----------
+    modes : ModalResult
+    K0 : ndarray, shape (nf, nf)
+        The massless-cable stiffness on the free DOFs [N/m, N, N m].
+    Mp : ndarray, shape (nf, nf)
+        The platform mass on the free DOFs.
+    free_index : ndarray of int
+    """
+    import scipy.linalg
+    from scipy.optimize import linear_sum_assignment
+    out = np.full(len(modes), np.nan)
+    glob = np.flatnonzero(np.array(modes.kind) == "global")
+    if not glob.size:
+        return out
+    lam0, X0 = scipy.linalg.eigh(0.5 * (K0 + K0.T), Mp)
+    X = np.asarray(modes.platform_shapes)[np.ix_(glob, free_index)]
+    mac = (X @ Mp @ X0) ** 2
+    rows, cols = linear_sum_assignment(-mac)
+    keep = mac[rows, cols] >= 0.5
+    out[glob[rows[keep]]] = _to_hz(lam0)[cols[keep]]
+    return out

@@ -94,8 +94,8 @@ def _check_modes(modes):
     return f, kind
 
 
-def proximity_warnings(modes, rtol=0.05, warn=False):
-    """Local modes within a relative frequency gap of a global mode.
+def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
+    """Local modes within a relative frequency gap of a global (platform) mode.
 
     A local cable mode near a global platform mode acts as a tuned absorber on it
     (theory.md §6): the platform response splits into two peaks and the modes veer. Every
@@ -110,11 +110,16 @@ def proximity_warnings(modes, rtol=0.05, warn=False):
     Parameters
     ----------
     modes : ModalResult
-        From :func:`dynstiff.analyses.eigen.modes`.
+        From :func:`dynstiff.analyses.modes.modes`.
     rtol : float
         Largest relative gap [-], > 0 (default 0.05).
     warn : bool
         Also issue each pair as a :class:`ProximityWarning` (``warnings.warn``).
+    platform : array_like of int, optional
+        Indices (0-based) into ``modes`` of the platform modes to compare with (default:
+        the global modes); for example ``PlatformModes.index``
+        (:mod:`dynstiff.analyses.platform_modes`), which holds each DOF's carrier also
+        when no mode is global. The local modes are those of kind "local".
 
     Returns
     -------
@@ -129,7 +134,13 @@ def proximity_warnings(modes, rtol=0.05, warn=False):
     """
     rtol = positive_scalar("rtol", rtol)
     f, kind = _check_modes(modes)
-    ig = np.flatnonzero(kind == "global")
+    if platform is None:
+        ig = np.flatnonzero(kind == "global")
+    else:
+        ig = np.unique(np.asarray(platform, dtype=int))
+        if ig.size and (ig.min() < 0 or ig.max() >= f.size):
+            raise InvalidParameterError(
+                f"platform must index the {f.size} modes, got {np.asarray(platform).tolist()}")
     il = np.flatnonzero(kind == "local")
     if ig.size == 0 or il.size == 0:
         return []

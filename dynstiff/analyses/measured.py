@@ -390,7 +390,7 @@ def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
     measured = measured if isinstance(measured, MeasuredModes) else MeasuredModes(measured)
     md = model_or_modes
     if not hasattr(md, "platform_shapes"):
-        from dynstiff.analyses.eigen import modes
+        from dynstiff.analyses.modes import modes
         md = modes(model_or_modes, fmax_hz=fmax_hz or 1.5 * measured.freq_hz.max())
     idx, mac = pair_modes(md, measured, pairing)
     return ModeComparison(measured_hz=measured.freq_hz, model_hz=md.freq_hz[idx],

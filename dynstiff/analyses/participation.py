@@ -1,140 +1,144 @@
 """Platform participation of the modes, and the platform's dynamic amplification in a band.
 
-A mode's *platform share* is the platform's part of its kinetic energy,
-1 - (cable energy fraction) (theory.md §6); its *participation in DOF j* splits that share
-over the platform DOFs in proportion to M_jj x_j^2 (x the platform shape, M_p the platform
-mass matrix; the diagonal split is never negative and sums to the share). Modes are
+A mode's *platform share* s is the platform's part of its kinetic energy (theory.md §6);
+its *participation* in free DOF j is its effective-mass fraction
+p_j = (M_p x)_j^2 s / (M_p)_jj, x the shape at unit platform kinetic energy (theory.md
+§12.1): over all the modes of a robot each DOF's participations sum to 1, so they say where
+the platform's mass went even when no mode is platform-dominated (heavy cables). Modes are
+labelled by share alone (:func:`dynstiff.results.mode_kinds`):
 
 ==========  ========================================  ===================================
-category    platform share s                           what it means
+kind        platform share s                           what it means
 ==========  ========================================  ===================================
 "global"    s >= GLOBAL_SHARE (0.5)                   the platform holds most energy
 "mixed"     PLATFORM_SHARE_THRESHOLD <= s < 0.5       a cable mode that moves the platform
 "local"     s < PLATFORM_SHARE_THRESHOLD (0.05)       the cables vibrate, the platform not
 ==========  ========================================  ===================================
 
-The design checks hold every global *and* mixed mode to the frequency margin
-(theory.md §12.1 gives the evidence for 0.05).
+:func:`modal_data` gives the modes every verdict uses: :func:`dynstiff.modes` for every
+rung, or for the undamped closed form the same frequencies with the shares from the
+derivative of K(omega) (:func:`platform_shares`, docs/theory.md §13.3), which is faster.
 """
-
-from dataclasses import dataclass
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.freqgrid import refined_grid
 from dynstiff.analyses.frf import frf
+from dynstiff.analyses.modes import modes as modal
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
-from dynstiff.errors import InvalidParameterError
+from dynstiff.results import ModalResult
 
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
-           "Participation", "platform_participation", "categories", "receptance_amplification"]
+           "modal_data", "platform_shares", "receptance_amplification"]
 
 #: Largest admissible ratio of a direct platform receptance in the forbidden band to its
 #: static value [-] (theory.md §12.1).
 FRF_AMPLIFICATION_LIMIT = 10.0
 
-
-def categories(share, threshold=PLATFORM_SHARE_THRESHOLD):
-    """"global", "mixed" or "local" for each platform share [-] (module table)."""
-    threshold = positive_scalar("threshold", threshold)
-    if not threshold <= GLOBAL_SHARE:
-        raise InvalidParameterError(
-            f"threshold must be <= {GLOBAL_SHARE} (the global share), got {threshold!r}")
-    s = np.asarray(share, dtype=float)
-    return tuple("global" if v >= GLOBAL_SHARE else "mixed" if v >= threshold else "local"
-                 for v in s.ravel())
+_FD_STEP = 1e-6        # relative frequency step of the derivative of K(omega) in omega^2
 
 
-@dataclass(frozen=True)
-class Participation:
-    """Platform participation of each mode.
-
-    Attributes
-    ----------
-    freq_hz : ndarray, shape (n,)
-        Natural frequencies [Hz].
-    platform_share : ndarray, shape (n,)
-        Platform kinetic energy / total kinetic energy [-].
-    dof_share : ndarray, shape (n, 6)
-        The share split over x y z rx ry rz (held DOFs 0) [-]; rows sum to platform_share.
-    category : tuple of str
-        "global", "mixed" or "local" (module table).
-    threshold : float
-        Share from which a mode is "mixed" [-].
-    """
-
-    freq_hz: np.ndarray
-    platform_share: np.ndarray
-    dof_share: np.ndarray
-    category: tuple
-    threshold: float
-
-    def __len__(self):
-        return len(self.freq_hz)
-
-    def __repr__(self):
-        n = {c: sum(k == c for k in self.category) for c in ("global", "mixed", "local")}
-        return (f"Participation({len(self)} modes: {n['global']} global, {n['mixed']} mixed, "
-                f"{n['local']} local; mixed from platform share {self.threshold:g})")
-
-    @property
-    def checked(self):
-        """Boolean mask of the modes held to the frequency margin (global and mixed)."""
-        return self.platform_share >= self.threshold
-
-    def dominant_dof(self):
-        """Name of the DOF with the largest participation of each mode ("-" if none)."""
-        return tuple(DOF_NAMES[int(np.argmax(r))] if r.max() > 0 else "-"
-                     for r in self.dof_share)
-
-    def to_frame(self):
-        """pandas DataFrame, one row per mode: frequency, share, category, DOF shares."""
-        import pandas as pd
-        df = pd.DataFrame({"mode": np.arange(1, len(self) + 1), "freq [Hz]": self.freq_hz,
-                           "platform share [-]": self.platform_share,
-                           "category": list(self.category)})
-        for k, name in enumerate(DOF_NAMES):
-            df[f"share {name} [-]"] = self.dof_share[:, k]
-        return df
+def _quadratic(x, A):
+    """x_k^T A_k x_k for x (n, m) and A (n, m, m), each as ``x[k] @ A[k] @ x[k]`` (the same
+    products, so the same rounding, as one mode at a time: the form is close to
+    cancellation, and the order of its sums moves it by 1e-9)."""
+    return np.array([xk @ Ak @ xk for xk, Ak in zip(x, A)])
 
 
-def platform_participation(model, modes, threshold=PLATFORM_SHARE_THRESHOLD):
-    """Platform share and per-DOF participation of the modes of ``model``.
+def platform_shares(model, freq_hz):
+    """Platform share of the kinetic energy [-] and platform shape of the modes of an
+    undamped closed-form model at ``freq_hz``, without the cable fields.
+
+    For an exact dynamic stiffness the total modal mass is -x^T dK/d(omega^2) x
+    (docs/theory.md §13.3), so the share is x^T M_p x / (-x^T dK/d(omega^2) x), x the null
+    vector of K(omega_r). The derivative is a central difference in omega^2 with steps
+    1e-6 and 5e-7 (relative), Richardson-extrapolated: all modes in one call of
+    ``dynamic_stiffness``. A mode with a cable pole within the steps takes the closed-form
+    cable energies instead (``cable_kinetic_energies``, as :func:`dynstiff.modes`); a mode
+    on a cable pole with the platform at rest has share 0. The modes' null vectors come
+    from one batched ``eigh`` (docs/theory.md §13.6).
 
     Parameters
     ----------
-    model : model of any rung (:mod:`dynstiff.models.base`)
-        Gives the platform mass matrix on the free DOFs.
-    modes : ModalResult
-        From :func:`dynstiff.modes` of the same model.
-    threshold : float
-        Platform share from which a mode is "mixed" [-].
+    model : FrequencyModel (closed-form rung, undamped)
+    freq_hz : ndarray, shape (n,)
+        Natural frequencies [Hz].
 
     Returns
     -------
-    Participation
+    share : ndarray, shape (n,)
+        [-]
+    shapes : ndarray, shape (n, 6)
+        Platform shapes at unit platform kinetic energy (held DOFs and local modes 0).
     """
-    share = np.clip(1.0 - np.asarray(modes.cable_energy_fraction, dtype=float), 0.0, 1.0)
-    fi = model.free_index
-    diag = np.diag(model.platform_mass)
-    x = np.asarray(modes.platform_shapes)[:, fi]
-    e = diag[None, :] * x**2
-    tot = e.sum(axis=1, keepdims=True)
-    dof = np.zeros((len(share), 6))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        dof[:, fi] = np.where(tot > 0, e / np.where(tot > 0, tot, 1.0), 0.0) * share[:, None]
-    return Participation(freq_hz=np.asarray(modes.freq_hz, dtype=float), platform_share=share,
-                         dof_share=dof, category=categories(share, threshold),
-                         threshold=float(threshold))
+    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
+    n = w.size
+    out, shapes = np.zeros(n), np.zeros((n, 6))
+    if n == 0:
+        return out, shapes
+    h = _FD_STEP
+    steps = np.array([1.0, 1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
+    K = model.dynamic_stiffness(w)
+    Ks = model.dynamic_stiffness(np.outer(steps[1:5], w).ravel()).reshape(4, n, *K.shape[1:])
+    J0 = model.cable_mode_count(np.outer(steps[1:], w).ravel()).reshape(6, n)
+    Mp = model.platform_mass
+    fin = np.flatnonzero(np.all(np.isfinite(K), axis=(1, 2)))
+    if not fin.size:
+        return out, shapes
+    ev, V = np.linalg.eigh(K[fin])
+    least = np.abs(ev).min(axis=1)
+    pole = J0[4, fin] > J0[5, fin]             # a cable pole at the root
+    if np.any(pole):
+        scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+        keep = ~pole | (least <= 1e-6 * scale)
+        fin, ev, V = fin[keep], ev[keep], V[keep]  # else local mode, platform at rest
+    x = np.array([v[:, j] / np.sqrt(v[:, j] @ Mp @ v[:, j])
+                  for v, j in zip(V, np.argmin(np.abs(ev), axis=1))]).reshape(-1, Mp.shape[0])
+    wk = w[fin]
+    d1 = (Ks[0, fin] - Ks[1, fin]) / (wk**2 * ((1 + h) ** 2 - (1 - h) ** 2))[:, None, None]
+    d2 = (Ks[2, fin] - Ks[3, fin]) / (wk**2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))[:, None,
+                                                                                    None]
+    out[fin] = 1.0 / -_quadratic(x, (4.0 * d2 - d1) / 3.0)
+    shapes[np.ix_(fin, model.free_index)] = x
+    for j in np.flatnonzero(J0[0, fin] != J0[1, fin]):     # a cable pole within the steps
+        out[fin[j]] = 1.0 / (1.0 + model.cable_kinetic_energies(w[fin[j]], shapes[fin[j]]).sum())
+    return out, shapes
+
+
+def modal_data(model, fmax_hz, max_modes=20000):
+    """Every mode of ``model`` below ``fmax_hz`` [Hz], with shapes, shares and participation:
+    the modes every verdict is taken from (a design check, a map, a report).
+
+    :func:`dynstiff.modes` for every rung but the undamped closed form, whose shares come
+    from :func:`platform_shapes` (faster; the same frequencies, shares within 1e-8,
+    ``cable_energy`` NaN). Coincident roots of the closed form go through
+    :func:`dynstiff.modes` too (their shapes need the null space of K).
+
+    Returns
+    -------
+    ModalResult
+    """
+    m = model.undamped()
+    if m.rung != "dsm" or type(m).__name__ != "FrequencyModel":
+        return modal(m, fmax_hz=fmax_hz, max_modes=max_modes)
+    f = eigenfrequencies(m, fmax_hz=fmax_hz, max_modes=max_modes)
+    if f.size > 1 and np.any(np.diff(f) <= 1e-8 * f[1:]):
+        return modal(m, fmax_hz=fmax_hz, max_modes=max_modes)
+    share, shapes = platform_shares(m, f)
+    Mp = np.zeros((6, 6))
+    Mp[np.ix_(m.free_index, m.free_index)] = m.platform_mass
+    return ModalResult(freq_hz=f, platform_shapes=shapes, cable_energy_fraction=1.0 - share,
+                       cable_energy=np.full((f.size, m.robot.n_cables), np.nan),
+                       platform_mass=Mp)
 
 
 def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 
     |H_jj(f)| / |H_jj(0)| over the free DOFs j and the frequencies of
-    :func:`dynstiff.analyses.freqgrid.refined_grid` (uniform, plus clusters at ``modes_hz``), for
-    the (damped) ``model``; an undamped model at a resonance gives inf.
+    :func:`dynstiff.analyses.freqgrid.refined_grid` (uniform, plus clusters at
+    ``modes_hz``), for the (damped) ``model``; an undamped model at a resonance gives inf.
 
     Parameters
     ----------

@@ -34,7 +34,7 @@ from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS
 from dynstiff.models.static import StaticCableModel
 
-__all__ = ["Recommendation", "recommend_model", "predicted_errors"]
+__all__ = ["Recommendation", "estimated_error", "recommend_model", "predicted_errors"]
 
 _COST_ORDER = {r: i for i, r in enumerate(RUNGS)}
 #: Relative frequency error of the "exact" rung in its band: the rounding floor of its
@@ -135,6 +135,94 @@ def _dsm_error(equilibrium, band_hz):
     return err, float(eps_max), causes
 
 
+def _massless_errors(equilibrium, w_hi, n_cable):
+    """(catenary, spring) predicted errors up to w_hi [rad/s]: inf with cable modes below
+    it (they miss them), else the first-order shift of the massless modes by the cables'
+    inertia, the spring adding its measured gap to the catenary (module docstring)."""
+    if n_cable > 0:
+        return np.inf, np.inf
+    cat = StaticCableModel(equilibrium, "catenary")
+    spr = StaticCableModel(equilibrium, "spring")
+    import scipy.linalg
+    lam, X = scipy.linalg.eigh(cat.K, cat.platform_mass)
+    w = np.sqrt(np.maximum(lam, 0.0))
+    # first-order shift of every massless mode below 1.5 x the band top; a mode counts if
+    # its shifted frequency lies in the band (heavy cables can pull one into it)
+    sel = w <= w_hi * 1.5
+    if not np.any(sel):
+        return 0.0, 0.0
+    import warnings
+    with warnings.catch_warnings():       # a prediction: the guard speaks where it is used
+        warnings.simplefilter("ignore", ClosedFormWarning)
+        dsm = FrequencyModel(equilibrium)
+        # cable part of the DSM robot matrix (it includes -omega^2 M_p) minus the static one
+        Kd = dsm.dynamic_stiffness(w[sel]).real + (w[sel] ** 2)[:, None, None] * cat.platform_mass
+    dK = Kd - cat.K[None]
+    Xs = X[:, sel]
+    shift = (np.einsum("ik,kij,jk->k", Xs, dK, Xs)
+             / (2 * w[sel] ** 2 * np.einsum("ik,ij,jk->k", Xs, cat.platform_mass, Xs)))
+    inband = w[sel] * (1 + np.minimum(shift, 0.0)) <= w_hi
+    if not np.any(inband):
+        return 0.0, 0.0
+    catenary = float(np.abs(shift[inband]).max())
+    fs = eigenfrequencies(spr, n_modes=spr.n_free)[sel][inband]
+    fc = (w[sel] / (2 * np.pi))[inband]
+    return catenary, float(np.max(np.abs(fs / fc - 1))) + catenary
+
+
+def estimated_error(model, band_hz):
+    """The relative frequency error of ``model``'s cable theory up to the top of ``band_hz``,
+    estimated without a richer model (the cable-model verdict of the design checks and
+    maps, theory.md §12.1): the massless rungs and the lumped rung as
+    :func:`predicted_errors`; the closed form as its guard (theory.md §11.5): the larger of
+    its static error (:meth:`dynstiff.FrequencyModel.static_error`) and, for every cable
+    with local modes below the band's top, the envelope of its clamped frequencies' error,
+    measured against the exact cable where the envelope exceeds 1e-2 (inf for a slack cable
+    or axial modes in the band); the exact rung its discretisation floor.
+
+    Parameters
+    ----------
+    model : model of any rung
+    band_hz : (float, float)
+        [Hz]
+
+    Returns
+    -------
+    error : float
+        [-] (inf: the model misses modes in the band or does not apply).
+    cause : str
+        What dominates it, in words.
+    """
+    from dynstiff.cable.guard import closed_form_local_error
+    eq = model.equilibrium
+    w_hi = 2 * np.pi * float(band_hz[1])
+    if model.rung == "exact":
+        return EXACT_ERROR, "the exact cables' discretisation"
+    if model.rung == "lumped":
+        harm = max(2 * float(band_hz[1]) * np.linalg.norm(x[-1] - x[0])
+                   * np.sqrt(c.mass_per_length / t)                 # Omega / pi at the top
+                   for x, c, t in zip(eq.nodes, model.robot.cables, eq.end_tensions))
+        n_seg = int(np.min(model.segments))
+        return (float((max(1.0, harm) * np.pi / n_seg) ** 2 / 24),
+                f"{n_seg} segments per cable against the highest cable harmonic in the band")
+    if model.rung in ("spring", "catenary"):
+        n_cable = int(sum(cable_mode_count(s, w_hi)[0] for s in eq.states))
+        err = _massless_errors(eq, w_hi, n_cable)[0 if model.rung == "catenary" else 1]
+        return err, (f"{n_cable} cable modes in the band, which the massless cables miss"
+                     if n_cable else "the cables' inertia shifts the platform modes")
+    err, cause = model.static_error()[0], "the closed form's static stiffness"
+    for i, s in enumerate(eq.states):
+        v = closed_form_validity(s, w_hi)
+        if not np.isfinite(v.error):
+            return np.inf, f"cable {i}: " + "; ".join(v.reasons(1e-2))
+        if cable_mode_count(s, w_hi)[0] == 0 or v.error <= err:
+            continue
+        local = v.error if v.error <= 1e-2 else closed_form_local_error(s, w_hi)
+        if local > err:
+            err, cause = local, f"cable {i}'s local modes in the band"
+    return float(err), cause
+
+
 def predicted_errors(equilibrium, band_hz, rtol=1e-2):
     """Predicted relative frequency error of each rung in the band, and the estimates.
 
@@ -178,34 +266,7 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
         mass_ratio=float(cable_mass / equilibrium.robot.platform.mass),
         highest_harmonic=float(max(harm)))
     errors = {}
-    if n_cable > 0:
-        errors["spring"] = errors["catenary"] = np.inf
-    else:
-        cat = StaticCableModel(equilibrium, "catenary")
-        spr = StaticCableModel(equilibrium, "spring")
-        import scipy.linalg
-        lam, X = scipy.linalg.eigh(cat.K, cat.platform_mass)
-        w = np.sqrt(np.maximum(lam, 0.0))
-        # first-order shift of every massless mode below 1.5 x the band top; a mode counts if
-        # its shifted frequency lies in the band (heavy cables can pull one into it)
-        sel = w <= w_hi * 1.5
-        if np.any(sel):
-            dsm = FrequencyModel(equilibrium)
-            # cable part of the DSM robot matrix (it includes -omega^2 M_p) minus the static one
-            Kd = (dsm.dynamic_stiffness(w[sel]).real
-                  + (w[sel] ** 2)[:, None, None] * cat.platform_mass)
-            dK = Kd - cat.K[None]
-            Xs = X[:, sel]
-            shift = (np.einsum("ik,kij,jk->k", Xs, dK, Xs)
-                     / (2 * w[sel] ** 2 * np.einsum("ik,ij,jk->k", Xs, cat.platform_mass, Xs)))
-            inband = w[sel] * (1 + np.minimum(shift, 0.0)) <= w_hi
-        if np.any(sel) and np.any(inband):
-            errors["catenary"] = float(np.abs(shift[inband]).max())
-            fs = eigenfrequencies(spr, n_modes=spr.n_free)[sel][inband]
-            fc = (w[sel] / (2 * np.pi))[inband]
-            errors["spring"] = float(np.max(np.abs(fs / fc - 1))) + errors["catenary"]
-        else:
-            errors["catenary"] = errors["spring"] = 0.0
+    errors["catenary"], errors["spring"] = _massless_errors(equilibrium, w_hi, n_cable)
     errors["dsm"] = float(dsm_error)
     errors["exact"] = EXACT_ERROR
     n_harm = max(1.0, estimates["highest_harmonic"])

@@ -12,10 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynstiff.analyses.checks import damped_model
-from dynstiff.analyses.participation import (
-    FRF_AMPLIFICATION_LIMIT,
-    PLATFORM_SHARE_THRESHOLD,
-)
+from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.exact import DEFAULT_FMAX_HZ
 from dynstiff.models.ladder import RUNGS

@@ -9,7 +9,7 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.analyses.eigen import modes
+from dynstiff.analyses.modes import modes
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.equilibrium import Equilibrium

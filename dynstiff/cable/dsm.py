@@ -50,11 +50,7 @@ from dynstiff._validate import omega_array
 from dynstiff.cable.chord import ChordParameters, chord_parameters, stack_parameters
 from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
-from dynstiff.cable.psi import (
-    check_frequency_range,
-    mode_count_psi,
-    psi_functions,
-)
+from dynstiff.cable.psi import check_frequency_range, mode_count_psi, psi_functions
 from dynstiff.errors import InvalidParameterError
 
 __all__ = [

@@ -10,9 +10,7 @@ import numpy as np
 
 from dynstiff.cable.chord import chord_parameters
 from dynstiff.cable.exact import ExactCable
-from dynstiff.cable.psi import (
-    closed_form_spectrum,
-)
+from dynstiff.cable.psi import closed_form_spectrum
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 
 __all__ = [

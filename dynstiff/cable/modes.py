@@ -12,9 +12,7 @@ from dynstiff.cable.chord import chord_parameters
 from dynstiff.cable.dsm import checked_cable_model, lowest_string_omega
 from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
-from dynstiff.cable.psi import (
-    closed_form_spectrum,
-)
+from dynstiff.cable.psi import closed_form_spectrum
 from dynstiff.errors import InvalidParameterError
 
 __all__ = ["CableModes", "cable_natural_frequencies"]

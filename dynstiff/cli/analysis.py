@@ -1,12 +1,6 @@
 """Analyses of one pose: ``scenes``, ``modes``, ``frf`` and ``check``."""
 
-from dynstiff.cli.common import (
-    damping_option,
-    equilibrium,
-    info,
-    scene_settings,
-    write_table,
-)
+from dynstiff.cli.common import damping_option, equilibrium, info, scene_settings, write_table
 
 __all__ = ["add_parsers"]
 
@@ -40,7 +34,7 @@ def _exact_model(eq, n_modes, fmax_hz):
 def _cmd_modes(args):
     import numpy as np
 
-    from dynstiff.analyses.eigen import modes
+    from dynstiff.analyses.modes import modes
     from dynstiff.errors import InvalidParameterError
     from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
@@ -63,11 +57,7 @@ def _cmd_modes(args):
     res = modes(model, n_modes=n, fmax_hz=args.fmax)
     if len(res) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode below --fmax {args.fmax} Hz")
-    from dynstiff.analyses.participation import platform_participation
-    part = platform_participation(model, res, st.participation)
     df = res.to_frame()
-    df.insert(3, "platform share [-]", part.platform_share)
-    df.insert(4, "category", list(part.category))
     meta = st.metadata(eq.pose, units="Hz; shapes normalised to unit platform kinetic energy")
     info(args).write(f"{args.model} model")
     info(args).write(f", {args.segments} segments per cable" if args.model == "lumped"
@@ -77,7 +67,7 @@ def _cmd_modes(args):
         write_table(df, args.csv, "csv", meta)
     if args.json:
         write_table(df, args.json, "json", meta)
-    cols = [c for c in ("mode", "freq [Hz]", "kind", "platform share [-]", "category",
+    cols = [c for c in ("mode", "freq [Hz]", "kind", "platform share [-]", "dominant dof",
                         "massless freq [Hz]", "shift from massless [-]") if c in df.columns]
     with np.printoptions(suppress=True):
         info(args).write(df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}"))
@@ -88,9 +78,9 @@ def _cmd_modes(args):
 def _cmd_frf(args):
     import numpy as np
 
-    from dynstiff.analyses.eigen import modes
     from dynstiff.analyses.freqgrid import refined_grid
     from dynstiff.analyses.frf import frf
+    from dynstiff.analyses.modes import modes
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = scene_settings(scene, args)
@@ -129,10 +119,11 @@ def _cmd_frf(args):
 
 def _cmd_check(args):
     from dynstiff.analyses.checks import design_checks
+    from dynstiff.robot.pose import as_pose
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     st = scene_settings(scene, args)
-    pose = args.pose if args.pose is not None else scene.pose
+    pose = as_pose(args.pose) if args.pose is not None else scene.pose
     if pose is None:
         pose = scene.equilibrium().pose
     band = st.forbidden_hz
@@ -143,11 +134,14 @@ def _cmd_check(args):
         info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
                          "scene's [analysis])\n")
     info(args).write(res.text())
+    if res.platform is not None and res.platform.modes is not None:
+        from dynstiff.analyses.recommend import recommend_model
+        rec = recommend_model(scene.robot.equilibrium(pose=pose), st.band_hz, st.model_rtol)
+        info(args).write(rec.text().splitlines()[0] + f" (over {st.band_hz[0]:g}-"
+                         f"{st.band_hz[1]:g} Hz, the closed form measured against the exact "
+                         f"rung)\n")
     if args.csv:
-        from dynstiff.robot.robot import Pose
-        write_table(res.to_frame(), args.csv, "csv",
-                     st.metadata(Pose(pose[:3], pose[3:]) if len(pose) == 6 else
-                                 (pose if hasattr(pose, "position") else None)))
+        write_table(res.to_frame(), args.csv, "csv", st.metadata(pose))
     return 0 if res.passed else 1
 
 

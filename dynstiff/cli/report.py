@@ -1,11 +1,7 @@
 """The main job: ``demo`` (a built-in scene, or one cable) and ``report`` (any scene):
 tables, figures and a self-contained HTML page."""
 
-from dynstiff.cli.common import (
-    damping_option,
-    info,
-    scene_settings,
-)
+from dynstiff.cli.common import damping_option, info, scene_settings
 
 __all__ = ["add_parsers"]
 

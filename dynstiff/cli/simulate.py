@@ -1,12 +1,7 @@
 """``simulate``: the lumped-mass time domain (free vibration from an offset and its
 spectrum, or a line commanded through quasi-static cable lengths)."""
 
-from dynstiff.cli.common import (
-    ProgressBar,
-    equilibrium,
-    info,
-    write_table,
-)
+from dynstiff.cli.common import ProgressBar, equilibrium, info, write_table
 
 __all__ = ["add_parsers"]
 

@@ -1,12 +1,7 @@
 """``sweep``: modes along a path or over a parameter, global modes tracked, the veering
 diagram."""
 
-from dynstiff.cli.common import (
-    ProgressBar,
-    info,
-    scene_settings,
-    write_table,
-)
+from dynstiff.cli.common import ProgressBar, info, scene_settings, write_table
 
 __all__ = ["add_parsers"]
 

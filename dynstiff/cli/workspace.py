@@ -103,10 +103,10 @@ def _cmd_workspace(args):
         ds.to_zarr(out, mode="w")
     else:
         ds.to_netcdf(out)
-    f1 = ds["first_global_hz"].values
+    f1 = ds["first_platform_hz"].values
     info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
                f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "
-               f"{int(ds['dynamic'].sum())} pass every check; first global frequency "
+               f"{int(ds['dynamic'].sum())} pass every check; first platform frequency "
                + (f"{np.nanmin(f1):.3f}-{np.nanmax(f1):.3f} Hz\n" if np.isfinite(f1).any()
                   else "not found\n"))
     if args.csv:

@@ -29,14 +29,17 @@ VARIABLES = {
     "max_tension": (("cable",), "N", "largest tension along the cable"),
     "sag_ratio": (("cable",), "1", "largest distance from the chord / chord length"),
     "freq": (("mode",), "Hz", "natural frequency"),
-    "platform_participation": (("mode",), "1", "platform share of the modal kinetic energy"),
-    "is_global": (("mode",), "1", "global (platform) mode: platform share >= 0.5"),
-    "first_global_hz": ((), "Hz", "lowest global natural frequency"),
-    "band_margin": ((), "1", ("smallest relative distance of a global mode outside the "
-                              "forbidden band (negative inside)")),
-    "proximity_gap": ((), "1", ("smallest relative gap between a local and a global mode "
+    "platform_share": (("mode",), "1", "platform share of the modal kinetic energy"),
+    "is_platform": (("mode",), "1", ("platform mode: a DOF's largest participation, or "
+                                     "global (platform share >= 0.5)")),
+    "first_platform_hz": ((), "Hz", "lowest platform mode (NaN: not all found)"),
+    "band_margin": ((), "1", ("smallest relative distance outside the forbidden band of the "
+                              "modes held to the margin (negative inside)")),
+    "proximity_gap": ((), "1", ("smallest relative gap between a local and a platform mode "
                                 "within proximity_rtol (NaN if none)")),
-    "passed": (("check",), "1", "check verdict (True: passed)"),
+    "passed": (("check",), "1", "check verdict pass"),
+    "unknown": (("check",), "1", ("check verdict unknown: what it needs was not computed "
+                                  "(it fails the pose)")),
 }
 
 
@@ -131,7 +134,7 @@ def to_dataset(robot, X, layout, parameter, values, results, settings):
     data["reason"] = (dims, shaped(flat["reason"], ()),
                       {"long_name": "why the pose is infeasible (empty when feasible)"})
     dyn = data["feasible"][1] & np.all(data["passed"][1], axis=-1)
-    data["dynamic"] = (dims, dyn, {"units": "1", "long_name": "every check passes "
+    data["dynamic"] = (dims, dyn, {"units": "1", "long_name": "every check asked passes "
                                                              "(dynamic workspace)"})
     attrs = {"title": f"workspace map of {robot.name or 'robot'}",
              "source": f"dynstiff {__version__}, dynstiff.workspace",
@@ -152,7 +155,7 @@ def open_workspace(path, **kw):
     path = str(path)
     ds = xr.open_zarr(path, **kw) if path.endswith(".zarr") else xr.open_dataset(path, **kw)
     ds = ds.load()
-    for name in ("feasible", "is_global", "passed", "dynamic"):
+    for name in ("feasible", "is_platform", "passed", "unknown", "dynamic"):
         if name in ds and ds[name].dtype != bool:
             ds[name] = ds[name].astype(bool)
     return ds
@@ -172,36 +175,39 @@ class WorkspaceAccessor:
 
     def to_frame(self):
         """pandas DataFrame, one row per pose (and parameter value): the pose coordinates,
-        ``feasible``, ``reason``, ``first_global_hz``, ``band_margin``, ``proximity_gap``,
-        ``dynamic``, one column per check and the least and largest tension [N]."""
+        ``feasible``, ``reason``, ``first_platform_hz``, ``band_margin``,
+        ``proximity_gap``, ``dynamic``, the verdict of each check ("pass", "fail",
+        "unknown") and the least and largest tension [N]."""
         ds = self._ds
         if "check" not in ds.dims or "feasible" not in ds:
             raise InvalidParameterError("to_frame needs a workspace map (dynstiff.workspace)")
-        keep = ["feasible", "reason", "residual", "first_global_hz", "band_margin",
+        keep = ["feasible", "reason", "residual", "first_platform_hz", "band_margin",
                 "proximity_gap", "dynamic"]
         base = ds[keep].copy()
         for c in ds["check"].values:
-            base[f"check: {c}"] = ds["passed"].sel(check=c, drop=True)
+            passed = ds["passed"].sel(check=c, drop=True)
+            unknown = ds["unknown"].sel(check=c, drop=True)
+            base[f"check: {c}"] = xr.where(unknown, "unknown", xr.where(passed, "pass", "fail"))
         base["least tension [N]"] = ds["min_tension"].min("cable")
         base["largest tension [N]"] = ds["max_tension"].max("cable")
         drop = [v for v in base.coords if v not in base.dims]
         return base.drop_vars(drop).to_dataframe().reset_index()
 
     def modes_frame(self):
-        """pandas DataFrame, one row per pose and mode: ``freq``, ``platform_participation``,
-        ``is_global``."""
-        ds = self._ds[["freq", "platform_participation", "is_global"]]
+        """pandas DataFrame, one row per pose and mode: ``freq``, ``platform_share``,
+        ``is_platform``."""
+        ds = self._ds[["freq", "platform_share", "is_platform"]]
         drop = [v for v in ds.coords if v not in ds.dims]
         return ds.drop_vars(drop).to_dataframe().reset_index()
 
     def plot(self, n_slices=4, fig=None):
-        """Slices of the first global frequency, the band margin and the dynamic workspace:
+        """Slices of the first platform frequency, the band margin and the dynamic workspace:
         :func:`dynstiff.plot.workspace.plot_workspace_slices`. Returns the Figure."""
         from dynstiff.plot.workspace import plot_workspace_slices
         return plot_workspace_slices(self._ds, n_slices=n_slices, fig=fig)
 
     def plot_3d(self, ax=None):
-        """3-D view of the first global frequency and the dynamic workspace:
+        """3-D view of the first platform frequency and the dynamic workspace:
         :func:`dynstiff.plot.workspace.plot_workspace_3d`. Returns the Figure."""
         from dynstiff.plot.workspace import plot_workspace_3d
         return plot_workspace_3d(self._ds, ax=ax)

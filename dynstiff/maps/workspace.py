@@ -24,20 +24,18 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._validate import positive_scalar
-from dynstiff.analyses.eigen import eigenfrequencies
-from dynstiff.analyses.eigen import modes as modal
-from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
+from dynstiff.analyses.checks import check_options, damped_model, modal_model_options
+from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
+from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
+from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
-from dynstiff.params import Cable
+from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
-__all__ = ["CHECKS", "box_grid", "evaluate_chunk", "platform_participation", "workspace"]
+__all__ = ["CHECKS", "box_grid", "evaluate_chunk", "workspace"]
 
-#: The checks of a workspace map, in the order of the ``check`` dimension.
-CHECKS = ("statics", "tension limits", "sag / chord", "global modes outside band",
-          "local modes near global modes")
 _CABLE_PARAMETERS = tuple(f.name for f in dataclasses.fields(Cable))
 
 
@@ -86,106 +84,40 @@ def _robot_with(robot, parameter, value):
     return dataclasses.replace(robot, cables=cables)
 
 
-def _proximity_gap(f, glob):
-    """Smallest |f_l - f_g| / f_g over local l and global g modes [-] (inf if none), the
-    gap of :func:`dynstiff.proximity_warnings`."""
-    if not glob.any() or glob.all():
-        return np.inf
-    fg, fl = f[glob], f[~glob]
-    return float(np.min(np.abs(fl[None, :] - fg[:, None]) / fg[:, None]))
-
-
-def _margin(f_global, band_hz):
-    """Smallest relative distance of the global modes outside the band [-] (negative
-    inside): f / f_hi - 1 above the band, 1 - f / f_lo below it (docs/theory.md §13.2)."""
-    if band_hz is None or f_global.size == 0:
+def _band_margin(pm, options):
+    """Smallest relative distance outside the forbidden band of the modes the margin check
+    holds (platform share >= participation) [-], negative inside: f / f_hi - 1 above the
+    band, 1 - f / f_lo below it (docs/theory.md §13.2); NaN without a band or modes."""
+    if options.forbidden_hz is None or pm.modes is None:
         return np.nan
-    lo, hi = band_hz
-    above = f_global / hi - 1.0
-    below = 1.0 - f_global / lo if lo > 0 else np.full(f_global.shape, -np.inf)
+    m = pm.modes
+    f = np.asarray(m.freq_hz)[m.platform_share >= options.participation]
+    if not f.size:
+        return np.nan
+    lo, hi = options.forbidden_hz
+    above = f / hi - 1.0
+    below = 1.0 - f / lo if lo > 0 else np.full(f.shape, -np.inf)
     return float(np.min(np.maximum(above, below)))
 
 
-_FD_STEP = 1e-6        # relative frequency step of the derivative of K(omega) in omega^2
+def _proximity_gap(pm):
+    """Smallest |f_l - f_p| / f_p over local modes l and platform modes p [-] (inf if no
+    pair; NaN if the platform modes were not all found)."""
+    if not pm.complete:
+        return np.nan
+    f = np.asarray(pm.modes.freq_hz)
+    local = np.asarray(pm.modes.kind) == "local"
+    if not local.any() or not pm.index.size:
+        return np.inf
+    fp = f[pm.index]
+    return float(np.min(np.abs(f[local][None, :] - fp[:, None]) / fp[:, None]))
 
 
-def _quadratic(x, A):
-    """x_k^T A_k x_k for x (n, m) and A (n, m, m), each as ``x[k] @ A[k] @ x[k]`` (the same
-    products, so the same rounding, as one mode at a time: the form is close to
-    cancellation, and the order of its sums moves it by 1e-9)."""
-    return np.array([xk @ Ak @ xk for xk, Ak in zip(x, A)])
-
-
-def platform_participation(model, freq_hz):
-    """Platform share of the kinetic energy of the modes at ``freq_hz`` [-], shape (n,).
-
-    For an exact dynamic stiffness the total modal mass is -x^T dK/d(omega^2) x
-    (docs/theory.md §13.3), so the share is x^T M_p x / (-x^T dK/d(omega^2) x), x the null
-    vector of K(omega_r). The derivative is a central difference in omega^2 with steps
-    1e-6 and 5e-7 (relative), Richardson-extrapolated: all modes in one call of
-    ``dynamic_stiffness``. A mode with a cable pole within the steps takes the closed-form
-    cable energies instead (``cable_kinetic_energies``, as :func:`dynstiff.modes`); a mode
-    on a cable pole with the platform at rest has share 0. The modes' null vectors come
-    from one batched ``eigh`` (docs/theory.md §13.6).
-
-    Parameters
-    ----------
-    model : FrequencyModel (closed-form rung, undamped)
-    freq_hz : ndarray, shape (n,)
-        Natural frequencies [Hz].
-    """
-    w = 2.0 * np.pi * np.asarray(freq_hz, dtype=float)
-    n = w.size
-    if n == 0:
-        return np.zeros(0)
-    h = _FD_STEP
-    steps = np.array([1.0, 1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
-    K = model.dynamic_stiffness(w)
-    Ks = model.dynamic_stiffness(np.outer(steps[1:5], w).ravel()).reshape(4, n, *K.shape[1:])
-    J0 = model.cable_mode_count(np.outer(steps[1:], w).ravel()).reshape(6, n)
-    Mp = model.platform_mass
-    out = np.zeros(n)
-    fin = np.flatnonzero(np.all(np.isfinite(K), axis=(1, 2)))
-    if not fin.size:
-        return out
-    ev, V = np.linalg.eigh(K[fin])
-    least = np.abs(ev).min(axis=1)
-    pole = J0[4, fin] > J0[5, fin]             # a cable pole at the root
-    if np.any(pole):
-        scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
-        keep = ~pole | (least <= 1e-6 * scale)
-        fin, ev, V = fin[keep], ev[keep], V[keep]  # else local mode, platform at rest
-    x = np.array([v[:, j] / np.sqrt(v[:, j] @ Mp @ v[:, j])
-                  for v, j in zip(V, np.argmin(np.abs(ev), axis=1))])
-    wk = w[fin]
-    d1 = (Ks[0, fin] - Ks[1, fin]) / (wk**2 * ((1 + h) ** 2 - (1 - h) ** 2))[:, None, None]
-    d2 = (Ks[2, fin] - Ks[3, fin]) / (wk**2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))[:, None,
-                                                                                    None]
-    out[fin] = 1.0 / -_quadratic(x, (4.0 * d2 - d1) / 3.0)
-    for j in np.flatnonzero(J0[0, fin] != J0[1, fin]):     # a cable pole within the steps
-        full = np.zeros(6)
-        full[model.free_index] = x[j]
-        out[fin[j]] = 1.0 / (1.0 + model.cable_kinetic_energies(w[fin[j]], full).sum())
-    return out
-
-
-def _modes(model, n_modes):
-    """Frequencies [Hz], platform participation [-] and global flags of the lowest
-    ``n_modes`` modes: Wittrick-Williams frequencies (the seeded, compiled count of
-    theory.md §14.2) and :func:`platform_participation` for the closed-form rung,
-    :func:`dynstiff.modes` otherwise."""
-    if model.rung != "dsm" or model.damped:
-        res = modal(model, n_modes=n_modes)
-        return res.freq_hz, 1.0 - res.cable_energy_fraction, np.asarray(res.kind) == "global"
-    f = eigenfrequencies(model, n_modes=n_modes)
-    part = platform_participation(model, f)
-    return f, part, part > 0.5
-
-
-def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_sag_ratio,
-                   rung, model_options):
-    """Statics, modes and checks at consecutive poses, each warm-started from the last
-    feasible one.
+def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options, checks):
+    """Statics, modes and the verdicts of :mod:`dynstiff.analyses.verdicts` at consecutive
+    poses, each warm-started from the last feasible one (the statics, and nothing else,
+    depend on the start: the verdicts are those of :func:`dynstiff.analyses.checks.
+    design_checks` at the same pose).
 
     Parameters
     ----------
@@ -193,10 +125,13 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
     poses : ndarray, shape (k, 6)
         Positions [m] and rotation vectors [rad].
     n_modes : int
-    band_hz : (float, float) or None
-    margin, proximity_rtol, max_sag_ratio : float
+        Modes stored per pose (the verdicts use every mode they need).
+    options : CheckOptions
     rung : str
+    damping : Damping
     model_options : dict
+    checks : tuple of str
+        The checks mapped (those asked).
 
     Returns
     -------
@@ -207,19 +142,18 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
     k, n, m = len(poses), robot.n_cables, n_modes
     nan = np.nan
     out = {"feasible": np.zeros(k, bool), "residual": np.full(k, nan),
-               "tension": np.full((k, n), nan), "unstretched_length": np.full((k, n), nan),
-               "min_tension": np.full((k, n), nan), "max_tension": np.full((k, n), nan),
-               "sag_ratio": np.full((k, n), nan), "freq": np.full((k, m), nan),
-               "platform_participation": np.full((k, m), nan), "is_global": np.zeros((k, m), bool),
-               "first_global_hz": np.full(k, nan), "band_margin": np.full(k, nan),
-               "proximity_gap": np.full(k, nan), "passed": np.zeros((k, len(CHECKS)), bool)}
+           "tension": np.full((k, n), nan), "unstretched_length": np.full((k, n), nan),
+           "min_tension": np.full((k, n), nan), "max_tension": np.full((k, n), nan),
+           "sag_ratio": np.full((k, n), nan), "freq": np.full((k, m), nan),
+           "platform_share": np.full((k, m), nan), "is_platform": np.zeros((k, m), bool),
+           "first_platform_hz": np.full(k, nan), "band_margin": np.full(k, nan),
+           "proximity_gap": np.full(k, nan), "passed": np.zeros((k, len(checks)), bool),
+           "unknown": np.zeros((k, len(checks)), bool)}
     reasons = [""] * k
-    EA = np.array([c.EA for c in robot.cables])
-    w0 = np.array([c.mass_per_length for c in robot.cables]) * robot.g
-    t_min, t_max = robot.tension_limits
     prev = None
     for j, x in enumerate(poses):
         pose = as_pose(x)
+        eq = error = None
         try:
             try:
                 eq = robot.equilibrium(pose=pose, start=prev)
@@ -227,42 +161,49 @@ def evaluate_chunk(robot, poses, n_modes, band_hz, margin, proximity_rtol, max_s
                 if prev is None:
                     raise
                 eq = robot.equilibrium(pose=pose)        # a far neighbour: start afresh
-            f, part, glob = _modes(build_model(eq, rung, **model_options), n_modes)
-        except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
-            reasons[j] = f"{type(exc).__name__}: {exc}"
+        except DynstiffError as exc:
+            error = exc
+        rows = statics_rows(robot, eq, error, options)
+        pm = None
+        if eq is not None:
+            try:
+                modal, pm = modal_rows(build_model(eq, rung, **model_options), options,
+                                       damped_model(eq, damping, rung, **model_options))
+                rows += modal
+            except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                error, eq = exc, None
+                rows = statics_rows(robot, None, exc, options)
+        verdict = {r["check"]: r["verdict"] for r in rows}
+        out["passed"][j] = [verdict[c] == "pass" for c in checks]
+        out["unknown"][j] = [verdict[c] == "unknown" for c in checks]
+        if eq is None:
+            reasons[j] = f"{type(error).__name__}: {error}"
             continue
         prev = eq
-        B, _ = robot.attachment_points(pose)
         out["feasible"][j] = True
         out["residual"][j] = eq.residual
         out["tension"][j] = eq.tensions
         out["unstretched_length"][j] = eq.unstretched_lengths
         out["min_tension"][j] = eq.min_tensions
         out["max_tension"][j] = eq.max_tensions
-        out["sag_ratio"][j] = sag_ratios(robot.anchors, B, *catenary_arrays(eq.states), EA, w0)
-        r = min(m, len(f))
-        out["freq"][j, :r] = f[:r]
-        out["platform_participation"][j, :r] = part[:r]
-        out["is_global"][j, :r] = glob[:r]
-        fg = f[glob]
-        out["first_global_hz"][j] = fg[0] if fg.size else nan
-        out["band_margin"][j] = _margin(fg, band_hz)
-        gap = _proximity_gap(f, glob)
-        out["proximity_gap"][j] = gap if gap <= proximity_rtol else nan
-        tol = 1e-9 * max(1.0, t_min)
-        out["passed"][j] = (
-            True,
-            bool(np.all(eq.min_tensions >= t_min - tol) and np.all(eq.max_tensions
-                                                                   <= t_max + tol)),
-            bool(out["sag_ratio"][j].max() <= max_sag_ratio),
-            bool(band_hz is None or out["band_margin"][j] >= margin),
-            not gap <= proximity_rtol)
+        out["sag_ratio"][j] = equilibrium_sag_ratios(robot, eq)
+        if pm.modes is not None:
+            r = min(m, len(pm.modes))
+            out["freq"][j, :r] = pm.modes.freq_hz[:r]
+            out["platform_share"][j, :r] = pm.modes.platform_share[:r]
+            out["is_platform"][j, :r] = np.isin(np.arange(r), pm.index)
+        out["first_platform_hz"][j] = pm.first_hz
+        out["band_margin"][j] = _band_margin(pm, options)
+        gap = _proximity_gap(pm)
+        out["proximity_gap"][j] = gap if gap <= options.proximity_rtol else nan
+        reasons[j] = "; ".join(f"{r['check']}: {r['detail']}" for r in rows
+                               if r["verdict"] == "unknown")
     out["reason"] = reasons
     return out
 
 
-def _validated(robot, poses, box, step, orientations, parameter, values, n_modes, band_hz,
-               margin, proximity_rtol, max_sag_ratio, rung, chunk_size, workers, client):
+def _validated(robot, poses, box, step, orientations, parameter, values, n_modes, rung,
+               chunk_size, workers, client, damping):
     if not isinstance(robot, Robot):
         raise InvalidParameterError(f"robot must be a dynstiff.Robot, got "
                                     f"{type(robot).__name__}")
@@ -322,22 +263,11 @@ def _validated(robot, poses, box, step, orientations, parameter, values, n_modes
     if workers is not None and client is not None:
         raise InvalidParameterError("give workers= (local processes) or client= (Dask), "
                                     "not both")
-    if band_hz is not None:
-        try:
-            lo, hi = (positive_scalar("band_hz", b, allow_zero=True) for b in band_hz)
-        except (TypeError, ValueError):
-            raise InvalidParameterError(f"band_hz must be (low, high) with 0 <= low < high "
-                                        f"[Hz], got {band_hz!r}") from None
-        if not lo < hi:
-            raise InvalidParameterError(f"band_hz must be (low, high) with 0 <= low < high "
-                                        f"[Hz], got {band_hz!r}")
-        band_hz = (lo, hi)
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
-    positive_scalar("margin", margin, allow_zero=True)
-    positive_scalar("proximity_rtol", proximity_rtol)
-    positive_scalar("max_sag_ratio", max_sag_ratio)
-    return X, layout, values, band_hz
+    if not isinstance(damping, Damping):
+        raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
+    return X, layout, values
 
 
 class _Progress:
@@ -390,9 +320,15 @@ def _run(tasks, workers, client, progress):
 
 def workspace(robot, poses=None, *, box=None, step=None, orientations=None, parameter=None,
               values=None, n_modes=20, band_hz=None, margin=0.05, proximity_rtol=0.03,
-              max_sag_ratio=0.02, rung="dsm", chunk_size=25, workers=None, client=None,
-              progress=False, **model_options):
-    """Map statics, modes and design checks over a grid or a list of poses.
+              max_sag_ratio=0.02, model_rtol=1e-2, participation=PLATFORM_SHARE_THRESHOLD,
+              frf_limit=FRF_AMPLIFICATION_LIMIT, damping=DEFAULT_DAMPING, model_band_hz=None,
+              max_modes=MAX_PLATFORM_MODES, rung="dsm", chunk_size=25, workers=None,
+              client=None, progress=False, **model_options):
+    """Map statics, modes and the design checks over a grid or a list of poses.
+
+    Every pose gets the verdicts :func:`dynstiff.analyses.checks.design_checks` gives it
+    with the same arguments (the rows of :mod:`dynstiff.analyses.verdicts`); a pose belongs
+    to the dynamic workspace when every check asked passes ("unknown" fails).
 
     Parameters
     ----------
@@ -409,12 +345,13 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
     values : array_like, shape (n_v,), optional
         Its values (dimension ``parameter``).
     n_modes : int
-        Modes per pose (dimension ``mode``), lowest first.
-    band_hz : (float, float), optional
-        Forbidden band [Hz]; ``band_margin`` is the relative distance of the global modes
-        (among the ``n_modes``) outside it, and its check asks for at least ``margin``.
-    margin, proximity_rtol, max_sag_ratio : float
-        Limits of the checks, as :func:`dynstiff.analyses.checks.design_checks`.
+        Modes stored per pose (dimension ``mode``), lowest first; the verdicts use every
+        mode they need, whatever this number.
+    band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol, participation, frf_limit, \
+damping, model_band_hz, max_modes
+        The checks' bands and limits, as :func:`dynstiff.analyses.checks.design_checks`
+        (``band_hz`` is the forbidden band; None: its two checks are not asked and not
+        mapped).
     rung : str
         Model of the modes, one of :data:`dynstiff.models.ladder.RUNGS` (default "dsm").
     chunk_size : int
@@ -435,22 +372,30 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
         check``; variables and attributes as :func:`dynstiff.maps.dataset.to_dataset`.
         Infeasible poses hold ``feasible = False``, their ``reason`` and NaN.
     """
-    X, layout, values, band_hz = _validated(
-        robot, poses, box, step, orientations, parameter, values, n_modes, band_hz, margin,
-        proximity_rtol, max_sag_ratio, rung, chunk_size, workers, client)
+    options = check_options(band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol,
+                            participation, frf_limit, model_band_hz, max_modes)
+    X, layout, values = _validated(robot, poses, box, step, orientations, parameter, values,
+                                   n_modes, rung, chunk_size, workers, client, damping)
     from dynstiff.maps.dataset import to_dataset
+    checks = tuple(c for c in CHECKS if options.forbidden_hz is not None
+                   or c not in ("platform modes outside band", "platform receptance in band"))
+    model_options = modal_model_options(rung, options, model_options)
     robots = ([robot] if parameter is None
               else [_robot_with(robot, parameter, v) for v in values])
     tasks = []
     for rob in robots:
         for s in range(0, len(X), chunk_size):
-            tasks.append((rob, X[s:s + chunk_size], n_modes, band_hz, margin, proximity_rtol,
-                          max_sag_ratio, rung, model_options))
+            tasks.append((rob, X[s:s + chunk_size], n_modes, options, rung, damping,
+                          model_options, checks))
     t0 = time.perf_counter()
     results = _run(tasks, workers, client, _Progress(len(X) * len(robots), progress))
-    settings = {"checks": CHECKS, "n_modes": n_modes, "band_hz": band_hz, "margin": margin,
-                    "proximity_rtol": proximity_rtol, "max_sag_ratio": max_sag_ratio, "rung": rung,
-                    "chunk_size": chunk_size, "wall_time_s": time.perf_counter() - t0,
-                    "engine": ("dask" if client is not None else
-                            f"{workers} processes" if workers and workers > 1 else "serial")}
+    settings = {"checks": checks, "n_modes": n_modes, "band_hz": options.forbidden_hz,
+                "margin": options.margin, "proximity_rtol": options.proximity_rtol,
+                "max_sag_ratio": options.max_sag_ratio, "model_rtol": options.model_rtol,
+                "model_band_hz": options.model_band_hz,
+                "participation": options.participation, "frf_limit": options.frf_limit,
+                "damping": damping.text(), "max_modes": options.max_modes, "rung": rung,
+                "chunk_size": chunk_size, "wall_time_s": time.perf_counter() - t0,
+                "engine": ("dask" if client is not None else
+                           f"{workers} processes" if workers and workers > 1 else "serial")}
     return to_dataset(robot, X, layout, parameter, values, results, settings)

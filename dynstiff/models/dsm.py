@@ -35,11 +35,7 @@ from dynstiff.cable.guard import (
     closed_form_local_error,
     closed_form_validity,
 )
-from dynstiff.cable.psi import (
-    PSI_SERIES,
-    check_frequency_range,
-    mode_count_nondimensional,
-)
+from dynstiff.cable.psi import PSI_SERIES, check_frequency_range, mode_count_nondimensional
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix

@@ -13,7 +13,7 @@ rung        cable model                                                        m
 :func:`build_model` returns the model of a rung: an immutable object with the fields and
 methods of :mod:`dynstiff.models.base`. The analyses are plain functions of a model, the same
 for every rung: :func:`dynstiff.analyses.frf.frf`, :func:`dynstiff.analyses.eigen.eigenfrequencies`,
-:func:`dynstiff.analyses.eigen.modes`, :func:`dynstiff.analyses.damped.damped_modes`. All rungs
+:func:`dynstiff.analyses.modes.modes`, :func:`dynstiff.analyses.damped.damped_modes`. All rungs
 share the platform, the geometric stiffness K_geo and gravity.
 """
 

@@ -50,10 +50,7 @@ from dynstiff import _validate
 from dynstiff._vec import cross
 from dynstiff.cable.lumped_elements import block_tridiagonal_entries, element_stiffness
 from dynstiff.errors import InvalidParameterError
-from dynstiff.models.lumped_statics import (
-    lumped_equilibrium,
-    segment_forces,
-)
+from dynstiff.models.lumped_statics import lumped_equilibrium, segment_forces
 from dynstiff.robot.platform import lever_map, platform_mass_matrix, skew
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot

@@ -4,10 +4,7 @@
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot.common import (
-    figure_axes,
-    require,
-)
+from dynstiff.plot.common import figure_axes, require
 
 __all__ = ["plot_speed_accuracy"]
 

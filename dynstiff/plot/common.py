@@ -16,15 +16,9 @@ CATEGORY_LABELS = {
 
 
 def mode_categories(modes):
-    """"global" / "mixed" / "local" of each mode of a ModalResult, from its platform share
-    1 - cable energy fraction (docs/theory.md §12.1); its ``kind`` when it has no energy
-    fractions."""
-    frac = getattr(modes, "cable_energy_fraction", None)
-    if frac is None:
-        return tuple(modes.kind)
-    share = 1.0 - np.asarray(frac, dtype=float)
-    return tuple("global" if s >= GLOBAL_SHARE else "mixed" if s >= PLATFORM_SHARE_THRESHOLD
-                 else "local" for s in share)
+    """"global" / "mixed" / "local" of each mode of a ModalResult: its ``kind``, the one
+    labelling by platform share (docs/theory.md §12.1)."""
+    return tuple(modes.kind)
 
 
 def figure_axes(ax=None, figsize=(8, 4.5)):

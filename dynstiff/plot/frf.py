@@ -5,13 +5,7 @@ and named by class.
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot.common import (
-    CATEGORY_LABELS,
-    COLORS,
-    figure_axes,
-    mode_categories,
-    require,
-)
+from dynstiff.plot.common import CATEGORY_LABELS, COLORS, figure_axes, mode_categories, require
 
 __all__ = ["plot_frf"]
 

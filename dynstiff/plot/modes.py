@@ -5,12 +5,9 @@ error of every cable model.
 
 import numpy as np
 
+from dynstiff.constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot.common import (
-    COLORS,
-    figure_axes,
-    require,
-)
+from dynstiff.plot.common import COLORS, figure_axes, require
 
 __all__ = [
     "plot_cable_modes", "plot_damped_modes", "plot_model_errors", "plot_modes", "plot_tensions"
@@ -19,7 +16,7 @@ __all__ = [
 
 # ----------------------------------------------------------------------------- modes
 def plot_modes(modes, ax=None):
-    """Natural frequencies against the cables' share of the kinetic energy.
+    """Natural frequencies against their platform share of the kinetic energy.
 
     Parameters
     ----------
@@ -30,27 +27,29 @@ def plot_modes(modes, ax=None):
     Returns
     -------
     matplotlib Figure
-        One stem per mode, red (gid ``modes-global``) for global and blue (``modes-local``)
-        for local modes; the dashed line at 0.5 is the global/local threshold.
+        One stem per mode up to its platform share, coloured by kind: red (gid
+        ``modes-global``), purple (``modes-mixed``), blue (``modes-local``); dashed lines
+        at the kinds' thresholds 0.5 and 0.05 (docs/theory.md §12.1).
     """
     require(modes, "modes", ("freq_hz", "cable_energy_fraction", "kind"), "ModalResult")
     fig, ax = figure_axes(ax)
     f = np.asarray(modes.freq_hz, dtype=float)
-    frac = np.asarray(modes.cable_energy_fraction, dtype=float)
+    share = np.clip(1.0 - np.asarray(modes.cable_energy_fraction, dtype=float), 0.0, 1.0)
     kind = np.asarray(modes.kind)
-    for k in ("global", "local"):
+    for k in ("global", "mixed", "local"):
         sel = kind == k
         if np.any(sel):
-            ax.vlines(f[sel], 0.0, frac[sel], color=COLORS[k], lw=1.2, gid=f"modes-{k}",
+            ax.vlines(f[sel], 0.0, share[sel], color=COLORS[k], lw=1.2, gid=f"modes-{k}",
                       label=f"{k} ({int(sel.sum())})")
-            ax.plot(f[sel], frac[sel], "o", color=COLORS[k], ms=3)
-    ax.axhline(0.5, color="0.5", lw=0.8, ls="--")
+            ax.plot(f[sel], share[sel], "o", color=COLORS[k], ms=3)
+    for level in (GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD):
+        ax.axhline(level, color="0.5", lw=0.8, ls="--")
     ax.set_ylim(0.0, 1.05)
     ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("cable share of kinetic energy [-]")
-    ax.set_title(f"{len(f)} modes: global (platform holds most energy) and local")
+    ax.set_ylabel("platform share of kinetic energy [-]")
+    ax.set_title(f"{len(f)} modes by platform share: global, mixed and local")
     if len(f):
-        ax.legend(loc="center right", fontsize=8)
+        ax.legend(loc="upper right", fontsize=8)
     return fig
 
 

@@ -4,10 +4,7 @@ over a parameter.
 
 import numpy as np
 
-from dynstiff.plot.common import (
-    figure_axes,
-    require,
-)
+from dynstiff.plot.common import figure_axes, require
 
 __all__ = ["plot_veering"]
 

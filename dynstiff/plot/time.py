@@ -5,12 +5,7 @@ tracking of a commanded path.
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.plot.common import (
-    COLORS,
-    figure_axes,
-    mode_frequencies,
-    require,
-)
+from dynstiff.plot.common import COLORS, figure_axes, mode_frequencies, require
 
 __all__ = ["plot_spectrum"]
 

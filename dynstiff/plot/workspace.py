@@ -1,9 +1,9 @@
 """Figures of a workspace map (an ``xarray.Dataset`` of :func:`dynstiff.workspace`):
-horizontal slices and a 3-D view of the first global frequency, the band margin and the
+horizontal slices and a 3-D view of the first platform frequency, the band margin and the
 dynamic workspace (docs/theory.md §13). matplotlib is imported when a figure is drawn.
 
 Over an ``orientation`` or ``parameter`` dimension the figures show the worst case: the
-least first global frequency and band margin, and a pose belongs to the dynamic workspace
+least first platform frequency and band margin, and a pose belongs to the dynamic workspace
 only when every check passes for every orientation and value.
 """
 
@@ -17,14 +17,14 @@ _REDUCED = ("orientation", "parameter")
 
 
 def worst_case(ds):
-    """(first global frequency [Hz], band margin [-], dynamic, feasible) over x, y, z: the
+    """(first platform frequency [Hz], band margin [-], dynamic, feasible) over x, y, z: the
     least value and the all-pass verdict over the orientations and parameter values."""
     if not all(d in ds.dims for d in ("x", "y", "z")):
         raise InvalidParameterError(
             "the workspace figures need a grid map (dimensions x, y, z): give box= to "
             "dynstiff.maps.workspace")
     red = [d for d in _REDUCED if d in ds.dims]
-    f1 = ds["first_global_hz"].min(red, skipna=False) if red else ds["first_global_hz"]
+    f1 = ds["first_platform_hz"].min(red, skipna=False) if red else ds["first_platform_hz"]
     mg = ds["band_margin"].min(red, skipna=False) if red else ds["band_margin"]
     dyn = ds["dynamic"].all(red) if red else ds["dynamic"]
     feas = ds["feasible"].all(red) if red else ds["feasible"]
@@ -41,7 +41,7 @@ def _edges(v):
 
 
 def plot_workspace_slices(ds, n_slices=4, fig=None):
-    """Horizontal slices (x, y) at up to ``n_slices`` heights z: first global frequency
+    """Horizontal slices (x, y) at up to ``n_slices`` heights z: first platform frequency
     [Hz] (top), band margin [-] (middle, 0 and the required margin as contours) and the
     dynamic workspace (bottom: every check passes / a check fails / infeasible).
 
@@ -83,7 +83,7 @@ def plot_workspace_slices(ds, n_slices=4, fig=None):
         a2.set_xlabel("x [m]")
     for a in axs[:, 0]:
         a.set_ylabel("y [m]")
-    fig.colorbar(im0, ax=axs[0, :], label="first global frequency [Hz]", shrink=0.9)
+    fig.colorbar(im0, ax=axs[0, :], label="first platform frequency [Hz]", shrink=0.9)
     fig.colorbar(im1, ax=axs[1, :], label="band margin [-]", shrink=0.9)
     cb = fig.colorbar(im2, ax=axs[2, :], ticks=[0, 1, 2], shrink=0.9)
     cb.ax.set_yticklabels(["infeasible", "check fails", "all pass"])
@@ -92,15 +92,14 @@ def plot_workspace_slices(ds, n_slices=4, fig=None):
             f"{need:.0%}" if not isinstance(band, str) and band is not None else "no band")
     worst = " (worst case over " + ", ".join(d for d in _REDUCED if d in ds.dims) + ")" \
         if any(d in ds.dims for d in _REDUCED) else ""
-    n_modes = ds.sizes.get("mode", 0)
     fig.suptitle(f"{ds.attrs.get('robot', '')} workspace map{worst}: {int(dyn.sum())} of "
                  f"{dyn.size} positions in the dynamic workspace\n{band}; grey: infeasible, "
-                 f"or no global mode among the first {n_modes} modes")
+                 f"or platform modes not all found")
     return fig
 
 
 def plot_workspace_3d(ds, ax=None):
-    """3-D view: feasible positions coloured by their first global frequency [Hz], the
+    """3-D view: feasible positions coloured by their first platform frequency [Hz], the
     dynamic workspace as filled markers, the rest hollow; infeasible positions as grey
     dots.
 
@@ -126,7 +125,7 @@ def plot_workspace_3d(ds, ax=None):
         label="a check fails")
     ax.scatter(X[~feas.values], Y[~feas.values], Z[~feas.values], c="0.6", s=4,
                label="infeasible")
-    fig.colorbar(sc, ax=ax, shrink=0.7, label="first global frequency [Hz]")
+    fig.colorbar(sc, ax=ax, shrink=0.7, label="first platform frequency [Hz]")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")

@@ -10,11 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
-from dynstiff.cable.dsm import (
-    DEFAULT_CHORDWISE_INERTIA,
-    cable_dynamic_stiffness,
-    chord_parameters,
-)
+from dynstiff.cable.dsm import DEFAULT_CHORDWISE_INERTIA, cable_dynamic_stiffness, chord_parameters
 from dynstiff.cable.modes import cable_natural_frequencies
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.params import Cable

@@ -9,7 +9,7 @@ from numbers import Integral
 import numpy as np
 
 from dynstiff._vec import cross
-from dynstiff.analyses.eigen import cable_fields
+from dynstiff.analyses.modes import cable_fields
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.results import ModalResult

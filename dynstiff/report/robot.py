@@ -55,10 +55,9 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     import matplotlib.pyplot as plt
 
     from dynstiff.analyses.checks import design_checks
-    from dynstiff.analyses.eigen import modes as modal
     from dynstiff.analyses.freqgrid import refined_grid
     from dynstiff.analyses.frf import frf
-    from dynstiff.analyses.participation import platform_participation
+    from dynstiff.analyses.modes import modes as modal
     from dynstiff.analyses.recommend import recommend_model
     from dynstiff.analyses.settings import analysis_settings
     from dynstiff.plot import plot_frf
@@ -68,11 +67,12 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     st = settings or analysis_settings(scene)
     eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing
     model = st.model(eq)
-    modes = modal(model, n_modes=min(st.n_modes, getattr(model, "n_dof", st.n_modes)))
-    marks = modes if modes.freq_hz[-1] >= st.band_hz[1] else modal(model,
-                                                                   fmax_hz=st.band_hz[1])
-    part = platform_participation(model, modes, st.participation)
     checks = design_checks(scene.robot, eq.pose, **st.check_options())
+    pm = checks.platform                 # the modes the verdicts were taken from
+    modes = pm.modes
+    if modes is None or len(modes) < st.n_modes:     # at least the scene's number of modes
+        modes = modal(model, n_modes=min(st.n_modes, getattr(model, "n_dof", st.n_modes)))
+    marks = modal(model, fmax_hz=st.band_hz[1])
     rec = recommend_model(eq, band_hz=st.band_hz, rtol=st.model_rtol)
     f = refined_grid(st.band_hz, n_points, marks.freq_hz)
     inputs = [c for c in ("fx", "fz") if c[1] in eq.robot.platform.free_dofs]
@@ -91,18 +91,18 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     statics = eq.to_frame()
     save_csv(statics, "statics.csv", "SI, in the column names")
     table = modes.to_frame()
-    table.insert(3, "platform share [-]", part.platform_share)
-    table.insert(4, "category", list(part.category))
+    table.insert(3, "platform mode", np.isin(np.arange(len(modes)), pm.index))
     save_csv(table, "modes.csv", "Hz; mode shapes normalised to unit platform kinetic energy")
     save_csv(checks.to_frame(), "checks.csv", "as each row's value and limit")
     save_csv(response.to_frame(), "frf.csv", "in each row's unit column")
     figs = []
     fig = plot_frf(response, marks, phase=True)
     figs.append((fig, "frf.png", "Damped platform FRFs with the modes marked"))
-    kk = [k for k, c in enumerate(part.category) if c != "local"]
+    kk = list(pm.index)
     if kk:
         fig = plot_robot(eq, modes, kk[0], model=model if model.rung == "dsm" else None)
-        figs.append((fig, "mode_shape.png", f"Mode {kk[0] + 1} ({part.category[kk[0]]}, "
+        figs.append((fig, "mode_shape.png", f"Mode {kk[0] + 1} (first platform mode, "
+                                            f"{modes.kind[kk[0]]}, "
                                             f"{modes.freq_hz[kk[0]]:.4g} Hz)"))
     pngs = []
     for fig, name, caption in figs:
@@ -112,15 +112,16 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         files.append(out / name)
 
     fmt = {"float_format": lambda x: f"{x:.5g}", "index": False}
-    cols = ["mode", "freq [Hz]", "kind", "platform share [-]", "category",
+    cols = ["mode", "freq [Hz]", "kind", "platform mode", "platform share [-]", "dominant dof",
             "massless freq [Hz]"]
     head = [f"dynstiff: {scene.name}: {scene.description}",
             f"pose {np.round(eq.pose.position, 4).tolist()} m, rotation "
             f"{np.round(eq.pose.rotation, 4).tolist()} rad", *st.lines()]
     sections = [
         ("Statics (elastic catenaries)", statics.to_string(**fmt)),
-        (f"First {len(modes)} modes (Wittrick-Williams count: none missed; undamped "
-         f"frequencies)", table[cols].to_string(**fmt)),
+        (f"First {len(modes)} modes, which hold the platform modes (Wittrick-Williams count: "
+         f"none missed; undamped frequencies)",
+         table[cols].to_string(**fmt)),
         ("Cable model", rec.text()),
         ("Design checks", checks.text()),
     ]

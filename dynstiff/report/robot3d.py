@@ -8,7 +8,7 @@ by the small motion x = scale * (dp, dtheta), so an attachment point moves by
     dB_i = scale * (dp + dtheta x r_i),      r_i = R_p b_i,
 
 and, with the :class:`~dynstiff.models.dsm.FrequencyModel` given, each cable by its closed-form
-displacement field (:func:`dynstiff.analyses.eigen.cable_fields`, theory.md §5.3) times the same
+displacement field (:func:`dynstiff.analyses.modes.cable_fields`, theory.md §5.3) times the same
 scale.
 :func:`animate_mode` writes the oscillation shape * sin(2 pi t / T) over one period as a GIF.
 
@@ -223,7 +223,7 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
         Points per cable profile (>= 2, default 41).
     model : FrequencyModel, optional
         The model that computed ``modes``. When given, the cables move by their closed-form
-        fields (:func:`dynstiff.analyses.eigen.cable_fields`); otherwise each cable point moves by
+        fields (:func:`dynstiff.analyses.modes.cable_fields`); otherwise each cable point moves by
         the straight-line (quasi-static) interpolation t * dB_i, t the chordwise position in
         [0, 1].
     sag_scale : float

@@ -18,12 +18,7 @@ from dynstiff._vec import cross
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
-from dynstiff.errors import (
-    ConvergenceError,
-    DynstiffError,
-    InvalidParameterError,
-    SlackCableError,
-)
+from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.pose import Pose
 

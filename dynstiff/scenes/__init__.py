@@ -32,13 +32,7 @@ points are 3 numbers, ``free_dofs`` is a list of names, and ``[pose]`` gives a p
 unstretched lengths, not both.
 """
 
-from dynstiff.scenes.loader import (
-           Scene,
-           SceneError,
-           list_scenes,
-           load_scene,
-           read_scene,
-)
+from dynstiff.scenes.loader import Scene, SceneError, list_scenes, load_scene, read_scene
 from dynstiff.scenes.writer import import_caspr, scene_text, write_scene
 
 __all__ = ["Scene", "SceneError", "list_scenes", "load_scene", "read_scene", "import_caspr",

@@ -10,13 +10,7 @@ import numpy as np
 from dynstiff._vec import cross
 from dynstiff.errors import ConvergenceError, DynstiffError, DynstiffWarning
 from dynstiff.timedomain.damping import explicit_step_limit
-from dynstiff.timedomain.dynamics import (
-    FastPose,
-    advance,
-    interior_views,
-    load_at,
-    twist_of,
-)
+from dynstiff.timedomain.dynamics import FastPose, advance, interior_views, load_at, twist_of
 from dynstiff.timedomain.response import EnergyBalance, TimeResponse
 
 #: A segment stretched beyond this strain means the integration has blown up.

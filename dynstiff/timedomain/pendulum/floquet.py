@@ -7,11 +7,7 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import ConvergenceError
-from dynstiff.timedomain.pendulum.dynamics import (
-    evaluate_rhs,
-    excitation_at,
-    start_state,
-)
+from dynstiff.timedomain.pendulum.dynamics import evaluate_rhs, excitation_at, start_state
 from dynstiff.timedomain.pendulum.model import checked_integer
 from dynstiff.timedomain.pendulum.radau import (
     RADAU_C,
