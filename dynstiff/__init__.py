@@ -42,6 +42,7 @@ from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
+    InfeasiblePoseError,
     InvalidParameterError,
     PoleWarning,
     SlackCableError,
@@ -56,6 +57,7 @@ from dynstiff.params import Cable, Damping
 from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot
+from dynstiff.robot.waypoints import WaypointPath
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 
 __all__ = [
@@ -101,6 +103,7 @@ __all__ = [
     "Platform",
     "Pose",
     "Robot",
+    "WaypointPath",
     "Scene",
     "SceneError",
     "list_scenes",
@@ -112,6 +115,7 @@ __all__ = [
     "PoleWarning",
     "STANDARD_GRAVITY",
     "SlackCableError",
+    "InfeasiblePoseError",
     "cable_dynamic_stiffness",
     "cable_mode_count",
     "cable_natural_frequencies",
