@@ -170,3 +170,19 @@ def no_traceback(monkeypatch):
         assert "Traceback" not in err or "--debug" in args, err[-2000:]
         return out
     monkeypatch.setattr(subprocess, "run", checked)
+
+
+def inverted_stewart_scene(path, mass_per_length=0.01, EA=1e5):
+    """Scene file at ``path`` of the test robot written in CASPR's format
+    (tests/data/caspr/InvertedStewart_*.xml: six cables from three exit points, its
+    trajectories and workspace box), with light cables whose modes lie above the platform's
+    (0.01 kg/m, EA 1e5 N: platform modes about 3-6 Hz, first cable mode about 20 Hz)."""
+    from pathlib import Path
+
+    from dynstiff.scenes import import_caspr, write_scene
+    d = Path(__file__).parent / "data" / "caspr"
+    sc = import_caspr(d / "InvertedStewart_bodies.xml", d / "InvertedStewart_cables.xml",
+                      ds.Cable(mass_per_length, EA),
+                      trajectories_xml=d / "InvertedStewart_trajectories.xml")
+    return write_scene(path, sc.robot, sc.pose, name="inverted_stewart",
+                       trajectories=sc.trajectories.values(), workspace_box=sc.workspace_box)
