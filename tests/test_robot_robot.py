@@ -5,6 +5,7 @@ but not both ends."""
 
 import numpy as np
 import pytest
+from conftest import inverted_stewart
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
@@ -51,24 +52,6 @@ def test_coordinates_beyond_1e100_m_are_named(cogiro):
         ds.Robot(r.anchors, far, r.cables, r.platform)
     with pytest.raises(InvalidParameterError, match="pose position"):
         ds.Pose([1e101, 0.0, 0.0])
-
-
-def inverted_stewart(mass=100.0, mass_per_length=1e-4, EA=1e7):
-    """Six cables from three anchor points to three platform points, an octahedron: the NIST
-    RoboCrane, an inverted Stewart platform (J. Albus, R. Bostelman, N. Dagalakis, "The NIST
-    SPIDER, a robot crane", J. Res. NIST 97(3), 373-385, 1992; "The NIST RoboCrane",
-    J. Robot. Syst. 10(5), 709-724, 1993). Anchors: an equilateral triangle of 6 m sides
-    3 m above the ground (the paper's 6 m model); platform: an inverted triangle of 1.5 m
-    sides; each anchor holds the cables to its two nearest platform vertices."""
-    ang_a, ang_b = np.radians([210.0, 330.0, 90.0]), np.radians([270.0, 30.0, 150.0])
-    ra, rb = 6.0 / np.sqrt(3.0), 1.5 / np.sqrt(3.0)
-    a = np.c_[ra * np.cos(ang_a), ra * np.sin(ang_a), np.full(3, 3.0)]
-    b = np.c_[rb * np.cos(ang_b), rb * np.sin(ang_b), np.zeros(3)]
-    pairs = [(k, int(j)) for k in range(3)
-             for j in np.argsort(np.linalg.norm(b[:, :2] - a[k, :2], axis=1))[:2]]
-    return ds.Robot(np.array([a[k] for k, _ in pairs]), np.array([b[j] for _, j in pairs]),
-                    ds.Cable(mass_per_length, EA),
-                    ds.Platform(mass, inertia=np.diag([10.0, 10.0, 15.0])))
 
 
 def test_shared_anchor_points_solve_with_the_analytic_tension():
