@@ -68,14 +68,17 @@ def test_shared_anchor_points_solve_with_the_analytic_tension():
 
 def test_shared_anchors_give_symmetric_modes_in_every_rung():
     """The octahedron's symmetry (C3v) pairs its platform modes: two degenerate pairs
-    (sway with tilt) and two single modes (heave, twist); the closed-form DSM with light
-    cables agrees with the massless spring model to the cables' small mass."""
+    (sway with tilt) and two single modes (heave, twist) in every rung (the chains of the
+    lumped rung and the exact cables leave from shared anchor nodes too); with light cables
+    every rung agrees with the massless spring model to the cables' small mass."""
     eq = inverted_stewart().equilibrium(pose=[0.0, 0.0, 1.5, 0.0, 0.0, 0.0])
-    f = ds.eigenfrequencies(ds.build_model(eq, "dsm"), n_modes=6)
     f0 = ds.eigenfrequencies(ds.build_model(eq, "spring"), n_modes=6)
-    np.testing.assert_allclose(f[[1, 3]], f[[2, 4]], rtol=1e-9)
-    assert np.all(np.diff(f[[0, 1, 3, 5]]) / f[[1, 3, 5]] > 0.1)
-    np.testing.assert_allclose(f, f0, rtol=5e-5)
+    for rung, kw in (("spring", {}), ("catenary", {}), ("dsm", {}),
+                     ("lumped", {"segments": 4}), ("exact", {"fmax_hz": 200.0})):
+        f = ds.eigenfrequencies(ds.build_model(eq, rung, **kw), n_modes=6)
+        np.testing.assert_allclose(f[[1, 3]], f[[2, 4]], rtol=1e-8, err_msg=rung)
+        assert np.all(np.diff(f[[0, 1, 3, 5]]) / f[[1, 3, 5]] > 0.1), rung
+        np.testing.assert_allclose(f, f0, rtol=5e-5, err_msg=rung)
 
 
 def test_shared_attachment_points_solve_with_the_analytic_tension():
