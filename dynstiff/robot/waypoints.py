@@ -85,7 +85,7 @@ def _rows(name, value, k, required=True):
     return a
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class WaypointPath:
     """Timed waypoints of the platform and the law that joins them.
 
