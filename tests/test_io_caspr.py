@@ -278,6 +278,11 @@ def test_pulley_attachments_are_refused_with_the_sets_to_choose(tmp_path):
     start, end = text.index("<attachments>"), text.index("</attachments>") + 14
     c.write_text(text[:start] + PULLEY + text[end:])
     with pytest.raises(CasprError, match="<base_rotating_pulley>.*choose a set of plain "
-                                         r"<attachment>s, one of \['s'\]") as err:
+                                         r"<attachment>s \(this file has none\)") as err:
         read_caspr(b, c)
     assert "\n" not in str(err.value)
+    text = c.read_text().replace("</cables>", CABLES.format(ref="joint").replace(
+        '<cables default_cable_set="s"><cable_set id="s">', '<cable_set id="plain">'))
+    c.write_text(text)
+    with pytest.raises(CasprError, match=r"plain <attachment>s, one of \['plain'\]"):
+        read_caspr(b, c)

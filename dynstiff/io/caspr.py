@@ -326,11 +326,13 @@ def _read_cables(path, cable_set, com):
         where = f"cable {name!r}"
         other = [e.tag for e in c.findall("attachments/*") if e.tag != "attachment"]
         if other:
+            plain = [k for k, st in sets.items()
+                     if all(e.tag == "attachment" for e in st.findall("*/attachments/*"))]
             raise CasprError(
                 f"{path}: {where} of set {chosen!r} is attached through <{other[0]}> (a "
                 f"pulley whose exit point moves with the pose); dynstiff clamps each cable "
-                f"at a fixed exit point: choose a set of plain <attachment>s, one of "
-                f"{list(sets)}")
+                f"at a fixed exit point: choose a set of plain <attachment>s"
+                + (f", one of {plain}" if plain else " (this file has none)"))
         points = c.findall("attachments/attachment")
         links = [a.findtext("link", "").strip() for a in points]
         if sorted(links) != ["0", "1"]:
