@@ -37,6 +37,7 @@ from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import (
     ConvergenceError,
     DynstiffError,
+    InfeasiblePoseError,
     InvalidParameterError,
     PoleWarning,
     SlackCableError,
@@ -51,6 +52,7 @@ from dynstiff.params import Cable, Damping
 from dynstiff.results import LumpedModalResult
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.robot import Equilibrium, Pose, Robot
+from dynstiff.robot.waypoints import WaypointPath
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 
 __all__ = [
@@ -96,6 +98,7 @@ __all__ = [
     "Platform",
     "Pose",
     "Robot",
+    "WaypointPath",
     "Scene",
     "SceneError",
     "list_scenes",
@@ -107,6 +110,7 @@ __all__ = [
     "PoleWarning",
     "STANDARD_GRAVITY",
     "SlackCableError",
+    "InfeasiblePoseError",
     "cable_dynamic_stiffness",
     "cable_mode_count",
     "cable_natural_frequencies",

@@ -9,6 +9,7 @@ __all__ = [
     "InvalidParameterError",
     "ConvergenceError",
     "SlackCableError",
+    "InfeasiblePoseError",
     "UnsupportedAnalysisError",
     "DynstiffWarning",
     "PoleWarning",
@@ -39,6 +40,22 @@ class ConvergenceError(DynstiffError, RuntimeError):
 
 class SlackCableError(DynstiffError, ValueError):
     """A cable has no tensile equilibrium (it would be slack or compressed)."""
+
+
+class InfeasiblePoseError(SlackCableError):
+    """No statics at a pose: no tensions within the limits hold the platform there. The
+    message says why and what would change it; ``cause`` is one of "singular", "wrench",
+    "tension limits", "cable weight"; ``remedies`` maps what to change to a value that
+    would make the pose feasible (estimates at the last iterate): ``"t_min"`` (the largest
+    lower limit [N] that works, or the least one a heavy cable needs), ``"t_max"`` (the
+    smallest upper limit [N]), ``"mass_per_length"`` [kg/m]; ``cable`` the cable at fault
+    (or None)."""
+
+    def __init__(self, message, cause=None, remedies=None, cable=None):
+        super().__init__(message)
+        self.cause = cause
+        self.remedies = dict(remedies or {})
+        self.cable = cable
 
 
 class UnsupportedAnalysisError(DynstiffError, TypeError):

@@ -173,3 +173,39 @@ def no_traceback(monkeypatch):
         assert "Traceback" not in err or "--debug" in args, err[-2000:]
         return out
     monkeypatch.setattr(subprocess, "run", checked)
+
+
+def inverted_stewart_scene(path, mass_per_length=0.01, EA=1e5):
+    """Scene file at ``path`` of the test robot written in CASPR's format
+    (tests/data/caspr/InvertedStewart_*.xml: six cables from three exit points, its
+    trajectories and workspace box), with light cables whose modes lie above the platform's
+    (0.01 kg/m, EA 1e5 N: platform modes about 3-6 Hz, first cable mode about 20 Hz)."""
+    from pathlib import Path
+
+    from dynstiff.scenes import import_caspr, write_scene
+    d = Path(__file__).parent / "data" / "caspr"
+    sc = import_caspr(d / "InvertedStewart_bodies.xml", d / "InvertedStewart_cables.xml",
+                      ds.Cable(mass_per_length, EA),
+                      trajectories_xml=d / "InvertedStewart_trajectories.xml")
+    return write_scene(path, sc.robot, sc.pose, name="inverted_stewart",
+                       trajectories=sc.trajectories.values(), workspace_box=sc.workspace_box)
+
+
+def inverted_stewart(mass=100.0, mass_per_length=1e-4, EA=1e7, inertia=(10.0, 10.0, 15.0)):
+    """Six cables from three anchor points to three platform points, an octahedron: the NIST
+    RoboCrane, an inverted Stewart platform (J. Albus, R. Bostelman, N. Dagalakis, "The NIST
+    SPIDER, a robot crane", J. Res. NIST 97(3), 373-385, 1992; "The NIST RoboCrane",
+    J. Robot. Syst. 10(5), 709-724, 1993). Anchors: an equilateral triangle of 6 m sides
+    (the size of the SPIDER's "6 m version") 3 m above the ground; platform: an inverted
+    triangle of 1.5 m sides; each anchor holds the cables to its two nearest platform
+    vertices. The height and the platform's size are those of CASPR's RoboCrane model: the
+    papers' abstracts give no number for them that we could check."""
+    ang_a, ang_b = np.radians([210.0, 330.0, 90.0]), np.radians([270.0, 30.0, 150.0])
+    ra, rb = 6.0 / np.sqrt(3.0), 1.5 / np.sqrt(3.0)
+    a = np.c_[ra * np.cos(ang_a), ra * np.sin(ang_a), np.full(3, 3.0)]
+    b = np.c_[rb * np.cos(ang_b), rb * np.sin(ang_b), np.zeros(3)]
+    pairs = [(k, int(j)) for k in range(3)
+             for j in np.argsort(np.linalg.norm(b[:, :2] - a[k, :2], axis=1))[:2]]
+    return ds.Robot(np.array([a[k] for k, _ in pairs]), np.array([b[j] for _, j in pairs]),
+                    ds.Cable(mass_per_length, EA),
+                    ds.Platform(mass, inertia=np.diag(inertia)))

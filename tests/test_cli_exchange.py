@@ -50,6 +50,41 @@ def test_import_caspr_named_set_to_stdout_and_bad_file():
     assert out.stderr.count("\n") == 1 and "root element <cables>" in out.stderr
 
 
+def test_import_caspr_reads_the_trajectories_and_bounds_beside_the_bodies(tmp_path):
+    """InvertedStewart_*.xml (a test robot in CASPR's format): the trajectories and
+    operational-space files beside the bodies file are read by default; the scene holds
+    the trajectories and the joint's bounds as [workspace] box; kinds not read are said."""
+    path = tmp_path / "inv.toml"
+    out = run_cli("import-caspr", DATA / "InvertedStewart_bodies.xml",
+                  DATA / "InvertedStewart_cables.xml", "--mass-per-length", 0.01, "--EA", 1e5,
+                  "--out", path)
+    assert out.returncode == 0, out.stderr
+    assert "6 cables" in out.stdout and "workspace box (q_min, q_max): [-1.0, 1.0" in out.stdout
+    assert "lift_and_turn (quintic, 3 waypoints, 4 s)" in out.stdout
+    assert "trajectory 'recorded' not read: samples in the file 'recorded.traj'" in out.stdout
+    assert "operational spaces from" in out.stdout and "tool (1 marker)" in out.stdout
+    sc = ds.load_scene(path)
+    assert list(sc.trajectories) == ["lift_and_turn", "square", "swing", "mean_speed", "blend"]
+    assert sc.workspace_box == (-1.0, 1.0, -1.0, 1.0, 0.5, 2.5)
+    assert "# operational set 'tool': position of the point [0.0, 0.0, -0.2] m" in \
+        path.read_text()
+    out = run_cli("import-caspr", DATA / "InvertedStewart_bodies.xml",
+                  DATA / "InvertedStewart_cables.xml", "--mass-per-length", 0.01, "--EA", 1e5,
+                  "--no-siblings", "--out", path)
+    assert out.returncode == 0 and "trajectories" not in out.stdout
+    assert ds.load_scene(path).trajectories == {}
+
+
+def test_import_caspr_never_writes_over_an_input(tmp_path):
+    cables = tmp_path / "c.xml"
+    cables.write_text((DATA / "InvertedStewart_cables.xml").read_text())
+    before = cables.read_text()
+    out = run_cli("import-caspr", DATA / "InvertedStewart_bodies.xml", cables,
+                  "--mass-per-length", 0.01, "--EA", 1e5, "--out", cables)
+    assert out.returncode == 2 and "is one of the input files" in out.stderr
+    assert cables.read_text() == before
+
+
 def test_frf_uff_writes_records_that_pyuff_reads(tmp_path):
     pyuff = pytest.importorskip("pyuff")
     path = tmp_path / "frf.uff"

@@ -4,7 +4,7 @@
 import re
 
 import pytest
-from conftest import run_cli
+from conftest import inverted_stewart_scene, run_cli
 
 import dynstiff as ds
 
@@ -56,3 +56,23 @@ def test_cli_simulate_spectrum_reports_no_leakage():
         assert float(p) > 1.6 and abs(float(p) - float(m)) < 0.4, out.stdout
 
 
+
+
+def test_cli_simulate_follows_a_trajectory_of_the_scene(tmp_path):
+    """A CASPR cubic trajectory (1.5 s, ending at 0.1 m/s) commanded through quasi-static
+    lengths: the platform follows it within 1 % of the cable length; the CSV holds the
+    path's 1.5 s plus the 0.1 s settling, every 10 ms."""
+    scene = inverted_stewart_scene(tmp_path / "s.toml")
+    out = run_cli("simulate", str(scene), "--trajectory", "swing", "--segments", "1",
+                  "--time", "0.1", "--dt", "1e-2", "--quiet", "--csv", str(tmp_path / "t.csv"))
+    assert out.returncode == 0, out.stderr
+    m = re.search(r"trajectory 'swing' \(1.5 s, 2 waypoints\).*deviation from the "
+                  r"quasi-static path ([0-9.e-]+) m \(([0-9.e-]+) % of", out.stdout)
+    assert m and 0 < float(m.group(2)) < 1.0
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "t.csv", comment="#")
+    assert len(df) == 161 and abs(df["x desired [m]"].iloc[-1] - 0.2) < 1e-12
+    bad = run_cli("simulate", str(scene), "--trajectory", "swing", "--to", "0", "0", "1")
+    assert bad.returncode == 2 and "--to or --trajectory, not both" in bad.stderr
+    bad = run_cli("simulate", "fourcable", "--trajectory", "swing")
+    assert bad.returncode == 2 and "no [[trajectories]]" in bad.stderr

@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import run_cli
+from conftest import inverted_stewart_scene, run_cli
 
 import dynstiff as ds
 
@@ -28,7 +28,7 @@ def test_cli_sweep_line_and_parameter(tmp_path):
     assert out.stderr == ""                                  # --quiet: no progress bar
     assert "EA [N]" in out.stdout
     bad = run_cli("sweep", "cogiro")
-    assert bad.returncode == 2 and "--line, --path or --parameter" in bad.stderr
+    assert bad.returncode == 2 and "--line, --path, --trajectory or --parameter" in bad.stderr
     bad = run_cli("sweep", "cogiro", "--parameter", "colour", "--values", "1")
     assert bad.returncode == 2 and "colour" in bad.stderr
 
@@ -64,3 +64,28 @@ def test_cli_sweep_path_file(tmp_path):
     assert bad.returncode == 2 and "line 3" in bad.stderr and str(f) in bad.stderr
 
 
+
+
+def test_cli_sweep_follows_a_trajectory_of_the_scene(tmp_path):
+    """A CASPR trajectory (quintic, three waypoints at 0, 2, 4 s) read by import-caspr
+    drives the sweep: the steps are equally spaced in time, the veering diagram marks the
+    waypoints, and every step has the six platform modes (global) under the cables' first
+    mode (the start, symmetric, has degenerate pairs whose shapes the tracking may pair
+    differently, so the number of tracks is not asserted)."""
+    scene = inverted_stewart_scene(tmp_path / "s.toml")
+    out = run_cli("sweep", str(scene), "--trajectory", "lift_and_turn", "--steps", "5", "-n",
+                  "6", "--quiet", "--csv", str(tmp_path / "s.csv"), "--plot",
+                  str(tmp_path / "v.png"))
+    assert out.returncode == 0, out.stderr
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "s.csv", comment="#")
+    assert sorted(df["value"].unique()) == [0.0, 1.0, 2.0, 3.0, 4.0]
+    assert (df["kind"] == "global").all() and (df.groupby("step").size() == 6).all()
+    f0 = ds.eigenfrequencies(ds.build_model(ds.load_scene(scene).equilibrium(), "dsm"), 6)
+    np.testing.assert_allclose(np.sort(df[df["step"] == 0]["freq [Hz]"]), f0, rtol=1e-9)
+    assert "time along trajectory lift_and_turn [s]" in out.stdout
+    assert (tmp_path / "v.png").stat().st_size > 10_000
+    bad = run_cli("sweep", str(scene), "--trajectory", "nope")
+    assert bad.returncode == 2 and "the trajectories ['lift_and_turn', 'square'" in bad.stderr
+    bad = run_cli("sweep", "cogiro", "--trajectory", "nope")
+    assert bad.returncode == 2 and "no [[trajectories]]" in bad.stderr

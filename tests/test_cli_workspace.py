@@ -6,6 +6,7 @@ import sys
 
 import numpy as np
 import pytest
+from conftest import inverted_stewart_scene
 
 pytest.importorskip("xarray")
 
@@ -39,7 +40,22 @@ def test_workspace_command_writes_map_figure_and_table(tmp_path):
       "--parameter", "EA"], "go together"),
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",
       "--workers", "2", "--scheduler", "tcp://x:1"], "not allowed with"),
+    (["--step", "1", "--out", "m.nc"], "--box X0 X1 Y0 Y1 Z0 Z1 is needed: scene 'cogiro' "
+                                       "has no [workspace] box"),
 ])
 def test_bad_workspace_arguments_fail_on_one_line(tmp_path, args, match):
     r = run("cogiro", *args, cwd=tmp_path)
     assert r.returncode == 2 and match in r.stderr and len(r.stderr.splitlines()) == 1
+
+
+@pytest.mark.integration
+def test_workspace_box_defaults_to_the_scenes(tmp_path):
+    """A scene imported from CASPR carries its joint's q_min / q_max as [workspace] box
+    (x, y in [-1, 1], z in [0.5, 2.5] m): with a 2 m step, the map's 8 corners."""
+    from dynstiff.maps.dataset import open_workspace
+    scene = inverted_stewart_scene(tmp_path / "s.toml")
+    r = run(str(scene), "--step", "2", "-n", "3", "--out", "m.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    m = open_workspace(tmp_path / "m.nc")
+    assert m["x"].values.tolist() == [-1.0, 1.0] and m["z"].values.tolist() == [0.5, 2.5]
+    assert int(m["feasible"].sum()) == 8

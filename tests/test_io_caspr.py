@@ -1,7 +1,9 @@
 """CASPR model import (dynstiff/io/caspr.py, Robot.from_caspr; theory.md §15.1-15.2): CASPR's own
 CoGiRo files (tests/data/caspr/, copied unchanged, SOURCE.md) give the built-in scene's robot
 and frequencies; IPAnema 1 (8 cables, not suspended) imports and solves in both of its cable
-sets; the two file layouts, the joint types, the inertia conventions and malformed files."""
+sets; the two file layouts, the joint types, the inertia conventions and malformed files;
+shared anchor points (a test robot in CASPR's format, InvertedStewart_*.xml), the joint's
+bounds as the workspace box, and pulley attachments refused."""
 
 import warnings
 from pathlib import Path
@@ -209,3 +211,78 @@ def test_no_warning_without_products_of_inertia():
     with warnings.catch_warnings():
         warnings.simplefilter("error", InertiaConventionWarning)
         read_caspr(*IPA)
+
+
+INV = (DATA / "InvertedStewart_bodies.xml", DATA / "InvertedStewart_cables.xml")
+
+
+def test_shared_anchor_points_import_and_solve():
+    """A test robot in CASPR's format (tests/data/caspr/InvertedStewart_*.xml, written for
+    dynstiff): six cables from three exit points, the NIST RoboCrane's arrangement. It
+    imports, and at the centre its six tensions are equal (the octahedron's symmetry, to the
+    4 decimals of the file's coordinates) and near m g L / (6 h) = 226.55 N; the cables'
+    weight (0.05 kg/m, 3.46 m: 1.7 N each, about half of it carried at the platform) adds
+    L / h = 2.31 times half of it, about 2 N."""
+    m = read_caspr(*INV)
+    assert len(np.unique(m.anchors, axis=0)) == 3 and len(m.anchors) == 6
+    scene = ds.scenes.import_caspr(*INV, cable=ds.Cable(0.05, 1e6))
+    eq = scene.equilibrium()
+    np.testing.assert_allclose(eq.tensions, eq.tensions.mean(), rtol=1e-4)
+    T0 = 60.0 * scene.robot.g * np.sqrt(12.0) / (6 * 1.5)
+    assert abs(T0 - 226.55) < 0.01
+    assert 1.5 < eq.tensions.mean() - T0 < 2.5
+
+
+def test_joint_bounds_give_the_workspace_box():
+    m = read_caspr(*INV)
+    np.testing.assert_array_equal(m.q_min, [-1.0, -1.0, 0.5, -0.5, -0.5, -0.5])
+    assert m.workspace_box == (-1.0, 1.0, -1.0, 1.0, 0.5, 2.5)
+    np.testing.assert_array_equal(m.origin, [0.0, 0.0, 0.0])
+    assert read_caspr(*IPA).workspace_box == (-4.5, 4.5, -3.5, 3.5, 0.0, 3.5)   # CASPR's
+    with pytest.warns(InertiaConventionWarning):          # an older CoGiRo file: no bounds
+        assert read_caspr(*COG).workspace_box is None
+
+
+def test_workspace_box_is_moved_by_the_parent_location(tmp_path):
+    b, c = write(tmp_path)
+    b.write_text(b.read_text().replace('q_initial="1 2 3 0.1 0.2 0.3"',
+                                       'q_initial="1 2 3 0.1 0.2 0.3" q_min="0 0 0 -1 -1 -1" '
+                                       'q_max="2 3 4 1 1 1"'))
+    assert read_caspr(b, c).workspace_box == (0.5, 2.5, 0.0, 3.0, 0.0, 4.0)
+    b.write_text(b.read_text().replace('q_max="2 3 4 1 1 1"', 'q_max="2 -3 4 1 1 1"'))
+    with pytest.raises(CasprError, match="q_min .* exceeds q_max"):
+        read_caspr(b, c)
+    assert read_caspr(*write(tmp_path, "S_EULER_XYZ", "0.1 0.2 0.3")).workspace_box is None
+
+
+def test_joint_pose_is_the_reader_pose():
+    from dynstiff.io.caspr import joint_pose
+    p, r = joint_pose("SPATIAL_EULER_XYZ", [0.5, 0.0, 0.0], [1, 2, 3, 0.1, 0.2, 0.3])
+    np.testing.assert_allclose(p, [1.5, 2.0, 3.0])
+    np.testing.assert_allclose(Rotation.from_rotvec(r).as_matrix(),
+                               Rotation.from_euler("XYZ", [0.1, 0.2, 0.3]).as_matrix(),
+                               atol=1e-14)
+
+
+PULLEY = """<attachments><base_rotating_pulley><fixed_location>1 2 3</fixed_location>
+  <pulley_radius>0.045</pulley_radius><cable_entry_vector>0 0 1</cable_entry_vector>
+  </base_rotating_pulley><attachment><link>1</link><location>0.1 0.2 0.3</location>
+  </attachment></attachments>"""
+
+
+def test_pulley_attachments_are_refused_with_the_sets_to_choose(tmp_path):
+    """CAROCA's set 'with_rotating_pulleys' routes each cable over a base pulley whose exit
+    point moves with the pose; dynstiff clamps a cable at a fixed point."""
+    b, c = write(tmp_path)
+    text = c.read_text()
+    start, end = text.index("<attachments>"), text.index("</attachments>") + 14
+    c.write_text(text[:start] + PULLEY + text[end:])
+    with pytest.raises(CasprError, match="<base_rotating_pulley>.*choose a set of plain "
+                                         r"<attachment>s \(this file has none\)") as err:
+        read_caspr(b, c)
+    assert "\n" not in str(err.value)
+    text = c.read_text().replace("</cables>", CABLES.format(ref="joint").replace(
+        '<cables default_cable_set="s"><cable_set id="s">', '<cable_set id="plain">'))
+    c.write_text(text)
+    with pytest.raises(CasprError, match=r"plain <attachment>s, one of \['plain'\]"):
+        read_caspr(b, c)

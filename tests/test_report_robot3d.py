@@ -179,6 +179,12 @@ def test_mode_shape_figure_explains_itself(cogiro_eq, cogiro_model, cogiro_modes
     texts = {t.get_gid(): t.get_text() for t in ax.texts}
     assert [texts[f"anchor-label-{i}"] for i in range(8)] == [str(i) for i in range(8)]
     assert by_gid(ax, "motion")
+    shared = ds.Robot(cogiro_eq.robot.anchors[[0, 0, 2, 3, 4, 5, 6, 7]],
+                      cogiro_eq.robot.attachments, cogiro_eq.robot.cables,
+                      cogiro_eq.robot.platform)              # cables 0 and 1 share an anchor
+    ax2 = plot_robot(shared.equilibrium(pose=cogiro_eq.pose)).axes[0]
+    texts = {t.get_gid(): t.get_text() for t in ax2.texts}
+    assert texts["anchor-label-0"] == "0,1" and "anchor-label-1" not in texts
     spans = np.array([np.ptp(ax.get_xlim()), np.ptp(ax.get_ylim()), np.ptp(ax.get_zlim())])
     box = ax.get_box_aspect()
     np.testing.assert_allclose(box / box.max(), spans / spans.max(), rtol=1e-6)

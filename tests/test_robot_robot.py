@@ -1,8 +1,11 @@
-"""The robot (dynstiff/robot/robot.py): bad inputs raise naming the field, and each stiffness of a
-robot at a pose has its own name (theory.md §4)."""
+"""The robot (dynstiff/robot/robot.py): bad inputs raise naming the field, each stiffness of a
+robot at a pose has its own name (theory.md §4), and cables may share an anchor or an
+attachment point (an inverted Stewart platform of the NIST RoboCrane type, theory.md §15.1)
+but not both ends."""
 
 import numpy as np
 import pytest
+from conftest import inverted_stewart
 
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError
@@ -12,10 +15,11 @@ def test_bad_robot_inputs_raise_naming_field(cogiro):
     r = cogiro.robot
     with pytest.raises(InvalidParameterError, match="anchors"):
         ds.Robot(r.anchors[:5], r.attachments[:5], r.cables[:5], r.platform)
-    A = r.anchors.copy()
-    A[3] = A[2]
-    with pytest.raises(InvalidParameterError, match="anchors 2 and 3"):
-        ds.Robot(A, r.attachments, r.cables, r.platform)
+    A, b = r.anchors.copy(), r.attachments.copy()
+    A[3], b[3] = A[2], b[2]
+    with pytest.raises(InvalidParameterError, match="cables 2 and 3 have both ends in common"
+                                                    ".*merge them into one cable"):
+        ds.Robot(A, b, r.cables, r.platform)
     with pytest.raises(InvalidParameterError, match="inertia"):
         ds.Platform(10.0, inertia=np.diag([1.0, 1.0, -1.0]))
     with pytest.raises(InvalidParameterError, match="inertia"):
@@ -48,3 +52,45 @@ def test_coordinates_beyond_1e100_m_are_named(cogiro):
         ds.Robot(r.anchors, far, r.cables, r.platform)
     with pytest.raises(InvalidParameterError, match="pose position"):
         ds.Pose([1e101, 0.0, 0.0])
+
+
+def test_shared_anchor_points_solve_with_the_analytic_tension():
+    """Three anchor points, two cables each: at the centre every cable carries
+    T = m g L / (6 h) (six equal vertical shares; L the chord, h its height), up to the
+    weight of the nearly massless cables (1e-4 kg/m: w0 L / T ~ 1e-5)."""
+    robot = inverted_stewart()
+    assert len(np.unique(robot.anchors, axis=0)) == 3
+    eq = robot.equilibrium(pose=[0.0, 0.0, 1.5, 0.0, 0.0, 0.0])
+    L, h = np.sqrt(12.0), 1.5                   # chord (3, 0.866, -1.5) m of every cable
+    np.testing.assert_allclose(eq.tensions, 100.0 * robot.g * L / (6 * h), rtol=2e-5)
+    np.testing.assert_allclose(eq.tensions, eq.tensions[0], rtol=1e-9)   # C3v symmetry
+
+
+def test_shared_anchors_give_symmetric_modes_in_every_rung():
+    """The octahedron's symmetry (C3v) pairs its platform modes: two degenerate pairs
+    (sway with tilt) and two single modes (heave, twist) in every rung (the chains of the
+    lumped rung and the exact cables leave from shared anchor nodes too); with light cables
+    every rung agrees with the massless spring model to the cables' small mass."""
+    eq = inverted_stewart().equilibrium(pose=[0.0, 0.0, 1.5, 0.0, 0.0, 0.0])
+    f0 = ds.eigenfrequencies(ds.build_model(eq, "spring"), n_modes=6)
+    for rung, kw in (("spring", {}), ("catenary", {}), ("dsm", {}),
+                     ("lumped", {"segments": 4}), ("exact", {"fmax_hz": 200.0})):
+        f = ds.eigenfrequencies(ds.build_model(eq, rung, **kw), n_modes=6)
+        np.testing.assert_allclose(f[[1, 3]], f[[2, 4]], rtol=1e-8, err_msg=rung)
+        assert np.all(np.diff(f[[0, 1, 3, 5]]) / f[[1, 3, 5]] > 0.1), rung
+        np.testing.assert_allclose(f, f0, rtol=5e-5, err_msg=rung)
+
+
+def test_shared_attachment_points_solve_with_the_analytic_tension():
+    """Six anchors, three platform points with two cables each (the arrangement of FAST's
+    feed cabin): each point is held by the anchors 30 deg either side of it, and at the
+    centre every cable carries m g L / (6 h)."""
+    ang_a = np.radians(np.arange(0.0, 360.0, 60.0))
+    ang_b = np.radians([30.0, 30.0, 150.0, 150.0, 270.0, 270.0])
+    A = np.c_[3.5 * np.cos(ang_a), 3.5 * np.sin(ang_a), np.full(6, 3.0)]
+    b = np.c_[0.9 * np.cos(ang_b), 0.9 * np.sin(ang_b), np.zeros(6)]
+    rob = ds.Robot(A, b, ds.Cable(1e-4, 1e7),
+                   ds.Platform(100.0, inertia=np.diag([10.0, 10.0, 15.0])))
+    eq = rob.equilibrium(pose=[0.0, 0.0, 1.5, 0.0, 0.0, 0.0])
+    L = np.linalg.norm(A[0] - (b[0] + [0.0, 0.0, 1.5]))
+    np.testing.assert_allclose(eq.tensions, 100.0 * rob.g * L / (6 * 1.5), rtol=2e-5)

@@ -155,3 +155,47 @@ def test_scene_damping_and_analysis_settings_are_read(tmp_path):
     p.write_text(text + '\n[damping]\nstiffness = 1.0\n')
     with pytest.raises(ds.SceneError, match="unknown key 'stiffness'"):
         ds.load_scene(p)
+
+
+TRAJECTORY = """
+[workspace]
+box = [-2.0, 2.0, -2.0, 2.0, 0.5, 3.0]
+
+[[trajectories]]
+name = "up"
+law = "quintic"
+times = [0.0, 2.0]
+positions = [[0.0, 0.0, 1.0], [0.0, 0.0, 2.0]]
+"""
+
+
+def test_workspace_box_and_trajectories_are_read(tmp_path):
+    p = tmp_path / "t.toml"
+    p.write_text((ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text() + TRAJECTORY)
+    sc = ds.load_scene(p)
+    assert sc.workspace_box == (-2.0, 2.0, -2.0, 2.0, 0.5, 3.0)
+    up = sc.trajectories["up"]
+    assert isinstance(up, ds.WaypointPath) and up.law == "quintic"
+    np.testing.assert_array_equal(up.rotations, 0.0)                 # default: no rotation
+    np.testing.assert_allclose(up.at(1.0)[0], [[0.0, 0.0, 1.5]])      # half way at mid-time
+    assert ds.load_scene("cogiro").trajectories == {}
+
+
+@pytest.mark.parametrize("edit, match", [
+    (('box = [-2.0, 2.0, -2.0, 2.0, 0.5, 3.0]', 'box = [2.0, -2.0, -2.0, 2.0, 0.5, 3.0]'),
+     r"line \d+: box must be 6 numbers"),
+    (('law = "quintic"', 'law = "spline"'), r"line \d+: \[trajectories\] trajectory 'up': "
+                                            r"law must be one of"),
+    (('times = [0.0, 2.0]', 'times = [0.0, 2.0, 3.0]'),
+     r"positions must be finite, shape \(3, 3\)"),
+    (('law = "quintic"\n', ''), r"line \d+: missing key 'law' in \[trajectories\]"),
+    (('positions = [[0.0, 0.0, 1.0], [0.0, 0.0, 2.0]]', 'positions = [1.0, 2.0]'),
+     "positions in \\[trajectories\\] must be a list of points"),
+    (('name = "up"', 'name = "up"\nspeed = 1.0'), "unknown key 'speed' in \\[trajectories\\]"),
+])
+def test_bad_trajectories_and_boxes_name_key_and_line(tmp_path, edit, match):
+    p = tmp_path / "t.toml"
+    p.write_text((ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text()
+                 + TRAJECTORY.replace(*edit))
+    with pytest.raises(ds.SceneError, match=match):
+        ds.load_scene(p)

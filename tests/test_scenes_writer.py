@@ -1,17 +1,14 @@
 """Scene files written from a robot (dynstiff/scenes/writer.py): a written scene reads back
-to the same robot and pose bit for bit; CASPR import gives a Scene at q_initial."""
+to the same robot and pose bit for bit, and bad trajectories or boxes are refused before
+anything is written (CASPR import: tests/test_scenes_caspr.py)."""
 
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import dynstiff as ds
-from dynstiff.io.caspr import InertiaConventionWarning
-from dynstiff.scenes import import_caspr, write_scene
-
-DATA = Path(__file__).parent / "data" / "caspr"
+from dynstiff.scenes import write_scene
 
 
 def assert_same_robot(a, b):
@@ -43,11 +40,14 @@ def test_cables_that_differ_are_written_one_by_one(tmp_path):
     assert_same_robot(back, r2)
 
 
-def test_import_caspr_scene_is_at_q_initial():
-    cable = ds.load_scene("cogiro").robot.cables[0]
-    with pytest.warns(InertiaConventionWarning):
-        sc = import_caspr(DATA / "CoGiRo_bodies.xml", DATA / "CoGiRo_cables.xml", cable)
-    assert sc.pose == ds.Pose([0.0, 0.0, 2.0])
-    assert "products" in sc.description and "original" in sc.description
-    with pytest.raises(ds.InvalidParameterError, match="cable must be a dynstiff.Cable"):
-        import_caspr(DATA / "CoGiRo_bodies.xml", DATA / "CoGiRo_cables.xml", 1e5)
+@pytest.mark.parametrize("kw, match", [
+    (dict(trajectories=[1.0]), "trajectories must be dynstiff.WaypointPath"),
+    (dict(trajectories=[ds.WaypointPath([0, 1], np.zeros((2, 3)), np.zeros((2, 3)))]),
+     "distinct, non-empty names"),
+    (dict(workspace_box=[0, 1, 0, 1, 2, 1]), "workspace_box must be 6 finite numbers"),
+])
+def test_bad_trajectories_and_boxes_are_refused_before_writing(tmp_path, kw, match):
+    r = ds.load_scene("cogiro").robot
+    with pytest.raises(ds.InvalidParameterError, match=match):
+        write_scene(tmp_path / "s.toml", r, **kw)
+    assert not (tmp_path / "s.toml").exists()

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.timedomain.trajectory import circle, line, quasi_static_lengths
+from dynstiff.robot.waypoints import WaypointPath
+from dynstiff.timedomain.trajectory import circle, following, line, quasi_static_lengths
 
 
 def test_line_with_ramps_covers_its_length_at_its_speed():
@@ -42,3 +43,14 @@ def test_quasi_static_lengths_are_inverse_statics_at_every_sample(cogiro):
         eq = cogiro.robot.equilibrium(pose=np.concatenate([tr.positions[k], tr.rotations[k]]))
         np.testing.assert_allclose(L[k], eq.unstretched_lengths, rtol=1e-12)
         np.testing.assert_allclose(T[k], eq.tensions, rtol=1e-10)
+
+
+def test_following_a_waypoint_path_samples_it_and_every_waypoint():
+    path = WaypointPath([0.0, 0.75, 2.0], [[0, 0, 1.0], [0.3, 0, 1.0], [0.3, 0.2, 1.2]],
+                           np.zeros((3, 3)), "quintic", name="w")
+    tr = following(path, samples_per_s=2.0)
+    assert set(path.times) <= set(tr.times) and tr.name == "w" and tr.duration == 2.0
+    np.testing.assert_allclose(tr.times, [0.0, 0.5, 0.75, 1.0, 1.5, 2.0])
+    np.testing.assert_array_equal(tr.at([0.3, 1.7])[0], path.at([0.3, 1.7])[0])
+    with pytest.raises(InvalidParameterError, match="waypoints must be a dynstiff"):
+        following("w")

@@ -5,7 +5,7 @@ work, the report stream, table writers and a progress bar."""
 import sys
 
 __all__ = ["FIGURE_SUFFIXES", "ProgressBar", "check_outputs", "damping_option", "equilibrium",
-           "info", "scene_settings", "write_table"]
+           "info", "scene_settings", "scene_trajectory", "write_table"]
 
 
 def scene_settings(scene, args):
@@ -145,3 +145,15 @@ def write_table(df, path, kind, metadata=None):
     else:
         with open(path, "w") as fh:
             fh.write(text)
+
+
+def scene_trajectory(scene, name):
+    """The scene's trajectory ``name`` (a :class:`dynstiff.WaypointPath`), or an error that
+    lists the ones it has."""
+    from dynstiff.errors import InvalidParameterError
+    if name not in scene.trajectories:
+        raise InvalidParameterError(
+            f"--trajectory {name!r}: the scene has "
+            + (f"the trajectories {list(scene.trajectories)}" if scene.trajectories
+               else "no [[trajectories]] (dynstiff import-caspr reads CASPR's)"))
+    return scene.trajectories[name]

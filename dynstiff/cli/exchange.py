@@ -20,20 +20,40 @@ def _out(path, text):
 
 def cmd_import_caspr(args):
     """``dynstiff import-caspr BODIES CABLES --mass-per-length M --EA EA --out FILE``."""
+    from pathlib import Path
+
+    from dynstiff.errors import InvalidParameterError
     from dynstiff.io.caspr import InertiaConventionWarning
     from dynstiff.params import Cable
-    from dynstiff.scenes.writer import caspr_comments, import_caspr, scene_text
+    from dynstiff.scenes.caspr import caspr_comments, caspr_siblings, import_caspr
+    from dynstiff.scenes.writer import scene_text
+    if args.out != "-":
+        given = [Path(p).resolve() for p in (args.bodies, args.cables, args.trajectories,
+                                             args.operational_spaces) if p]
+        if Path(args.out).resolve() in given:
+            raise InvalidParameterError(f"--out {args.out} is one of the input files; give "
+                                        f"another name")
     cable = Cable(mass_per_length=args.mass_per_length, EA=args.EA)
+    traj, ops = args.trajectories, args.operational_spaces
+    if not args.no_siblings:                 # CASPR's other files beside the bodies file
+        found = caspr_siblings(args.bodies)
+        traj = traj or found[0]
+        ops = ops or found[1]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InertiaConventionWarning)
         scene = import_caspr(args.bodies, args.cables, cable, cable_set=args.cable_set,
                              inertia_convention=args.inertia_convention, name=args.name,
-                             min_tension=args.min_tension)
+                             min_tension=args.min_tension, trajectories_xml=traj,
+                             operational_spaces_xml=ops)
     for w in caught:
         sys.stderr.write(f"dynstiff: warning: {w.message}\n")
+    kinds = scene.study.get("caspr_trajectory_kinds", {})
     text = scene_text(scene.robot, scene.pose, name=scene.name, description=scene.description,
-                      comments=caspr_comments(scene, args.bodies, args.cables),
-                      cable_names=scene.study["caspr_cable_names"])
+                      comments=caspr_comments(scene, args.bodies, args.cables, traj, ops),
+                      cable_names=scene.study["caspr_cable_names"],
+                      trajectories=scene.trajectories.values(),
+                      workspace_box=scene.workspace_box,
+                      trajectory_notes={k: f"CASPR {v}" for k, v in kinds.items()})
     _out(args.out, text)
     info = sys.stderr if args.out == "-" else sys.stdout
     r = scene.robot
@@ -41,6 +61,19 @@ def cmd_import_caspr(args):
                f"{' '.join(r.platform.free_dofs)}, pose {scene.pose.position.tolist()} m, "
                f"tensions {r.tension_limits[0]:g}-{r.tension_limits[1]:g} N, inertia "
                f"convention {args.inertia_convention!r}\n")
+    if scene.workspace_box is not None:
+        info.write(f"workspace box (q_min, q_max): {list(scene.workspace_box)} m\n")
+    if traj is not None:
+        info.write(f"trajectories from {traj}: " + (", ".join(
+            f"{k} ({p.law}, {p.times.size} waypoints, {p.duration:g} s)"
+            for k, p in scene.trajectories.items()) or "none") + "\n")
+        for tid, why in scene.study["caspr_skipped_trajectories"]:
+            info.write(f"trajectory {tid!r} not read: {why}\n")
+    if ops is not None:
+        sets = scene.study["caspr_operational_sets"]
+        info.write(f"operational spaces from {ops}: " + (", ".join(
+            f"{k} ({len(v)} marker{'s' if len(v) != 1 else ''})" for k, v in sets.items())
+            or "no operational set") + " (markers, no bounds)\n")
     if args.out != "-":
         info.write(f"wrote {args.out}\n")
     return 0
@@ -90,6 +123,15 @@ def add_parsers(sub):
     ic.add_argument("--min-tension", type=float, default=1.0,
                     help="least t_min [N] where CASPR's force_min is lower (default "
                          "%(default)s)")
+    ic.add_argument("--trajectories", metavar="FILE",
+                    help="CASPR *_trajectories.xml: its joint trajectories become the scene's "
+                         "[[trajectories]] (default: the file beside BODIES, if any)")
+    ic.add_argument("--operational-spaces", metavar="FILE",
+                    help="CASPR *_operational_spaces.xml: its markers are listed in the "
+                         "scene's header (default: the file beside BODIES, if any)")
+    ic.add_argument("--no-siblings", action="store_true",
+                    help="do not read the trajectories and operational-space files beside "
+                         "BODIES")
     ic.add_argument("--name", help="scene name (default: the CASPR link's name)")
     ic.add_argument("--out", required=True, help="scene file to write ('-': standard output)")
     ic.set_defaults(func=cmd_import_caspr)

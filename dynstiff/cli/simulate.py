@@ -1,7 +1,8 @@
 """``simulate``: the lumped-mass time domain (free vibration from an offset and its
-spectrum, or a line commanded through quasi-static cable lengths)."""
+spectrum, or a line or a trajectory of the scene commanded through quasi-static cable
+lengths)."""
 
-from dynstiff.cli.common import ProgressBar, equilibrium, info, write_table
+from dynstiff.cli.common import ProgressBar, equilibrium, info, scene_trajectory, write_table
 
 __all__ = ["add_parsers"]
 
@@ -18,11 +19,22 @@ def _cmd_simulate(args):
     from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
-    eq = equilibrium(scene, args)
-    if args.to is not None:
-        from dynstiff.timedomain.trajectory import line, track
-        traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
-                    ramp=args.ramp)
+    if args.trajectory is not None and args.to is not None:
+        raise InvalidParameterError("give --to or --trajectory, not both")
+    path = None if args.trajectory is None else scene_trajectory(scene, args.trajectory)
+    eq = equilibrium(scene, args) if path is None else None
+    start = None if eq is None else (eq.pose.position, eq.pose.rotation)
+    if args.to is not None or args.trajectory is not None:
+        from dynstiff.timedomain.trajectory import following, line, track
+        if args.trajectory is not None:
+            traj = following(path)
+            what = (f"trajectory {args.trajectory!r} ({traj.duration:g} s, "
+                    f"{path.times.size} waypoints)")
+        else:
+            traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
+                        ramp=args.ramp)
+            what = (f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
+                    f"{args.speed:g} m/s (ramp {args.ramp:g} s)")
         bar = None if args.quiet else ProgressBar("quasi-static lengths")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", SlackSegmentWarning)
@@ -30,9 +42,9 @@ def _cmd_simulate(args):
                        settle=args.time, progress=bar)
         resp = tr.response
         df = tr.to_frame()
+        start = traj.positions[0], traj.rotations[0]
         info(args).write(
-            f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
-            f"{args.speed:g} m/s (ramp {args.ramp:g} s), {args.segments} segments per "
+            f"{what}, {args.segments} segments per "
             f"cable, dt = {args.dt:g} s: largest deviation from the quasi-static path "
             f"{tr.max_deviation:.4g} m ({100 * tr.relative_max_deviation:.3g} % of the mean "
             f"cable length)\n")
@@ -97,8 +109,8 @@ def _cmd_simulate(args):
         write_table(df, args.csv, "csv", {
             "dynstiff": __version__, "scene": scene.name, "model": "lumped",
             "segments": args.segments, "dt [s]": args.dt,
-            "pose": {"position [m]": [float(v) for v in eq.pose.position],
-                     "rotation [rad]": [float(v) for v in eq.pose.rotation]},
+            "pose": {"position [m]": [float(v) for v in start[0]],
+                     "rotation [rad]": [float(v) for v in start[1]]},
             "damping": "the cables' own (time domain)", "units": "SI, in the column names"})
     for name in (args.csv, args.plot):
         if name and name != "-":
@@ -121,7 +133,8 @@ def add_parsers(sub):
     grp.add_argument("--pose", type=float, nargs="+", metavar="X")
     grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
     si.add_argument("--time", type=float, default=5.0,
-                    help="duration [s] (after the path's end with --to; default %(default)s)")
+                    help="duration [s] (after the path's end with --to or --trajectory; "
+                         "default %(default)s)")
     si.add_argument("--dt", type=float, default=2e-3, help="time step [s] (default %(default)s)")
     si.add_argument("--segments", type=int, default=10, help="segments per cable")
     si.add_argument("--offset", type=float, nargs="+", metavar="D",
@@ -133,6 +146,9 @@ def add_parsers(sub):
                     help="channel of the spectrum (default: the first free DOF)")
     si.add_argument("--to", type=float, nargs=3, metavar=("X", "Y", "Z"),
                     help="move P in a straight line to this point [m] instead")
+    si.add_argument("--trajectory", metavar="NAME",
+                    help="follow the scene's trajectory NAME ([[trajectories]], e.g. from "
+                         "dynstiff import-caspr) through quasi-static cable lengths instead")
     si.add_argument("--speed", type=float, default=0.5, help="path speed [m/s]")
     si.add_argument("--ramp", type=float, default=1.0, help="speed ramp duration [s]")
     si.add_argument("--csv", help="write the time history (CSV)")

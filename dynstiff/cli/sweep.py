@@ -1,7 +1,7 @@
-"""``sweep``: modes along a path or over a parameter, global modes tracked, the veering
-diagram."""
+"""``sweep``: modes along a path (a line, a file of poses, a trajectory of the scene) or over
+a parameter, global modes tracked, the veering diagram."""
 
-from dynstiff.cli.common import ProgressBar, info, scene_settings, write_table
+from dynstiff.cli.common import ProgressBar, info, scene_settings, scene_trajectory, write_table
 
 __all__ = ["add_parsers"]
 
@@ -66,14 +66,21 @@ def _cmd_sweep(args):
     robot = scene.robot
     bar = None if args.quiet else ProgressBar(f"sweep {scene.name}")
     n_modes = None if args.fmax and args.n is None else st.n_modes
-    given = [name for name in ("line", "path", "parameter") if getattr(args, name) is not None]
+    given = [name for name in ("line", "path", "trajectory", "parameter")
+             if getattr(args, name) is not None]
     if len(given) != 1:
         raise InvalidParameterError(
-            f"give exactly one of --line, --path or --parameter, got {given or 'none'}")
+            f"give exactly one of --line, --path, --trajectory or --parameter, got "
+            f"{given or 'none'}")
+    if args.steps < 2:
+        raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
     rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
-    if args.line is not None:
-        if args.steps < 2:
-            raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
+    if args.trajectory is not None:
+        poses, times = scene_trajectory(scene, args.trajectory).poses(args.steps)
+        res = sweep(robot, poses=poses, values=times, n_modes=n_modes, fmax_hz=args.fmax,
+                    progress=bar, on_error="record",
+                    parameter=f"time along trajectory {args.trajectory} [s]")
+    elif args.line is not None:
         pts = np.linspace(args.line[:3], args.line[3:], args.steps)
         res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
                     fmax_hz=args.fmax, progress=bar, on_error="record")
@@ -99,6 +106,12 @@ def _cmd_sweep(args):
         matplotlib.use("Agg")
         from dynstiff.plot import plot_veering
         fig = plot_veering(res)
+        if args.trajectory is not None:       # the waypoints, where the platform may rest
+            ax = fig.axes[0]
+            for k, t in enumerate(scene.trajectories[args.trajectory].times):
+                ax.axvline(t, color="0.55", ls=":", lw=1.0, zorder=0, gid=f"waypoint-{k}",
+                           label="waypoints" if k == 0 else None)
+            ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
     vt = res.veering_table()
@@ -126,10 +139,13 @@ def add_parsers(sub):
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
     sw.add_argument("--steps", type=int, default=11,
-                    help="poses along --line (default %(default)s)")
+                    help="poses along --line or --trajectory (default %(default)s)")
     sw.add_argument("--path", metavar="FILE",
                     help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
                          "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
+    sw.add_argument("--trajectory", metavar="NAME",
+                    help="poses along the scene's trajectory NAME ([[trajectories]], e.g. "
+                         "from dynstiff import-caspr), --steps of them equally spaced in time")
     sw.add_argument("--parameter", choices=["EA", "mass", "t_min"],
                     help="sweep a parameter at the scene's pose: EA of every cable [N], "
                          "platform mass [kg], minimum tension [N]")

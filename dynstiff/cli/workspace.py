@@ -1,5 +1,6 @@
-"""The ``dynstiff workspace`` command: a workspace map of a scene over a box grid
-(docs/theory.md §13), written to netCDF (or Zarr) with an optional figure and table."""
+"""The ``dynstiff workspace`` command: a workspace map of a scene over a box grid (given, or
+the scene's ``[workspace] box``; docs/theory.md §13), written to netCDF (or Zarr) with an
+optional figure and table."""
 
 import sys
 
@@ -12,8 +13,10 @@ def add_parsers(sub):
         "workspace", help="map statics, modes and design checks over a box grid of positions "
                           "(optionally x orientations x a cable parameter); netCDF output")
     ws.add_argument("scene", help="built-in scene name or path to a TOML scene file")
-    ws.add_argument("--box", type=float, nargs=6, required=True,
-                    metavar=("X0", "X1", "Y0", "Y1", "Z0", "Z1"), help="grid box [m]")
+    ws.add_argument("--box", type=float, nargs=6,
+                    metavar=("X0", "X1", "Y0", "Y1", "Z0", "Z1"),
+                    help="grid box [m] (default: the scene's [workspace] box, e.g. a CASPR "
+                         "joint's q_min / q_max)")
     ws.add_argument("--step", type=float, required=True, help="grid spacing [m]")
     ws.add_argument("--orientations", metavar="FILE",
                     help="rotation vectors rx ry rz [rad], one a line ('#' comments), "
@@ -81,11 +84,15 @@ def _cmd_workspace(args):
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be >= 1, got {args.workers}")
     scene = load_scene(args.scene)
+    box = args.box if args.box is not None else scene.workspace_box
+    if box is None:
+        raise InvalidParameterError(f"--box X0 X1 Y0 Y1 Z0 Z1 is needed: scene {scene.name!r} "
+                                    f"has no [workspace] box")
     rot = (_orientations(args.orientations) if args.orientations else
            None if scene.pose is None or not np.any(scene.pose.rotation)
            else scene.pose.rotation[None, :])
     band = tuple(args.band) if args.band else scene.forbidden_band_hz
-    kw = dict(box=args.box, step=args.step, orientations=rot, parameter=args.parameter,
+    kw = dict(box=box, step=args.step, orientations=rot, parameter=args.parameter,
               values=args.values, n_modes=args.n, band_hz=band, margin=args.margin,
               chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet)
     info = sys.stderr if args.csv == "-" else sys.stdout

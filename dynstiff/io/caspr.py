@@ -13,6 +13,13 @@ robot by two XML files:
   ``<link>1</link>`` the platform (attachment b_i, link frame; relative to the joint, or to
   the centre of mass when ``attachment_reference="com"``).
 
+The joint's ``q_min`` / ``q_max`` (when given) bound the workspace: their translation part,
+moved by the joint's parent location, is :attr:`CasprModel.workspace_box` (theory.md §15.8).
+Cables may share anchor or attachment points; a cable that leaves the base over a rotating
+pulley (``<base_rotating_pulley>``, CAROCA's ``with_rotating_pulleys`` set) is refused:
+dynstiff clamps each cable at a fixed exit point, and the pulley's exit point moves with the
+pose. Trajectories and operational spaces: :mod:`dynstiff.io.caspr_motion`.
+
 Only single-body robots are read (theory.md §15.1): the joint types whose pose is a position
 and/or an orientation of one rigid body, ``SPATIAL_EULER_XYZ`` (q = x y z alpha beta gamma,
 R = R_x(alpha) R_y(beta) R_z(gamma)), ``SPATIAL`` / ``SPATIAL_QUATERNION`` (q = x y z e0 e1
@@ -44,6 +51,7 @@ __all__ = [
     "CasprError",
     "CasprModel",
     "InertiaConventionWarning",
+    "joint_pose",
     "read_caspr",
 ]
 
@@ -99,6 +107,10 @@ class CasprModel:
         The joint's degrees of freedom.
     joint_type, cable_set, convention : str
     cable_names : tuple of str
+    origin : ndarray, shape (3,)
+        The joint's parent location [m, base frame]: P = origin + translation part of q.
+    q_min, q_max : ndarray or None
+        The joint's bounds (``q_min`` / ``q_max`` attributes), or None when not given.
     """
 
     name: str
@@ -116,6 +128,18 @@ class CasprModel:
     cable_set: str
     cable_names: tuple
     convention: str
+    origin: np.ndarray = None
+    q_min: object = None
+    q_max: object = None
+
+    @property
+    def workspace_box(self):
+        """(x0, x1, y0, y1, z0, z1) [m] of P: the translation part of ``q_min`` and ``q_max``
+        moved by ``origin``; None when the joint has no translation or no bounds."""
+        if self.q_min is None or self.q_max is None or "x" not in self.free_dofs:
+            return None
+        lo, hi = self.origin + self.q_min[:3], self.origin + self.q_max[:3]
+        return tuple(float(v) for pair in zip(lo, hi) for v in pair)
 
     @property
     def tension_limits(self):
@@ -124,7 +148,9 @@ class CasprModel:
         return float(self.force_min.max()), float(self.force_max.min())
 
 
-def _parse(path, root_tags):
+def parse_root(path, root_tags):
+    """(Path, root element) of the XML file ``path``, whose root must be one of
+    ``root_tags``; :class:`CasprError` otherwise (shared by the CASPR readers)."""
     import xml.etree.ElementTree as ET
     path = Path(path)
     try:
@@ -137,8 +163,9 @@ def _parse(path, root_tags):
     return path, root
 
 
-def _numbers(path, element, what, n=None):
-    """The numbers in ``element``'s text (or attribute string ``element``), checked."""
+def read_numbers(path, element, what, n=None):
+    """The numbers in ``element``'s text (or attribute string ``element``), checked: ``n``
+    of them (any number when None), all finite; :class:`CasprError` naming ``what``."""
     text = element if isinstance(element, str) else (element.text if element is not None
                                                      else None)
     if text is None:
@@ -170,8 +197,50 @@ def _rotation(joint_type, q):
     return np.zeros(3)                                             # T_XYZ
 
 
+def joint_pose(joint_type, origin, q):
+    """Pose of the platform for joint coordinates ``q`` (CASPR's definitions, module notes).
+
+    Parameters
+    ----------
+    joint_type : str
+        One of :data:`JOINT_TYPES`.
+    origin : array_like, shape (3,)
+        The joint's parent location [m].
+    q : array_like, shape (n_q,)
+        Joint coordinates [m, rad; quaternions unitless].
+
+    Returns
+    -------
+    position : ndarray, shape (3,)
+        P [m, base frame].
+    rotation : ndarray, shape (3,)
+        Rotation vector [rad].
+
+    Raises
+    ------
+    ValueError
+        A quaternion far from unit length.
+    """
+    q = np.asarray(q, dtype=float)
+    free = JOINT_TYPES[joint_type][1]
+    return (np.asarray(origin, float) + (q[:3] if "x" in free else 0.0),
+            _rotation(joint_type, q))
+
+
+def _bounds(path, joint, jtype, n_q):
+    """The joint's q_min and q_max, or (None, None) when either is absent."""
+    if joint.get("q_min") is None or joint.get("q_max") is None:
+        return None, None
+    lo = read_numbers(path, joint.get("q_min"), f"q_min of the {jtype} joint", n_q)
+    hi = read_numbers(path, joint.get("q_max"), f"q_max of the {jtype} joint", n_q)
+    if np.any(lo > hi):
+        raise CasprError(f"{path}: q_min {lo.tolist()} exceeds q_max {hi.tolist()} of the "
+                         f"{jtype} joint")
+    return lo, hi
+
+
 def _read_body(path, inertia_convention, stacklevel):
-    path, root = _parse(path, ("bodies_system", "links"))
+    path, root = parse_root(path, ("bodies_system", "links"))
     links = root if root.tag == "links" else root.find("links")
     if links is None:
         raise CasprError(f"{path}: <bodies_system> holds no <links>")
@@ -190,21 +259,21 @@ def _read_body(path, inertia_convention, stacklevel):
             f"{path}: joint type {jtype!r} is not supported (planar and one-axis joints have "
             f"no spatial platform); supported: {list(JOINT_TYPES)}")
     n_q, free = JOINT_TYPES[jtype]
-    q = _numbers(path, joint.get("q_initial"), f"q_initial of the {jtype} joint", n_q) \
+    q = read_numbers(path, joint.get("q_initial"), f"q_initial of the {jtype} joint", n_q) \
         if joint.get("q_initial") is not None else \
         np.array([0.0] * (n_q - 4) + [1.0, 0, 0, 0] if n_q in (4, 7) else [0.0] * n_q)
     phys = link.find("physical")
     if phys is None:
         raise CasprError(f"{path}: link {link.get('name')!r} has no <physical>")
-    mass = _numbers(path, phys.find("mass"), "<mass>", 1)[0]
-    com = _numbers(path, phys.find("com_location"), "<com_location>", 3)
+    mass = read_numbers(path, phys.find("mass"), "<mass>", 1)[0]
+    com = read_numbers(path, phys.find("com_location"), "<com_location>", 3)
     inertia = phys.find("inertia")
     if inertia is None:
         raise CasprError(f"{path}: missing <inertia>")
     if inertia.get("ref", "com") != "com":
         raise CasprError(f"{path}: <inertia ref={inertia.get('ref')!r}> is not supported, "
                          f"only ref=\"com\" (about the centre of mass)")
-    v = {k: _numbers(path, inertia.find(k), f"<inertia><{k}>", 1)[0]
+    v = {k: read_numbers(path, inertia.find(k), f"<inertia><{k}>", 1)[0]
          for k in ("Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz")}
     if inertia_convention not in INERTIA_CONVENTIONS:
         raise CasprError(f"inertia_convention must be one of {INERTIA_CONVENTIONS}, got "
@@ -227,18 +296,19 @@ def _read_body(path, inertia_convention, stacklevel):
         if num != "0":
             raise CasprError(f"{path}: the link's parent is link {num}, not the base (0)")
         if parent.find("location") is not None:
-            origin = _numbers(path, parent.find("location"), "<parent><location>", 3)
+            origin = read_numbers(path, parent.find("location"), "<parent><location>", 3)
     try:
-        rotation = _rotation(jtype, q)
+        position, rotation = joint_pose(jtype, origin, q)
     except ValueError as exc:
         raise CasprError(f"{path}: q_initial: {exc}") from None
-    position = origin + (q[:3] if "x" in free else 0.0)
+    q_min, q_max = _bounds(path, joint, jtype, n_q)
     return dict(name=link.get("name", ""), mass=mass, center_of_mass=com, inertia=tensor,
-                position=position, rotation=rotation, free_dofs=free, joint_type=jtype)
+                position=position, rotation=rotation, free_dofs=free, joint_type=jtype,
+                origin=origin, q_min=q_min, q_max=q_max)
 
 
 def _read_cables(path, cable_set, com):
-    path, root = _parse(path, ("cables",))
+    path, root = parse_root(path, ("cables",))
     sets = {s.get("id"): s for s in root.findall("cable_set")}
     if not sets:
         raise CasprError(f"{path}: no <cable_set>")
@@ -254,13 +324,22 @@ def _read_cables(path, cable_set, com):
     for k, c in enumerate(e for e in sets[chosen] if e.tag.startswith("cable")):
         name = c.get("name", f"cable {k + 1}")
         where = f"cable {name!r}"
+        other = [e.tag for e in c.findall("attachments/*") if e.tag != "attachment"]
+        if other:
+            plain = [k for k, st in sets.items()
+                     if all(e.tag == "attachment" for e in st.findall("*/attachments/*"))]
+            raise CasprError(
+                f"{path}: {where} of set {chosen!r} is attached through <{other[0]}> (a "
+                f"pulley whose exit point moves with the pose); dynstiff clamps each cable "
+                f"at a fixed exit point: choose a set of plain <attachment>s"
+                + (f", one of {plain}" if plain else " (this file has none)"))
         points = c.findall("attachments/attachment")
         links = [a.findtext("link", "").strip() for a in points]
         if sorted(links) != ["0", "1"]:
             raise CasprError(
                 f"{path}: {where} runs through links {links}; dynstiff needs one attachment on "
                 f"the base (link 0) and one on the platform (link 1)")
-        loc = {lk: _numbers(path, a.find("location"), f"{where} attachment location", 3)
+        loc = {lk: read_numbers(path, a.find("location"), f"{where} attachment location", 3)
                for lk, a in zip(links, points)}
         ref = c.get("attachment_reference", "joint").lower()
         if ref not in ("joint", "com"):
@@ -269,9 +348,9 @@ def _read_cables(path, cable_set, com):
         anchors.append(loc["0"])
         attach.append(loc["1"] + (com if ref == "com" else 0.0))
         props = c.find("properties")
-        fmin.append(_numbers(path, None if props is None else props.find("force_min"),
+        fmin.append(read_numbers(path, None if props is None else props.find("force_min"),
                              f"{where} <force_min>", 1)[0])
-        fmax.append(_numbers(path, None if props is None else props.find("force_max"),
+        fmax.append(read_numbers(path, None if props is None else props.find("force_max"),
                              f"{where} <force_max>", 1)[0])
         names.append(name)
     if not anchors:

@@ -97,14 +97,20 @@ def _cable_color(i):
 
 
 def _draw_annotations(ax, geo, factor):
-    """Cable numbers at the anchors and arrows from the static to the displaced attachment
-    points and P (the direction of motion at the drawn phase)."""
+    """Cable numbers at the anchors (one label per anchor point, listing every cable that
+    leaves it) and arrows from the static to the displaced attachment points and P (the
+    direction of motion at the drawn phase)."""
     a = geo["anchors"]
     span = np.ptp(np.vstack([a, geo["B"]]), axis=0).max()
+    shared = np.linalg.norm(a[:, None, :] - a[None, :, :], axis=2) <= 1e-9 * max(1.0, span)
     for i, p in enumerate(a):
+        first = int(np.argmax(shared[i]))
+        if first < i:                       # a shared anchor point: labelled once, below
+            continue
         off = 0.025 * span * (1 if i % 2 == 0 else -1)
-        ax.text(p[0], p[1], p[2] + off, str(i), color=_cable_color(i), fontsize=8,
-                ha="center", va="center", gid=f"anchor-label-{i}")
+        ax.text(p[0], p[1], p[2] + off, ",".join(str(j) for j in np.flatnonzero(shared[i])),
+                color=_cable_color(i), fontsize=8, ha="center", va="center",
+                gid=f"anchor-label-{i}")
     if geo["dB"] is None:
         return
     start = np.vstack([geo["B"], geo["P"][None, :]])

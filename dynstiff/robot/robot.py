@@ -38,9 +38,11 @@ class Robot:
     Parameters
     ----------
     anchors : array_like, shape (n, 3)
-        Cable exit points A_i in the base frame [m].
+        Cable exit points A_i in the base frame [m]. Cables may share an anchor point (an
+        inverted Stewart platform, two winches behind one pulley).
     attachments : array_like, shape (n, 3)
-        Attachment points b_i in the platform frame [m].
+        Attachment points b_i in the platform frame [m]. Cables may share an attachment
+        point; two cables sharing both ends are refused (one cable counted twice).
     cables : Cable or sequence of n Cable
     platform : Platform
     g : float, optional
@@ -90,10 +92,7 @@ class Robot:
             raise InvalidParameterError(
                 f"anchors: {n} cables cannot hold a platform with {n_free} free DOFs "
                 f"{self.platform.free_dofs}; at least {n_free} are needed")
-        d = np.linalg.norm(A[:, None, :] - A[None, :, :], axis=2) + np.eye(n)
-        i, j = np.unravel_index(np.argmin(d), d.shape)
-        if d[i, j] < 1e-9 * max(1.0, np.abs(A).max()):
-            raise InvalidParameterError(f"anchors {i} and {j} coincide at {A[i].tolist()}")
+        _refuse_duplicate_cables(A, b)
         g = positive_scalar("g", self.g, allow_zero=True)
         t_min, t_max = (float(t) for t in self.tension_limits)
         if not (0 <= t_min < t_max):
@@ -254,6 +253,32 @@ class Robot:
                                                                    self.n_cables),
                                None if initial_pose is None else as_pose(initial_pose), tol,
                                50 if max_iter is None else max_iter)
+
+
+def _refuse_duplicate_cables(A, b):
+    """Raise when two cables share both ends: the same anchor and the same attachment point.
+
+    Cables may share an anchor (two winches behind one exit point or pulley, the inverted
+    Stewart platform of the NIST RoboCrane) or an attachment point (cables meeting at one
+    point of the platform); each cable's catenary, stiffness and modes are its own. Two
+    cables with both ends in common are one cable counted twice: their tensions are not
+    determined separately, and the message says how to merge them.
+    """
+    n = A.shape[0]
+    if n < 2:
+        return
+    tol_a = 1e-9 * max(1.0, np.abs(A).max())
+    tol_b = 1e-9 * max(1.0, np.abs(b).max())
+    same_a = np.linalg.norm(A[:, None, :] - A[None, :, :], axis=2) <= tol_a
+    same_b = np.linalg.norm(b[:, None, :] - b[None, :, :], axis=2) <= tol_b
+    both = np.triu(same_a & same_b, k=1)
+    if np.any(both):
+        i, j = (int(k) for k in np.argwhere(both)[0])
+        raise InvalidParameterError(
+            f"anchors, attachments: cables {i} and {j} have both ends in common (anchor "
+            f"{A[i].tolist()} m, attachment {b[i].tolist()} m): one cable counted twice, "
+            f"whose two tensions no statics can tell apart; merge them into one cable (mass "
+            f"per length and EA the sums of the two) or remove one")
 
 
 def geometric_stiffness(robot, pose, states):

@@ -20,6 +20,7 @@ from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 from dynstiff.robot.equilibrium import Equilibrium
+from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
 from dynstiff.robot.pose import Pose
 
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
@@ -290,8 +291,9 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
         try:
             t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
                                      sides)
-        except SlackCableError as exc:
-            raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
+        except SlackCableError:
+            raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
+                                  f"pose {pose.as_vector().tolist()}") from None
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
         for i in np.flatnonzero(pending):
@@ -299,7 +301,9 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
                 scalar[i] = unstretched_length_for_tension(A[i], B[i], t[i], robot.cables[i],
                                                            robot.g)
             except SlackCableError as exc:
-                raise SlackCableError(f"pose {pose.as_vector().tolist()}: {exc}") from None
+                where = f"pose {pose.as_vector().tolist()}"
+                raise (diagnose_unreachable(robot, i, A[i], B[i], t[i], lo[i], where)
+                       or SlackCableError(f"{where}: {exc}")) from None
             H[i], V0[i], L0[i] = scalar[i].H, scalar[i].V0, scalar[i].unstretched_length
             res[i] = scalar[i].residual
         warm = (H, V0, L0)

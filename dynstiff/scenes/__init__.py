@@ -25,6 +25,15 @@ Format (all SI units; see ``cogiro.toml`` for a complete example)::
                       undamped
     [study]           optional, free-form: parameters of the scene's validation study
                       (trajectory, excitation, drums ...), as ``Scene.study`` (a dict)
+    [workspace]       optional: box [m] (x0, x1, y0, y1, z0, z1 of P), the default box of
+                      a workspace map (``dynstiff workspace``)
+    [[trajectories]]  optional, one table per path of the platform through waypoints
+                      (:class:`dynstiff.WaypointPath`): name, law (linear, cubic, quintic,
+                      parabolic_blend), times [s], positions [m], rotations [rad] (rotation
+                      vectors, default 0), velocities [m/s] and accelerations [m/s^2] of P
+                      (cubic, quintic; default 0), blend_times [s] (parabolic_blend); as
+                      ``Scene.trajectories`` (a dict by name), followed by ``dynstiff sweep
+                      --trajectory`` and ``dynstiff simulate --trajectory``
 
 Unknown keys, missing keys and bad values raise :class:`SceneError` naming the key and its line.
 Values are taken as written, never coerced: numbers are numbers (not strings, not booleans),
@@ -32,8 +41,9 @@ points are 3 numbers, ``free_dofs`` is a list of names, and ``[pose]`` gives a p
 unstretched lengths, not both.
 """
 
+from dynstiff.scenes.caspr import import_caspr
 from dynstiff.scenes.loader import Scene, SceneError, list_scenes, load_scene, read_scene
-from dynstiff.scenes.writer import import_caspr, scene_text, write_scene
+from dynstiff.scenes.writer import scene_text, write_scene
 
 __all__ = ["Scene", "SceneError", "list_scenes", "load_scene", "read_scene", "import_caspr",
            "scene_text", "write_scene"]

@@ -12,6 +12,7 @@ from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
 from dynstiff.robot.platform import Platform
 from dynstiff.robot.pose import Pose
 from dynstiff.robot.robot import Robot
+from dynstiff.robot.waypoints import WaypointPath
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 
@@ -30,8 +31,14 @@ _SCHEMA = {
                  "segments"},
     "damping": {"platform_ratio", "cable_loss_factor", "cable_viscous_damping"},
     "study": None,                  # free-form: parameters of the scene's validation study
+    "workspace": {"box"},
+    "trajectories": {"name", "law", "times", "positions", "rotations", "velocities",
+                     "accelerations", "blend_times"},
 }
-_REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"}}
+_REQUIRED = {"platform": {"mass"}, "cables": {"anchor", "attachment"},
+             "workspace": {"box"}, "trajectories": {"name", "law", "times", "positions"}}
+#: Sections that are arrays of tables ([[name]]).
+_ARRAYS = ("cables", "trajectories")
 
 # the type every key must have as written in the file (no coercion: "1" is not a number and
 # true is not 1): "number", "int", "str", "vector" (3 numbers), "numbers" (a list of numbers),
@@ -45,7 +52,9 @@ _TYPES = {
     "unstretched_lengths": "numbers", "band_hz": "numbers", "forbidden_band_hz": "numbers",
     "n_modes": "int", "model": "str", "model_rtol": "number", "segments": "int",
     "platform_ratio": "number", "cable_loss_factor": "number",
-    "cable_viscous_damping": "number",
+    "cable_viscous_damping": "number", "box": "numbers", "law": "str", "times": "numbers",
+    "positions": "points", "rotations": "points", "velocities": "points",
+    "accelerations": "points", "blend_times": "numbers",
 }
 
 
@@ -65,6 +74,11 @@ def _type_error(value, kind):
             isinstance(value, list) and all(_is_number(v) for v in value)
             and (len(value) == 3 if kind == "vector" else len(value) > 0)):
         return "3 numbers" if kind == "vector" else "a list of numbers"
+    if kind == "points" and not (
+            isinstance(value, list) and value and all(
+                isinstance(r, list) and len(r) == 3 and all(_is_number(v) for v in r)
+                for r in value)):
+        return "a list of points (3 numbers each)"
     if kind == "names" and not (isinstance(value, list)
                                 and all(isinstance(v, str) for v in value)):
         return "a list of names"
@@ -109,6 +123,11 @@ class Scene:
         by the analysis itself.
     name, description : str
     path : Path
+    trajectories : dict
+        The ``[[trajectories]]``: :class:`dynstiff.WaypointPath` by name (empty if none).
+    workspace_box : tuple of 6 float or None
+        ``[workspace] box`` (x0, x1, y0, y1, z0, z1) [m]: the default box of a workspace
+        map.
     """
 
     robot: Robot
@@ -125,6 +144,11 @@ class Scene:
     name: str = ""
     description: str = ""
     path: object = None
+    trajectories: object = None
+    workspace_box: object = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "trajectories", dict(self.trajectories or {}))
 
     def equilibrium(self, pose=None, unstretched_lengths=None, **kw):
         """Static equilibrium of the scene's robot (:meth:`Robot.equilibrium`).
@@ -215,14 +239,14 @@ def read_scene(path):
     for sec, keys in _SCHEMA.items():
         if keys is None:
             continue
-        tables = data.get(sec, [] if sec == "cables" else {})
+        tables = data.get(sec, [] if sec in _ARRAYS else {})
         tables = tables if isinstance(tables, list) else [tables]
         for k, tab in enumerate(tables):
             for key in tab:
                 if key not in keys:
                     fail(f"unknown key {key!r} in [{sec}] (expected one of {sorted(keys)})",
                          key, sec, k)
-            for key in _REQUIRED.get(sec, ()):
+            for key in _REQUIRED.get(sec, ()) if sec in data else ():
                 if key not in tab:
                     fail(f"missing key {key!r} in [{sec}]", None, sec, k)
             for key, value in tab.items():
@@ -295,6 +319,23 @@ def read_scene(path):
         if key in an and not an[key] > 0:
             fail(f"{key} in [analysis] must be > 0, got {an[key]!r}", key, "analysis")
     damping = build("damping", lambda: Damping(**data.get("damping", {})), None, "damping")
+    box = data.get("workspace", {}).get("box")
+    if box is not None and (len(box) != 6 or any(b < a for a, b in zip(box[::2], box[1::2]))):
+        fail(f"box must be 6 numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 ..., got {box!r}",
+             "box", "workspace")
+    trajectories = {}
+    for k, tab in enumerate(data.get("trajectories", [])):
+        if not isinstance(data["trajectories"], list):
+            fail("trajectories must be [[trajectories]] tables", None, "trajectories")
+        if tab["name"] in trajectories:
+            fail(f"two trajectories named {tab['name']!r}", "name", "trajectories", k)
+        trajectories[tab["name"]] = build(
+            f"trajectory {tab['name']!r}", lambda tab=tab: WaypointPath(
+                times=tab["times"], positions=tab["positions"],
+                rotations=tab.get("rotations", [[0.0, 0.0, 0.0]] * len(tab["times"])),
+                law=tab["law"], velocities=tab.get("velocities"),
+                accelerations=tab.get("accelerations"), blend_times=tab.get("blend_times"),
+                name=tab["name"]), "name", "trajectories", k)
     return Scene(robot=robot, pose=pose, unstretched_lengths=lengths,
                  band_hz=bands["band_hz"], n_modes=an.get("n_modes"),
                  forbidden_band_hz=bands["forbidden_band_hz"],
@@ -302,7 +343,8 @@ def read_scene(path):
                  segments=an.get("segments"), damping=damping,
                  study=study, name=sc.get("name", path.stem),
                  description=sc.get("description", ""),
-                 path=path)
+                 path=path, trajectories=trajectories,
+                 workspace_box=None if box is None else tuple(float(b) for b in box))
 
 
 def list_scenes():

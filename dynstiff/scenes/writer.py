@@ -1,24 +1,18 @@
-"""Scene files written from a robot: the inverse of :func:`read_scene`, and CASPR import.
+"""Scene files written from a robot: the inverse of :func:`read_scene`.
 
 Numbers are written with ``repr`` (the shortest text that reads back to the same float), so
 ``read_scene(write_scene(...))`` gives the same robot bit for bit.
 """
 
-import warnings
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
-from dynstiff.constants import DOF_NAMES, STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
-from dynstiff.io.caspr import InertiaConventionWarning, read_caspr
-from dynstiff.params import Cable
-from dynstiff.robot.pose import Pose
 from dynstiff.robot.robot import Robot
-from dynstiff.scenes.loader import Scene
+from dynstiff.robot.waypoints import WaypointPath
 
-__all__ = ["import_caspr", "scene_text", "write_scene"]
+__all__ = ["scene_text", "write_scene"]
 
 
 def _num(v):
@@ -43,7 +37,28 @@ def _cable_lines(c):
     return lines
 
 
-def scene_text(robot, pose=None, name=None, description="", comments=(), cable_names=None):
+def _rows(a):
+    return "[" + ", ".join(_vec(r) for r in np.asarray(a)) + "]"
+
+
+def _trajectory_lines(path, note):
+    out = ["", f"[[trajectories]]                            # {note}".rstrip(" #"),
+           f"name = {_toml_str(path.name)}",
+           f"law = {_toml_str(path.law)}                          # between the waypoints",
+           f"times = {_vec(path.times)}   # [s]",
+           f"positions = {_rows(path.positions)}   # [m], P",
+           f"rotations = {_rows(path.rotations)}   # [rad], rotation vectors"]
+    if np.any(path.velocities):
+        out.append(f"velocities = {_rows(path.velocities)}   # [m/s], P")
+    if np.any(path.accelerations):
+        out.append(f"accelerations = {_rows(path.accelerations)}   # [m/s^2], P")
+    if path.blend_times is not None:
+        out.append(f"blend_times = {_vec(path.blend_times)}   # [s], one per segment")
+    return out
+
+
+def scene_text(robot, pose=None, name=None, description="", comments=(), cable_names=None,
+               trajectories=(), workspace_box=None, trajectory_notes=None):
     """TOML text of a scene file for ``robot`` (format: :mod:`dynstiff.scenes`).
 
     Parameters
@@ -56,6 +71,13 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
         Lines for the header comment (source, conventions ...).
     cable_names : sequence of str, optional
         A comment above each ``[[cables]]``.
+    trajectories : sequence of WaypointPath
+        Written as ``[[trajectories]]`` tables (names must differ).
+    workspace_box : sequence of 6 float, optional
+        (x0, x1, y0, y1, z0, z1) [m], written as ``[workspace] box``: the default box of a
+        workspace map.
+    trajectory_notes : dict, optional
+        A comment above a trajectory's table, by its name.
 
     Returns
     -------
@@ -63,6 +85,18 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     """
     if not isinstance(robot, Robot):
         raise InvalidParameterError(f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
+    trajectories = tuple(trajectories)
+    if not all(isinstance(t, WaypointPath) for t in trajectories):
+        raise InvalidParameterError("trajectories must be dynstiff.WaypointPath objects")
+    names = [t.name for t in trajectories]
+    if len(set(names)) != len(names) or not all(names):
+        raise InvalidParameterError(f"trajectories need distinct, non-empty names, got {names}")
+    if workspace_box is not None:
+        box = np.asarray(workspace_box, dtype=float)
+        if box.shape != (6,) or not np.all(np.isfinite(box)) or np.any(box[1::2] < box[::2]):
+            raise InvalidParameterError(
+                f"workspace_box must be 6 finite numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 "
+                f"..., got {workspace_box!r}")
     name = name or robot.name or "scene"
     out = [f"# {c}" if c else "#" for c in comments]
     out += ["", "[scene]", f"name = {_toml_str(name)}",
@@ -97,6 +131,10 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     if pose is not None:
         out += ["", "[pose]", f"position = {_vec(pose.position)}   # [m]",
                 f"rotation = {_vec(pose.rotation)}   # [rad], rotation vector"]
+    if workspace_box is not None:
+        out += ["", "[workspace]", f"box = {_vec(box)}   # [m], x0 x1 y0 y1 z0 z1 of P"]
+    for t in trajectories:
+        out += _trajectory_lines(t, (trajectory_notes or {}).get(t.name, ""))
     return "\n".join(out) + "\n"
 
 
@@ -105,47 +143,3 @@ def write_scene(path, robot, pose=None, **kw):
     path = Path(path)
     path.write_text(scene_text(robot, pose, **kw), encoding="utf-8")
     return path
-
-
-def import_caspr(bodies_xml, cables_xml, cable, cable_set=None, inertia_convention="products",
-                 g=STANDARD_GRAVITY, name=None, min_tension=1.0):
-    """Scene of a single-body CASPR robot: its :meth:`Robot.from_caspr` at the pose
-    ``q_initial`` (theory.md §15.1).
-
-    Parameters
-    ----------
-    bodies_xml, cables_xml : str or Path
-    cable : Cable
-        Every cable's properties (CASPR holds none).
-    cable_set, inertia_convention, g, min_tension : as :meth:`Robot.from_caspr`
-    name : str, optional
-        Scene name (default: the CASPR link's name).
-
-    Returns
-    -------
-    Scene
-        ``description`` names the source files and the inertia convention.
-    """
-    if not isinstance(cable, Cable):
-        raise InvalidParameterError(f"cable must be a dynstiff.Cable, got {cable!r}")
-    m = read_caspr(bodies_xml, cables_xml, cable_set, inertia_convention, stacklevel=3)
-    with warnings.catch_warnings():         # the same file warned once already
-        warnings.simplefilter("ignore", InertiaConventionWarning)
-        robot = Robot.from_caspr(bodies_xml, cables_xml, cable, cable_set, inertia_convention,
-                                 g, min_tension)
-    if name:
-        robot = replace(robot, name=name)
-    desc = (f"{m.name} from CASPR ({Path(bodies_xml).name}, {Path(cables_xml).name}, cable set "
-            f"{m.cable_set!r}, joint {m.joint_type}), inertia_convention {m.convention!r}")
-    return Scene(robot=robot, pose=Pose(m.position, m.rotation), name=name or m.name,
-                 description=desc, study={"caspr_cable_names": list(m.cable_names)})
-
-
-def caspr_comments(scene, bodies_xml, cables_xml):
-    """Header comment lines of a scene imported from CASPR."""
-    return [f"{scene.name}: imported from CASPR", f"bodies: {bodies_xml}",
-            f"cables: {cables_xml}", scene.description,
-            "CASPR holds no cable mass or EA: [cable] holds the values given at import.",
-            "free DOFs of the joint: " + ", ".join(
-                d for d in DOF_NAMES if d in scene.robot.platform.free_dofs),
-            "Units: SI."]

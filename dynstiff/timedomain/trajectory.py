@@ -23,7 +23,8 @@ from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
-__all__ = ["Trajectory", "line", "circle", "quasi_static_lengths", "TrackingResult", "track"]
+__all__ = ["Trajectory", "line", "circle", "following", "quasi_static_lengths",
+           "TrackingResult", "track"]
 
 
 @dataclass(frozen=True)
@@ -173,6 +174,24 @@ def circle(center, radius, speed, turns=1.0, start_angle=0.0, rotation=(0.0, 0.0
     t = _sampled(duration, samples_per_s)
     return Trajectory(t, *path(t), name=f"circle r = {radius:g} m at {speed:g} m/s",
                       path=path)
+
+
+def following(waypoints, samples_per_s=10.0):
+    """The :class:`Trajectory` of a :class:`dynstiff.WaypointPath` (a scene's trajectory,
+    e.g. a CASPR joint trajectory): its exact path, sampled at ``samples_per_s`` [1/s] for
+    the quasi-static inverse kinematics, and at every waypoint.
+
+    Returns
+    -------
+    Trajectory
+    """
+    from dynstiff.robot.waypoints import WaypointPath
+    if not isinstance(waypoints, WaypointPath):
+        raise InvalidParameterError(
+            f"waypoints must be a dynstiff.WaypointPath, got {type(waypoints).__name__}")
+    t = np.union1d(_sampled(waypoints.duration, samples_per_s), waypoints.times)
+    return Trajectory(t, *waypoints.at(t), name=waypoints.name or "waypoints",
+                      path=waypoints.at)
 
 
 def quasi_static_lengths(robot, trajectory, progress=None):

@@ -1,0 +1,103 @@
+"""Waypoint paths (dynstiff/robot/waypoints.py, theory.md §15.8): the position laws against
+CASPR's way of computing them (each segment's polynomial solved from its end conditions,
+Spline.m), the orientation on the geodesic between waypoint orientations, the parabolic
+blend's speeds, and bad inputs."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from dynstiff.errors import InvalidParameterError
+from dynstiff.robot.waypoints import WaypointPath
+
+
+def caspr_spline(ya, va, aa, yb, vb, ab, ta, tb, t, law):
+    """CASPR's Spline.Cubic/QuinticInterpolation: solve the coefficients of the polynomial
+    in absolute time from the end conditions (T \\ b), then evaluate."""
+    if law == "linear":
+        M = np.array([[1, ta], [1, tb]])
+        b = np.array([ya, yb])
+    elif law == "cubic":
+        M = np.array([[1, ta, ta**2, ta**3], [0, 1, 2 * ta, 3 * ta**2],
+                      [1, tb, tb**2, tb**3], [0, 1, 2 * tb, 3 * tb**2]])
+        b = np.array([ya, va, yb, vb])
+    else:
+        def rows(x):
+            return [[1, x, x**2, x**3, x**4, x**5], [0, 1, 2 * x, 3 * x**2, 4 * x**3, 5 * x**4],
+                    [0, 0, 2, 6 * x, 12 * x**2, 20 * x**3]]
+        M = np.array(rows(ta) + rows(tb))
+        b = np.array([ya, va, aa, yb, vb, ab])
+    c = np.linalg.solve(M, b)
+    return sum(ck * t**k for k, ck in enumerate(c))
+
+
+@pytest.mark.parametrize("law", ["linear", "cubic", "quintic"])
+def test_position_laws_equal_caspr_polynomials(law):
+    rng = np.random.default_rng(1)
+    times = np.array([0.0, 1.5, 4.0])
+    P = rng.normal(size=(3, 3))
+    V = rng.normal(size=(3, 3)) if law != "linear" else None
+    A = rng.normal(size=(3, 3)) if law == "quintic" else None
+    path = WaypointPath(times, P, np.zeros((3, 3)), law, V, A)
+    t = np.linspace(0.0, 4.0, 41)
+    got, rot = path.at(t)
+    Vz = np.zeros((3, 3)) if V is None else V
+    Az = np.zeros((3, 3)) if A is None else A
+    for j, tj in enumerate(t):
+        s = 0 if tj < 1.5 else 1
+        ref = [caspr_spline(P[s, c], Vz[s, c], Az[s, c], P[s + 1, c], Vz[s + 1, c],
+                            Az[s + 1, c], times[s], times[s + 1], tj, law) for c in range(3)]
+        np.testing.assert_allclose(got[j], ref, rtol=1e-9, atol=1e-9)
+    np.testing.assert_array_equal(rot, 0.0)
+
+
+def test_orientation_turns_on_the_geodesic_with_the_law():
+    """From R_a (a tilt about x) to R_b = R_a R_z(90 deg), quintic: R_a^T R(t) is a
+    rotation about z by sigma(tau) 90 deg, sigma = 10 tau^3 - 15 tau^4 + 6 tau^5."""
+    Ra = Rotation.from_rotvec([0.3, 0.0, 0.0])
+    Rb = Ra * Rotation.from_rotvec([0.0, 0.0, np.pi / 2])
+    path = WaypointPath([0.0, 2.0], np.zeros((2, 3)), np.vstack([Ra.as_rotvec(),
+                                                                Rb.as_rotvec()]))
+    tau = np.linspace(0.0, 1.0, 11)
+    _, R = path.at(2.0 * tau)
+    rel = (Ra.inv() * Rotation.from_rotvec(R)).as_rotvec()
+    sigma = 10 * tau**3 - 15 * tau**4 + 6 * tau**5
+    np.testing.assert_allclose(rel, np.c_[0 * tau, 0 * tau, sigma * np.pi / 2], atol=1e-12)
+
+
+def test_parabolic_blend_speed_is_continuous_and_constant_between_blends():
+    path = WaypointPath([0.0, 4.0], [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0]], np.zeros((2, 3)),
+                        "parabolic_blend", blend_times=[1.0])
+    t = np.linspace(0.0, 4.0, 4001)
+    x = path.at(t)[0][:, 0]
+    v = np.gradient(x, t)
+    acc = 2.0 / (1.0 * (4.0 - 1.0))                     # reaches speed acc * tb
+    np.testing.assert_allclose(v[(t > 1.01) & (t < 2.99)], acc * 1.0, rtol=1e-9)
+    assert np.abs(np.diff(v)).max() < 2 * acc * (t[1] - t[0])   # no jump in speed
+    assert x[0] == 0.0 and abs(x[-1] - 2.0) < 1e-12
+
+
+def test_poses_are_equally_spaced_in_time_and_hold_outside():
+    path = WaypointPath([0.0, 1.0, 3.0], [[0, 0, 1.0], [1, 0, 1.0], [1, 1, 1.0]],
+                        np.zeros((3, 3)), "linear")
+    X, t = path.poses(7)
+    np.testing.assert_allclose(t, np.linspace(0.0, 3.0, 7))
+    np.testing.assert_allclose(X[2, :3], [1.0, 0.0, 1.0])         # t = 1 s, a waypoint
+    np.testing.assert_allclose(path.at([-1.0, 9.0])[0], [[0, 0, 1.0], [1, 1, 1.0]])
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(times=[0.0, 0.0]), "times must be strictly increasing"),
+    (dict(times=[1.0, 2.0]), "from 0"),
+    (dict(law="spline"), "law must be one of"),
+    (dict(positions=[[0, 0, 0]]), r"positions must be finite, shape \(2, 3\)"),
+    (dict(law="linear", velocities=[[1, 0, 0], [0, 0, 0]]), "velocities and accel"),
+    (dict(law="parabolic_blend"), "needs blend_times"),
+    (dict(law="parabolic_blend", blend_times=[0.6]), "less than half"),
+    (dict(blend_times=[0.1]), "blend_times go with"),
+])
+def test_bad_waypoints_are_named(kw, match):
+    args = dict(times=[0.0, 1.0], positions=np.zeros((2, 3)), rotations=np.zeros((2, 3)))
+    args.update(kw)
+    with pytest.raises(InvalidParameterError, match=match):
+        WaypointPath(**args)
