@@ -193,3 +193,12 @@ def test_check_writes_its_table_on_every_built_in_scene(tmp_path, scene, capsys)
     scn = ds.load_scene(scene)
     expected = scn.pose if scn.pose is not None else scn.equilibrium().pose
     np.testing.assert_allclose(pose["position [m]"], expected.position, atol=1e-12)
+
+
+@pytest.mark.parametrize("pose", [["0", "0", "nan"], ["0", "0", "1", "0", "inf", "0"], ["1", "2"]])
+def test_check_of_a_bad_pose_is_an_error_not_a_verdict(pose):
+    """A pose that is not a pose is bad input, exit 2 with one line naming it, not a FAIL
+    verdict with exit 1 (as if the robot had failed)."""
+    out = run_cli("check", "cogiro", "--pose", *pose)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and "pose" in out.stderr
