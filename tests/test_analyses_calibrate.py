@@ -195,3 +195,40 @@ def test_calibration_on_a_bound_and_far_residual_says_so(scene):
     with pytest.warns(ds.CalibrationWarning) as rec:
         calibrate(scene, np.r_[f, 40.0], parameters="EA")
     assert "residual" in {w.message.cause for w in rec}
+
+
+def _platform_modes_measured(robot, pose, sigma=None):
+    """The platform modes of the closed form at ``pose``, measured with their shapes."""
+    from dynstiff.analyses.platform_modes import find_platform_modes
+    pm = find_platform_modes(ds.FrequencyModel(robot.equilibrium(pose)))
+    f = pm.modes.freq_hz[pm.index[:3]]
+    return MeasuredModes(f, shapes=pm.modes.platform_shapes[pm.index[:3]],
+                         sigma_hz=None if sigma is None else sigma * f)
+
+
+def test_confidence_interval_width_is_the_linear_one(scene):
+    """With stated sigmas (1 % of each frequency) the 95 % interval of ln EA is
+    +- 1.96 / sqrt(sum_k (d f_k / d ln EA / sigma_k)^2), the sensitivities taken here by
+    central differences of independent solves (not the calibration's own Jacobian)."""
+    from scipy.stats import norm
+    truth = with_E(scene.robot, E_TRUE)
+    meas = _platform_modes_measured(truth, scene.pose, sigma=0.01)
+    res = calibrate(scene, meas, parameters="EA")
+    h = 1e-4
+    up = _platform_modes_measured(with_E(scene.robot, E_TRUE * np.exp(h)), scene.pose)
+    down = _platform_modes_measured(with_E(scene.robot, E_TRUE * np.exp(-h)), scene.pose)
+    dfdu = (up.freq_hz - down.freq_hz) / (2 * h)
+    half = norm.ppf(0.975) / np.sqrt(np.sum((dfdu / meas.sigma_hz) ** 2))
+    assert np.log(res.ci_high[0] / res.estimate[0]) == pytest.approx(half, rel=1e-3)
+    assert np.log(res.estimate[0] / res.ci_low[0]) == pytest.approx(half, rel=1e-3)
+    assert abs(res.estimate[0] / (AREA * E_TRUE) - 1) < 1e-5
+
+
+def test_fits_the_least_tension(scene):
+    """t_min moves the tension distribution (the one closest to t_min): frequencies of the
+    robot with t_min = 150 N (the scene has 100 N) give it back within 1e-3."""
+    truth = replace(scene.robot, tension_limits=(150.0, scene.robot.tension_limits[1]))
+    meas = _platform_modes_measured(truth, scene.pose)
+    res = calibrate(scene, meas, parameters="t_min")
+    assert res.estimate[0] == pytest.approx(150.0, rel=1e-3)
+    assert res.robot.tension_limits[0] == pytest.approx(res.estimate[0])

@@ -43,3 +43,18 @@ def test_bad_input_is_named(kw, name):
     args.update(kw)
     with pytest.raises(InvalidParameterError, match=name):
         refined_grid(**args)
+
+
+def test_the_grid_holds_every_mode_of_the_band_and_clusters_at_it():
+    """Every mode inside the band is a point of the grid, with per_side points on each side
+    within rel_width of it, the nearest at rel_min; modes outside the band add nothing."""
+    modes = np.array([0.5, 2.0, 3.7, 11.0])
+    g = refined_grid((1.0, 10.0), 50, modes, rel_width=0.03, rel_min=1e-6, per_side=10)
+    base = refined_grid((1.0, 10.0), 50)
+    for f in (2.0, 3.7):
+        assert f in g
+        near = g[np.abs(g / f - 1) <= 0.03 * (1 + 1e-12)]
+        assert np.sum(near < f) >= 10 and np.sum(near > f) >= 10
+        assert np.min(np.abs(g[g != f] / f - 1)) == pytest.approx(1e-6, rel=1e-6)
+    assert not np.isin([0.5, 11.0], g).any() and g.min() == 1.0 and g.max() == 10.0
+    assert g.size == base.size + 2 * 21 - np.isin([2.0, 3.7], base).sum()

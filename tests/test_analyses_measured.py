@@ -121,3 +121,15 @@ def test_compare_frf_overlays_and_scores(model):
     fig = cmp.plot()
     assert len(fig.axes[0].lines) == 4
     assert "model magnitude" in cmp.to_frame()
+
+
+def test_order_pairing_of_a_three_cycle(md):
+    """Pairing by order with a permutation that is not its own inverse (a 3-cycle): the k-th
+    measured frequency goes to the global mode of its rank (a single argsort would give the
+    inverse permutation, which a swap or a reversal cannot tell apart)."""
+    glob = np.flatnonzero(np.array(md.kind) == "global")[:3]
+    cycle = [1, 2, 0]
+    idx, _ = pair_modes(md, MeasuredModes(md.freq_hz[glob[cycle]]), "order")
+    np.testing.assert_array_equal(idx, glob[cycle])
+    idx, _ = pair_modes(md, MeasuredModes(md.freq_hz[glob[cycle]] * 1.01), "frequency")
+    np.testing.assert_array_equal(idx, glob[cycle])

@@ -1,0 +1,120 @@
+"""The verdicts of a pose (dynstiff/analyses/verdicts.py, theory.md §12.1): one set of rows
+for the design checks, the workspace maps and the reports; each check moved by its own
+options only; nothing passes on modes not computed."""
+
+import dataclasses
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import dynstiff as ds
+from dynstiff.analyses.checks import design_checks
+from dynstiff.analyses.platform_modes import find_platform_modes
+
+IPA = ("tests/data/caspr/IPAnema_1_bodies.xml", "tests/data/caspr/IPAnema_1_cables.xml")
+#: Each check and the options that may move its verdict (the rest must not).
+OWN = {"workspace (tension-feasible pose)": (),
+       "tension limits": (),
+       "sag / chord": ("max_sag_ratio",),
+       "platform modes outside band": ("band_hz", "margin", "participation"),
+       "platform receptance in band": ("band_hz", "frf_limit"),
+       "local modes near platform modes": ("proximity_rtol",),
+       "cable model": ("model_rtol", "model_band_hz")}
+
+
+@pytest.fixture(scope="module")
+def cogiro():
+    return ds.load_scene("cogiro")
+
+
+def verdicts(robot, pose, **kw):
+    return design_checks(robot, pose, **kw).verdicts
+
+
+def real(lo, hi):
+    return st.floats(lo, hi, allow_subnormal=False)
+
+
+@settings(max_examples=8, deadline=None)
+@given(band=st.one_of(st.none(), st.tuples(real(0.0, 3.0), real(0.2, 3.0))
+                      .map(lambda b: (b[0], b[0] + b[1]))),
+       margin=real(0.0, 0.2), participation=real(0.01, 0.5), frf_limit=real(1.5, 50.0),
+       proximity_rtol=real(0.005, 0.05), max_sag_ratio=real(1e-3, 0.05),
+       model_rtol=real(1e-4, 1e-1), top=real(2.0, 14.0))
+def test_each_verdict_moves_with_its_own_options_only(cogiro, band, margin, participation,
+                                                      frf_limit, proximity_rtol,
+                                                      max_sag_ratio, model_rtol, top):
+    """Every option drawn at once gives each check the verdict it has with only its own
+    options set (the others at their defaults): the forbidden band does not move the
+    proximity verdict, the band of interest does not move the margin, and so on."""
+    opts = dict(band_hz=band, margin=margin, participation=participation,
+                frf_limit=frf_limit, proximity_rtol=proximity_rtol,
+                max_sag_ratio=max_sag_ratio, model_rtol=model_rtol,
+                model_band_hz=(0.0, top))
+    got = verdicts(cogiro.robot, cogiro.pose, **opts)
+    for check, own in OWN.items():
+        alone = verdicts(cogiro.robot, cogiro.pose, **{k: opts[k] for k in own})
+        assert got[check] == alone[check], (check, opts)
+
+
+def test_sixcable_proximity_verdict_does_not_move_with_a_forbidden_band():
+    """sixcable fails "local modes near platform modes" with and without the 0.3-0.5 Hz
+    forbidden band (the band once changed how many modes were computed, and so the verdict)."""
+    six = ds.load_scene("sixcable")
+    a = design_checks(six.robot, six.pose)
+    b = design_checks(six.robot, six.pose, band_hz=(0.3, 0.5))
+    key = "local modes near platform modes"
+    assert a.verdicts[key] == b.verdicts[key] == "fail"
+    row = {r["check"]: r for r in a.rows}[key]
+    assert row["value"] == {r["check"]: r for r in b.rows}[key]["value"]
+
+
+@pytest.fixture(scope="module")
+def ipanema():
+    """IPAnema 1 from CASPR with a light cable (0.0095 kg/m, EA 1e5 N, 10-200 N): its x
+    platform mode (13.4 Hz) lies above 20 modes, 13 of them local."""
+    scene = ds.scenes.import_caspr(*IPA, cable=ds.Cable(0.0095, 1e5))
+    return dataclasses.replace(scene, robot=dataclasses.replace(
+        scene.robot, tension_limits=(10.0, 200.0)))
+
+
+def test_map_check_and_report_agree_on_an_imported_robot_with_high_platform_modes(
+        ipanema, tmp_path):
+    """At every pose of a small grid the workspace map (20 modes stored), design_checks and
+    the report give the same verdict for every check; no pose passes with a platform mode
+    uncomputed, and at the home pose a platform mode lies above the 20 modes stored."""
+    rob = ipanema.robot
+    kw = dict(band_hz=(0.0, 0.3), model_band_hz=(0.1, 12.0))
+    with warnings.catch_warnings():      # light cables: the guard speaks of a few poses
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        w = ds.workspace(rob, box=(-0.3, 0.3, -0.3, 0.3, 0.8, 1.1), step=0.3, n_modes=20,
+                         **kw)
+        table = w.dynstiff.to_frame()
+        assert 0 < table["dynamic"].sum() < table["feasible"].sum() < len(table)
+        failing = (table.filter(like="check: ") != "pass").sum(axis=1)
+        assert ((failing == 1) & ~table["dynamic"]).any()      # one failure is enough
+        for _, row in table.iterrows():
+            res = design_checks(rob, [row.x, row.y, row.z], **kw)
+            mapped = {c: row[f"check: {c}"] for c in w["check"].values}
+            assert mapped == res.verdicts, (row.x, row.y, row.z)
+            assert row.dynamic == res.passed
+            assert not row.dynamic or np.isfinite(row.first_platform_hz)
+        from dynstiff.analyses.settings import analysis_settings
+        from dynstiff.report.robot import robot_report
+        for pose in ([0.0, 0.0, 1.1], [-0.3, -0.3, 0.8]):
+            scene = dataclasses.replace(ipanema, pose=ds.Pose(pose))
+            st = analysis_settings(scene, forbidden_hz=kw["band_hz"], band_hz=kw["model_band_hz"])
+            robot_report(scene, tmp_path / str(pose), settings=st, n_points=50, html=False)
+            import pandas as pd
+            report = pd.read_csv(tmp_path / str(pose) / "checks.csv", comment="#")
+            assert dict(zip(report["check"], report["verdict"])) == \
+                design_checks(rob, pose, **kw).verdicts
+        m = ds.build_model(rob.equilibrium(pose=[0.0, 0.0, 1.1]), "dsm")
+        pm = find_platform_modes(m)
+    f20 = ds.eigenfrequencies(m, 20)[-1]
+    assert pm.freq_hz.max() > f20 and pm.complete
+    home = table[(table.x == 0) & (table.y == 0) & (table.z == 1.1)].iloc[0]
+    assert home.first_platform_hz == pytest.approx(pm.first_hz, rel=1e-9)
