@@ -192,17 +192,20 @@ def frequency_sensitivities(model, parameters, n_modes=None, fmax_hz=None, hold=
     return sensitivities_at(m, f, parameters, hold, tension_reference)
 
 
-def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=None):
+def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=None,
+                     linearisation=None):
     """:func:`frequency_sensitivities` at frequencies already computed (``freq_hz`` [Hz],
     ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
-    or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`."""
+    or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
+    ``linearisation``: the model's :class:`~dynstiff.analyses.sensitivity_statics.
+    LinearisedEquilibrium` when one was built already (continuous rungs)."""
     m = model.undamped()
     f = np.asarray(freq_hz, dtype=float)
     if hold not in ("pose", "lengths"):
         raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
     if m.rung == "lumped":
         return _lumped(m, f, parameters, hold, tension_reference)
-    lin = LinearisedEquilibrium(m.equilibrium, hold, tension_reference)
+    lin = linearisation or LinearisedEquilibrium(m.equilibrium, hold, tension_reference)
     params = _parameters(parameters, m.robot, m.pose, hold, tension_reference,
                          m.equilibrium.unstretched_lengths)
     dy = lin.derivatives([p.direction for p in params])

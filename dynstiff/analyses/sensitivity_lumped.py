@@ -16,7 +16,12 @@ geometric stiffness of the platform's lever arms and the lumped masses, theory.m
 
 import numpy as np
 
-from dynstiff.analyses.sensitivity_statics import CS_STEP, platform_mass_forms, rotation, skew3
+from dynstiff.analyses.sensitivity_statics import (
+    CS_STEP,
+    geometric_stiffness,
+    platform_mass_forms,
+    rotation,
+)
 
 __all__ = ["LumpedLinearisation"]
 
@@ -113,7 +118,7 @@ class LumpedLinearisation:
         nb = Z.shape[0]
         Kf = np.zeros((nb, len(lam)), dtype=complex)
         Mf = np.zeros_like(Kf)
-        G = np.zeros((nb, 3, 3), dtype=complex)
+        F = []
         for i, x in enumerate(nodes):
             u, ln, T, l0 = self._segments(x, P, i)
             o, N = self.mm.offsets[i], self.mm.segments[i]
@@ -136,11 +141,10 @@ class LumpedLinearisation:
             mi = P["m0"][:, i] * l0
             Mf += mi[:, None] * (np.einsum("msj,msj->m", ia, ib)[None, :]
                                  + 0.5 * np.sum(ca[:, :, -1] * cb[:, :, -1], -1))
-            Fi = -T[:, -1, None] * u[:, -1] + 0.5 * (mi[:, None] * gv)
-            G -= skew3(Fi) @ skew3(r[:, i])
+            F.append(-T[:, -1, None] * u[:, -1] + 0.5 * (mi[:, None] * gv))
         m = np.asarray(P["mass"])
         rG = np.einsum("bij,bj->bi", R, P["com"])
-        G -= skew3(m[:, None] * gv) @ skew3(rG)
+        G = geometric_stiffness(np.stack(F, 1), r, m[:, None] * gv, rG)
         Gs = 0.5 * (G + np.swapaxes(G, 1, 2))
         Kf += np.einsum("mi,bij,mj->bm", a6[:, 3:], Gs, b6[:, 3:])
         Mp = platform_mass_forms(P, R)

@@ -22,9 +22,9 @@ import numpy as np
 
 from dynstiff.analyses.sensitivity_statics import (
     catenary_flexibility,
+    geometric_stiffness,
     mean_tension,
     platform_mass_forms,
-    skew3,
 )
 from dynstiff.cable.chord import ChordParameters
 from dynstiff.cable.dsm import end_block_coefficients
@@ -47,8 +47,8 @@ def _platform_terms(lin, Y, P, q, omega, X, Z):
     _, R = lin.pose_of(Y, P)
     m = np.asarray(P["mass"])
     rG = np.einsum("bij,bj->bi", R, P["com"])
-    G = -np.einsum("bnij,bnjk->bik", skew3(q["f"]), skew3(q["r"]))
-    G = G - skew3(m[:, None] * np.array([0.0, 0.0, -lin.g])) @ skew3(rG)
+    fg = m[:, None] * np.array([0.0, 0.0, -lin.g])
+    G = geometric_stiffness(q["f"], q["r"], fg, rG)
     Gs = 0.5 * (G + np.swapaxes(G, 1, 2))
     geo = np.einsum("mi,bij,mj->bm", X[:, 3:], Gs, Z[:, 3:])
     M = platform_mass_forms(P, R)

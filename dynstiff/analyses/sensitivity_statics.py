@@ -32,8 +32,8 @@ import numpy as np
 from dynstiff.errors import InvalidParameterError
 
 __all__ = ["CS_STEP", "LinearisedEquilibrium", "cable_quantities", "catenary_flexibility",
-           "catenary_offsets", "divided_differences", "mean_tension", "perturbed_primitives",
-           "platform_mass_forms", "primitives", "rotation", "skew3"]
+           "catenary_offsets", "divided_differences", "geometric_stiffness", "mean_tension",
+           "perturbed_primitives", "platform_mass_forms", "primitives", "rotation", "skew3"]
 
 #: Step of the complex-step derivatives (relative to the unit of each direction).
 CS_STEP = 1e-30
@@ -149,16 +149,27 @@ def cable_quantities(P, H, V0, L0, g, position=None, R=None):
                 position=position, w0=w0)
 
 
+def geometric_stiffness(f, r, fg, rG):
+    """Rotation block of K_geo, -sum_i [f_i]x [r_i]x - [f_g]x [r_G]x (theory.md §4), for
+    forces f (B, n, 3) at lever arms r (B, n, 3) and the weight f_g (B, 3) at r_G (B, 3):
+    (B, 3, 3), analytic ([a]x [b]x = b a^T - (a . b) I)."""
+    eye = np.eye(3)
+    G = (np.einsum("bn,ij->bij", np.sum(f * r, -1), eye)
+         - np.einsum("bni,bnj->bij", r, f))
+    return G + np.sum(fg * rG, -1)[:, None, None] * eye - rG[:, :, None] * fg[:, None, :]
+
+
 def platform_mass_forms(P, R):
     """Platform mass matrix about P, base axes, (..., 6, 6) [kg, kg m, kg m^2]
     (theory.md §4), analytic in the mass, centre of mass, inertia and rotation."""
     m = np.asarray(P["mass"])
     rG = np.einsum("...ij,...j->...i", R, P["com"])
     S = skew3(rG)
+    SS = rG[..., :, None] * rG[..., None, :] - np.sum(rG * rG, -1)[..., None, None] * np.eye(3)
     IG = R @ P["inertia"] @ np.swapaxes(R, -1, -2)
     mI = m[..., None, None] * np.eye(3)
     top = np.concatenate([mI, -m[..., None, None] * S], -1)
-    bot = np.concatenate([m[..., None, None] * S, IG - m[..., None, None] * (S @ S)], -1)
+    bot = np.concatenate([m[..., None, None] * S, IG - m[..., None, None] * SS], -1)
     return np.concatenate([top, bot], -2)
 
 
@@ -351,6 +362,13 @@ class LinearisedEquilibrium:
                                     t - t_ref + Wt_nu))
             parts += [q["TB"] - t, opt]
         return np.concatenate(parts + [bal], -1)
+
+    def tension_extremes(self, y, P):
+        """Least and largest tension along every cable [N], (..., n) each, analytic (the
+        limits of the distribution hold all along the cables, theory.md §4)."""
+        _, V0, _, q = self.quantities(y, P)
+        hi = np.where(np.real(q["TB"]) >= np.real(q["TA"]), q["TB"], q["TA"])
+        return self._min_tension(q, V0), hi
 
     def _multipliers(self, y):
         """Balance multipliers nu from the free cables' optimality, the residual of that
