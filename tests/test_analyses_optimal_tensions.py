@@ -122,13 +122,16 @@ def brute_force(robot, pose, opt, step, continuity=0.02):
 @pytest.mark.parametrize("position", [[2.0, 1.5, 1.5], [4.0, -2.5, 1.0],
                                       [-4.5, -3.0, 0.8], [3.0, 3.0, 2.0]])
 def test_the_optimum_matches_a_brute_force_search(cogiro, position):
-    """At 4 CoGiRo poses the search finds the best first platform mode of a 12.5 N grid of
-    the null space on the default's branch, within one grid step of its cell."""
+    """At 4 CoGiRo poses the search finds at least the best first platform mode of a 12.5 N
+    grid of the null space on the default's branch, within one grid step of its cell (a
+    vertex of the feasible polygon, where tension limits bind, may lie further from the
+    grid's cells: the grid keeps only distributions within the limits)."""
     rob = cogiro.robot
     opt = optimal_tensions(rob, position)
     step = 12.5
     best, cell, lam = brute_force(rob, position, opt, step)
     assert opt.value >= best - 1e-5 * best
-    assert np.abs(lam - cell).max() <= step
+    at_limit = any("at t_min" in b or "at t_max" in b for b in opt.binds)
+    assert np.linalg.norm(lam - cell) <= np.sqrt(2) * step or at_limit, (lam, cell)
     assert opt.gain > 1e-3
     assert opt.equilibrium.min_tensions.min() >= rob.tension_limits[0] - 1e-6
