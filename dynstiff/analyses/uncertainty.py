@@ -303,7 +303,7 @@ def propagate_uncertainty(scene_or_model, pose=None, uncertain=None, n_modes=6,
     >>> res = ds.propagate_uncertainty(ds.load_scene("cogiro"), uncertain={"EA": "1%"},
     ...                                n_modes=1, n_samples=16, method="first-order")
     >>> round(float(res.std_first_order[0]), 4)            # Hz, for sigma(EA) = 1 %
-    0.0107
+    0.0108
     """
     robot = getattr(scene_or_model, "robot", scene_or_model)
     if hasattr(scene_or_model, "dynamic_stiffness"):
