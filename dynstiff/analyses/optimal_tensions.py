@@ -224,7 +224,7 @@ class _Search:
         if rung == "dsm":                    # the guard speaks when the map builds its model
             self.search_options.setdefault("guard_rtol", None)
         self.cover = band[1] * 1.05 if band is not None else 0.0
-        self.evaluations = self.jumps = 0
+        self.evaluations = self.jumps = self.cliffs = 0
         self.default = robot.equilibrium(pose=pose)
         import scipy.linalg
         self.N = scipy.linalg.null_space(_structure(self.default))
@@ -252,7 +252,24 @@ class _Search:
             k, v = k[sel], v[sel]
         if not np.isfinite(value):
             return None
-        return dict(lam=lam, t_ref=t_ref, eq=eq, model=model, pm=pm, value=value, k=k, v=v)
+        return dict(lam=lam, t_ref=t_ref, eq=eq, model=model, pm=pm, value=value, k=k, v=v,
+                    shapes=np.asarray(pm.modes.platform_shapes)[k],
+                    mass=np.asarray(pm.modes.platform_mass))
+
+    @staticmethod
+    def continues(old, new):
+        """Whether the mode that set the objective at ``old`` is still a candidate at
+        ``new`` (mass-weighted MAC >= 0.5 with one of them): else the objective jumped
+        because that mode left the candidates (it turned local by veering with a cable
+        mode), not because the robot got stiffer."""
+        if not new["k"].size or not old["k"].size:
+            return False
+        x = old["shapes"][int(np.argmin(old["v"]))]
+        M = new["mass"]
+        num = (new["shapes"] @ M @ x) ** 2
+        den = np.einsum("ki,ij,kj->k", new["shapes"], M, new["shapes"]) * (x @ M @ x)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return bool(np.nanmax(num / den) >= 0.5)
 
     def gradients(self, ev):
         """d(candidate)/dlambda (n_k, r) and the tension limits' values and gradients."""
@@ -319,7 +336,7 @@ class _Search:
                 break
             new = self.evaluate(best["lam"] + d, best["eq"])
             ratio = -1.0 if new is None else (new["value"] - best["value"]) / gain
-            if ratio > _JUMP:
+            if ratio > _JUMP or (ratio > 0.1 and not self.continues(best, new)):
                 # far above the linear model: another mode became the minimum by a jump
                 # (the first platform mode crossing a cable mode changes identity)
                 self.jumps += 1
@@ -330,6 +347,8 @@ class _Search:
                 if ratio > 0.75 and np.abs(d).max() >= 0.99 * rho:
                     rho *= 2.0
                 continue
+            if ratio < -_JUMP:
+                self.cliffs += 1        # a drop far beyond the linear model: a jump down
             rho *= 0.5
             # the linear model overshot: the parabola through the value, the predicted
             # slope and the value at d gives the best fraction of the step
@@ -337,9 +356,10 @@ class _Search:
             if c is not None and c < 0:
                 alpha = float(np.clip(-gain / (2 * c), 0.05, 0.9))
                 mid = self.evaluate(best["lam"] + alpha * d, best["eq"])
-                if mid is not None and mid["value"] > best["value"]:
+                if mid is not None and mid["value"] > best["value"] \
+                        and self.continues(best, mid):
                     best = mid
-                    rho = max(alpha * float(np.abs(d).max()), xtol)
+                    rho = alpha * float(np.abs(d).max())
         if at is not best:
             lin = self.step(best, rho)[2]
         _, lo, hi = lin
@@ -357,9 +377,14 @@ class _Search:
             out.append("coincident modes at the minimum: "
                        + ", ".join(pm.describe(int(k)) for k in ev["k"][near]))
         if self.jumps:
-            out.append(f"the objective jumps next to the optimum ({self.jumps} step(s) rose "
-                       f"over {_JUMP:g} times the linear prediction: a mode crossing a cable "
-                       f"mode changes which mode is the minimum); the jump is not followed")
+            out.append(f"the objective jumps next to the optimum ({self.jumps} step(s) where "
+                       f"the mode that sets it turns local by veering with a cable mode, or "
+                       f"the rise exceeds {_JUMP:g} times the linear prediction); the jump is "
+                       f"not followed")
+        if self.cliffs:
+            out.append(f"the objective drops next to the optimum ({self.cliffs} step(s) fell "
+                       f"over {_JUMP:g} times the predicted rise: another mode becomes the "
+                       f"first platform mode by veering with a cable mode)")
         if not out:
             out.append("nothing: a smooth maximum (the objective's gradient vanishes)")
         return tuple(out)
