@@ -223,7 +223,8 @@ def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=
         Y, P = lin.perturbed([p.direction for p in params], dy)
         fields = None
         if m.rung == "exact":
-            fields = (exact_fields(m, wp, Xa), exact_fields(m, wp, Xb))
+            fa = exact_fields(m, wp, Xa)
+            fields = (fa, fa if np.array_equal(Xa, Xb) else exact_fields(m, wp, Xb))
         Ap = np.imag(forms(m, lin, Y, P, wp, Xa, Xb, fields)) / CS_STEP      # (p, n_pairs)
         _assemble(out, groups, pairs, Ap, Bp, w, params, moving)
     note = "" if all(moving[g[0]] for g in groups) else (

@@ -147,11 +147,11 @@ def exact_fields(model, omega, X):
     (2, m, n_nodes, 3), local frame (theory.md §11.3), real."""
     out = []
     for cab, r in zip(model.cables, model.lever_arms):
-        dB = X[:, :3] + np.cross(X[:, 3:], r)
-        loc = dB @ cab.frame
-        u = np.array([[np.real(cab.end_response(w, d)) for w, d in zip(ww, loc)]
-                      for ww in (omega, np.zeros_like(omega))]).reshape(2, len(omega), -1, 3)
-        out.append(u)
+        loc = (X[:, :3] + np.cross(X[:, 3:], r)) @ cab.frame
+        static = np.array([np.real(cab.end_response(0.0, e)) for e in np.eye(3)])
+        dyn = np.array([np.real(cab.end_response(w, d)) for w, d in zip(omega, loc)])
+        out.append(np.array([dyn.reshape(len(omega), -1, 3),
+                             np.einsum("knc,mk->mnc", static, loc)]))
     return out
 
 
@@ -176,20 +176,28 @@ def _cable_energy(cab, fields, dB, H, V0, L0, EA, m0, axial, w0, omega, base):
     Dxx, Dxz, Dzz = EAd * tx**2 + Dt * tz**2, (EAd - Dt) * tx * tz, EAd * tz**2 + Dt * tx**2
     c = (2.0 / (scale[:, None] * h0[None]))[..., None] * wq                  # (B, e, q)
     idx = np.arange(n_el)[:, None] * p + np.arange(p + 1)[None, :]
-    mass = (m0 * L0 / (base["m0"] * base["L0"]))[:, None, None] * cab.node_mass[None, None, :]
+    mass = (m0 * L0 / (base["m0"] * base["L0"]))[:, None] * cab.node_mass[None, :]
     out = []
     for j, w in ((0, omega), (1, 0.0 * omega)):
-        U = [np.broadcast_to(f[j], (len(H),) + f[j].shape).astype(complex) for f in fields]
-        for u, d in zip(U, dB):
-            u[:, :, -1, :] = d
-            u[:, :, 0, :] = 0.0
-        gu, gv = (np.einsum("qa,bmeac->bmeqc", Dm, u[:, :, idx, :]) for u in U)
+        grads, nodes = [], []
+        for f, d in zip(fields, dB):
+            u = f[j].copy()                                   # (m, n_nodes, 3), real
+            u[:, 0], u[:, -1] = 0.0, 0.0
+            g0 = np.matmul(Dm, u[:, idx, :])                  # (m, e, q, 3): interior part
+            # end B (the last element's last node) moves with the complex platform motion
+            g = np.broadcast_to(g0, (len(H),) + g0.shape).astype(complex)
+            g[:, :, -1] += Dm[None, None, :, p, None] * d[:, :, None, :]
+            grads.append(g)
+            nodes.append((u, d))
+        gu, gv = grads
         e = (Dt[:, None] * gu[..., 1] * gv[..., 1] + Dxx[:, None] * gu[..., 0] * gv[..., 0]
              + Dxz[:, None] * (gu[..., 0] * gv[..., 2] + gu[..., 2] * gv[..., 0])
              + Dzz[:, None] * gu[..., 2] * gv[..., 2])
         E = np.einsum("beq,bmeq->bm", c, e)
-        E = E - w[None, :] ** 2 * np.einsum("bmk,bmkc,bmkc->bm", mass, U[0], U[1])
-        out.append(E)
+        (u, du), (v, dv) = nodes
+        kin = (mass[:, :-1] @ np.einsum("mkc,mkc->km", u[:, :-1], v[:, :-1])
+               + mass[:, -1, None] * np.sum(du * dv, -1))
+        out.append(E - w[None, :] ** 2 * kin)
     return out[0] - out[1]
 
 
