@@ -88,6 +88,11 @@ def run(quick=False, n_samples=64):
     return pd.DataFrame(rows)
 
 
+def _jump(df):
+    """Poses whose optimum lies next to a jump of the objective (what binds says so)."""
+    return df["binds"].str.contains("jumps|drops")
+
+
 def summary(df):
     """Headline numbers: gains (mean, largest), poses improved, the optimum's excess over
     its neighbours, the largest probability and the first order's largest error."""
@@ -97,6 +102,9 @@ def summary(df):
         "mean relative gain [-]": (df["gain [Hz]"]
                                    / df["default first platform [Hz]"]).mean(),
         "largest neighbour excess [Hz]": df["neighbour excess [Hz]"].max(),
+        "poses next to a jump of the objective": int(_jump(df).sum()),
+        "largest neighbour excess away from jumps [Hz]":
+            df.loc[~_jump(df), "neighbour excess [Hz]"].max(),
         "largest P fail [-]": df["P fail Monte Carlo [-]"].max(),
         "largest |P first order - P Monte Carlo| [-]":
             df["P first order - P Monte Carlo [-]"].abs().max()})
