@@ -110,7 +110,16 @@ class OptimalTensions:
 def band_margin(platform, band_hz, participation=PLATFORM_SHARE_THRESHOLD):
     """Smallest relative distance outside the forbidden band of the modes with platform
     share >= ``participation`` [-], negative inside: f / f_hi - 1 above, 1 - f / f_lo below
-    (the map's margin, theory.md §13.2); NaN without modes."""
+    (the map's margin, theory.md §13.2); NaN without modes.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> from dynstiff.analyses.platform_modes import find_platform_modes
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> round(band_margin(find_platform_modes(m, 1.6), (0.0, 1.5)), 4)   # 2.2061 / 1.5 - 1
+    0.4707
+    """
     v = _margins(platform, band_hz, participation)[1]
     return float(v.min()) if v.size else np.nan
 

@@ -198,7 +198,16 @@ def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=
     ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
     or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
     ``linearisation``: the model's :class:`~dynstiff.analyses.sensitivity_statics.
-    LinearisedEquilibrium` when one was built already (continuous rungs)."""
+    LinearisedEquilibrium` when one was built already (continuous rungs).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> f = ds.eigenfrequencies(m, n_modes=1)
+    >>> round(float(sensitivities_at(m, f, ["mass"]).derivative[0, 0]), 5)  # Hz/kg
+    -0.01118
+    """
     m = model.undamped()
     f = np.asarray(freq_hz, dtype=float)
     if hold not in ("pose", "lengths"):

@@ -35,7 +35,18 @@ class LumpedLinearisation:
     P0 : dict
         Base primitives (:func:`dynstiff.analyses.sensitivity_statics.primitives`) with
         ``L0`` the mass model's unstretched lengths.
-    """
+
+        Examples
+        --------
+    >>> import dynstiff as ds
+    >>> from dynstiff.analyses.sensitivity_statics import primitives
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.build_model(eq, "lumped", segments=4)
+    >>> LL = LumpedLinearisation(m, primitives(eq.robot, eq.pose, None,
+    ...                                        m.mass_model.unstretched_lengths))
+    >>> LL.z_base().size == m.n_dof
+    True
+        """
 
     def __init__(self, model, P0):
         self.model, self.mm = model, model.mass_model
@@ -124,12 +135,13 @@ class LumpedLinearisation:
             o, N = self.mm.offsets[i], self.mm.segments[i]
 
             def chain(v, v6):
+                """Node motions of cable i (anchor 0, interior, B = J_i x), (B, m, N+1, 3)."""
                 inner = v[:, o:o + 3 * (N - 1)].reshape(len(v), N - 1, 3)
                 end = v6[None, :, :3] + np.cross(v6[None, :, 3:], r[:, None, i, :])
-                return np.concatenate([np.zeros((nb, len(v), 1, 3)),
-                                       np.broadcast_to(inner, (nb,) + inner.shape), end[:, :,
-                                                                                         None]],
-                                      2), inner
+                nodes = [np.zeros((nb, len(v), 1, 3)),
+                         np.broadcast_to(inner, (nb,) + inner.shape), end[:, :, None]]
+                return np.concatenate(nodes, 2), inner
+
             ca, ia = chain(A, a6)
             cb, ib = chain(Bv, b6)
             da, db = np.diff(ca, axis=2), np.diff(cb, axis=2)            # (B, m, N, 3)

@@ -64,7 +64,13 @@ class Parameter:
 
 
 def parameter_names(n_cables):
-    """Every parameter name of a robot with ``n_cables`` cables (wildcards expanded)."""
+    """Every parameter name of a robot with ``n_cables`` cables (wildcards expanded).
+
+    Examples
+    --------
+    >>> parameter_names(2)[:5]
+    ('EA', 'mass_per_length', 'loss_factor', 'EA_0', 'EA_1')
+    """
     out = ["EA", "mass_per_length", "loss_factor"]
     for base in _CABLE:
         out += [f"{base}_{i}" for i in range(n_cables)]
@@ -118,6 +124,13 @@ def expand_parameters(parameters, robot, pose, hold="pose", tension_reference=No
     InvalidParameterError
         An unknown name (the message lists the kinds), a name twice, or a name that the
         ``hold`` does not allow.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> sc = ds.load_scene("cogiro")
+    >>> [(p.name, p.unit) for p in expand_parameters(["mass", "anchor_2"], sc.robot, sc.pose)]
+    [('mass', 'kg'), ('anchor_2_x', 'm'), ('anchor_2_y', 'm'), ('anchor_2_z', 'm')]
     """
     n = robot.n_cables
     valid = set(parameter_names(n))
@@ -221,6 +234,14 @@ def with_values(robot, pose, names, values, tension_reference=None,
     pose : Pose
     tension_reference : ndarray or None
     unstretched_lengths : ndarray or None
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> sc = ds.load_scene("cogiro")
+    >>> rob, pose, _, _ = with_values(sc.robot, sc.pose, ["mass", "pose_z"], [100.0, 1.5])
+    >>> rob.platform.mass, pose.position.tolist()
+    (100.0, [0.0, 0.0, 1.5])
     """
     n = robot.n_cables
     cables = list(robot.cables)
@@ -281,7 +302,16 @@ def equilibrium_with(robot, pose, names, values, hold="pose", tension_reference=
                      unstretched_lengths=None, **statics):
     """The equilibrium at the new values: inverse statics at the (new) pose with the (new)
     reference (``hold="pose"``), or forward statics of the (new) lengths started at the pose
-    (``hold="lengths"``); ``statics`` go to :meth:`dynstiff.Robot.equilibrium`."""
+    (``hold="lengths"``); ``statics`` go to :meth:`dynstiff.Robot.equilibrium`.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> sc = ds.load_scene("cogiro")
+    >>> eq = equilibrium_with(sc.robot, sc.pose, ["mass"], [100.0])
+    >>> round(float(eq.tensions.sum() / sc.equilibrium().tensions.sum()), 3)
+    1.096
+    """
     rob, ps, t_ref, L0 = with_values(robot, pose, names, values, tension_reference,
                                      unstretched_lengths)
     if hold == "lengths":

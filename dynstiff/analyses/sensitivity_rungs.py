@@ -144,7 +144,16 @@ def static_forms(model, lin, Y, P, omega, X, Z):
 def exact_fields(model, omega, X):
     """Interior fields of every cable of an :class:`dynstiff.models.exact.ExactModel` for
     the platform motions X (m, 6) at omega (m,) and at 0: a list (per cable) of arrays
-    (2, m, n_nodes, 3), local frame (theory.md §11.3), real."""
+    (2, m, n_nodes, 3), local frame (theory.md §11.3), real.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.build_model(ds.load_scene("cogiro").equilibrium(), "exact", fmax_hz=6.0)
+    >>> u = exact_fields(m, np.array([10.0]), np.eye(6)[[2]])
+    >>> len(u), u[0].shape[0], u[0].shape[-1]          # cables; (omega, 0); xyz
+    (8, 2, 3)
+    """
     out = []
     for cab, r in zip(model.cables, model.lever_arms):
         loc = (X[:, :3] + np.cross(X[:, 3:], r)) @ cab.frame
@@ -225,7 +234,20 @@ FORMS = {"dsm": dsm_forms, "spring": static_forms, "catenary": static_forms}
 
 
 def forms(model, lin, Y, P, omega, X, Z, fields=None):
-    """x_k^T K(omega_k) z_k of ``model``'s rung, (batch, m) (module notes)."""
+    """x_k^T K(omega_k) z_k of ``model``'s rung, (batch, m) (module notes).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m, lin = ds.FrequencyModel(eq), LinearisedEquilibrium(eq)
+    >>> Y, P = lin.perturbed([{}], np.zeros((1, lin.y.size)), 0.0)
+    >>> x, w = np.eye(6)[[2]], np.array([5.0])
+    >>> bool(np.isclose(forms(m, lin, Y, P, w, x, x)[0, 0].real,
+    ...                 m.dynamic_stiffness(w)[0, 2, 2]))
+    True
+    """
     if model.rung == "exact":
         return exact_forms(model, lin, Y, P, omega, X, Z, fields)
     return FORMS[model.rung](model, lin, Y, P, omega, X, Z)

@@ -42,7 +42,13 @@ _EZ = np.array([0.0, 0.0, 1.0])
 
 # ------------------------------------------------------------------ complex-safe kernels
 def skew3(a):
-    """[a]x of vectors a (..., 3) -> (..., 3, 3), complex-safe."""
+    """[a]x of vectors a (..., 3) -> (..., 3, 3), complex-safe.
+
+    Examples
+    --------
+    >>> skew3(np.array([1.0, 2.0, 3.0])) @ np.array([0.0, 0.0, 1.0])     # a x e_z
+    array([ 2., -1.,  0.])
+    """
     z = np.zeros_like(a[..., 0])
     return np.stack([np.stack([z, -a[..., 2], a[..., 1]], -1),
                      np.stack([a[..., 2], z, -a[..., 0]], -1),
@@ -52,7 +58,13 @@ def skew3(a):
 def rotation(v):
     """Rotation matrix of rotation vectors v (..., 3) [rad] -> (..., 3, 3), analytic in v
     (Rodrigues' formula, its series below theta^2 = 1e-6; the same matrix as
-    :attr:`dynstiff.Pose.matrix` for real v)."""
+    :attr:`dynstiff.Pose.matrix` for real v).
+
+    Examples
+    --------
+    >>> np.round(rotation(np.array([0.0, 0.0, np.pi / 2])) @ [1.0, 0.0, 0.0], 12)
+    array([0., 1., 0.])
+    """
     v = np.asarray(v)
     th2 = np.sum(v * v, axis=-1)
     small = np.abs(th2) < 1e-6
@@ -67,7 +79,13 @@ def divided_differences(a, b, delta):
     """(F(b) - F(a)) / delta for F = asinh(t), t / sqrt(1 + t^2), 1 / sqrt(1 + t^2),
     sqrt(1 + t^2) and b = a + delta, without cancellation: the forms of
     :func:`dynstiff.cable.catenary.divided_differences`, analytic (branches chosen on the
-    real parts), for the complex step."""
+    real parts), for the complex step.
+
+    Examples
+    --------
+    >>> [round(float(v), 6) for v in divided_differences(0.5, 0.5, 0.0)]   # derivatives
+    [0.894427, 0.715542, -0.357771, 0.447214]
+    """
     sa, sb = np.sqrt(1 + a * a), np.sqrt(1 + b * b)
     same = np.real(a) * np.real(b) > 0
     zero = np.real(delta) == 0
@@ -82,7 +100,14 @@ def divided_differences(a, b, delta):
 
 def catenary_offsets(H, V0, L0, EA, w0):
     """End offsets (x, z) [m] of the elastic catenary from A (theory.md §1.1), analytic in
-    every argument (arrays of one shape)."""
+    every argument (arrays of one shape).
+
+    Examples
+    --------
+    >>> x, z = catenary_offsets(1000.0, 0.0, 10.0, 1e6, 1e-9)   # weightless: straight
+    >>> round(float(x), 9), round(float(z), 9)
+    (10.01, 0.0)
+    """
     W = w0 * L0
     d_asinh, _, _, d_sqrt = divided_differences(V0 / H, (V0 + W) / H, W / H)
     return L0 * (H / EA + d_asinh), L0 * ((V0 + 0.5 * W) / EA + d_sqrt)
@@ -90,7 +115,13 @@ def catenary_offsets(H, V0, L0, EA, w0):
 
 def catenary_flexibility(H, V0, L0, EA, w0):
     """In-plane flexibility d(x, z)/d(H, Vb) = int D^-1 ds of the catenary [m/N]
-    (theory.md §1.1, §11.1), (f_xx, f_xz, f_zz), analytic."""
+    (theory.md §1.1, §11.1), (f_xx, f_xz, f_zz), analytic.
+
+    Examples
+    --------
+    >>> [round(float(v), 9) + 0.0 for v in catenary_flexibility(1000.0, 0.0, 10.0, 1e6, 1e-9)]
+    [1e-05, 0.0, 0.01001]
+    """
     W = w0 * L0
     d_asinh, d_f, d_g, _ = divided_differences(V0 / H, (V0 + W) / H, W / H)
     return (L0 / EA + (L0 / H) * (d_asinh - d_f), (L0 / H) * d_g, L0 / EA + (L0 / H) * d_f)
@@ -98,7 +129,13 @@ def catenary_flexibility(H, V0, L0, EA, w0):
 
 def mean_tension(H, V0, L0, w0):
     """Tension averaged over the unstretched length [N] (as the catenary's
-    ``mean_tension``), analytic."""
+    ``mean_tension``), analytic.
+
+    Examples
+    --------
+    >>> round(float(mean_tension(300.0, -40.0, 10.0, 8.0)), 3)   # V from -40 to 40 N
+    300.887
+    """
     W = w0 * L0
     Vb = V0 + W
 
@@ -131,6 +168,15 @@ def cable_quantities(P, H, V0, L0, g, position=None, R=None):
     dict with r (lever arms, (..., n, 3)), B, d (chord B - A), lh, h, eh (horizontal
     direction), Vb, TB, TA (end tensions), f (force of each cable on the platform), R,
     position, w0.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> lin = LinearisedEquilibrium(eq)
+    >>> q = lin.quantities(lin.y, lin.P)[3]
+    >>> bool(np.allclose(q["TB"], eq.tensions))
+    True
     """
     if R is None:
         R = rotation(P["rotvec"])
@@ -152,7 +198,14 @@ def cable_quantities(P, H, V0, L0, g, position=None, R=None):
 def geometric_stiffness(f, r, fg, rG):
     """Rotation block of K_geo, -sum_i [f_i]x [r_i]x - [f_g]x [r_G]x (theory.md §4), for
     forces f (B, n, 3) at lever arms r (B, n, 3) and the weight f_g (B, 3) at r_G (B, 3):
-    (B, 3, 3), analytic ([a]x [b]x = b a^T - (a . b) I)."""
+    (B, 3, 3), analytic ([a]x [b]x = b a^T - (a . b) I).
+
+    Examples
+    --------
+    >>> f, r = np.array([[[0.0, 0.0, 10.0]]]), np.array([[[0.0, 0.0, 1.0]]])
+    >>> geometric_stiffness(f, r, np.zeros((1, 3)), np.zeros((1, 3)))[0].diagonal()
+    array([10., 10.,  0.])
+    """
     eye = np.eye(3)
     G = (np.einsum("bn,ij->bij", np.sum(f * r, -1), eye)
          - np.einsum("bni,bnj->bij", r, f))
@@ -161,7 +214,14 @@ def geometric_stiffness(f, r, fg, rG):
 
 def platform_mass_forms(P, R):
     """Platform mass matrix about P, base axes, (..., 6, 6) [kg, kg m, kg m^2]
-    (theory.md §4), analytic in the mass, centre of mass, inertia and rotation."""
+    (theory.md §4), analytic in the mass, centre of mass, inertia and rotation.
+
+    Examples
+    --------
+    >>> P = {"mass": 2.0, "com": np.zeros(3), "inertia": np.eye(3)}
+    >>> platform_mass_forms(P, np.eye(3)).diagonal()
+    array([2., 2., 2., 1., 1., 1.])
+    """
     m = np.asarray(P["mass"])
     rG = np.einsum("...ij,...j->...i", R, P["com"])
     S = skew3(rG)
@@ -188,7 +248,15 @@ def primitives(robot, pose, tension_reference=None, unstretched_lengths=None):
 
     ``tension_reference`` None: the default reference of the distribution (``t_ref`` holds
     its shift, 0); else the reference [N], scalar or (n,). ``unstretched_lengths`` [m]
-    (at fixed lengths)."""
+    (at fixed lengths).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> sc = ds.load_scene("cogiro")
+    >>> float(primitives(sc.robot, sc.pose)["mass"])
+    91.058
+    """
     n = robot.n_cables
     pl = robot.platform
     P = dict(EA=np.array([c.EA for c in robot.cables], dtype=float),
@@ -209,7 +277,14 @@ def primitives(robot, pose, tension_reference=None, unstretched_lengths=None):
 
 def perturbed_primitives(P, directions, step=CS_STEP):
     """P + i step d for every direction (a list of dicts of primitive increments): a batch
-    (n_directions, ...) of complex arrays, the complex-step inputs."""
+    (n_directions, ...) of complex arrays, the complex-step inputs.
+
+    Examples
+    --------
+    >>> P = perturbed_primitives({"mass": np.array(2.0)}, [{}, {"mass": 1.0}], 1e-30)
+    >>> P["mass"].imag / 1e-30
+    array([0., 1.])
+    """
     out = {}
     nd = len(directions)
     for key, v in P.items():
@@ -252,7 +327,14 @@ class LinearisedEquilibrium:
     InvalidParameterError
         The equilibrium is not the tension distribution closest to ``tension_reference``
         (at a fixed pose), or the equations are singular there.
-    """
+
+        Examples
+        --------
+    >>> import dynstiff as ds
+    >>> lin = LinearisedEquilibrium(ds.load_scene("cogiro").equilibrium())
+    >>> lin.active.tolist(), lin.y.size          # no cable at a limit; 4 x 8 + 6 unknowns
+    ([0, 0, 0, 0, 0, 0, 0, 0], 38)
+        """
 
     def __init__(self, equilibrium, hold="pose", tension_reference=None):
         if hold not in ("pose", "lengths"):

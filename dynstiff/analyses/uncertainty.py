@@ -227,7 +227,17 @@ def _uncertain_items(uncertain):
 def evaluate_samples(robot, pose, names, values, rung, model_options, n_modes, band,
                      participation, tension_reference=None):
     """The quantities of :class:`UncertaintyResult` with the full model at every row of
-    ``values`` (n, p): (n, q) with NaN where the statics or the modes failed."""
+    ``values`` (n, p): (n, q) with NaN where the statics or the modes failed.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> sc = ds.load_scene("cogiro")
+    >>> q = evaluate_samples(sc.robot, sc.pose, ["EA"], [[139486.7]], "dsm", {}, 1, None,
+    ...                      0.05)
+    >>> [round(float(v), 4) for v in q[0]]          # f1, first platform mode [Hz]
+    [2.2061, 2.2061]
+    """
     q = n_modes + 1 + (band is not None)
     out = np.full((len(values), q), np.nan)
     cover = band[1] * 1.05 if band is not None else 0.0
@@ -418,6 +428,16 @@ def uncertain_row(robot, pose, options, uncertain, rung="dsm", model_options=Non
     -------
     row : dict (as :mod:`dynstiff.analyses.verdicts`)
     result : UncertaintyResult or None
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> from dynstiff.analyses.verdicts import CheckOptions
+    >>> sc = ds.load_scene("cogiro")
+    >>> row, res = uncertain_row(sc.robot, sc.pose, CheckOptions(forbidden_hz=(0.0, 1.5)),
+    ...                          {"EA": "10%"}, n_samples=8)
+    >>> row["verdict"], row["value"]
+    ('pass', 0.0)
     """
     text = "; ".join(f"{n} {Uncertain.parse(u).text() if isinstance(u, str) else u.text()}"
                      for n, u in uncertain.items())
