@@ -27,8 +27,9 @@ import numpy as np
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
 from dynstiff.analyses.sensitivity import RUNGS, sensitivities_at
+from dynstiff.analyses.sensitivity_kernels import CS_STEP
 from dynstiff.analyses.sensitivity_parameters import Parameter
-from dynstiff.analyses.sensitivity_statics import CS_STEP, LinearisedEquilibrium
+from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose

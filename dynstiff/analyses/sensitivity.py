@@ -26,15 +26,11 @@ import numpy as np
 
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import eigenfrequencies, validated_request
+from dynstiff.analyses.sensitivity_kernels import CS_STEP, perturbed_primitives, primitives
 from dynstiff.analyses.sensitivity_lumped import LumpedLinearisation
 from dynstiff.analyses.sensitivity_parameters import expand_parameters
 from dynstiff.analyses.sensitivity_rungs import exact_fields, forms
-from dynstiff.analyses.sensitivity_statics import (
-    CS_STEP,
-    LinearisedEquilibrium,
-    perturbed_primitives,
-    primitives,
-)
+from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
 from dynstiff.models.base import require_model
 

@@ -16,7 +16,7 @@ geometric stiffness of the platform's lever arms and the lumped masses, theory.m
 
 import numpy as np
 
-from dynstiff.analyses.sensitivity_statics import (
+from dynstiff.analyses.sensitivity_kernels import (
     CS_STEP,
     geometric_stiffness,
     platform_mass_forms,
@@ -33,13 +33,13 @@ class LumpedLinearisation:
     ----------
     model : LumpedLinearModel
     P0 : dict
-        Base primitives (:func:`dynstiff.analyses.sensitivity_statics.primitives`) with
+        Base primitives (:func:`dynstiff.analyses.sensitivity_kernels.primitives`) with
         ``L0`` the mass model's unstretched lengths.
 
         Examples
         --------
     >>> import dynstiff as ds
-    >>> from dynstiff.analyses.sensitivity_statics import primitives
+    >>> from dynstiff.analyses.sensitivity_kernels import primitives
     >>> eq = ds.load_scene("cogiro").equilibrium()
     >>> m = ds.build_model(eq, "lumped", segments=4)
     >>> LL = LumpedLinearisation(m, primitives(eq.robot, eq.pose, None,

@@ -1,6 +1,6 @@
 """The parameters a natural frequency can be differentiated by, uncertain in or optimised
 over: their names, values, units, their direction among the primitive parameters of
-:mod:`dynstiff.analyses.sensitivity_statics`, and the robot (pose, reference, lengths) that a
+:mod:`dynstiff.analyses.sensitivity_kernels`, and the robot (pose, reference, lengths) that a
 new value gives (theory.md §16.1).
 
 =====================================  ==========================================  =========

@@ -20,7 +20,7 @@ analytic, so that Im(form) / h is the derivative along the direction.
 
 import numpy as np
 
-from dynstiff.analyses.sensitivity_statics import (
+from dynstiff.analyses.sensitivity_kernels import (
     catenary_flexibility,
     geometric_stiffness,
     mean_tension,
