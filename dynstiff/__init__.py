@@ -14,6 +14,7 @@ functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
 
 from dynstiff._version import __version__ as __version__
 from dynstiff.analyses.calibrate import CalibrationResult, calibrate
+from dynstiff.analyses.checks import CheckResult, design_checks
 from dynstiff.analyses.damped import DampedModes, damped_modes
 from dynstiff.analyses.eigen import ModalResult, eigenfrequencies, mode_count
 from dynstiff.analyses.frf import FRFResult, frf
@@ -30,6 +31,7 @@ from dynstiff.analyses.optimal_tensions import OptimalTensions, optimal_tensions
 from dynstiff.analyses.recommend import Recommendation, recommend_model
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
 from dynstiff.analyses.sensitivity import SensitivityResult, frequency_sensitivities
+from dynstiff.analyses.settings import scene_equilibrium, scene_model
 from dynstiff.analyses.sweep import SweepResult, sweep
 from dynstiff.analyses.uncertainty import Uncertain, UncertaintyResult, propagate_uncertainty
 from dynstiff.cable.catenary import CatenaryState
@@ -39,11 +41,15 @@ from dynstiff.cable.modes import CableModes, cable_natural_frequencies
 from dynstiff.cable.psi import cable_mode_count
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import (
+    CalibrationError,
+    CalibrationWarning,
     ConvergenceError,
     DynstiffError,
+    DynstiffWarning,
     InfeasiblePoseError,
     InvalidParameterError,
     PoleWarning,
+    ResonanceWarning,
     SlackCableError,
     UnsupportedAnalysisError,
 )
@@ -60,6 +66,14 @@ from dynstiff.robot.waypoints import WaypointPath
 from dynstiff.scenes import Scene, SceneError, list_scenes, load_scene
 
 __all__ = [
+    "scene_model",
+    "scene_equilibrium",
+    "design_checks",
+    "CheckResult",
+    "ResonanceWarning",
+    "CalibrationWarning",
+    "CalibrationError",
+    "DynstiffWarning",
     "calibrate",
     "CalibrationResult",
     "frequency_sensitivities",

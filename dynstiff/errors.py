@@ -14,6 +14,9 @@ __all__ = [
     "DynstiffWarning",
     "PoleWarning",
     "ClosedFormWarning",
+    "ResonanceWarning",
+    "CalibrationWarning",
+    "CalibrationError",
 ]
 
 
@@ -65,6 +68,31 @@ class UnsupportedAnalysisError(DynstiffError, TypeError):
 
 class PoleWarning(DynstiffWarning, RuntimeWarning):
     """A quantity was evaluated exactly on a pole; the value returned is inf."""
+
+
+class CalibrationWarning(DynstiffWarning, UserWarning):
+    """A calibration whose result should not be trusted as it stands: ``cause`` is
+    "pairing" (measured frequencies among the model's local modes, paired without shapes),
+    "residual" (a residual far above the measurement uncertainty) or "bound" (an estimate
+    on its search bound); the message names the mode or parameter and what to give."""
+
+    def __init__(self, message, cause=None):
+        super().__init__(message)
+        self.cause = cause
+
+
+class CalibrationError(DynstiffError, RuntimeError):
+    """A calibration failed its checks (``calibrate(..., strict=True)``); ``cause`` as
+    :class:`CalibrationWarning`."""
+
+    def __init__(self, message, cause=None):
+        super().__init__(message)
+        self.cause = cause
+
+
+class ResonanceWarning(DynstiffWarning, UserWarning):
+    """An FRF of an undamped model crosses natural frequencies: its peaks are the values of
+    the frequency grid next to each pole (unbounded in the limit), not the structure's."""
 
 
 class ClosedFormWarning(DynstiffWarning, UserWarning):

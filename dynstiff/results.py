@@ -66,6 +66,9 @@ class FRFResult:
         per second squared. inf at an exact pole.
     inputs, outputs : tuple of str
     kind : str
+    damping : str
+        The damping of the model the FRF comes from, in words ("undamped": every peak is
+        the grid's value near a pole, not the structure's).
     """
 
     freq_hz: np.ndarray
@@ -73,6 +76,7 @@ class FRFResult:
     inputs: tuple
     outputs: tuple
     kind: str
+    damping: str = "not stated"
 
     def unit(self, output, input):
         """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
@@ -89,7 +93,7 @@ class FRFResult:
 
     def __repr__(self):
         return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
-                f"outputs {self.outputs}, inputs {self.inputs})")
+                f"outputs {self.outputs}, inputs {self.inputs}, {self.damping})")
 
     def plot(self, ax=None, modes=None, pairs=None, phase=False):
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
@@ -163,8 +167,9 @@ class ModalResult:
         "global", "mixed" or "local" by the platform share (:func:`mode_kinds`); derived
         from ``cable_energy_fraction`` when not given.
     massless_freq_hz : ndarray, shape (n,)
-        Frequency of the mode of the massless-cable model paired with each global mode
-        (one-to-one, by mass-weighted MAC; NaN for the other modes).
+        Frequency of the mode of the massless-cable model each mode continues (one-to-one,
+        by participation: :func:`dynstiff.analyses.eigen_matrix.massless_pairing`; NaN for
+        the other modes).
     platform_mass : ndarray, shape (6, 6), optional
         The platform block of the robot's mass matrix about P [kg, kg m, kg m^2] (held
         DOFs' rows and columns zero): the rigid platform, plus, for the lumped rung, the
@@ -217,7 +222,7 @@ class ModalResult:
 
     @property
     def shift_from_massless(self):
-        """Relative shift of each global frequency from the massless-cable model [-]."""
+        """Relative shift of each paired mode's frequency from its massless-cable mode [-]."""
         return self.freq_hz / self.massless_freq_hz - 1.0
 
     def __len__(self):

@@ -10,6 +10,10 @@ import dynstiff as ds
 from dynstiff import compiled
 from dynstiff.errors import InvalidParameterError, PoleWarning
 
+# These tests check the algebra of undamped FRFs (symmetry, kinds, files, figures) across
+# natural frequencies on purpose: the ResonanceWarning that says so is expected here.
+pytestmark = pytest.mark.filterwarnings("ignore::dynstiff.errors.ResonanceWarning")
+
 
 def test_receptance_is_symmetric(cogiro_eq):
     m = ds.FrequencyModel(cogiro_eq)
@@ -183,7 +187,8 @@ def test_numpy_path_isolates_an_exactly_singular_frequency(cogiro_eq, monkeypatc
 
         def dynamic_stiffness(self, w):
             K = m.dynamic_stiffness(w)
-            K[2] = 0.0
+            if len(w) == len(omega):         # the grid (frf also counts modes at its ends)
+                K[2] = 0.0
             return K
 
     kw = {"inputs": ["fx", "mz"], "outputs": ["y", "z", "rx"]}

@@ -9,6 +9,10 @@ import pytest
 import dynstiff as ds
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
 
+# These tests check the algebra of undamped FRFs (symmetry, kinds, files, figures) across
+# natural frequencies on purpose: the ResonanceWarning that says so is expected here.
+pytestmark = pytest.mark.filterwarnings("ignore::dynstiff.errors.ResonanceWarning")
+
 FMAX = 8.0            # [Hz]: CoGiRo's modes below it, 38 with the platform moving
 
 

@@ -2,6 +2,7 @@
 
 import dataclasses
 
+import numpy as np
 import pytest
 
 import dynstiff as ds
@@ -57,3 +58,42 @@ def test_metadata_names_scene_pose_model_damping_version():
     assert md["model"] == "dsm" and md["units"] == "Hz"
     assert md["pose"]["position [m]"] == [0.0, 0.0, 1.0]
     assert md["damping"]["cable_loss_factor"] == 0.01
+
+
+@pytest.mark.integration
+def test_the_documented_python_model_gives_the_command_lines_frf(tmp_path):
+    """One set of defaults: ds.frf of ds.scene_model(scene) (the scene's [damping]) on the
+    frequencies `dynstiff frf cogiro` wrote equals the command line's FRF to 1e-12, peak
+    included (about 1.8e-3 m/N, not the undamped model's grid-dependent 1e-1)."""
+    import pandas as pd
+    from conftest import run_cli
+    out = run_cli("frf", "cogiro", "--csv", str(tmp_path / "frf.csv"))
+    assert out.returncode == 0, out.stderr
+    cli = pd.read_csv(tmp_path / "frf.csv", comment="#")
+    f = cli["freq [Hz]"].to_numpy()
+    H = ds.frf(ds.scene_model(ds.load_scene("cogiro")), 2 * np.pi * f, "fz", "z").H[:, 0, 0]
+    np.testing.assert_allclose(np.abs(H), cli["magnitude"], rtol=1e-12)
+    assert 1.5e-3 < np.abs(H).max() < 2.5e-3
+    assert "damped: platform modal ratio 0.01, cable loss factor 0.01" in repr(
+        ds.scene_model(ds.load_scene("cogiro")))
+
+
+def test_an_undamped_frf_across_resonances_warns_and_says_undamped():
+    """frf of an undamped model whose band holds natural frequencies warns that its peaks
+    are the grid's (counted by Wittrick-Williams: CoGiRo has 2 modes in 2.0-2.5 Hz) and
+    the result, its repr and its figure's title say "undamped"; below the first mode, or
+    damped, no warning."""
+    import warnings
+    sc = ds.load_scene("cogiro")
+    m = ds.scene_model(sc, damping=(0, 0, 0))
+    assert m.damping_text() == "undamped" and "undamped" in repr(m)
+    with pytest.warns(ds.ResonanceWarning, match="crosses 2 natural frequencies"):
+        H = ds.frf(m, 2 * np.pi * np.linspace(2.0, 2.5, 50), "fz", "z")
+    assert H.damping == "undamped" and "undamped" in repr(H)
+    import matplotlib
+    matplotlib.use("Agg")
+    assert "undamped" in H.plot().axes[0].get_title()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds.frf(m, 2 * np.pi * np.linspace(0.1, 2.0, 50), "fz", "z")
+        ds.frf(ds.scene_model(sc), 2 * np.pi * np.linspace(2.0, 2.5, 50), "fz", "z")

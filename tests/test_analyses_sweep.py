@@ -6,6 +6,7 @@ import pytest
 import scipy.linalg
 
 import dynstiff as ds
+from dynstiff.analyses.platform_modes import find_platform_modes
 from dynstiff.analyses.sweep import UNTRACKED, sweep
 from dynstiff.errors import InvalidParameterError, SlackCableError
 
@@ -134,10 +135,13 @@ def test_sweep_user_values_and_progress():
                 values=[10.0, 20.0, 30.0], parameter="x [cm]", n_modes=5,
                 progress=lambda *a: calls.append(a))
     assert calls == [(1, 3), (2, 3), (3, 3)]
-    assert res.parameter == "x [cm]" and len(res) == 15
+    assert res.parameter == "x [cm]"
+    for k in range(3):          # the 5 lowest modes and the platform modes, at every step
+        pm = find_platform_modes(ds.build_model(res.equilibria[k], "dsm"))
+        assert np.sum(res.step == k) == len(set(range(5)) | set(pm.index.tolist()))
     unnamed = sweep(rob, poses=[[0, 0, 1.0], [0.1, 0, 1.0]], values=[1.0, 2.0], n_modes=2)
     assert unnamed.parameter == "value"             # user values without a name
-    np.testing.assert_array_equal(res.value, np.repeat([10.0, 20.0, 30.0], 5))
+    np.testing.assert_array_equal(np.unique(res.value), [10.0, 20.0, 30.0])
     np.testing.assert_allclose(res.equilibria[2].pose.position, [0.2, 0, 1.0])
 
 
@@ -183,8 +187,10 @@ def test_sweep_limits_are_inclusive_and_the_robot_is_checked():
     """n_modes = 1 and mac_min = 1 are accepted; the default parameter name of a sweep over
     poses is the arc length and of a build sweep "value"; a non-robot is refused by type."""
     rob = small_robot()
-    assert len(sweep(rob, poses=[[0, 0, 1.0]], n_modes=1)) == 1
-    assert len(sweep(rob, poses=[[0, 0, 1.0], [0, 0, 1.05]], n_modes=2, mac_min=1.0)) == 4
+    one = sweep(rob, poses=[[0, 0, 1.0]], n_modes=1)
+    pm = find_platform_modes(ds.build_model(one.equilibria[0], "dsm"))
+    assert len(one) == len({0} | set(pm.index.tolist())) and one.n_tracks == 3
+    assert sweep(rob, poses=[[0, 0, 1.0], [0, 0, 1.05]], n_modes=2, mac_min=1.0).n_tracks >= 3
     built = sweep(None, build=lambda v: rob.equilibrium(pose=[0, 0, v]), values=[1.0],
                   n_modes=2)
     assert built.parameter == "value" == built.to_frame().attrs["parameter"]
@@ -281,8 +287,9 @@ COLUMNS = ["step", "value", "mode", "track", "freq [Hz]", "kind", "cable energy 
 
 
 def test_path_sweep_table(scene, path_sweep):
-    """5 poses z = 0.8 .. 1.2 m, all modes below 5.5 Hz (21 per step): tidy table, arc length
-    as value, frequencies identical to a direct FrequencyModel at each pose."""
+    """5 poses z = 0.8 .. 1.2 m, all modes below 5.5 Hz (21 per step) and the platform modes
+    above (the rz carrier near 5.8 Hz): tidy table, arc length as value, frequencies
+    identical to a direct FrequencyModel at each pose."""
     poses, res, calls = path_sweep
     df = res.to_frame()
     assert list(df.columns) == COLUMNS
@@ -297,7 +304,11 @@ def test_path_sweep_table(scene, path_sweep):
         assert (rows["value"] == res.values[k]).all()
         assert list(rows["mode"]) == list(range(1, len(rows) + 1))
         eq = scene.robot.equilibrium(pose=pose)
-        f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=5.5)
+        m = ds.FrequencyModel(eq)
+        pm = find_platform_modes(m)
+        f = ds.eigenfrequencies(m, fmax_hz=5.5)
+        extra = [g for g in pm.freq_hz if np.min(np.abs(f / g - 1)) > 1e-9]
+        f = np.sort(np.concatenate([f, extra]))
         np.testing.assert_allclose(rows["freq [Hz]"].to_numpy(), f, rtol=1e-12)
         np.testing.assert_array_equal(res.modal[k].freq_hz, rows["freq [Hz]"].to_numpy())
     # local modes carry no track, global ones do, one mode per track and step

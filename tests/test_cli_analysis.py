@@ -206,3 +206,12 @@ def test_cli_check_with_uncertain_parameters():
                      out.stdout)
     bad = run("cogiro", "--uncertain", "EA")
     assert bad.returncode == 2 and "--uncertain EA: give NAME=VALUE" in bad.stderr
+
+
+@pytest.mark.parametrize("pose", [["0", "0", "nan"], ["0", "0", "1", "0", "inf", "0"], ["1", "2"]])
+def test_check_of_a_bad_pose_is_an_error_not_a_verdict(pose):
+    """A pose that is not a pose is bad input, exit 2 with one line naming it, not a FAIL
+    verdict with exit 1 (as if the robot had failed)."""
+    out = run_cli("check", "cogiro", "--pose", *pose)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr.count("\n") == 1 and "pose" in out.stderr

@@ -10,6 +10,10 @@ import pytest
 import dynstiff as ds
 from dynstiff.io.exchange import MissingDependencyError, require, uff58_records
 
+# These tests check the algebra of undamped FRFs (symmetry, kinds, files, figures) across
+# natural frequencies on purpose: the ResonanceWarning that says so is expected here.
+pytestmark = pytest.mark.filterwarnings("ignore::dynstiff.errors.ResonanceWarning")
+
 pyuff = pytest.importorskip("pyuff")
 control = pytest.importorskip("control")
 

@@ -11,6 +11,10 @@ import pytest
 import dynstiff as ds
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
 
+# These tests check the algebra of undamped FRFs (symmetry, kinds, files, figures) across
+# natural frequencies on purpose: the ResonanceWarning that says so is expected here.
+pytestmark = pytest.mark.filterwarnings("ignore::dynstiff.errors.ResonanceWarning")
+
 matplotlib.use("Agg")
 
 RUNG_OPTIONS = {"spring": {}, "catenary": {}, "dsm": {}, "exact": {"fmax_hz": 10.0},

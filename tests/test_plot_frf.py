@@ -4,6 +4,10 @@ import matplotlib
 import numpy as np
 import pytest
 
+# These tests check the algebra of undamped FRFs (symmetry, kinds, files, figures) across
+# natural frequencies on purpose: the ResonanceWarning that says so is expected here.
+pytestmark = pytest.mark.filterwarnings("ignore::dynstiff.errors.ResonanceWarning")
+
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 

@@ -82,7 +82,7 @@ def test_frf_figure_marks_modes():
     matplotlib.use("Agg")
     import dynstiff as ds
     from dynstiff.plot import plot_frf
-    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    m = ds.scene_model(ds.load_scene("cogiro"))           # with the scene's damping
     modes = ds.modes(m, 12)
     res = ds.frf(m, 2 * np.pi * np.linspace(0.5, 4.0, 3000), inputs=["fz"], outputs=["z"])
     fig = plot_frf(res, modes)

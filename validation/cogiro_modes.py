@@ -124,7 +124,7 @@ if __name__ == "__main__":
         print(df[["mode", "freq [Hz]", "kind", "cable energy fraction [-]",
                   "massless freq [Hz]", "shift from massless [-]"]].to_string(index=False))
     scene = ds.load_scene("cogiro")
-    model = ds.FrequencyModel(scene.equilibrium())
+    model = ds.scene_model(scene)                # the scene's [damping]: finite peaks
     modes = ds.modes(model, 40)
     res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 10.0, 20000), inputs=["fx", "fy", "fz", "mz"],
                     outputs=["x", "y", "z", "rz"])

@@ -51,6 +51,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from dynstiff.analyses.calibration_checks import calibration_findings, report_findings
 from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
@@ -237,6 +238,7 @@ class CalibrationResult:
 def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
               pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
               fmax_factor=1.3, start=None, frf=None, frf_point=None, jacobian="auto",
+              strict=False,
               **model_options):
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
@@ -281,6 +283,10 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         residuals of EA, EA_i, mass, inertia, t_min on the rungs "dsm", "exact", "lumped",
         "spring", "catenary"), "differences" by finite differences, "auto" the first where
         it applies.
+    strict : bool
+        Raise a :class:`~dynstiff.errors.CalibrationError` instead of warning when the
+        calibration finds fault with itself
+        (:mod:`dynstiff.analyses.calibration_checks`).
 
     Returns
     -------
@@ -292,6 +298,14 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         Unknown parameter, bad confidence, more parameters than measured values.
     ConvergenceError
         The least-squares search failed (its message and cost are named).
+    CalibrationError
+        With ``strict``: an ambiguous pairing, a residual far above the measurement
+        uncertainty, or an estimate on a bound.
+
+    Warns
+    -----
+    CalibrationWarning
+        The same findings, without ``strict``.
     """
     from scipy.optimize import least_squares
     from scipy.stats import norm
@@ -340,6 +354,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     n = len(names)
     if m < n:
         raise InvalidParameterError(f"{m} measured values cannot fix {n} parameters {names}")
+    chosen_pairing = pairing                     # the user's choice: no pairing warning
     if measured is not None:
         scale = measured.sigma_hz if measured.sigma_hz is not None else measured.freq_hz
         pairing = pairing or ("mac" if measured.shapes is not None else "massless")
@@ -363,9 +378,8 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
                 idx, mac = pair_modes(md, measured, "mac")
             else:
                 idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
-            out.update(f=md.freq_hz[idx], mac=mac,
-                       share=np.asarray(md.cable_energy_fraction)[idx], model=model,
-                       modes=md, idx=idx)
+            out.update(f=md.freq_hz[idx], mac=mac, modes=md, model=model, idx=idx,
+                       share=np.asarray(md.cable_energy_fraction)[idx])
             if use_zeta:
                 out["zeta"] = damped_modes(model, fmax_hz=fmax).damping_ratio[idx]
         if frf is not None:
@@ -441,6 +455,11 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     except np.linalg.LinAlgError:
         se = np.full(n, np.nan)
     p0 = np.array([_value(robot, nm) for nm in names])
+    report_findings(calibration_findings(
+        measured, last["f"], (pairing if chosen_pairing is None else "chosen")
+        if measured is not None else None,
+        [first.get("modes"), last.get("modes")] if measured is not None else [], names,
+        sol.x, bounds), strict)
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
         ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),

@@ -150,9 +150,11 @@ def modes(model, n_modes=None, fmax_hz=None):
 
 
 def massless_pairing(modes, K0, Mp, free_index):
-    """The frequency [Hz] of the massless-cable mode paired with each global mode of
-    ``modes``, NaN for the others: a one-to-one assignment (Hungarian) that maximises the
-    summed mass-weighted MAC (x_k^T M_p X0_j)^2 of the pairs, a pair kept from MAC 0.5.
+    """The frequency [Hz] of the massless-cable mode each mode of ``modes`` continues, NaN
+    for the modes that continue none: a one-to-one assignment (Hungarian) that maximises the
+    summed participation of the pairs, the participation of mode k in massless mode j being
+    its effective-mass fraction MAC_kj s_k = (x_k^T M_p X0_j)^2 s_k (unit-energy shapes, s
+    the platform share; over all modes it sums to 1 for each j); a pair is kept from 0.1.
 
     Parameters
     ----------
@@ -166,13 +168,12 @@ def massless_pairing(modes, K0, Mp, free_index):
     import scipy.linalg
     from scipy.optimize import linear_sum_assignment
     out = np.full(len(modes), np.nan)
-    glob = np.flatnonzero(np.array(modes.kind) == "global")
-    if not glob.size:
+    if not len(modes):
         return out
     lam0, X0 = scipy.linalg.eigh(0.5 * (K0 + K0.T), Mp)
-    X = np.asarray(modes.platform_shapes)[np.ix_(glob, free_index)]
-    mac = (X @ Mp @ X0) ** 2
-    rows, cols = linear_sum_assignment(-mac)
-    keep = mac[rows, cols] >= 0.5
-    out[glob[rows[keep]]] = _to_hz(lam0)[cols[keep]]
+    X = np.asarray(modes.platform_shapes)[:, free_index]
+    score = (X @ Mp @ X0) ** 2 * np.asarray(modes.platform_share)[:, None]
+    rows, cols = linear_sum_assignment(-score)
+    keep = score[rows, cols] >= 0.1
+    out[rows[keep]] = _to_hz(lam0)[cols[keep]]
     return out

@@ -13,7 +13,7 @@ from dynstiff import compiled
 from dynstiff._validate import omega_array
 from dynstiff._validate import point as validated_point
 from dynstiff.cable.psi import check_frequency_range
-from dynstiff.errors import InvalidParameterError, PoleWarning
+from dynstiff.errors import InvalidParameterError, PoleWarning, ResonanceWarning, user_stacklevel
 from dynstiff.models.base import require_model
 from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
@@ -165,8 +165,34 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
                                    + _receptance(model, w * (1 + _POLE_STEP), B, C)[0])
     if kind != "receptance":
         H = H * factor[:, None, None]
+    if not model.damped:
+        crossed = _modes_between(model, omega)
+        if crossed:
+            warnings.warn(ResonanceWarning(
+                f"the FRF of this undamped model crosses {crossed} natural frequencies "
+                f"between {omega.min() / (2 * np.pi):.4g} and {omega.max() / (2 * np.pi):.4g} "
+                f"Hz: its peaks are the grid's values next to the poles, not the "
+                f"structure's; give the model damping (dynstiff.scene_model applies a "
+                f"scene's [damping])"), stacklevel=user_stacklevel())
     return FRFResult(freq_hz=omega / (2 * np.pi), H=H, inputs=in_names, outputs=out_names,
-                     kind=kind)
+                     kind=kind, damping=model.damping_text())
+
+
+def _modes_between(model, omega):
+    """Number of natural frequencies of an undamped ``model`` strictly inside the range of
+    ``omega`` [rad/s]: the Wittrick-Williams count J = J0 + s{K} at its ends (theory.md
+    §5.1; the finite eigenproblem's count for the discrete rungs, its massless part for the
+    massless ones)."""
+    if omega.size < 2 or not omega.max() > omega.min():
+        return 0
+    w = np.array([omega.min(), omega.max()])
+    with np.errstate(all="ignore"):
+        K = model.dynamic_stiffness(w)
+    if not np.all(np.isfinite(K)):
+        return 0                              # an end on a pole: not judged here
+    neg = np.sum(np.linalg.eigvalsh(0.5 * (K + np.swapaxes(K, 1, 2)).real) < 0, axis=1)
+    J = model.cable_mode_count(w) + neg
+    return int(J[1] - J[0])
 
 
 def _receptance(model, omega, B, C):

@@ -78,6 +78,10 @@ class MeasuredModes:
             if v is None:
                 continue
             v = np.broadcast_to(np.asarray(v, dtype=float), f.shape).copy()
+            if name == "damping_ratio" and not np.all((v >= 0) & (v < 1)):
+                raise InvalidParameterError(
+                    f"damping_ratio must be in [0, 1) (an underdamped mode), one per mode, "
+                    f"got {getattr(self, name)!r}")
             if not np.all(np.isfinite(v)) or np.any(v < 0) or (name == "sigma_hz"
                                                                and np.any(v == 0)):
                 raise InvalidParameterError(f"{name} must be finite and > 0, one per mode, "
@@ -107,7 +111,11 @@ class MeasuredModes:
 
 
 def read_measured_modes(path):
-    """Read a table of measured modes (CSV, module notes).
+    """Read a table of measured modes (CSV, module notes), strictly: every number is parsed
+    on its own (a bad one is named with its line and column, a decimal comma refused), an
+    empty shape cell is "not measured". Shape columns are named ``x .. rz``, with or
+    without a unit in brackets, so dynstiff's own modes tables (``x [m/kg^0.5, x'Mx=1]``
+    ...) read back with their shapes.
 
     Returns
     -------
@@ -116,27 +124,34 @@ def read_measured_modes(path):
     Raises
     ------
     InvalidParameterError
-        No frequency column, or bad values (named).
+        No frequency column, an empty file, or bad values (named with file, line and
+        column).
     """
-    import pandas as pd
-    df = pd.read_csv(path, comment="#", skipinitialspace=True)
-    df.columns = [str(c).strip() for c in df.columns]
-    col = next((c for c in _FREQ_COLUMNS if c in df.columns), None)
+    from dynstiff.io.table import read_table
+    table = read_table(path)
+    col = next((c for c in _FREQ_COLUMNS if c in table.columns), None)
     if col is None:
         raise InvalidParameterError(f"{path}: no frequency column; expected one of "
-                                    f"{list(_FREQ_COLUMNS)}, found {list(df.columns)}")
-    shape_cols = [c for c in DOF_NAMES if c in df.columns]
+                                    f"{list(_FREQ_COLUMNS)}, found {list(table.columns)}")
+    shape_cols = {}
+    for c in table.columns:
+        name = c.split(" [", 1)[0].strip()
+        if name in DOF_NAMES and (c == name or c.endswith("]")):
+            if name in shape_cols:
+                raise InvalidParameterError(
+                    f"{path}: two shape columns for {name!r}: {shape_cols[name]!r}, {c!r}")
+            shape_cols[name] = c
     shapes = None
     if shape_cols:
-        shapes = np.full((len(df), 6), np.nan)
-        for c in shape_cols:
-            shapes[:, DOF_NAMES.index(c)] = pd.to_numeric(df[c], errors="coerce")
+        shapes = np.full((len(table), 6), np.nan)
+        for name, c in shape_cols.items():
+            shapes[:, DOF_NAMES.index(name)] = table.numbers(c, empty=np.nan)
+    freq = table.numbers(col)
+    sigma = table.numbers("sigma [Hz]") if "sigma [Hz]" in table.columns else None
+    zeta = (table.numbers("damping ratio [-]") if "damping ratio [-]" in table.columns
+            else None)
     try:
-        return MeasuredModes(
-            freq_hz=pd.to_numeric(df[col], errors="coerce").to_numpy(float), shapes=shapes,
-            sigma_hz=df["sigma [Hz]"].to_numpy(float) if "sigma [Hz]" in df else None,
-            damping_ratio=(df["damping ratio [-]"].to_numpy(float)
-                           if "damping ratio [-]" in df else None))
+        return MeasuredModes(freq_hz=freq, shapes=shapes, sigma_hz=sigma, damping_ratio=zeta)
     except InvalidParameterError as exc:
         raise InvalidParameterError(f"{path}: {exc}") from None
 

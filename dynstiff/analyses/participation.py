@@ -20,9 +20,12 @@ rung, or for the undamped closed form the same frequencies with the shares from 
 derivative of K(omega) (:func:`platform_shares`, docs/theory.md §13.3), which is faster.
 """
 
+from dataclasses import replace
+
 import numpy as np
 
 from dynstiff.analyses.eigen import eigenfrequencies
+from dynstiff.analyses.eigen_matrix import massless_pairing
 from dynstiff.analyses.freqgrid import refined_grid
 from dynstiff.analyses.frf import frf
 from dynstiff.analyses.modes import modes as modal
@@ -111,7 +114,7 @@ def modal_data(model, fmax_hz, max_modes=20000):
     the modes every verdict is taken from (a design check, a map, a report).
 
     :func:`dynstiff.modes` for every rung but the undamped closed form, whose shares come
-    from :func:`platform_shapes` (faster; the same frequencies, shares within 1e-8,
+    from :func:`platform_shares` (faster; the same frequencies, shares within 1e-8,
     ``cable_energy`` NaN). Coincident roots of the closed form go through
     :func:`dynstiff.modes` too (their shapes need the null space of K).
 
@@ -128,9 +131,11 @@ def modal_data(model, fmax_hz, max_modes=20000):
     share, shapes = platform_shares(m, f)
     Mp = np.zeros((6, 6))
     Mp[np.ix_(m.free_index, m.free_index)] = m.platform_mass
-    return ModalResult(freq_hz=f, platform_shapes=shapes, cable_energy_fraction=1.0 - share,
-                       cable_energy=np.full((f.size, m.robot.n_cables), np.nan),
-                       platform_mass=Mp)
+    res = ModalResult(freq_hz=f, platform_shapes=shapes, cable_energy_fraction=1.0 - share,
+                      cable_energy=np.full((f.size, m.robot.n_cables), np.nan),
+                      platform_mass=Mp)
+    return replace(res, massless_freq_hz=massless_pairing(res, m.massless_stiffness(),
+                                                          m.platform_mass, m.free_index))
 
 
 def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):

@@ -18,7 +18,8 @@ from dynstiff.models.exact import DEFAULT_FMAX_HZ
 from dynstiff.models.ladder import RUNGS
 from dynstiff.params import Damping
 
-__all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL"]
+__all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL",
+           "scene_equilibrium", "scene_model"]
 
 #: Band of interest of a scene without ``band_hz`` [Hz].
 DEFAULT_BAND_HZ = (0.1, 20.0)
@@ -204,3 +205,62 @@ def analysis_settings(scene, band_hz=None, forbidden_hz=None, n_modes=None, rung
     if not (np.isfinite(settings.margin) and settings.margin >= 0):
         raise InvalidParameterError(f"margin must be >= 0 (finite), got {settings.margin!r}")
     return settings
+
+
+def scene_equilibrium(scene, pose=None, lengths=None):
+    """The equilibrium of ``scene`` every command uses: inverse statics at ``pose``, forward
+    statics from unstretched ``lengths`` [m] (held DOFs kept at the scene's pose), or the
+    scene's own equilibrium (its pose or lengths).
+
+    Raises
+    ------
+    InvalidParameterError
+        Both ``pose`` and ``lengths``, or ``lengths`` for a scene that holds DOFs without a
+        pose to hold them at.
+    """
+    if pose is not None and lengths is not None:
+        raise InvalidParameterError("give pose or lengths, not both")
+    if pose is not None:
+        return scene.robot.equilibrium(pose=pose)
+    if lengths is not None:
+        start = scene.pose               # held DOFs keep the values of the scene's pose
+        if start is None and len(scene.robot.platform.free_dofs) < 6:
+            raise InvalidParameterError(
+                f"lengths: scene {scene.name!r} holds DOFs but gives no [pose] to hold them "
+                f"at; give a pose instead, or a [pose] position in the scene file")
+        return scene.equilibrium(unstretched_lengths=lengths, initial_pose=start)
+    return scene.equilibrium()
+
+
+def scene_model(scene, pose=None, *, lengths=None, rung=None, damping=None, **settings):
+    """The model the command line builds for ``scene``: its ``[analysis]`` cable model (or
+    ``rung``) with the options the settings give it, and its ``[damping]`` (or ``damping``;
+    ``Damping(0, 0, 0)`` for none), at ``pose``, at unstretched ``lengths`` or at the scene's
+    own equilibrium (:func:`scene_equilibrium`). One set of defaults: an FRF of this model
+    equals ``dynstiff frf`` on the scene.
+
+    Parameters
+    ----------
+    scene : Scene
+    pose : Pose or array_like, optional
+    lengths : array_like, optional
+        Unstretched cable lengths [m] (forward statics).
+    rung : str, optional
+    damping : Damping or sequence of up to 3 floats, optional
+        As :func:`analysis_settings`.
+    **settings
+        Further overrides of :func:`analysis_settings` (``band_hz``, ``segments``, ...).
+
+    Returns
+    -------
+    model of the rung (damped unless the damping is zero)
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> model = ds.scene_model(ds.load_scene("cogiro"))
+    >>> model.rung, model.damping_text()
+    ('dsm', 'damped: platform modal ratio 0.01, cable loss factor 0.01')
+    """
+    st = analysis_settings(scene, rung=rung, damping=damping, **settings)
+    return st.model(scene_equilibrium(scene, pose, lengths))

@@ -1,6 +1,7 @@
-"""Modes along a path of poses or over a parameter (theory.md §6): global modes tracked from
-step to step by the modal assurance criterion of their platform shapes, local modes listed,
-infeasible steps recorded; the veering table and diagram.
+"""Modes along a path of poses or over a parameter (theory.md §6): the platform modes found
+at every step (:mod:`dynstiff.analyses.platform_modes`), tracked from step to step by the
+modal assurance criterion of their platform shapes, the other modes listed, infeasible steps
+recorded; the veering table and diagram.
 """
 
 from dataclasses import dataclass
@@ -10,7 +11,8 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.analyses.modes import modes
-from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.analyses.platform_modes import find_platform_modes
+from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.pose import as_pose
@@ -26,7 +28,7 @@ UNTRACKED = -1
 # ------------------------------------------------------------------------ sweep
 @dataclass(frozen=True)
 class SweepResult:
-    """Modes along a path of poses or a parameter, with tracked global modes.
+    """Modes along a path of poses or a parameter, with tracked platform modes.
 
     One row per mode and step (a tidy table); the arrays below are its columns, all of shape
     (n_rows,).
@@ -49,13 +51,14 @@ class SweepResult:
     mode : ndarray of int
         Mode number at its step, 1-based (as in :meth:`ModalResult.to_frame`).
     track : ndarray of int
-        Track id of a global mode, 0, 1, ... in order of first appearance; the same id at
-        different steps is the same physical mode (matched by MAC). Local modes are not
-        tracked and hold :data:`UNTRACKED` (-1).
+        Track id of a platform mode, 0, 1, ... numbered by frequency at the track's first
+        step; the same id at different steps is the same physical mode (matched by MAC),
+        and no two modes of a step share a track. The other modes hold :data:`UNTRACKED`
+        (-1).
     freq_hz : ndarray of float
         Natural frequency [Hz].
     kind : ndarray of str
-        "global" or "local".
+        "global", "mixed" or "local" (platform share, :func:`dynstiff.results.mode_kinds`).
     cable_energy_fraction : ndarray of float
         Cable kinetic energy / total kinetic energy [-].
     failures : tuple of (int, float, str)
@@ -85,7 +88,7 @@ class SweepResult:
     def __repr__(self):
         v = self.values
         return (f"SweepResult({self.parameter} {v.min():.4g}..{v.max():.4g}, {self.n_steps} "
-                f"steps, {len(self)} modes, {self.n_tracks} global tracks)")
+                f"steps, {len(self)} modes, {self.n_tracks} platform-mode tracks)")
 
     def plot(self, ax=None, show_local=True):
         """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure."""
@@ -99,15 +102,16 @@ class SweepResult:
 
     @property
     def n_tracks(self):
-        """Number of global-mode tracks."""
+        """Number of platform-mode tracks."""
         t = self.track[self.track != UNTRACKED]
         return int(t.max()) + 1 if t.size else 0
 
     def to_frame(self):
         """pandas DataFrame, one row per mode and step.
 
-        Columns ``step``, ``value``, ``mode``, ``track`` (nullable integer, <NA> for local
-        modes), ``freq [Hz]``, ``kind``, ``cable energy fraction [-]``, ``massless freq [Hz]``.
+        Columns ``step``, ``value``, ``mode``, ``track`` (nullable integer, <NA> for the
+        modes that are not platform modes), ``freq [Hz]``, ``kind``, ``cable energy
+        fraction [-]``, ``massless freq [Hz]``.
         ``df.attrs["parameter"]`` names the quantity in ``value``.
         """
         import pandas as pd
@@ -127,14 +131,14 @@ class SweepResult:
         return df
 
     def veering_table(self):
-        """Frequencies of the global tracks, one row per step and one column per track.
+        """Frequencies of the platform-mode tracks, one row per step and one column per
+        track.
 
         Returns
         -------
         pandas.DataFrame, shape (n_steps, n_tracks)
             Frequencies [Hz]; index ``step`` (the abscissa is ``values[step]``), columns the
-            track ids. NaN where a track has no global mode at a step (outside the band, or
-            labelled local there because it shares its energy with a cable mode).
+            track ids. NaN where a track has no platform mode at a step.
         """
         import pandas as pd
         table = np.full((self.n_steps, self.n_tracks), np.nan)
@@ -245,15 +249,18 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         the :class:`Equilibrium` for each value (Young's modulus, tension level, platform
         mass, ...); ``robot`` is not used.
 
-    At each step the modes come from ``modes(build_model(eq, rung, **model_options),
-    n_modes, fmax_hz)`` (for the default "dsm" rung, complete by Wittrick-Williams
-    counting). Global modes are tracked: the global modes of a step are
-    matched to the tracks of the previous step, then to older tracks missing at the previous
-    step, by the largest total mass-weighted MAC of the platform shapes (Hungarian
-    assignment), a pair counting only if MAC >= ``mac_min``; the rest start new tracks.
-    Tracking by shape follows a mode through a veering, so in a veering diagram the two
-    tracks cross while the frequencies stay apart. Local modes are listed with kind "local"
-    and are not tracked.
+    At each step the platform modes are found by
+    :func:`dynstiff.analyses.platform_modes.find_platform_modes` (whatever ``n_modes`` asks:
+    a track is never lost because its mode lies above the modes listed), of
+    ``build_model(eq, rung, **model_options)``; the step lists the modes asked (``n_modes``
+    and / or ``fmax_hz``) and every platform mode. The platform modes are tracked: those of
+    a step are matched to the tracks of the previous step, then to older tracks missing at
+    the previous step, by the largest total mass-weighted MAC of the platform shapes
+    (Hungarian assignment, one mode per track), a pair counting only if MAC >= ``mac_min``;
+    the rest start new tracks; the tracks are numbered by their frequency at their first
+    step. Tracking by shape follows a mode through a veering, so in a veering diagram the
+    two tracks cross while the frequencies stay apart. The other modes are listed and not
+    tracked.
 
     Parameters
     ----------
@@ -308,6 +315,7 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         robot, poses, parameter, values, build, n_modes, fmax_hz, progress, mac_min)
     n_steps = values.size
     tracks = {}                     # id -> (shape (6,), M_p (6, 6), last step seen)
+    first_hz = {}                   # id -> frequency at its first step [Hz]
     rows = {k: [] for k in ("step", "value", "mode", "track", "freq", "kind", "frac", "f0")}
     modal, equilibria = [], []
     for k in range(n_steps):
@@ -321,7 +329,15 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
             else:
                 eq = robot.equilibrium(pose=poses[k])
             model = build_model(eq, rung, **model_options)
-            res = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
+            pm = find_platform_modes(model)
+            res, platform = pm.modes, pm.index
+            if not pm.complete:
+                raise ConvergenceError(f"the platform modes were not all found: {pm.reason}")
+            if (n_modes is not None and n_modes > len(res)) or (
+                    fmax_hz is not None and fmax_hz > pm.searched_hz):
+                res = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)   # the lowest: a superset
+            keep = _listed(res, n_modes, fmax_hz, platform)
+            res, platform = _subset(res, keep), np.searchsorted(keep, platform)
         except DynstiffError as exc:
             if on_error == "raise":
                 exc.add_note(f"in sweep step {k} ({parameter} = {values[k]:g})")
@@ -337,7 +353,7 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
             continue
         M = np.zeros((6, 6))                     # M_p on all six DOFs (held ones 0)
         M[np.ix_(model.free_index, model.free_index)] = model.platform_mass
-        ig = np.flatnonzero(np.asarray(res.kind) == "global")
+        ig = platform
         X = res.platform_shapes[ig]
         # previous step's tracks first, then older dormant ones, then new tracks
         recent = [(t, s, Ms) for t, (s, Ms, last) in tracks.items() if last == k - 1]
@@ -351,6 +367,7 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
             t = match.get(j)
             if t is None:
                 t = len(tracks)
+                first_hz[t] = res.freq_hz[ig[j]]
             track[ig[j]] = t
             tracks[t] = (X[j], M, k)
         n = len(res)
@@ -367,9 +384,36 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         if progress is not None:
             progress(k + 1, n_steps)
     col = {key: np.concatenate(v) for key, v in rows.items()}
+    # tracks numbered by frequency at their first step
+    order = sorted(first_hz, key=lambda t: (first_hz[t], t))
+    renumber = np.full(len(order) + 1, UNTRACKED)
+    renumber[order] = np.arange(len(order))
+    col["track"] = renumber[col["track"].astype(int)]
     return SweepResult(parameter=parameter, values=values, modal=tuple(modal),
                        equilibria=tuple(equilibria), step=col["step"].astype(int),
                        value=col["value"].astype(float), mode=col["mode"].astype(int),
                        track=col["track"].astype(int), freq_hz=col["freq"].astype(float),
                        kind=col["kind"].astype(str), cable_energy_fraction=col["frac"],
                        massless_freq_hz=col["f0"].astype(float), failures=tuple(failures))
+
+
+def _listed(res, n_modes, fmax_hz, platform):
+    """Indices of the modes a step lists: those asked (the lowest ``n_modes`` and / or all
+    below ``fmax_hz``) and every platform mode."""
+    f = np.asarray(res.freq_hz)
+    asked = np.ones(f.size, bool)
+    if n_modes is not None:
+        asked &= np.arange(f.size) < n_modes
+    if fmax_hz is not None:
+        asked &= f < fmax_hz
+    asked[platform] = True
+    return np.flatnonzero(asked)
+
+
+def _subset(res, keep):
+    """The modes ``keep`` (indices) of a ModalResult."""
+    from dataclasses import replace
+    return replace(res, freq_hz=res.freq_hz[keep], platform_shapes=res.platform_shapes[keep],
+                   cable_energy_fraction=res.cable_energy_fraction[keep],
+                   cable_energy=res.cable_energy[keep], kind=tuple(np.asarray(res.kind)[keep]),
+                   massless_freq_hz=res.massless_freq_hz[keep])

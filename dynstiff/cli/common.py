@@ -50,18 +50,10 @@ class ProgressBar:
 
 
 def equilibrium(scene, args):
-    if getattr(args, "pose", None) is not None:
-        return scene.robot.equilibrium(pose=args.pose)
-    if getattr(args, "lengths", None) is not None:
-        # held DOFs keep the values of the start pose: the scene's, when it has one
-        start = scene.pose
-        if start is None and len(scene.robot.platform.free_dofs) < 6:
-            from dynstiff.errors import InvalidParameterError
-            raise InvalidParameterError(
-                f"--lengths: scene {scene.name!r} holds DOFs but gives no [pose] to hold them "
-                f"at; give --pose instead, or a [pose] position in the scene file")
-        return scene.equilibrium(unstretched_lengths=args.lengths, initial_pose=start)
-    return scene.equilibrium()
+    """The equilibrium of ``--pose`` or ``--lengths`` (or the scene's own):
+    :func:`dynstiff.analyses.settings.scene_equilibrium`."""
+    from dynstiff.analyses.settings import scene_equilibrium
+    return scene_equilibrium(scene, getattr(args, "pose", None), getattr(args, "lengths", None))
 
 
 def damping_option(p):

@@ -1,5 +1,5 @@
 """``sweep``: modes along a path (a line, a file of poses, a trajectory of the scene) or over
-a parameter, global modes tracked, the veering diagram."""
+a parameter, the platform modes tracked, the veering diagram."""
 
 from dynstiff.cli.common import ProgressBar, info, scene_settings, scene_trajectory, write_table
 
@@ -116,10 +116,10 @@ def _cmd_sweep(args):
         fig.savefig(args.plot, dpi=120)
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
-    vt.columns = [vt.columns[0]] + [f"global {c} [Hz]" for c in vt.columns[1:]]
+    vt.columns = [vt.columns[0]] + [f"track {c} [Hz]" for c in vt.columns[1:]]
     info(args).write(f"{st.rung} model, undamped natural frequencies ({st.damping.text()} "
                      f"applies to FRFs)\n")
-    info(args).write(f"{res.n_steps} steps, {res.n_tracks} global-mode tracks, "
+    info(args).write(f"{res.n_steps} steps, {res.n_tracks} platform-mode tracks, "
                      f"{int(np.sum(res.kind == 'local'))} local modes listed\n")
     info(args).write(vt.to_string(index=False, float_format=lambda x: f"{x:.5g}") + "\n")
     for k, v, msg in res.failures:
@@ -133,7 +133,7 @@ def _cmd_sweep(args):
 
 def add_parsers(sub):
     """Add the ``sweep`` subcommands to the subparsers ``sub``."""
-    sw = sub.add_parser("sweep", help="modes along a straight path or over a parameter, global "
+    sw = sub.add_parser("sweep", help="modes along a straight path or over a parameter, platform "
                                       "modes tracked; table and veering diagram")
     sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),

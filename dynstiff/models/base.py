@@ -134,7 +134,27 @@ class PlatformModel:
 
     def __repr__(self):
         return (f"{type(self).__name__}(rung={self.rung!r}, {self.robot.n_cables} cables, "
-                f"free {self.free_dofs}, {self.pose!r})")
+                f"free {self.free_dofs}, {self.pose!r}, {self.damping_text()})")
+
+    def damping_text(self):
+        """The model's damping in words: "undamped", or its parts (cables' own viscous and
+        hysteretic damping, the analysis' cable loss factor and platform modal ratio)."""
+        if not self.damped:
+            return "undamped"
+        parts = []
+        zeta = getattr(self, "platform_damping_ratio", 0.0)
+        eta = getattr(self, "cable_loss_factor", 0.0)
+        if zeta:
+            parts.append(f"platform modal ratio {zeta:g}")
+        if eta:
+            parts.append(f"cable loss factor {eta:g}")
+        c = max((cb.viscous_damping for cb in self.robot.cables), default=0.0)
+        e = max((cb.loss_factor for cb in self.robot.cables), default=0.0)
+        if c:
+            parts.append(f"cable viscous damping up to {c:g} N s/m^2")
+        if e:
+            parts.append(f"cables' own loss factor up to {e:g}")
+        return "damped: " + ", ".join(parts)
 
     def cable_mode_count(self, omega):
         """J0(omega): natural frequencies below omega with the platform held, shape

@@ -87,7 +87,10 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
                         shown.append(cat)
     ax.set_ylabel(f"|{result.kind}|" + (f" [{next(iter(units.values()))}]" if one_unit
                                          else " [units in the legend]" if units else ""))
-    ax.set_title(f"FRF ({result.kind}), natural frequencies dashed")
+    damping = getattr(result, "damping", "not stated")
+    ax.set_title(f"FRF ({result.kind}, {damping}), natural frequencies dashed"
+                 + ("\nundamped: each peak is the grid's value next to a pole"
+                    if damping == "undamped" else ""))
     from matplotlib.lines import Line2D
     handles, labels = ax.get_legend_handles_labels()
     for cat in ("global", "mixed", "local"):

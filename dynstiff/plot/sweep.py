@@ -1,4 +1,4 @@
-"""The veering diagram of a sweep: tracked global modes and the local modes along a path or
+"""The veering diagram of a sweep: tracked platform modes and the other modes along a path or
 over a parameter.
 """
 
@@ -25,12 +25,11 @@ def _gap_bridges(x, y):
 def plot_veering(sweep_result, ax=None, show_local=True):
     """Veering diagram: natural frequencies against the swept quantity.
 
-    Each global track (a platform mode followed by MAC, :meth:`SweepResult.veering_table`)
-    is one coloured line with markers (gid ``track-<id>``, broken where the track has no
-    global mode); where the track is found again after such a gap (its mode shared its
-    energy with cable modes and was labelled local in between), a dotted line of its colour
-    bridges the gap (gid ``gap-<id>``); the local (cable) modes are small grey dots (gid
-    ``local-modes``).
+    Each track (a platform mode followed by MAC, :meth:`SweepResult.veering_table`) is one
+    coloured line with markers (gid ``track-<id>``, broken where the track has no mode);
+    where the track is found again after such a gap, a dotted line of its colour bridges
+    the gap (gid ``gap-<id>``); the other modes are small dots, grey for local and purple
+    for mixed ones (gid ``local-modes``, ``mixed-modes``).
 
     Parameters
     ----------
@@ -71,12 +70,17 @@ def plot_veering(sweep_result, ax=None, show_local=True):
             any_gap = True
             ax.plot(gx, gy, ":", lw=1.0, color=color, gid=f"gap-{t}")
     if show_local:
-        loc = np.asarray(sweep_result.kind) == "local"
-        ax.scatter(np.asarray(sweep_result.value)[loc], np.asarray(sweep_result.freq_hz)[loc],
-                   s=6, color="0.55", zorder=1, gid="local-modes", label="local modes")
+        kinds = np.asarray(sweep_result.kind)
+        untracked = np.asarray(getattr(sweep_result, "track", np.full(kinds.shape, -1))) < 0
+        for kind, color in (("local", "0.55"), ("mixed", "tab:purple")):
+            sel = (kinds == kind) & untracked
+            if kind == "local" or np.any(sel):
+                ax.scatter(np.asarray(sweep_result.value)[sel],
+                           np.asarray(sweep_result.freq_hz)[sel], s=6, color=color,
+                           zorder=1, gid=f"{kind}-modes", label=f"{kind} modes")
     ax.set_xlabel(sweep_result.parameter)
     ax.set_ylabel("frequency [Hz]")
-    ax.set_title(f"Modes along the sweep: {n} global tracks"
+    ax.set_title(f"Modes along the sweep: {n} platform-mode tracks"
                  + (", grey dots local modes" if show_local else "")
                  + ("\ndotted: a track through cable modes (its mode labelled local there)"
                     if any_gap else ""))
