@@ -8,7 +8,8 @@ The workflow: a :class:`Robot` (or a built-in scene, :func:`load_scene`), its st
 :class:`Equilibrium` (``robot.equilibrium(pose=...)``), a model of one rung of the ladder
 (:func:`build_model`: "spring", "catenary", "dsm", "lumped"), and the analyses, plain
 functions of any model: :func:`frf`, :func:`eigenfrequencies`, :func:`modes`,
-:func:`damped_modes`.
+:func:`damped_modes`; designing for frequency: :func:`frequency_sensitivities`,
+:func:`propagate_uncertainty`, :func:`optimal_tensions`.
 """
 
 from dynstiff._version import __version__ as __version__
@@ -26,10 +27,13 @@ from dynstiff.analyses.measured import (
     read_measured_modes,
 )
 from dynstiff.analyses.modes import cable_fields, modes
+from dynstiff.analyses.optimal_tensions import OptimalTensions, optimal_tensions
 from dynstiff.analyses.recommend import Recommendation, recommend_model
 from dynstiff.analyses.reduced import ModalModel, modal_model, to_statespace
+from dynstiff.analyses.sensitivity import SensitivityResult, frequency_sensitivities
 from dynstiff.analyses.settings import scene_equilibrium, scene_model
 from dynstiff.analyses.sweep import SweepResult, sweep
+from dynstiff.analyses.uncertainty import Uncertain, UncertaintyResult, propagate_uncertainty
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_solve import solve_catenary, unstretched_length_for_tension
 from dynstiff.cable.dsm import cable_dynamic_stiffness, chord_parameters
@@ -72,6 +76,13 @@ __all__ = [
     "DynstiffWarning",
     "calibrate",
     "CalibrationResult",
+    "frequency_sensitivities",
+    "SensitivityResult",
+    "propagate_uncertainty",
+    "Uncertain",
+    "UncertaintyResult",
+    "optimal_tensions",
+    "OptimalTensions",
     "MeasuredModes",
     "compare_frf",
     "compare_modes",

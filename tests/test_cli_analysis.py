@@ -195,6 +195,19 @@ def test_check_writes_its_table_on_every_built_in_scene(tmp_path, scene, capsys)
     np.testing.assert_allclose(pose["position [m]"], expected.position, atol=1e-12)
 
 
+def test_cli_check_with_uncertain_parameters():
+    """``--uncertain EA=10%``: the uncertain row (EA's sigma 10 %: about 16 % of the robots
+    put a platform mode within 5 % of a 0-2 Hz band) and the exit code of a failing row."""
+    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
+                                    capture_output=True, text=True)
+    out = run("cogiro", "--band", "0", "2", "--uncertain", "EA=10%")
+    assert out.returncode == 1
+    assert re.search(r"FAIL    platform modes outside band, uncertain P\(.*\) = 1\d\.\d%",
+                     out.stdout)
+    bad = run("cogiro", "--uncertain", "EA")
+    assert bad.returncode == 2 and "--uncertain EA: give NAME=VALUE" in bad.stderr
+
+
 @pytest.mark.parametrize("pose", [["0", "0", "nan"], ["0", "0", "1", "0", "inf", "0"], ["1", "2"]])
 def test_check_of_a_bad_pose_is_an_error_not_a_verdict(pose):
     """A pose that is not a pose is bad input, exit 2 with one line naming it, not a FAIL

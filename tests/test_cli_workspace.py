@@ -34,6 +34,17 @@ def test_workspace_command_writes_map_figure_and_table(tmp_path):
 
 
 @pytest.mark.integration
+def test_workspace_command_maps_the_frequency_optimal_tensions(tmp_path):
+    from dynstiff.maps.dataset import open_workspace
+    r = run("cogiro", "--box", "4", "4", "-2.5", "-2.5", "1", "1", "--step", "1", "-n", "3",
+            "--tensions", "max-frequency", "--out", "map.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    m = open_workspace(tmp_path / "map.nc")
+    assert m.attrs["tensions"] == "max-frequency"
+    assert float(m["first_platform_hz"].max()) == pytest.approx(2.2204, abs=2e-4)
+
+
+@pytest.mark.integration
 @pytest.mark.parametrize("args, match", [
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.txt"], "--out"),
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",

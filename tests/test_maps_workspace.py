@@ -197,3 +197,20 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
         np.testing.assert_allclose(fast[k], ref[k], rtol=0, atol=1e-12, err_msg=k)
     np.testing.assert_allclose(fast["platform_share"], ref["platform_share"], rtol=0,
                                atol=1e-7)
+
+
+def test_max_frequency_tensions_map_the_optimal_distribution(robot):
+    """tensions="max-frequency": every pose's equilibrium is the frequency-optimal
+    distribution (theory.md §16.7), warm-started along the chunk; its first platform mode
+    is the optimum's and not below the default map's."""
+    from dynstiff.analyses.optimal_tensions import optimal_tensions
+    poses = [[4.0, -2.5, 1.0], [3.8, -2.5, 1.0]]
+    opt = workspace(robot, poses, n_modes=4, tensions="max-frequency")
+    base = workspace(robot, poses, n_modes=4)
+    assert opt.attrs["tensions"] == "max-frequency"
+    assert np.all(opt["first_platform_hz"].values >= base["first_platform_hz"].values - 1e-9)
+    single = optimal_tensions(robot, poses[0])
+    assert float(opt["first_platform_hz"][0]) == pytest.approx(single.value, rel=1e-6)
+    assert opt["min_tension"].values.min() >= robot.tension_limits[0] - 1e-6
+    with pytest.raises(ds.InvalidParameterError, match="tensions must be one of"):
+        workspace(robot, poses, tensions="optimal")

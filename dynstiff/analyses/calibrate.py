@@ -5,8 +5,13 @@ Weighted least squares on the relative frequency residuals (theory.md §15.6)
     r_k(p) = (f_k(p) - f_k^meas) / s_k,      s_k = sigma_k  or  f_k^meas (relative),
 
 over the parameters p = p0 exp(u) (positive; u free), solved by scipy's trust-region
-least squares with finite-difference sensitivities J = dr/du (step 1e-4 in u, far above
-the 1e-10 tolerance of the statics; forward during the search, central at the estimate).
+least squares. The sensitivities J = dr/du = p df/dp / s are analytic
+(:func:`dynstiff.analyses.sensitivity.sensitivities_at`, theory.md §16.5) for frequency
+residuals of the structural parameters (EA, EA_i, mass, inertia, t_min) on a rung with
+sensitivities: they come with the evaluation they differentiate, so a search costs no
+evaluation beyond its residuals. Otherwise (damping ratios, FRFs) finite differences (step
+1e-4 in u, far above the 1e-10 tolerance of the statics; forward during the search, central
+at the estimate), n or 2 n evaluations more per Jacobian.
 At the optimum the covariance of u is
 
     C = s^2 (J^T J)^-1,   s^2 = |r|^2 / (m - n)   (or 1 when every sigma_k is given and
@@ -38,7 +43,8 @@ equilibrium) and the modes of the chosen rung, paired with the measured ones at 
 evaluation: by MAC with the measured shapes when there are some, otherwise the k-th measured
 frequency with the continuation of the k-th platform mode of the massless-cable model
 (:func:`dynstiff.analyses.measured.massless_pairing`), which keeps its order while E moves the whole
-spectrum. The sensitivities at the estimate are central differences (step 1e-4 in ln p).
+spectrum. The sensitivities at the estimate are the analytic ones, or central differences
+(step 1e-4 in ln p).
 """
 
 from dataclasses import dataclass, replace
@@ -50,6 +56,8 @@ from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
 from dynstiff.analyses.modes import modes
+from dynstiff.analyses.sensitivity import RUNGS as SENSITIVITY_RUNGS
+from dynstiff.analyses.sensitivity import sensitivities_at
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 
@@ -59,6 +67,8 @@ __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
 PARAMETERS = ("EA", "EA_i", "EA_*", "mass", "inertia", "t_min", "loss_factor",
               "viscous_damping")
 _DAMPING = ("loss_factor", "viscous_damping")
+#: Jacobians of :func:`calibrate`.
+JACOBIANS = ("auto", "analytic", "differences")
 
 
 def _expand(parameters, n_cables):
@@ -140,8 +150,11 @@ class CalibrationResult:
     robot : Robot
         The calibrated robot.
     n_evaluations : int
+        Evaluations of the model (statics, modes) the fit made.
     jacobian : ndarray, shape (n_residuals, n_par)
         d(residual)/d ln(p) at the estimate.
+    jacobian_kind : str
+        "analytic" (the sensitivities of theory.md §16) or "differences".
     measured_damping, fitted_damping : ndarray, shape (n_modes,) or None
         Damping ratios [-], when a damping parameter was fitted to them.
     frf_log_error : float or None
@@ -165,6 +178,7 @@ class CalibrationResult:
     measured_damping: object = None
     fitted_damping: object = None
     frf_log_error: object = None
+    jacobian_kind: str = "differences"
 
     @property
     def residual(self):
@@ -223,7 +237,8 @@ class CalibrationResult:
 
 def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
               pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
-              fmax_factor=1.3, start=None, frf=None, frf_point=None, strict=False,
+              fmax_factor=1.3, start=None, frf=None, frf_point=None, jacobian="auto",
+              strict=False,
               **model_options):
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
@@ -263,6 +278,11 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         where ln |H| is singular.
     frf_point : array_like, shape (3,), optional
         Platform point of the measured translations [m, platform frame] (default P).
+    jacobian : {"auto", "analytic", "differences"}
+        The sensitivities dr/du: "analytic" from the eigenfrequency sensitivities (frequency
+        residuals of EA, EA_i, mass, inertia, t_min on the rungs "dsm", "exact", "lumped",
+        "spring", "catenary"), "differences" by finite differences, "auto" the first where
+        it applies.
     strict : bool
         Raise a :class:`~dynstiff.errors.CalibrationError` instead of warning when the
         calibration finds fault with itself
@@ -301,6 +321,15 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     if measured is not None and not isinstance(measured, MeasuredModes):
         measured = MeasuredModes(measured)
     names = _expand(parameters, robot.n_cables)
+    if jacobian not in JACOBIANS:
+        raise InvalidParameterError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+    analytic = (measured is not None and frf is None and rung in SENSITIVITY_RUNGS
+                and not any(nm in _DAMPING for nm in names))
+    if jacobian == "analytic" and not analytic:
+        raise InvalidParameterError(
+            "jacobian='analytic' needs frequency residuals only (no FRF, no damping "
+            f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
+    analytic = analytic and jacobian != "differences"
     if not 0 < confidence < 1:
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
     for name, value in (start or {}).items():
@@ -349,7 +378,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
                 idx, mac = pair_modes(md, measured, "mac")
             else:
                 idx, mac = massless_pairing(md, model, n_modes), np.full(n_modes, np.nan)
-            out.update(f=md.freq_hz[idx], mac=mac, modes=md,
+            out.update(f=md.freq_hz[idx], mac=mac, modes=md, model=model, idx=idx,
                        share=np.asarray(md.cable_energy_fraction)[idx])
             if use_zeta:
                 out["zeta"] = damped_modes(model, fmax_hz=fmax).damping_ratio[idx]
@@ -369,14 +398,26 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     last_eval = {}
 
     def residual(u):
-        r = evaluate(u)["r"]
-        last_eval.update(u=np.array(u, dtype=float), r=r)
-        return r
+        out = evaluate(u)
+        last_eval.update(u=np.array(u, dtype=float), r=out["r"], out=out)
+        return out["r"]
+
+    def analytic_jacobian(out):
+        """dr/du = p df/dp / s of the paired modes, from the evaluation ``out``
+        (theory.md §16.5)."""
+        idx = out["idx"]
+        f = out["modes"].freq_hz[:int(np.max(idx)) + 1]
+        sens = sensitivities_at(out["model"], f, list(names))
+        return sens.derivative[idx] * sens.values[None, :] / np.asarray(scale)[:, None]
 
     def jacobian(u, h=1e-4, central=False):
-        """Differences in ln p with a step far above the statics' tolerance (1e-10):
-        forward (reusing the residual just evaluated at u) during the search, central for the
-        sensitivities at the estimate."""
+        """Analytic (from the evaluation at u), else differences in ln p with a step far
+        above the statics' tolerance (1e-10): forward (reusing the residual just evaluated
+        at u) during the search, central for the sensitivities at the estimate."""
+        if analytic:
+            if not np.array_equal(last_eval.get("u"), u):
+                residual(u)
+            return analytic_jacobian(last_eval["out"])
         if central:
             return np.column_stack([(residual(u + h * e) - residual(u - h * e)) / (2 * h)
                                     for e in np.eye(n)])
@@ -392,7 +433,9 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     if sol.status <= 0:
         raise ConvergenceError(f"calibration did not converge: {sol.message} (cost "
                                f"{sol.cost:.3g} after {sol.nfev} evaluations)")
-    last = evaluate(sol.x)
+    if not np.array_equal(last_eval.get("u"), sol.x):
+        residual(sol.x)
+    last = last_eval["out"]
     if not np.all(np.isfinite(last["r"])):
         raise ConvergenceError(f"calibration: a residual is not finite at the estimate (a "
                                f"paired mode without a damped root, or an FRF pole): "
@@ -427,4 +470,5 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         n_evaluations=count[0], jacobian=J,
         measured_damping=measured.damping_ratio if use_zeta else None,
         fitted_damping=last["zeta"],
-        frf_log_error=None if frf is None else float(np.sqrt(np.mean(last["r_frf"]**2))))
+        frf_log_error=None if frf is None else float(np.sqrt(np.mean(last["r_frf"]**2))),
+        jacobian_kind="analytic" if analytic else "differences")

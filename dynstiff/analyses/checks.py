@@ -11,6 +11,7 @@ from numbers import Integral
 from dynstiff._validate import positive_scalar
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
+from dynstiff.analyses.uncertainty import uncertain_row
 from dynstiff.analyses.verdicts import CheckOptions, pose_rows
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
@@ -65,10 +66,14 @@ class CheckResult:
         asked"), ``value``, ``limit``, ``detail``.
     platform : PlatformModes or None
         The modes the modal verdicts were taken from (None without an equilibrium).
+    uncertainty : UncertaintyResult or None
+        With stated uncertainties: the distributions behind the last row
+        (:func:`dynstiff.analyses.uncertainty.uncertain_row`).
     """
 
     rows: tuple
     platform: object = None
+    uncertainty: object = None
 
     def __repr__(self):
         bad = [f"{r['check']} ({r['verdict']})" for r in self.rows if not r["passed"]]
@@ -142,7 +147,7 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
                   max_sag_ratio=0.02, model_rtol=1e-2, rung="dsm",
                   participation=PLATFORM_SHARE_THRESHOLD, frf_limit=FRF_AMPLIFICATION_LIMIT,
                   damping=DEFAULT_DAMPING, model_band_hz=None, max_modes=MAX_PLATFORM_MODES,
-                  **model_options):
+                  uncertain=None, n_samples=200, seed=0, confidence=0.95, **model_options):
     """Run the design checks at a pose (theory.md §12.1; the rows of
     :mod:`dynstiff.analyses.verdicts`, the same a workspace map gives).
 
@@ -183,6 +188,15 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
     max_modes : int
         Ceiling of the modes computed; beyond it the modal verdicts are "unknown" (which
         fails the pose).
+    uncertain : dict, optional
+        Stated uncertainties {parameter: Uncertain or "10%"} (:func:`dynstiff.
+        propagate_uncertainty`): a last row gives the probability that the margin check
+        fails and the band margin at ``confidence`` (theory.md §16.6); the other rows are
+        those of the nominal robot.
+    n_samples, seed : int
+        The Monte Carlo's Latin-hypercube sample and its seed.
+    confidence : float
+        Level in (0, 1) of the margin the uncertain row holds to ``margin``.
     **model_options
         Passed to :func:`dynstiff.models.ladder.build_model` (e.g. ``segments`` of "lumped").
 
@@ -205,10 +219,18 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     if rung not in RUNGS:
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
+    if not (isinstance(confidence, float) and 0 < confidence < 1):
+        raise InvalidParameterError(f"confidence must be a number in (0, 1), got "
+                                    f"{confidence!r}")
     options_of = modal_model_options(rung, options, model_options)
-    rows, _, pm = pose_rows(robot, pose, lambda eq: build_model(eq, rung, **options_of),
-                            options, lambda eq: damped_model(eq, damping, rung, **options_of))
-    return CheckResult(rows=tuple(rows), platform=pm)
+    rows, eq, pm = pose_rows(robot, pose, lambda eq: build_model(eq, rung, **options_of),
+                             options, lambda eq: damped_model(eq, damping, rung, **options_of))
+    res = None
+    if uncertain:
+        row, res = uncertain_row(robot, pose, options, uncertain, rung, options_of, n_samples,
+                                 seed, confidence)
+        rows.append(row)
+    return CheckResult(rows=tuple(rows), platform=pm, uncertainty=res)
 
 
 def modal_model_options(rung, options, model_options):

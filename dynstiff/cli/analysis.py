@@ -128,7 +128,8 @@ def _cmd_check(args):
         pose = scene.equilibrium().pose
     band = st.forbidden_hz
     res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
-                        max_sag_ratio=args.max_sag, **st.check_options())
+                        max_sag_ratio=args.max_sag, uncertain=_uncertain(args.uncertain),
+                        **st.check_options())
     info(args).write("\n".join(st.lines()) + "\n")
     if band is None:
         info(args).write("(no forbidden band: give --band LO HI or forbidden_band_hz in the "
@@ -143,6 +144,22 @@ def _cmd_check(args):
     if args.csv:
         write_table(res.to_frame(), args.csv, "csv", st.metadata(pose))
     return 0 if res.passed else 1
+
+
+def _uncertain(items):
+    """{name: Uncertain} of the ``--uncertain NAME=VALUE[%][:normal|:uniform]`` options."""
+    from dynstiff.analyses.uncertainty import Uncertain
+    from dynstiff.errors import InvalidParameterError
+    out = {}
+    for item in items or ():
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise InvalidParameterError(f"--uncertain {item}: give NAME=VALUE[%], e.g. EA=10%")
+        try:
+            out[name.strip()] = Uncertain.parse(value)
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(f"--uncertain {item}: {exc}") from None
+    return out
 
 
 def add_parsers(sub):
@@ -215,5 +232,10 @@ def add_parsers(sub):
                     help="relative distance local-global mode that fails (default %(default)s)")
     ck.add_argument("--max-sag", type=float, default=0.02,
                     help="largest admissible sag/chord (default %(default)s)")
+    ck.add_argument("--uncertain", action="append", metavar="NAME=VALUE[%]",
+                    help="a parameter's uncertainty (repeatable): EA=10%% is a standard "
+                         "deviation of 10 %%, EA=10%%:uniform +-10 %%, mass=2 absolute; adds "
+                         "the probability that a platform mode enters the band and the margin "
+                         "at 95 %% confidence (Monte Carlo, 200 samples)")
     ck.add_argument("--csv", help="write the checks table (CSV)")
     ck.set_defaults(func=_cmd_check)

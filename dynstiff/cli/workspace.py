@@ -31,6 +31,9 @@ def add_parsers(sub):
     ws.add_argument("--margin", type=float, default=0.05,
                     help="relative margin of the global modes to the band (default "
                          "%(default)s)")
+    ws.add_argument("--tensions", choices=["default", "max-frequency"], default="default",
+                    help="tension distribution at every pose: the default (closest to t_min) "
+                         "or the one that maximises the first platform mode")
     ws.add_argument("--chunk-size", type=int, default=25,
                     help="poses per task, warm-started along it (default %(default)s)")
     run = ws.add_mutually_exclusive_group()
@@ -94,7 +97,8 @@ def _cmd_workspace(args):
     band = tuple(args.band) if args.band else scene.forbidden_band_hz
     kw = dict(box=box, step=args.step, orientations=rot, parameter=args.parameter,
               values=args.values, n_modes=args.n, band_hz=band, margin=args.margin,
-              chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet)
+              chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet,
+              tensions=args.tensions)
     info = sys.stderr if args.csv == "-" else sys.stdout
     if args.scheduler:
         try:

@@ -25,6 +25,7 @@ import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.analyses.checks import check_options, damped_model, modal_model_options
+from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
@@ -113,7 +114,8 @@ def _proximity_gap(pm):
     return float(np.min(np.abs(f[local][None, :] - fp[:, None]) / fp[:, None]))
 
 
-def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options, checks):
+def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options, checks,
+                   tensions="default"):
     """Statics, modes and the verdicts of :mod:`dynstiff.analyses.verdicts` at consecutive
     poses, each warm-started from the last feasible one (the statics, and nothing else,
     depend on the start: the verdicts are those of :func:`dynstiff.analyses.checks.
@@ -132,6 +134,9 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
     model_options : dict
     checks : tuple of str
         The checks mapped (those asked).
+    tensions : {"default", "max-frequency"}
+        The tension distribution (:func:`dynstiff.analyses.optimal_tensions.
+        tension_equilibrium`).
 
     Returns
     -------
@@ -156,11 +161,12 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
         eq = error = None
         try:
             try:
-                eq = robot.equilibrium(pose=pose, start=prev)
+                eq = tension_equilibrium(robot, pose, tensions, prev, rung, **model_options)
             except DynstiffError:
                 if prev is None:
                     raise
-                eq = robot.equilibrium(pose=pose)        # a far neighbour: start afresh
+                eq = tension_equilibrium(robot, pose, tensions, None, rung,
+                                         **model_options)   # a far neighbour: start afresh
         except DynstiffError as exc:
             error = exc
         rows = statics_rows(robot, eq, error, options)
@@ -323,7 +329,7 @@ def workspace(robot, poses=None, *, box=None, step=None, orientations=None, para
               max_sag_ratio=0.02, model_rtol=1e-2, participation=PLATFORM_SHARE_THRESHOLD,
               frf_limit=FRF_AMPLIFICATION_LIMIT, damping=DEFAULT_DAMPING, model_band_hz=None,
               max_modes=MAX_PLATFORM_MODES, rung="dsm", chunk_size=25, workers=None,
-              client=None, progress=False, **model_options):
+              client=None, progress=False, tensions="default", **model_options):
     """Map statics, modes and the design checks over a grid or a list of poses.
 
     Every pose gets the verdicts :func:`dynstiff.analyses.checks.design_checks` gives it
@@ -362,6 +368,10 @@ damping, model_band_hz, max_modes
         A Dask client: the tasks run on its cluster.
     progress : bool
         Show a progress line on stderr.
+    tensions : {"default", "max-frequency"}
+        The tension distribution at every pose: the default (closest to t_min) or the one
+        that maximises the first platform mode (:func:`dynstiff.optimal_tensions`,
+        warm-started from the neighbour's optimum along a chunk).
     **model_options
         Passed to :func:`dynstiff.models.ladder.build_model`.
 
@@ -376,6 +386,8 @@ damping, model_band_hz, max_modes
                             participation, frf_limit, model_band_hz, max_modes)
     X, layout, values = _validated(robot, poses, box, step, orientations, parameter, values,
                                    n_modes, rung, chunk_size, workers, client, damping)
+    if tensions not in TENSIONS:
+        raise InvalidParameterError(f"tensions must be one of {TENSIONS}, got {tensions!r}")
     from dynstiff.maps.dataset import to_dataset
     checks = tuple(c for c in CHECKS if options.forbidden_hz is not None
                    or c not in ("platform modes outside band", "platform receptance in band"))
@@ -386,7 +398,7 @@ damping, model_band_hz, max_modes
     for rob in robots:
         for s in range(0, len(X), chunk_size):
             tasks.append((rob, X[s:s + chunk_size], n_modes, options, rung, damping,
-                          model_options, checks))
+                          model_options, checks, tensions))
     t0 = time.perf_counter()
     results = _run(tasks, workers, client, _Progress(len(X) * len(robots), progress))
     settings = {"checks": checks, "n_modes": n_modes, "band_hz": options.forbidden_hz,
@@ -395,7 +407,8 @@ damping, model_band_hz, max_modes
                 "model_band_hz": options.model_band_hz,
                 "participation": options.participation, "frf_limit": options.frf_limit,
                 "damping": damping.text(), "max_modes": options.max_modes, "rung": rung,
-                "chunk_size": chunk_size, "wall_time_s": time.perf_counter() - t0,
+                "chunk_size": chunk_size, "tensions": tensions,
+                "wall_time_s": time.perf_counter() - t0,
                 "engine": ("dask" if client is not None else
                            f"{workers} processes" if workers and workers > 1 else "serial")}
     return to_dataset(robot, X, layout, parameter, values, results, settings)

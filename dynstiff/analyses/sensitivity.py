@@ -1,0 +1,381 @@
+"""Sensitivities of the natural frequencies to the robot's parameters (theory.md §16).
+
+At a root of the transcendental problem K(omega) x = 0 (theory.md §5), with lambda = omega^2,
+
+    d lambda / dp = -(x^T dK/dp x) / (x^T dK/dlambda x)
+
+(the first-order change of the eigenvalue of K that crosses zero; -x^T dK/dlambda x is the
+mode's total modal mass, theory.md §13.3). dK/dp is the total derivative along the
+equilibrium that the parameter moves (:mod:`dynstiff.analyses.sensitivity_statics`) and the
+rung's own dependence (:mod:`dynstiff.analyses.sensitivity_rungs`), both by the complex step
+(exact to rounding); dK/domega by the complex step of the model's own ``dynamic_stiffness``.
+A cluster of coincident roots (within 1e-8) is one subspace X: the derivatives of its
+eigenvalues are the eigenvalues of (X^T dK/dp X, -X^T dK/dlambda X), ascending (the one-sided
+derivatives for an increase of p; no basis of the subspace is preferred). The lumped rung
+differentiates its finite eigenproblem (:mod:`dynstiff.analyses.sensitivity_lumped`).
+
+A loss factor leaves the undamped frequencies alone; its sensitivity is that of the modal
+damping ratio, d zeta / d eta = (1 / (2 lambda)) d lambda / d a with a the factor on the
+dynamic (axial) EA the loss factor multiplies by (1 + i eta) (first order about the
+undamped mode: the modal strain energy method).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from dynstiff.analyses import eigen_matrix
+from dynstiff.analyses.eigen import eigenfrequencies, validated_request
+from dynstiff.analyses.sensitivity_kernels import CS_STEP, perturbed_primitives, primitives
+from dynstiff.analyses.sensitivity_lumped import LumpedLinearisation
+from dynstiff.analyses.sensitivity_parameters import expand_parameters
+from dynstiff.analyses.sensitivity_rungs import exact_fields, forms
+from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
+from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
+from dynstiff.models.base import require_model
+
+__all__ = ["SensitivityResult", "frequency_sensitivities", "sensitivities_at", "RUNGS"]
+
+#: The rungs with sensitivities.
+RUNGS = ("spring", "catenary", "dsm", "exact", "lumped")
+_TWO_PI = 2.0 * np.pi
+_CLUSTER_RTOL = 1e-8
+
+
+@dataclass(frozen=True)
+class SensitivityResult:
+    """Derivatives of the natural frequencies with respect to parameters.
+
+    Attributes
+    ----------
+    freq_hz : ndarray, shape (m,)
+        Natural frequencies of the undamped model [Hz].
+    parameters : tuple of str
+        Parameter names (:mod:`dynstiff.analyses.sensitivity_parameters`).
+    values : ndarray, shape (p,)
+        Their values at the model.
+    units : tuple of str
+        Their units.
+    derivative : ndarray, shape (m, p)
+        d f_k / d p_j [Hz per unit of p_j]; 0 for a loss factor; NaN for a mode whose
+        platform is at rest on a cable pole (``note``). Within a cluster of coincident
+        modes, the one-sided derivatives for an increase of p_j, ascending.
+    damping_derivative : ndarray, shape (m, p)
+        d zeta_k / d p_j [per unit] of the modal damping ratio, for the loss factors (first
+        order about the undamped mode); NaN for the other parameters.
+    cluster : ndarray of int, shape (m,)
+        Modes with the same number are coincident (one subspace).
+    platform_share : ndarray, shape (m,)
+        Platform share of each mode's kinetic energy [-] (theory.md §13.3).
+    rung, hold : str
+    note : str
+    """
+
+    freq_hz: np.ndarray
+    parameters: tuple
+    values: np.ndarray
+    units: tuple
+    derivative: np.ndarray
+    damping_derivative: np.ndarray
+    cluster: np.ndarray
+    platform_share: np.ndarray
+    rung: str
+    hold: str
+    note: str = ""
+
+    @property
+    def relative(self):
+        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p)."""
+        return 0.01 * self.derivative * self.values[None, :]
+
+    @property
+    def elasticity(self):
+        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p."""
+        return self.derivative * self.values[None, :] / self.freq_hz[:, None]
+
+    def __repr__(self):
+        return (f"SensitivityResult({len(self.freq_hz)} modes x {len(self.parameters)} "
+                f"parameters, {self.rung} rung at fixed {self.hold})")
+
+    def to_frame(self):
+        """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,
+        unit, df/dp, df per 1 %, elasticity, d zeta/dp."""
+        import pandas as pd
+        m, p = self.derivative.shape
+        return pd.DataFrame({
+            "mode": np.repeat(np.arange(1, m + 1), p),
+            "freq [Hz]": np.repeat(self.freq_hz, p),
+            "cluster": np.repeat(self.cluster, p),
+            "platform share [-]": np.repeat(self.platform_share, p),
+            "parameter": np.tile(self.parameters, m),
+            "value": np.tile(self.values, m), "unit": np.tile(self.units, m),
+            "df/dp [Hz/unit]": self.derivative.ravel(),
+            "df per 1 % [Hz]": self.relative.ravel(),
+            "elasticity [-]": self.elasticity.ravel(),
+            "dzeta/dp [1/unit]": self.damping_derivative.ravel()})
+
+    def plot(self, modes=(0,), n_parameters=10, ax=None):
+        """Tornado chart per mode: the change of the frequency per 1 % of each parameter,
+        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure."""
+        import matplotlib.pyplot as plt
+        modes = list(modes)
+        if ax is None:
+            fig, axes = plt.subplots(1, len(modes), figsize=(4.2 * len(modes), 3.6),
+                                     squeeze=False)
+            axes = axes[0]
+        else:
+            axes, fig = [ax], ax.figure
+        for a, k in zip(axes, modes):
+            r = np.nan_to_num(self.relative[k])
+            order = np.argsort(np.abs(r))[::-1][:n_parameters][::-1]
+            a.barh(np.arange(order.size), r[order],
+                   color=np.where(r[order] >= 0, "tab:blue", "tab:red"))
+            a.set_yticks(np.arange(order.size), [self.parameters[j] for j in order])
+            a.axvline(0.0, color="0.3", lw=0.8)
+            a.set(xlabel="change per +1 % of the parameter [Hz]",
+                  title=f"mode {k + 1}: {self.freq_hz[k]:.4g} Hz")
+        fig.tight_layout()
+        return fig
+
+
+def frequency_sensitivities(model, parameters, n_modes=None, fmax_hz=None, hold="pose",
+                            tension_reference=None):
+    """Derivatives of the natural frequencies with respect to parameters (module notes).
+
+    Parameters
+    ----------
+    model : model of the rung "dsm", "exact", "lumped", "spring" or "catenary"
+        Its undamped frequencies are differentiated.
+    parameters : str or sequence of str
+        Names of :mod:`dynstiff.analyses.sensitivity_parameters` (``"EA"``, ``"EA_*"``,
+        ``"mass"``, ``"pose_x"``, ``"anchor_3"``, ``"t_min"``, ...).
+    n_modes, fmax_hz : as :func:`dynstiff.eigenfrequencies`
+    hold : {"pose", "lengths"}
+        What a parameter change keeps: the pose, with the tension distribution closest to
+        ``tension_reference`` (the equilibrium of ``Robot.equilibrium(pose=...)``), or the
+        unstretched lengths, with the pose following (``unstretched_lengths=...``).
+    tension_reference : float or ndarray, shape (n_cables,), optional
+        The reference [N] the model's equilibrium was computed with (default the robot's,
+        t_min along each cable); needed by ``t_ref_i``.
+
+    Returns
+    -------
+    SensitivityResult
+
+    Raises
+    ------
+    InvalidParameterError
+        Unknown parameter, bad request, or an equilibrium that is not the one ``hold``
+        and ``tension_reference`` describe.
+    UnsupportedAnalysisError
+        A model without sensitivities.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> s = ds.frequency_sensitivities(ds.FrequencyModel(eq), ["EA", "mass"], n_modes=2)
+    >>> [round(float(v), 4) for v in s.relative[0]]   # Hz per +1 % of EA, of the mass
+    [0.0108, -0.0102]
+    """
+    require_model(model)
+    if model.rung not in RUNGS:
+        raise UnsupportedAnalysisError(
+            f"frequency sensitivities need one of the rungs {RUNGS}, got {model.rung!r}")
+    n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
+    m = model.undamped()
+    f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
+    return sensitivities_at(m, f, parameters, hold, tension_reference)
+
+
+def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=None,
+                     linearisation=None):
+    """:func:`frequency_sensitivities` at frequencies already computed (``freq_hz`` [Hz],
+    ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
+    or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
+    ``linearisation``: the model's :class:`~dynstiff.analyses.sensitivity_statics.
+    LinearisedEquilibrium` when one was built already (continuous rungs).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> f = ds.eigenfrequencies(m, n_modes=1)
+    >>> round(float(sensitivities_at(m, f, ["mass"]).derivative[0, 0]), 5)  # Hz/kg
+    -0.01118
+    """
+    m = model.undamped()
+    f = np.asarray(freq_hz, dtype=float)
+    if hold not in ("pose", "lengths"):
+        raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
+    if m.rung == "lumped":
+        return _lumped(m, f, parameters, hold, tension_reference)
+    lin = linearisation or LinearisedEquilibrium(m.equilibrium, hold, tension_reference)
+    params = _parameters(parameters, m.robot, m.pose, hold, tension_reference,
+                         m.equilibrium.unstretched_lengths)
+    dy = lin.derivatives([p.direction for p in params])
+    groups, X, moving = _null_vectors(m, f)
+    pairs = [(k, a, b) for k, g in enumerate(groups) for a in range(len(g))
+             for b in range(len(g)) if moving[g[0]] and a <= b]
+    out = _empty(f, params)
+    if pairs:
+        w = _TWO_PI * f
+        kk = np.array([k for k, _, _ in pairs])
+        Xa = np.array([X[k][:, a] for k, a, _ in pairs])
+        Xb = np.array([X[k][:, b] for k, _, b in pairs])
+        wp = w[[groups[k][0] for k in kk]]
+        Bp = _modal_masses(m, wp, Xa, Xb)
+        Y, P = lin.perturbed([p.direction for p in params], dy)
+        fields = None
+        if m.rung == "exact":
+            fa = exact_fields(m, wp, Xa)
+            fields = (fa, fa if np.array_equal(Xa, Xb) else exact_fields(m, wp, Xb))
+        Ap = np.imag(forms(m, lin, Y, P, wp, Xa, Xb, fields)) / CS_STEP      # (p, n_pairs)
+        _assemble(out, groups, pairs, Ap, Bp, w, params, moving)
+    note = "" if all(moving[g[0]] for g in groups) else (
+        "modes with the platform at rest on a cable pole (NaN): their sensitivities are "
+        "those of the clamped cable")
+    return _result(out, f, params, groups, m.rung, hold, note)
+
+
+def _parameters(parameters, robot, pose, hold, t_ref, L0):
+    if isinstance(parameters, (list, tuple)) and parameters and all(
+            hasattr(p, "direction") for p in parameters):
+        return list(parameters)
+    return expand_parameters(parameters, robot, pose, hold, t_ref, L0)
+
+
+def _clusters(f):
+    groups = []
+    for k in range(len(f)):
+        if groups and f[k] - f[groups[-1][-1]] <= _CLUSTER_RTOL * max(abs(f[k]), 1e-300):
+            groups[-1].append(k)
+        else:
+            groups.append([k])
+    return groups
+
+
+def _null_vectors(m, f):
+    """Clusters of coincident roots, their null spaces X (6, c) of K(omega) (full
+    platform vectors) and whether they move the platform (theory.md §5.3)."""
+    groups = _clusters(f)
+    w = _TWO_PI * f
+    K = m.dynamic_stiffness(w[[g[0] for g in groups]]) if len(f) else np.zeros((0,))
+    scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
+    X, moving = [], np.zeros(len(f), bool)
+    ends = np.array([[g[0], g[-1]] for g in groups], dtype=int).reshape(-1, 2)
+    J0 = m.cable_mode_count((w[ends] * np.array([1 - 1e-9, 1 + 1e-9])).ravel()).reshape(-1, 2)
+    for j, g in enumerate(groups):
+        Kk = np.real(K[j])
+        x = np.zeros((6, len(g)))
+        if np.all(np.isfinite(Kk)):
+            ev, V = np.linalg.eigh(0.5 * (Kk + Kk.T))
+            order = np.argsort(np.abs(ev))[:len(g)]
+            small = np.abs(ev[order]) <= 1e-6 * scale
+            if J0[j, 1] == J0[j, 0] or np.all(small):
+                x[m.free_index] = V[:, order]
+                moving[g] = True
+        X.append(x)
+    return groups, X, moving
+
+
+def _modal_masses(m, w, Xa, Xb):
+    """-x_a^T dK/dlambda x_b at omega (pairs), dK/domega by the complex step of the model's
+    own K (theory.md §16.1)."""
+    h = 1e-20 * np.maximum(w, 1.0)
+    dK = np.imag(m.dynamic_stiffness(w + 1j * h)) / h[:, None, None]
+    fi = m.free_index
+    return -np.einsum("pi,pij,pj->p", Xa[:, fi], dK, Xb[:, fi]) / (2.0 * w)
+
+
+def _empty(f, params):
+    n, p = len(f), len(params)
+    return {"d": np.full((n, p), np.nan), "z": np.full((n, p), np.nan),
+            "share": np.full(n, np.nan)}
+
+
+def _assemble(out, groups, pairs, Ap, Bp, w, params, moving, masses=None):
+    """Per cluster: the eigenvalues of (A_j, B) for every parameter j, into d f/dp and
+    d zeta/dp (module notes)."""
+    import scipy.linalg
+    damping = np.array([p.kind == "damping" for p in params])
+    index = {}
+    for i, (k, a, b) in enumerate(pairs):
+        index[(k, a, b)] = index[(k, b, a)] = i
+    for k, g in enumerate(groups):
+        if not moving[g[0]]:
+            continue
+        c = len(g)
+        sel = np.array([[index[(k, a, b)] for b in range(c)] for a in range(c)])
+        B = Bp[sel]
+        lam = w[g[0]] ** 2
+        for j in range(len(params)):
+            A = Ap[j][sel]
+            mu = np.array([A[0, 0] / B[0, 0]]) if c == 1 else \
+                np.sort(scipy.linalg.eigh(0.5 * (A + A.T), 0.5 * (B + B.T), eigvals_only=True))
+            if damping[j]:
+                out["d"][g, j] = 0.0
+                out["z"][g, j] = mu / (2.0 * lam)
+            else:
+                out["d"][g, j] = mu / (2.0 * w[g[0]] * _TWO_PI)
+        if masses is not None:
+            out["share"][g] = masses[g]
+        else:
+            out["share"][g] = 1.0 / np.real(np.diag(B))
+
+
+def _result(out, f, params, groups, rung, hold, note):
+    cluster = np.zeros(len(f), dtype=int)
+    for k, g in enumerate(groups):
+        cluster[g] = k
+    return SensitivityResult(
+        freq_hz=f, parameters=tuple(p.name for p in params),
+        values=np.array([p.value for p in params]), units=tuple(p.unit for p in params),
+        derivative=out["d"], damping_derivative=out["z"], cluster=cluster,
+        platform_share=out["share"], rung=rung, hold=hold, note=note)
+
+
+def _lumped(m, f, parameters, hold, tension_reference):
+    """The lumped rung: its own equilibrium's derivative and the finite eigenproblem."""
+    rob, st, mm = m.robot, m.equilibrium, m.mass_model
+    n = rob.n_cables
+    L0 = mm.unstretched_lengths
+    if hold == "pose":
+        cat = rob.equilibrium(pose=st.start_pose, tension_reference=tension_reference)
+        if not np.allclose(cat.unstretched_lengths, L0, rtol=1e-8, atol=0):
+            raise InvalidParameterError(
+                "model: its unstretched lengths are not those of the tension distribution "
+                "at its pose (closest to tension_reference); give the reference it was "
+                "built with, or hold='lengths'")
+        lin = LinearisedEquilibrium(cat, "pose", tension_reference)
+        pose = st.start_pose
+    else:
+        lin, pose = None, st.pose
+    params = _parameters(parameters, rob, pose, hold, tension_reference, L0)
+    dirs = [dict(p.direction) for p in params]
+    if lin is not None:
+        dy = lin.derivatives(dirs)
+        for d, row in zip(dirs, dy):
+            d["L0"] = row[2 * n:3 * n]
+    P0 = primitives(rob, pose, tension_reference, L0)
+    LL = LumpedLinearisation(m, P0)
+    Pb = perturbed_primitives(P0, dirs)
+    Z = LL.z_base()[None, :] + 1j * CS_STEP * LL.equilibrium_derivatives(Pb)
+    out = _empty(f, params)
+    if not len(f):
+        return _result(out, f, params, [], "lumped", hold, "")
+    lam, V = eigen_matrix.eig(m, len(f))
+    groups = _clusters(f)
+    pairs = [(k, a, b) for k, g in enumerate(groups) for a in range(len(g))
+             for b in range(len(g)) if a <= b]
+    A = np.array([V[:, groups[k][a]] for k, a, _ in pairs])
+    Bv = np.array([V[:, groups[k][b]] for k, _, b in pairs])
+    lp = np.array([lam[groups[k][0]] for k, _, _ in pairs])
+    Ap = np.imag(LL.forms(Z, Pb, lp, A, Bv)) / CS_STEP
+    Bp = np.array([1.0 if a == b else 0.0 for _, a, b in pairs])
+    Mp = m.platform_mass
+    X = V[:m.n_free]
+    share = np.einsum("in,ij,jn->n", X, Mp, X)
+    _assemble(out, groups, pairs, Ap, Bp, _TWO_PI * f, params, np.ones(len(f), bool),
+              masses=share)
+    return _result(out, f, params, groups, "lumped", hold, "")

@@ -1,0 +1,137 @@
+"""The frequency-optimal tension distribution (dynstiff/analyses/optimal_tensions.py,
+theory.md §16.7): the optimum against its neighbours in the tension null space and against
+a brute-force search over it, the limits along every cable, what binds, warm starts."""
+
+from collections import deque
+
+import numpy as np
+import pytest
+from conftest import inverted_stewart
+
+import dynstiff as ds
+from dynstiff.analyses.optimal_tensions import optimal_tensions, tension_equilibrium
+from dynstiff.analyses.platform_modes import find_platform_modes
+from dynstiff.errors import InvalidParameterError
+
+
+def first_platform_hz(robot, pose, reference):
+    eq = robot.equilibrium(pose=pose, tension_reference=reference)
+    return find_platform_modes(ds.FrequencyModel(eq, guard_rtol=None)).first_hz, eq
+
+
+def null_basis(opt):
+    import scipy.linalg
+    eq = opt.default
+    u = np.array([s.force_on_end / s.tension_at_end for s in eq.states])
+    W = np.vstack([u.T, np.cross(eq.lever_arms, u).T])
+    return scipy.linalg.null_space(W)
+
+
+@pytest.mark.parametrize("position, binds", [([4.0, -2.5, 1.0], "at t_min"),
+                                             ([2.0, 1.5, 1.5], "smooth maximum")])
+def test_the_optimum_beats_its_neighbours_and_keeps_the_limits(cogiro, position, binds):
+    """At a pose where two cables reach t_min (a vertex of the feasible polygon) and at one
+    with a smooth interior maximum, no distribution 5 N away along the null space does
+    better, the tensions stay within [t_min, t_max] all along every cable, and the first
+    platform mode rises over the default distribution's (0.085 and 0.0057 Hz)."""
+    rob = cogiro.robot
+    opt = optimal_tensions(rob, position)
+    t_min, t_max = rob.tension_limits
+    assert opt.equilibrium.min_tensions.min() >= t_min - 1e-6
+    assert opt.equilibrium.max_tensions.max() <= t_max
+    assert opt.gain > 5e-3
+    assert any(binds in b for b in opt.binds), opt.binds
+    N = null_basis(opt)
+    for d in (N[:, 0], -N[:, 0], N[:, 1], -N[:, 1]):
+        f, eq = first_platform_hz(rob, position, opt.reference + 5.0 * d)
+        assert f <= opt.value + 1e-5 * opt.value, (d, f, opt.value)
+
+
+def test_band_margin_objective_and_warm_start(cogiro):
+    """The band margin of a band just below the first platform mode rises with the
+    tensions; a warm start from the optimum needs fewer equilibria and finds it again."""
+    rob, pose = cogiro.robot, [4.0, -2.5, 1.0]
+    opt = optimal_tensions(rob, pose, objective="band_margin", band_hz=(0.0, 2.0))
+    assert opt.value > opt.default_value
+    first = optimal_tensions(rob, pose)
+    again = optimal_tensions(rob, pose, start=first)
+    assert again.evaluations < first.evaluations
+    assert again.value == pytest.approx(first.value, rel=1e-5)
+    eq = tension_equilibrium(rob, pose, "max-frequency", start=first.equilibrium)
+    np.testing.assert_allclose(eq.tensions, first.tensions, rtol=1e-3)
+    np.testing.assert_allclose(tension_equilibrium(rob, pose).tensions,
+                               rob.equilibrium(pose=pose).tensions)
+
+
+def test_without_redundancy_the_distribution_is_the_default():
+    rob = inverted_stewart()
+    opt = optimal_tensions(rob, [0.0, 0.0, 1.5], rung="spring")
+    assert opt.gain == 0.0 and "no redundancy" in opt.binds[0]
+
+
+def test_bad_requests_are_refused(cogiro):
+    rob = cogiro.robot
+    with pytest.raises(InvalidParameterError, match="objective must be one of"):
+        optimal_tensions(rob, [0, 0, 1], objective="stiffness")
+    with pytest.raises(InvalidParameterError, match="needs band_hz"):
+        optimal_tensions(rob, [0, 0, 1], objective="band_margin")
+    with pytest.raises(InvalidParameterError, match="start must be"):
+        optimal_tensions(rob, [0, 0, 1], start=[1.0, 2.0])
+    with pytest.raises(InvalidParameterError, match="tensions must be one of"):
+        tension_equilibrium(rob, [0, 0, 1], "stiff")
+
+
+def brute_force(robot, pose, opt, step, continuity=0.02):
+    """The first platform mode on a grid of the tension null space (step [N]) around the
+    default distribution, and its best value on the default's branch: the grid cells
+    reached from the default through neighbours whose objective differs by less than
+    ``continuity`` (relative); a larger difference is a jump (a platform mode crossing a
+    cable mode changes which mode is the first platform mode, theory.md §16.7)."""
+    N = null_basis(opt)
+    t0 = opt.default.tensions
+    g = np.arange(-600.0, 600.0 + step, step)
+    F = np.full((g.size, g.size), np.nan)
+    t_min, t_max = robot.tension_limits
+    for i, a in enumerate(g):
+        for j, b in enumerate(g):
+            t = t0 + N @ [a, b]
+            if t.min() < t_min - 50 or t.max() > t_max:
+                continue
+            try:
+                f, eq = first_platform_hz(robot, pose, t)
+            except ds.DynstiffError:
+                continue
+            if np.abs(eq.tensions - t).max() <= 1.0:       # not clipped to a limit
+                F[i, j] = f
+    i0 = int(np.argmin(np.abs(g)))
+    seen = np.zeros(F.shape, bool)
+    seen[i0, i0] = True
+    todo = deque([(i0, i0)])
+    while todo:
+        i, j = todo.popleft()
+        for a, b in ((i + 1, j), (i - 1, j), (i, j + 1), (i, j - 1)):
+            if 0 <= a < g.size and 0 <= b < g.size and not seen[a, b] \
+                    and abs(F[a, b] - F[i, j]) <= continuity * F[i, j]:
+                seen[a, b] = True
+                todo.append((a, b))
+    k = np.unravel_index(np.nanargmax(np.where(seen, F, np.nan)), F.shape)
+    return F[k], np.array([g[k[0]], g[k[1]]]), N.T @ (opt.reference - t0)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("position", [[2.0, 1.5, 1.5], [4.0, -2.5, 1.0],
+                                      [-4.5, -3.0, 0.8], [3.0, 3.0, 2.0]])
+def test_the_optimum_matches_a_brute_force_search(cogiro, position):
+    """At 4 CoGiRo poses the search finds at least the best first platform mode of a 12.5 N
+    grid of the null space on the default's branch, within one grid step of its cell (a
+    vertex of the feasible polygon, where tension limits bind, may lie further from the
+    grid's cells: the grid keeps only distributions within the limits)."""
+    rob = cogiro.robot
+    opt = optimal_tensions(rob, position)
+    step = 12.5
+    best, cell, lam = brute_force(rob, position, opt, step)
+    assert opt.value >= best - 1e-5 * best
+    at_limit = any("at t_min" in b or "at t_max" in b for b in opt.binds)
+    assert np.linalg.norm(lam - cell) <= np.sqrt(2) * step or at_limit, (lam, cell)
+    assert opt.gain > 1e-3
+    assert opt.equilibrium.min_tensions.min() >= rob.tension_limits[0] - 1e-6

@@ -1,0 +1,238 @@
+"""Eigenfrequency sensitivities (dynstiff/analyses/sensitivity.py, theory.md §16.1-§16.4)
+against an analytic limit and against central differences of independent solves (new
+statics, new model, new eigen search at p +- h and p +- h/2, Richardson-extrapolated)."""
+
+import numpy as np
+import pytest
+from conftest import inverted_stewart
+
+import dynstiff as ds
+from dynstiff.analyses import sensitivity_statics
+from dynstiff.analyses.sensitivity import frequency_sensitivities
+from dynstiff.analyses.sensitivity_parameters import equilibrium_with, expand_parameters
+from dynstiff.errors import InvalidParameterError
+
+
+def central_difference(robot, pose, name, rung, n_modes, rel=1e-3, hold="pose",
+                       tension_reference=None, unstretched_lengths=None, **model_options):
+    """df/dp of the first ``n_modes`` frequencies by central differences of independent
+    solves at steps h and h/2, Richardson-extrapolated (error O(h^4) plus the solves' noise,
+    about 1e-10 / h relative); h = rel |p| (rel for a zero coordinate, rel / 10 rad)."""
+    p = expand_parameters([name], robot, pose, hold, tension_reference,
+                          unstretched_lengths)[0]
+    h = rel * abs(p.value) if p.value else rel
+    h = rel / 10 if p.unit == "rad" else h
+
+    def diff(step):
+        out = []
+        for s in (step, -step):
+            eq = equilibrium_with(robot, pose, [name], [p.value + s], hold, tension_reference,
+                                  unstretched_lengths, tol=1e-12)
+            out.append(ds.eigenfrequencies(ds.build_model(eq, rung, **model_options),
+                                           n_modes=n_modes, rtol=1e-13))
+        return (out[0] - out[1]) / (2 * step)
+    return (4 * diff(h / 2) - diff(h)) / 3
+
+
+def assert_matches(s, fd, j, rtol=1e-6):
+    """Every mode's derivative within rtol of the parameter's largest effect."""
+    scale = np.abs(fd).max()
+    err = np.abs(s.derivative[:, j] - fd).max() / scale
+    assert err <= rtol, (s.parameters[j], err)
+
+
+@pytest.fixture(scope="module")
+def cogiro_dsm(cogiro):
+    eq = cogiro.robot.equilibrium(pose=cogiro.pose, tol=1e-12)
+    return eq, ds.FrequencyModel(eq)
+
+
+def test_single_dof_mass_on_two_springs_has_the_closed_form_derivatives():
+    """A point mass free in z on two symmetric inclined cables of negligible weight, spring
+    rung: K = 2 [(EA + T) / L u_z^2 + (T / L)(1 - u_z^2)], T = m g / (2 u_z), so at the
+    fixed pose dK/dEA = 2 u_z^2 / L and dK/dm = g / (u_z L); f = sqrt(K / m) / 2 pi."""
+    A = np.array([[-3.0, 0.0, 4.0], [3.0, 0.0, 4.0]])
+    m, EA = 20.0, 2e5
+    rob = ds.Robot(A, np.zeros((2, 3)), ds.Cable(1e-9, EA),
+                   ds.Platform(m, free_dofs=("z",)), tension_limits=(1.0, 1e5))
+    eq = rob.equilibrium(pose=[0.0, 0.0, 0.0])
+    L, uz = 5.0, 0.8
+    T = m * rob.g / (2 * uz)
+    K = 2 * ((EA + T) / L * uz**2 + T / L * (1 - uz**2))
+    dfdK = 1.0 / (4 * np.pi * np.sqrt(K * m))
+    s = frequency_sensitivities(ds.build_model(eq, "spring"), ["EA", "mass"], n_modes=1)
+    np.testing.assert_allclose(s.freq_hz, np.sqrt(K / m) / (2 * np.pi), rtol=1e-8)
+    np.testing.assert_allclose(s.derivative[0], [dfdK * 2 * uz**2 / L,
+                                                 dfdK * (rob.g / (uz * L) - K / m)],
+                               rtol=1e-8)
+
+
+@pytest.mark.parametrize("names", [
+    ["EA", "EA_3", "mass_per_length", "mass_per_length_6"],
+    ["mass", "inertia", "inertia_xz", "com_y", "com_z"],
+    ["pose_x", "pose_z", "pose_rx", "pose_rz"],
+    ["anchor_2_y", "anchor_5_z", "attachment_1_x", "attachment_6_z", "t_min"]])
+def test_closed_form_rung_matches_central_differences(cogiro, cogiro_dsm, names):
+    """theory.md §16.1: every parameter kind, first 8 modes of CoGiRo (well separated)."""
+    eq, model = cogiro_dsm
+    s = frequency_sensitivities(model, names, n_modes=8)
+    for j, name in enumerate(names):
+        assert_matches(s, central_difference(cogiro.robot, eq.pose, name, "dsm", 8), j)
+
+
+def test_reference_tensions_and_fixed_lengths_match_central_differences(cogiro):
+    """The tension distribution's reference (at a fixed pose), and the unstretched lengths
+    with the pose following (forward statics)."""
+    rob = cogiro.robot
+    t_ref = np.linspace(300.0, 600.0, 8)
+    eq = rob.equilibrium(pose=cogiro.pose, tension_reference=t_ref, tol=1e-12)
+    s = frequency_sensitivities(ds.FrequencyModel(eq), ["t_ref_2", "t_ref_7"], n_modes=6,
+                                tension_reference=t_ref)
+    for j, name in enumerate(s.parameters):
+        assert_matches(s, central_difference(rob, eq.pose, name, "dsm", 6,
+                                             tension_reference=t_ref), j)
+    L0 = eq.unstretched_lengths
+    names = ["L0_0", "L0_5", "EA", "mass"]
+    s = frequency_sensitivities(ds.FrequencyModel(eq), names, n_modes=6, hold="lengths")
+    for j, name in enumerate(names):
+        # a 1 mm change of a 9 m cable moves the pose by about 0.3 mm and modes 4-6
+        # (3.21-3.26 Hz) veer: the step stays well below (0.1 mm)
+        assert_matches(s, central_difference(rob, eq.pose, name, "dsm", 6, rel=1e-5,
+                                             hold="lengths", unstretched_lengths=L0), j)
+
+
+@pytest.mark.parametrize("rung, options", [("exact", {"fmax_hz": 6.0}),
+                                           ("lumped", {"segments": 8})])
+def test_exact_and_lumped_rungs_match_central_differences(cogiro, rung, options):
+    """theory.md §16.3: the exact cable's forms through its fields, the lumped rung's own
+    equilibrium and finite eigenproblem."""
+    rob = cogiro.robot
+    eq = rob.equilibrium(pose=cogiro.pose, tol=1e-12)
+    if rung == "lumped":
+        options = {**options, "tol": 1e-13}
+    names = ["EA", "inertia", "anchor_0_z"]     # statics, platform, geometry; all: slow tier
+    s = frequency_sensitivities(ds.build_model(eq, rung, **options), names, n_modes=5)
+    for j, name in enumerate(names):
+        assert_matches(s, central_difference(rob, eq.pose, name, rung, 5, **options), j)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rung, options", [("exact", {"fmax_hz": 6.0}),
+                                           ("lumped", {"segments": 8}),
+                                           ("catenary", {}), ("spring", {})])
+def test_every_rung_and_parameter_kind_matches_central_differences(cogiro, rung, options):
+    rob = cogiro.robot
+    eq = rob.equilibrium(pose=cogiro.pose, tol=1e-12)
+    if rung == "lumped":
+        options = {**options, "tol": 1e-13}
+    names = ["EA_3", "mass_per_length", "mass", "inertia_xy", "com_x", "pose_x", "pose_ry",
+             "anchor_4_x", "attachment_2_y", "t_min"]
+    s = frequency_sensitivities(ds.build_model(eq, rung, **options), names, n_modes=6)
+    for j, name in enumerate(names):
+        rel = 1e-2 if name == "inertia_xy" else 1e-3     # a small effect: a larger step
+        assert_matches(s, central_difference(rob, eq.pose, name, rung, 6, rel=rel,
+                                             **options), j)
+
+
+def cluster_difference(robot, pose, name, rung, clusters, rel=1e-4, **options):
+    """One-sided derivatives of the sorted frequencies for an increase of p, from central
+    differences: a cluster splits at first order into f + h mu_1 < f + h mu_2 at p + h and
+    f - h mu_2 < f - h mu_1 at p - h, so the order of a cluster's roots at p - h is reversed
+    before the difference (Richardson of h and h/2 as :func:`central_difference`)."""
+    p = expand_parameters([name], robot, pose)[0]
+    h = rel * abs(p.value) if p.value else rel
+    flip = np.concatenate([g[::-1] for g in clusters])
+
+    def diff(step):
+        f = []
+        for s in (step, -step):
+            eq = equilibrium_with(robot, pose, [name], [p.value + s], tol=1e-12)
+            f.append(ds.eigenfrequencies(ds.build_model(eq, rung, **options),
+                                         n_modes=len(flip), rtol=1e-13))
+        return (f[0] - f[1][flip]) / (2 * step)
+    return (4 * diff(h / 2) - diff(h)) / 3
+
+
+@pytest.mark.parametrize("rung, options, rel", [
+    ("dsm", {}, 1e-4),
+    # the lumped chains' stiff segments (EA / l0 ~ 1e7 N/m on 1e-4 kg nodes) leave the
+    # lowest eigenvalues 3e-10 of rounding: a larger step keeps that noise below 1e-7
+    ("lumped", {"segments": 4, "tol": 1e-13}, 1e-2)])
+def test_a_cluster_of_coincident_modes_gives_the_derivatives_of_its_eigenvalues(rung,
+                                                                                 options, rel):
+    """The octahedron's two degenerate pairs (C3v): a parameter that breaks the symmetry
+    (one cable's EA, one anchor) splits each pair at first order, and the two one-sided
+    derivatives are the eigenvalues of the pair's 2x2 problem; a symmetric one (the
+    platform mass) keeps them equal."""
+    rob, pose = inverted_stewart(), ds.Pose([0.0, 0.0, 1.5])
+    eq = rob.equilibrium(pose=pose, tol=1e-12)
+    names = ["EA_0", "anchor_1_x", "mass"]
+    s = frequency_sensitivities(ds.build_model(eq, rung, **options), names, n_modes=6)
+    assert s.cluster.tolist() == [0, 1, 1, 2, 2, 3]
+    clusters = [[0], [1, 2], [3, 4], [5]]
+    for j, name in enumerate(names):
+        fd = cluster_difference(rob, pose, name, rung, clusters, rel, **options)
+        assert_matches(s, fd, j, rtol=1e-6)
+    split = np.abs(s.derivative[2, :2] - s.derivative[1, :2]) / np.abs(s.derivative[:, :2]).max(0)
+    assert np.all(split > 0.1)                           # the pair does split
+    np.testing.assert_allclose(s.derivative[2, 2], s.derivative[1, 2], rtol=1e-9)
+
+
+def test_loss_factor_gives_the_damping_ratio_of_the_damped_root(cogiro):
+    """d zeta / d eta at eta = 0 against the damped roots (theory.md §5.4) of models with
+    eta = h and 2 h, Richardson (zeta is odd in eta); the undamped frequencies do not move."""
+    rob = cogiro.robot
+    eq = rob.equilibrium(pose=cogiro.pose)
+    s = frequency_sensitivities(ds.FrequencyModel(eq), ["loss_factor"], n_modes=4)
+    assert np.all(s.derivative == 0.0)
+
+    def zeta(eta):
+        e = equilibrium_with(rob, eq.pose, ["loss_factor"], [eta])
+        return ds.damped_modes(ds.FrequencyModel(e), n_modes=4).damping_ratio
+    h = 1e-3
+    ref = (4 * zeta(h) / h - zeta(2 * h) / (2 * h)) / 3
+    np.testing.assert_allclose(s.damping_derivative[:, 0], ref, rtol=1e-6)
+
+
+def test_the_statics_term_matters_and_the_comparison_catches_its_loss(cogiro, cogiro_dsm,
+                                                                      monkeypatch):
+    """A planted bug: without the change of the equilibrium (dy/dp = 0) the derivative with
+    respect to the platform mass is wrong by far more than the tolerance (the tensions
+    carry the weight), and the central-difference comparison fails."""
+    eq, model = cogiro_dsm
+    fd = central_difference(cogiro.robot, eq.pose, "mass", "dsm", 4)
+    monkeypatch.setattr(sensitivity_statics.LinearisedEquilibrium, "derivatives",
+                        lambda self, d: np.zeros((len(d), self.y.size)))
+    s = frequency_sensitivities(model, ["mass"], n_modes=4)
+    with pytest.raises(AssertionError):
+        assert_matches(s, fd, 0)
+    assert np.abs(s.derivative[:, 0] - fd).max() > 1e-2 * np.abs(fd).max()
+
+
+def test_bad_requests_are_refused_before_any_work(cogiro, cogiro_dsm):
+    eq, model = cogiro_dsm
+    with pytest.raises(InvalidParameterError, match="'EA_9' is not a parameter"):
+        frequency_sensitivities(model, ["EA_9"], n_modes=2)
+    with pytest.raises(InvalidParameterError, match="needs the distribution's reference"):
+        frequency_sensitivities(model, ["t_ref_1"], n_modes=2)
+    with pytest.raises(InvalidParameterError, match="fixed pose"):
+        frequency_sensitivities(model, ["pose_x"], n_modes=2, hold="lengths")
+    with pytest.raises(InvalidParameterError, match="twice"):
+        frequency_sensitivities(model, ["mass", "mass"], n_modes=2)
+    other = cogiro.robot.equilibrium(pose=eq.pose, tension_reference=400.0)
+    with pytest.raises(InvalidParameterError, match="not the distribution closest"):
+        frequency_sensitivities(ds.FrequencyModel(other), ["EA"], n_modes=2)
+
+
+def test_the_table_the_relative_values_and_the_tornado(cogiro_dsm):
+    import matplotlib
+    matplotlib.use("Agg")
+    _, model = cogiro_dsm
+    s = frequency_sensitivities(model, ["EA", "mass", "pose_z"], n_modes=3)
+    df = s.to_frame()
+    assert len(df) == 9 and set(df["parameter"]) == {"EA", "mass", "pose_z"}
+    np.testing.assert_allclose(s.relative, 0.01 * s.derivative * s.values, rtol=1e-15)
+    np.testing.assert_allclose(s.elasticity[:, 0], s.derivative[:, 0] * s.values[0]
+                               / s.freq_hz)
+    fig = s.plot(modes=(0, 1))
+    assert len(fig.axes) == 2
