@@ -2,21 +2,29 @@
 models built once per module, and the test cables of the lumped chain tests (theory.md
 §1.1, §7.2, §9.2)."""
 
+import os
 import subprocess
 import sys
 
-import numpy as np
-import pytest
-import scipy.linalg
+# Under pytest-xdist every core runs a worker: one BLAS thread each (set before numpy loads
+# OpenBLAS), else the workers' dense factorisations and eigen solves (the exact cable's)
+# fight over the cores: a test of tests/test_cable_exact.py ran 8 times slower.
+if "PYTEST_XDIST_WORKER" in os.environ:
+    for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_var, "1")
 
-import dynstiff as ds
-from dynstiff.lumped import (
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+import scipy.linalg  # noqa: E402
+
+import dynstiff as ds  # noqa: E402
+from dynstiff.lumped import (  # noqa: E402
     LumpedLinearModel,
     LumpedMassModel,
     chain_equilibrium,
     chain_matrices,
 )
-from dynstiff.params import Cable
+from dynstiff.params import Cable  # noqa: E402
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).
 COGIRO_AREA = 8.2051e-6

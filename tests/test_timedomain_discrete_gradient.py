@@ -81,7 +81,7 @@ def test_the_work_of_the_discrete_gradient_is_the_energy_change(sixcable, size):
     frame = Frame(m, pose)
     nodes, _ = m.full_nodes(pose, interior_views(m, X))
     g = m.robot.gravity_vector
-    R0, _ = discrete_gradient_force(m, nodes, nodes, frame.r, np.zeros(3), frame.rG, g)
+    R0, _, _ = discrete_gradient_force(m, nodes, nodes, frame.r, np.zeros(3), frame.rG, g)
     R, _ = m.residual_unchecked(pose, interior_views(m, X))
     np.testing.assert_allclose(R0, R, rtol=0, atol=1e-9 * np.abs(m.robot.platform.mass * 9.81))
     slack = 0
@@ -89,7 +89,7 @@ def test_the_work_of_the_discrete_gradient_is_the_energy_change(sixcable, size):
         d = size * rng.normal(size=m.n_dof)
         pose1, X1 = advance(m, pose, X, d)
         nodes1, _ = m.full_nodes(pose1, interior_views(m, X1))
-        Rb, _ = discrete_gradient_force(m, nodes, nodes1, frame.r, d[3:6], frame.rG, g)
+        Rb, _, _ = discrete_gradient_force(m, nodes, nodes1, frame.r, d[3:6], frame.rG, g)
         dV = _energy(m, pose1, X1) - _energy(m, pose, X)
         assert Rb @ d == pytest.approx(-dV, rel=1e-12, abs=1e-9)
         slack += potential_energy(m, Frame(m, pose1), X1)[4] != []
@@ -130,3 +130,37 @@ def test_secant_elements_are_the_derivative_of_the_discrete_gradient(sixcable):
     W = m.robot.gravity_wrench(pose)
     W[:3] += sum(F for _, F in el0)
     np.testing.assert_allclose(W[:3], R[:3], rtol=0, atol=1e-6)
+
+
+def test_the_mean_dashpot_dissipates_and_is_continuous_through_a_switch(sixcable):
+    """The axial dashpots enter as the mean force over the step, c_ax theta (l_b - l_a) /
+    (h l0) (theta the taut fraction of the step): R_bar . d = -(dV + D) with D = sum c_ax
+    theta dl^2 / (h l0) >= 0, and R_bar is continuous as a segment's end length crosses
+    l0 (the dashpot of a taut segment, c_ax dl / (h l0), would jump by c_ax |dl| / (h l0),
+    17 N here)."""
+    m, pose, X = sixcable
+    frame = Frame(m, pose)
+    g = m.robot.gravity_vector
+    nodes, _ = m.full_nodes(pose, interior_views(m, X))
+    c_ax, h = np.full(6, 300.0), 1e-3
+    rng = np.random.default_rng(5)
+    d = 1e-2 * rng.normal(size=m.n_dof)
+    pose1, X1 = advance(m, pose, X, d)
+    n1, _ = m.full_nodes(pose1, interior_views(m, X1))
+    R, _, D = discrete_gradient_force(m, nodes, n1, frame.r, d[3:6], frame.rG, g, c_ax, h)
+    dV = _energy(m, pose1, X1) - _energy(m, pose, X)
+    assert D > 0 and R @ d == pytest.approx(-(dV + D), rel=1e-12)
+    # move one interior node along its segment so that the segment's end length crosses l0
+    i, s = 0, 1                                  # cable 0, segment 1 (nodes 1 and 2)
+    l0 = m.segment_lengths[i]
+    seg = nodes[i][s + 1] - nodes[i][s]
+    u = seg / np.linalg.norm(seg)
+    shift = np.linalg.norm(seg) - l0             # moving node 2 back by it makes l_b = l0
+    vals = []
+    for eps in (-1e-11, 1e-11):
+        nb = [x.copy() for x in nodes]
+        nb[i][s + 1] -= (shift + eps) * u
+        nb[i][s + 2:] = nodes[i][s + 2:]
+        vals.append(discrete_gradient_force(m, nodes, nb, frame.r, np.zeros(3), frame.rG, g,
+                                            c_ax, h)[0])
+    assert np.abs(vals[1] - vals[0]).max() < 1e-3                # [N]; a jump would be 17

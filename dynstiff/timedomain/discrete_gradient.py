@@ -68,8 +68,9 @@ def secant_tension(l_a, l_b, l0, EA):
     return k * np.where(both, 0.5 * (a + b), one)
 
 
-def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec):
-    """Generalised force R_bar (n_dof,) [N, N m] with R_bar . d = -(V_b - V_a).
+def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec, dashpot=None,
+                            h=None):
+    """Generalised force R_bar (n_dof,) [N, N m] with R_bar . d = -(V_b - V_a) - D.
 
     Parameters
     ----------
@@ -87,12 +88,20 @@ def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec):
         Lever arm of the platform's centre of mass at the start [m].
     g_vec : ndarray, shape (3,)
         Gravity [m/s^2].
+    dashpot : ndarray, shape (n_cables,), optional
+        Axial dashpots c_ax [N s] per cable, with ``h`` the step [s]: the mean dashpot
+        force over the step, c_ax theta (l_b - l_a) / (h l0), theta the fraction of
+        [l_a, l_b] above l0, joins the secant tension (continuous where a segment goes
+        taut or slack within the step; it dissipates D = sum c_ax theta (l_b - l_a)^2 /
+        (h l0) >= 0).
 
     Returns
     -------
     R_bar : ndarray, shape (n_dof,)
     t_max : float
         Largest secant tension [N].
+    dissipated : float
+        D [J].
     """
     rob = model.robot
     Phi = rotation_mean(theta)
@@ -103,26 +112,32 @@ def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec):
         da, db = np.diff(xa, axis=1), np.diff(xb, axis=1)
         la, lb = np.sqrt(np.sum(da * da, axis=2)), np.sqrt(np.sum(db * db, axis=2))
         T = secant_tension(la, lb, model.segment_lengths[:, None], EA[:, None])
+        T_d, dissipated = _mean_dashpot(la, lb, model.segment_lengths[:, None], dashpot, h)
+        t_max = float(T.max())
+        T = T + T_d
         f = (T / (la + lb))[..., None] * (da + db)             # pulls node j towards j+1
         w = model.node_masses[:, None] * g_vec
         inner = (f[:, 1:] - f[:, :-1] + w[:, None, :]).ravel()
         fB = -f[:, -1] + 0.5 * w                               # (n, 3)
         W[:3] += fB.sum(axis=0)
         W[3:] += cross(np.asarray(r_a) @ Phi.T, fB).sum(axis=0)
-        t_max = float(T.max())
     else:
-        parts, t_max = [], 0.0
+        parts, t_max, dissipated = [], 0.0, 0.0
         for i, (xa, xb) in enumerate(zip(nodes_a, nodes_b)):
             da, db = np.diff(xa, axis=0), np.diff(xb, axis=0)
             la, lb = np.linalg.norm(da, axis=1), np.linalg.norm(db, axis=1)
             T = secant_tension(la, lb, model.segment_lengths[i], EA[i])
+            t_max = max(t_max, float(T.max()))
+            T_d, D = _mean_dashpot(la, lb, model.segment_lengths[i],
+                                   None if dashpot is None else dashpot[i:i + 1], h)
+            dissipated += D
+            T = T + T_d
             f = (T / (la + lb))[:, None] * (da + db)
             w = model.node_masses[i] * g_vec
             parts.append((f[1:] - f[:-1] + w).ravel())
             fB = -f[-1] + 0.5 * w
             W[:3] += fB
             W[3:] += cross(Phi @ r_a[i], fB)
-            t_max = max(t_max, float(T.max()))
         inner = np.concatenate(parts)
     fg = rob.platform.mass * g_vec
     W[:3] += fg
@@ -130,7 +145,25 @@ def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec):
     R = np.empty(model.n_dof)
     R[:model.n_free] = W[model.free_index]
     R[model.n_free:] = inner
-    return R, t_max
+    return R, t_max, dissipated
+
+
+def _mean_dashpot(la, lb, l0, dashpot, h):
+    """Mean axial dashpot force over a step [N], shape of la, and its dissipation [J]
+    (:func:`discrete_gradient_force`); dashpot (n,) or None."""
+    if dashpot is None or not np.any(dashpot):
+        return 0.0, 0.0
+    c = np.asarray(dashpot, dtype=float).reshape((-1,) + (1,) * (np.ndim(la) - 1))
+    if np.ndim(la) == 1:
+        c = c.reshape(())
+    hi = np.maximum(la, lb)
+    gap = np.abs(lb - la)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        theta = np.where(gap > 0.0, np.clip((hi - l0) / gap, 0.0, 1.0),
+                         (hi > l0).astype(float))
+    rate = (lb - la) / (h * l0)
+    T_d = c * theta * rate
+    return T_d, float(np.sum(T_d * (lb - la)))
 
 def secant_elements(model, nodes_a, nodes_b, dashpot, dt):
     """Newton elements of the energy scheme: per cable (K_e (N_i, 3, 3) [N/m], force on the

@@ -265,7 +265,7 @@ class Dynamics:
             Cb += 0.5 * self.c_visc[i] * m.segment_lengths[i] * J.T @ J
         return Cb
 
-    def forces(self, pose, X, v, t):
+    def forces(self, pose, X, v, t, dashpots=True):
         """Total generalised force F and its external and damping parts, max tension; the
         smallest tension and largest strain of the configuration are kept in
         ``self.extremes``."""
@@ -289,7 +289,9 @@ class Dynamics:
         if np.any(self.c_visc):
             fd[:nf] -= self.platform_viscous(frame) @ v[:nf]
             fd[nf:] -= self.cv * v[nf:]
-        if fast is not None:
+        if not dashpots:              # the energy scheme applies its own (discrete_gradient)
+            pass
+        elif fast is not None:
             fd += dash
         elif np.any(self.c_ax):
             fd += _axial_dashpot(m, frame, X, v, tw, self.c_ax)

@@ -97,6 +97,9 @@ class EnergyStepper:
         frame) at t_a + dt and the ledger increments (external work, dissipated, winch
         work, carried energy) [J]."""
         m_a = self._model(t_a)
+        if k == 1:           # the start's damping force without the axial dashpots
+            self.dyn.set_model(m_a)
+            fd = self.dyn.forces(pose, X, v, t_a, dashpots=False)[2]
         state = (pose, X, v, fe, fd, frame)
         work = np.zeros(4)
         out = self._interval(state, t_a, dt, m_a, k, 0, work)
@@ -141,12 +144,12 @@ class EnergyStepper:
         for it in range(newton.max_iter + 1):
             pose_b, X_b = advance(m_b, pose, X, d)
             v_b = 2.0 * d / h - v
-            F_b, fe_b, fd_b, _, frame_b = dyn.forces(pose_b, X_b, v_b, t_b)
+            F_b, fe_b, fd_b, _, frame_b = dyn.forces(pose_b, X_b, v_b, t_b, dashpots=False)
             theta = np.zeros(6)
             theta[m_b.free_index] = d[:nf]
             nodes_b, _ = mid.full_nodes(pose_b, interior_views(mid, X_b))
-            R, t_max = discrete_gradient_force(mid, nodes_a, nodes_b, frame_a.r, theta[3:],
-                                               frame_a.rG, g_vec)
+            R, t_max, D = discrete_gradient_force(mid, nodes_a, nodes_b, frame_a.r,
+                                                  theta[3:], frame_a.rG, g_vec, dyn.c_ax, h)
             rate = (v_b - v) / h
             G = np.concatenate([0.5 * (frame_a.Mff + frame_b.Mff) @ rate[:nf], mu * rate[nf:]])
             G -= R + 0.5 * (fe + fe_b + fd + fd_b)
@@ -170,7 +173,7 @@ class EnergyStepper:
             d = d - newton.lu.solve(G)
         newton.iterations += it
         work[0] += 0.5 * d @ (fe + fe_b)
-        work[1] -= 0.5 * d @ (fd + fd_b)
+        work[1] += D - 0.5 * d @ (fd + fd_b)
         if m_b is not m_a:
             geo_a, geo_b = _geometry(nodes_a), _geometry(nodes_b)
             work[2] += (_stored(mid, geo_a) - _stored(m_a, geo_a)
