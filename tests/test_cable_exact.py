@@ -473,7 +473,7 @@ def test_slack_cables_agree_with_graded_lumped_chains(shape, ratio):
     the end stiffness, static (energy norm) and at two frequencies in the widest gaps of the
     spectrum, agree with lumped chains graded towards the bottom of the U (theory.md §7.4),
     Richardson-extrapolated from N = 800 and 1600, to 1e-6 (measured 3e-11 to 3e-9 on the
-    frequencies, 5e-9 to 4e-8 on the stiffness). The reference has converged: its
+    frequencies, 5e-9 to 5e-8 on the stiffness). The reference has converged: its
     extrapolation from N = 400, 800 differs by less than 1e-7. Before the mixed form
     (theory.md §11.2) this cable was refused below T_min / T_max ~ 1e-3."""
     s = slack_state(SLACK_SHAPES[shape], ratio)
