@@ -6,6 +6,13 @@ import os
 import subprocess
 import sys
 
+# Under pytest-xdist every core runs a worker: one BLAS thread each (set before numpy loads
+# OpenBLAS), else the workers' dense factorisations and eigen solves (the exact cable's)
+# fight over the cores: a test of tests/test_cable_exact.py ran 8 times slower.
+if "PYTEST_XDIST_WORKER" in os.environ:
+    for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(_var, "1")
+
 import numpy as np
 import pytest
 import scipy.linalg

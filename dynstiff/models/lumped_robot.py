@@ -322,9 +322,11 @@ class LumpedMassModel:
                 f"axial_factor must be finite, one value or one per cable, got {axial_factor!r}")
         return self.tangent_unchecked(pose, interior, lambda i: factors[i])
 
-    def tangent_unchecked(self, pose, interior, axial_of):
+    def tangent_unchecked(self, pose, interior, axial_of, elements=None):
         """:meth:`tangent_stiffness` without the argument checks, with ``axial_of(i)`` the
-        axial factor of cable i (for solvers and time stepping)."""
+        axial factor of cable i (for solvers and time stepping); ``elements``, a list of
+        (K_e (N_i, 3, 3) [N/m], force on the platform at B_i (3,) [N]) per cable, replaces
+        the elements of the configuration (the energy scheme's secant elements)."""
         import scipy.sparse
         rob = self.robot
         fi, nf = self.free_index, self.n_free
@@ -337,9 +339,13 @@ class LumpedMassModel:
         for i, x in enumerate(nodes):
             N = self.segments[i]
             l0, EA = self.segment_lengths[i], rob.cables[i].EA
-            units, lengths, T = segment_forces(x, l0, EA)
-            axial = np.where(T > 0, axial_of(i) * EA / l0, 0.0)
-            ke = element_stiffness(units, lengths, T, axial)
+            if elements is None:
+                units, lengths, T = segment_forces(x, l0, EA)
+                axial = np.where(T > 0, axial_of(i) * EA / l0, 0.0)
+                ke = element_stiffness(units, lengths, T, axial)
+                F = -T[-1] * units[-1] + 0.5 * self.node_masses[i] * gvec
+            else:
+                ke, F = elements[i]
             J = lever_map(r[i], fi)
             o = self.offsets[i]
             if N > 1:
@@ -355,7 +361,6 @@ class LumpedMassModel:
                 cols += [np.tile(ci, 3), np.repeat(ri, nf)]
                 vals += [kip.ravel(), kip.ravel()]        # K_pi = K_ip^T
             Kpp += J.T @ ke[-1] @ J
-            F = -T[-1] * units[-1] + 0.5 * self.node_masses[i] * gvec
             Kgeo -= skew(F) @ skew(r[i])
         rG = pose.matrix @ rob.platform.center_of_mass
         Kgeo -= skew(rob.platform.mass * gvec) @ skew(rG)

@@ -122,7 +122,7 @@ def node_mass_vector(model):
     return np.repeat(model.node_masses, 3 * (model.segments - 1))
 
 
-def _gyroscopic(model, frame, tw):
+def gyroscopic(model, frame, tw):
     """Centripetal / gyroscopic terms g(q, v) on the free DOFs [N, N m].
 
     [w x (w x S); w x (I_P w)] with S the first moment and I_P the inertia about P of the
@@ -265,7 +265,7 @@ class Dynamics:
             Cb += 0.5 * self.c_visc[i] * m.segment_lengths[i] * J.T @ J
         return Cb
 
-    def forces(self, pose, X, v, t):
+    def forces(self, pose, X, v, t, dashpots=True):
         """Total generalised force F and its external and damping parts, max tension; the
         smallest tension and largest strain of the configuration are kept in
         ``self.extremes``."""
@@ -289,11 +289,13 @@ class Dynamics:
         if np.any(self.c_visc):
             fd[:nf] -= self.platform_viscous(frame) @ v[:nf]
             fd[nf:] -= self.cv * v[nf:]
-        if fast is not None:
+        if not dashpots:              # the energy scheme applies its own (discrete_gradient)
+            pass
+        elif fast is not None:
             fd += dash
         elif np.any(self.c_ax):
             fd += _axial_dashpot(m, frame, X, v, tw, self.c_ax)
-        F = R + fe + fd - np.concatenate([_gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
+        F = R + fe + fd - np.concatenate([gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
         return F, fe, fd, t_max, frame
 
     def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
@@ -309,14 +311,16 @@ class Dynamics:
         fi = m.free_index
         return np.concatenate([W[fi], inner]), np.concatenate([Wd[fi], d_inner]), t_max
 
-    def newton_matrix(self, pose, X, dt):
-        """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC)."""
+    def newton_matrix(self, pose, X, dt, elements=None):
+        """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC); ``elements`` as
+        :meth:`LumpedMassModel.tangent_unchecked` (their axial dashpots included)."""
         import scipy.sparse
         m = self.model
         frame = Frame(m, pose, self._last)
         EA = np.array([cb.EA for cb in m.robot.cables])
         extra = 2.0 * self.c_ax / (dt * EA)
-        K = m.tangent_unchecked(pose, interior_views(m, X), lambda i: 1.0 + extra[i])
+        K = m.tangent_unchecked(pose, interior_views(m, X), lambda i: 1.0 + extra[i],
+                                elements)
         c_mass = 4.0 / dt ** 2 + 2.0 * self.alpha / dt
         block = c_mass * frame.Mff + (2.0 / dt) * self.platform_viscous(frame)
         diag = c_mass * self.mu + (2.0 / dt) * self.cv

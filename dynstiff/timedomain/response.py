@@ -90,6 +90,8 @@ class TimeResponse:
     dt : float
         Time step [s]; the records are ``record_every`` steps apart.
     n_steps, newton_iterations, jacobian_updates, slack_steps, record_every : int
+    substeps : int
+        Steps of the "energy" scheme that were split in two because Newton failed.
     explicit_limit : float
         Predicted explicit stability limit at the start [s].
     wall_time : float
@@ -115,6 +117,7 @@ class TimeResponse:
     record_every: int = 1
     explicit_limit: float = 0.0
     wall_time: float = 0.0
+    substeps: int = 0
 
     def __repr__(self):
         return (f"TimeResponse({self.scheme}, {self.times[-1]:.4g} s in {self.n_steps} steps of "

@@ -45,6 +45,14 @@ properly (a Lie-group Newmark scheme with the angular velocity in the base frame
 Newton matrix neglects the derivatives of M(q) and g(q, v), which slows the iterations for
 fast rotations but does not change their solution).
 
+``"energy"``: the momentum balance at the mid-step with the discrete gradient of the
+elastic and gravity energy between the two configurations (theory.md §7.3,
+:mod:`dynstiff.timedomain.energy_scheme`): the segments' energy is conserved to the Newton
+tolerance whatever the step, through slack and snap, where the trapezoidal rule's force at
+the end of a step that crosses l = l0 misses the kink of the tension law and feeds the
+snaps; a step whose Newton iteration fails is retried as two halves. Equal to
+``"implicit"`` for a linear system; not compiled (a Python loop).
+
 ``"explicit"``: velocity Verlet (central differences), stable for dt < l0 / sqrt(EA / m),
 the period of the highest axial chain mode (theory.md §7.3, :func:`explicit_step_limit`);
 velocity-dependent forces use the half-step velocity.
@@ -79,9 +87,11 @@ Not modelled: the cable's hysteretic ``loss_factor`` (a frequency-domain idealis
 ``TimeDamping(axial=...)``), contact, bending, and the axial transport velocity of paid-out
 material.
 
-Code: this module checks the inputs and runs the loop; ``time_damping`` holds the damping
-options and the explicit step limit, ``time_dynamics`` the forces, mass and Newton matrix,
-``time_stepping`` the two schemes, the blow-up checks and the energy ledger.
+Code: this module checks the inputs and runs the loop; ``damping`` holds the damping
+options and the explicit step limit, ``dynamics`` the forces, mass and Newton matrix,
+``stepping`` the implicit and explicit steps, the blow-up checks and the energy ledger,
+``energy_scheme`` the energy-consistent step and its step control, ``discrete_gradient``
+its forces.
 """
 
 import time as _time
@@ -112,6 +122,7 @@ from dynstiff.timedomain.dynamics import (
     node_mass_vector,
     potential_energy,
 )
+from dynstiff.timedomain.energy_scheme import EnergyStepper
 from dynstiff.timedomain.inputs import (
     excitation_function,
     initial_state,
@@ -138,7 +149,7 @@ __all__ = [
     "SlackSegmentWarning", "TimeStepWarning", "EnergyBalanceWarning", "explicit_step_limit"
 ]
 
-_SCHEMES = ("implicit", "explicit")
+_SCHEMES = ("implicit", "explicit", "energy")
 
 
 class SlackSegmentWarning(DynstiffWarning, RuntimeWarning):
@@ -180,7 +191,9 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         Unstretched lengths L0_i(t) [m], shape (n_cables,), as a callable or a table
         (times (k,) [s] strictly increasing, from t <= 0; lengths (k, n_cables) [m]),
         interpolated linearly and held after its end. Default: the model's, fixed.
-    scheme : {"implicit", "explicit"}
+    scheme : {"implicit", "explicit", "energy"}
+        "energy" steps through slack segments and snaps with the energy conserved (the
+        choice when cables go slack); see the module notes.
     initial : array_like, optional
         Platform offset (6,) [m, rad] from the equilibrium (rotation vector composed with
         the equilibrium rotation; interior nodes in static equilibrium for the displaced
@@ -343,6 +356,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     ledger = Ledger(dyn.kinetic(frame, v) + pot[0] + pot[1], V_eq[0] + V_eq[1], pot[0])
     rec.store(0, 0.0, pose, v, m, pot, ledger.row(dyn.kinetic(frame, v), pot), X)
     newton = StepNewton(tol, max_iter)
+    stepper = EnergyStepper(dyn, m, length_fn, newton) if scheme == "energy" else None
     slack_steps = 0
     fast = compiled.load("chain_run")
     if scheme == "explicit" and fast is not None and length_fn is None:
@@ -350,7 +364,7 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
                                             record_every, rec, ledger, damping,
                                             SlackSegmentWarning, table)
         n_steps_done = n_steps
-    elif fast is not None and length_fn is None:
+    elif scheme == "implicit" and fast is not None and length_fn is None:
         slack_steps = compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps,
                                             record_every, rec, ledger, damping,
                                             SlackSegmentWarning, table, newton)
@@ -360,22 +374,34 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
     for k in range(n_steps_done + 1, n_steps + 1):
         t1 = k * dt
         m_prev = m
-        if length_fn is not None:
+        if length_fn is not None and stepper is None:
             m = model_at(model, length_fn(t1))
             dyn.set_model(m)
-        step = implicit_step if scheme == "implicit" else explicit_step
-        d, pose1, X1, v1, a1, fe1, fd1, frame1 = step(dyn, pose, X, v, a, t1, dt, k, newton)
+        if stepper is not None:
+            (pose1, X1, v1, a1, fe1, fd1, frame1), work = stepper.step(
+                pose, X, v, fe, fd, frame, t1 - dt, dt, k)
+            m = dyn.model
+        else:
+            step = implicit_step if scheme == "implicit" else explicit_step
+            d, pose1, X1, v1, a1, fe1, fd1, frame1 = step(dyn, pose, X, v, a, t1, dt, k,
+                                                          newton)
         # ---- bookkeeping and checks: strain and slack from the step's own force
         # evaluation at every step; the energies (a pass over every segment) where a record,
         # a winch term, a slack segment or the end of the run needs them
         t_min, strain = dyn.extremes
-        ledger.ext += 0.5 * d @ (fe + fe1)
-        ledger.diss -= 0.5 * d @ (fd + fd1)
+        if stepper is not None:                  # the scheme's own ledger of its sub-steps
+            ledger.ext += work[0]
+            ledger.diss += work[1]
+            ledger.winch += work[2]
+            ledger.carried += work[3]
+        else:
+            ledger.ext += 0.5 * d @ (fe + fe1)
+            ledger.diss -= 0.5 * d @ (fd + fd1)
         record = k % record_every == 0
         pot1 = None
         if record or length_fn is not None or t_min <= 0.0 or k == n_steps:
             pot1 = potential_energy(m, frame1, X1)
-        if m is not m_prev:
+        if m is not m_prev and stepper is None:
             ledger.winch += 0.5 * (
                 sum(potential_energy(m, frame, X)[:2]) - pot[0] - pot[1]
                 + pot1[0] + pot1[1] - sum(potential_energy(m_prev, frame1, X1)[:2]))
@@ -404,4 +430,4 @@ def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
         newton_iterations=newton.iterations, jacobian_updates=newton.updates,
         slack_steps=slack_steps, explicit_limit=limit,
         wall_time=_time.perf_counter() - wall0, static_energy=V_eq[0] + V_eq[1],
-        record_every=record_every)
+        record_every=record_every, substeps=0 if stepper is None else stepper.substeps)

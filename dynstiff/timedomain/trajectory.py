@@ -297,7 +297,7 @@ class TrackingResult:
 
 
 def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit",
-          damping=None, record_every=1, lengths=None, progress=None):
+          damping=None, record_every=1, lengths=None, progress=None, t_end=None):
     """Command a path through its quasi-static cable lengths and simulate the motion.
 
     The lumped-mass robot (``segments`` per cable) starts from its static equilibrium at
@@ -321,6 +321,8 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
         straight-cable kinematics, to show what ignoring sag and stretch costs).
     progress : callable, optional
         ``progress(done, total)`` during the quasi-static inverse kinematics.
+    t_end : float, optional
+        End of the simulation [s] (default: the path's duration plus ``settle``).
 
     Returns
     -------
@@ -332,6 +334,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
         raise InvalidParameterError(
             f"trajectory must be a Trajectory, got {type(trajectory).__name__}")
     settle = positive_scalar("settle", settle, allow_zero=True)
+    t_end = trajectory.duration + settle if t_end is None else positive_scalar("t_end", t_end)
     L, T = quasi_static_lengths(robot, trajectory, progress)
     if lengths is not None:
         lengths = np.asarray(lengths, dtype=float)
@@ -342,10 +345,10 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
         L = lengths
     from scipy.interpolate import CubicSpline
     spline = CubicSpline(trajectory.times, L, axis=0)     # not-a-knot: keeps the end speeds
-    t_end = trajectory.duration
+    t_path = trajectory.duration
 
     def commanded(t):                  # smooth between samples, held after the end
-        return spline(min(t, t_end))
+        return spline(min(t, t_path))
 
     model = LumpedMassModel(robot, L[0], segments)
     start = np.concatenate([trajectory.positions[0], trajectory.rotations[0]])
@@ -353,7 +356,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     EA = max(c.EA for c in robot.cables)
     tol = max(1e-10, 50 * np.finfo(float).eps * EA / max(float(T.min()), 1e-300))
     eq0 = model.equilibrium(initial_pose=start, tol=tol)
-    resp = simulate(model, trajectory.duration + settle, dt, lengths=commanded,
+    resp = simulate(model, t_end, dt, lengths=commanded,
                     tol=max(1e-9, tol), start=eq0,
                     scheme=scheme, damping=damping, record_every=record_every)
     P, R = trajectory.at(resp.times)

@@ -1,0 +1,37 @@
+"""The static state and mesh of the exact cable (dynstiff/cable/exact_mesh.py, theory.md
+§11.2, §11.3): the Gauss-Lobatto-Legendre rule and the closed-form integrals of t t^T along
+the arc, each against quadrature. The mesh's spacing is tested through the cable in
+tests/test_cable_exact.py."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.cable.exact_mesh import gll, tangent_integrals
+
+
+def test_gll_rule_integrates_polynomials_and_differentiates_exactly():
+    xi, w, Dm = gll(7)
+    assert w.sum() == pytest.approx(2.0, abs=1e-14)
+    assert np.dot(w, xi**12) == pytest.approx(2 / 13, rel=1e-13)          # degree 2p - 2
+    np.testing.assert_allclose(Dm @ xi**5, 5 * xi**4, atol=1e-12)
+
+
+@pytest.mark.parametrize("case", ["sagging", "weightless", "vertical"])
+def test_tangent_integrals_match_quadrature(case):
+    """int t t^T ds over the arc in closed form (theory.md §11.3, damped static stiffness)
+    against 2000-point Gauss quadrature of t(s) = (H, V0 + w s) / T(s)."""
+    if case == "sagging":
+        s = ds.solve_catenary((0, 0, 0), (10.0, 0, 5.0), 11.5, ds.Cable(1.0, 1e6))
+    elif case == "weightless":
+        s = ds.solve_catenary((0, 0, 0), (6.0, 0, 8.0), 9.99, ds.Cable(0.5, 2e4), g=0.0)
+    else:
+        s = ds.solve_catenary((0, 0, 0), (0.0, 0, 10.0), 9.9, ds.Cable(0.5, 2e4))
+    x, w = np.polynomial.legendre.leggauss(2000)
+    L0 = s.unstretched_length
+    sq = 0.5 * L0 * (x + 1)
+    V = s.V0 + s.cable.weight_per_length(s.g) * sq
+    T = np.hypot(s.H, V)
+    tx, tz = s.H / T, V / T
+    ref = [0.5 * L0 * np.dot(w, f) for f in (tx * tx, tx * tz, tz * tz)]
+    np.testing.assert_allclose(tangent_integrals(s), ref, rtol=1e-12, atol=1e-14 * L0)
