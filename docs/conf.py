@@ -41,6 +41,8 @@ root_doc = "index"
 exclude_patterns = ["_build", "**.ipynb_checkpoints", "examples/README.txt"]
 templates_path = ["_templates"]
 nitpicky = True
+# quotes and ellipses only: "--option" in help texts stays two hyphens
+smartquotes_action = "qe"
 
 # ---------------------------------------------------------------- MyST (Markdown pages)
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence", "deflist"]
@@ -122,4 +124,6 @@ html_theme_options = {
     "footer_end": ["sphinx-version"],
 }
 html_show_sourcelink = False
+# pages without sub-pages: no empty navigation column
+html_sidebars = {page: [] for page in ("getting_started", "cli", "theory", "validation")}
 html_context = {"default_mode": "light"}

@@ -14,7 +14,7 @@ from docutils.statemachine import StringList
 from sphinx.util.docutils import SphinxDirective
 from sphinx.util.nodes import nested_parse_with_titles
 
-WIDTH = 88
+WIDTH = 76
 
 
 def escape(text):
@@ -60,7 +60,8 @@ def _option(parser, action):
 def _options(parser):
     lines = []
     for group in parser._action_groups:
-        actions = [a for a in group._group_actions if a.help is not argparse.SUPPRESS]
+        actions = [a for a in group._group_actions if a.help is not argparse.SUPPRESS
+                   and not isinstance(a, argparse._SubParsersAction)]
         if not actions:
             continue
         title = group.title or "options"
@@ -81,12 +82,12 @@ def summary_lines(parser):
 
 
 def reference_lines(parser):
-    lines = [".. _cli-dynstiff:", "", "``dynstiff``", "-" * 12, "",
+    lines = [".. _cli-dynstiff:", "", "dynstiff", "-" * 8, "",
              escape(parser.description or ""), "", "::", ""]
     lines += ["    " + line for line in _usage(parser).splitlines()] + [""]
     lines += _options(parser)
     for name, help_, sub in subcommands(parser):
-        title = f"``dynstiff {name}``"
+        title = f"dynstiff {name}"
         lines += [f".. _cli-{name}:", "", title, "-" * len(title), "", escape(help_), ""]
         if sub.description:
             lines += [escape(sub.description), ""]

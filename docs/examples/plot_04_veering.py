@@ -16,4 +16,8 @@ scene = ds.load_scene("cogiro")
 poses = np.linspace([0.0, 0.0, 1.0], [4.0, 2.0, 1.0], 7)       # [m]
 sw = ds.sweep(scene.robot, poses=poses, n_modes=24)
 print(sw.veering_table())
+
+# %%
+# The tracked global modes against the arc length of the path, the local modes as grey
+# dots:
 fig = plot_veering(sw)

@@ -19,6 +19,10 @@ eq = scene.equilibrium()
 checks = design_checks(scene.robot, eq.pose, band_hz=(1.5, 2.0))
 print(checks.text())
 
+# %%
+# The receptances with the modes marked (red global, purple mixed, blue local) and the
+# forbidden band shaded:
+
 model = ds.FrequencyModel(eq)
 res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 6.0, 3000), inputs=["fx", "fz"],
              outputs=["x", "z"])

@@ -15,4 +15,8 @@ scene = ds.load_scene("cogiro")
 eq = scene.equilibrium()
 rec = ds.recommend_model(eq, band_hz=(0.1, 6.0), rtol=1e-2)
 print(rec.text())
+
+# %%
+# The predicted error of every rung, cheapest first; grey bars are models that miss the
+# cable modes in the band:
 fig = plot_model_errors(rec)

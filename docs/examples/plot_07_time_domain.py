@@ -21,6 +21,9 @@ lm = ds.build_model(eq, "lumped", segments=2)    # linearised about its own equi
 res = simulate(lm, 4.0, 2e-3, initial=[1e-4, 5e-5, 1e-4, 0, 0, 0])
 print("energy balance residual:", np.abs(res.energy.relative_residual).max())
 
+# %%
+# The amplitude spectra of the platform's motion, with the closed-form frequencies:
+
 sp = res.spectrum("z")
 print(f"spectrum peak {sp.peaks_hz[0]:.4f} Hz, closed form {f_closed} Hz, "
       f"resolution {sp.resolution_hz:.3f} Hz")

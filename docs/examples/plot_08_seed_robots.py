@@ -14,6 +14,11 @@ import dynstiff as ds
 from dynstiff.report.robot3d import plot_robot
 
 names = ds.list_scenes()
+for name in names:
+    print(f"{name:<10s} {ds.load_scene(name).description}")
+
+# %%
+# Each robot at the equilibrium of its scene (anchors as squares, the platform in orange):
 fig = plt.figure(figsize=(12, 7.5), layout="constrained")
 for i, name in enumerate(names):
     scene = ds.load_scene(name)
@@ -21,5 +26,4 @@ for i, name in enumerate(names):
     plot_robot(scene.equilibrium(), ax=ax)
     ax.get_legend().remove()
     ax.set_title(f"{name}: {len(scene.robot.cables)} cables", fontsize="medium")
-    print(f"{name:<10s} {scene.description}")
 plt.show()

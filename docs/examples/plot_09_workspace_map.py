@@ -19,4 +19,8 @@ print(int(wmap["dynamic"].sum()), "of", wmap["dynamic"].size,
       "positions pass every check")
 print(wmap.dynstiff.to_frame()[["x", "y", "z", "first_platform_hz", "band_margin",
                                 "dynamic"]].head(8))
+
+# %%
+# Slices at the two heights: the first platform frequency, the margin to the forbidden
+# band and the dynamic workspace:
 fig = wmap.dynstiff.plot(n_slices=2)

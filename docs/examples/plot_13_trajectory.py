@@ -16,4 +16,7 @@ scene = ds.load_scene("fourcable")
 path = line([0.0, 0.0, 0.15], [0.2, 0.1, 0.15], speed=0.1, ramp=0.5)
 tr = track(scene.robot, path, segments=1, dt=2e-3, settle=0.5)
 print(f"largest deviation from the desired path: {tr.max_deviation * 1e3:.3f} mm")
+
+# %%
+# The deviation from the path (left axis) and the simulated and desired positions (right):
 fig = plot_tracking(tr)
