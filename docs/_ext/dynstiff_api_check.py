@@ -4,16 +4,12 @@
 
 import importlib
 
-from sphinx.util import logging
-
-logger = logging.getLogger(__name__)
-
 #: Packages whose ``__all__`` is documented; a name they share with ``dynstiff`` is
 #: documented once, under ``dynstiff``.
-PACKAGES = ("dynstiff", "dynstiff.plot", "dynstiff.lumped", "dynstiff.scenes",
-            "dynstiff.timedomain.trajectory", "dynstiff.timedomain.pendulum",
-            "dynstiff.io.caspr", "dynstiff.io.caspr_motion", "dynstiff.io.exchange",
-            "dynstiff.maps.dataset")
+PACKAGES = ("dynstiff", "dynstiff.plot", "dynstiff.plot.workspace", "dynstiff.report.robot3d",
+            "dynstiff.lumped", "dynstiff.scenes", "dynstiff.timedomain.trajectory",
+            "dynstiff.timedomain.pendulum", "dynstiff.maps.workspace", "dynstiff.maps.dataset",
+            "dynstiff.io.caspr", "dynstiff.io.caspr_motion", "dynstiff.io.exchange")
 
 
 def missing_pages(env):
@@ -35,6 +31,8 @@ def missing_pages(env):
 
 
 def check(app, env):
+    from sphinx.util import logging
+    logger = logging.getLogger(__name__)
     for package, name in missing_pages(env):
         logger.warning(f"{package}.{name} is public (in __all__) but has no API page",
                        type="dynstiff", subtype="api")
