@@ -1,12 +1,17 @@
-"""Plain-text mathematics in the docstrings, shown as written.
+"""Docstrings shown as the package writes them.
 
-The docstrings write formulas as plain text, as ``help()`` shows them: ``|B - A|`` is a
-norm, ``|mu|`` a modulus. In reStructuredText ``|...|`` is a substitution, so after numpydoc
-has turned a docstring into reStructuredText every ``|`` of running text is escaped. Literal
-text (````...````, ``::`` blocks and directive bodies) and tables keep theirs.
+* Plain-text mathematics: the docstrings write formulas as plain text, as ``help()`` shows
+  them: ``|B - A|`` is a norm, ``|mu|`` a modulus. In reStructuredText ``|...|`` is a
+  substitution, so after numpydoc has turned a docstring into reStructuredText every ``|``
+  of running text is escaped. Literal text (````...````, ``::`` blocks and directive
+  bodies) and tables keep theirs.
+* Constants re-exported by a package (``dynstiff.RUNGS``, ``dynstiff.STANDARD_GRAVITY``):
+  their ``#:`` comment is in the module that defines them, not in the one that imports
+  them; without it autodoc would show the docstring of ``tuple`` or ``float``.
 """
 
 import re
+import sys
 
 _LITERAL = re.compile(r"(``.*?``|`[^`]*`_?)")
 _LINE_BLOCK = re.compile(r"\s*\|( |$)")             # "| text": a line block
@@ -38,7 +43,32 @@ def escape_bars(lines):
         lines[i] = _escape_text(line)
 
 
+def defining_comment(name, obj):
+    """The ``#:`` comment of ``obj`` in the ``dynstiff`` module that defines it, as lines."""
+    from sphinx.pycode import ModuleAnalyzer
+    attr = name.rsplit(".", 1)[-1]
+    for modname, module in sorted(sys.modules.items()):
+        if not modname.startswith("dynstiff") or getattr(module, attr, None) is not obj:
+            continue
+        try:
+            docs = ModuleAnalyzer.for_module(modname).find_attr_docs()
+        except Exception:              # a module without source (compiled, namespace)
+            continue
+        if ("", attr) in docs:
+            return list(docs[("", attr)])
+    return None
+
+
+def _is_type_docstring(obj, lines):
+    """Whether ``lines`` are the docstring of ``obj``'s type (a constant has none)."""
+    doc = (type(obj).__doc__ or "").strip()
+    text = [line.strip() for line in lines if line.strip()]
+    return bool(text and doc) and text[0] == doc.splitlines()[0].strip()
+
+
 def process(app, what, name, obj, options, lines):
+    if what in ("data", "attribute") and _is_type_docstring(obj, lines):
+        lines[:] = defining_comment(name, obj) or []
     escape_bars(lines)
 
 
