@@ -98,3 +98,15 @@ def test_plain_text_bars_are_escaped_outside_literals_and_tables():
     assert lines[4] == "    |mu| > 1"
     assert lines[6:9] == ["| a line block", "+---+---+", "| a | b |"]
     assert lines[9] == r"After \|\|K\|\|."
+
+
+def test_reexported_constants_show_their_own_comment():
+    pytest.importorskip("sphinx")
+    from dynstiff_docstrings import _is_type_docstring, defining_comment
+
+    import dynstiff
+    assert "cheapest first" in " ".join(defining_comment("dynstiff.RUNGS", dynstiff.RUNGS))
+    assert "gravity" in " ".join(defining_comment("dynstiff.STANDARD_GRAVITY",
+                                                  dynstiff.STANDARD_GRAVITY))
+    assert _is_type_docstring(dynstiff.RUNGS, ["", "Built-in immutable sequence.", ""])
+    assert not _is_type_docstring(dynstiff.RUNGS, ["The rungs, cheapest first."])
