@@ -15,13 +15,7 @@ from dynstiff.timedomain.discrete_gradient import (
     secant_elements,
     secant_tension,
 )
-from dynstiff.timedomain.dynamics import (
-    FastPose,
-    Frame,
-    advance,
-    interior_views,
-    potential_energy,
-)
+from dynstiff.timedomain.dynamics import FastPose, Frame, advance, interior_views, potential_energy
 
 
 @pytest.mark.parametrize("angle", [0.0, 2e-4, 9.9e-3, 1.01e-2, 0.3, 2.5])

@@ -26,8 +26,8 @@ def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", **options):
 
     The viscous part is added to every cable's own ``viscous_damping`` (all rungs with
     cable mass); the cable loss factor and the platform modal ratio are options of the
-    closed-form and exact models (:class:`dynstiff.FrequencyModel`, :class:`ExactModel`,
-    theory.md §12.2). The massless
+    closed-form and exact models (:class:`dynstiff.FrequencyModel`,
+    :class:`~dynstiff.models.exact.ExactModel`, theory.md §12.2). The massless
     rungs carry no damping; the lumped rung takes the viscous part only.
 
     Parameters

@@ -67,9 +67,9 @@ def modes(model, n_modes=None, fmax_hz=None, method="auto", max_modes=20000):
     a basis of it, M_p-orthonormal and orthogonal in cable kinetic energy too (so each
     mode's energy and participation is its own, not an arbitrary basis's). Kinetic energies:
     platform x^T M_p x, cables from the rung's ``cable_kinetic_energies`` (closed-form
-    fields, theory.md §6). Modes are labelled by platform share (:func:`dynstiff.results.
-    mode_kinds`); global modes are paired one-to-one with the massless-cable modes by
-    mass-weighted MAC.
+    fields, theory.md §6). Modes are labelled by platform share
+    (:func:`dynstiff.results.mode_kinds`); global modes are paired one-to-one with the
+    massless-cable modes by mass-weighted MAC.
 
     Parameters
     ----------

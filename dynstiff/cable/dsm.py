@@ -190,9 +190,10 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
         (:class:`dynstiff.cable.exact.ExactCable`, theory.md §11), discretised for the
         largest |omega| asked.
     guard_rtol : float or None
-        The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` when the cable
-        is slack, its axial modes are in the band asked, or its clamped frequencies in the
-        band are further than this from the exact model's. None: no check.
+        The closed form's guard (theory.md §11.5): a
+        :class:`~dynstiff.errors.ClosedFormWarning` when the cable is slack, its axial modes
+        are in the band asked, or its clamped frequencies in the band are further than this
+        from the exact model's. None: no check.
 
     Returns
     -------

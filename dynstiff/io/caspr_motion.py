@@ -25,7 +25,8 @@ default_operational_set=...>``): ``<operational_set id>`` of markers ``<position
 ``<orientation_euler_xyz>`` or ``<pose_euler_xyz>`` (``marker_id``, ``name``), each a point of
 a link (``<link>``, ``<offset>`` [m, link frame]) and the coordinates it controls
 (``<axes active_axes="xyz">``). They hold no bounds: the bounds of a single-body robot's
-workspace are its joint's ``q_min`` / ``q_max`` (:attr:`CasprModel.workspace_box`).
+workspace are its joint's ``q_min`` / ``q_max``
+(:attr:`~dynstiff.io.caspr.CasprModel.workspace_box`).
 """
 
 from dataclasses import dataclass

@@ -118,8 +118,8 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
                    tensions="default"):
     """Statics, modes and the verdicts of :mod:`dynstiff.analyses.verdicts` at consecutive
     poses, each warm-started from the last feasible one (the statics, and nothing else,
-    depend on the start: the verdicts are those of :func:`dynstiff.analyses.checks.
-    design_checks` at the same pose).
+    depend on the start: the verdicts are those of
+    :func:`dynstiff.analyses.checks.design_checks` at the same pose).
 
     Parameters
     ----------

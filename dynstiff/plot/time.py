@@ -36,9 +36,9 @@ def plot_spectrum(spectrum, ax=None, channels=None, modes=None, band_hz=None):
     Parameters
     ----------
     spectrum : Spectrum, sequence of Spectrum, or TimeResponse
-        From :meth:`TimeResponse.spectrum`: ``amplitude`` [m or rad] at ``freq_hz`` [Hz],
-        both shape (n_f,). A TimeResponse is analysed with the default window, one spectrum
-        per channel.
+        From :meth:`~dynstiff.lumped.TimeResponse.spectrum`: ``amplitude`` [m or rad] at
+        ``freq_hz`` [Hz], both shape (n_f,). A TimeResponse is analysed with the default
+        window, one spectrum per channel.
     ax : matplotlib Axes, optional
     channels : sequence of str, optional
         Channels to draw, among ``("x", "y", "z", "rx", "ry", "rz")`` (default: every given

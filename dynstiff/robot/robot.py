@@ -207,9 +207,9 @@ class Robot:
 
         ``pose``
             Inverse statics: the tension distribution that balances the platform at this
-            pose (see :func:`tension_distribution`), with the cable directions at B taken from
-            the elastic catenary and iterated to convergence, then each cable's unstretched
-            length for its tension at B.
+            pose (see :func:`~dynstiff.robot.statics.tension_distribution`), with the cable
+            directions at B taken from the elastic catenary and iterated to convergence, then
+            each cable's unstretched length for its tension at B.
         ``unstretched_lengths``
             Forward statics: the pose of the free DOFs at which the platform is in
             equilibrium (Newton with the analytic 6x6 stiffness), starting from the

@@ -40,7 +40,7 @@ L, L0          chord |E_i - D| at rest, unstretched length L - P/k           m
 m_c, n         mass of one cable, number of its point masses                 kg, --
 x0, f, psi     amplitude, frequency and phase lag of the end excitation      m, Hz, rad
 Omega, T_e     2 pi f, excitation period 1/f                                 rad/s, s
-y              state (q, dq/dt), q = (phi, x_11, z_11, ..., x_2n, z_2n)     rad, m, ...
+y              state (q, dq/dt), q = (phi, x_11, z_11, ..., x_2n, z_2n)      rad, m, ...
 M              monodromy matrix dy(T_e)/dy(0) along the periodic response    --
 mu             Floquet multipliers, eigenvalues of M                         --
 =============  ============================================================  ==========
