@@ -13,6 +13,12 @@ if "PYTEST_XDIST_WORKER" in os.environ:
     for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(_var, "1")
 
+# Commands run in subprocesses (`python -m dynstiff ...`, notebooks, gallery scripts) import
+# the tree under test, not whatever version is installed in site-packages.
+_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+os.environ["PYTHONPATH"] = os.pathsep.join(
+    [_ROOT] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _ROOT])
+
 import numpy as np
 import pytest
 import scipy.linalg
