@@ -1,4 +1,4 @@
-"""What a calibration says about itself (theory.md §15.6): whether its pairing of measured
+"""What a calibration says about itself (theory.md §12.6): whether its pairing of measured
 and model modes was ambiguous, whether its residuals stand far above the measurement
 uncertainty, and whether an estimate sits on its search bound. Each finding is a
 :class:`~dynstiff.errors.CalibrationWarning` naming the mode or parameter and what to give

@@ -1,4 +1,4 @@
-"""The platform modes of a robot: the modes every modal verdict is about (theory.md §12.1).
+"""The platform modes of a robot: the modes every modal verdict is about (theory.md §12.4).
 
 For each free DOF j the participations p_kj of all the modes sum to 1
 (:attr:`dynstiff.ModalResult.participation`). The DOF's *carrier* is the mode with the

@@ -173,7 +173,7 @@ def _massless_errors(equilibrium, w_hi, n_cable):
 def estimated_error(model, band_hz):
     """The relative frequency error of ``model``'s cable theory up to the top of ``band_hz``,
     estimated without a richer model (the cable-model verdict of the design checks and
-    maps, theory.md §12.1): the massless rungs and the lumped rung as
+    maps, theory.md §12.5): the massless rungs and the lumped rung as
     :func:`predicted_errors`; the closed form as its guard (theory.md §11.5): the larger of
     its static error (:meth:`dynstiff.FrequencyModel.static_error`) and, for every cable
     with local modes below the band's top, the envelope of its clamped frequencies' error,

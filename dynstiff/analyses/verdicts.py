@@ -1,5 +1,5 @@
 """The verdicts of a pose: one function for the design checks, the workspace maps and the
-reports, so that a pose gets the same verdict wherever it is asked (theory.md §12.1).
+reports, so that a pose gets the same verdict wherever it is asked (theory.md §12.5).
 
 Each check has its own band or limit and nothing else moves it:
 
