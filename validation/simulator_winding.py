@@ -93,8 +93,8 @@ def frequencies_along(steps=6, fmax_hz=24.0, n_check=20):
 
     With cables of 3/4 the platform's mass no mode below 24 Hz keeps most of its kinetic
     energy in the platform (the platform's share is at most 40 % along the path): the
-    "global" modes have dissolved into the cable modes. The modes with the largest platform share are listed
-    at each step instead.
+    "global" modes have dissolved into the cable modes. The modes with the largest platform
+    share are listed at each step instead.
 
     Returns
     -------
