@@ -109,11 +109,13 @@ class FRFResult:
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
-    def to_control(self):
+    def to_control(self, name=None):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
-        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`."""
+        [rad/s]), named with its channels, that ``control.bode_plot`` draws as it is; a
+        channel below 1e-12 of the largest (zero by symmetry) is exact zeros:
+        :func:`dynstiff.io.exchange.frf_to_control`."""
         from dynstiff.io.exchange import frf_to_control
-        return frf_to_control(self)
+        return frf_to_control(self, name=name)
 
     def to_frame(self):
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
