@@ -21,11 +21,12 @@ _VERDICT = {"pass": ("PASS", "pass"), "fail": ("FAIL", "fail"),
             "unknown": ("UNKNOWN", "unknown"), "not asked": ("n/a", "na")}
 
 
-def figure_png(fig, dpi=110):
-    """PNG bytes of a matplotlib figure."""
+def figure_png(fig, dpi=110, tight=True):
+    """PNG bytes of a matplotlib figure (``tight``: cropped to its drawn content, which costs
+    a second drawing pass)."""
     import io
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=dpi, bbox_inches="tight" if tight else None)
     return buf.getvalue()
 
 

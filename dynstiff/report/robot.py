@@ -107,8 +107,10 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         figs.append((plot_robot(eq, modes, int(k), model=dsm), f"mode_shape_{k + 1}.png",
                      f"Platform mode {k + 1}: {pm.describe(int(k))}"))
     pngs = []
-    for fig, name, caption in figs:
-        png = figure_png(fig)                 # drawn once, for the file and the page
+    for n, (fig, name, caption) in enumerate(figs):
+        # drawn once, for the file and the page; the mode shapes, laid out by plot_robot
+        # and shown side by side, in one pass at a lower resolution
+        png = figure_png(fig) if n == 0 else figure_png(fig, dpi=90, tight=False)
         (out / name).write_bytes(png)
         pngs.append((png, caption))
         plt.close(fig)
