@@ -11,6 +11,7 @@ import shutil
 import subprocess
 import warnings
 from html.parser import HTMLParser
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -103,6 +104,23 @@ def test_cogiro_report_is_a_document(tmp_path):
 def test_imported_caspr_robot_report_is_a_document(tmp_path):
     scene = ds.load_scene(inverted_stewart_scene(tmp_path / "stewart.toml"))
     check_document(scene, tmp_path / "out")
+
+
+@pytest.mark.slow
+def test_imported_ipanema_report_holds_its_high_platform_modes(tmp_path):
+    """IPAnema 1 from CASPR with light cables (0.0095 kg/m, EA 1e5 N, 10-200 N): its platform
+    modes include modes 13 and 22, above local cable modes; each has its shape."""
+    from dataclasses import replace
+
+    from dynstiff.scenes import import_caspr, write_scene
+    d = Path(__file__).parent / "data" / "caspr"
+    sc = import_caspr(d / "IPAnema_1_bodies.xml", d / "IPAnema_1_cables.xml",
+                      ds.Cable(0.0095, 1e5))
+    path = write_scene(tmp_path / "ipanema1.toml",
+                       replace(sc.robot, tension_limits=(10.0, 200.0)), sc.pose,
+                       name="ipanema1")
+    text = check_document(ds.load_scene(path), tmp_path / "out")
+    assert "Platform mode 13:" in text and "Platform mode 22:" in text
 
 
 def test_spread_platform_motion_is_said():
