@@ -85,6 +85,9 @@ def platform_mode_table(pm):
     largest participation) and the massless-cable frequency it continues [Hz]."""
     import pandas as pd
     m = pm.modes
+    if m is None or not pm.index.size:
+        return pd.DataFrame(columns=["mode", "freq [Hz]", "kind", "platform share [-]",
+                                     "dominant dof", "carries", "massless freq [Hz]"])
     carries = {k: [d for d, j in pm.carriers.items() if j == k] for k in pm.index}
     return pd.DataFrame({
         "mode": [int(k) + 1 for k in pm.index],
@@ -100,6 +103,8 @@ def platform_mode_table(pm):
 def spread_note(pm):
     """A sentence when no computed mode has more than half its kinetic energy in the
     platform (the platform's motion spread over many cable-dominated modes), else ""."""
+    if pm.modes is None:
+        return ""
     share = pm.modes.platform_share
     if share.size and share.max() > 0.5:
         return ""

@@ -151,17 +151,19 @@ def _page(scene, eq, st, checks, pm, rec, error, statics, pngs, modes_csv, n_mod
     from dynstiff.report.html import html_page
     err, cause = error
     verdict = "all checks passed" if checks.passed else "some checks FAILED"
-    blocks = [("kv", title_rows(scene)), ("p", f"Summary: {verdict}; "
-              f"{pm.index.size} platform mode(s), the first at {pm.first_hz:.4g} Hz; cable "
+    found = (f"{pm.index.size} platform mode(s), the first at {pm.first_hz:.4g} Hz"
+             if pm.complete else "the platform modes not all found")
+    blocks = [("kv", title_rows(scene)), ("p", f"Summary: {verdict}; {found}; cable "
               f"model {st.rung} with estimated error {err:.2g} up to "
               f"{st.band_hz[1]:g} Hz."),
               ("h2", "Inputs"), ("kv", input_rows(eq, st)), ("table", cable_frame(eq)),
               ("h2", "Design checks"), ("checks", checks.rows),
               ("h2", "Platform modes"),
               ("p", "The modes every modal verdict is about (theory.md §12.4): the mode "
-                    "that moves each free DOF most and every global mode below "
-                    f"{pm.found_hz:.4g} Hz, by which every free DOF has half of its "
-                    "participation; undamped frequencies.")]
+                    "that moves each free DOF most and every global mode below the "
+                    "frequency by which every free DOF has half of its participation"
+                    + (f" ({pm.found_hz:.4g} Hz)" if pm.complete else "")
+                    + "; undamped frequencies.")]
     note = spread_note(pm)
     if note:
         blocks.append(("note", note))
