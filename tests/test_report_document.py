@@ -177,3 +177,9 @@ def test_report_renders_in_headless_chromium(tmp_path):
     for uri in srcs:
         w, h = png_size(uri)
         assert w > 0 and h > 0
+
+
+def test_an_incomplete_search_gives_an_empty_table_and_no_spread_note():
+    from dynstiff.analyses.platform_modes import PlatformModes
+    pm = PlatformModes(None, np.array([], int), {}, False, np.nan, 0.0, "ceiling reached")
+    assert platform_mode_table(pm).empty and spread_note(pm) == ""
