@@ -108,9 +108,9 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
                      f"Platform mode {k + 1}: {pm.describe(int(k))}"))
     pngs = []
     for n, (fig, name, caption) in enumerate(figs):
-        # drawn once, for the file and the page; the mode shapes, laid out by plot_robot
-        # and shown side by side, in one pass at a lower resolution
-        png = figure_png(fig) if n == 0 else figure_png(fig, dpi=90, tight=False)
+        # drawn once, for the file and the page; the mode shapes, shown side by side, at a
+        # lower resolution
+        png = figure_png(fig, dpi=110 if n == 0 else 90)
         (out / name).write_bytes(png)
         pngs.append((png, caption))
         plt.close(fig)

@@ -244,7 +244,7 @@ def _axes3d(ax, figsize=(8.0, 6.0)):
         import matplotlib.pyplot as plt
         fig = plt.figure(figsize=figsize)
         # the robot on the left, the legend and the platform's close-up on the right
-        ax = fig.add_axes((-0.03, -0.08, 0.74, 1.14), projection="3d")
+        ax = fig.add_axes((-0.03, -0.07, 0.74, 0.98), projection="3d")
         return fig, ax
     if getattr(ax, "name", "") != "3d":
         raise InvalidParameterError(
@@ -314,7 +314,7 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
     ax.set_title(_title(eq, geo, k, None if modes is None else len(modes), scale, sag_scale),
-                 fontsize=10, y=0.93)
+                 fontsize=10, y=0.98 if new else 0.9)
     if new:
         fig.legend(*ax.get_legend_handles_labels(), loc="upper left",
                    bbox_to_anchor=(0.71, 0.97), fontsize=7, framealpha=0.8)
