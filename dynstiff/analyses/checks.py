@@ -90,6 +90,14 @@ class CheckResult:
         """{check: verdict}."""
         return {r["check"]: r["verdict"] for r in self.rows}
 
+    def _repr_html_(self):
+        """Jupyter display: the verdict, check and reason of every row."""
+        from dynstiff._html import html_table
+        return html_table(
+            "Design checks: " + ("all passed" if self.passed else "some FAILED"),
+            ["verdict", "check", "detail"],
+            [[r["verdict"].upper(), r["check"], r["detail"]] for r in self.rows])
+
     def to_frame(self):
         """pandas DataFrame, one row per check."""
         import pandas as pd
