@@ -132,6 +132,7 @@ class FrequencyModel(PlatformModel):
         self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
+        self._memo = {}                      # static_error, massless_stiffness (immutable)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -202,7 +203,13 @@ class FrequencyModel(PlatformModel):
 
         Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
         (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
-        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`)."""
+        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`); computed
+        once per model (the guard at build, the cable-model check)."""
+        if "static_error" not in self._memo:
+            self._memo["static_error"] = self._static_error()
+        return self._memo["static_error"]
+
+    def _static_error(self):
         nf, n = self.n_free, len(self.params)
         J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
         Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
@@ -316,8 +323,10 @@ class FrequencyModel(PlatformModel):
 
     def massless_stiffness(self):
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
-        shape (n_free, n_free) [N/m, N, N m/rad]."""
-        return self.dynamic_stiffness(0.0)[0].real
+        shape (n_free, n_free) [N/m, N, N m/rad]; computed once per model, a copy returned."""
+        if "massless" not in self._memo:
+            self._memo["massless"] = self.dynamic_stiffness(0.0)[0].real
+        return self._memo["massless"].copy()
 
     def undamped(self):
         """The same model with the cables' damping removed (itself when undamped)."""
