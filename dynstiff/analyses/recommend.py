@@ -189,6 +189,13 @@ def _mode_count(state, params, omega):
                                          params.lambda_sq)[0])
 
 
+def _in_range(state, params, omega):
+    """Raise as :func:`dynstiff.cable.psi.cable_mode_count` where omega [rad/s] is out of
+    the closed form's range for this cable."""
+    check_frequency_range(chord_parameters(state) if params is None else params,
+                          np.array([float(omega)]))
+
+
 def estimated_error(model, band_hz):
     """The relative frequency error of ``model``'s cable theory up to the top of ``band_hz``,
     estimated without a richer model (the cable-model verdict of the design checks and
@@ -235,7 +242,8 @@ def estimated_error(model, band_hz):
         v = closed_form_validity(s, w_hi, params=params[i])
         if not np.isfinite(v.error):
             return np.inf, f"cable {i}: " + "; ".join(v.reasons(1e-2))
-        if _mode_count(s, params[i], w_hi) == 0 or v.error <= err:
+        _in_range(s, params[i], w_hi)
+        if v.error <= err or _mode_count(s, params[i], w_hi) == 0:
             continue
         local = v.error if v.error <= 1e-2 else closed_form_local_error(s, w_hi)
         if local > err:

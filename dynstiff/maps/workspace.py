@@ -174,8 +174,9 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
         pm = None
         if eq is not None:
             try:
-                modal, pm = modal_rows(build_model(eq, rung, **model_options), options,
-                                       lambda: damped_model(eq, damping, rung,
+                model = build_model(eq, rung, **model_options)
+                modal, pm = modal_rows(model, options,
+                                       lambda: damped_model(eq, damping, rung, model,
                                                             **model_options))
                 rows += modal
             except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:

@@ -122,6 +122,7 @@ class FrequencyModel(PlatformModel):
             self.cable_loss_factor = self.platform_damping_ratio = 0.0
         elif self.cable_loss_factor > 0 or self.platform_damping_ratio > 0:
             self.damped = True
+        self._own_params = bool(damping)     # params are the cables' own
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
         validity = [closed_form_validity(s, 0.0, tension, p)
@@ -342,6 +343,34 @@ class FrequencyModel(PlatformModel):
         return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                               cable_loss_factor=cable_loss_factor,
                               platform_damping_ratio=platform_damping_ratio)
+
+    def _with_model_damping(self, cable_loss_factor, platform_damping_ratio):
+        """``FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+        cable_loss_factor=..., platform_damping_ratio=..., guard_rtol=self.guard_rtol)``,
+        sharing this model's cable parameters, assembly map and platform terms (read-only,
+        the same numbers a new build computes) instead of recomputing them; None unless
+        this model is an undamped build of the cables' own parameters. The build's static
+        guard is not repeated (this model ran it on the same cables); the band guard starts
+        afresh, as for a new build. A map's receptance check takes it (theory.md §13.7)."""
+        if type(self) is not FrequencyModel or self.damped or not self._own_params:
+            return None
+        new = object.__new__(FrequencyModel)
+        d = dict(vars(self))
+        del d["_frozen"]
+        d.update(cable_loss_factor=positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                   allow_zero=True),
+                 platform_damping_ratio=positive_scalar(
+                     "platform_damping_ratio", platform_damping_ratio, allow_zero=True),
+                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None)
+        d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
+        for k, v in d.items():
+            object.__setattr__(new, k, v)
+        if new.platform_damping_ratio > 0:
+            Ks = new._stiffness(np.zeros(1)).real[0]
+            object.__setattr__(new, "_K_platform_damping",
+                               2j * new.platform_damping_ratio * 0.5 * (Ks + Ks.T))
+        new._freeze()
+        return new
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
