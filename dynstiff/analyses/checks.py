@@ -200,10 +200,10 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         Ceiling of the modes computed; beyond it the modal verdicts are "unknown" (which
         fails the pose).
     uncertain : dict, optional
-        Stated uncertainties {parameter: Uncertain or "10%"} (:func:`dynstiff.
-        propagate_uncertainty`): a last row gives the probability that the margin check
-        fails and the band margin at ``confidence`` (theory.md §16.6); the other rows are
-        those of the nominal robot.
+        Stated uncertainties {parameter: Uncertain or "10%"}
+        (:func:`~dynstiff.propagate_uncertainty`): a last row gives the probability that
+        the margin check fails and the band margin at ``confidence`` (theory.md §16.6); the
+        other rows are those of the nominal robot.
     n_samples, seed : int
         The Monte Carlo's Latin-hypercube sample and its seed.
     confidence : float
