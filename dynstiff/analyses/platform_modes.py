@@ -78,8 +78,10 @@ class PlatformModes:
     def describe(self, k):
         """One mode in words: frequency, kind, share and the DOF it carries most."""
         m = self.modes
+        r = np.nan_to_num(m.participation[k])        # ModalResult.dominant_dof of mode k
+        dof = DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
         return (f"{m.freq_hz[k]:.4g} Hz ({m.kind[k]}, platform share "
-                f"{100 * m.platform_share[k]:.0f} %, mostly {m.dominant_dof[k]})")
+                f"{100 * m.platform_share[k]:.0f} %, mostly {dof})")
 
     def __repr__(self):
         if not self.complete:

@@ -169,12 +169,15 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
                                          **model_options)   # a far neighbour: start afresh
         except DynstiffError as exc:
             error = exc
-        rows = statics_rows(robot, eq, error, options)
+        sag = None if eq is None else equilibrium_sag_ratios(robot, eq)
+        rows = statics_rows(robot, eq, error, options, sag)
         pm = None
         if eq is not None:
             try:
-                modal, pm = modal_rows(build_model(eq, rung, **model_options), options,
-                                       damped_model(eq, damping, rung, **model_options))
+                model = build_model(eq, rung, **model_options)
+                modal, pm = modal_rows(model, options,
+                                       lambda: damped_model(eq, damping, rung, model,
+                                                            **model_options))
                 rows += modal
             except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 error, eq = exc, None
@@ -192,7 +195,7 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
         out["unstretched_length"][j] = eq.unstretched_lengths
         out["min_tension"][j] = eq.min_tensions
         out["max_tension"][j] = eq.max_tensions
-        out["sag_ratio"][j] = equilibrium_sag_ratios(robot, eq)
+        out["sag_ratio"][j] = sag
         if pm.modes is not None:
             r = min(m, len(pm.modes))
             out["freq"][j, :r] = pm.modes.freq_hz[:r]

@@ -122,6 +122,7 @@ class FrequencyModel(PlatformModel):
             self.cable_loss_factor = self.platform_damping_ratio = 0.0
         elif self.cable_loss_factor > 0 or self.platform_damping_ratio > 0:
             self.damped = True
+        self._own_params = bool(damping)     # params are the cables' own
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
         validity = [closed_form_validity(s, 0.0, tension, p)
@@ -132,6 +133,7 @@ class FrequencyModel(PlatformModel):
         self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
+        self._memo = {}                      # static_error, massless_stiffness (immutable)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -202,7 +204,13 @@ class FrequencyModel(PlatformModel):
 
         Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
         (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
-        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`)."""
+        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`); computed
+        once per model (the guard at build, the cable-model check)."""
+        if "static_error" not in self._memo:
+            self._memo["static_error"] = self._static_error()
+        return self._memo["static_error"]
+
+    def _static_error(self):
         nf, n = self.n_free, len(self.params)
         J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
         Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
@@ -316,8 +324,10 @@ class FrequencyModel(PlatformModel):
 
     def massless_stiffness(self):
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
-        shape (n_free, n_free) [N/m, N, N m/rad]."""
-        return self.dynamic_stiffness(0.0)[0].real
+        shape (n_free, n_free) [N/m, N, N m/rad]; computed once per model, a copy returned."""
+        if "massless" not in self._memo:
+            self._memo["massless"] = self.dynamic_stiffness(0.0)[0].real
+        return self._memo["massless"].copy()
 
     def undamped(self):
         """The same model with the cables' damping removed (itself when undamped)."""
@@ -333,6 +343,34 @@ class FrequencyModel(PlatformModel):
         return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                               cable_loss_factor=cable_loss_factor,
                               platform_damping_ratio=platform_damping_ratio)
+
+    def _with_model_damping(self, cable_loss_factor, platform_damping_ratio):
+        """``FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+        cable_loss_factor=..., platform_damping_ratio=..., guard_rtol=self.guard_rtol)``,
+        sharing this model's cable parameters, assembly map and platform terms (read-only,
+        the same numbers a new build computes) instead of recomputing them; None unless
+        this model is an undamped build of the cables' own parameters. The build's static
+        guard is not repeated (this model ran it on the same cables); the band guard starts
+        afresh, as for a new build. A map's receptance check takes it (theory.md §13.7)."""
+        if type(self) is not FrequencyModel or self.damped or not self._own_params:
+            return None
+        new = object.__new__(FrequencyModel)
+        d = dict(vars(self))
+        del d["_frozen"]
+        d.update(cable_loss_factor=positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                   allow_zero=True),
+                 platform_damping_ratio=positive_scalar(
+                     "platform_damping_ratio", platform_damping_ratio, allow_zero=True),
+                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None)
+        d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
+        for k, v in d.items():
+            object.__setattr__(new, k, v)
+        if new.platform_damping_ratio > 0:
+            Ks = new._stiffness(np.zeros(1)).real[0]
+            object.__setattr__(new, "_K_platform_damping",
+                               2j * new.platform_damping_ratio * 0.5 * (Ks + Ks.T))
+        new._freeze()
+        return new
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
