@@ -32,6 +32,8 @@ from dynstiff.cable.dsm import (
 from dynstiff.cable.guard import (
     AXIAL_MARGIN,
     DEFAULT_GUARD_RTOL,
+    MEASURE_ABOVE,
+    ROBOT_ERROR_FACTOR,
     closed_form_local_error,
     closed_form_validity,
 )
@@ -132,6 +134,7 @@ class FrequencyModel(PlatformModel):
         self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
+        self._measured = {}                  # cable -> (band [rad/s], measured local error)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -268,6 +271,53 @@ class FrequencyModel(PlatformModel):
                 f"are in the band asked and the closed form's are {err:.2g} off the exact "
                 f"model's (> guard_rtol {self.guard_rtol:g}; "
                 + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
+        self._guard_robot(top)
+
+    def cable_error(self, i, omega_max):
+        """Cable i's own closed-form error up to omega_max [rad/s] (theory.md §11.6): its
+        envelope (:func:`dynstiff.cable.guard.closed_form_validity`), or, where that
+        exceeds 1e-2, the measured error of its clamped frequencies against the exact cable
+        (kept for later calls up to the same band); inf when the closed form does not apply
+        (slack, axial modes below omega_max)."""
+        v = self._validity[i]
+        if not np.isfinite(v.error) or omega_max >= self._axial_omega[i]:
+            return np.inf
+        if v.error <= MEASURE_ABOVE:
+            return float(v.error)
+        band, err = self._measured.get(i, (-1.0, None))
+        if omega_max > band:
+            band = float(max(omega_max, 8 * self._local_omega[i]))
+            err = closed_form_local_error(self.equilibrium.states[i], omega_max, self.tension)
+            self._measured[i] = (band, err)
+        return err
+
+    def robot_error(self, omega_max):
+        """The bound on the closed form's relative frequency error of the robot's coupled
+        modes up to omega_max [rad/s] (theory.md §11.6): ROBOT_ERROR_FACTOR (e_static +
+        max_c e_c), e_static the static error (:meth:`static_error`), e_c every cable's own
+        error (:meth:`cable_error`). Returns (bound [-], the cable of the largest e_c).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> bool(m.robot_error(2 * 3.1416 * 12.0)[0] < 1e-2)
+        True
+        """
+        own = [self.cable_error(i, float(omega_max)) for i in range(len(self.params))]
+        i = int(np.argmax(own))
+        return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
+
+    def _guard_robot(self, top):
+        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol."""
+        if (None, "robot") in self._warned:
+            return
+        bound, i = self.robot_error(top)
+        if np.isfinite(bound) and bound > self.guard_rtol:
+            self._warn_once(None, "robot", (
+                f"the closed form's error of the coupled modes up to {top / 2 / np.pi:.4g} Hz "
+                f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
+                f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
 
     def _warn_once(self, cable, cause, message):
         if (cable, cause) in self._warned:
