@@ -135,6 +135,7 @@ class FrequencyModel(PlatformModel):
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
         self._measured = {}                  # cable -> (band [rad/s], measured local error)
+        self._issued = []                    # causes warned of (a cable's warning says it)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -309,8 +310,9 @@ class FrequencyModel(PlatformModel):
         return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
 
     def _guard_robot(self, top):
-        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol."""
-        if (None, "robot") in self._warned:
+        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol and no
+        cable's warning has pointed to the exact rung already."""
+        if (None, "robot") in self._warned or self._issued:
             return
         bound, i = self.robot_error(top)
         if np.isfinite(bound) and bound > self.guard_rtol:
@@ -323,6 +325,7 @@ class FrequencyModel(PlatformModel):
         if (cable, cause) in self._warned:
             return
         self._warned.add((cable, cause))
+        self._issued.append(cause)
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
                                         cause=cause), stacklevel=user_stacklevel())
 
