@@ -291,6 +291,7 @@ def test_fast_telescope_quick():
     mod = load("fast_telescope")
     df = mod.run(zeniths=(0, 40), azimuths=(30,))
     assert df["in measured band"].all()
+    assert df["f cabin exact [Hz]"].between(0.12, 0.2).all()
     assert df["f1 exact [Hz]"].between(0.12, 0.2).all()
     assert (df["closed form vs exact [-]"] < 1e-2).all()
     # the bottom of the focal surface: 0.1564 Hz (exact rung), the scene's reference pose
