@@ -76,8 +76,9 @@ class FrequencyModel(PlatformModel):
         The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` names every
         slack cable and every cable whose static error shifts a global mode by more than this
         (at build), and every cable whose axial modes, or local modes measured further than
-        this from the exact cable's, the asked omega reaches (:meth:`guard_band`). None: no
-        warnings.
+        this from the exact cable's, the asked omega reaches (:meth:`guard_band`); where no
+        cable has warned, the robot once its bound on the coupled modes' error up to the
+        asked omega exceeds this (:meth:`robot_error`, theory.md §11.6). None: no warnings.
 
     Attributes
     ----------
