@@ -42,7 +42,10 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stack
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
 
-__all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]
+__all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE", "compiled_arguments", "symmetric_assembly"]
+
+#: How the robot-level bound's warning begins (theory.md §11.6), for filters of it.
+ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
 
 
 class FrequencyModel(PlatformModel):
@@ -318,7 +321,7 @@ class FrequencyModel(PlatformModel):
         bound, i = self.robot_error(top)
         if np.isfinite(bound) and bound > self.guard_rtol:
             self._warn_once(None, "robot", (
-                f"the closed form's error of the coupled modes up to {top / 2 / np.pi:.4g} Hz "
+                f"{ROBOT_BOUND_MESSAGE} up to {top / 2 / np.pi:.4g} Hz "
                 f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
                 f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
 
