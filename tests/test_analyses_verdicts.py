@@ -138,3 +138,10 @@ def test_fast_platform_modes_found_by_participation_and_said_to_be_spread():
     assert float(np.min(pm.modes.platform_share[pm.index])) < 0.5
     # the margin check still sees the lowest mode the cabin moves in (8 % share, 0.1558 Hz)
     assert "closest 0.1558 Hz" in text
+
+
+def test_light_cables_leave_no_spread_sentence(cogiro):
+    # CoGiRo (cables 0.06 kg/m, 91 kg platform): every DOF has a global carrier
+    pm = find_platform_modes(ds.FrequencyModel(cogiro.equilibrium()))
+    assert pm.complete and pm.spread() == ""
+    assert "spread over" not in design_checks(cogiro.robot, cogiro.pose).text()
