@@ -199,7 +199,8 @@ def _margin_row(pm, o, cover):
         ks = np.flatnonzero(near)
         return _row(CHECKS[3], "fail", f[ks[0]], o.margin,
                     f"{ks.size} mode(s) with platform share >= {o.participation:.0%} within "
-                    f"{o.margin:.1%} of [{lo:g}, {hi:g}] Hz: " + "; ".join(map(name, ks)))
+                    f"{o.margin:.1%} of [{lo:g}, {hi:g}] Hz: " + "; ".join(map(name, ks))
+                    + _spread(pm))
     ks = np.flatnonzero(checked)
     if ks.size:
         gap = np.where(f[ks] < lo, (lo - f[ks]) / max(lo, 1e-300), (f[ks] - hi) / hi)
@@ -209,7 +210,13 @@ def _margin_row(pm, o, cover):
         k, closest = None, ""
     return _row(CHECKS[3], "pass", f[k] if k is not None else np.nan, o.margin,
                 f"no mode with platform share >= {o.participation:.0%} within {o.margin:.1%} "
-                f"of [{lo:g}, {hi:g}] Hz{closest}")
+                f"of [{lo:g}, {hi:g}] Hz{closest}" + _spread(pm))
+
+
+def _spread(pm):
+    """"; " and the sentence of a spread platform motion, or ""."""
+    text = pm.spread()
+    return f"; {text}" if text else ""
 
 
 def _proximity_row(pm, o):
@@ -221,7 +228,7 @@ def _proximity_row(pm, o):
     if warns:
         return _row(CHECKS[5], "fail", min(w.relative_gap for w in warns), o.proximity_rtol,
                     f"{len(warns)} local mode(s) within {o.proximity_rtol:.2%} of a platform "
-                    f"mode, closest gap {min(w.relative_gap for w in warns):.2%}")
+                    f"mode, closest gap {min(w.relative_gap for w in warns):.2%}" + _spread(pm))
     return _row(CHECKS[5], "pass", np.nan, o.proximity_rtol,
                 f"no local mode within {o.proximity_rtol:.2%} of the {pm.index.size} platform "
-                f"modes ({pm.freq_hz.min():.4g}-{pm.freq_hz.max():.4g} Hz)")
+                f"modes ({pm.freq_hz.min():.4g}-{pm.freq_hz.max():.4g} Hz)" + _spread(pm))

@@ -32,6 +32,8 @@ from dynstiff.cable.dsm import (
 from dynstiff.cable.guard import (
     AXIAL_MARGIN,
     DEFAULT_GUARD_RTOL,
+    MEASURE_ABOVE,
+    ROBOT_ERROR_FACTOR,
     closed_form_local_error,
     closed_form_validity,
 )
@@ -40,7 +42,10 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stack
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
 
-__all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]
+__all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE", "compiled_arguments", "symmetric_assembly"]
+
+#: How the robot-level bound's warning begins (theory.md §11.6), for filters of it.
+ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
 
 
 class FrequencyModel(PlatformModel):
@@ -74,8 +79,9 @@ class FrequencyModel(PlatformModel):
         The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` names every
         slack cable and every cable whose static error shifts a global mode by more than this
         (at build), and every cable whose axial modes, or local modes measured further than
-        this from the exact cable's, the asked omega reaches (:meth:`guard_band`). None: no
-        warnings.
+        this from the exact cable's, the asked omega reaches (:meth:`guard_band`); where no
+        cable has warned, the robot once its bound on the coupled modes' error up to the
+        asked omega exceeds this (:meth:`robot_error`, theory.md §11.6). None: no warnings.
 
     Attributes
     ----------
@@ -134,6 +140,8 @@ class FrequencyModel(PlatformModel):
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
         self._memo = {}                      # static_error, massless_stiffness (immutable)
+        self._measured = {}                  # cable -> (band [rad/s], measured local error)
+        self._issued = []                    # causes warned of (a cable's warning says it)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -276,11 +284,60 @@ class FrequencyModel(PlatformModel):
                 f"are in the band asked and the closed form's are {err:.2g} off the exact "
                 f"model's (> guard_rtol {self.guard_rtol:g}; "
                 + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
+        self._guard_robot(top)
+
+    def cable_error(self, i, omega_max):
+        """Cable i's own closed-form error up to omega_max [rad/s] (theory.md §11.6): its
+        envelope (:func:`dynstiff.cable.guard.closed_form_validity`), or, where that
+        exceeds 1e-2, the measured error of its clamped frequencies against the exact cable
+        (kept for later calls up to the same band); inf when the closed form does not apply
+        (slack, axial modes below omega_max)."""
+        v = self._validity[i]
+        if not np.isfinite(v.error) or omega_max >= self._axial_omega[i]:
+            return np.inf
+        if v.error <= MEASURE_ABOVE:
+            return float(v.error)
+        band, err = self._measured.get(i, (-1.0, None))
+        if omega_max > band:
+            band = float(max(omega_max, 8 * self._local_omega[i]))
+            err = closed_form_local_error(self.equilibrium.states[i], omega_max, self.tension)
+            self._measured[i] = (band, err)
+        return err
+
+    def robot_error(self, omega_max):
+        """The bound on the closed form's relative frequency error of the robot's coupled
+        modes up to omega_max [rad/s] (theory.md §11.6): ROBOT_ERROR_FACTOR (e_static +
+        max_c e_c), e_static the static error (:meth:`static_error`), e_c every cable's own
+        error (:meth:`cable_error`). Returns (bound [-], the cable of the largest e_c).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> bool(m.robot_error(2 * 3.1416 * 12.0)[0] < 1e-2)
+        True
+        """
+        own = [self.cable_error(i, float(omega_max)) for i in range(len(self.params))]
+        i = int(np.argmax(own))
+        return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
+
+    def _guard_robot(self, top):
+        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol and no
+        cable's warning has pointed to the exact rung already."""
+        if (None, "robot") in self._warned or self._issued:
+            return
+        bound, i = self.robot_error(top)
+        if np.isfinite(bound) and bound > self.guard_rtol:
+            self._warn_once(None, "robot", (
+                f"{ROBOT_BOUND_MESSAGE} up to {top / 2 / np.pi:.4g} Hz "
+                f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
+                f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
 
     def _warn_once(self, cable, cause, message):
         if (cable, cause) in self._warned:
             return
         self._warned.add((cable, cause))
+        self._issued.append(cause)
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
                                         cause=cause), stacklevel=user_stacklevel())
 
@@ -361,7 +418,8 @@ class FrequencyModel(PlatformModel):
                                                    allow_zero=True),
                  platform_damping_ratio=positive_scalar(
                      "platform_damping_ratio", platform_damping_ratio, allow_zero=True),
-                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None)
+                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None,
+                 _measured=dict(self._measured), _issued=[])
         d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
         for k, v in d.items():
             object.__setattr__(new, k, v)
