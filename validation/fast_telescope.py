@@ -49,8 +49,8 @@ TILTS_DEG = tuple(np.arange(-20.0, 21.0, 2.0))
 def tilted_equilibrium(robot, zenith_deg, azimuth_deg, tilts_deg=TILTS_DEG):
     """The equilibrium at the focal point whose cabin tilt [deg] (about the horizontal axis
     normal to the radius) keeps the lowest cable tension highest, with the lower tension
-    limit relaxed to 1 N (the scene's 120 kN is reported against, not imposed: the level
-    or tilted cabin cannot keep it off the centre). Returns (equilibrium, tilt [deg])."""
+    limit relaxed to 1 N so that every tilt is ranked by its own least tension (the
+    scene's 120 kN is reported against, not imposed). Returns (equilibrium, tilt [deg])."""
     import dataclasses
     robot = dataclasses.replace(robot, tension_limits=(1.0, robot.tension_limits[1]))
     p = focal_point(zenith_deg, azimuth_deg)
