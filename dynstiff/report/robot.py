@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff.constants import PLATFORM_SHARE_THRESHOLD
+
 __all__ = ["robot_report", "write_csv"]
 
 
@@ -153,6 +155,13 @@ def _page(scene, eq, st, checks, pm, rec, error, statics, pngs, modes_csv, n_mod
     verdict = "all checks passed" if checks.passed else "some checks FAILED"
     found = (f"{pm.index.size} platform mode(s), the first at {pm.first_hz:.4g} Hz"
              if pm.complete else "the platform modes not all found")
+    share = 1.0 - np.asarray(pm.modes.cable_energy_fraction)
+    held = np.flatnonzero(share >= st.check_options().get("participation",
+                                                         PLATFORM_SHARE_THRESHOLD))
+    if held.size and pm.complete and pm.modes.freq_hz[held[0]] < pm.first_hz:
+        k = int(held[0])            # a mode below the first platform mode moves the platform
+        found += (f" (the lowest mode the platform moves in, with a share of "
+                  f"{share[k]:.0%}, is mode {k + 1} at {pm.modes.freq_hz[k]:.4g} Hz)")
     blocks = [("kv", title_rows(scene)), ("p", f"Summary: {verdict}; {found}; cable "
               f"model {st.rung} with estimated error {err:.2g} up to "
               f"{st.band_hz[1]:g} Hz."),
