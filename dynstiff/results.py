@@ -116,13 +116,16 @@ class FRFResult:
         from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
-    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
+    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False,
+               even=False):
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
+        ``even=True`` (the step of the grid's uniform part) or a step [Hz] resamples on an
+        even grid (:func:`dynstiff.io.exchange.even_grid`), as the records then say.
         Returns the path."""
         from dynstiff.io.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
-                           binary=binary)
+                           binary=binary, even=even)
 
     def to_control(self, name=None):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
