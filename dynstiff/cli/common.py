@@ -49,7 +49,8 @@ def equilibrium(scene, args):
 
 def damping_option(p):
     p.add_argument("--damping", type=float, nargs="+", metavar="V",
-                   help="ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss factor "
+                   help="damping ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss "
+                        "factor "
                         "(all cable motions), cable viscous damping [N s/m^2]; values not "
                         "given keep the scene's [damping] (defaults 0.01 0.01 0); "
                         "--damping 0 0 0: undamped")
