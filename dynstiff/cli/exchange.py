@@ -61,7 +61,7 @@ def cmd_import_caspr(args):
     kinds = scene.study.get("caspr_trajectory_kinds", {})
     text = scene_text(scene.robot, scene.pose, name=scene.name, description=scene.description,
                       comments=caspr_comments(scene, args.bodies, args.cables, traj, ops),
-                      cable_names=scene.study["caspr_cable_names"],
+                      cable_names=[f"CASPR {n!r}" for n in scene.study["caspr_cable_names"]],
                       trajectories=scene.trajectories.values(),
                       workspace_box=scene.workspace_box,
                       trajectory_notes={k: f"CASPR {v}" for k, v in kinds.items()})
