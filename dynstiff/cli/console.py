@@ -85,14 +85,12 @@ def elapsed(label, quiet=False):
 
 def _kernels_cached():
     """Whether numba's on-disk cache holds the compiled kernels (True without numba)."""
-    import importlib.util
-    from pathlib import Path
-    if importlib.util.find_spec("numba") is None:
-        return True
-    from dynstiff import compiled
-    if all(compiled.load(name) is None for name in ("dsm",)):
-        return True
     import os
+    from pathlib import Path
+
+    from dynstiff import compiled
+    if compiled.load("dsm") is None:                 # numba absent or switched off
+        return True
     folders = [Path(compiled.__file__).parent / "__pycache__"]
     if os.environ.get("NUMBA_CACHE_DIR"):
         folders.append(Path(os.environ["NUMBA_CACHE_DIR"]))
