@@ -109,7 +109,7 @@ def _run(capsys, argv):
         code = main([str(a) for a in argv])
     out, err = capsys.readouterr()
     assert "Traceback" not in out + err, err[-2000:]
-    assert not re.search(r"\w+Warning: ", out + err), err         # no raw warning
+    assert not re.search(r":\d+: \w+Warning: ", out + err), err    # no raw warning
     for line in err.splitlines():
         if "warning" in line.lower():
             assert line.startswith("dynstiff: warning: "), line
@@ -154,8 +154,9 @@ def _check_written(command, option, path):
         assert labels == [str(k) for k in range(6)]          # numbered from 0, as outputs
     elif option == "--out":
         assert (path / "report.html").stat().st_size > 1000
+        assert len(list(path.glob("*.csv"))) >= 3
         for csv in path.glob("*.csv"):
-            pd.read_csv(csv, comment="#")
+            _read_table(csv, "csv")                     # the same header as every table
     else:
         raise AssertionError(f"tests/test_cli_smoke.py does not know how to read {option}")
 

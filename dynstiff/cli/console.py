@@ -11,17 +11,17 @@ __all__ = ["ProgressBar", "compile_notice", "elapsed", "one_line_warnings"]
 @contextlib.contextmanager
 def one_line_warnings(stream=None):
     """Within the block, show each :class:`dynstiff.errors.DynstiffWarning` as one line
-    ``dynstiff: warning: MESSAGE`` on standard error (no file path, no source line); other
-    warnings are shown as Python shows them."""
+    ``dynstiff: warning: MESSAGE`` on standard error (no file path, no source line); another
+    library's warning as ``dynstiff: warning: CATEGORY: MESSAGE``."""
     import warnings
 
     from dynstiff.errors import DynstiffWarning
     previous = warnings.showwarning
 
     def show(message, category, filename, lineno, file=None, line=None):
-        if not issubclass(category, DynstiffWarning):
-            return previous(message, category, filename, lineno, file, line)
         text = " ".join(str(message).split())
+        if not issubclass(category, DynstiffWarning):
+            text = f"{category.__name__}: {text}"
         out = stream or sys.stderr
         try:
             from tqdm import tqdm

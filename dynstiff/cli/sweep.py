@@ -178,7 +178,7 @@ def add_parsers(sub):
     add_pose(sw, lengths=False, what="of the --parameter sweep (default: the scene's pose)")
     add_n_modes(sw, "per step (default: the scene's n_modes; with --band or --fmax, all in "
                     "the band)")
-    add_band(sw, "the modes in it at every step (default: the first --n-modes)")
+    add_band(sw, "every mode up to its top at every step (default: the first --n-modes)")
     add_model(sw)
     add_outputs(sw, csv="one row per mode and step", json="one row per mode and step",
                 plot="the veering diagram")
