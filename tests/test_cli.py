@@ -84,6 +84,9 @@ def test_cli_version_and_metadata_in_json(tmp_path):
     (["modes", "cogiro", "--fmax", "1e9"], "fmax_hz = 1e\\+09 Hz is out of"),
     (["modes", "planar2", "--pose", "0", "0"], "--pose needs 3 numbers .* got 2: \\[0.0, 0.0\\]"),
     (["modes", "planar2", "--bogus"], "unrecognized arguments: --bogus"),
+    (["modes", "planar2", "-n", "30", "--max-modes", "20"], "-n 30 is more than --max-modes 20"),
+    (["check", "planar2", "--forbidden-band", "3", "1"], "--forbidden-band must be LO HI"),
+    (["frf", "planar2", "--band", "1", "2", "--fmax", "3"], "not allowed with argument"),
     ([], "required: command"),
 ])
 def test_bad_command_lines_give_one_line_and_exit_2(tmp_path, capsys, argv, message):

@@ -62,6 +62,9 @@ def _cmd_modes(args):
     banded = args.band is not None or args.fmax is not None
     fmax = st.band_hz[1] if banded else None
     n = None if banded and args.n is None else st.n_modes
+    if n is not None and n > args.max_modes:
+        raise InvalidParameterError(f"-n {n} is more than --max-modes {args.max_modes}; raise "
+                                    f"--max-modes to compute them")
     args.model = st.rung
     args.segments = st.segments
     if st.rung == "exact":
