@@ -90,6 +90,14 @@ class CheckResult:
         """{check: verdict}."""
         return {r["check"]: r["verdict"] for r in self.rows}
 
+    def _repr_html_(self):
+        """Jupyter display: the verdict, check and reason of every row."""
+        from dynstiff._html import html_table
+        return html_table(
+            "Design checks: " + ("all passed" if self.passed else "some FAILED"),
+            ["verdict", "check", "detail"],
+            [[r["verdict"].upper(), r["check"], r["detail"]] for r in self.rows])
+
     def to_frame(self):
         """pandas DataFrame, one row per check."""
         import pandas as pd
@@ -189,10 +197,10 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         Ceiling of the modes computed; beyond it the modal verdicts are "unknown" (which
         fails the pose).
     uncertain : dict, optional
-        Stated uncertainties {parameter: Uncertain or "10%"} (:func:`dynstiff.
-        propagate_uncertainty`): a last row gives the probability that the margin check
-        fails and the band margin at ``confidence`` (theory.md §16.6); the other rows are
-        those of the nominal robot.
+        Stated uncertainties {parameter: Uncertain or "10%"}
+        (:func:`~dynstiff.propagate_uncertainty`): a last row gives the probability that
+        the margin check fails and the band margin at ``confidence`` (theory.md §16.6); the
+        other rows are those of the nominal robot.
     n_samples, seed : int
         The Monte Carlo's Latin-hypercube sample and its seed.
     confidence : float
