@@ -61,4 +61,4 @@ def test_elapsed_shows_the_label_and_the_time(monkeypatch):
     tty = _tty(monkeypatch)
     with elapsed("report planar2"):
         pass
-    assert "report planar2: 00:00" in tty.getvalue()
+    assert "report planar2: 00:00" in tty.getvalue()      # drawn, then cleared (leave=False)

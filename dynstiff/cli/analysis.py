@@ -8,6 +8,7 @@ from dynstiff.cli.common import (
     scene_settings,
     write_tables,
 )
+from dynstiff.cli.console import elapsed
 from dynstiff.cli.options import (
     add_band,
     add_forbidden_band,
@@ -75,7 +76,8 @@ def _cmd_modes(args):
     if hasattr(model, "matrices") and n is not None and n > model.n_dof:
         note = f" (it has {model.n_dof} modes; {n} asked)"
         n = model.n_dof
-    res = modes(model, n_modes=n, fmax_hz=fmax, max_modes=args.max_modes)
+    with elapsed(f"modes {scene.name}", args.quiet):
+        res = modes(model, n_modes=n, fmax_hz=fmax, max_modes=args.max_modes)
     df = res.to_frame()
     if args.band is not None:
         df = df[df["freq [Hz]"] >= args.band[0]].reset_index(drop=True)
@@ -170,9 +172,11 @@ def _cmd_check(args):
     if pose is None:
         pose = scene.equilibrium().pose
     band = st.forbidden_hz
-    res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
-                        max_sag_ratio=args.max_sag, uncertain=_uncertain(args.uncertain),
-                        max_modes=args.max_modes, **st.check_options())
+    uncertain = _uncertain(args.uncertain)
+    with elapsed(f"check {scene.name}", args.quiet):
+        res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
+                            max_sag_ratio=args.max_sag, uncertain=uncertain,
+                            max_modes=args.max_modes, **st.check_options())
     info(args).write("\n".join(st.lines()) + "\n")
     if band is None:
         info(args).write("(no forbidden band: give --forbidden-band LO HI or "

@@ -63,9 +63,9 @@ class ProgressBar:
 @contextlib.contextmanager
 def elapsed(label, quiet=False):
     """A bar that shows ``label`` and the time elapsed while the block runs (work that
-    reports no steps)."""
+    reports no steps); it is cleared at the end."""
     import threading
-    bar = _tqdm(quiet, total=None, desc=label, bar_format="{desc}: {elapsed}")
+    bar = _tqdm(quiet, total=None, desc=label, bar_format="{desc}: {elapsed}", leave=False)
     stop = threading.Event()
 
     def tick():
