@@ -236,3 +236,24 @@ def test_cli_frf_figure_has_a_phase_panel(tmp_path, monkeypatch):
     curves = [ln for ln in ph.get_lines() if ln.get_gid().startswith("frf-")]
     assert curves and all(np.nanmax(np.abs(ln.get_ydata())) <= 180 for ln in curves)
     assert (tmp_path / "f.png").stat().st_size > 10_000
+
+
+def test_modes_band_lists_every_mode_in_it_and_frf_defaults_to_a_free_dof(tmp_path, capsys):
+    """--band LO HI is the band of interest in every command: `modes --band 3 6` lists the
+    eigenfrequencies in [3, 6] Hz (Wittrick-Williams, none missed), `--fmax 6` all below;
+    `frf` without --load/--response takes the scene's first free DOF (the pendulum's ry)."""
+    import pandas as pd
+
+    from dynstiff.cli import main
+    eq = ds.load_scene("planar2").equilibrium()
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=6.0)
+    assert main(["modes", "planar2", "--band", "3", "6", "--csv", str(tmp_path / "b.csv")]) == 0
+    got = pd.read_csv(tmp_path / "b.csv", comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, f[f >= 3.0], rtol=1e-9)
+    assert main(["modes", "planar2", "--fmax", "6", "--csv", str(tmp_path / "f.csv")]) == 0
+    got = pd.read_csv(tmp_path / "f.csv", comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, f, rtol=1e-9)
+    assert 0 < np.sum(f < 3.0) < f.size                     # the band cut something
+    capsys.readouterr()
+    assert main(["frf", "pendulum", "--points", "50"]) == 0
+    assert capsys.readouterr().out.startswith("receptance ry/my:")
