@@ -190,6 +190,8 @@ def test_mode_shape_figure_explains_itself(cogiro_eq, cogiro_model, cogiro_modes
     np.testing.assert_allclose(box / box.max(), spans / spans.max(), rtol=1e-6)
 
 
+# the closed form's robot-level bound warns on sixcable and fast (theory.md §11.6): not the subject
+@pytest.mark.filterwarnings("ignore::dynstiff.errors.ClosedFormWarning")
 def test_point_platform_is_visible_on_a_large_frame():
     """sixcable (48 m frame, attachment points together): the displaced platform is a
     marker of fixed size (60 pt^2) in the platform's colour, not a hull too small to see."""

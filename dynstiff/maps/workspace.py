@@ -19,6 +19,7 @@ numbers. Results come back as an ``xarray.Dataset`` (:mod:`dynstiff.maps.dataset
 import dataclasses
 import sys
 import time
+import warnings
 from numbers import Integral
 
 import numpy as np
@@ -29,7 +30,8 @@ from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
-from dynstiff.errors import DynstiffError, InvalidParameterError
+from dynstiff.errors import ClosedFormWarning, DynstiffError, InvalidParameterError
+from dynstiff.models.dsm import ROBOT_BOUND_MESSAGE
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
 from dynstiff.robot.pose import as_pose
@@ -169,12 +171,18 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
                                          **model_options)   # a far neighbour: start afresh
         except DynstiffError as exc:
             error = exc
-        rows = statics_rows(robot, eq, error, options)
+        sag = None if eq is None else equilibrium_sag_ratios(robot, eq)
+        rows = statics_rows(robot, eq, error, options, sag)
         pm = None
         if eq is not None:
             try:
-                modal, pm = modal_rows(build_model(eq, rung, **model_options), options,
-                                       damped_model(eq, damping, rung, **model_options))
+                with warnings.catch_warnings():
+                    # the closed form's robot-level bound is each pose's "cable model" row
+                    warnings.filterwarnings("ignore", ROBOT_BOUND_MESSAGE, ClosedFormWarning)
+                    model = build_model(eq, rung, **model_options)
+                    modal, pm = modal_rows(model, options,
+                                           lambda: damped_model(eq, damping, rung, model,
+                                                                **model_options))
                 rows += modal
             except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 error, eq = exc, None
@@ -192,7 +200,7 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
         out["unstretched_length"][j] = eq.unstretched_lengths
         out["min_tension"][j] = eq.min_tensions
         out["max_tension"][j] = eq.max_tensions
-        out["sag_ratio"][j] = equilibrium_sag_ratios(robot, eq)
+        out["sag_ratio"][j] = sag
         if pm.modes is not None:
             r = min(m, len(pm.modes))
             out["freq"][j, :r] = pm.modes.freq_hz[:r]
