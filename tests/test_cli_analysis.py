@@ -51,8 +51,9 @@ def test_cli_modes_model_choice(tmp_path):
 
 
 def test_cli_frf_writes_table_and_figure(tmp_path):
-    out = run_cli("frf", "cogiro", "--from", "fz", "--to", "z", "--band", "1", "3", "--points",
-                  "400", "--csv", str(tmp_path / "f.csv"), "--plot", str(tmp_path / "f.png"))
+    out = run_cli("frf", "cogiro", "--load", "fz", "--response", "z", "--band", "1", "3",
+                  "--points", "400", "--csv", str(tmp_path / "f.csv"), "--plot",
+                  str(tmp_path / "f.png"))
     assert out.returncode == 0, out.stderr
     import pandas as pd
     df = pd.read_csv(tmp_path / "f.csv", comment="#")
@@ -65,7 +66,7 @@ def test_cli_frf_writes_table_and_figure(tmp_path):
     assert (tmp_path / "f.png").stat().st_size > 10_000
     bad = run_cli("frf", "cogiro", "--band", "5", "1")
     assert bad.returncode == 2 and "--band" in bad.stderr
-    bad = run_cli("frf", "cogiro", "--from", "fq")
+    bad = run_cli("frf", "cogiro", "--load", "fq")
     assert bad.returncode == 2 and "fq" in bad.stderr
 
 
@@ -83,7 +84,7 @@ def test_frf_of_a_held_dof_is_refused_not_zero():
     h = ds.frf(model, [1.0], inputs="my", outputs=["x", "ry"], point=[0, 0, 0.75]).H[0, :, 0]
     assert h[0] == pytest.approx(0.75 * h[1], rel=1e-12) and abs(h[1]) > 0
     assert ds.frf(model, [1.0]).H.shape == (1, 6, 6)           # the default keeps zero channels
-    bad = run_cli("frf", "pendulum", "--from", "fx", "--to", "x")
+    bad = run_cli("frf", "pendulum", "--load", "fx", "--response", "x")
     assert bad.returncode == 2 and "held DOFs only" in bad.stderr and "fx" in bad.stderr
 
 
@@ -91,8 +92,8 @@ def test_frf_of_a_held_dof_is_refused_not_zero():
 def test_cli_check_exit_codes():
     run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
                                     capture_output=True, text=True)
-    assert run("cogiro", "--band", "1", "2").returncode == 0
-    out = run("cogiro", "--band", "4", "5")
+    assert run("cogiro", "--forbidden-band", "1", "2").returncode == 0
+    out = run("cogiro", "--forbidden-band", "4", "5")
     assert out.returncode == 1 and "FAIL    platform modes outside band" in out.stdout
     out = run("cogiro", "--pose", "9", "0", "1")
     assert out.returncode == 1 and "FAIL    workspace" in out.stdout
@@ -105,15 +106,15 @@ def test_cli_check_fails_a_mixed_platform_mode_in_band(tmp_path):
     text = (SCENE_DIR / "cogiro.toml").read_text().replace("mass = 91.058", "mass = 50.0")
     (tmp_path / "m50.toml").write_text(text)
     out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
-                          "--band", "2.0", "2.3"], capture_output=True, text=True)
+                          "--forbidden-band", "2.0", "2.3"], capture_output=True, text=True)
     assert out.returncode == 1, out.stdout + out.stderr
     line = [ln for ln in out.stdout.splitlines() if "platform modes outside band" in ln][0]
     assert line.startswith("FAIL") and "2.216 Hz" in line and "platform share 42 %" in line
     assert "FAIL    platform receptance in band" in out.stdout
     # --participation above the share and --frf-limit above the amplification: passes
     out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
-                          "--band", "2.0", "2.3", "--participation", "0.45", "--frf-limit",
-                          "100"], capture_output=True, text=True)
+                          "--forbidden-band", "2.0", "2.3", "--participation", "0.45",
+                          "--frf-limit", "100"], capture_output=True, text=True)
     assert "PASS    platform modes outside band" in out.stdout
     assert "PASS    platform receptance in band" in out.stdout
 
@@ -205,7 +206,7 @@ def test_cli_check_with_uncertain_parameters():
     put a platform mode within 5 % of a 0-2 Hz band) and the exit code of a failing row."""
     run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
                                     capture_output=True, text=True)
-    out = run("cogiro", "--band", "0", "2", "--uncertain", "EA=10%")
+    out = run("cogiro", "--forbidden-band", "0", "2", "--uncertain", "EA=10%")
     assert out.returncode == 1
     assert re.search(r"FAIL    platform modes outside band, uncertain P\(.*\) = 1\d\.\d%",
                      out.stdout)
@@ -240,3 +241,24 @@ def test_cli_frf_figure_has_a_phase_panel(tmp_path, monkeypatch):
     curves = [ln for ln in ph.get_lines() if ln.get_gid().startswith("frf-")]
     assert curves and all(np.nanmax(np.abs(ln.get_ydata())) <= 180 for ln in curves)
     assert (tmp_path / "f.png").stat().st_size > 10_000
+
+
+def test_modes_band_lists_every_mode_in_it_and_frf_defaults_to_a_free_dof(tmp_path, capsys):
+    """--band LO HI is the band of interest in every command: `modes --band 3 6` lists the
+    eigenfrequencies in [3, 6] Hz (Wittrick-Williams, none missed), `--fmax 6` all below;
+    `frf` without --load/--response takes the scene's first free DOF (the pendulum's ry)."""
+    import pandas as pd
+
+    from dynstiff.cli import main
+    eq = ds.load_scene("planar2").equilibrium()
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=6.0)
+    assert main(["modes", "planar2", "--band", "3", "6", "--csv", str(tmp_path / "b.csv")]) == 0
+    got = pd.read_csv(tmp_path / "b.csv", comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, f[f >= 3.0], rtol=1e-9)
+    assert main(["modes", "planar2", "--fmax", "6", "--csv", str(tmp_path / "f.csv")]) == 0
+    got = pd.read_csv(tmp_path / "f.csv", comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, f, rtol=1e-9)
+    assert 0 < np.sum(f < 3.0) < f.size                     # the band cut something
+    capsys.readouterr()
+    assert main(["frf", "pendulum", "--points", "50"]) == 0
+    assert capsys.readouterr().out.startswith("receptance ry/my:")

@@ -67,7 +67,7 @@ def test_demo_and_report_write_one_self_contained_html(tmp_path):
 
         def handle_data(self, data):
             self.text.append(data)
-    for argv in (["demo", "--scene", "fourcable"], ["report", "fourcable"]):
+    for argv in (["demo", "fourcable"], ["report", "fourcable"]):
         out_dir = tmp_path / argv[0]
         out = subprocess.run([sys.executable, "-m", "dynstiff", *argv, "--out", str(out_dir),
                               "--points", "200"], capture_output=True, text=True)
@@ -99,7 +99,7 @@ def test_demo_and_check_agree_on_every_scene(tmp_path):
                        text)
         return {(r, n or k) for r, n, k in m}
     for name in ds.list_scenes():
-        demo = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--scene", name,
+        demo = subprocess.run([sys.executable, "-m", "dynstiff", "demo", name,
                                "--out", str(tmp_path / name), "--points", "100"],
                               capture_output=True, text=True)
         check = subprocess.run([sys.executable, "-m", "dynstiff", "check", name],

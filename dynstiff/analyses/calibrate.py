@@ -467,6 +467,8 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     except np.linalg.LinAlgError:
         se = np.full(n, np.nan)
     p0 = np.array([_value(robot, nm) for nm in names])
+    with np.errstate(over="ignore"):      # a parameter the data do not fix: an infinite bound
+        ci_low, ci_high = p0 * np.exp(sol.x - q * se), p0 * np.exp(sol.x + q * se)
     report_findings(calibration_findings(
         measured, last["f"], (pairing if chosen_pairing is None else "chosen")
         if measured is not None else None,
@@ -474,7 +476,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         sol.x, bounds), strict)
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
-        ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
+        ci_low=ci_low, ci_high=ci_high,
         confidence=confidence,
         measured_hz=empty if measured is None else measured.freq_hz,
         initial_hz=first["f"], fitted_hz=last["f"], mac=last["mac"],

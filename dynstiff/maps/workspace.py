@@ -285,23 +285,21 @@ def _validated(robot, poses, box, step, orientations, parameter, values, n_modes
 
 
 class _Progress:
-    """One line on stderr: poses done, rate and time left."""
+    """A tqdm bar on stderr: poses done, rate and time left (off when ``show`` is False or
+    stderr is not a terminal)."""
 
     def __init__(self, total, show):
-        self.total, self.done, self.show, self.t0 = total, 0, show, time.perf_counter()
+        self.bar = None
+        if show:
+            from tqdm import tqdm
+            self.bar = tqdm(total=total, desc="workspace", unit="pose", file=sys.stderr,
+                            disable=None, dynamic_ncols=True)
 
     def __call__(self, n):
-        self.done += n
-        if not self.show:
-            return
-        dt = time.perf_counter() - self.t0
-        rate = self.done / dt if dt > 0 else 0.0
-        left = (self.total - self.done) / rate if rate > 0 else float("nan")
-        sys.stderr.write(f"\rworkspace: {self.done}/{self.total} poses, {rate:.0f} poses/s, "
-                         f"{left:.0f} s left ")
-        if self.done >= self.total:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+        if self.bar is not None:
+            self.bar.update(n)
+            if self.bar.n >= self.bar.total:
+                self.bar.close()
 
 
 def _run(tasks, workers, client, progress):

@@ -76,7 +76,8 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     comments : sequence of str
         Lines for the header comment (source, conventions ...).
     cable_names : sequence of str, optional
-        A comment above each ``[[cables]]``.
+        Names in the comment above each ``[[cables]]``, after its 0-based number
+        (``# cable 0 (NAME)``).
     trajectories : sequence of WaypointPath
         Written as ``[[trajectories]]`` tables (names must differ).
     workspace_box : sequence of 6 float, optional
@@ -126,9 +127,10 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     out += ["[tension_limits]", f"min = {_num(t_min)}                                # [N]"]
     if np.isfinite(t_max):
         out += [f"max = {_num(t_max)}                                # [N]"]
-    out += ["", "# anchor a_j [m, base frame]; attachment b_j [m, platform frame]"]
+    out += ["", "# anchor a_j [m, base frame]; attachment b_j [m, platform frame]; cables are",
+            "# numbered from 0 in the order below, as in every output of dynstiff"]
     for k in range(robot.n_cables):
-        label = cable_names[k] if cable_names is not None else f"cable {k + 1}"
+        label = f"cable {k}" + (f" ({cable_names[k]})" if cable_names is not None else "")
         out += [f"[[cables]]                                  # {label}",
                 f"anchor = {_vec(robot.anchors[k])}",
                 f"attachment = {_vec(robot.attachments[k])}"]
