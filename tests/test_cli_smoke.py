@@ -41,14 +41,7 @@ def _commands():
 COMMANDS = _commands()
 SCENELESS = ("scenes", "import-caspr")
 #: Runs that fail today, each with its cause (strict: they report when they start to pass).
-KNOWN_DEFECTS = {
-    ("calibrate", "pendulum"): "the analytic Jacobian's statics sensitivity "
-                               "(analyses/sensitivity_statics.py) refuses the pendulum's "
-                               "degenerate active set (both cables exactly at t_min)",
-    ("calibrate", "simulator"): "the analytic Jacobian's statics sensitivity "
-                                "(analyses/sensitivity_statics.py) refuses the scene's "
-                                "degenerate active set",
-}
+KNOWN_DEFECTS: dict = {}        # (command, scene) -> reason, run as strict xfails
 
 
 def _outputs(command):

@@ -342,6 +342,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
             "jacobian='analytic' needs frequency residuals only (no FRF, no damping "
             f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
     analytic = analytic and jacobian != "differences"
+    asked_jacobian = jacobian
     if not 0 < confidence < 1:
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
     for name, value in (start or {}).items():
@@ -426,10 +427,18 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         """Analytic (from the evaluation at u), else differences in ln p with a step far
         above the statics' tolerance (1e-10): forward (reusing the residual just evaluated
         at u) during the search, central for the sensitivities at the estimate."""
+        nonlocal analytic
         if analytic:
             if not np.array_equal(last_eval.get("u"), u):
                 residual(u)
-            return analytic_jacobian(last_eval["out"])
+            try:
+                return analytic_jacobian(last_eval["out"])
+            except InvalidParameterError:
+                # the statics' derivative is singular (e.g. cables exactly at t_min):
+                # "auto" falls back to differences, "analytic" says so
+                if asked_jacobian == "analytic":
+                    raise
+                analytic = False
         if central:
             return np.column_stack([(residual(u + h * e) - residual(u - h * e)) / (2 * h)
                                     for e in np.eye(n)])
