@@ -193,9 +193,9 @@ def _cmd_check(args):
             # the verdict holds the model to its bound, computed without the exact rung;
             # the advice measures it: say why they differ and what passes the row
             info(args).write(
-                f"  (advice, not a verdict: the measured error is within the tolerance, the "
-                f"cable-model row holds the model to its bound, computed without the exact "
-                f"rung (theory.md §11.6); --model exact passes the row)\n")
+                "  (advice, not a verdict: the measured error is within the tolerance, the "
+                "cable-model row holds the model to its bound, computed without the exact "
+                "rung (theory.md §11.6); --model exact passes the row)\n")
     write_tables(args, res.to_frame(), st.metadata(as_pose(pose)))
     _wrote(args)
     return 0 if res.passed else 1
