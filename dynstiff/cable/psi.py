@@ -210,8 +210,8 @@ def closed_form_spectrum(lambda_sq, n_modes):
     --------
     >>> import numpy as np
     >>> Omega, family, order = closed_form_spectrum(0.0, 3)   # a taut string
-    >>> np.round(Omega / np.pi, 12).tolist(), family[0], order.tolist()
-    ([1.0, 2.0, 2.0], 'out-of-plane', [1, 2, 1])
+    >>> np.round(Omega / np.pi, 12).tolist(), family[:2], order.tolist()
+    ([1.0, 1.0, 2.0], ('out-of-plane', 'in-plane symmetric'), [1, 1, 2])
     """
     k = np.arange(1, n_modes + 1)
     Om = np.concatenate([k * np.pi, 2 * k * np.pi, irvine_symmetric_roots(lambda_sq, n_modes)])
