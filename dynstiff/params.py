@@ -39,6 +39,13 @@ class Cable:
     ------
     InvalidParameterError
         If a value is not finite, or out of range; the message names the field.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=8.2051e-6 * 200e9)   # 4 mm steel
+    >>> print(f"{cable.EA / 1e6:.3f} MN")
+    1.641 MN
     """
 
     mass_per_length: float
@@ -87,6 +94,13 @@ class Damping:
         c, viscous damping per length of every cable [N s/m^2], >= 0, acting on every cable
         motion through the complex mass m - i c / omega (default 0); added to a cable's own
         ``viscous_damping``.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> d = ds.Damping(platform_ratio=0.02)
+    >>> d.platform_ratio, d.cable_loss_factor
+    (0.02, 0.01)
     """
 
     platform_ratio: float = 0.01

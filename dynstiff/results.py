@@ -69,6 +69,16 @@ class FRFResult:
     damping : str
         The damping of the model the FRF comes from, in words ("undamped": every peak is
         the grid's value near a pole, not the structure's).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+    >>> r.inputs, r.outputs, r.H.shape
+    (('fx', 'fz'), ('z',), (2, 1, 2))
     """
 
     freq_hz: np.ndarray
@@ -81,7 +91,18 @@ class FRFResult:
     def unit(self, output, input):
         """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
         e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
-        (accelerance)."""
+        (accelerance).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> r.unit("z", "fz"), r.unit("rz", "mz")
+        ('m/N', 'rad/(N m)')
+        """
         if output not in OUTPUT_NAMES or input not in INPUT_NAMES:
             raise InvalidParameterError(
                 f"unit needs an output among {OUTPUT_NAMES} and an input among "
@@ -97,27 +118,78 @@ class FRFResult:
 
     def plot(self, ax=None, modes=None, pairs=None, phase=False):
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
-        Returns the matplotlib Figure."""
+        Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> fig = r.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
     def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
-        Returns the path."""
+        Returns the path.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> import os, tempfile
+        >>> path = os.path.join(tempfile.mkdtemp(), "frf.uff")
+        >>> _ = r.to_uff(path)
+        >>> ds.read_measured_frf(path).H.shape
+        (2, 1, 2)
+        """
         from dynstiff.io.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
     def to_control(self):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
-        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`."""
+        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> data = r.to_control()
+        >>> type(data).__name__
+        'FrequencyResponseData'
+        """
         from dynstiff.io.exchange import frf_to_control
         return frf_to_control(self)
 
     def to_frame(self):
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
-        real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""
+        real, imag (all in the row's ``unit``, see :meth:`unit`), kind.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> df = r.to_frame()
+        >>> len(df), list(df.columns)[:3]
+        (4, ['freq [Hz]', 'input', 'output'])
+        """
         import pandas as pd
         n, no, ni = self.H.shape
         f = np.repeat(self.freq_hz, no * ni)
@@ -174,6 +246,14 @@ class ModalResult:
         The platform block of the robot's mass matrix about P [kg, kg m, kg m^2] (held
         DOFs' rows and columns zero): the rigid platform, plus, for the lumped rung, the
         half masses of the cables' last segments; it gives the modes' participation.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+    >>> [f"{f:.4f}" for f in res.freq_hz], res.kind
+    (['2.2061', '2.3592', '2.9907'], ('global', 'global', 'global'))
     """
 
     freq_hz: np.ndarray
@@ -192,7 +272,16 @@ class ModalResult:
 
     @property
     def platform_share(self):
-        """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,)."""
+        """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> [f"{s:.3f}" for s in res.platform_share]
+        ['0.989', '0.944', '0.650']
+        """
         return np.clip(1.0 - np.asarray(self.cable_energy_fraction, dtype=float), 0.0, 1.0)
 
     @property
@@ -201,7 +290,19 @@ class ModalResult:
         p_kj = (M x_k)_j^2 s_k / M_jj with x_k the shape at unit platform kinetic energy,
         s_k its platform share and M ``platform_mass`` (theory.md §12.1). Over all the modes
         of the robot each column sums to 1; held DOFs are 0 (NaN without
-        ``platform_mass``)."""
+        ``platform_mass``).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> p = res.participation
+        >>> p.shape
+        (3, 6)
+        >>> print(f"{p[0].max():.3f}")
+        0.959
+        """
         n = len(self.freq_hz)
         if self.platform_mass is None:
             return np.full((n, 6), np.nan)
@@ -215,14 +316,32 @@ class ModalResult:
 
     @property
     def dominant_dof(self):
-        """Name of the DOF each mode moves most, by participation ("-" for none)."""
+        """Name of the DOF each mode moves most, by participation ("-" for none).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> res.dominant_dof
+        ('z', 'y', 'x')
+        """
         p = self.participation
         return tuple(DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
                      for r in np.nan_to_num(p))
 
     @property
     def shift_from_massless(self):
-        """Relative shift of each paired mode's frequency from its massless-cable mode [-]."""
+        """Relative shift of each paired mode's frequency from its massless-cable mode [-].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> [f"{s:+.4f}" for s in res.shift_from_massless]
+        ['-0.0050', '-0.0163', '-0.0503']
+        """
         return self.freq_hz / self.massless_freq_hz - 1.0
 
     def __len__(self):
@@ -235,14 +354,35 @@ class ModalResult:
 
     def plot(self, ax=None):
         """Frequencies against platform share, coloured by kind:
-        :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure."""
+        :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> fig = res.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
     def to_frame(self):
         """pandas DataFrame, one row per mode, units in the column names: frequency, kind,
         platform share, the participation of each DOF, the paired massless mode and the
-        platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``)."""
+        platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+        >>> df = res.to_frame()
+        >>> len(df), list(df.columns)[:2]
+        (3, ['mode', 'freq [Hz]'])
+        """
         import pandas as pd
         df = pd.DataFrame({
             "mode": np.arange(1, len(self) + 1),
@@ -278,6 +418,16 @@ class LumpedModalResult(ModalResult):
     ``platform_shapes`` are normalised to x^T M_p x = 1 with M_p the rigid platform alone,
     like the closed-form model; ``massless_freq_hz`` comes from the lumped cables condensed
     statically onto the platform (their massless limit).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> res = ds.modes(ds.build_model(eq, "lumped", segments=4), n_modes=2)
+    >>> type(res).__name__, len(res.node_shapes)
+    ('LumpedModalResult', 8)
+    >>> print(f"{res.freq_hz[0]:.2f} Hz")
+    2.21 Hz
     """
 
     node_shapes: list = None
@@ -296,6 +446,14 @@ class DampedModes:
         iteration did not converge (see ``residual``) or for purely local modes.
     residual : ndarray, shape (n,)
         |smallest eigenvalue of K(omega)| / ||K|| at the returned root [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+    >>> print([f"{w:.3f}" for w in d.omega])
+    ['13.864+0.277j', '14.827+0.289j']
     """
 
     undamped_freq_hz: np.ndarray
@@ -304,12 +462,30 @@ class DampedModes:
 
     @property
     def freq_hz(self):
-        """Damped natural frequency Re(omega) / 2 pi [Hz]."""
+        """Damped natural frequency Re(omega) / 2 pi [Hz].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> [f"{f:.4f}" for f in d.freq_hz]
+        ['2.2065', '2.3597']
+        """
         return self.omega.real / _TWO_PI
 
     @property
     def damping_ratio(self):
-        """zeta = Im(omega) / |omega| [-]."""
+        """zeta = Im(omega) / |omega| [-].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> [f"{z:.4f}" for z in d.damping_ratio]
+        ['0.0200', '0.0195']
+        """
         return self.omega.imag / np.abs(self.omega)
 
     def __len__(self):
@@ -324,12 +500,32 @@ class DampedModes:
 
     def plot(self, ax=None):
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.
-        Returns the matplotlib Figure."""
+        Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> fig = d.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_damped_modes
         return plot_damped_modes(self, ax=ax)
 
     def to_frame(self):
-        """pandas DataFrame with units in column names."""
+        """pandas DataFrame with units in column names.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> list(d.to_frame().columns)
+        ['undamped freq [Hz]', 'damped freq [Hz]', 'damping ratio [-]', 'residual [-]']
+        """
         import pandas as pd
         return pd.DataFrame({"undamped freq [Hz]": self.undamped_freq_hz,
                              "damped freq [Hz]": self.freq_hz,

@@ -159,6 +159,18 @@ class CalibrationResult:
         Damping ratios [-], when a damping parameter was fitted to them.
     frf_log_error : float or None
         RMS of ln |H_model / H_measured| at the estimate, when FRFs were fitted.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+    ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+    >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+    >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+    >>> cal.parameters, [f"{f:.4f}" for f in cal.fitted_hz], bool(abs(cal.residual).max() < 1e-9)
+    (('EA',), ['2.3109', '2.4630'], True)
     """
 
     parameters: tuple
@@ -182,7 +194,20 @@ class CalibrationResult:
 
     @property
     def residual(self):
-        """Relative residual f_fitted / f_measured - 1 of every mode [-]."""
+        """Relative residual f_fitted / f_measured - 1 of every mode [-].
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+        ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+        >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+        >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+        >>> bool(abs(cal.residual).max() < 1e-4)
+        True
+        """
         return self.fitted_hz / self.measured_hz - 1.0
 
     def __repr__(self):
@@ -196,7 +221,20 @@ class CalibrationResult:
                 f"{self.n_evaluations} evaluations)")
 
     def text(self):
-        """A short report: estimates with intervals, then the residual per mode."""
+        """A short report: estimates with intervals, then the residual per mode.
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+        ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+        >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+        >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+        >>> print(cal.text().splitlines()[0])
+        parameter       initial     estimate       ci low      ci high
+        """
         lines = [f"{'parameter':<10} {'initial':>12} {'estimate':>12} "
                  f"{'ci low':>12} {'ci high':>12}"]
         for p, a, v, lo, hi in zip(self.parameters, self.initial, self.estimate, self.ci_low,
@@ -207,7 +245,20 @@ class CalibrationResult:
         return "\n".join(lines) + "\n"
 
     def to_frame(self):
-        """One row per measured mode: measured, initial and fitted frequency, residual, MAC."""
+        """One row per measured mode: measured, initial and fitted frequency, residual, MAC.
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+        ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+        >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+        >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+        >>> len(cal.to_frame())
+        2
+        """
         import pandas as pd
         df = pd.DataFrame({"mode": np.arange(1, self.measured_hz.size + 1),
                            "measured [Hz]": self.measured_hz,
@@ -221,7 +272,22 @@ class CalibrationResult:
         return df
 
     def plot(self, ax=None):
-        """Relative error of every mode before and after the fit; returns the Figure."""
+        """Relative error of every mode before and after the fit; returns the Figure.
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+        ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+        >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+        >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+        >>> fig = cal.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         import matplotlib.pyplot as plt
         if ax is None:
             fig, ax = plt.subplots(figsize=(6, 3.5))
@@ -306,6 +372,18 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     -----
     CalibrationWarning
         The same findings, without ``strict``.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+    ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+    >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+    >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+    >>> print(f"EA x {cal.estimate[0] / cal.initial[0]:.4f}")
+    EA x 1.1000
     """
     from scipy.optimize import least_squares
     from scipy.stats import norm

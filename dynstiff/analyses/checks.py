@@ -69,6 +69,16 @@ class CheckResult:
     uncertainty : UncertaintyResult or None
         With stated uncertainties: the distributions behind the last row
         (:func:`dynstiff.analyses.uncertainty.uncertain_row`).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+    >>> res.passed
+    True
+    >>> res.to_frame()["verdict"].tolist()
+    ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass']
     """
 
     rows: tuple
@@ -82,21 +92,57 @@ class CheckResult:
 
     @property
     def passed(self):
-        """True when every check passed (a check "not asked" cannot fail; "unknown" does)."""
+        """True when every check passed (a check "not asked" cannot fail; "unknown" does).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> res.passed
+        True
+        """
         return all(r["passed"] for r in self.rows)
 
     @property
     def verdicts(self):
-        """{check: verdict}."""
+        """{check: verdict}.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> res.verdicts["platform modes outside band"]
+        'pass'
+        """
         return {r["check"]: r["verdict"] for r in self.rows}
 
     def to_frame(self):
-        """pandas DataFrame, one row per check."""
+        """pandas DataFrame, one row per check.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> list(res.to_frame().columns)
+        ['check', 'verdict', 'passed', 'value', 'limit', 'detail']
+        """
         import pandas as pd
         return pd.DataFrame(list(self.rows))
 
     def text(self):
-        """Plain-text report."""
+        """Plain-text report.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> print(res.text().splitlines()[0])
+        PASS    workspace (tension-feasible pose) statics residual 8.9e-14
+        """
         flags = {"pass": "PASS", "fail": "FAIL", "unknown": "UNKNOWN", "not asked": "n/a"}
         out = [f"{flags[r['verdict']]:<7s} {r['check']:<33s} {r['detail']}" for r in self.rows]
         out.append("all checks passed" if self.passed else "some checks FAILED")

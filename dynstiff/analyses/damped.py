@@ -67,6 +67,15 @@ def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
     Returns
     -------
     DampedModes
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq, platform_damping_ratio=0.02)
+    >>> d = ds.damped_modes(m, n_modes=1)
+    >>> print(f"{d.freq_hz[0]:.3f} Hz, zeta = {d.damping_ratio[0]:.4f}")
+    2.207 Hz, zeta = 0.0200
     """
     und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
     est = _perturbation_estimates(model, und)

@@ -100,6 +100,16 @@ def mode_count(model, omega):
     Returns
     -------
     ndarray of int, shape (n_omega,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> f = ds.eigenfrequencies(m, n_modes=2)
+    >>> ds.mode_count(m, 2 * np.pi * np.array([0.5, 1.01]) * f[1]).tolist()   # below and above f[1]
+    [0, 2]
     """
     return _count(require_model(model).undamped(), omega)[0]
 
@@ -171,6 +181,15 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
     InvalidParameterError
         Bad ``n_modes``, ``fmax_hz``, ``rtol`` or ``method``; ``n_modes`` larger than a
         discrete rung's number of DOFs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> [f"{f:.4f}" for f in ds.eigenfrequencies(m, n_modes=3)]
+    ['2.2061', '2.3592', '2.9907']
     """
     n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
     if not (isinstance(rtol, Real) and 0 < rtol < 1e-2):

@@ -128,6 +128,18 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
     PoleWarning
         At a frequency where K(omega) is exactly singular: those entries are inf, never a
         silently wrong finite number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs="fz", outputs="z")
+    >>> r.H.shape
+    (2, 1, 1)
+    >>> print(f"{abs(r.H[0, 0, 0]):.3e} m/N")
+    5.925e-05 m/N
     """
     require_model(model)
     omega = omega_array(omega)

@@ -51,6 +51,16 @@ class ProximityWarning(DynstiffWarning, UserWarning):
         Their frequencies [Hz].
     relative_gap : float
         |freq_local_hz - freq_global_hz| / freq_global_hz [-].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> w = ds.proximity_warnings(ds.modes(m, fmax_hz=4.0), rtol=0.15)[0]
+    >>> print(f"{w.freq_global_hz:.3f} Hz near {w.freq_local_hz:.3f} Hz, gap {w.relative_gap:.3f}")
+    2.991 Hz near 3.351 Hz, gap 0.120
     """
 
     _FIELDS = ("global_mode", "local_mode", "freq_global_hz", "freq_local_hz", "relative_gap")
@@ -131,6 +141,18 @@ def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
     ------
     InvalidParameterError
         ``rtol`` not finite and > 0, or ``modes`` not a modal result.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> w = ds.proximity_warnings(ds.modes(m, fmax_hz=4.0), rtol=0.15)
+    >>> len(w)
+    15
+    >>> print(w[0])
+    local mode 7 (3.35055 Hz) is within 12 % of global mode 3 (2.99072 Hz)
     """
     rtol = positive_scalar("rtol", rtol)
     f, kind = _check_modes(modes)

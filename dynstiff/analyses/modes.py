@@ -45,6 +45,17 @@ def cable_fields(model, modes, k, n_points=41):
     UnsupportedAnalysisError
         The rung has no continuous cable field (massless cables; the lumped rung gives its
         node motions in ``modes(...).node_shapes``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> res = ds.modes(m, n_modes=1)
+    >>> points, u = ds.cable_fields(m, res, 0, n_points=5)
+    >>> points.shape, u.shape
+    ((8, 5, 3), (8, 5, 3))
     """
     if not hasattr(model, "cable_displacements"):
         raise UnsupportedAnalysisError(

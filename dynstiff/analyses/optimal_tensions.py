@@ -67,6 +67,13 @@ class OptimalTensions:
         Steps of the search and equilibria solved.
     platform : PlatformModes
         The platform modes at the optimum.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+    >>> opt.objective, opt.equilibrium.robot.n_cables
+    ('first_global_hz', 8)
     """
 
     equilibrium: object
@@ -82,12 +89,28 @@ class OptimalTensions:
 
     @property
     def gain(self):
-        """value - default_value [Hz or -]."""
+        """value - default_value [Hz or -].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> print(f"{opt.gain:+.3f} Hz")
+        +0.085 Hz
+        """
         return self.value - self.default_value
 
     @property
     def tensions(self):
-        """Optimal tensions at B [N], shape (n,)."""
+        """Optimal tensions at B [N], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> print(f"{opt.tensions.min():.1f} N")
+        100.0 N
+        """
         return self.equilibrium.tensions
 
     def __repr__(self):
@@ -98,7 +121,15 @@ class OptimalTensions:
 
     def to_frame(self):
         """pandas DataFrame, one row per cable: default and optimal tension at B and their
-        least and largest tension along the cable [N]."""
+        least and largest tension along the cable [N].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> len(opt.to_frame())
+        8
+        """
         import pandas as pd
         d, o = self.default, self.equilibrium
         return pd.DataFrame({"cable": np.arange(len(o.tensions)),

@@ -58,6 +58,14 @@ class Recommendation:
         Predicted error of every rung [-] (inf: misses modes).
     estimates : dict
         The quantities the choice relied on.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> rec = ds.recommend_model(eq, band_hz=(0.0, 5.0))
+    >>> rec.rung, rec.predicted_error < 0.01
+    ('dsm', True)
     """
 
     rung: str
@@ -72,12 +80,30 @@ class Recommendation:
 
     def plot(self, ax=None, rtol=None):
         """Predicted error of every rung: :func:`dynstiff.plot.plot_model_errors`. Returns
-        the matplotlib Figure."""
+        the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> fig = ds.recommend_model(eq, band_hz=(0.0, 5.0)).plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_model_errors
         return plot_model_errors(self, ax=ax, rtol=rtol)
 
     def text(self):
-        """One-paragraph explanation."""
+        """One-paragraph explanation.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(ds.recommend_model(eq, band_hz=(0.0, 5.0)).text().splitlines()[0])
+        recommended model: dsm (predicted error 1.57e-04)
+        """
         e = self.estimates
         seg = f" with N = {self.segments} segments per cable" if self.segments else ""
         lines = [f"recommended model: {self.rung}{seg} (predicted error "
@@ -94,7 +120,16 @@ class Recommendation:
     def to_frame(self):
         """pandas DataFrame, one row per rung, cheapest first: "rung", "segments" (the
         lumped rung's count for the tolerance), "predicted error [-]" (inf: misses modes)
-        and "recommended"."""
+        and "recommended".
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> df = ds.recommend_model(eq, band_hz=(0.0, 5.0)).to_frame()
+        >>> list(df["rung"])
+        ['spring', 'catenary', 'dsm', 'exact', 'lumped']
+        """
         import pandas as pd
         rungs = [r for r in RUNGS if r in self.errors]
         return pd.DataFrame({
@@ -292,6 +327,14 @@ def recommend_model(equilibrium, band_hz, rtol=1e-2):
     Returns
     -------
     Recommendation
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> rec = ds.recommend_model(eq, band_hz=(0.0, 5.0))
+    >>> rec.rung
+    'dsm'
     """
     errors, estimates, segments = predicted_errors(equilibrium, band_hz, rtol)
     for rung in RUNGS:

@@ -55,6 +55,16 @@ class ModalModel:
         Residual flexibility R [m/N, ...] of the truncated modes (None: not corrected).
     free_dofs : tuple of str
     pose : Pose
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> mm = ds.modal_model(m, n_modes=6)
+    >>> len(mm.freq_hz), mm.free_dofs
+    (6, ('x', 'y', 'z', 'rx', 'ry', 'rz'))
     """
 
     omega: np.ndarray
@@ -67,7 +77,17 @@ class ModalModel:
 
     @property
     def freq_hz(self):
-        """Natural frequencies [Hz], shape (n,)."""
+        """Natural frequencies [Hz], shape (n,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> print(f"{ds.modal_model(m, n_modes=6).freq_hz[0]:.4f} Hz")
+        2.2061 Hz
+        """
         return self.omega / _TWO_PI
 
     def __len__(self):
@@ -80,7 +100,18 @@ class ModalModel:
                 f"{'on' if self.residual is not None else 'off'})")
 
     def receptance(self, omega):
-        """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...]."""
+        """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> mm = ds.modal_model(m, n_modes=6, damping=0.01)
+        >>> mm.receptance(2 * np.pi * np.array([0.5, 1.0])).shape
+        (2, 6, 6)
+        """
         w = np.atleast_1d(np.asarray(omega, dtype=float))
         den = (self.omega**2 - w[:, None]**2 + 2j * self.damping * self.omega * w[:, None])
         H = np.einsum("kr,ri,rj->kij", 1.0 / den, self.shapes, self.shapes)
@@ -118,6 +149,18 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
     Returns
     -------
     ModalModel
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> mm = ds.modal_model(m, n_modes=6, damping=0.01)
+    >>> [f"{f:.3f}" for f in mm.freq_hz[:2]]
+    ['2.206', '2.359']
+    >>> H = mm.receptance([1.0]); H.shape
+    (1, 6, 6)
     """
     m = require_model(model).undamped()
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
@@ -195,6 +238,16 @@ def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, o
     -------
     control.StateSpace
         Inputs and outputs named after the channels; 2 n states.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> sys = ds.to_statespace(m, n_modes=6, damping=0.01, inputs="fz", outputs="z")
+    >>> sys.nstates, sys.ninputs, sys.noutputs
+    (12, 1, 1)
     """
     ct = require("control")
     mm = model if isinstance(model, ModalModel) else modal_model(

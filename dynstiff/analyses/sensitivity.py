@@ -69,6 +69,14 @@ class SensitivityResult:
         Platform share of each mode's kinetic energy [-] (theory.md §13.3).
     rung, hold : str
     note : str
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+    >>> s.parameters, s.derivative.shape
+    (('EA', 'mass'), (2, 2))
     """
 
     freq_hz: np.ndarray
@@ -85,12 +93,30 @@ class SensitivityResult:
 
     @property
     def relative(self):
-        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p)."""
+        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> [f"{v:+.4f}" for v in s.relative[0]]      # Hz per +1 % of EA, of the mass
+        ['+0.0108', '-0.0102']
+        """
         return 0.01 * self.derivative * self.values[None, :]
 
     @property
     def elasticity(self):
-        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p."""
+        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> [f"{v:+.3f}" for v in s.elasticity[0]]
+        ['+0.487', '-0.461']
+        """
         return self.derivative * self.values[None, :] / self.freq_hz[:, None]
 
     def __repr__(self):
@@ -99,7 +125,16 @@ class SensitivityResult:
 
     def to_frame(self):
         """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,
-        unit, df/dp, df per 1 %, elasticity, d zeta/dp."""
+        unit, df/dp, df per 1 %, elasticity, d zeta/dp.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> len(s.to_frame())
+        4
+        """
         import pandas as pd
         m, p = self.derivative.shape
         return pd.DataFrame({
@@ -116,7 +151,18 @@ class SensitivityResult:
 
     def plot(self, modes=(0,), n_parameters=10, ax=None):
         """Tornado chart per mode: the change of the frequency per 1 % of each parameter,
-        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure."""
+        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> fig = s.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         import matplotlib.pyplot as plt
         modes = list(modes)
         if ax is None:

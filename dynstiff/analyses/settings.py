@@ -217,6 +217,13 @@ def scene_equilibrium(scene, pose=None, lengths=None):
     InvalidParameterError
         Both ``pose`` and ``lengths``, or ``lengths`` for a scene that holds DOFs without a
         pose to hold them at.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.scene_equilibrium(ds.load_scene("cogiro"), pose=[0.0, 0.0, 1.2])
+    >>> eq.pose.position.tolist()
+    [0.0, 0.0, 1.2]
     """
     if pose is not None and lengths is not None:
         raise InvalidParameterError("give pose or lengths, not both")

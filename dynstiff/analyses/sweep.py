@@ -66,6 +66,14 @@ class SweepResult:
         their row has kind "infeasible" and NaN frequency, ``modal`` and ``equilibria`` None.
     massless_freq_hz : ndarray of float
         Frequency of the matching massless-cable mode [Hz] (NaN for local modes).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+    >>> s.parameter, s.values.tolist()
+    ('arc length [m]', [0.0, 0.5])
     """
 
     parameter: str
@@ -91,18 +99,47 @@ class SweepResult:
                 f"steps, {len(self)} modes, {self.n_tracks} platform-mode tracks)")
 
     def plot(self, ax=None, show_local=True):
-        """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure."""
+        """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> robot = ds.load_scene("cogiro").robot
+        >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> fig = s.plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_veering
         return plot_veering(self, ax=ax, show_local=show_local)
 
     @property
     def n_steps(self):
-        """Number of steps."""
+        """Number of steps.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> robot = ds.load_scene("cogiro").robot
+        >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> s.n_steps
+        2
+        """
         return len(self.values)
 
     @property
     def n_tracks(self):
-        """Number of platform-mode tracks."""
+        """Number of platform-mode tracks.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> robot = ds.load_scene("cogiro").robot
+        >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> s.n_tracks
+        6
+        """
         t = self.track[self.track != UNTRACKED]
         return int(t.max()) + 1 if t.size else 0
 
@@ -113,6 +150,15 @@ class SweepResult:
         modes that are not platform modes), ``freq [Hz]``, ``kind``, ``cable energy
         fraction [-]``, ``massless freq [Hz]``.
         ``df.attrs["parameter"]`` names the quantity in ``value``.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> robot = ds.load_scene("cogiro").robot
+        >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> df = s.to_frame()
+        >>> len(df)
+        14
         """
         import pandas as pd
         track = pd.array(self.track, dtype="Int64")
@@ -139,6 +185,14 @@ class SweepResult:
         pandas.DataFrame, shape (n_steps, n_tracks)
             Frequencies [Hz]; index ``step`` (the abscissa is ``values[step]``), columns the
             track ids. NaN where a track has no platform mode at a step.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> robot = ds.load_scene("cogiro").robot
+        >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> s.veering_table().shape
+        (2, 6)
         """
         import pandas as pd
         table = np.full((self.n_steps, self.n_tracks), np.nan)
@@ -307,6 +361,19 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         an Equilibrium. The message names the argument.
     SlackCableError, ConvergenceError
         From the statics at a step (the note on the exception names the step).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+    >>> s.n_steps, s.n_tracks
+    (2, 6)
+    >>> print(s.veering_table().round(3))
+    track      0      1      2      3      4      5
+    step
+    0      2.206  2.359  2.991  3.869  4.972  5.854
+    1      2.208  2.369  2.985  3.949  4.971  5.834
     """
     if on_error not in ("raise", "record"):
         raise InvalidParameterError(f"on_error must be 'raise' or 'record', got {on_error!r}")

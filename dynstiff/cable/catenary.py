@@ -121,6 +121,14 @@ class CatenaryState:
         Vertical tension component at A [N], positive when the cable rises from A.
     residual : float
         Final relative residual of the end-offset equations [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> print(f"H = {state.H:.2f} N, V0 = {state.V0:.2f} N, chord {state.chord_length:.1f} m")
+    H = 239.24 N, V0 = 177.87 N, chord 5.0 m
     """
 
     anchor: np.ndarray

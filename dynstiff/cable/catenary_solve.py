@@ -144,6 +144,14 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
         A vertical or weightless cable shorter than its chord would need compression.
     ConvergenceError
         Newton failed from every starting guess; the message gives the residual.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.solve_catenary([0, 0, 0], [4.0, 0, 3.0], 5.0, cable)   # a 5 m chord
+    >>> print(f"H = {state.H:.1f} N, residual below 1e-12: {state.residual < 1e-12}")
+    H = 60.4 N, residual below 1e-12: True
     """
     A, B, L = _validate_ends(anchor, end)
     L0 = positive_scalar("unstretched_length", unstretched_length)
@@ -209,6 +217,14 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
     grows, reaches a minimum, then rises again as the cable hangs deeper; the solution
     returned is the shorter, taut one. Raises :class:`SlackCableError` when the target is
     below the minimum tension any cable between these points can have.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> print(f"L0 = {state.unstretched_length:.6f} m, T_B = {state.tension_at_end:.6f} N")
+    L0 = 4.999103 m, T_B = 300.000000 N
     """
     from scipy.optimize import brentq
 

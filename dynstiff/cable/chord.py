@@ -113,6 +113,15 @@ def chord_parameters(state, tension="mean"):
     Returns
     -------
     ChordParameters
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> p = ds.chord_parameters(state)
+    >>> print(f"lambda^2 = {p.lambda_sq:.4f}, T = {p.T:.1f} N")
+    lambda^2 = 0.3867, T = 299.1 N
     """
     if tension not in ("mean", "chord"):
         raise InvalidParameterError(f"tension must be 'mean' or 'chord', got {tension!r}")

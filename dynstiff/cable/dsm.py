@@ -207,6 +207,17 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     ------
     InvalidParameterError
         ``omega`` negative or not finite, or ``ends`` / ``tension`` unknown.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> K = ds.cable_dynamic_stiffness(state, [0.0, 10.0])   # omega [rad/s]
+    >>> K.shape
+    (2, 3, 3)
+    >>> print(f"{K[0, 0, 0]:.1f} N/m")
+    203423.5 N/m
     """
     if ends not in ("end", "both"):
         raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")

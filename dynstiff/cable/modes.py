@@ -33,6 +33,15 @@ class CableModes:
         "out-of-plane", "in-plane" or "axial" (exact model).
     order : ndarray of int, shape (n,)
         Index of the mode within its family, from 1.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> m = ds.cable_natural_frequencies(state, 3)
+    >>> [f"{f:.2f}" for f in m.freq_hz], m.family[0]
+    (['6.84', '6.94', '13.67'], 'out-of-plane')
     """
 
     freq_hz: np.ndarray
@@ -42,7 +51,16 @@ class CableModes:
 
     @property
     def labels(self):
-        """Labels such as "in-plane symmetric 1"."""
+        """Labels such as "in-plane symmetric 1".
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> ds.cable_natural_frequencies(state, 2).labels
+        ('out-of-plane 1', 'in-plane symmetric 1')
+        """
         return tuple(f"{f} {k}" for f, k in zip(self.family, self.order))
 
     def __len__(self):
@@ -55,12 +73,33 @@ class CableModes:
 
     def plot(self, ax=None):
         """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
-        matplotlib Figure."""
+        matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> fig = ds.cable_natural_frequencies(state, 3).plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_cable_modes
         return plot_cable_modes(self, ax=ax)
 
     def to_frame(self):
-        """pandas DataFrame with columns freq [Hz], Omega [-], family, order."""
+        """pandas DataFrame with columns freq [Hz], Omega [-], family, order.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> df = ds.cable_natural_frequencies(state, 3).to_frame()
+        >>> list(df.columns), len(df)
+        (['freq [Hz]', 'Omega [-]', 'family', 'order'], 3)
+        """
         import pandas as pd
         return pd.DataFrame({"freq [Hz]": self.freq_hz, "Omega [-]": self.Omega,
                              "family": list(self.family), "order": self.order})
@@ -103,6 +142,15 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
     Returns
     -------
     CableModes
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> m = ds.cable_natural_frequencies(state, 3)
+    >>> print(f"{m.freq_hz[0]:.3f} Hz", m.labels[0])     # sqrt(T / m) / 2L, T = 299.1 N
+    6.836 Hz out-of-plane 1
     """
     if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
         raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")

@@ -116,6 +116,16 @@ def cable_mode_count(state, omega, tension="mean"):
     Returns
     -------
     ndarray of int, shape (n_omega,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> f1 = ds.cable_natural_frequencies(state, 1).freq_hz[0]
+    >>> ds.cable_mode_count(state, [0.99 * 2 * np.pi * f1, 1.01 * 2 * np.pi * f1]).tolist()
+    [0, 1]
     """
     omega = omega_array(omega)
     p = chord_parameters(state, tension)

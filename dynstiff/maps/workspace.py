@@ -55,6 +55,13 @@ def box_grid(box, step):
     -------
     tuple of three ndarray
         x, y and z axes [m].
+
+    Examples
+    --------
+    >>> from dynstiff import box_grid
+    >>> x, y, z = box_grid([-0.5, 0.5, 0.0, 0.0, 1.0, 1.0], 0.5)
+    >>> x.tolist(), y.tolist(), z.tolist()
+    ([-0.5, 0.0, 0.5], [0.0], [1.0])
     """
     try:
         b = np.asarray(box, dtype=float)
@@ -381,6 +388,16 @@ damping, model_band_hz, max_modes
         Dimensions ``x, y, z[, orientation]`` (or ``pose``) ``[, parameter], mode, cable,
         check``; variables and attributes as :func:`dynstiff.maps.dataset.to_dataset`.
         Infeasible poses hold ``feasible = False``, their ``reason`` and NaN.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> maps = ds.workspace(robot, box=[-0.5, 0.5, 0, 0, 1.0, 1.0], step=0.5, n_modes=3)
+    >>> dict(maps.sizes)
+    {'x': 3, 'y': 1, 'z': 1, 'cable': 8, 'mode': 3, 'check': 5}
+    >>> maps["feasible"].values.ravel().tolist()
+    [True, True, True]
     """
     options = check_options(band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol,
                             participation, frf_limit, model_band_hz, max_modes)

@@ -93,6 +93,17 @@ class FrequencyModel(PlatformModel):
         Dyad coefficients of every cable (``cable_coefficients``) -> K on the free DOFs.
     K_geo_free : ndarray, shape (n_free, n_free)
         Symmetric part of K_geo on the free DOFs (the conservative stiffness).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> m.rung, m.n_free
+    ('dsm', 6)
+    >>> K = m.dynamic_stiffness([0.0, 10.0])          # K(omega), omega [rad/s]
+    >>> K.shape
+    (2, 6, 6)
     """
 
     rung = "dsm"

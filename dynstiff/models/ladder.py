@@ -55,6 +55,16 @@ def build_model(equilibrium, rung, segments=30, **options):
     StaticCableModel, FrequencyModel, ExactModel or LumpedLinearModel
         Immutable, with ``.rung``. The lumped model is linearised about its own
         equilibrium for the same unstretched lengths, started from ``equilibrium.pose``.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> for rung in ("spring", "dsm"):
+    ...     m = ds.build_model(eq, rung)
+    ...     print(rung, f"{ds.eigenfrequencies(m, n_modes=1)[0]:.4f} Hz")
+    spring 2.2336 Hz
+    dsm 2.2061 Hz
     """
     allowed = {"dsm": ("tension", "chordwise_inertia", "cable_loss_factor",
                        "platform_damping_ratio", "guard_rtol"),

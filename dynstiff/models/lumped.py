@@ -56,6 +56,16 @@ class LumpedLinearModel(PlatformModel):
         cable has a loss factor.
     C : scipy.sparse.csr_matrix or None
         Viscous damping [N s/m], None if no cable has viscous damping.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.build_model(eq, "lumped", segments=4)
+    >>> type(m).__name__, m.rung
+    ('LumpedLinearModel', 'lumped')
+    >>> print(f"{ds.eigenfrequencies(m, n_modes=1)[0]:.2f} Hz")
+    2.21 Hz
     """
 
     rung = "lumped"

@@ -110,6 +110,14 @@ class LumpedMassModel:
     This model holds no state: :meth:`equilibrium` returns an equilibrium and changes
     nothing. Its linearisation about one is the "lumped" rung,
     :class:`~dynstiff.lumped.LumpedLinearModel` (``build_model(eq, "lumped")``).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> mm = ds.LumpedMassModel(eq.robot, eq.unstretched_lengths, segments=4)
+    >>> mm.segments
+    array([4, 4, 4, 4, 4, 4, 4, 4])
     """
 
     def __init__(self, robot, unstretched_lengths, segments=30):

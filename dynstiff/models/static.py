@@ -34,6 +34,14 @@ class StaticCableModel(PlatformModel):
         Stiffness [N/m, N, N m/rad] (symmetric part).
     n_dof : int
         n_free: the platform is the only mass.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.StaticCableModel(eq)
+    >>> [f"{f:.3f}" for f in ds.eigenfrequencies(m, n_modes=2)]     # massless cables [Hz]
+    ['2.217', '2.398']
     """
 
     def __init__(self, equilibrium, stiffness="catenary"):

@@ -128,6 +128,14 @@ class Platform:
     free_dofs : sequence of str, optional
         Free degrees of freedom among ``DOF_NAMES`` (default all six). Held DOFs are fixed
         (a pinned pendulum, a planar body, a point mass are the same model with some held).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> import numpy as np
+    >>> p = ds.Platform(mass=10.0, inertia=np.diag([0.5, 0.5, 0.8]), free_dofs=("x", "y", "z"))
+    >>> p.mass, p.free_dofs
+    (10.0, ('x', 'y', 'z'))
     """
 
     mass: float

@@ -22,7 +22,15 @@ __all__ = ["Pose", "as_pose"]
 
 @dataclass(frozen=True, eq=False)
 class Pose:
-    """Platform pose: position [m] of P and rotation vector [rad], both (3,)."""
+    """Platform pose: position [m] of P and rotation vector [rad], both (3,).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> pose = ds.Pose([0.0, 0.0, 1.0], rotation=[0.0, 0.0, 0.1])
+    >>> pose.position.tolist(), pose.rotation.tolist()
+    ([0.0, 0.0, 1.0], [0.0, 0.0, 0.1])
+    """
 
     position: np.ndarray
     rotation: np.ndarray = field(default_factory=lambda: np.zeros(3))

@@ -51,6 +51,16 @@ class Robot:
         Admissible tension range [t_min, t_max] [N] of the tension distribution, held all
         along each cable (inverse statics, design checks).
     name : str, optional
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> robot.n_cables, robot.platform.mass
+    (8, 91.058)
+    >>> eq = robot.equilibrium(pose=[0.0, 0.0, 1.0])
+    >>> print(f"{eq.tensions.min():.1f} N")
+    270.3 N
     """
 
     anchors: np.ndarray

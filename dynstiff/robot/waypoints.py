@@ -107,6 +107,17 @@ class WaypointPath:
         Blend time of each segment [s] ("parabolic_blend", required there), less than half
         the segment.
     name : str
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> path = ds.WaypointPath(times=[0.0, 2.0], positions=[[0, 0, 1.0], [0.5, 0, 1.0]],
+    ...                     rotations=[[0, 0, 0], [0, 0, 0]])
+    >>> path.duration
+    2.0
+    >>> position, rotation = path.at(1.0)
+    >>> position.tolist()
+    [[0.25, 0.0, 1.0]]
     """
 
     times: np.ndarray

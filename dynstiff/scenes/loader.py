@@ -93,7 +93,21 @@ def _type_error(value, kind):
 
 
 class SceneError(DynstiffError, ValueError):
-    """A scene file is malformed; the message names the file, the key and its line."""
+    """A scene file is malformed; the message names the file, the key and its line.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import dynstiff as ds
+    >>> path = os.path.join(tempfile.mkdtemp(), "bad.toml")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("robot = 1")
+    >>> try:
+    ...     ds.load_scene(path)
+    ... except ds.SceneError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, ValueError))
+    SceneError True
+    """
 
 @dataclass(frozen=True)
 class Scene:
@@ -128,6 +142,16 @@ class Scene:
     workspace_box : tuple of 6 float or None
         ``[workspace] box`` (x0, x1, y0, y1, z0, z1) [m]: the default box of a workspace
         map.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> scene.pose.position.tolist()
+    [0.0, 0.0, 1.0]
+    >>> eq = scene.equilibrium()
+    >>> print(f"{eq.tensions.max():.1f} N")
+    304.1 N
     """
 
     robot: Robot
@@ -348,7 +372,14 @@ def read_scene(path):
 
 
 def list_scenes():
-    """Names of the built-in scenes."""
+    """Names of the built-in scenes.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> ds.list_scenes()
+    ['cogiro', 'fourcable', 'pendulum', 'planar2', 'simulator', 'sixcable']
+    """
     return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
 
 
@@ -358,6 +389,13 @@ def load_scene(name):
     Returns
     -------
     Scene
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> scene.name, scene.robot.n_cables
+    ('cogiro', 8)
     """
     p = Path(name)
     if p.suffix == ".toml" or p.exists():
