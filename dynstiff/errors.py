@@ -4,6 +4,8 @@ Every error names the offending argument, what was expected and what was found.
 The exceptions subclass built-ins so that generic handlers keep working.
 """
 
+from __future__ import annotations
+
 __all__ = [
     "DynstiffError",
     "InvalidParameterError",
@@ -71,7 +73,7 @@ class ConvergenceError(DynstiffError, RuntimeError):
     (0.001, True)
     """
 
-    def __init__(self, message, residual=None):
+    def __init__(self, message: str, residual: float | None = None) -> None:
         super().__init__(message)
         self.residual = residual
 
@@ -107,7 +109,8 @@ class InfeasiblePoseError(SlackCableError):
     InfeasiblePoseError True
     """
 
-    def __init__(self, message, cause=None, remedies=None, cable=None):
+    def __init__(self, message: str, cause: str | None = None,
+                 remedies: dict[str, float] | None = None, cable: int | None = None) -> None:
         super().__init__(message)
         self.cause = cause
         self.remedies = dict(remedies or {})
@@ -158,7 +161,7 @@ class CalibrationWarning(DynstiffWarning, UserWarning):
     'bound'
     """
 
-    def __init__(self, message, cause=None):
+    def __init__(self, message: str, cause: str | None = None) -> None:
         super().__init__(message)
         self.cause = cause
 
@@ -175,7 +178,7 @@ class CalibrationError(DynstiffError, RuntimeError):
     ('residual', True)
     """
 
-    def __init__(self, message, cause=None):
+    def __init__(self, message: str, cause: str | None = None) -> None:
         super().__init__(message)
         self.cause = cause
 
@@ -197,13 +200,13 @@ class ClosedFormWarning(DynstiffWarning, UserWarning):
     asked: the message names the cable, the cause and the estimated error, and points to the
     "exact" rung. ``cable`` (index) and ``cause`` are attributes."""
 
-    def __init__(self, message, cable=None, cause=None):
+    def __init__(self, message: str, cable: int | None = None, cause: str | None = None) -> None:
         super().__init__(message)
         self.cable = cable
         self.cause = cause
 
 
-def user_stacklevel():
+def user_stacklevel() -> int:
     """``stacklevel`` for :func:`warnings.warn` called by the caller of this function that
     attributes the warning to the first frame outside the dynstiff package: the user's line,
     however deep in the package the warning arises (a model's guard runs from its

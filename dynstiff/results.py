@@ -8,12 +8,23 @@ Channels of an FRF: inputs ``LOAD_NAMES`` (forces [N] and moments [N m] on the p
 P), outputs ``DOF_NAMES`` (translations [m] of a platform point, rotations [rad]).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, LOAD_NAMES, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from pathlib import Path
+    from typing import Any
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
 
 __all__ = ["FRFResult", "ModalResult", "LumpedModalResult", "DampedModes", "INPUT_NAMES",
            "OUTPUT_NAMES", "RESPONSE_KINDS", "mode_kinds", "response_factor"]
@@ -28,7 +39,7 @@ OUTPUT_NAMES = DOF_NAMES
 RESPONSE_KINDS = {"receptance": 0, "mobility": 1, "accelerance": 2}
 
 
-def response_factor(omega, kind):
+def response_factor(omega: NDArray[np.float64], kind: str) -> NDArray[np.complex128]:
     """(i omega)^k turning a receptance into ``kind`` (k = 0, 1, 2 for receptance, mobility,
     accelerance), shape of ``omega`` [rad/s] (theory.md §4).
 
@@ -49,7 +60,7 @@ def response_factor(omega, kind):
 SHAPE_UNITS = ("[m/kg^0.5, x'Mx=1]",) * 3 + ("[rad/(m kg^0.5), x'Mx=1]",) * 3
 
 
-def _span(freq_hz):
+def _span(freq_hz: NDArray[np.float64]) -> str:
     f = np.asarray(freq_hz)
     return f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
 
@@ -88,18 +99,16 @@ class FRFResult:
     kind: str
     damping: str = "not stated"
 
-    def unit(self, output, input):
+    def unit(self, output: str, input: str) -> str:
         """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
         e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
         (accelerance).
 
         Examples
         --------
-        >>> import numpy as np
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> m = ds.FrequencyModel(eq)
-        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
         >>> r.unit("z", "fz"), r.unit("rz", "mz")
         ('m/N', 'rad/(N m)')
         """
@@ -112,41 +121,36 @@ class FRFResult:
         den += [[], ["s"], ["s^2"]][RESPONSE_KINDS[self.kind]]
         return f"{num}/{den[0]}" if len(den) == 1 else f"{num}/({' '.join(den)})"
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
                 f"outputs {self.outputs}, inputs {self.inputs}, {self.damping})")
 
-    def plot(self, ax=None, modes=None, pairs=None, phase=False):
+    def plot(self, ax: Axes | None = None, modes=None, pairs=None, phase: bool = False) -> Figure:
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
         Returns the matplotlib Figure.
 
         Examples
         --------
-        >>> import numpy as np
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> m = ds.FrequencyModel(eq)
-        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
-        >>> fig = r.plot()
-        >>> type(fig).__name__
-        'Figure'
-        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(r.plot())
         """
         from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
-    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
+    def to_uff(self, path: Path, node: int = 1, entity: str = "platform",
+               point_node: int | None = None, binary: bool = False) -> Path:
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
         Returns the path.
 
         Examples
         --------
-        >>> import numpy as np
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> m = ds.FrequencyModel(eq)
-        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
         >>> import os, tempfile
         >>> path = os.path.join(tempfile.mkdtemp(), "frf.uff")
         >>> _ = r.to_uff(path)
@@ -157,17 +161,15 @@ class FRFResult:
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
-    def to_control(self):
+    def to_control(self) -> Any:
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
         [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`.
 
         Examples
         --------
-        >>> import numpy as np
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> m = ds.FrequencyModel(eq)
-        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
         >>> data = r.to_control()
         >>> type(data).__name__
         'FrequencyResponseData'
@@ -175,19 +177,16 @@ class FRFResult:
         from dynstiff.io.exchange import frf_to_control
         return frf_to_control(self)
 
-    def to_frame(self):
+    def to_frame(self) -> Any | None:
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
         real, imag (all in the row's ``unit``, see :meth:`unit`), kind.
 
         Examples
         --------
-        >>> import numpy as np
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> m = ds.FrequencyModel(eq)
-        >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
-        >>> df = r.to_frame()
-        >>> len(df), list(df.columns)[:3]
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> df = r.to_frame(); len(df), list(df.columns)[:3]
         (4, ['freq [Hz]', 'input', 'output'])
         """
         import pandas as pd
@@ -204,7 +203,7 @@ class FRFResult:
                                  "kind": self.kind})
 
 
-def mode_kinds(platform_share):
+def mode_kinds(platform_share: NDArray[np.float64]) -> tuple[str, ...]:
     """The one labelling of modes (theory.md §12.1): "global" (platform share >=
     ``GLOBAL_SHARE``, the platform holds most of the kinetic energy), "mixed" (from
     ``PLATFORM_SHARE_THRESHOLD``: a cable mode that moves the platform) or "local" (the
@@ -254,6 +253,10 @@ class ModalResult:
     >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
     >>> [f"{f:.4f}" for f in res.freq_hz], res.kind
     (['2.2061', '2.3592', '2.9907'], ('global', 'global', 'global'))
+    >>> [f"{s:.3f}" for s in res.platform_share], res.dominant_dof    # properties
+    (['0.989', '0.944', '0.650'], ('z', 'y', 'x'))
+    >>> print(res.participation.shape, [f"{s:+.4f}" for s in res.shift_from_massless])
+    (3, 6) ['-0.0050', '-0.0163', '-0.0503']
     """
 
     freq_hz: np.ndarray
@@ -264,44 +267,24 @@ class ModalResult:
     massless_freq_hz: np.ndarray = None
     platform_mass: np.ndarray = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.kind is None:
             object.__setattr__(self, "kind", mode_kinds(self.platform_share))
         if self.massless_freq_hz is None:
             object.__setattr__(self, "massless_freq_hz", np.full(len(self.freq_hz), np.nan))
 
     @property
-    def platform_share(self):
-        """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,).
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> [f"{s:.3f}" for s in res.platform_share]
-        ['0.989', '0.944', '0.650']
-        """
+    def platform_share(self) -> NDArray[np.float64]:
+        """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,)."""
         return np.clip(1.0 - np.asarray(self.cable_energy_fraction, dtype=float), 0.0, 1.0)
 
     @property
-    def participation(self):
+    def participation(self) -> NDArray[np.float64]:
         """Effective-mass fraction of each free platform DOF in each mode [-], shape (n, 6):
         p_kj = (M x_k)_j^2 s_k / M_jj with x_k the shape at unit platform kinetic energy,
         s_k its platform share and M ``platform_mass`` (theory.md §12.1). Over all the modes
         of the robot each column sums to 1; held DOFs are 0 (NaN without
         ``platform_mass``).
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> p = res.participation
-        >>> p.shape
-        (3, 6)
-        >>> print(f"{p[0].max():.3f}")
-        0.959
         """
         n = len(self.freq_hz)
         if self.platform_mass is None:
@@ -315,61 +298,40 @@ class ModalResult:
         return p
 
     @property
-    def dominant_dof(self):
-        """Name of the DOF each mode moves most, by participation ("-" for none).
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> res.dominant_dof
-        ('z', 'y', 'x')
-        """
+    def dominant_dof(self) -> tuple[str, ...]:
+        """Name of the DOF each mode moves most, by participation ("-" for none)."""
         p = self.participation
         return tuple(DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
                      for r in np.nan_to_num(p))
 
     @property
-    def shift_from_massless(self):
-        """Relative shift of each paired mode's frequency from its massless-cable mode [-].
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> [f"{s:+.4f}" for s in res.shift_from_massless]
-        ['-0.0050', '-0.0163', '-0.0503']
-        """
+    def shift_from_massless(self) -> NDArray[np.float64]:
+        """Relative shift of each paired mode's frequency from its massless-cable mode [-]."""
         return self.freq_hz / self.massless_freq_hz - 1.0
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.freq_hz)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         n = {c: sum(k == c for k in self.kind) for c in ("global", "mixed", "local")}
         return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
                 f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Frequencies against platform share, coloured by kind:
         :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure.
 
         Examples
         --------
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> fig = res.plot()
-        >>> type(fig).__name__
-        'Figure'
-        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        >>> res = ds.modes(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), n_modes=3)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(res.plot())
         """
         from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """pandas DataFrame, one row per mode, units in the column names: frequency, kind,
         platform share, the participation of each DOF, the paired massless mode and the
         platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``).
@@ -377,10 +339,8 @@ class ModalResult:
         Examples
         --------
         >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
-        >>> df = res.to_frame()
-        >>> len(df), list(df.columns)[:2]
+        >>> res = ds.modes(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), n_modes=3)
+        >>> df = res.to_frame(); len(df), list(df.columns)[:2]
         (3, ['mode', 'freq [Hz]'])
         """
         import pandas as pd
@@ -454,6 +414,8 @@ class DampedModes:
     >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
     >>> print([f"{w:.3f}" for w in d.omega])
     ['13.864+0.277j', '14.827+0.289j']
+    >>> [f"{f:.4f}" for f in d.freq_hz], [f"{z:.4f}" for z in d.damping_ratio]
+    (['2.2065', '2.3597'], ['0.0200', '0.0195'])
     """
 
     undamped_freq_hz: np.ndarray
@@ -461,44 +423,26 @@ class DampedModes:
     residual: np.ndarray
 
     @property
-    def freq_hz(self):
-        """Damped natural frequency Re(omega) / 2 pi [Hz].
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
-        >>> [f"{f:.4f}" for f in d.freq_hz]
-        ['2.2065', '2.3597']
-        """
+    def freq_hz(self) -> NDArray[np.float64]:
+        """Damped natural frequency Re(omega) / 2 pi [Hz]."""
         return self.omega.real / _TWO_PI
 
     @property
-    def damping_ratio(self):
-        """zeta = Im(omega) / |omega| [-].
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> eq = ds.load_scene("cogiro").equilibrium()
-        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
-        >>> [f"{z:.4f}" for z in d.damping_ratio]
-        ['0.0200', '0.0195']
-        """
+    def damping_ratio(self) -> NDArray[np.float64]:
+        """zeta = Im(omega) / |omega| [-]."""
         return self.omega.imag / np.abs(self.omega)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.omega)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         ok = np.isfinite(self.omega)
         return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
                 f"damping ratio {np.nanmin(self.damping_ratio, initial=np.nan):.3g}.."
                 f"{np.nanmax(self.damping_ratio, initial=np.nan):.3g})" if ok.any()
                 else f"DampedModes({len(self)} modes, no damped root found)")
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.
         Returns the matplotlib Figure.
 
@@ -507,15 +451,13 @@ class DampedModes:
         >>> import dynstiff as ds
         >>> eq = ds.load_scene("cogiro").equilibrium()
         >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
-        >>> fig = d.plot()
-        >>> type(fig).__name__
-        'Figure'
-        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(d.plot())
         """
         from dynstiff.plot import plot_damped_modes
         return plot_damped_modes(self, ax=ax)
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """pandas DataFrame with units in column names.
 
         Examples

@@ -7,6 +7,7 @@ of :mod:`dynstiff.analyses.verdicts`, which the workspace maps use too.
 
 from dataclasses import dataclass, replace
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 from dynstiff._validate import positive_scalar
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
@@ -16,6 +17,12 @@ from dynstiff.analyses.verdicts import CheckOptions, pose_rows
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Damping
+
+if TYPE_CHECKING:
+    import numpy as np
+    import pandas
+
+    from dynstiff.robot.robot import Pose, Robot
 
 __all__ = ["CheckResult", "check_options", "damped_model", "design_checks",
            "modal_model_options"]
@@ -85,13 +92,13 @@ class CheckResult:
     platform: object = None
     uncertainty: object = None
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         bad = [f"{r['check']} ({r['verdict']})" for r in self.rows if not r["passed"]]
         return (f"CheckResult({'passed' if not bad else 'FAILED: ' + ', '.join(bad)}; "
                 f"{len(self.rows)} checks)")
 
     @property
-    def passed(self):
+    def passed(self) -> bool:
         """True when every check passed (a check "not asked" cannot fail; "unknown" does).
 
         Examples
@@ -105,7 +112,7 @@ class CheckResult:
         return all(r["passed"] for r in self.rows)
 
     @property
-    def verdicts(self):
+    def verdicts(self) -> dict[str, str]:
         """{check: verdict}.
 
         Examples
@@ -118,7 +125,7 @@ class CheckResult:
         """
         return {r["check"]: r["verdict"] for r in self.rows}
 
-    def to_frame(self):
+    def to_frame(self) -> "pandas.DataFrame":
         """pandas DataFrame, one row per check.
 
         Examples
@@ -132,7 +139,7 @@ class CheckResult:
         import pandas as pd
         return pd.DataFrame(list(self.rows))
 
-    def text(self):
+    def text(self) -> str:
         """Plain-text report.
 
         Examples
@@ -189,11 +196,16 @@ def _band(name, band):
     return lo, hi
 
 
-def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
-                  max_sag_ratio=0.02, model_rtol=1e-2, rung="dsm",
-                  participation=PLATFORM_SHARE_THRESHOLD, frf_limit=FRF_AMPLIFICATION_LIMIT,
-                  damping=DEFAULT_DAMPING, model_band_hz=None, max_modes=MAX_PLATFORM_MODES,
-                  uncertain=None, n_samples=200, seed=0, confidence=0.95, **model_options):
+def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
+                  band_hz: tuple[float, float] | None = None, margin: float = 0.05,
+                  proximity_rtol: float = 0.03, max_sag_ratio: float = 0.02,
+                  model_rtol: float = 1e-2, rung: str = "dsm",
+                  participation: float = PLATFORM_SHARE_THRESHOLD,
+                  frf_limit: float = FRF_AMPLIFICATION_LIMIT, damping: Damping = DEFAULT_DAMPING,
+                  model_band_hz: tuple[float, float] | None = None,
+                  max_modes: int = MAX_PLATFORM_MODES, uncertain: dict | None = None,
+                  n_samples: int = 200, seed: int = 0, confidence: float = 0.95,
+                  **model_options: object) -> "CheckResult":
     """Run the design checks at a pose (theory.md §12.1; the rows of
     :mod:`dynstiff.analyses.verdicts`, the same a workspace map gives).
 

@@ -26,10 +26,21 @@ symbol              meaning                                                unit
 No plotting here; pandas is imported only by the ``to_frame`` helpers.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import DynstiffWarning, InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.results import ModalResult
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame"]
 
@@ -65,7 +76,8 @@ class ProximityWarning(DynstiffWarning, UserWarning):
 
     _FIELDS = ("global_mode", "local_mode", "freq_global_hz", "freq_local_hz", "relative_gap")
 
-    def __init__(self, global_mode, local_mode, freq_global_hz, freq_local_hz, relative_gap):
+    def __init__(self, global_mode: int, local_mode: int, freq_global_hz: float,
+                 freq_local_hz: float, relative_gap: float) -> None:
         super().__init__(
             f"local mode {local_mode} ({freq_local_hz:.6g} Hz) is within "
             f"{100 * relative_gap:.3g} % of global mode {global_mode} ({freq_global_hz:.6g} Hz)")
@@ -75,21 +87,21 @@ class ProximityWarning(DynstiffWarning, UserWarning):
         self.freq_local_hz = float(freq_local_hz)
         self.relative_gap = float(relative_gap)
 
-    def _key(self):
+    def _key(self) -> tuple[int, int, float, float, float]:
         return tuple(getattr(self, f) for f in self._FIELDS)
 
-    def __eq__(self, other):
+    def __eq__(self, other: tuple[int, int] | ProximityWarning) -> bool:
         return isinstance(other, ProximityWarning) and self._key() == other._key()
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash(self._key())
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return ("ProximityWarning(" + ", ".join(f"{f}={getattr(self, f)!r}" for f in self._FIELDS)
                 + ")")
 
 
-def _check_modes(modes):
+def _check_modes(modes: Any) -> tuple[NDArray[np.float64], NDArray[Any]]:
     try:
         f = np.asarray(modes.freq_hz, dtype=float)
         kind = np.asarray(modes.kind)
@@ -104,7 +116,8 @@ def _check_modes(modes):
     return f, kind
 
 
-def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
+def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = False,
+                       platform: ArrayLike | None = None) -> list[ProximityWarning]:
     """Local modes within a relative frequency gap of a global (platform) mode.
 
     A local cable mode near a global platform mode acts as a tuned absorber on it
@@ -181,7 +194,7 @@ def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
     return out
 
 
-def to_frame(warnings):
+def to_frame(warnings: list[tuple[int, int] | ProximityWarning]) -> Any:
     """pandas DataFrame of proximity warnings, one row per pair, units in the column names.
 
     Parameters

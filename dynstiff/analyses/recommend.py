@@ -21,7 +21,10 @@ Error estimates (relative frequency error, all modes in the band)
   band (theory.md §7.2), with N chosen so that it stays below rtol / 2.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +36,15 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS
 from dynstiff.models.static import StaticCableModel
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["Recommendation", "estimated_error", "recommend_model", "predicted_errors"]
 
@@ -74,11 +86,11 @@ class Recommendation:
     errors: dict = field(default_factory=dict)
     estimates: dict = field(default_factory=dict)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         seg = f", {self.segments} segments" if self.segments else ""
         return f"Recommendation({self.rung!r}{seg}, predicted error {self.predicted_error:.2e})"
 
-    def plot(self, ax=None, rtol=None):
+    def plot(self, ax: Axes | None = None, rtol: float | None = None) -> Figure:
         """Predicted error of every rung: :func:`dynstiff.plot.plot_model_errors`. Returns
         the matplotlib Figure.
 
@@ -94,7 +106,7 @@ class Recommendation:
         from dynstiff.plot import plot_model_errors
         return plot_model_errors(self, ax=ax, rtol=rtol)
 
-    def text(self):
+    def text(self) -> str:
         """One-paragraph explanation.
 
         Examples
@@ -117,7 +129,7 @@ class Recommendation:
                      f"{k} {v:.2e}" for k, v in self.errors.items())]
         return "\n".join(lines) + "\n"
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """pandas DataFrame, one row per rung, cheapest first: "rung", "segments" (the
         lumped rung's count for the tolerance), "predicted error [-]" (inf: misses modes)
         and "recommended".
@@ -141,7 +153,8 @@ class Recommendation:
         })
 
 
-def _dsm_error(equilibrium, band_hz):
+def _dsm_error(equilibrium: Equilibrium,
+               band_hz: tuple[float, float]) -> tuple[float, float, list[str]]:
     """The closed form's error in the band, measured against the exact rung (theory.md
     §11.5): the largest relative difference of their frequencies in the band, paired in
     order from the band's bottom (the top mode straddling the band's edge is compared too);
@@ -170,7 +183,7 @@ def _dsm_error(equilibrium, band_hz):
     return err, float(eps_max), causes
 
 
-def _massless_errors(equilibrium, w_hi, n_cable):
+def _massless_errors(equilibrium: Equilibrium, w_hi: float, n_cable: int) -> tuple[float, float]:
     """(catenary, spring) predicted errors up to w_hi [rad/s]: inf with cable modes below
     it (they miss them), else the first-order shift of the massless modes by the cables'
     inertia, the spring adding its measured gap to the catenary (module docstring)."""
@@ -205,7 +218,7 @@ def _massless_errors(equilibrium, w_hi, n_cable):
     return catenary, float(np.max(np.abs(fs / fc - 1))) + catenary
 
 
-def estimated_error(model, band_hz):
+def estimated_error(model: PlatformModel, band_hz: tuple[float, float]) -> tuple[float, str]:
     """The relative frequency error of ``model``'s cable theory up to the top of ``band_hz``,
     estimated without a richer model (the cable-model verdict of the design checks and
     maps, theory.md §12.5): the massless rungs and the lumped rung as
@@ -258,7 +271,9 @@ def estimated_error(model, band_hz):
     return float(err), cause
 
 
-def predicted_errors(equilibrium, band_hz, rtol=1e-2):
+def predicted_errors(
+        equilibrium: Equilibrium, band_hz: tuple[float, float], rtol: float = 1e-2,
+) -> tuple[dict[str, float], dict[str, float | list[str]], int]:
     """Predicted relative frequency error of each rung in the band, and the estimates.
 
     Parameters
@@ -312,7 +327,8 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
     return errors, estimates, segments
 
 
-def recommend_model(equilibrium, band_hz, rtol=1e-2):
+def recommend_model(equilibrium: Equilibrium, band_hz: tuple[float, float],
+                    rtol: float = 1e-2) -> Recommendation:
     """The cheapest model on the ladder expected to meet ``rtol`` in the band.
 
     Parameters

@@ -21,7 +21,10 @@ share (all the platform modes of the massless-cable model, not only the band of 
 Modes whose platform is at rest (a cable alone on its pole) have no residue and are left out.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +33,14 @@ from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
 from dynstiff.io.exchange import require
 from dynstiff.models.base import require_model
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.base import PlatformModel
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]
 
@@ -76,7 +87,7 @@ class ModalModel:
     pose: object
 
     @property
-    def freq_hz(self):
+    def freq_hz(self) -> NDArray[np.float64]:
         """Natural frequencies [Hz], shape (n,).
 
         Examples
@@ -90,16 +101,16 @@ class ModalModel:
         """
         return self.omega / _TWO_PI
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.omega)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         f = self.freq_hz
         span = f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
         return (f"ModalModel({len(self)} modes {span}, free {self.free_dofs}, residual "
                 f"{'on' if self.residual is not None else 'off'})")
 
-    def receptance(self, omega):
+    def receptance(self, omega: ArrayLike) -> NDArray[np.complex128]:
         """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...].
 
         Examples
@@ -120,15 +131,16 @@ class ModalModel:
         return H
 
 
-def _dK_domega2(m, omega):
+def _dK_domega2(m: PlatformModel, omega: float) -> NDArray[np.float64]:
     """dK/d(omega^2) at a real omega > 0 [kg, ...] by a complex step, (n_free, n_free)."""
     h = 1e-20 * omega
     dK = m.dynamic_stiffness(np.array([omega + 1j * h]))[0].imag / h
     return dK / (2.0 * omega)
 
 
-def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
-                cluster_rtol=1e-8, null_rtol=1e-6):
+def modal_model(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+                damping: float | ArrayLike = 0.0, residual: bool = True, cluster_rtol: float = 1e-8,
+                null_rtol: float = 1e-6) -> ModalModel:
     """Modal expansion of a model's platform receptance (module notes, theory.md §15.4).
 
     Parameters
@@ -214,8 +226,10 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
                       residual=R, free_dofs=m.free_dofs, pose=m.pose)
 
 
-def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, outputs=None,
-                  point=None, residual=True):
+def to_statespace(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+                  damping: float = 0.0, inputs: str | Sequence[str] | None = None,
+                  outputs: str | Sequence[str] | None = None, point: ArrayLike | None = None,
+                  residual: bool = True) -> Any:
     """python-control ``StateSpace`` of the platform from its modes (theory.md §15.4).
 
     States (q_1 .. q_n, dq_1/dt .. dq_n/dt), modal coordinates of the kept modes:

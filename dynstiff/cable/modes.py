@@ -3,8 +3,11 @@
 poles of the cable's dynamic stiffness of the same model.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,6 +17,15 @@ from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
 from dynstiff.cable.psi import closed_form_spectrum
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = ["CableModes", "cable_natural_frequencies"]
 
@@ -50,7 +62,7 @@ class CableModes:
     order: np.ndarray
 
     @property
-    def labels(self):
+    def labels(self) -> tuple[str, ...]:
         """Labels such as "in-plane symmetric 1".
 
         Examples
@@ -63,15 +75,15 @@ class CableModes:
         """
         return tuple(f"{f} {k}" for f, k in zip(self.family, self.order))
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.freq_hz)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         f = self.freq_hz
         span = f"{f.min():.4g}-{f.max():.4g} Hz" if len(f) else "none"
         return f"CableModes({len(self)} modes {span}: {', '.join(self.labels[:3])}, ...)"
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
         matplotlib Figure.
 
@@ -88,7 +100,7 @@ class CableModes:
         from dynstiff.plot import plot_cable_modes
         return plot_cable_modes(self, ax=ax)
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """pandas DataFrame with columns freq [Hz], Omega [-], family, order.
 
         Examples
@@ -105,7 +117,7 @@ class CableModes:
                              "family": list(self.family), "order": self.order})
 
 
-def _exact_modes(state, n):
+def _exact_modes(state: CatenaryState, n: int) -> tuple[NDArray[np.float64], tuple[Any, ...]]:
     """First n clamped modes of the exact cable (theory.md §11), band grown until it holds
     them; returns (omega_j [rad/s], family)."""
     w = 1.2 * (n + 1) * lowest_string_omega(state)
@@ -118,8 +130,9 @@ def _exact_modes(state, n):
     raise InvalidParameterError(f"n_modes = {n} is more than the exact cable resolves")
 
 
-def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form",
-                              guard_rtol=DEFAULT_GUARD_RTOL):
+def cable_natural_frequencies(state: CatenaryState, n_modes: int,
+                              tension: str = "mean", model: str = "closed-form",
+                              guard_rtol: float | None = DEFAULT_GUARD_RTOL) -> CableModes:
     """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
 
     "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane

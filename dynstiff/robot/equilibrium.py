@@ -4,11 +4,21 @@ It holds its robot and the exact elastic-catenary state of every cable (docs/the
 the models of :mod:`dynstiff.models.ladder` are built on it.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.robot.pose import Pose
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
 
 __all__ = ["Equilibrium"]
 
@@ -42,7 +52,7 @@ class Equilibrium:
     residual: float
 
     @property
-    def tensions(self):
+    def tensions(self) -> NDArray[np.float64]:
         """Tension at the platform end B of each cable [N], shape (n,).
 
         Examples
@@ -55,7 +65,7 @@ class Equilibrium:
         return np.array([s.tension_at_end for s in self.states])
 
     @property
-    def anchor_tensions(self):
+    def anchor_tensions(self) -> NDArray[np.float64]:
         """Tension at the anchor A of each cable [N], shape (n,).
 
         Examples
@@ -68,7 +78,7 @@ class Equilibrium:
         return np.array([s.tension_at_anchor for s in self.states])
 
     @property
-    def min_tensions(self):
+    def min_tensions(self) -> NDArray[np.float64]:
         """Least tension along each cable [N], shape (n,) (the lower end, or H where the
         cable's lowest point lies between its ends).
 
@@ -82,7 +92,7 @@ class Equilibrium:
         return np.array([s.min_tension for s in self.states])
 
     @property
-    def max_tensions(self):
+    def max_tensions(self) -> NDArray[np.float64]:
         """Largest tension along each cable [N], shape (n,).
 
         Examples
@@ -95,7 +105,7 @@ class Equilibrium:
         return np.array([s.max_tension for s in self.states])
 
     @property
-    def lever_arms(self):
+    def lever_arms(self) -> NDArray[np.float64]:
         """r_i = R_p b_i [m], shape (n, 3).
 
         Examples
@@ -106,7 +116,7 @@ class Equilibrium:
         """
         return self.robot.attachment_points(self.pose)[1]
 
-    def platform_stiffness(self):
+    def platform_stiffness(self) -> NDArray[np.float64]:
         """6x6 static stiffness about P (all DOFs) [N/m, N, N m/rad].
 
         Examples
@@ -119,12 +129,12 @@ class Equilibrium:
         """
         return self.robot.platform_stiffness(self.pose, self.states)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         t = self.tensions
         return (f"Equilibrium({self.robot.n_cables} cables, {self.pose!r}, tensions "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Cable tensions at B and A with the robot's limits:
         :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure.
 
@@ -139,7 +149,7 @@ class Equilibrium:
         from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
-    def to_frame(self):
+    def to_frame(self) -> Any:
         """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2.
 
         Examples

@@ -3,6 +3,7 @@
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,9 @@ from dynstiff.robot.platform import Platform
 from dynstiff.robot.pose import Pose
 from dynstiff.robot.robot import Robot
 from dynstiff.robot.waypoints import WaypointPath
+
+if TYPE_CHECKING:
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 
@@ -174,7 +178,9 @@ class Scene:
     def __post_init__(self):
         object.__setattr__(self, "trajectories", dict(self.trajectories or {}))
 
-    def equilibrium(self, pose=None, unstretched_lengths=None, **kw):
+    def equilibrium(self, pose: "Pose | np.typing.ArrayLike | None" = None,
+                    unstretched_lengths: "np.typing.ArrayLike | None" = None,
+                    **kw: object) -> "Equilibrium":
         """Static equilibrium of the scene's robot (:meth:`Robot.equilibrium`).
 
         At ``pose`` (inverse statics) or for ``unstretched_lengths`` [m] (forward statics)
@@ -371,7 +377,7 @@ def read_scene(path):
                  workspace_box=None if box is None else tuple(float(b) for b in box))
 
 
-def list_scenes():
+def list_scenes() -> list[str]:
     """Names of the built-in scenes.
 
     Examples
@@ -383,7 +389,7 @@ def list_scenes():
     return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
 
 
-def load_scene(name):
+def load_scene(name: str | Path) -> Scene:
     """Built-in scene by name (see :func:`list_scenes`) or a path to a TOML file.
 
     Returns
