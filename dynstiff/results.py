@@ -22,6 +22,7 @@ if TYPE_CHECKING:
     from pathlib import Path
     from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -177,7 +178,7 @@ class FRFResult:
         from dynstiff.io.exchange import frf_to_control
         return frf_to_control(self)
 
-    def to_frame(self) -> Any | None:
+    def to_frame(self) -> pd.DataFrame:
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
         real, imag (all in the row's ``unit``, see :meth:`unit`), kind.
 
@@ -331,7 +332,7 @@ class ModalResult:
         from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode, units in the column names: frequency, kind,
         platform share, the participation of each DOF, the paired massless mode and the
         platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``).
@@ -457,7 +458,7 @@ class DampedModes:
         from dynstiff.plot import plot_damped_modes
         return plot_damped_modes(self, ax=ax)
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame with units in column names.
 
         Examples

@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -119,7 +119,7 @@ class CalibrationResult:
         lines.append(self.to_frame().to_string(index=False))
         return "\n".join(lines) + "\n"
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """One row per measured mode: measured, initial and fitted frequency, residual, MAC.
 
         Examples

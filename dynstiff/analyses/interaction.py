@@ -38,6 +38,7 @@ from dynstiff.errors import DynstiffWarning, InvalidParameterError
 if TYPE_CHECKING:
     from typing import Any
 
+    import pandas as pd
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.results import ModalResult
@@ -194,7 +195,7 @@ def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = Fals
     return out
 
 
-def to_frame(warnings: list[tuple[int, int] | ProximityWarning]) -> Any:
+def to_frame(warnings: list[ProximityWarning]) -> pd.DataFrame:
     """pandas DataFrame of proximity warnings, one row per pair, units in the column names.
 
     Parameters

@@ -31,8 +31,8 @@ from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
     from pathlib import Path
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -117,7 +117,7 @@ class MeasuredModes:
         return (f"MeasuredModes({len(self)} modes {self.freq_hz.min():.4g}-"
                 f"{self.freq_hz.max():.4g} Hz, shapes {shapes})")
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame in the format :func:`read_measured_modes` reads.
 
         Examples
@@ -337,7 +337,7 @@ class ModeComparison:
         return (f"ModeComparison({len(self)} pairs, largest error "
                 f"{np.abs(self.error).max():.3g}, rms {np.sqrt(np.mean(self.error**2)):.3g})")
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """One row per measured mode, units in the column names."""
         import pandas as pd
         return pd.DataFrame({"measured [Hz]": self.measured_hz, "model [Hz]": self.model_hz,

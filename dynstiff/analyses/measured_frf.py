@@ -16,8 +16,8 @@ from dynstiff.results import FRFResult
 
 if TYPE_CHECKING:
     from pathlib import Path
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike, NDArray
@@ -148,7 +148,7 @@ class FRFComparison:
         ax.legend(fontsize=7, ncol=2)
         return fig
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """Measured and model values side by side (tidy, one row per frequency and pair)."""
         a, b = self.measured.to_frame(), self.model.to_frame()
         a["model magnitude"] = b["magnitude"].to_numpy()

@@ -38,8 +38,8 @@ from dynstiff.models.ladder import RUNGS
 from dynstiff.models.static import StaticCableModel
 
 if TYPE_CHECKING:
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -129,7 +129,7 @@ class Recommendation:
                      f"{k} {v:.2e}" for k, v in self.errors.items())]
         return "\n".join(lines) + "\n"
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per rung, cheapest first: "rung", "segments" (the
         lumped rung's count for the tolerance), "predicted error [-]" (inf: misses modes)
         and "recommended".

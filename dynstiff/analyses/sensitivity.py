@@ -39,8 +39,8 @@ from dynstiff.models.base import require_model
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike, NDArray
@@ -140,7 +140,7 @@ class SensitivityResult:
         return (f"SensitivityResult({len(self.freq_hz)} modes x {len(self.parameters)} "
                 f"parameters, {self.rung} rung at fixed {self.hold})")
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,
         unit, df/dp, df per 1 %, elasticity, d zeta/dp.
 

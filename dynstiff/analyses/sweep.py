@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from collections.abc import Callable, Sequence
     from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import ArrayLike, NDArray
@@ -136,7 +137,7 @@ class SweepResult:
         t = self.track[self.track != UNTRACKED]
         return int(t.max()) + 1 if t.size else 0
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode and step.
 
         Columns ``step``, ``value``, ``mode``, ``track`` (nullable integer, <NA> for the

@@ -12,8 +12,8 @@ import numpy as np
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -120,7 +120,7 @@ class UncertaintyResult:
                      self._column(quantity, method))
         return float(np.quantile(x, q))
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per quantity: nominal, first-order and Monte Carlo mean,
         standard deviation and 5 / 95 % quantiles.
 

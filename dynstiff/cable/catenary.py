@@ -37,8 +37,8 @@ from dynstiff.errors import InvalidParameterError
 from dynstiff.params import Cable
 
 if TYPE_CHECKING:
-    from typing import Any
 
+    import pandas as pd
     from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["CatenaryState", "divided_differences", "end_stiffnesses"]
@@ -272,7 +272,7 @@ class CatenaryState:
         return (self.anchor + np.outer(xz[:, 0], self.horizontal_direction)
                 + np.outer(xz[:, 1], _EZ))
 
-    def to_frame(self, n: int = 50) -> Any:
+    def to_frame(self, n: int = 50) -> pd.DataFrame:
         """pandas DataFrame of the profile: unstretched arc length s from A [m], the point
         (x, y, z) [m] in the base frame and the tension T(s) [N], ``n`` rows equally spaced
         in s (theory.md §1.1)."""

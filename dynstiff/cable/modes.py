@@ -21,6 +21,7 @@ from dynstiff.errors import InvalidParameterError
 if TYPE_CHECKING:
     from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -100,7 +101,7 @@ class CableModes:
         from dynstiff.plot import plot_cable_modes
         return plot_cable_modes(self, ax=ax)
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame with columns freq [Hz], Omega [-], family, order.
 
         Examples

@@ -14,8 +14,8 @@ import numpy as np
 from dynstiff.robot.pose import Pose
 
 if TYPE_CHECKING:
-    from typing import Any
 
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
@@ -149,7 +149,7 @@ class Equilibrium:
         from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
-    def to_frame(self) -> Any:
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2.
 
         Examples
