@@ -126,6 +126,21 @@ class FRFResult:
         return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
                 f"outputs {self.outputs}, inputs {self.inputs}, {self.damping})")
 
+    def _repr_html_(self) -> str:
+        """Jupyter display: the largest |H| of each channel and where it is."""
+        from dynstiff._html import html_table
+        f = np.asarray(self.freq_hz)
+        rows = []
+        for o, out in enumerate(self.outputs):
+            for i, inp in enumerate(self.inputs):
+                a = np.abs(np.asarray(self.H)[:, o, i])
+                k = int(np.nanargmax(np.where(np.isfinite(a), a, -1.0))) if a.size else 0
+                rows.append([out, inp, self.unit(out, inp), a[k] if a.size else np.nan,
+                             f[k] if a.size else np.nan])
+        return html_table(f"FRFResult: {self.kind}, {len(f)} frequencies {_span(f)}, "
+                          f"{self.damping}", ["output", "input", "unit", "largest |H|",
+                                              "at [Hz]"], rows)
+
     def plot(self, ax: Axes | None = None, modes=None, pairs=None, phase: bool = False) -> Figure:
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
         Returns the matplotlib Figure.
@@ -162,21 +177,22 @@ class FRFResult:
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary)
 
-    def to_control(self) -> Any:
+    def to_control(self, name: str | None = None) -> Any:
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
-        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`.
+        [rad/s]), named with its channels, that ``control.bode_plot`` draws as it is; a
+        channel below 1e-12 of the largest (zero by symmetry) is exact zeros:
+        :func:`dynstiff.io.exchange.frf_to_control`.
 
         Examples
         --------
         >>> import dynstiff as ds
         >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
         ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
-        >>> data = r.to_control()
-        >>> type(data).__name__
+        >>> type(r.to_control()).__name__
         'FrequencyResponseData'
         """
         from dynstiff.io.exchange import frf_to_control
-        return frf_to_control(self)
+        return frf_to_control(self, name=name)
 
     def to_frame(self) -> pd.DataFrame:
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
@@ -318,6 +334,14 @@ class ModalResult:
         return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
                 f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
 
+    def _repr_html_(self) -> str:
+        """Jupyter display: frequency, kind, platform share and dominant DOF of each mode."""
+        from dynstiff._html import html_table
+        rows = zip(range(1, len(self) + 1), self.freq_hz, self.kind, self.platform_share,
+                   self.dominant_dof)
+        return html_table(repr(self), ["mode", "freq [Hz]", "kind", "platform share [-]",
+                                       "dominant dof"], rows)
+
     def plot(self, ax: Axes | None = None) -> Figure:
         """Frequencies against platform share, coloured by kind:
         :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure.
@@ -383,8 +407,7 @@ class LumpedModalResult(ModalResult):
     Examples
     --------
     >>> import dynstiff as ds
-    >>> eq = ds.load_scene("cogiro").equilibrium()
-    >>> res = ds.modes(ds.build_model(eq, "lumped", segments=4), n_modes=2)
+    >>> res = ds.modes(ds.build_model(ds.load_scene("cogiro").equilibrium(), "lumped", 4), 2)
     >>> type(res).__name__, len(res.node_shapes)
     ('LumpedModalResult', 8)
     >>> print(f"{res.freq_hz[0]:.2f} Hz")

@@ -257,3 +257,13 @@ def test_fits_the_least_tension(scene):
     res = calibrate(scene, meas, parameters="t_min")
     assert res.estimate[0] == pytest.approx(150.0, rel=1e-3)
     assert res.robot.tension_limits[0] == pytest.approx(res.estimate[0])
+
+
+def test_rich_display_holds_the_estimate_and_the_residuals(scene):
+    from conftest import assert_valid_html
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "dsm", 4)
+    with pytest.warns(ds.CalibrationWarning, match="paired without shapes"):
+        res = calibrate(scene, f, parameters="EA")
+    text = assert_valid_html(res._repr_html_())
+    assert f"{res.estimate[0]:.5g}" in text and f"{res.ci_low[0]:.5g}" in text
+    assert f"{res.measured_hz[2]:.5g}" in text and f"{res.residual[1]:.5g}" in text

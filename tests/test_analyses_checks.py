@@ -167,3 +167,13 @@ def test_a_mode_just_below_the_forbidden_band_is_held_to_the_margin(lo_factor, v
                                      margin=0.01))["platform modes outside band"]
     assert row["verdict"] == verdict
     assert row["value"] == pytest.approx(f1, rel=1e-11)
+
+
+def test_rich_display_holds_every_verdict_and_reason():
+    from conftest import assert_valid_html
+    scene = ds.load_scene("cogiro")
+    res = design_checks(scene.robot, scene.pose, band_hz=(0.5, 1.0))
+    text = assert_valid_html(res._repr_html_())
+    for r in res.rows:
+        assert r["check"] in text and r["detail"] in text
+        assert r["verdict"].upper() in text

@@ -215,3 +215,23 @@ def test_check_of_a_bad_pose_is_an_error_not_a_verdict(pose):
     out = run_cli("check", "cogiro", "--pose", *pose)
     assert out.returncode == 2 and out.stdout == ""
     assert out.stderr.count("\n") == 1 and "pose" in out.stderr
+
+
+def test_cli_frf_figure_has_a_phase_panel(tmp_path, monkeypatch):
+    """The command's figure is the demo's: magnitude over phase, read back from the Figure."""
+    import dynstiff.plot
+    from dynstiff.cli import main
+    seen = {}
+    real = dynstiff.plot.plot_frf
+
+    def spy(*a, **kw):
+        seen["fig"] = real(*a, **kw)
+        return seen["fig"]
+
+    monkeypatch.setattr(dynstiff.plot, "plot_frf", spy)
+    assert main(["frf", "planar2", "--points", "200", "--plot", str(tmp_path / "f.png")]) == 0
+    mag, ph = seen["fig"].axes
+    assert mag.get_yscale() == "log" and ph.get_ylabel() == "phase [deg]"
+    curves = [ln for ln in ph.get_lines() if ln.get_gid().startswith("frf-")]
+    assert curves and all(np.nanmax(np.abs(ln.get_ydata())) <= 180 for ln in curves)
+    assert (tmp_path / "f.png").stat().st_size > 10_000

@@ -98,3 +98,33 @@ def test_missing_library_names_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "pyuff", None)
     with pytest.raises(MissingDependencyError, match=r'dynstiff\[exchange\]'):
         require("pyuff")
+
+
+@pytest.fixture(scope="module")
+def symmetric():
+    """planar2 at x = 0: mirror symmetric about x = 0, so x/fz and z/fx vanish."""
+    eq = ds.load_scene("planar2").equilibrium()
+    return ds.build_model(eq, "dsm", platform_damping_ratio=0.02)
+
+
+def test_to_control_is_named_and_bode_plots_it_as_it_is(symmetric):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    res = ds.frf(symmetric, 2 * np.pi * np.linspace(0.05, 3.0, 120), inputs=["fx", "fz"],
+                 outputs=["x", "z"])
+    top = np.abs(res.H).max()
+    cross = np.abs(res.H[:, 0, 1]).max()
+    assert 0 < cross < 1e-12 * top              # rounding only: zero by symmetry
+    frd = res.to_control()
+    assert frd.name == "dynstiff receptance"
+    assert frd.input_labels == ["fx", "fz"] and frd.output_labels == ["x", "z"]
+    data = np.asarray(frd.frdata)
+    assert np.all(data[0, 1] == 0) and np.all(data[1, 0] == 0)
+    np.testing.assert_array_equal(data[0, 0], res.H[:, 0, 0])       # the rest untouched
+    cp = control.bode_plot(frd)
+    assert "dynstiff receptance" in cp.figure._suptitle.get_text()
+    # the direct channels' phases stay within one turn (no unwrapped rounding noise)
+    for line in cp.lines[1, 0]:
+        assert np.all(np.abs(line.get_ydata()) <= 360.0)
+    plt.close(cp.figure)

@@ -95,6 +95,18 @@ class CalibrationResult:
         return (f"CalibrationResult({est} ({100 * self.confidence:g} %), {fit}, "
                 f"{self.n_evaluations} evaluations)")
 
+    def _repr_html_(self) -> str:
+        """Jupyter display: each parameter's estimate and interval, each mode's residual."""
+        from dynstiff._html import html_table
+        pars = html_table(repr(self), ["parameter", "initial", "estimate", "ci low",
+                                       "ci high"],
+                          zip(self.parameters, self.initial, self.estimate, self.ci_low,
+                              self.ci_high))
+        return pars + html_table("modes", ["mode", "measured [Hz]", "fitted [Hz]",
+                                           "residual [-]", "MAC"],
+                                 zip(range(1, self.measured_hz.size + 1), self.measured_hz,
+                                     self.fitted_hz, self.residual, self.mac))
+
     def text(self) -> str:
         """A short report: estimates with intervals, then the residual per mode.
 

@@ -125,6 +125,14 @@ class CheckResult:
         """
         return {r["check"]: r["verdict"] for r in self.rows}
 
+    def _repr_html_(self) -> str:
+        """Jupyter display: the verdict, check and reason of every row."""
+        from dynstiff._html import html_table
+        return html_table(
+            "Design checks: " + ("all passed" if self.passed else "some FAILED"),
+            ["verdict", "check", "detail"],
+            [[r["verdict"].upper(), r["check"], r["detail"]] for r in self.rows])
+
     def to_frame(self) -> "pandas.DataFrame":
         """pandas DataFrame, one row per check.
 
@@ -247,10 +255,10 @@ def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
         Ceiling of the modes computed; beyond it the modal verdicts are "unknown" (which
         fails the pose).
     uncertain : dict, optional
-        Stated uncertainties {parameter: Uncertain or "10%"} (:func:`dynstiff.
-        propagate_uncertainty`): a last row gives the probability that the margin check
-        fails and the band margin at ``confidence`` (theory.md §16.6); the other rows are
-        those of the nominal robot.
+        Stated uncertainties {parameter: Uncertain or "10%"}
+        (:func:`~dynstiff.propagate_uncertainty`): a last row gives the probability that
+        the margin check fails and the band margin at ``confidence`` (theory.md §16.6); the
+        other rows are those of the nominal robot.
     n_samples, seed : int
         The Monte Carlo's Latin-hypercube sample and its seed.
     confidence : float

@@ -31,7 +31,7 @@ import numpy as np
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
-from dynstiff.io.exchange import require
+from dynstiff.io.exchange import ZERO_FLOOR, require
 from dynstiff.models.base import require_model
 
 if TYPE_CHECKING:
@@ -226,10 +226,11 @@ def modal_model(model: PlatformModel, n_modes: int | None = None, fmax_hz: float
                       residual=R, free_dofs=m.free_dofs, pose=m.pose)
 
 
-def to_statespace(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
-                  damping: float = 0.0, inputs: str | Sequence[str] | None = None,
+def to_statespace(model: PlatformModel | ModalModel, n_modes: int | None = None,
+                  fmax_hz: float | None = None, damping: float = 0.0,
+                  inputs: str | Sequence[str] | None = None,
                   outputs: str | Sequence[str] | None = None, point: ArrayLike | None = None,
-                  residual: bool = True) -> Any:
+                  residual: bool = True, name: str = "dynstiff modal model") -> Any:
     """python-control ``StateSpace`` of the platform from its modes (theory.md §15.4).
 
     States (q_1 .. q_n, dq_1/dt .. dq_n/dt), modal coordinates of the kept modes:
@@ -247,11 +248,15 @@ def to_statespace(model: PlatformModel, n_modes: int | None = None, fmax_hz: flo
         except that ``residual=False`` drops its residual)
     inputs, outputs, point : as :func:`dynstiff.frf`
         Loads on the platform (about P) and motions of a platform point (default P).
+    name : str
+        The system's name (``control.bode_plot`` titles its figure with it).
 
     Returns
     -------
     control.StateSpace
-        Inputs and outputs named after the channels; 2 n states.
+        Inputs, outputs and states named; 2 n states. Entries of B, C and D at most
+        :data:`dynstiff.io.exchange.ZERO_FLOOR` (1e-12) times the largest of their matrix
+        are exact zeros: a coupling that vanishes by symmetry holds only rounding.
 
     Examples
     --------
@@ -278,5 +283,15 @@ def to_statespace(model: PlatformModel, n_modes: int | None = None, fmax_hz: flo
     C = np.hstack([C_out @ Phi, np.zeros((C_out.shape[0], n))])
     D = C_out @ mm.residual @ B_in if (mm.residual is not None and residual) else \
         np.zeros((C_out.shape[0], B_in.shape[1]))
+    B, C, D = (_floor(M) for M in (B, C, D))
     return ct.ss(A, B, C, D, inputs=list(in_names), outputs=list(out_names),
-                 states=[f"q{r + 1}" for r in range(n)] + [f"dq{r + 1}" for r in range(n)])
+                 states=[f"q{r + 1}" for r in range(n)] + [f"dq{r + 1}" for r in range(n)],
+                 name=name)
+
+
+def _floor(M):
+    """``M`` with the entries at most ZERO_FLOOR times its largest set to exact zeros."""
+    M = np.array(M, dtype=float)
+    top = np.abs(M).max() if M.size else 0.0
+    M[np.abs(M) <= ZERO_FLOOR * top] = 0.0
+    return M

@@ -260,8 +260,9 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
     """:func:`frequency_sensitivities` at frequencies already computed (``freq_hz`` [Hz],
     ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
     or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
-    ``linearisation``: the model's :class:`~dynstiff.analyses.sensitivity_statics.
-    LinearisedEquilibrium` when one was built already (continuous rungs).
+    ``linearisation``: the model's
+    :class:`~dynstiff.analyses.sensitivity_statics.LinearisedEquilibrium` when one was built
+    already (continuous rungs).
 
     Examples
     --------

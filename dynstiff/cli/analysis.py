@@ -100,9 +100,9 @@ def _cmd_frf(args):
         import matplotlib
         matplotlib.use("Agg")
         from dynstiff.plot import plot_frf
-        fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
-        fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
+        fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs],
+                       phase=True)
+        fig.savefig(args.plot, dpi=120, bbox_inches="tight")
     h = np.abs(res.H[:, 0, 0])
     k = int(np.argmax(h))
     info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "

@@ -22,8 +22,8 @@ import numpy as np
 from dynstiff.constants import DOF_NAMES, LOAD_NAMES
 from dynstiff.errors import DynstiffError, InvalidParameterError
 
-__all__ = ["MissingDependencyError", "UFF_DATA_TYPES", "frf_to_control", "require",
-           "uff58_records", "write_uff58"]
+__all__ = ["MissingDependencyError", "UFF_DATA_TYPES", "ZERO_FLOOR", "frf_to_control", "require",
+           "uff58_records", "write_uff58", "zero_below_floor"]
 
 #: UFF specific data type of the response (numerator) for each FRF kind.
 UFF_DATA_TYPES = {"receptance": 8, "mobility": 11, "accelerance": 12}
@@ -121,11 +121,46 @@ def write_uff58(result, path, **kw):
     return path
 
 
-def frf_to_control(result):
+#: Relative floor of the python-control hand-offs: an FRF channel whose largest magnitude is
+#: below this times the largest of all channels is written as exact zeros (a cross term that
+#: vanishes by symmetry and holds only rounding, e.g. 1e-25 m/N beside 1e-3 m/N).
+ZERO_FLOOR = 1e-12
+
+
+def zero_below_floor(H, floor=ZERO_FLOOR):
+    """``H`` (n, n_out, n_in) with every channel (o, i) whose largest |H| over frequency is
+    at most ``floor`` times the largest |H| of all channels set to exact zeros (a copy)."""
+    H = np.array(H, dtype=complex)
+    peak = np.abs(H).max(axis=0) if H.size else np.zeros(H.shape[1:])
+    top = float(peak.max()) if peak.size else 0.0
+    H[:, peak <= floor * top] = 0.0
+    return H
+
+
+def frf_to_control(result, name=None):
     """:class:`control.FrequencyResponseData` of an FRF result: response (n_out, n_in, n)
-    over omega = 2 pi freq_hz [rad/s], inputs and outputs named after the channels."""
+    over omega = 2 pi freq_hz [rad/s], inputs and outputs named after the channels, the
+    system named (``name``, default "dynstiff <kind>"), so that ``control.bode_plot`` draws
+    it as it is (theory.md §15.3).
+
+    A channel whose largest magnitude is at most :data:`ZERO_FLOOR` (1e-12) times the
+    largest of all channels is written as exact zeros: at a symmetric pose the cross terms
+    that vanish by symmetry hold only rounding, whose phase is noise.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from dynstiff.results import FRFResult
+    >>> H = np.zeros((3, 2, 2), complex); H[:, 0, 0] = 1e-3; H[:, 1, 1] = 2e-3
+    >>> H[:, 0, 1] = 1e-25
+    >>> r = FRFResult(np.array([1.0, 2.0, 3.0]), H, ("fx", "fz"), ("x", "z"), "receptance")
+    >>> sys = frf_to_control(r)
+    >>> sys.name, sys.input_labels, complex(sys.fresp[0, 1, 0])
+    ('dynstiff receptance', ['fx', 'fz'], 0j)
+    """
     ct = require("control")
-    H = np.moveaxis(np.asarray(result.H), 0, -1)
+    H = np.moveaxis(zero_below_floor(result.H), 0, -1)
     omega = 2 * np.pi * np.asarray(result.freq_hz, dtype=float)
     return ct.FrequencyResponseData(H, omega, inputs=list(result.inputs),
-                                    outputs=list(result.outputs))
+                                    outputs=list(result.outputs),
+                                    name=name or f"dynstiff {result.kind}")

@@ -147,8 +147,8 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
     checks : tuple of str
         The checks mapped (those asked).
     tensions : {"default", "max-frequency"}
-        The tension distribution (:func:`dynstiff.analyses.optimal_tensions.
-        tension_equilibrium`).
+        The tension distribution
+        (:func:`~dynstiff.analyses.optimal_tensions.tension_equilibrium`).
 
     Returns
     -------

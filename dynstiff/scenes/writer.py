@@ -1,7 +1,8 @@
 """Scene files written from a robot: the inverse of :func:`read_scene`.
 
-Numbers are written with ``repr`` (the shortest text that reads back to the same float), so
-``read_scene(write_scene(...))`` gives the same robot bit for bit.
+Values are formatted by tomli-w (strings escaped; floats with ``repr``, the shortest text
+that reads back to the same float), so ``read_scene(write_scene(...))`` gives the same robot
+bit for bit; the layout and the comments (units, conventions) are the writer's.
 """
 
 from pathlib import Path
@@ -15,9 +16,14 @@ from dynstiff.robot.waypoints import WaypointPath
 __all__ = ["scene_text", "write_scene"]
 
 
+def _value(v):
+    """TOML text of one string or number, formatted by tomli-w (floats as ``repr``)."""
+    import tomli_w
+    return tomli_w.dumps({"v": v})[4:].rstrip("\n")
+
+
 def _num(v):
-    v = float(v)
-    return repr(int(v)) + ".0" if v.is_integer() and abs(v) < 1e15 else repr(v)
+    return _value(float(v))
 
 
 def _vec(v):
@@ -25,7 +31,7 @@ def _vec(v):
 
 
 def _toml_str(s):
-    return '"' + str(s).replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
+    return _value(str(s))
 
 
 def _cable_lines(c):
