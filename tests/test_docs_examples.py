@@ -126,3 +126,13 @@ def test_the_checks_can_fail():
         return x
     assert not _has_examples(bare) and _has_examples(typed)
     assert not _returns_annotated(bare) and _returns_annotated(typed)
+
+
+def test_the_package_ships_its_type_marker():
+    import tomllib
+    from pathlib import Path
+    root = Path(dynstiff.__file__).parent
+    assert (root / "py.typed").is_file()
+    data = tomllib.loads((root.parent / "pyproject.toml").read_text())
+    assert "py.typed" in data["tool"]["setuptools"]["package-data"]["dynstiff"]
+    assert "mypy dynstiff" in (root.parent / ".ci" / "run").read_text()
