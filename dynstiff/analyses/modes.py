@@ -164,7 +164,7 @@ def modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | Non
 
 def _clusters(f: NDArray[np.float64], rtol: float = 1e-8) -> list[list[int]]:
     """Index groups of consecutive coincident frequencies (within ``rtol`` relative)."""
-    groups = []
+    groups: list[list[int]] = []
     for k in range(len(f)):
         if groups and f[k] - f[groups[-1][-1]] <= rtol * max(abs(f[k]), 1e-300):
             groups[-1].append(k)

@@ -36,7 +36,7 @@ from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from dynstiff.results import ModalResult
 
 if TYPE_CHECKING:
-    from numpy.typing import NDArray
+    from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.models.base import PlatformModel
     from dynstiff.models.dsm import FrequencyModel
@@ -150,7 +150,7 @@ def modal_data(model: PlatformModel, fmax_hz: float, max_modes: int = 20000) -> 
 
 
 def receptance_amplification(model: PlatformModel, band_hz: tuple[float, float],
-                             modes_hz: NDArray[np.float64] = (),
+                             modes_hz: ArrayLike = (),
                              n_points: int = 400) -> tuple[float, float, str]:
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 

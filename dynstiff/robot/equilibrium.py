@@ -14,11 +14,12 @@ import numpy as np
 from dynstiff.robot.pose import Pose
 
 if TYPE_CHECKING:
-
     import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
     from numpy.typing import NDArray
+
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["Equilibrium"]
 
@@ -45,7 +46,7 @@ class Equilibrium:
     (8, '9e-14')
     """
 
-    robot: object
+    robot: Robot
     pose: Pose
     unstretched_lengths: np.ndarray
     states: tuple
