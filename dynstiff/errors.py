@@ -6,6 +6,11 @@ The exceptions subclass built-ins so that generic handlers keep working.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from types import FrameType
+
 __all__ = [
     "DynstiffError",
     "InvalidParameterError",
@@ -214,7 +219,8 @@ def user_stacklevel() -> int:
     import os
     import sys
     package = os.path.dirname(os.path.abspath(__file__)) + os.sep
-    frame, level = sys._getframe(1), 1
+    frame: FrameType | None = sys._getframe(1)
+    level = 1
     while frame is not None and frame.f_code.co_filename.startswith(package):
         frame, level = frame.f_back, level + 1
     return level

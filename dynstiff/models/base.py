@@ -108,7 +108,7 @@ class PlatformModel:
     read-only array.
     """
 
-    rung = None
+    rung: str | None = None
 
     def _init_platform(self, robot: Robot, equilibrium: LumpedEquilibrium | Equilibrium,
                        pose: Pose) -> None:

@@ -21,7 +21,6 @@ from dynstiff.robot.platform import (
 )
 
 if TYPE_CHECKING:
-    from typing import Any
 
     from numpy.typing import NDArray
 
@@ -56,7 +55,7 @@ class Pose:
                     f"{getattr(self, name)!r}")
             object.__setattr__(self, name, v)
 
-    def __eq__(self, other: tuple[float, float, float] | Pose) -> Any:
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Pose):
             return NotImplemented
         return (np.array_equal(self.position, other.position)
