@@ -343,7 +343,7 @@ class FrequencyModel(PlatformModel):
         shape (n_free, n_free) [N/m, N, N m/rad]."""
         return self.dynamic_stiffness(0.0)[0].real
 
-    def undamped(self) -> FrequencyModel | None:
+    def undamped(self) -> FrequencyModel:
         """The same model with the cables' damping removed (itself when undamped)."""
         if not self.damped:
             return self

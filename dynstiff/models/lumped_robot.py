@@ -65,7 +65,6 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.models.lumped_statics import LumpedEquilibrium
-    from dynstiff.robot.platform import Platform
     from dynstiff.robot.pose import Pose
 
 __all__ = ["LumpedMassModel"]
@@ -133,8 +132,8 @@ class LumpedMassModel:
     array([4, 4, 4, 4, 4, 4, 4, 4])
     """
 
-    def __init__(self, robot: Platform | Robot, unstretched_lengths: ArrayLike | str,
-                 segments: ArrayLike | str = 30) -> None:
+    def __init__(self, robot: Robot, unstretched_lengths: ArrayLike,
+                 segments: int | ArrayLike = 30) -> None:
         if not isinstance(robot, Robot):
             raise InvalidParameterError(
                 f"robot must be a dynstiff.Robot, got {type(robot).__name__}")

@@ -223,9 +223,9 @@ class Robot:
         return 0.5 * (K + K.T) if symmetric_part else K
 
     # ------------------------------------------------------------------ statics
-    def equilibrium(self, pose: list[float] | Pose | None = None,
-                    unstretched_lengths: NDArray[np.float64] | None = None,
-                    tension_reference: NDArray[np.float64] | None = None,
+    def equilibrium(self, pose: ArrayLike | Pose | None = None,
+                    unstretched_lengths: ArrayLike | None = None,
+                    tension_reference: ArrayLike | None = None,
                     initial_pose: Pose | None = None, tol: float = 1e-10,
                     max_iter: int | None = None, start: ArrayLike | None = None) -> Equilibrium:
         """Static equilibrium with sagging cables.
