@@ -1,20 +1,24 @@
 """Small HTML tables for the rich display of results in Jupyter (``_repr_html_``): escaped
 text, numbers to 5 significant digits, no script and no style sheet."""
 
+from __future__ import annotations
+
 import html
+from collections.abc import Iterable, Sequence
 from numbers import Real
 
 __all__ = ["html_table", "fmt"]
 
 
-def fmt(v):
+def fmt(v: object) -> str:
     """A cell's text: a real number to 5 significant digits, anything else as ``str``."""
     if isinstance(v, Real) and not isinstance(v, bool):
         return f"{float(v):.5g}"
     return str(v)
 
 
-def html_table(title, header, rows, notes=(), limit=20):
+def html_table(title: str, header: Sequence[str], rows: Iterable[Iterable[object]],
+               notes: Sequence[str] = (), limit: int = 20) -> str:
     """``<div>`` holding a bold title, a table and notes (escaped).
 
     Parameters

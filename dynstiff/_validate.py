@@ -1,11 +1,20 @@
 """Argument checks shared by the public functions (internal)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 
+if TYPE_CHECKING:
+    from typing import Any
 
-def positive_scalar(name, value, allow_zero=False):
+    from numpy.typing import ArrayLike, NDArray
+
+
+def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0."""
     try:
         x = float(value)
@@ -24,7 +33,7 @@ def positive_scalar(name, value, allow_zero=False):
     return x
 
 
-def point(name, value, dim=3):
+def point(name: str, value: ArrayLike, dim: int = 3) -> NDArray[np.float64]:
     """Return ``value`` as a finite float array of shape ``(dim,)``, or raise naming ``name``."""
     try:
         arr = np.asarray(value, dtype=float)
@@ -43,7 +52,7 @@ def point(name, value, dim=3):
 MAX_OMEGA = 1e150
 
 
-def omega_array(value, name="omega", complex_ok=False):
+def omega_array(value: ArrayLike, name: str = "omega", complex_ok: bool = False) -> NDArray[Any]:
     """Return angular frequencies as a 1-D array; raise if negative or not finite.
 
     A scalar becomes shape ``(1,)``. With ``complex_ok`` a complex input stays complex (any
@@ -74,7 +83,7 @@ def omega_array(value, name="omega", complex_ok=False):
     return arr
 
 
-def unstretched_lengths(value, n):
+def unstretched_lengths(value: ArrayLike | str, n: int) -> NDArray[np.float64]:
     """Return ``n`` unstretched cable lengths [m] as a float array of shape (n,), or raise
     naming ``unstretched_lengths`` if they are not n finite positive numbers."""
     try:

@@ -1,9 +1,16 @@
 """Small vector kernels for the hot loops (numpy only)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
 
-def cross(a, b):
+
+def cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """Cross product a x b of 3-vectors, broadcast over leading axes: shapes (..., 3).
 
     Written out by components: the same numbers as :func:`numpy.cross`, about 15 times

@@ -12,6 +12,8 @@ symbol                 meaning                                      unit
 =====================  ===========================================  ==========
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 from dynstiff._validate import positive_scalar
@@ -39,6 +41,13 @@ class Cable:
     ------
     InvalidParameterError
         If a value is not finite, or out of range; the message names the field.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=8.2051e-6 * 200e9)   # 4 mm steel
+    >>> print(f"{cable.EA / 1e6:.3f} MN")
+    1.641 MN
     """
 
     mass_per_length: float
@@ -46,7 +55,7 @@ class Cable:
     viscous_damping: float = 0.0
     loss_factor: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "mass_per_length",
                            positive_scalar("mass_per_length", self.mass_per_length))
         object.__setattr__(self, "EA", positive_scalar("EA", self.EA))
@@ -57,11 +66,11 @@ class Cable:
                            positive_scalar("loss_factor", self.loss_factor, allow_zero=True))
 
     @property
-    def is_damped(self):
+    def is_damped(self) -> bool:
         """True when viscous or hysteretic damping is present."""
         return self.viscous_damping > 0 or self.loss_factor > 0
 
-    def weight_per_length(self, g):
+    def weight_per_length(self, g: float) -> float:
         """Weight per unstretched length w0 = m g [N/m] for gravity ``g`` [m/s^2]."""
         return self.mass_per_length * positive_scalar("g", g, allow_zero=True)
 
@@ -87,13 +96,20 @@ class Damping:
         c, viscous damping per length of every cable [N s/m^2], >= 0, acting on every cable
         motion through the complex mass m - i c / omega (default 0); added to a cable's own
         ``viscous_damping``.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> d = ds.Damping(platform_ratio=0.02)
+    >>> d.platform_ratio, d.cable_loss_factor
+    (0.02, 0.01)
     """
 
     platform_ratio: float = 0.01
     cable_loss_factor: float = 0.01
     cable_viscous_damping: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("platform_ratio", "cable_loss_factor", "cable_viscous_damping"):
             v = positive_scalar(name, getattr(self, name), allow_zero=True)
             if name != "cable_viscous_damping" and not v < 1:
@@ -102,11 +118,11 @@ class Damping:
             object.__setattr__(self, name, v)
 
     @property
-    def is_zero(self):
+    def is_zero(self) -> bool:
         """True when no damping is added."""
         return not (self.platform_ratio or self.cable_loss_factor or self.cable_viscous_damping)
 
-    def text(self):
+    def text(self) -> str:
         """One line for a report: ``damping: platform zeta 0.01, cable eta 0.01, ...``."""
         return (f"damping: platform modal ratio {self.platform_ratio:g}, cable loss factor "
                 f"{self.cable_loss_factor:g} (axial and transverse), cable viscous "

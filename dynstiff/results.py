@@ -8,12 +8,24 @@ Channels of an FRF: inputs ``LOAD_NAMES`` (forces [N] and moments [N m] on the p
 P), outputs ``DOF_NAMES`` (translations [m] of a platform point, rotations [rad]).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, LOAD_NAMES, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from pathlib import Path
+    from typing import Any
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
 
 __all__ = ["FRFResult", "ModalResult", "LumpedModalResult", "DampedModes", "INPUT_NAMES",
            "OUTPUT_NAMES", "RESPONSE_KINDS", "mode_kinds", "response_factor"]
@@ -28,7 +40,7 @@ OUTPUT_NAMES = DOF_NAMES
 RESPONSE_KINDS = {"receptance": 0, "mobility": 1, "accelerance": 2}
 
 
-def response_factor(omega, kind):
+def response_factor(omega: NDArray[np.float64], kind: str) -> NDArray[np.complex128]:
     """(i omega)^k turning a receptance into ``kind`` (k = 0, 1, 2 for receptance, mobility,
     accelerance), shape of ``omega`` [rad/s] (theory.md §4).
 
@@ -49,7 +61,7 @@ def response_factor(omega, kind):
 SHAPE_UNITS = ("[m/kg^0.5, x'Mx=1]",) * 3 + ("[rad/(m kg^0.5), x'Mx=1]",) * 3
 
 
-def _span(freq_hz):
+def _span(freq_hz: NDArray[np.float64]) -> str:
     f = np.asarray(freq_hz)
     return f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
 
@@ -69,6 +81,16 @@ class FRFResult:
     damping : str
         The damping of the model the FRF comes from, in words ("undamped": every peak is
         the grid's value near a pole, not the structure's).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs=["fx", "fz"], outputs="z")
+    >>> r.inputs, r.outputs, r.H.shape
+    (('fx', 'fz'), ('z',), (2, 1, 2))
     """
 
     freq_hz: np.ndarray
@@ -78,10 +100,19 @@ class FRFResult:
     kind: str
     damping: str = "not stated"
 
-    def unit(self, output, input):
+    def unit(self, output: str, input: str) -> str:
         """Unit of H from ``input`` (fx .. mz) to ``output`` (x .. rz) for this ``kind``,
         e.g. ``"m/N"``, ``"rad/(N m)"``, ``"m/(N s)"`` (mobility), ``"m/(N s^2)"``
-        (accelerance)."""
+        (accelerance).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> r.unit("z", "fz"), r.unit("rz", "mz")
+        ('m/N', 'rad/(N m)')
+        """
         if output not in OUTPUT_NAMES or input not in INPUT_NAMES:
             raise InvalidParameterError(
                 f"unit needs an output among {OUTPUT_NAMES} and an input among "
@@ -91,11 +122,11 @@ class FRFResult:
         den += [[], ["s"], ["s^2"]][RESPONSE_KINDS[self.kind]]
         return f"{num}/{den[0]}" if len(den) == 1 else f"{num}/({' '.join(den)})"
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
                 f"outputs {self.outputs}, inputs {self.inputs}, {self.damping})")
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         """Jupyter display: the largest |H| of each channel and where it is."""
         from dynstiff._html import html_table
         f = np.asarray(self.freq_hz)
@@ -110,34 +141,74 @@ class FRFResult:
                           f"{self.damping}", ["output", "input", "unit", "largest |H|",
                                               "at [Hz]"], rows)
 
-    def plot(self, ax=None, modes=None, pairs=None, phase=False):
+    def plot(self, ax: Axes | None = None, modes=None, pairs=None, phase: bool = False) -> Figure:
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
-        Returns the matplotlib Figure."""
+        Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(r.plot())
+        """
         from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
-    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False,
-               even=False):
+    def to_uff(self, path: Path, node: int = 1, entity: str = "platform",
+               point_node: int | None = None, binary: bool = False,
+               even: bool | float = False) -> Path:
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
         ``even=True`` (the step of the grid's uniform part) or a step [Hz] resamples on an
         even grid (:func:`dynstiff.io.exchange.even_grid`), as the records then say.
-        Returns the path."""
+        Returns the path.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> import os, tempfile
+        >>> path = os.path.join(tempfile.mkdtemp(), "frf.uff")
+        >>> _ = r.to_uff(path)
+        >>> ds.read_measured_frf(path).H.shape
+        (2, 1, 2)
+        """
         from dynstiff.io.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
                            binary=binary, even=even)
 
-    def to_control(self, name=None):
+    def to_control(self, name: str | None = None) -> Any:
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
         [rad/s]), named with its channels, that ``control.bode_plot`` draws as it is; a
         channel below 1e-12 of the largest (zero by symmetry) is exact zeros:
-        :func:`dynstiff.io.exchange.frf_to_control`."""
+        :func:`dynstiff.io.exchange.frf_to_control`.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> type(r.to_control()).__name__
+        'FrequencyResponseData'
+        """
         from dynstiff.io.exchange import frf_to_control
         return frf_to_control(self, name=name)
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
-        real, imag (all in the row's ``unit``, see :meth:`unit`), kind."""
+        real, imag (all in the row's ``unit``, see :meth:`unit`), kind.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> r = ds.frf(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), [3.0, 6.0],
+        ...            inputs=["fx", "fz"], outputs="z")                  # omega [rad/s]
+        >>> df = r.to_frame(); len(df), list(df.columns)[:3]
+        (4, ['freq [Hz]', 'input', 'output'])
+        """
         import pandas as pd
         n, no, ni = self.H.shape
         f = np.repeat(self.freq_hz, no * ni)
@@ -152,7 +223,7 @@ class FRFResult:
                                  "kind": self.kind})
 
 
-def mode_kinds(platform_share):
+def mode_kinds(platform_share: NDArray[np.float64]) -> tuple[str, ...]:
     """The one labelling of modes (theory.md §12.1): "global" (platform share >=
     ``GLOBAL_SHARE``, the platform holds most of the kinetic energy), "mixed" (from
     ``PLATFORM_SHARE_THRESHOLD``: a cable mode that moves the platform) or "local" (the
@@ -194,6 +265,18 @@ class ModalResult:
         The platform block of the robot's mass matrix about P [kg, kg m, kg m^2] (held
         DOFs' rows and columns zero): the rigid platform, plus, for the lumped rung, the
         half masses of the cables' last segments; it gives the modes' participation.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> res = ds.modes(ds.FrequencyModel(eq), n_modes=3)
+    >>> [f"{f:.4f}" for f in res.freq_hz], res.kind
+    (['2.2061', '2.3592', '2.9907'], ('global', 'global', 'global'))
+    >>> [f"{s:.3f}" for s in res.platform_share], res.dominant_dof    # properties
+    (['0.989', '0.944', '0.650'], ('z', 'y', 'x'))
+    >>> print(res.participation.shape, [f"{s:+.4f}" for s in res.shift_from_massless])
+    (3, 6) ['-0.0050', '-0.0163', '-0.0503']
     """
 
     freq_hz: np.ndarray
@@ -204,24 +287,25 @@ class ModalResult:
     massless_freq_hz: np.ndarray = None
     platform_mass: np.ndarray = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.kind is None:
             object.__setattr__(self, "kind", mode_kinds(self.platform_share))
         if self.massless_freq_hz is None:
             object.__setattr__(self, "massless_freq_hz", np.full(len(self.freq_hz), np.nan))
 
     @property
-    def platform_share(self):
+    def platform_share(self) -> NDArray[np.float64]:
         """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,)."""
         return np.clip(1.0 - np.asarray(self.cable_energy_fraction, dtype=float), 0.0, 1.0)
 
     @property
-    def participation(self):
+    def participation(self) -> NDArray[np.float64]:
         """Effective-mass fraction of each free platform DOF in each mode [-], shape (n, 6):
         p_kj = (M x_k)_j^2 s_k / M_jj with x_k the shape at unit platform kinetic energy,
         s_k its platform share and M ``platform_mass`` (theory.md §12.1). Over all the modes
         of the robot each column sums to 1; held DOFs are 0 (NaN without
-        ``platform_mass``)."""
+        ``platform_mass``).
+        """
         n = len(self.freq_hz)
         if self.platform_mass is None:
             return np.full((n, 6), np.nan)
@@ -234,26 +318,26 @@ class ModalResult:
         return p
 
     @property
-    def dominant_dof(self):
+    def dominant_dof(self) -> tuple[str, ...]:
         """Name of the DOF each mode moves most, by participation ("-" for none)."""
         p = self.participation
         return tuple(DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
                      for r in np.nan_to_num(p))
 
     @property
-    def shift_from_massless(self):
+    def shift_from_massless(self) -> NDArray[np.float64]:
         """Relative shift of each paired mode's frequency from its massless-cable mode [-]."""
         return self.freq_hz / self.massless_freq_hz - 1.0
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.freq_hz)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         n = {c: sum(k == c for k in self.kind) for c in ("global", "mixed", "local")}
         return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
                 f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         """Jupyter display: frequency, kind, platform share and dominant DOF of each mode."""
         from dynstiff._html import html_table
         rows = zip(range(1, len(self) + 1), self.freq_hz, self.kind, self.platform_share,
@@ -261,16 +345,32 @@ class ModalResult:
         return html_table(repr(self), ["mode", "freq [Hz]", "kind", "platform share [-]",
                                        "dominant dof"], rows)
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Frequencies against platform share, coloured by kind:
-        :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure."""
+        :func:`dynstiff.plot.plot_modes`. Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> res = ds.modes(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), n_modes=3)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(res.plot())
+        """
         from dynstiff.plot import plot_modes
         return plot_modes(self, ax=ax)
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode, units in the column names: frequency, kind,
         platform share, the participation of each DOF, the paired massless mode and the
-        platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``)."""
+        platform shape (labelled for its energy normalisation, ``SHAPE_UNITS``).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> res = ds.modes(ds.FrequencyModel(ds.load_scene("cogiro").equilibrium()), n_modes=3)
+        >>> df = res.to_frame(); len(df), list(df.columns)[:2]
+        (3, ['mode', 'freq [Hz]'])
+        """
         import pandas as pd
         df = pd.DataFrame({
             "mode": np.arange(1, len(self) + 1),
@@ -306,6 +406,15 @@ class LumpedModalResult(ModalResult):
     ``platform_shapes`` are normalised to x^T M_p x = 1 with M_p the rigid platform alone,
     like the closed-form model; ``massless_freq_hz`` comes from the lumped cables condensed
     statically onto the platform (their massless limit).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> res = ds.modes(ds.build_model(ds.load_scene("cogiro").equilibrium(), "lumped", 4), 2)
+    >>> type(res).__name__, len(res.node_shapes)
+    ('LumpedModalResult', 8)
+    >>> print(f"{res.freq_hz[0]:.2f} Hz")
+    2.21 Hz
     """
 
     node_shapes: list = None
@@ -324,6 +433,16 @@ class DampedModes:
         iteration did not converge (see ``residual``) or for purely local modes.
     residual : ndarray, shape (n,)
         |smallest eigenvalue of K(omega)| / ||K|| at the returned root [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+    >>> print([f"{w:.3f}" for w in d.omega])
+    ['13.864+0.277j', '14.827+0.289j']
+    >>> [f"{f:.4f}" for f in d.freq_hz], [f"{z:.4f}" for z in d.damping_ratio]
+    (['2.2065', '2.3597'], ['0.0200', '0.0195'])
     """
 
     undamped_freq_hz: np.ndarray
@@ -331,33 +450,51 @@ class DampedModes:
     residual: np.ndarray
 
     @property
-    def freq_hz(self):
+    def freq_hz(self) -> NDArray[np.float64]:
         """Damped natural frequency Re(omega) / 2 pi [Hz]."""
         return self.omega.real / _TWO_PI
 
     @property
-    def damping_ratio(self):
+    def damping_ratio(self) -> NDArray[np.float64]:
         """zeta = Im(omega) / |omega| [-]."""
         return self.omega.imag / np.abs(self.omega)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.omega)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         ok = np.isfinite(self.omega)
         return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
                 f"damping ratio {np.nanmin(self.damping_ratio, initial=np.nan):.3g}.."
                 f"{np.nanmax(self.damping_ratio, initial=np.nan):.3g})" if ok.any()
                 else f"DampedModes({len(self)} modes, no damped root found)")
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.
-        Returns the matplotlib Figure."""
+        Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(d.plot())
+        """
         from dynstiff.plot import plot_damped_modes
         return plot_damped_modes(self, ax=ax)
 
-    def to_frame(self):
-        """pandas DataFrame with units in column names."""
+    def to_frame(self) -> pd.DataFrame:
+        """pandas DataFrame with units in column names.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> d = ds.damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), n_modes=2)
+        >>> list(d.to_frame().columns)
+        ['undamped freq [Hz]', 'damped freq [Hz]', 'damping ratio [-]', 'residual [-]']
+        """
         import pandas as pd
         return pd.DataFrame({"undamped freq [Hz]": self.undamped_freq_hz,
                              "damped freq [Hz]": self.freq_hz,

@@ -47,11 +47,15 @@ spectrum. The sensitivities at the estimate are the analytic ones, or central di
 (step 1e-4 in ln p).
 """
 
-from dataclasses import dataclass, replace
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.analyses.calibration_checks import calibration_findings, report_findings
+from dynstiff.analyses.calibration_result import CalibrationResult
 from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
@@ -60,6 +64,17 @@ from dynstiff.analyses.sensitivity import RUNGS as SENSITIVITY_RUNGS
 from dynstiff.analyses.sensitivity import sensitivities_at
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.models.ladder import build_model
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.results import FRFResult
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
+    from dynstiff.scenes.loader import Scene
 
 __all__ = ["CalibrationResult", "calibrate", "PARAMETERS"]
 
@@ -71,7 +86,7 @@ _DAMPING = ("loss_factor", "viscous_damping")
 JACOBIANS = ("auto", "analytic", "differences")
 
 
-def _expand(parameters, n_cables):
+def _expand(parameters: str | list[str] | tuple[str], n_cables: int) -> tuple[str, ...]:
     if isinstance(parameters, str):
         parameters = (parameters,)
     names = []
@@ -92,7 +107,7 @@ def _expand(parameters, n_cables):
     return tuple(names)
 
 
-def _value(robot, name):
+def _value(robot: Robot, name: str) -> float:
     """Current value of a parameter of ``robot`` (units: module notes)."""
     if name == "EA":
         return robot.cables[0].EA
@@ -107,7 +122,7 @@ def _value(robot, name):
     return robot.tension_limits[0]
 
 
-def _with(robot, names, factors):
+def _with(robot: Robot, names: tuple[str, ...], factors: NDArray[np.float64]) -> Robot:
     """``robot`` with each parameter multiplied by its factor."""
     cables = list(robot.cables)
     platform, limits = robot.platform, robot.tension_limits
@@ -128,130 +143,14 @@ def _with(robot, names, factors):
     return replace(robot, cables=cables, platform=platform, tension_limits=limits)
 
 
-@dataclass(frozen=True)
-class CalibrationResult:
-    """Fitted parameters, their confidence intervals and the residual of every mode.
-
-    Attributes
-    ----------
-    parameters : tuple of str
-    initial, estimate : ndarray, shape (n_par,)
-        Values in the units of the module notes.
-    ci_low, ci_high : ndarray, shape (n_par,)
-        Confidence interval at ``confidence`` (NaN when the residuals cannot tell).
-    confidence : float
-    measured_hz, initial_hz, fitted_hz : ndarray, shape (n_modes,)
-        Measured frequencies and the paired model frequencies at the start and the estimate.
-    mac : ndarray, shape (n_modes,)
-        MAC of each pair at the estimate (NaN without shapes to compare).
-    cable_fraction : ndarray, shape (n_modes,)
-        Cable share of the kinetic energy of each paired model mode at the estimate [-]: a
-        mode near a cable frequency (large share) pairs ambiguously and weighs little.
-    robot : Robot
-        The calibrated robot.
-    n_evaluations : int
-        Evaluations of the model (statics, modes) the fit made.
-    jacobian : ndarray, shape (n_residuals, n_par)
-        d(residual)/d ln(p) at the estimate.
-    jacobian_kind : str
-        "analytic" (the sensitivities of theory.md §16) or "differences".
-    measured_damping, fitted_damping : ndarray, shape (n_modes,) or None
-        Damping ratios [-], when a damping parameter was fitted to them.
-    frf_log_error : float or None
-        RMS of ln |H_model / H_measured| at the estimate, when FRFs were fitted.
-    """
-
-    parameters: tuple
-    initial: np.ndarray
-    estimate: np.ndarray
-    ci_low: np.ndarray
-    ci_high: np.ndarray
-    confidence: float
-    measured_hz: np.ndarray
-    initial_hz: np.ndarray
-    fitted_hz: np.ndarray
-    mac: np.ndarray
-    cable_fraction: np.ndarray
-    robot: object
-    n_evaluations: int
-    jacobian: np.ndarray
-    measured_damping: object = None
-    fitted_damping: object = None
-    frf_log_error: object = None
-    jacobian_kind: str = "differences"
-
-    @property
-    def residual(self):
-        """Relative residual f_fitted / f_measured - 1 of every mode [-]."""
-        return self.fitted_hz / self.measured_hz - 1.0
-
-    def __repr__(self):
-        est = ", ".join(f"{p} = {v:.5g} [{lo:.5g}, {hi:.5g}]" for p, v, lo, hi in
-                        zip(self.parameters, self.estimate, self.ci_low, self.ci_high))
-        fit = (f"rms frequency residual {np.sqrt(np.mean(self.residual**2)):.3g}"
-               if self.measured_hz.size else "")
-        if self.frf_log_error is not None:
-            fit += (", " if fit else "") + f"rms ln|H| residual {self.frf_log_error:.3g}"
-        return (f"CalibrationResult({est} ({100 * self.confidence:g} %), {fit}, "
-                f"{self.n_evaluations} evaluations)")
-
-    def _repr_html_(self):
-        """Jupyter display: each parameter's estimate and interval, each mode's residual."""
-        from dynstiff._html import html_table
-        pars = html_table(repr(self), ["parameter", "initial", "estimate", "ci low",
-                                       "ci high"],
-                          zip(self.parameters, self.initial, self.estimate, self.ci_low,
-                              self.ci_high))
-        return pars + html_table("modes", ["mode", "measured [Hz]", "fitted [Hz]",
-                                           "residual [-]", "MAC"],
-                                 zip(range(1, self.measured_hz.size + 1), self.measured_hz,
-                                     self.fitted_hz, self.residual, self.mac))
-
-    def text(self):
-        """A short report: estimates with intervals, then the residual per mode."""
-        lines = [f"{'parameter':<10} {'initial':>12} {'estimate':>12} "
-                 f"{'ci low':>12} {'ci high':>12}"]
-        for p, a, v, lo, hi in zip(self.parameters, self.initial, self.estimate, self.ci_low,
-                                   self.ci_high):
-            lines.append(f"{p:<10} {a:12.6g} {v:12.6g} {lo:12.6g} {hi:12.6g}")
-        lines.append(f"({100 * self.confidence:g} % confidence)")
-        lines.append(self.to_frame().to_string(index=False))
-        return "\n".join(lines) + "\n"
-
-    def to_frame(self):
-        """One row per measured mode: measured, initial and fitted frequency, residual, MAC."""
-        import pandas as pd
-        df = pd.DataFrame({"mode": np.arange(1, self.measured_hz.size + 1),
-                           "measured [Hz]": self.measured_hz,
-                           "initial [Hz]": self.initial_hz,
-                           "fitted [Hz]": self.fitted_hz,
-                           "residual [-]": self.residual, "MAC [-]": self.mac,
-                           "cable energy fraction [-]": self.cable_fraction})
-        if self.fitted_damping is not None:
-            df["measured damping ratio [-]"] = self.measured_damping
-            df["fitted damping ratio [-]"] = self.fitted_damping
-        return df
-
-    def plot(self, ax=None):
-        """Relative error of every mode before and after the fit; returns the Figure."""
-        import matplotlib.pyplot as plt
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(6, 3.5))
-        fig = ax.figure
-        k = np.arange(1, self.measured_hz.size + 1)
-        ax.bar(k - 0.2, 100 * (self.initial_hz / self.measured_hz - 1), 0.4, label="initial")
-        ax.bar(k + 0.2, 100 * self.residual, 0.4, label="fitted")
-        ax.axhline(0, color="0.4", lw=0.8)
-        ax.set(xlabel="measured mode", ylabel="model / measured - 1 [%]", xticks=k)
-        ax.legend()
-        return fig
-
-
-def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm",
-              pairing=None, confidence=0.95, bounds=(1e-2, 1e2), xtol=1e-6, max_nfev=40,
-              fmax_factor=1.3, start=None, frf=None, frf_point=None, jacobian="auto",
-              strict=False,
-              **model_options):
+def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes | None,
+              parameters: str | Sequence[str] = ("EA",),
+              pose: ArrayLike | Pose | None = None, rung: str = "dsm", pairing: str | None = None,
+              confidence: float = 0.95, bounds: tuple[float, float] = (1e-2, 1e2),
+              xtol: float = 1e-6, max_nfev: int = 40, fmax_factor: float = 1.3,
+              start: dict[str, float] | None = None, frf: FRFResult | None = None,
+              frf_point: ArrayLike | None = None, jacobian: str = "auto", strict: bool = False,
+              **model_options: Any) -> CalibrationResult:
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
     Parameters
@@ -318,6 +217,18 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     -----
     CalibrationWarning
         The same findings, without ``strict``.
+
+    Examples
+    --------
+    >>> import dataclasses
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> stiffer = dataclasses.replace(scene.robot, cables=tuple(
+    ...     dataclasses.replace(c, EA=1.1 * c.EA) for c in scene.robot.cables))
+    >>> f = ds.eigenfrequencies(ds.FrequencyModel(stiffer.equilibrium(scene.pose)), n_modes=2)
+    >>> cal = ds.calibrate(scene, f)                  # "measured": the cables 10 % stiffer
+    >>> print(f"EA x {cal.estimate[0] / cal.initial[0]:.4f}")
+    EA x 1.1000
     """
     from scipy.optimize import least_squares
     from scipy.stats import norm
@@ -378,7 +289,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     count = [0]
     empty = np.zeros(0)
 
-    def evaluate(u):
+    def evaluate(u: NDArray[np.float64]) -> dict[str, Any]:
         """Paired frequencies [Hz], MAC, cable shares, damping ratios and the FRF residual
         at ln(factors) u."""
         model = build_model(_with(robot, names, np.exp(u)).equilibrium(pose), rung,
@@ -410,12 +321,12 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
 
     last_eval = {}
 
-    def residual(u):
+    def residual(u: NDArray[np.float64]) -> NDArray[np.float64]:
         out = evaluate(u)
         last_eval.update(u=np.array(u, dtype=float), r=out["r"], out=out)
         return out["r"]
 
-    def analytic_jacobian(out):
+    def analytic_jacobian(out: dict[str, Any]) -> NDArray[np.float64]:
         """dr/du = p df/dp / s of the paired modes, from the evaluation ``out``
         (theory.md §16.5)."""
         idx = out["idx"]
@@ -423,7 +334,8 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         sens = sensitivities_at(out["model"], f, list(names))
         return sens.derivative[idx] * sens.values[None, :] / np.asarray(scale)[:, None]
 
-    def jacobian(u, h=1e-4, central=False):
+    def jacobian(u: NDArray[np.float64], h: float = 1e-4,
+                 central: bool = False) -> NDArray[np.float64]:
         """Analytic (from the evaluation at u), else differences in ln p with a step far
         above the statics' tolerance (1e-10): forward (reusing the residual just evaluated
         at u) during the search, central for the sensitivities at the estimate."""

@@ -7,6 +7,7 @@ of :mod:`dynstiff.analyses.verdicts`, which the workspace maps use too.
 
 from dataclasses import dataclass, replace
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 from dynstiff._validate import positive_scalar
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
@@ -16,6 +17,12 @@ from dynstiff.analyses.verdicts import CheckOptions, pose_rows
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Damping
+
+if TYPE_CHECKING:
+    import numpy as np
+    import pandas
+
+    from dynstiff.robot.robot import Pose, Robot
 
 __all__ = ["CheckResult", "check_options", "damped_model", "design_checks",
            "modal_model_options"]
@@ -80,28 +87,56 @@ class CheckResult:
     uncertainty : UncertaintyResult or None
         With stated uncertainties: the distributions behind the last row
         (:func:`dynstiff.analyses.uncertainty.uncertain_row`).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+    >>> res.passed
+    True
+    >>> res.to_frame()["verdict"].tolist()
+    ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass']
     """
 
     rows: tuple
     platform: object = None
     uncertainty: object = None
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         bad = [f"{r['check']} ({r['verdict']})" for r in self.rows if not r["passed"]]
         return (f"CheckResult({'passed' if not bad else 'FAILED: ' + ', '.join(bad)}; "
                 f"{len(self.rows)} checks)")
 
     @property
-    def passed(self):
-        """True when every check passed (a check "not asked" cannot fail; "unknown" does)."""
+    def passed(self) -> bool:
+        """True when every check passed (a check "not asked" cannot fail; "unknown" does).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> res.passed
+        True
+        """
         return all(r["passed"] for r in self.rows)
 
     @property
-    def verdicts(self):
-        """{check: verdict}."""
+    def verdicts(self) -> dict[str, str]:
+        """{check: verdict}.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> res.verdicts["platform modes outside band"]
+        'pass'
+        """
         return {r["check"]: r["verdict"] for r in self.rows}
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         """Jupyter display: the verdict, check and reason of every row."""
         from dynstiff._html import html_table
         return html_table(
@@ -109,13 +144,31 @@ class CheckResult:
             ["verdict", "check", "detail"],
             [[r["verdict"].upper(), r["check"], r["detail"]] for r in self.rows])
 
-    def to_frame(self):
-        """pandas DataFrame, one row per check."""
+    def to_frame(self) -> "pandas.DataFrame":
+        """pandas DataFrame, one row per check.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> list(res.to_frame().columns)
+        ['check', 'verdict', 'passed', 'value', 'limit', 'detail']
+        """
         import pandas as pd
         return pd.DataFrame(list(self.rows))
 
-    def text(self):
-        """Plain-text report."""
+    def text(self) -> str:
+        """Plain-text report.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> scene = ds.load_scene("cogiro")
+        >>> res = ds.design_checks(scene.robot, scene.equilibrium().pose, band_hz=(0.0, 1.5))
+        >>> print(res.text().splitlines()[0])
+        PASS    workspace (tension-feasible pose) statics residual 8.9e-14
+        """
         flags = {"pass": "PASS", "fail": "FAIL", "unknown": "UNKNOWN", "not asked": "n/a"}
         out = [f"{flags[r['verdict']]:<7s} {r['check']:<33s} {r['detail']}" for r in self.rows]
         out.append("all checks passed" if self.passed else "some checks FAILED")
@@ -162,11 +215,16 @@ def _band(name, band):
     return lo, hi
 
 
-def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
-                  max_sag_ratio=0.02, model_rtol=1e-2, rung="dsm",
-                  participation=PLATFORM_SHARE_THRESHOLD, frf_limit=FRF_AMPLIFICATION_LIMIT,
-                  damping=DEFAULT_DAMPING, model_band_hz=None, max_modes=MAX_PLATFORM_MODES,
-                  uncertain=None, n_samples=200, seed=0, confidence=0.95, **model_options):
+def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
+                  band_hz: tuple[float, float] | None = None, margin: float = 0.05,
+                  proximity_rtol: float = 0.03, max_sag_ratio: float = 0.02,
+                  model_rtol: float = 1e-2, rung: str = "dsm",
+                  participation: float = PLATFORM_SHARE_THRESHOLD,
+                  frf_limit: float = FRF_AMPLIFICATION_LIMIT, damping: Damping = DEFAULT_DAMPING,
+                  model_band_hz: tuple[float, float] | None = None,
+                  max_modes: int = MAX_PLATFORM_MODES, uncertain: dict | None = None,
+                  n_samples: int = 200, seed: int = 0, confidence: float = 0.95,
+                  **model_options: object) -> "CheckResult":
     """Run the design checks at a pose (theory.md §12.1; the rows of
     :mod:`dynstiff.analyses.verdicts`, the same a workspace map gives).
 

@@ -1,15 +1,28 @@
 """Mode-by-mode comparison of two modal results (e.g. closed-form and lumped-mass models):
 global modes paired by mass-weighted MAC of the platform shapes, the others by frequency."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.results import ModalResult
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.results import LumpedModalResult
+
 __all__ = ["compare_modes"]
 
 
-def compare_modes(closed_form_modes, lumped_modes, mass_matrix=None):
+def compare_modes(closed_form_modes: ModalResult,
+                  lumped_modes: NDArray[np.float64] | LumpedModalResult,
+                  mass_matrix: NDArray[np.float64] | None = None) -> Any:
     """Mode-by-mode table of two modal results, matched by shape, not by index.
 
     Global modes (kind "global" in both results) are paired by the MAC of their platform

@@ -4,17 +4,28 @@ Seeded by the undamped modes of :func:`dynstiff.analyses.modes.modes`, for a mod
 ``dynamic_stiffness`` accepts complex omega (:mod:`dynstiff.models.base`).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.analyses.modes import modes
 from dynstiff.results import DampedModes
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+    from dynstiff.results import ModalResult
 
 __all__ = ["damped_modes", "DampedModes"]
 
 _TWO_PI = 2.0 * np.pi
 
 
-def _nearest_zero_eigenvalue(model, w):
+def _nearest_zero_eigenvalue(model: FrequencyModel, w: complex) -> tuple[complex, float]:
     with np.errstate(all="ignore"):
         K = model.dynamic_stiffness(w)[0]
     if not np.all(np.isfinite(K)):
@@ -23,7 +34,7 @@ def _nearest_zero_eigenvalue(model, w):
     return mu[np.argmin(np.abs(mu))], np.linalg.norm(K, 2)
 
 
-def _perturbation_estimates(model, und):
+def _perturbation_estimates(model: PlatformModel, und: ModalResult) -> NDArray[np.complex128]:
     """First-order damped roots omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T K_u' x
     (x: undamped platform mode, K_u' = dK_u/domega by central differences)."""
     mu = model.undamped()
@@ -41,7 +52,8 @@ def _perturbation_estimates(model, und):
     return est
 
 
-def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
+def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+                 tol: float = 1e-12, max_iter: int = 80) -> DampedModes:
     """Complex natural frequencies of the damped robot, seeded from the undamped ones.
 
     Each undamped mode omega_r with platform motion x gives a first-order estimate
@@ -67,6 +79,15 @@ def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
     Returns
     -------
     DampedModes
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq, platform_damping_ratio=0.02)
+    >>> d = ds.damped_modes(m, n_modes=1)
+    >>> print(f"{d.freq_hz[0]:.3f} Hz, zeta = {d.damping_ratio[0]:.4f}")
+    2.207 Hz, zeta = 0.0200
     """
     und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
     est = _perturbation_estimates(model, und)
@@ -74,7 +95,7 @@ def damped_modes(model, n_modes=None, fmax_hz=None, tol=1e-12, max_iter=80):
     resid = np.full(len(und), np.nan)
     found = []
     for k in np.flatnonzero(np.isfinite(est)):
-        def g(w):
+        def g(w: complex) -> complex:
             if not np.isfinite(w) or abs(w - est[k]) > 0.2 * abs(est[k]):   # left: give up
                 return np.nan
             with np.errstate(all="ignore"):

@@ -21,7 +21,10 @@ search works for every rung (``method="wittrick-williams"``), which is how the t
 checked against each other.
 """
 
+from __future__ import annotations
+
 from numbers import Integral, Real
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,6 +37,14 @@ from dynstiff.models.base import require_model
 from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import ModalResult
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.base import PlatformModel
+
 __all__ = ["eigenfrequencies", "mode_count", "ModalResult", "METHODS"]
 
 _TWO_PI = 2.0 * np.pi
@@ -42,13 +53,14 @@ _TWO_PI = 2.0 * np.pi
 METHODS = ("auto", "matrix", "wittrick-williams")
 
 
-def _real_symmetric(K):
+def _real_symmetric(K: NDArray[np.float64]) -> NDArray[np.float64]:
     """Symmetric real part of a stack of K(omega), shape (n, nf, nf)."""
     K = K.real if np.iscomplexobj(K) else K
     return 0.5 * (K + np.swapaxes(K, -1, -2))
 
 
-def validated_request(n_modes, fmax_hz):
+def validated_request(n_modes: int | None,
+                      fmax_hz: float | None) -> tuple[int | None, float | None]:
     """Check ``n_modes`` (integer >= 1 or None) and ``fmax_hz`` (finite > 0 or None), one
     given at least; returns them as (int or None, float or None)."""
     if n_modes is None and fmax_hz is None:
@@ -73,7 +85,7 @@ def validated_request(n_modes, fmax_hz):
     return n_modes, fmax_hz
 
 
-def checked_method(model, method):
+def checked_method(model: PlatformModel, method: str) -> str:
     require_model(model)
     if method not in METHODS:
         raise InvalidParameterError(f"method must be one of {METHODS}, got {method!r}")
@@ -87,7 +99,7 @@ def checked_method(model, method):
     return method
 
 
-def mode_count(model, omega):
+def mode_count(model: PlatformModel, omega: ArrayLike) -> NDArray[np.int64]:
     """Wittrick-Williams count J(omega) = J0(omega) + s{K(omega)}: the number of natural
     frequencies of the undamped model strictly below omega (theory.md §5.1).
 
@@ -100,17 +112,29 @@ def mode_count(model, omega):
     Returns
     -------
     ndarray of int, shape (n_omega,)
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> f = ds.eigenfrequencies(m, n_modes=2)
+    >>> ds.mode_count(m, 2 * np.pi * np.array([0.5, 1.01]) * f[1]).tolist()   # below and above f[1]
+    [0, 2]
     """
     return _count(require_model(model).undamped(), omega)[0]
 
 
-def _count(m, omega):
+def _count(
+        m: PlatformModel, omega: NDArray[np.float64] | float,
+) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]]:
     """W-W count of the undamped model ``m`` at omega (n,) [rad/s]: (J, ev, J0) with the
     ascending eigenvalues ev (n, n_free) of sym K(omega) and the cable count J0 (n,)."""
     return _counter(m)(omega)
 
 
-def _counter(m):
+def _counter(m: PlatformModel) -> Callable[..., Any]:
     """The function omega (n,) [rad/s] -> (J, ev, J0) of :func:`_count` for the undamped
     model ``m``, with the cable kernels evaluated once per frequency: the compiled kernel of
     the "dsm" rung when numba is installed, else ``dynamic_stiffness_and_count`` where the
@@ -120,7 +144,9 @@ def _counter(m):
     if fast is not None and type(m) is FrequencyModel and not m.damped:
         args = compiled_arguments(m)
 
-        def count(omega):
+        def count(
+                omega: NDArray[np.float64] | float,
+        ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]] | None:
             omega = omega_array(omega)
             check_frequency_range(m.stacked_params, omega)
             m.guard_band(omega)
@@ -129,7 +155,9 @@ def _counter(m):
                 return J0 + np.sum(ev < 0, axis=1), ev, J0
         return count
 
-    def count(omega):
+    def count(
+            omega: NDArray[np.float64] | float,
+    ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]]:
         if hasattr(m, "dynamic_stiffness_and_count"):
             K, J0 = m.dynamic_stiffness_and_count(omega)
         else:
@@ -140,8 +168,9 @@ def _counter(m):
     return count
 
 
-def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto",
-                     max_modes=20000):
+def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+                     rtol: float = 1e-12, method: str = "auto",
+                     max_modes: int = 20000) -> NDArray[np.float64]:
     """Natural frequencies [Hz] of the undamped robot, ascending, none missed.
 
     Parameters
@@ -171,6 +200,15 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
     InvalidParameterError
         Bad ``n_modes``, ``fmax_hz``, ``rtol`` or ``method``; ``n_modes`` larger than a
         discrete rung's number of DOFs.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> [f"{f:.4f}" for f in ds.eigenfrequencies(m, n_modes=3)]
+    ['2.2061', '2.3592', '2.9907']
     """
     n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
     if not (isinstance(rtol, Real) and 0 < rtol < 1e-2):
@@ -226,7 +264,7 @@ def eigenfrequencies(model, n_modes=None, fmax_hz=None, rtol=1e-12, method="auto
     return _search(count, N, grid, J, ev, J0, rtol) / _TWO_PI
 
 
-def _seed_grid(m, w_hi, n_uniform=64):
+def _seed_grid(m: PlatformModel, w_hi: float, n_uniform: int = 64) -> NDArray[np.float64]:
     """Frequencies [rad/s] at which the count is first evaluated, ascending from 0 to w_hi:
     a uniform grid and the massless-cable frequencies (near which the global modes lie),
     each with a neighbour 1e-3 above (theory.md §14.2)."""
@@ -240,7 +278,9 @@ def _seed_grid(m, w_hi, n_uniform=64):
     return np.unique([0.0] + pts[(pts > 0) & (pts < w_hi)].tolist() + [w_hi])
 
 
-def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
+def _search(count: Callable[..., Any], N: int, grid: NDArray[np.float64], J_grid: NDArray[np.int64],
+            ev_grid: NDArray[np.float64], J0_grid: NDArray[np.int64],
+            rtol: float) -> NDArray[np.float64]:
     """The N lowest roots [rad/s] from the counts (``count``, :func:`_counter`) on ``grid``
     (theory.md §5, §14.2).
 
@@ -284,7 +324,9 @@ def _search(count, N, grid, J_grid, ev_grid, J0_grid, rtol):
     return out
 
 
-def _illinois(count, lo, hi, idx, f_lo, f_hi, rtol, max_iter=200):
+def _illinois(count: Callable[..., Any], lo: NDArray[np.float64], hi: NDArray[np.float64],
+              idx: NDArray[np.int64], f_lo: NDArray[np.float64], f_hi: NDArray[np.float64],
+              rtol: float, max_iter: int = 200) -> NDArray[np.float64]:
     """Vectorised Illinois regula falsi on the eigenvalue of K that crosses zero in [lo, hi].
 
     In an isolated bracket without cable poles, s{K} goes from s_lo = J_lo - J0 to s_lo + 1,

@@ -6,10 +6,21 @@ Reached through :func:`dynstiff.analyses.eigen.eigenfrequencies` and
 :func:`dynstiff.analyses.modes.modes`.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.results import LumpedModalResult, ModalResult
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.models.base import PlatformModel
 
 __all__ = ["eig", "eigenfrequencies", "modes", "count_below", "massless_pairing"]
 
@@ -18,12 +29,12 @@ _TWO_PI = 2.0 * np.pi
 DENSE_LIMIT = 400
 
 
-def _dense(A):
+def _dense(A: Any) -> NDArray[np.float64]:
     import scipy.sparse
     return A.toarray() if scipy.sparse.issparse(A) else np.asarray(A)
 
 
-def eig(model, n_modes):
+def eig(model: PlatformModel, n_modes: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Lowest ``n_modes`` eigenpairs of K phi = omega^2 M phi (K symmetrised).
 
     Returns
@@ -56,11 +67,11 @@ def eig(model, n_modes):
     return lam, V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
 
 
-def _to_hz(lam):
+def _to_hz(lam: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
     return np.sign(lam) * np.sqrt(np.abs(lam)) / _TWO_PI
 
 
-def count_below(model, omega):
+def count_below(model: PlatformModel, omega: float) -> int | None:
     """Number of eigenvalues of (K, M) below omega^2, omega [rad/s], by the Wittrick-Williams
     count of the model's condensed K(omega) (exact for a discrete model: J0 from the chains
     with the platform held, theory.md §5.1, §14.3); None where K(omega) is not finite (omega
@@ -73,7 +84,8 @@ def count_below(model, omega):
     return int(model.cable_mode_count(w)[0] + np.sum(ev < 0))
 
 
-def _lowest(model, n_modes, fmax_hz):
+def _lowest(model: PlatformModel, n_modes: int | None,
+            fmax_hz: float | None) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
     """Eigenpairs (lam, V) of the request: the lowest ``n_modes``, or all below ``fmax_hz``
     (the first ``n_modes`` of them if both). For a band, the number of modes in it is counted
     first (:func:`count_below`) and one eigen solve asks for exactly that many; where the
@@ -99,14 +111,16 @@ def _lowest(model, n_modes, fmax_hz):
         n *= 2
 
 
-def eigenfrequencies(model, n_modes=None, fmax_hz=None):
+def eigenfrequencies(model: PlatformModel, n_modes: int | None = None,
+                     fmax_hz: float | None = None) -> NDArray[np.float64]:
     """Lowest natural frequencies [Hz], ascending (validated request, see
     :func:`dynstiff.analyses.eigen.eigenfrequencies`); an unstable equilibrium's negative eigenvalue
     lambda is reported as -sqrt(-lambda) / 2 pi."""
     return _to_hz(_lowest(model, n_modes, fmax_hz)[0])
 
 
-def modes(model, n_modes=None, fmax_hz=None):
+def modes(model: PlatformModel, n_modes: int | None = None,
+          fmax_hz: float | None = None) -> ModalResult:
     """Modes with platform shapes, cable kinetic-energy fractions and labels.
 
     Kinetic energies per unit omega^2 / 2: platform x^T M_p x (rigid body alone), cables
@@ -149,7 +163,8 @@ def modes(model, n_modes=None, fmax_hz=None):
     return LumpedModalResult(**fields, node_shapes=node_shapes)
 
 
-def massless_pairing(modes, K0, Mp, free_index):
+def massless_pairing(modes: ModalResult, K0: NDArray[np.float64], Mp: NDArray[np.float64],
+                     free_index: NDArray[np.int64]) -> NDArray[np.float64]:
     """The frequency [Hz] of the massless-cable mode each mode of ``modes`` continues, NaN
     for the modes that continue none: a one-to-one assignment (Hungarian) that maximises the
     summed participation of the pairs, the participation of mode k in massless mode j being

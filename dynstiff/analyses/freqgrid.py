@@ -9,15 +9,24 @@ peak of half-power width 2 zeta f_r >= 2e-3 f_r is sampled within 0.1 % of its t
 the uniform count (theory.md §12.3).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import InvalidParameterError
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
 __all__ = ["refined_grid"]
 
 
-def refined_grid(band_hz, n_points, modes_hz=(), rel_width=0.03, rel_min=1e-6, per_side=40):
+def refined_grid(band_hz: str | tuple[float, float], n_points: int, modes_hz: ArrayLike = (),
+                 rel_width: float = 0.03, rel_min: float = 1e-6,
+                 per_side: int = 40) -> NDArray[np.float64]:
     """Uniform grid over ``band_hz`` plus points clustered at every mode inside it.
 
     Parameters

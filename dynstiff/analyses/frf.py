@@ -5,7 +5,10 @@ the platform (about P, base axes) and the motion of a platform point c (platform
 d_c = dp + dtheta x R_p c. Mobility = i omega H, accelerance = -omega^2 H.
 """
 
+from __future__ import annotations
+
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,13 +22,22 @@ from dynstiff.models.dsm import FrequencyModel, compiled_arguments
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 from dynstiff.robot.platform import skew
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.base import PlatformModel
+
 __all__ = ["frf", "FRFResult", "INPUT_NAMES", "OUTPUT_NAMES", "channel_maps"]
 
 #: Relative distance from a cable pole within which H is taken as the mean of both sides.
 _POLE_STEP = 1e-9
 
 
-def _channels(names, allowed, arg):
+def _channels(names: int | str | list[str] | None, allowed: tuple[str, str, str, str, str, str],
+              arg: str) -> list[int]:
     if names is None:
         return list(range(6))
     if isinstance(names, str):
@@ -48,7 +60,11 @@ def _channels(names, allowed, arg):
     return idx
 
 
-def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
+def channel_maps(
+        free_index: NDArray[np.int64], rotation: NDArray[np.float64],
+        inputs: int | str | list[str] | None = None, outputs: str | list[str] | None = None,
+        point: ArrayLike | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], tuple[str, ...], tuple[str, ...]]:
     """Maps between named channels and the free DOFs.
 
     Parameters
@@ -94,8 +110,9 @@ def channel_maps(free_index, rotation, inputs=None, outputs=None, point=None):
     return (B, C, tuple(INPUT_NAMES[i] for i in ii), tuple(OUTPUT_NAMES[o] for o in oo))
 
 
-def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
-        max_frequencies=1_000_000):
+def frf(model: PlatformModel, omega: ArrayLike, inputs: str | Sequence[str] | None = None,
+        outputs: str | Sequence[str] | None = None, point: ArrayLike | None = None,
+        kind: str = "receptance", max_frequencies: int = 1_000_000) -> FRFResult:
     """FRFs of the robot platform, for a model of any rung.
 
     H(omega) = C K(omega)^-1 B with K(omega) = ``model.dynamic_stiffness(omega)`` on the free
@@ -128,6 +145,18 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
     PoleWarning
         At a frequency where K(omega) is exactly singular: those entries are inf, never a
         silently wrong finite number.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> r = ds.frf(m, 2 * np.pi * np.array([0.5, 1.0]), inputs="fz", outputs="z")
+    >>> r.H.shape
+    (2, 1, 1)
+    >>> print(f"{abs(r.H[0, 0, 0]):.3e} m/N")
+    5.925e-05 m/N
     """
     require_model(model)
     omega = omega_array(omega)
@@ -178,7 +207,7 @@ def frf(model, omega, inputs=None, outputs=None, point=None, kind="receptance",
                      kind=kind, damping=model.damping_text())
 
 
-def _modes_between(model, omega):
+def _modes_between(model: Any, omega: NDArray[np.float64]) -> int:
     """Number of natural frequencies of an undamped ``model`` strictly inside the range of
     ``omega`` [rad/s]: the Wittrick-Williams count J = J0 + s{K} at its ends (theory.md
     §5.1; the finite eigenproblem's count for the discrete rungs, its massless part for the
@@ -195,7 +224,9 @@ def _modes_between(model, omega):
     return int(J[1] - J[0])
 
 
-def _receptance(model, omega, B, C):
+def _receptance(
+        model: Any, omega: NDArray[np.float64], B: NDArray[np.float64], C: NDArray[np.float64],
+) -> tuple[NDArray[np.complex128], NDArray[np.float64], NDArray[np.bool_]]:
     """C K(omega)^-1 B of ``model`` at omega (n,) [rad/s], shape (n, n_out, n_in), complex.
 
     Returns (H, kmax, singular): kmax (n,) the largest |K_ij| per frequency, singular (n,)
@@ -216,7 +247,8 @@ def _receptance(model, omega, B, C):
     return H, np.abs(K).max(axis=(1, 2)), singular
 
 
-def _solve(K, B, C, fast=None):
+def _solve(K: NDArray[Any], B: NDArray[np.float64], C: NDArray[np.float64],
+           fast: Any | None = None) -> tuple[NDArray[np.complex128], NDArray[np.bool_]]:
     """C K^-1 B for a stack K (n, nf, nf), shape (n, n_out, n_in), complex, and where K is
     exactly singular (n,) bool; a real K is solved in real arithmetic and cast once."""
     n = K.shape[0]

@@ -26,10 +26,22 @@ symbol              meaning                                                unit
 No plotting here; pandas is imported only by the ``to_frame`` helpers.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import DynstiffWarning, InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    import pandas as pd
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.results import ModalResult
 
 __all__ = ["ProximityWarning", "proximity_warnings", "to_frame"]
 
@@ -51,11 +63,22 @@ class ProximityWarning(DynstiffWarning, UserWarning):
         Their frequencies [Hz].
     relative_gap : float
         |freq_local_hz - freq_global_hz| / freq_global_hz [-].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> w = ds.proximity_warnings(ds.modes(m, fmax_hz=4.0), rtol=0.15)[0]
+    >>> print(f"{w.freq_global_hz:.3f} Hz near {w.freq_local_hz:.3f} Hz, gap {w.relative_gap:.3f}")
+    2.991 Hz near 3.351 Hz, gap 0.120
     """
 
     _FIELDS = ("global_mode", "local_mode", "freq_global_hz", "freq_local_hz", "relative_gap")
 
-    def __init__(self, global_mode, local_mode, freq_global_hz, freq_local_hz, relative_gap):
+    def __init__(self, global_mode: int, local_mode: int, freq_global_hz: float,
+                 freq_local_hz: float, relative_gap: float) -> None:
         super().__init__(
             f"local mode {local_mode} ({freq_local_hz:.6g} Hz) is within "
             f"{100 * relative_gap:.3g} % of global mode {global_mode} ({freq_global_hz:.6g} Hz)")
@@ -65,21 +88,21 @@ class ProximityWarning(DynstiffWarning, UserWarning):
         self.freq_local_hz = float(freq_local_hz)
         self.relative_gap = float(relative_gap)
 
-    def _key(self):
+    def _key(self) -> tuple[int, int, float, float, float]:
         return tuple(getattr(self, f) for f in self._FIELDS)
 
-    def __eq__(self, other):
+    def __eq__(self, other: tuple[int, int] | ProximityWarning) -> bool:
         return isinstance(other, ProximityWarning) and self._key() == other._key()
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash(self._key())
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return ("ProximityWarning(" + ", ".join(f"{f}={getattr(self, f)!r}" for f in self._FIELDS)
                 + ")")
 
 
-def _check_modes(modes):
+def _check_modes(modes: Any) -> tuple[NDArray[np.float64], NDArray[Any]]:
     try:
         f = np.asarray(modes.freq_hz, dtype=float)
         kind = np.asarray(modes.kind)
@@ -94,7 +117,8 @@ def _check_modes(modes):
     return f, kind
 
 
-def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
+def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = False,
+                       platform: ArrayLike | None = None) -> list[ProximityWarning]:
     """Local modes within a relative frequency gap of a global (platform) mode.
 
     A local cable mode near a global platform mode acts as a tuned absorber on it
@@ -131,6 +155,18 @@ def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
     ------
     InvalidParameterError
         ``rtol`` not finite and > 0, or ``modes`` not a modal result.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> w = ds.proximity_warnings(ds.modes(m, fmax_hz=4.0), rtol=0.15)
+    >>> len(w)
+    15
+    >>> print(w[0])
+    local mode 7 (3.35055 Hz) is within 12 % of global mode 3 (2.99072 Hz)
     """
     rtol = positive_scalar("rtol", rtol)
     f, kind = _check_modes(modes)
@@ -159,7 +195,7 @@ def proximity_warnings(modes, rtol=0.05, warn=False, platform=None):
     return out
 
 
-def to_frame(warnings):
+def to_frame(warnings: list[ProximityWarning]) -> pd.DataFrame:
     """pandas DataFrame of proximity warnings, one row per pair, units in the column names.
 
     Parameters

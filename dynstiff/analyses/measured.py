@@ -18,13 +18,27 @@ Pairing a measured mode with a model mode (:func:`pair_modes`):
   modes.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff.analyses.measured_frf import FRFComparison, compare_frf, read_measured_frf
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
-from dynstiff.results import FRFResult
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.results import ModalResult
 
 __all__ = ["MeasuredModes", "ModeComparison", "FRFComparison", "PAIRINGS", "compare_frf",
            "compare_modes", "mac_matrix", "massless_pairing", "pair_modes",
@@ -50,6 +64,13 @@ class MeasuredModes:
         Standard deviation of each frequency [Hz], > 0 (weights of a calibration).
     damping_ratio : array_like, shape (n,), optional
         Measured modal damping ratios [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> measured = ds.MeasuredModes(freq_hz=[2.25, 2.40, 3.05], sigma_hz=[0.01, 0.01, 0.02])
+    >>> list(measured.to_frame().columns)
+    ['freq [Hz]', 'sigma [Hz]']
     """
 
     freq_hz: np.ndarray
@@ -57,7 +78,7 @@ class MeasuredModes:
     sigma_hz: object = None
     damping_ratio: object = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         f = np.atleast_1d(np.asarray(self.freq_hz, dtype=float))
         if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):
             raise InvalidParameterError(
@@ -88,16 +109,24 @@ class MeasuredModes:
                                             f"got {getattr(self, name)!r}")
             object.__setattr__(self, name, v)
 
-    def __len__(self):
+    def __len__(self) -> int:
         return self.freq_hz.size
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         shapes = "yes" if self.shapes is not None else "no"
         return (f"MeasuredModes({len(self)} modes {self.freq_hz.min():.4g}-"
                 f"{self.freq_hz.max():.4g} Hz, shapes {shapes})")
 
-    def to_frame(self):
-        """pandas DataFrame in the format :func:`read_measured_modes` reads."""
+    def to_frame(self) -> pd.DataFrame:
+        """pandas DataFrame in the format :func:`read_measured_modes` reads.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> measured = ds.MeasuredModes(freq_hz=[2.25, 2.40, 3.05], sigma_hz=[0.01, 0.01, 0.02])
+        >>> list(measured.to_frame().columns)
+        ['freq [Hz]', 'sigma [Hz]']
+        """
         import pandas as pd
         df = pd.DataFrame({"freq [Hz]": self.freq_hz})
         if self.sigma_hz is not None:
@@ -110,7 +139,7 @@ class MeasuredModes:
         return df
 
 
-def read_measured_modes(path):
+def read_measured_modes(path: str | Path) -> MeasuredModes:
     """Read a table of measured modes (CSV, module notes), strictly: every number is parsed
     on its own (a bad one is named with its line and column, a decimal comma refused), an
     empty shape cell is "not measured". Shape columns are named ``x .. rz``, with or
@@ -126,6 +155,16 @@ def read_measured_modes(path):
     InvalidParameterError
         No frequency column, an empty file, or bad values (named with file, line and
         column).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> measured = ds.MeasuredModes(freq_hz=[2.25, 2.40, 3.05], sigma_hz=[0.01, 0.01, 0.02])
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "modes.csv")
+    >>> measured.to_frame().to_csv(path, index=False)
+    >>> ds.read_measured_modes(path).freq_hz.tolist()
+    [2.25, 2.4, 3.05]
     """
     from dynstiff.io.table import read_table
     table = read_table(path)
@@ -156,74 +195,8 @@ def read_measured_modes(path):
         raise InvalidParameterError(f"{path}: {exc}") from None
 
 
-def read_measured_frf(path):
-    """Read measured FRFs: UFF 58 records (``.uff``/``.unv``, through pyuff) or the CSV of
-    :meth:`FRFResult.to_frame`.
-
-    Returns
-    -------
-    FRFResult
-        Channels from the UFF direction codes (1-6: x..rz for responses, fx..mz for loads);
-        kind from the ordinate data type (8, 11, 12). All records must share one frequency
-        axis and one kind.
-    """
-    from pathlib import Path
-    path = Path(path)
-    if path.suffix.lower() == ".csv":
-        return _frf_from_csv(path)
-    from dynstiff.io.exchange import UFF_DATA_TYPES, require
-    pyuff = require("pyuff")
-    sets = pyuff.UFF(str(path)).read_sets()
-    sets = [sets] if isinstance(sets, dict) else list(sets)
-    sets = [s for s in sets if s.get("type") == 58 and s.get("func_type") == 4]
-    if not sets:
-        raise InvalidParameterError(f"{path}: no UFF 58 frequency response record "
-                                    f"(function type 4)")
-    kinds = {v: k for k, v in UFF_DATA_TYPES.items()}
-    kind = {kinds.get(s.get("ordinate_spec_data_type"), "receptance") for s in sets}
-    f = np.asarray(sets[0]["x"], dtype=float)
-    if len(kind) > 1 or any(np.asarray(s["x"]).shape != f.shape
-                            or not np.allclose(s["x"], f, rtol=1e-5) for s in sets):
-        raise InvalidParameterError(f"{path}: the records mix kinds {sorted(kind)} or "
-                                    f"frequency axes; give one kind on one axis")
-    outs, ins = [], []
-    for s in sets:
-        for lst, name, names in ((outs, "rsp_dir", DOF_NAMES),
-                                 (ins, "ref_dir", ("fx", "fy", "fz", "mx", "my", "mz"))):
-            d = abs(int(s[name]))
-            if not 1 <= d <= 6:
-                raise InvalidParameterError(f"{path}: direction {s[name]} is not one of the "
-                                            f"6 platform DOFs (1-6)")
-            if names[d - 1] not in lst:
-                lst.append(names[d - 1])
-    H = np.full((f.size, len(outs), len(ins)), np.nan + 0j)
-    for s in sets:
-        o = outs.index(DOF_NAMES[abs(int(s["rsp_dir"])) - 1])
-        i = ins.index(("fx", "fy", "fz", "mx", "my", "mz")[abs(int(s["ref_dir"])) - 1])
-        H[:, o, i] = np.asarray(s["data"], dtype=complex)
-    return FRFResult(freq_hz=f, H=H, inputs=tuple(ins), outputs=tuple(outs), kind=kind.pop())
-
-
-def _frf_from_csv(path):
-    import pandas as pd
-    df = pd.read_csv(path)
-    need = {"freq [Hz]", "input", "output", "real", "imag"}
-    if not need <= set(df.columns):
-        raise InvalidParameterError(f"{path}: FRF CSV needs the columns {sorted(need)} (as "
-                                    f"FRFResult.to_frame writes them), found {list(df.columns)}")
-    f = np.unique(df["freq [Hz]"].to_numpy(float))
-    outs = list(dict.fromkeys(df["output"]))
-    ins = list(dict.fromkeys(df["input"]))
-    H = np.full((f.size, len(outs), len(ins)), np.nan + 0j)
-    k = np.searchsorted(f, df["freq [Hz]"].to_numpy(float))
-    o = np.array([outs.index(v) for v in df["output"]])
-    i = np.array([ins.index(v) for v in df["input"]])
-    H[k, o, i] = df["real"].to_numpy(float) + 1j * df["imag"].to_numpy(float)
-    kind = str(df["kind"].iloc[0]) if "kind" in df else "receptance"
-    return FRFResult(freq_hz=f, H=H, inputs=tuple(ins), outputs=tuple(outs), kind=kind)
-
-
-def mac_matrix(measured_shapes, model_shapes):
+def mac_matrix(measured_shapes: NDArray[np.float64],
+               model_shapes: NDArray[np.float64]) -> NDArray[np.float64]:
     """MAC between measured and model platform shapes on the measured DOFs.
 
     Parameters
@@ -247,7 +220,7 @@ def mac_matrix(measured_shapes, model_shapes):
     return np.nan_to_num(mac, nan=0.0)
 
 
-def massless_pairing(model_modes, model, n):
+def massless_pairing(model_modes: ModalResult, model: PlatformModel, n: int) -> NDArray[np.int64]:
     """Indices of the modes of ``model_modes`` that continue the first ``n`` platform modes of
     the massless-cable model (K(0) phi = omega^2 M_p phi): for each, the mode with the largest
     mass-weighted MAC x platform share (Hungarian assignment), shape (n,).
@@ -270,7 +243,8 @@ def massless_pairing(model_modes, model, n):
     return _assign_by_platform_mac(mac, model_modes, n)
 
 
-def _assign_by_platform_mac(mac, model_modes, n):
+def _assign_by_platform_mac(mac: NDArray[np.float64], model_modes: ModalResult,
+                            n: int) -> NDArray[np.int64]:
     """Model mode paired with each of ``n`` rows of ``mac`` (n, n_modes): the Hungarian
     assignment maximising MAC x platform share (1 - cable energy fraction), shape (n,)."""
     from scipy.optimize import linear_sum_assignment
@@ -284,7 +258,8 @@ def _assign_by_platform_mac(mac, model_modes, n):
     return idx
 
 
-def pair_modes(model_modes, measured, pairing=None):
+def pair_modes(model_modes: ModalResult, measured: MeasuredModes,
+               pairing: str | None = None) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """Pair measured modes with modes of a :class:`~dynstiff.ModalResult` (module notes).
 
     Returns
@@ -351,25 +326,25 @@ class ModeComparison:
     kind: tuple
 
     @property
-    def error(self):
+    def error(self) -> NDArray[np.float64]:
         """Relative error f_model / f_measured - 1 [-], shape (n,)."""
         return self.model_hz / self.measured_hz - 1.0
 
-    def __len__(self):
+    def __len__(self) -> int:
         return self.measured_hz.size
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"ModeComparison({len(self)} pairs, largest error "
                 f"{np.abs(self.error).max():.3g}, rms {np.sqrt(np.mean(self.error**2)):.3g})")
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """One row per measured mode, units in the column names."""
         import pandas as pd
         return pd.DataFrame({"measured [Hz]": self.measured_hz, "model [Hz]": self.model_hz,
                              "error [-]": self.error, "model mode": self.model_index + 1,
                              "kind": list(self.kind), "MAC [-]": self.mac})
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Model against measured frequency, with the line of equality; returns the Figure."""
         import matplotlib.pyplot as plt
         if ax is None:
@@ -386,7 +361,9 @@ class ModeComparison:
         return fig
 
 
-def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
+def compare_modes(model_or_modes: PlatformModel | ModalResult, measured: MeasuredModes,
+                  pairing: str | None = None,
+                  fmax_hz: float | None = None) -> ModeComparison:
     """Pair measured modes with a model's and tabulate the errors (theory.md §15.5).
 
     Parameters
@@ -401,6 +378,15 @@ def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
     Returns
     -------
     ModeComparison
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> measured = ds.MeasuredModes(freq_hz=[2.25, 2.40, 3.05], sigma_hz=[0.01, 0.01, 0.02])
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> c = ds.compare_modes(m, measured)
+    >>> print(c)
+    ModeComparison(3 pairs, largest error 0.0195, rms 0.0187)
     """
     measured = measured if isinstance(measured, MeasuredModes) else MeasuredModes(measured)
     md = model_or_modes
@@ -410,76 +396,3 @@ def compare_modes(model_or_modes, measured, pairing=None, fmax_hz=None):
     idx, mac = pair_modes(md, measured, pairing)
     return ModeComparison(measured_hz=measured.freq_hz, model_hz=md.freq_hz[idx],
                           model_index=idx, mac=mac, kind=tuple(md.kind[k] for k in idx))
-
-
-@dataclass(frozen=True)
-class FRFComparison:
-    """Measured and model FRFs on the measured frequencies and channels.
-
-    Attributes
-    ----------
-    measured, model : FRFResult
-    """
-
-    measured: FRFResult
-    model: FRFResult
-
-    @property
-    def log_magnitude_error(self):
-        """RMS over frequency of log10 |H_model / H_measured| per (output, input) [decades],
-        shape (n_out, n_in)."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.log10(np.abs(self.model.H) / np.abs(self.measured.H))
-        return np.sqrt(np.nanmean(r**2, axis=0))
-
-    def __repr__(self):
-        return (f"FRFComparison({self.measured.kind}, {len(self.measured.freq_hz)} frequencies, "
-                f"rms log10 magnitude error {np.nanmax(self.log_magnitude_error):.3g} decades)")
-
-    def plot(self, ax=None):
-        """Overlay of measured (dots) and model (line) magnitudes, every channel pair;
-        returns the Figure."""
-        import matplotlib.pyplot as plt
-        if ax is None:
-            fig, ax = plt.subplots(figsize=(7, 4))
-        fig = ax.figure
-        for o, out in enumerate(self.model.outputs):
-            for i, inp in enumerate(self.model.inputs):
-                c = f"C{(o * len(self.model.inputs) + i) % 10}"
-                ax.semilogy(self.measured.freq_hz, np.abs(self.measured.H[:, o, i]), ".",
-                            color=c, ms=3, label=f"{out}/{inp} measured")
-                ax.semilogy(self.model.freq_hz, np.abs(self.model.H[:, o, i]), "-", color=c,
-                            lw=1, label=f"{out}/{inp} model")
-        ax.set(xlabel="frequency [Hz]", ylabel=f"|H| ({self.model.kind})")
-        ax.legend(fontsize=7, ncol=2)
-        return fig
-
-    def to_frame(self):
-        """Measured and model values side by side (tidy, one row per frequency and pair)."""
-        a, b = self.measured.to_frame(), self.model.to_frame()
-        a["model magnitude"] = b["magnitude"].to_numpy()
-        a["model phase [deg]"] = b["phase [deg]"].to_numpy()
-        return a
-
-
-def compare_frf(model, measured, point=None):
-    """Model FRFs at the measured frequencies and channels, with the measured ones.
-
-    Parameters
-    ----------
-    model : model of any rung
-    measured : FRFResult (e.g. :func:`read_measured_frf`)
-    point : array_like, shape (3,), optional
-        Platform point of the measured translations [m, platform frame] (default P).
-
-    Returns
-    -------
-    FRFComparison
-    """
-    from dynstiff.analyses.frf import frf
-    if not isinstance(measured, FRFResult):
-        raise InvalidParameterError(f"measured must be an FRFResult, got "
-                                    f"{type(measured).__name__}")
-    res = frf(model, 2 * np.pi * measured.freq_hz, inputs=list(measured.inputs),
-              outputs=list(measured.outputs), point=point, kind=measured.kind)
-    return FRFComparison(measured=measured, model=res)

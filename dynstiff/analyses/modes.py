@@ -4,7 +4,10 @@ coincident roots resolved into an energy-orthogonal basis; the cables' displacem
 a mode.
 """
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,13 +16,20 @@ from dynstiff.analyses.eigen import checked_method, eigenfrequencies, validated_
 from dynstiff.errors import UnsupportedAnalysisError
 from dynstiff.results import ModalResult
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+
 __all__ = ["cable_fields", "modes"]
 
 _TWO_PI = 2.0 * np.pi
 
 
 # ------------------------------------------------------------------------- mode shapes
-def cable_fields(model, modes, k, n_points=41):
+def cable_fields(model: PlatformModel, modes: ModalResult, k: int,
+                 n_points: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Cable displacement fields of mode ``k`` (platform-moving modes), global frame.
 
     Parameters
@@ -45,6 +55,17 @@ def cable_fields(model, modes, k, n_points=41):
     UnsupportedAnalysisError
         The rung has no continuous cable field (massless cables; the lumped rung gives its
         node motions in ``modes(...).node_shapes``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> res = ds.modes(m, n_modes=1)
+    >>> points, u = ds.cable_fields(m, res, 0, n_points=5)
+    >>> points.shape, u.shape
+    ((8, 5, 3), (8, 5, 3))
     """
     if not hasattr(model, "cable_displacements"):
         raise UnsupportedAnalysisError(
@@ -55,7 +76,8 @@ def cable_fields(model, modes, k, n_points=41):
                                      n_points)
 
 
-def modes(model, n_modes=None, fmax_hz=None, method="auto", max_modes=20000):
+def modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+          method: str = "auto", max_modes: int = 20000) -> ModalResult:
     """Natural frequencies with platform shapes, energy fractions and labels.
 
     For a discrete rung (``method`` "auto" or "matrix"), the mode vectors of the finite
@@ -140,9 +162,9 @@ def modes(model, n_modes=None, fmax_hz=None, method="auto", max_modes=20000):
     return replace(res, massless_freq_hz=f0)
 
 
-def _clusters(f, rtol=1e-8):
+def _clusters(f: NDArray[np.float64], rtol: float = 1e-8) -> list[list[int]]:
     """Index groups of consecutive coincident frequencies (within ``rtol`` relative)."""
-    groups = []
+    groups: list[list[int]] = []
     for k in range(len(f)):
         if groups and f[k] - f[groups[-1][-1]] <= rtol * max(abs(f[k]), 1e-300):
             groups[-1].append(k)
@@ -151,7 +173,8 @@ def _clusters(f, rtol=1e-8):
     return groups
 
 
-def _energy_basis(m, omega, V, Mf, fi):
+def _energy_basis(m: FrequencyModel, omega: float, V: NDArray[np.float64], Mf: NDArray[np.float64],
+                  fi: NDArray[np.int64]) -> NDArray[np.float64]:
     """A basis of span(V) (free DOFs, shape (nf, c)), M_p-orthonormal and diagonal in the
     cables' kinetic energy at omega (polarisation of the quadratic form): the shapes of c
     coincident modes, unique up to sign where their energies differ."""

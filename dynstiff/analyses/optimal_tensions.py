@@ -19,8 +19,11 @@ least a tenth of the predicted rise, rho grows after good steps and halves after
 down to ``xtol``. At the end the constraints within tolerance are what binds.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +36,17 @@ from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    import pandas as pd
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+    from dynstiff.robot.equilibrium import Equilibrium
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["OBJECTIVES", "TENSIONS", "OptimalTensions", "band_margin", "optimal_tensions",
            "tension_equilibrium"]
@@ -67,6 +81,13 @@ class OptimalTensions:
         Steps of the search and equilibria solved.
     platform : PlatformModes
         The platform modes at the optimum.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+    >>> opt.objective, opt.equilibrium.robot.n_cables
+    ('first_global_hz', 8)
     """
 
     equilibrium: object
@@ -81,24 +102,48 @@ class OptimalTensions:
     platform: object
 
     @property
-    def gain(self):
-        """value - default_value [Hz or -]."""
+    def gain(self) -> float:
+        """value - default_value [Hz or -].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> print(f"{opt.gain:+.3f} Hz")
+        +0.085 Hz
+        """
         return self.value - self.default_value
 
     @property
-    def tensions(self):
-        """Optimal tensions at B [N], shape (n,)."""
+    def tensions(self) -> NDArray[np.float64]:
+        """Optimal tensions at B [N], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> print(f"{opt.tensions.min():.1f} N")
+        100.0 N
+        """
         return self.equilibrium.tensions
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         unit = " Hz" if self.objective == "first_global_hz" else ""
         return (f"OptimalTensions({self.objective} {self.value:.5g}{unit}, default "
                 f"{self.default_value:.5g}{unit}, gain {self.gain:+.3g}{unit}; binds: "
                 f"{'; '.join(self.binds) or 'nothing'}; {self.evaluations} equilibria)")
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per cable: default and optimal tension at B and their
-        least and largest tension along the cable [N]."""
+        least and largest tension along the cable [N].
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> opt = ds.optimal_tensions(ds.load_scene("cogiro").robot, [4.0, -2.5, 1.0])
+        >>> len(opt.to_frame())
+        8
+        """
         import pandas as pd
         d, o = self.default, self.equilibrium
         return pd.DataFrame({"cable": np.arange(len(o.tensions)),
@@ -108,7 +153,8 @@ class OptimalTensions:
                              "optimal largest tension [N]": o.max_tensions})
 
 
-def band_margin(platform, band_hz, participation=PLATFORM_SHARE_THRESHOLD):
+def band_margin(platform: PlatformModes, band_hz: tuple[float, float],
+                participation: float = PLATFORM_SHARE_THRESHOLD) -> float:
     """Smallest relative distance outside the forbidden band of the modes with platform
     share >= ``participation`` [-], negative inside: f / f_hi - 1 above, 1 - f / f_lo below
     (the map's margin, theory.md §13.2); NaN without modes.
@@ -125,7 +171,8 @@ def band_margin(platform, band_hz, participation=PLATFORM_SHARE_THRESHOLD):
     return float(v.min()) if v.size else np.nan
 
 
-def _margins(pm, band, participation):
+def _margins(pm: PlatformModes, band: tuple[float, float],
+             participation: float) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
     """(indices, margins) of the modes the band margin holds."""
     if pm.modes is None:
         return np.zeros(0, int), np.zeros(0)
@@ -137,16 +184,19 @@ def _margins(pm, band, participation):
     return k, np.maximum(f / hi - 1.0, below)
 
 
-def _structure(eq):
+def _structure(eq: Equilibrium) -> NDArray[np.float64]:
     """Structure matrix W (k, n) on the free DOFs at an equilibrium."""
     rob = eq.robot
     u = np.array([s.force_on_end / s.tension_at_end for s in eq.states])
     return np.vstack([u.T, np.cross(eq.lever_arms, u).T])[rob.platform.free_index]
 
 
-def optimal_tensions(robot, pose, objective="first_global_hz", band_hz=None,
-                     participation=PLATFORM_SHARE_THRESHOLD, rung="dsm", start=None,
-                     max_iter=40, xtol=1.0, **model_options):
+def optimal_tensions(robot: Robot, pose: ArrayLike | Pose, objective: str = "first_global_hz",
+                     band_hz: tuple[float, float] | None = None,
+                     participation: float = PLATFORM_SHARE_THRESHOLD, rung: str = "dsm",
+                     start: ArrayLike | OptimalTensions | Equilibrium | None = None,
+                     max_iter: int = 40, xtol: float = 1.0,
+                     **model_options: Any) -> OptimalTensions:
     """The equilibrium at ``pose`` whose tensions maximise a frequency objective (module
     notes, theory.md §16.7), tensions within the robot's limits all along every cable.
 
@@ -227,7 +277,8 @@ def optimal_tensions(robot, pose, objective="first_global_hz", band_hz=None,
 class _Search:
     """The sequential linear programme of :func:`optimal_tensions`."""
 
-    def __init__(self, robot, pose, objective, band, participation, rung, options):
+    def __init__(self, robot: Robot, pose: Pose, objective: str, band: tuple[float, float] | None,
+                 participation: float, rung: str, options: dict[Any, Any]) -> None:
         self.robot, self.pose, self.objective = robot, pose, objective
         self.band, self.participation = band, participation
         self.rung, self.options = rung, options
@@ -241,7 +292,7 @@ class _Search:
         self.N = scipy.linalg.null_space(_structure(self.default))
         self.t0 = self.default.tensions
 
-    def evaluate(self, lam, prev):
+    def evaluate(self, lam: NDArray[np.float64], prev: Equilibrium | None) -> dict[str, Any] | None:
         """Objective, candidates and constraints at lambda (None where no equilibrium)."""
         t_ref = self.t0 + self.N @ lam
         try:
@@ -268,7 +319,7 @@ class _Search:
                     mass=np.asarray(pm.modes.platform_mass))
 
     @staticmethod
-    def continues(old, new):
+    def continues(old: dict[str, Any], new: dict[str, Any]) -> bool | None:
         """Whether the mode that set the objective at ``old`` is still a candidate at
         ``new`` (mass-weighted MAC >= 0.5 with one of them): else the objective jumped
         because that mode left the candidates (it turned local by veering with a cable
@@ -282,7 +333,7 @@ class _Search:
         with np.errstate(invalid="ignore", divide="ignore"):
             return bool(np.nanmax(num / den) >= 0.5)
 
-    def gradients(self, ev):
+    def gradients(self, ev: dict[str, Any]) -> tuple[NDArray[np.float64], ...]:
         """d(candidate)/dlambda (n_k, r) and the tension limits' values and gradients."""
         r = self.N.shape[1]
         params = [Parameter(f"lambda_{j}", float(ev["lam"][j]), "N",
@@ -302,7 +353,8 @@ class _Search:
         base_lo, base_hi = (np.real(a) for a in lin.tension_extremes(lin.y, lin.P))
         return g, base_lo, np.imag(lo_t).T / CS_STEP, base_hi, np.imag(hi_t).T / CS_STEP
 
-    def step(self, ev, rho):
+    def step(self, ev: dict[str, Any],
+             rho: float) -> tuple[NDArray[np.float64], float, tuple[NDArray[np.float64], ...]]:
         """The linear programme's step d and predicted objective."""
         from scipy.optimize import linprog
         g, lo, dlo, hi, dhi = self.gradients(ev)
@@ -321,7 +373,8 @@ class _Search:
             return np.zeros(r), ev["value"], (g, lo, hi)
         return lp.x[:r], -lp.fun, (g, lo, hi)
 
-    def run(self, t_start, max_iter, xtol, ftol=1e-6):
+    def run(self, t_start: NDArray[np.float64] | None, max_iter: int, xtol: float,
+            ftol: float = 1e-6) -> OptimalTensions:
         self.xtol = xtol
         r = self.N.shape[1]
         first = self.evaluate(np.zeros(r), None)
@@ -376,7 +429,8 @@ class _Search:
         _, lo, hi = lin
         return self._result(first, best, self._binds(best, lo, hi), steps)
 
-    def _binds(self, ev, lo, hi):
+    def _binds(self, ev: dict[str, Any], lo: NDArray[np.float64],
+               hi: NDArray[np.float64]) -> tuple[str, ...]:
         """What limits the optimum: tension limits reached, coincident candidate modes."""
         t_min, t_max = self.robot.tension_limits
         tol = max(self.xtol, 1e-3 * t_min)         # the search stops within xtol of a limit
@@ -400,7 +454,8 @@ class _Search:
             out.append("nothing: a smooth maximum (the objective's gradient vanishes)")
         return tuple(out)
 
-    def _result(self, first, best, binds, iterations):
+    def _result(self, first: dict[str, Any], best: dict[str, Any], binds: tuple[str, ...],
+                iterations: int) -> OptimalTensions:
         return OptimalTensions(
             equilibrium=best["eq"], reference=best["t_ref"], default=self.default,
             objective=self.objective, value=float(best["value"]),
@@ -408,8 +463,9 @@ class _Search:
             evaluations=self.evaluations, platform=best["pm"])
 
 
-def tension_equilibrium(robot, pose, tensions="default", start=None, rung="dsm",
-                        **model_options):
+def tension_equilibrium(robot: Robot, pose: list[float] | Pose, tensions: str = "default",
+                        start: Equilibrium | None = None, rung: str = "dsm",
+                        **model_options: Any) -> Equilibrium:
     """The equilibrium of a map's pose: the default distribution (warm-started from the
     neighbour ``start``), or the frequency-optimal one (:func:`optimal_tensions`, objective
     "first_global_hz", warm-started from the neighbour's tensions).

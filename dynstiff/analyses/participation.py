@@ -20,7 +20,10 @@ rung, or for the undamped closed form the same frequencies with the shares from 
 derivative of K(omega) (:func:`platform_shares`, docs/theory.md §13.3), which is faster.
 """
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -32,6 +35,12 @@ from dynstiff.analyses.modes import modes as modal
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from dynstiff.results import ModalResult
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
            "modal_data", "platform_shares", "receptance_amplification"]
 
@@ -42,14 +51,16 @@ FRF_AMPLIFICATION_LIMIT = 10.0
 _FD_STEP = 1e-6        # relative frequency step of the derivative of K(omega) in omega^2
 
 
-def _quadratic(x, A):
+def _quadratic(x: NDArray[np.float64], A: NDArray[np.float64]) -> NDArray[np.float64]:
     """x_k^T A_k x_k for x (n, m) and A (n, m, m), each as ``x[k] @ A[k] @ x[k]`` (the same
     products, so the same rounding, as one mode at a time: the form is close to
     cancellation, and the order of its sums moves it by 1e-9)."""
     return np.array([xk @ Ak @ xk for xk, Ak in zip(x, A)])
 
 
-def platform_shares(model, freq_hz):
+def platform_shares(
+        model: FrequencyModel, freq_hz: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Platform share of the kinetic energy [-] and platform shape of the modes of an
     undamped closed-form model at ``freq_hz``, without the cable fields.
 
@@ -110,7 +121,7 @@ def platform_shares(model, freq_hz):
     return out, shapes
 
 
-def modal_data(model, fmax_hz, max_modes=20000):
+def modal_data(model: PlatformModel, fmax_hz: float, max_modes: int = 20000) -> ModalResult:
     """Every mode of ``model`` below ``fmax_hz`` [Hz], with shapes, shares and participation:
     the modes every verdict is taken from (a design check, a map, a report).
 
@@ -139,7 +150,9 @@ def modal_data(model, fmax_hz, max_modes=20000):
                                                           m.platform_mass, m.free_index))
 
 
-def receptance_amplification(model, band_hz, modes_hz=(), n_points=400):
+def receptance_amplification(model: PlatformModel, band_hz: tuple[float, float],
+                             modes_hz: ArrayLike = (),
+                             n_points: int = 400) -> tuple[float, float, str]:
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 
     |H_jj(f)| / |H_jj(0)| over the free DOFs j and the frequencies of

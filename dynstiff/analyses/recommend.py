@@ -21,7 +21,10 @@ Error estimates (relative frequency error, all modes in the band)
   band (theory.md §7.2), with N chosen so that it stays below rtol / 2.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +36,15 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS
 from dynstiff.models.static import StaticCableModel
+
+if TYPE_CHECKING:
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["Recommendation", "estimated_error", "recommend_model", "predicted_errors"]
 
@@ -58,6 +70,14 @@ class Recommendation:
         Predicted error of every rung [-] (inf: misses modes).
     estimates : dict
         The quantities the choice relied on.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> rec = ds.recommend_model(eq, band_hz=(0.0, 5.0))
+    >>> rec.rung, rec.predicted_error < 0.01
+    ('dsm', True)
     """
 
     rung: str
@@ -66,18 +86,36 @@ class Recommendation:
     errors: dict = field(default_factory=dict)
     estimates: dict = field(default_factory=dict)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         seg = f", {self.segments} segments" if self.segments else ""
         return f"Recommendation({self.rung!r}{seg}, predicted error {self.predicted_error:.2e})"
 
-    def plot(self, ax=None, rtol=None):
+    def plot(self, ax: Axes | None = None, rtol: float | None = None) -> Figure:
         """Predicted error of every rung: :func:`dynstiff.plot.plot_model_errors`. Returns
-        the matplotlib Figure."""
+        the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> fig = ds.recommend_model(eq, band_hz=(0.0, 5.0)).plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_model_errors
         return plot_model_errors(self, ax=ax, rtol=rtol)
 
-    def text(self):
-        """One-paragraph explanation."""
+    def text(self) -> str:
+        """One-paragraph explanation.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(ds.recommend_model(eq, band_hz=(0.0, 5.0)).text().splitlines()[0])
+        recommended model: dsm (predicted error 1.57e-04)
+        """
         e = self.estimates
         seg = f" with N = {self.segments} segments per cable" if self.segments else ""
         lines = [f"recommended model: {self.rung}{seg} (predicted error "
@@ -91,10 +129,19 @@ class Recommendation:
                      f"{k} {v:.2e}" for k, v in self.errors.items())]
         return "\n".join(lines) + "\n"
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per rung, cheapest first: "rung", "segments" (the
         lumped rung's count for the tolerance), "predicted error [-]" (inf: misses modes)
-        and "recommended"."""
+        and "recommended".
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> df = ds.recommend_model(eq, band_hz=(0.0, 5.0)).to_frame()
+        >>> list(df["rung"])
+        ['spring', 'catenary', 'dsm', 'exact', 'lumped']
+        """
         import pandas as pd
         rungs = [r for r in RUNGS if r in self.errors]
         return pd.DataFrame({
@@ -106,7 +153,8 @@ class Recommendation:
         })
 
 
-def _dsm_error(equilibrium, band_hz):
+def _dsm_error(equilibrium: Equilibrium,
+               band_hz: tuple[float, float]) -> tuple[float, float, list[str]]:
     """The closed form's error in the band, measured against the exact rung (theory.md
     §11.5): the largest relative difference of their frequencies in the band, paired in
     order from the band's bottom (the top mode straddling the band's edge is compared too);
@@ -135,7 +183,7 @@ def _dsm_error(equilibrium, band_hz):
     return err, float(eps_max), causes
 
 
-def _massless_errors(equilibrium, w_hi, n_cable):
+def _massless_errors(equilibrium: Equilibrium, w_hi: float, n_cable: int) -> tuple[float, float]:
     """(catenary, spring) predicted errors up to w_hi [rad/s]: inf with cable modes below
     it (they miss them), else the first-order shift of the massless modes by the cables'
     inertia, the spring adding its measured gap to the catenary (module docstring)."""
@@ -170,7 +218,7 @@ def _massless_errors(equilibrium, w_hi, n_cable):
     return catenary, float(np.max(np.abs(fs / fc - 1))) + catenary
 
 
-def estimated_error(model, band_hz):
+def estimated_error(model: PlatformModel, band_hz: tuple[float, float]) -> tuple[float, str]:
     """The relative frequency error of ``model``'s cable theory up to the top of ``band_hz``,
     estimated without a richer model (the cable-model verdict of the design checks and
     maps, theory.md §12.5): the massless rungs and the lumped rung as
@@ -218,7 +266,9 @@ def estimated_error(model, band_hz):
                  f"{i}'s own error)")
 
 
-def predicted_errors(equilibrium, band_hz, rtol=1e-2):
+def predicted_errors(
+        equilibrium: Equilibrium, band_hz: tuple[float, float], rtol: float = 1e-2,
+) -> tuple[dict[str, float], dict[str, float | list[str]], int]:
     """Predicted relative frequency error of each rung in the band, and the estimates.
 
     Parameters
@@ -272,7 +322,8 @@ def predicted_errors(equilibrium, band_hz, rtol=1e-2):
     return errors, estimates, segments
 
 
-def recommend_model(equilibrium, band_hz, rtol=1e-2):
+def recommend_model(equilibrium: Equilibrium, band_hz: tuple[float, float],
+                    rtol: float = 1e-2) -> Recommendation:
     """The cheapest model on the ladder expected to meet ``rtol`` in the band.
 
     Parameters
@@ -287,6 +338,14 @@ def recommend_model(equilibrium, band_hz, rtol=1e-2):
     Returns
     -------
     Recommendation
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> rec = ds.recommend_model(eq, band_hz=(0.0, 5.0))
+    >>> rec.rung
+    'dsm'
     """
     errors, estimates, segments = predicted_errors(equilibrium, band_hz, rtol)
     for rung in RUNGS:

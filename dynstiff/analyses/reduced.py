@@ -21,7 +21,10 @@ share (all the platform modes of the massless-cable model, not only the band of 
 Modes whose platform is at rest (a cable alone on its pole) have no residue and are left out.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +33,14 @@ from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
 from dynstiff.io.exchange import ZERO_FLOOR, require
 from dynstiff.models.base import require_model
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.base import PlatformModel
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]
 
@@ -55,6 +66,16 @@ class ModalModel:
         Residual flexibility R [m/N, ...] of the truncated modes (None: not corrected).
     free_dofs : tuple of str
     pose : Pose
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> mm = ds.modal_model(m, n_modes=6)
+    >>> len(mm.freq_hz), mm.free_dofs
+    (6, ('x', 'y', 'z', 'rx', 'ry', 'rz'))
     """
 
     omega: np.ndarray
@@ -66,21 +87,42 @@ class ModalModel:
     pose: object
 
     @property
-    def freq_hz(self):
-        """Natural frequencies [Hz], shape (n,)."""
+    def freq_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies [Hz], shape (n,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> print(f"{ds.modal_model(m, n_modes=6).freq_hz[0]:.4f} Hz")
+        2.2061 Hz
+        """
         return self.omega / _TWO_PI
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.omega)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         f = self.freq_hz
         span = f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
         return (f"ModalModel({len(self)} modes {span}, free {self.free_dofs}, residual "
                 f"{'on' if self.residual is not None else 'off'})")
 
-    def receptance(self, omega):
-        """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...]."""
+    def receptance(self, omega: ArrayLike) -> NDArray[np.complex128]:
+        """H(omega) on the free DOFs, shape (n_omega, n_free, n_free) [m/N, ...].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> m = ds.FrequencyModel(eq)
+        >>> mm = ds.modal_model(m, n_modes=6, damping=0.01)
+        >>> mm.receptance(2 * np.pi * np.array([0.5, 1.0])).shape
+        (2, 6, 6)
+        """
         w = np.atleast_1d(np.asarray(omega, dtype=float))
         den = (self.omega**2 - w[:, None]**2 + 2j * self.damping * self.omega * w[:, None])
         H = np.einsum("kr,ri,rj->kij", 1.0 / den, self.shapes, self.shapes)
@@ -89,15 +131,16 @@ class ModalModel:
         return H
 
 
-def _dK_domega2(m, omega):
+def _dK_domega2(m: PlatformModel, omega: float) -> NDArray[np.float64]:
     """dK/d(omega^2) at a real omega > 0 [kg, ...] by a complex step, (n_free, n_free)."""
     h = 1e-20 * omega
     dK = m.dynamic_stiffness(np.array([omega + 1j * h]))[0].imag / h
     return dK / (2.0 * omega)
 
 
-def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
-                cluster_rtol=1e-8, null_rtol=1e-6):
+def modal_model(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,
+                damping: float | ArrayLike = 0.0, residual: bool = True, cluster_rtol: float = 1e-8,
+                null_rtol: float = 1e-6) -> ModalModel:
     """Modal expansion of a model's platform receptance (module notes, theory.md §15.4).
 
     Parameters
@@ -118,6 +161,18 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
     Returns
     -------
     ModalModel
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> mm = ds.modal_model(m, n_modes=6, damping=0.01)
+    >>> [f"{f:.3f}" for f in mm.freq_hz[:2]]
+    ['2.206', '2.359']
+    >>> H = mm.receptance([1.0]); H.shape
+    (1, 6, 6)
     """
     m = require_model(model).undamped()
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
@@ -171,8 +226,11 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
                       residual=R, free_dofs=m.free_dofs, pose=m.pose)
 
 
-def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, outputs=None,
-                  point=None, residual=True, name="dynstiff modal model"):
+def to_statespace(model: PlatformModel | ModalModel, n_modes: int | None = None,
+                  fmax_hz: float | None = None, damping: float = 0.0,
+                  inputs: str | Sequence[str] | None = None,
+                  outputs: str | Sequence[str] | None = None, point: ArrayLike | None = None,
+                  residual: bool = True, name: str = "dynstiff modal model") -> Any:
     """python-control ``StateSpace`` of the platform from its modes (theory.md §15.4).
 
     States (q_1 .. q_n, dq_1/dt .. dq_n/dt), modal coordinates of the kept modes:
@@ -199,6 +257,16 @@ def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, o
         Inputs, outputs and states named; 2 n states. Entries of B, C and D at most
         :data:`dynstiff.io.exchange.ZERO_FLOOR` (1e-12) times the largest of their matrix
         are exact zeros: a coupling that vanishes by symmetry holds only rounding.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> sys = ds.to_statespace(m, n_modes=6, damping=0.01, inputs="fz", outputs="z")
+    >>> sys.nstates, sys.ninputs, sys.noutputs
+    (12, 1, 1)
     """
     ct = require("control")
     mm = model if isinstance(model, ModalModel) else modal_model(

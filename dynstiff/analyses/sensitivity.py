@@ -20,7 +20,10 @@ dynamic (axial) EA the loss factor multiplies by (1 + i eta) (first order about 
 undamped mode: the modal strain energy method).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +36,20 @@ from dynstiff.analyses.sensitivity_rungs import exact_fields, forms
 from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
 from dynstiff.models.base import require_model
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.analyses.sensitivity_parameters import Parameter
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.lumped import LumpedLinearModel
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["SensitivityResult", "frequency_sensitivities", "sensitivities_at", "RUNGS"]
 
@@ -69,6 +86,14 @@ class SensitivityResult:
         Platform share of each mode's kinetic energy [-] (theory.md §13.3).
     rung, hold : str
     note : str
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+    >>> s.parameters, s.derivative.shape
+    (('EA', 'mass'), (2, 2))
     """
 
     freq_hz: np.ndarray
@@ -84,22 +109,49 @@ class SensitivityResult:
     note: str = ""
 
     @property
-    def relative(self):
-        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p)."""
+    def relative(self) -> NDArray[np.float64]:
+        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> [f"{v:+.4f}" for v in s.relative[0]]      # Hz per +1 % of EA, of the mass
+        ['+0.0108', '-0.0102']
+        """
         return 0.01 * self.derivative * self.values[None, :]
 
     @property
-    def elasticity(self):
-        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p."""
+    def elasticity(self) -> NDArray[np.float64]:
+        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> [f"{v:+.3f}" for v in s.elasticity[0]]
+        ['+0.487', '-0.461']
+        """
         return self.derivative * self.values[None, :] / self.freq_hz[:, None]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"SensitivityResult({len(self.freq_hz)} modes x {len(self.parameters)} "
                 f"parameters, {self.rung} rung at fixed {self.hold})")
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,
-        unit, df/dp, df per 1 %, elasticity, d zeta/dp."""
+        unit, df/dp, df per 1 %, elasticity, d zeta/dp.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> len(s.to_frame())
+        4
+        """
         import pandas as pd
         m, p = self.derivative.shape
         return pd.DataFrame({
@@ -114,9 +166,19 @@ class SensitivityResult:
             "elasticity [-]": self.elasticity.ravel(),
             "dzeta/dp [1/unit]": self.damping_derivative.ravel()})
 
-    def plot(self, modes=(0,), n_parameters=10, ax=None):
+    def plot(self, modes: tuple[int, int] = (0,), n_parameters: int = 10,
+             ax: Axes | None = None) -> Figure:
         """Tornado chart per mode: the change of the frequency per 1 % of each parameter,
-        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure."""
+        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(s.plot())
+        """
         import matplotlib.pyplot as plt
         modes = list(modes)
         if ax is None:
@@ -138,8 +200,11 @@ class SensitivityResult:
         return fig
 
 
-def frequency_sensitivities(model, parameters, n_modes=None, fmax_hz=None, hold="pose",
-                            tension_reference=None):
+def frequency_sensitivities(
+        model: PlatformModel, parameters: str | Sequence[str], n_modes: int | None = None,
+        fmax_hz: float | None = None, hold: str = "pose",
+        tension_reference: ArrayLike | None = None,
+) -> SensitivityResult:
     """Derivatives of the natural frequencies with respect to parameters (module notes).
 
     Parameters
@@ -188,8 +253,10 @@ def frequency_sensitivities(model, parameters, n_modes=None, fmax_hz=None, hold=
     return sensitivities_at(m, f, parameters, hold, tension_reference)
 
 
-def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=None,
-                     linearisation=None):
+def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
+                     parameters: list[str | Parameter], hold: str = "pose",
+                     tension_reference: NDArray[np.float64] | None = None,
+                     linearisation: LinearisedEquilibrium | None = None) -> SensitivityResult:
     """:func:`frequency_sensitivities` at frequencies already computed (``freq_hz`` [Hz],
     ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
     or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
@@ -239,14 +306,15 @@ def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=
     return _result(out, f, params, groups, m.rung, hold, note)
 
 
-def _parameters(parameters, robot, pose, hold, t_ref, L0):
+def _parameters(parameters: list[str | Parameter], robot: Robot, pose: Pose, hold: str,
+                t_ref: NDArray[np.float64] | None, L0: NDArray[np.float64]) -> list[Parameter]:
     if isinstance(parameters, (list, tuple)) and parameters and all(
             hasattr(p, "direction") for p in parameters):
         return list(parameters)
     return expand_parameters(parameters, robot, pose, hold, t_ref, L0)
 
 
-def _clusters(f):
+def _clusters(f: NDArray[np.float64]) -> list[list[int]]:
     groups = []
     for k in range(len(f)):
         if groups and f[k] - f[groups[-1][-1]] <= _CLUSTER_RTOL * max(abs(f[k]), 1e-300):
@@ -256,7 +324,9 @@ def _clusters(f):
     return groups
 
 
-def _null_vectors(m, f):
+def _null_vectors(
+        m: PlatformModel, f: NDArray[np.float64],
+) -> tuple[list[list[int]], list[NDArray[np.float64]], NDArray[np.bool_]]:
     """Clusters of coincident roots, their null spaces X (6, c) of K(omega) (full
     platform vectors) and whether they move the platform (theory.md §5.3)."""
     groups = _clusters(f)
@@ -280,7 +350,8 @@ def _null_vectors(m, f):
     return groups, X, moving
 
 
-def _modal_masses(m, w, Xa, Xb):
+def _modal_masses(m: PlatformModel, w: NDArray[np.float64], Xa: NDArray[np.float64],
+                  Xb: NDArray[np.float64]) -> NDArray[np.float64]:
     """-x_a^T dK/dlambda x_b at omega (pairs), dK/domega by the complex step of the model's
     own K (theory.md §16.1)."""
     h = 1e-20 * np.maximum(w, 1.0)
@@ -289,13 +360,16 @@ def _modal_masses(m, w, Xa, Xb):
     return -np.einsum("pi,pij,pj->p", Xa[:, fi], dK, Xb[:, fi]) / (2.0 * w)
 
 
-def _empty(f, params):
+def _empty(f: NDArray[np.float64], params: list[Parameter]) -> dict[str, NDArray[np.float64]]:
     n, p = len(f), len(params)
     return {"d": np.full((n, p), np.nan), "z": np.full((n, p), np.nan),
             "share": np.full(n, np.nan)}
 
 
-def _assemble(out, groups, pairs, Ap, Bp, w, params, moving, masses=None):
+def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
+              pairs: list[tuple[int, int, int]], Ap: NDArray[np.float64], Bp: NDArray[np.float64],
+              w: NDArray[np.float64], params: list[Parameter], moving: NDArray[np.bool_],
+              masses: NDArray[np.float64] | None = None) -> None:
     """Per cluster: the eigenvalues of (A_j, B) for every parameter j, into d f/dp and
     d zeta/dp (module notes)."""
     import scipy.linalg
@@ -325,7 +399,8 @@ def _assemble(out, groups, pairs, Ap, Bp, w, params, moving, masses=None):
             out["share"][g] = 1.0 / np.real(np.diag(B))
 
 
-def _result(out, f, params, groups, rung, hold, note):
+def _result(out: dict[str, NDArray[np.float64]], f: NDArray[np.float64], params: list[Parameter],
+            groups: list[list[int]], rung: str, hold: str, note: str) -> SensitivityResult:
     cluster = np.zeros(len(f), dtype=int)
     for k, g in enumerate(groups):
         cluster[g] = k
@@ -336,7 +411,8 @@ def _result(out, f, params, groups, rung, hold, note):
         platform_share=out["share"], rung=rung, hold=hold, note=note)
 
 
-def _lumped(m, f, parameters, hold, tension_reference):
+def _lumped(m: LumpedLinearModel, f: NDArray[np.float64], parameters: list[str], hold: str,
+            tension_reference: ArrayLike | None) -> SensitivityResult:
     """The lumped rung: its own equilibrium's derivative and the finite eigenproblem."""
     rob, st, mm = m.robot, m.equilibrium, m.mass_model
     n = rob.n_cables

@@ -13,7 +13,19 @@ Primitive parameters (a dict of arrays, real or complex): ``EA`` (n,) [N], ``m0`
 perturbed copies at once.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["CS_STEP", "cable_quantities", "catenary_flexibility", "catenary_offsets",
            "divided_differences", "geometric_stiffness", "mean_tension",
@@ -25,7 +37,7 @@ CS_STEP = 1e-30
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
-def skew3(a):
+def skew3(a: NDArray[Any]) -> NDArray[Any]:
     """[a]x of vectors a (..., 3) -> (..., 3, 3), complex-safe.
 
     Examples
@@ -39,7 +51,7 @@ def skew3(a):
                      np.stack([-a[..., 1], a[..., 0], z], -1)], -2)
 
 
-def rotation(v):
+def rotation(v: NDArray[Any]) -> NDArray[Any]:
     """Rotation matrix of rotation vectors v (..., 3) [rad] -> (..., 3, 3), analytic in v
     (Rodrigues' formula, its series below theta^2 = 1e-6; the same matrix as
     :attr:`dynstiff.Pose.matrix` for real v).
@@ -59,7 +71,9 @@ def rotation(v):
     return np.eye(3) + a[..., None, None] * S + b[..., None, None] * (S @ S)
 
 
-def divided_differences(a, b, delta):
+def divided_differences(
+        a: NDArray[Any], b: NDArray[Any], delta: NDArray[Any],
+) -> tuple[NDArray[Any], NDArray[Any], NDArray[Any], NDArray[Any]]:
     """(F(b) - F(a)) / delta for F = asinh(t), t / sqrt(1 + t^2), 1 / sqrt(1 + t^2),
     sqrt(1 + t^2) and b = a + delta, without cancellation: the forms of
     :func:`dynstiff.cable.catenary.divided_differences`, analytic (branches chosen on the
@@ -82,7 +96,8 @@ def divided_differences(a, b, delta):
     return d_asinh, d_f, d_g, d_sqrt
 
 
-def catenary_offsets(H, V0, L0, EA, w0):
+def catenary_offsets(H: NDArray[Any], V0: NDArray[Any], L0: NDArray[Any], EA: NDArray[Any],
+                     w0: NDArray[Any]) -> tuple[NDArray[Any], NDArray[Any]]:
     """End offsets (x, z) [m] of the elastic catenary from A (theory.md §1.1), analytic in
     every argument (arrays of one shape).
 
@@ -97,7 +112,9 @@ def catenary_offsets(H, V0, L0, EA, w0):
     return L0 * (H / EA + d_asinh), L0 * ((V0 + 0.5 * W) / EA + d_sqrt)
 
 
-def catenary_flexibility(H, V0, L0, EA, w0):
+def catenary_flexibility(H: NDArray[np.complex128], V0: NDArray[np.complex128],
+                         L0: NDArray[np.complex128], EA: NDArray[np.complex128],
+                         w0: NDArray[np.complex128]) -> tuple[NDArray[np.complex128], ...]:
     """In-plane flexibility d(x, z)/d(H, Vb) = int D^-1 ds of the catenary [m/N]
     (theory.md §1.1, §11.1), (f_xx, f_xz, f_zz), analytic.
 
@@ -111,7 +128,8 @@ def catenary_flexibility(H, V0, L0, EA, w0):
     return (L0 / EA + (L0 / H) * (d_asinh - d_f), (L0 / H) * d_g, L0 / EA + (L0 / H) * d_f)
 
 
-def mean_tension(H, V0, L0, w0):
+def mean_tension(H: NDArray[np.complex128], V0: NDArray[np.complex128], L0: NDArray[np.complex128],
+                 w0: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Tension averaged over the unstretched length [N] (as the catenary's
     ``mean_tension``), analytic.
 
@@ -123,7 +141,7 @@ def mean_tension(H, V0, L0, w0):
     W = w0 * L0
     Vb = V0 + W
 
-    def prim(V):
+    def prim(V: NDArray[np.complex128]) -> NDArray[np.complex128]:
         return 0.5 * (V * np.sqrt(H * H + V * V) + H * H * np.arcsinh(V / H))
 
     Vm = V0 + 0.5 * W
@@ -133,7 +151,9 @@ def mean_tension(H, V0, L0, w0):
     return np.where(taylor, Tm + (W**2 / 24.0) * H * H / Tm**3, (prim(Vb) - prim(V0)) / Wd)
 
 
-def cable_quantities(P, H, V0, L0, g, position=None, R=None):
+def cable_quantities(P: dict[str, NDArray[Any]], H: NDArray[Any], V0: NDArray[Any],
+                     L0: NDArray[Any], g: float, position: NDArray[Any] | None = None,
+                     R: NDArray[Any] | None = None) -> dict[str, NDArray[Any]]:
     """Geometry and forces of every cable from primitives ``P`` and catenary unknowns.
 
     Parameters
@@ -180,7 +200,9 @@ def cable_quantities(P, H, V0, L0, g, position=None, R=None):
                 position=position, w0=w0)
 
 
-def geometric_stiffness(f, r, fg, rG):
+def geometric_stiffness(f: NDArray[np.complex128], r: NDArray[np.complex128],
+                        fg: NDArray[np.complex128],
+                        rG: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Rotation block of K_geo, -sum_i [f_i]x [r_i]x - [f_g]x [r_G]x (theory.md §4), for
     forces f (B, n, 3) at lever arms r (B, n, 3) and the weight f_g (B, 3) at r_G (B, 3):
     (B, 3, 3), analytic ([a]x [b]x = b a^T - (a . b) I).
@@ -197,7 +219,8 @@ def geometric_stiffness(f, r, fg, rG):
     return G + np.sum(fg * rG, -1)[:, None, None] * eye - rG[:, :, None] * fg[:, None, :]
 
 
-def platform_mass_forms(P, R):
+def platform_mass_forms(P: dict[str, NDArray[np.complex128]],
+                        R: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Platform mass matrix about P, base axes, (..., 6, 6) [kg, kg m, kg m^2]
     (theory.md §4), analytic in the mass, centre of mass, inertia and rotation.
 
@@ -218,7 +241,7 @@ def platform_mass_forms(P, R):
     return np.concatenate([top, bot], -2)
 
 
-def wrench(P, q, g):
+def wrench(P: dict[str, NDArray[Any]], q: dict[str, NDArray[Any]], g: float) -> NDArray[Any]:
     """Total wrench of the cables and gravity on the platform about P, (..., 6) [N, N m]."""
     m = np.asarray(P["mass"])
     fg = m[..., None] * np.array([0.0, 0.0, -g])
@@ -228,7 +251,10 @@ def wrench(P, q, g):
     return np.concatenate([F, M], -1)
 
 
-def primitives(robot, pose, tension_reference=None, unstretched_lengths=None):
+def primitives(
+        robot: Robot, pose: Pose, tension_reference: NDArray[np.float64] | None = None,
+        unstretched_lengths: NDArray[np.float64] | None = None,
+) -> dict[str, NDArray[np.float64]]:
     """The primitive parameters of ``robot`` at ``pose`` (module notes), real arrays.
 
     ``tension_reference`` None: the default reference of the distribution (``t_ref`` holds
@@ -260,7 +286,9 @@ def primitives(robot, pose, tension_reference=None, unstretched_lengths=None):
     return P
 
 
-def perturbed_primitives(P, directions, step=CS_STEP):
+def perturbed_primitives(P: dict[str, NDArray[np.float64]],
+                         directions: list[dict[str, NDArray[np.float64] | float]],
+                         step: float = CS_STEP) -> dict[str, NDArray[np.complex128]]:
     """P + i step d for every direction (a list of dicts of primitive increments): a batch
     (n_directions, ...) of complex arrays, the complex-step inputs.
 

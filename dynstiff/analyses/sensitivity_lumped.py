@@ -15,6 +15,10 @@ analytic functions below (the element tangents (EA/l0) n n^T + (T/l)(I - n n^T),
 geometric stiffness of the platform's lever arms and the lumped masses, theory.md §7.1).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.analyses.sensitivity_kernels import (
@@ -23,6 +27,11 @@ from dynstiff.analyses.sensitivity_kernels import (
     platform_mass_forms,
     rotation,
 )
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped import LumpedLinearModel
 
 __all__ = ["LumpedLinearisation"]
 
@@ -49,7 +58,7 @@ class LumpedLinearisation:
     True
         """
 
-    def __init__(self, model, P0):
+    def __init__(self, model: LumpedLinearModel, P0: dict[str, NDArray[np.float64]]) -> None:
         self.model, self.mm = model, model.mass_model
         self.P0 = P0
         self.robot = model.robot
@@ -63,7 +72,10 @@ class LumpedLinearisation:
         for x, o in zip(self.interior, self.mm.offsets):
             self.z0[o:o + x.size] = x.ravel()
 
-    def _config(self, Z, P):
+    def _config(
+            self, Z: NDArray[np.complex128], P: dict[str, NDArray[np.complex128]],
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128],
+               list[NDArray[np.complex128]]]:
         """Platform pose and the nodes of every cable for DOF vectors Z (B, n_dof) (the
         platform part an increment from the lumped equilibrium)."""
         B = Z.shape[0]
@@ -82,7 +94,8 @@ class LumpedLinearisation:
                                          Bpt[:, None, i, :]], 1))
         return pos, R, r, nodes
 
-    def _segments(self, nodes, P, i):
+    def _segments(self, nodes: NDArray[np.complex128], P: dict[str, NDArray[np.complex128]],
+                  i: int) -> tuple[NDArray[np.complex128], ...]:
         N = self.mm.segments[i]
         l0 = P["L0"][:, i] / N
         d = np.diff(nodes, axis=1)
@@ -90,7 +103,8 @@ class LumpedLinearisation:
         T = P["EA"][:, i, None] * (ln / l0[:, None] - 1.0)
         return d / ln[..., None], ln, T, l0
 
-    def residual(self, Z, P):
+    def residual(self, Z: NDArray[np.complex128],
+                 P: dict[str, NDArray[np.complex128]]) -> NDArray[np.complex128]:
         """Net applied force on the free platform DOFs and the interior nodes, (B, n_dof)
         (as :meth:`~dynstiff.models.lumped_robot.LumpedMassModel.residual`), analytic."""
         pos, R, r, nodes = self._config(Z, P)
@@ -114,14 +128,16 @@ class LumpedLinearisation:
         out[:, :self.nf] = W[:, self.fi]
         return out
 
-    def forms(self, Z, P, lam, A, Bv):
+    def forms(self, Z: NDArray[np.complex128], P: dict[str, NDArray[np.complex128]],
+              lam: NDArray[np.float64], A: NDArray[np.float64],
+              Bv: NDArray[np.float64]) -> NDArray[np.complex128]:
         """a_k^T (K(z, p) - lam_k M(z, p)) b_k for mode vectors A, Bv (m, n_dof), (B, m),
         K the (symmetric part of the) tangent stiffness, M the lumped mass."""
         pos, R, r, nodes = self._config(Z, P)
         gv = np.array([0.0, 0.0, -self.g])
         fi, nf = self.fi, self.nf
 
-        def platform(v):
+        def platform(v: NDArray[np.float64]) -> NDArray[np.float64]:
             v6 = np.zeros((len(v), 6))
             v6[:, fi] = v[:, :nf]
             return v6
@@ -135,7 +151,9 @@ class LumpedLinearisation:
             u, ln, T, l0 = self._segments(x, P, i)
             o, N = self.mm.offsets[i], self.mm.segments[i]
 
-            def chain(v, v6):
+            def chain(
+                    v: NDArray[np.float64], v6: NDArray[np.float64],
+            ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
                 """Node motions of cable i (anchor 0, interior, B = J_i x), (B, m, N+1, 3)."""
                 inner = v[:, o:o + 3 * (N - 1)].reshape(len(v), N - 1, 3)
                 end = v6[None, :, :3] + np.cross(v6[None, :, 3:], r[:, None, i, :])
@@ -164,7 +182,8 @@ class LumpedLinearisation:
         Mf += np.einsum("mi,bij,mj->bm", a6, Mp, b6)
         return Kf - lam[None, :] * Mf
 
-    def equilibrium_derivatives(self, P_batch):
+    def equilibrium_derivatives(self,
+                                P_batch: dict[str, NDArray[np.complex128]]) -> NDArray[np.float64]:
         """dz for the primitive increments in ``P_batch`` (complex-step batch, as
         :meth:`LinearisedEquilibrium.perturbed`), (B, n_dof): K dz = dR/dp dp."""
         import scipy.sparse.linalg
@@ -174,6 +193,6 @@ class LumpedLinearisation:
         lu = scipy.sparse.linalg.splu(self.model.K.tocsc())
         return lu.solve(np.ascontiguousarray(Rp.T)).T
 
-    def z_base(self):
+    def z_base(self) -> NDArray[np.float64]:
         """The base DOF vector: platform increments 0, interior nodes at equilibrium."""
         return self.z0

@@ -29,13 +29,22 @@ name                                   meaning                                  
 =====================================  ==========================================  =========
 """
 
+from __future__ import annotations
+
 import re
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.pose import Pose
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.robot.equilibrium import Equilibrium
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["Parameter", "equilibrium_with", "expand_parameters", "parameter_names",
            "with_values"]
@@ -63,7 +72,7 @@ class Parameter:
     kind: str = "frequency"
 
 
-def parameter_names(n_cables):
+def parameter_names(n_cables: int) -> tuple[str, ...]:
     """Every parameter name of a robot with ``n_cables`` cables (wildcards expanded).
 
     Examples
@@ -84,7 +93,7 @@ def parameter_names(n_cables):
     return tuple(out)
 
 
-def _expand_names(parameters, n):
+def _expand_names(parameters: list[str], n: int) -> list[str]:
     if isinstance(parameters, str):
         parameters = (parameters,)
     names = []
@@ -104,8 +113,9 @@ def _expand_names(parameters, n):
     return names
 
 
-def expand_parameters(parameters, robot, pose, hold="pose", tension_reference=None,
-                      unstretched_lengths=None):
+def expand_parameters(parameters: list[str], robot: Robot, pose: Pose, hold: str = "pose",
+                      tension_reference: NDArray[np.float64] | None = None,
+                      unstretched_lengths: NDArray[np.float64] | None = None) -> list[Parameter]:
     """The :class:`Parameter` of each name (module table; wildcards expanded).
 
     Parameters
@@ -153,7 +163,8 @@ def expand_parameters(parameters, robot, pose, hold="pose", tension_reference=No
     return out
 
 
-def _parameter(name, robot, pose, hold, t_ref, L0):
+def _parameter(name: str, robot: Robot, pose: Pose, hold: str, t_ref: NDArray[np.float64] | None,
+               L0: NDArray[np.float64] | None) -> Parameter:
     n = robot.n_cables
     pl = robot.platform
     at_pose = ("pose_", "t_min", "t_max", "t_ref_")
@@ -222,8 +233,11 @@ def _parameter(name, robot, pose, hold, t_ref, L0):
                      {"L0": np.eye(n)[i]})
 
 
-def with_values(robot, pose, names, values, tension_reference=None,
-                unstretched_lengths=None):
+def with_values(
+        robot: Robot, pose: Pose, names: list[str], values: ArrayLike,
+        tension_reference: NDArray[np.float64] | None = None,
+        unstretched_lengths: NDArray[np.float64] | None = None,
+) -> tuple[Robot, Pose, NDArray[np.float64] | None, NDArray[np.float64] | None]:
     """The robot, pose, reference and lengths with each parameter set to its value (the
     inverse of :func:`expand_parameters`' base values): a new equilibrium of these gives
     the frequencies at the new values.
@@ -298,8 +312,10 @@ def with_values(robot, pose, names, values, tension_reference=None,
     return rob, Pose(position, rot), t_ref, L0
 
 
-def equilibrium_with(robot, pose, names, values, hold="pose", tension_reference=None,
-                     unstretched_lengths=None, **statics):
+def equilibrium_with(robot: Robot, pose: Pose, names: list[str], values: ArrayLike,
+                     hold: str = "pose", tension_reference: NDArray[np.float64] | None = None,
+                     unstretched_lengths: NDArray[np.float64] | None = None,
+                     **statics: float) -> Equilibrium:
     """The equilibrium at the new values: inverse statics at the (new) pose with the (new)
     reference (``hold="pose"``), or forward statics of the (new) lengths started at the pose
     (``hold="lengths"``); ``statics`` go to :meth:`dynstiff.Robot.equilibrium`.

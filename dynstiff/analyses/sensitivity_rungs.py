@@ -18,6 +18,10 @@ analytic, so that Im(form) / h is the derivative along the direction.
   K_s = F^-1.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.analyses.sensitivity_kernels import (
@@ -30,18 +34,31 @@ from dynstiff.cable.chord import ChordParameters
 from dynstiff.cable.dsm import end_block_coefficients
 from dynstiff.cable.exact import gll
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
+    from dynstiff.cable.exact import ExactCable
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+    from dynstiff.models.exact import ExactModel
+    from dynstiff.models.static import StaticCableModel
+
 __all__ = ["FORMS", "exact_fields", "forms"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
-def _motions(x, r):
+def _motions(x: NDArray[np.float64], r: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Motion of every attachment, J_i x = dp + dtheta x r_i: x (m, 6), r (B, n, 3) ->
     (B, m, n, 3)."""
     return x[None, :, None, :3] + np.cross(x[None, :, None, 3:], r[:, None, :, :])
 
 
-def _platform_terms(lin, Y, P, q, omega, X, Z):
+def _platform_terms(lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
+                    P: dict[str, NDArray[np.complex128]], q: dict[str, NDArray[np.complex128]],
+                    omega: NDArray[np.float64], X: NDArray[np.float64],
+                    Z: NDArray[np.float64]) -> NDArray[np.complex128]:
     """x^T (K_geo - omega^2 M_p) z [N m...], (B, m): the symmetric geometric stiffness of
     the cable forces and gravity on rotating lever arms and the rigid platform's mass."""
     _, R = lin.pose_of(Y, P)
@@ -55,7 +72,8 @@ def _platform_terms(lin, Y, P, q, omega, X, Z):
     return geo - omega[None, :] ** 2 * np.einsum("mi,bij,mj->bm", X, M, Z)
 
 
-def _chord_frames(q, g):
+def _chord_frames(q: dict[str, NDArray[np.complex128]],
+                  g: float) -> tuple[NDArray[np.complex128], ...]:
     """Unit chord e_u, sag direction e_v, e_w, chord length L and cos(theta), (B, n, ...)."""
     L = np.sqrt(np.sum(q["d"] ** 2, -1))
     eu = q["d"] / L[..., None]
@@ -65,7 +83,9 @@ def _chord_frames(q, g):
     return eu, ev, np.cross(eu, ev), L, q["lh"] / L
 
 
-def dsm_forms(model, lin, Y, P, omega, X, Z):
+def dsm_forms(model: FrequencyModel, lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
+              P: dict[str, NDArray[np.complex128]], omega: NDArray[np.float64],
+              X: NDArray[np.float64], Z: NDArray[np.float64]) -> NDArray[np.complex128]:
     """Closed-form rung (:class:`dynstiff.FrequencyModel`, theory.md §3-§4)."""
     H, V0, L0, q = lin.quantities(Y, P)
     eu, ev, ew, L, cos_t = _chord_frames(q, lin.g)
@@ -89,7 +109,9 @@ def dsm_forms(model, lin, Y, P, omega, X, Z):
     return cab + _platform_terms(lin, Y, P, q, omega, X, Z)
 
 
-def _flexibility(H, V0, L0, EA, w0, axial):
+def _flexibility(H: NDArray[np.complex128], V0: NDArray[np.complex128], L0: NDArray[np.complex128],
+                 EA: NDArray[np.complex128], w0: NDArray[np.complex128],
+                 axial: NDArray[np.complex128]) -> tuple[NDArray[np.complex128], ...]:
     """In-plane flexibility (f_xx, f_xz, f_zz) of the catenary with the axial part of EA
     times ``axial`` (closed-form integrals of t t^T, theory.md §11.3), analytic."""
     fxx, fxz, fzz = catenary_flexibility(H, V0, L0, EA, w0)
@@ -105,7 +127,10 @@ def _flexibility(H, V0, L0, EA, w0, axial):
     return fxx + c * Ixx, fxz + c * Ixz, fzz + c * (L0 - Ixx)
 
 
-def _static_local(q, H, V0, L0, P, axial=None):
+def _static_local(q: dict[str, NDArray[np.complex128]], H: NDArray[np.complex128],
+                  V0: NDArray[np.complex128], L0: NDArray[np.complex128],
+                  P: dict[str, NDArray[np.complex128]],
+                  axial: NDArray[np.complex128] | None = None) -> NDArray[np.complex128]:
     """The catenary's exact static end stiffness in its local frame (x along e_h, y = e_z x
     e_h, z up), (B, n, 3, 3)."""
     axial = P["axial"] if axial is None else axial
@@ -117,14 +142,16 @@ def _static_local(q, H, V0, L0, P, axial=None):
     return 0.5 * (K + np.swapaxes(K, -1, -2))
 
 
-def _frames(q):
+def _frames(q: dict[str, NDArray[np.complex128]]) -> NDArray[np.complex128]:
     """Local frames E = [e_h, e_z x e_h, e_z] of every cable, (B, n, 3, 3)."""
     eh = q["eh"]
     ep = np.cross(np.broadcast_to(_EZ, eh.shape), eh)
     return np.stack([eh, ep, np.broadcast_to(_EZ, eh.shape)], -1)
 
 
-def static_forms(model, lin, Y, P, omega, X, Z):
+def static_forms(model: StaticCableModel, lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
+                 P: dict[str, NDArray[np.complex128]], omega: NDArray[np.float64],
+                 X: NDArray[np.float64], Z: NDArray[np.float64]) -> NDArray[np.complex128]:
     """The massless rungs (:class:`dynstiff.StaticCableModel`, theory.md §4)."""
     H, V0, L0, q = lin.quantities(Y, P)
     a, b = _motions(X, q["r"]), _motions(Z, q["r"])
@@ -141,7 +168,8 @@ def static_forms(model, lin, Y, P, omega, X, Z):
     return cab + _platform_terms(lin, Y, P, q, omega, X, Z)
 
 
-def exact_fields(model, omega, X):
+def exact_fields(model: ExactModel, omega: NDArray[np.float64],
+                 X: NDArray[np.float64]) -> list[NDArray[np.float64]]:
     """Interior fields of every cable of an :class:`dynstiff.models.exact.ExactModel` for
     the platform motions X (m, 6) at omega (m,) and at 0: a list (per cable) of arrays
     (2, m, n_nodes, 3), local frame (theory.md §11.3), real.
@@ -164,7 +192,12 @@ def exact_fields(model, omega, X):
     return out
 
 
-def _cable_energy(cab, fields, dB, H, V0, L0, EA, m0, axial, w0, omega, base):
+def _cable_energy(cab: ExactCable, fields: tuple[NDArray[np.float64], NDArray[np.float64]],
+                  dB: tuple[NDArray[np.complex128], NDArray[np.complex128]],
+                  H: NDArray[np.complex128], V0: NDArray[np.complex128], L0: NDArray[np.complex128],
+                  EA: NDArray[np.complex128], m0: NDArray[np.complex128],
+                  axial: NDArray[np.complex128], w0: NDArray[np.complex128],
+                  omega: NDArray[np.float64], base: dict[str, float]) -> NDArray[np.complex128]:
     """u^T (K - omega^2 M) v of one discretised cable (theory.md §11.2) for fields (u, v)
     (each (2, m, n_nodes, 3): at omega and at 0, interior fixed, end B = dB (2 of (B, m, 3)))
     with the catenary (H, V0, L0, EA, m0, axial, w0) of shape (B,); the mesh is held in
@@ -210,7 +243,11 @@ def _cable_energy(cab, fields, dB, H, V0, L0, EA, m0, axial, w0, omega, base):
     return out[0] - out[1]
 
 
-def exact_forms(model, lin, Y, P, omega, X, Z, fields):
+def exact_forms(
+        model: ExactModel, lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
+        P: dict[str, NDArray[np.complex128]], omega: NDArray[np.float64], X: NDArray[np.float64],
+        Z: NDArray[np.float64], fields: tuple[list[NDArray[np.float64]], list[NDArray[np.float64]]],
+) -> NDArray[np.complex128]:
     """Exact rung (:class:`dynstiff.models.exact.ExactModel`, theory.md §11); ``fields``
     from :func:`exact_fields` of (X, Z) as a pair."""
     H, V0, L0, q = lin.quantities(Y, P)
@@ -233,7 +270,12 @@ def exact_forms(model, lin, Y, P, omega, X, Z, fields):
 FORMS = {"dsm": dsm_forms, "spring": static_forms, "catenary": static_forms}
 
 
-def forms(model, lin, Y, P, omega, X, Z, fields=None):
+def forms(
+        model: PlatformModel, lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
+        P: dict[str, NDArray[np.complex128]], omega: NDArray[np.float64], X: NDArray[np.float64],
+        Z: NDArray[np.float64],
+        fields: tuple[list[NDArray[np.float64]], list[NDArray[np.float64]]] | None = None,
+) -> NDArray[np.complex128]:
     """x_k^T K(omega_k) z_k of ``model``'s rung, (batch, m) (module notes).
 
     Examples

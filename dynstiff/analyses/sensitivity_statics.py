@@ -20,6 +20,10 @@ offsets (2 n) and the balance (k). The parameters are the primitives of
 :mod:`dynstiff.analyses.sensitivity_kernels`.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.analyses.sensitivity_kernels import (
@@ -32,6 +36,13 @@ from dynstiff.analyses.sensitivity_kernels import (
     wrench,
 )
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["LinearisedEquilibrium"]
 
@@ -75,7 +86,8 @@ class LinearisedEquilibrium:
     ([0, 0, 0, 0, 0, 0, 0, 0], 38)
         """
 
-    def __init__(self, equilibrium, hold="pose", tension_reference=None):
+    def __init__(self, equilibrium: Equilibrium, hold: str = "pose",
+                 tension_reference: NDArray[np.float64] | None = None) -> None:
         if hold not in ("pose", "lengths"):
             raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
         eq = equilibrium
@@ -122,7 +134,8 @@ class LinearisedEquilibrium:
                 "degenerate active set or a singular configuration)") from None
 
     # ------------------------------------------------------------------ equations
-    def _active_set(self, q, V0):
+    def _active_set(self, q: dict[str, NDArray[np.float64]],
+                    V0: NDArray[np.float64]) -> NDArray[np.int64]:
         t_min, t_max = float(self.P["t_min"]), float(self.P["t_max"])
         lo = self._min_tension(q, V0)
         hi = np.maximum(q["TB"], q["TA"])
@@ -131,7 +144,7 @@ class LinearisedEquilibrium:
                         np.where(np.abs(hi - t_max) <= tol, 1, 0))
 
     @staticmethod
-    def _min_tension(q, V0):
+    def _min_tension(q: dict[str, NDArray[Any]], V0: NDArray[Any]) -> NDArray[Any]:
         """Least tension along each cable (as ``CatenaryState.min_tension``), analytic with
         the branch of the real values."""
         V0r, Vbr = np.real(V0), np.real(q["Vb"])
@@ -139,14 +152,17 @@ class LinearisedEquilibrium:
         inner = (V0r < 0) & (Vbr > 0)
         return np.where(inner, H, np.where(np.abs(V0r) <= np.abs(Vbr), q["TA"], q["TB"]))
 
-    def _split(self, y):
+    def _split(
+            self, y: NDArray[Any],
+    ) -> tuple[NDArray[Any], NDArray[Any], NDArray[Any] | None, NDArray[Any] | None, NDArray[Any]]:
         n = self.n
         if self.hold == "lengths":
             return y[..., :n], y[..., n:2 * n], None, None, y[..., 2 * n:]
         return y[..., :n], y[..., n:2 * n], y[..., 2 * n:3 * n], y[..., 3 * n:4 * n], \
             y[..., 4 * n:]
 
-    def pose_of(self, y, P):
+    def pose_of(self, y: NDArray[Any],
+                P: dict[str, NDArray[Any]]) -> tuple[NDArray[Any], NDArray[Any]]:
         """(position (..., 3), rotation (..., 3, 3)) of the platform for unknowns y."""
         if self.hold == "pose":
             return P["position"], rotation(P["rotvec"])
@@ -155,7 +171,9 @@ class LinearisedEquilibrium:
         return (P["position"] + d6[..., :3],
                 rotation(d6[..., 3:]) @ rotation(P["rotvec"]))
 
-    def quantities(self, y, P):
+    def quantities(
+            self, y: NDArray[Any], P: dict[str, NDArray[Any]],
+    ) -> tuple[NDArray[Any], NDArray[Any], NDArray[Any], dict[str, NDArray[Any]]]:
         """(H, V0, L0, cable quantities) at unknowns y and primitives P (batch allowed)."""
         H, V0, L0, _, _ = self._split(y)
         if L0 is None:
@@ -163,7 +181,7 @@ class LinearisedEquilibrium:
         pos, R = self.pose_of(y, P)
         return H, V0, L0, cable_quantities(P, H, V0, L0, self.g, pos, R)
 
-    def residual(self, y, P):
+    def residual(self, y: NDArray[Any], P: dict[str, NDArray[Any]]) -> NDArray[Any]:
         """R(y, p), shape (..., n_y): offsets [m], tensions [N], optimality [N], balance
         [N, N m] (theory.md §16.2)."""
         H, V0, L0, q = self.quantities(y, P)
@@ -184,14 +202,17 @@ class LinearisedEquilibrium:
             parts += [q["TB"] - t, opt]
         return np.concatenate(parts + [bal], -1)
 
-    def tension_extremes(self, y, P):
+    def tension_extremes(self, y: NDArray[Any],
+                         P: dict[str, NDArray[Any]]) -> tuple[NDArray[Any], NDArray[Any]]:
         """Least and largest tension along every cable [N], (..., n) each, analytic (the
         limits of the distribution hold all along the cables, theory.md §4)."""
         _, V0, _, q = self.quantities(y, P)
         hi = np.where(np.real(q["TB"]) >= np.real(q["TA"]), q["TB"], q["TA"])
         return self._min_tension(q, V0), hi
 
-    def _multipliers(self, y):
+    def _multipliers(
+            self, y: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], float, NDArray[np.float64]]:
         """Balance multipliers nu from the free cables' optimality, the residual of that
         fit [N], and the limit multipliers [N]."""
         R = self.residual(y, self.P)
@@ -216,7 +237,7 @@ class LinearisedEquilibrium:
         return nu, resid, np.real(mult)
 
     # ------------------------------------------------------------------ derivatives
-    def jacobian_y(self):
+    def jacobian_y(self) -> NDArray[np.float64]:
         """dR/dy, square, by the complex step (all unit directions in one batch)."""
         ny = self.y.size
         Y = self.y[None, :] + 1j * CS_STEP * np.eye(ny)
@@ -224,7 +245,7 @@ class LinearisedEquilibrium:
         return (np.imag(self.residual(Y, P)) / CS_STEP).T
 
     @staticmethod
-    def _factor(J):
+    def _factor(J: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int32]]:
         import warnings
 
         import scipy.linalg
@@ -236,7 +257,9 @@ class LinearisedEquilibrium:
             raise np.linalg.LinAlgError("singular")
         return lu
 
-    def derivatives(self, directions):
+    def derivatives(
+            self, directions: list[dict[str, NDArray[np.float64] | float]],
+    ) -> NDArray[np.float64]:
         """dy/dp along each direction (a list of dicts of primitive increments), shape
         (n_directions, n_y)."""
         import scipy.linalg
@@ -247,7 +270,10 @@ class LinearisedEquilibrium:
         Rp = np.imag(self.residual(Y, P)) / CS_STEP
         return -scipy.linalg.lu_solve(self._lu, Rp.T, check_finite=False).T
 
-    def perturbed(self, directions, dy, step=CS_STEP):
+    def perturbed(
+            self, directions: list[dict[str, NDArray[np.float64] | float]], dy: NDArray[np.float64],
+            step: float = CS_STEP,
+    ) -> tuple[NDArray[np.complex128], dict[str, NDArray[np.complex128]]]:
         """(y + i step dy, P + i step d) for every direction: the complex inputs of the
         rungs' forms."""
         Y = self.y[None, :] + 1j * step * dy

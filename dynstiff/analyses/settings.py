@@ -7,7 +7,10 @@ defaults below where the scene is silent, and the user's overrides on top. So th
 gives the same verdicts and the same model recommendation whichever command prints them.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,6 +20,17 @@ from dynstiff.errors import InvalidParameterError
 from dynstiff.models.exact import DEFAULT_FMAX_HZ
 from dynstiff.models.ladder import RUNGS
 from dynstiff.params import Damping
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+    from dynstiff.robot.equilibrium import Equilibrium
+    from dynstiff.robot.pose import Pose
+    from dynstiff.scenes.loader import Scene
 
 __all__ = ["AnalysisSettings", "analysis_settings", "DEFAULT_BAND_HZ", "DEFAULT_MODEL_RTOL",
            "scene_equilibrium", "scene_model"]
@@ -33,7 +47,7 @@ DEFAULT_N_MODES = 20
 DEFAULT_SEGMENTS = 30
 
 
-def _band(name, value):
+def _band(name: str, value: tuple[float, float]) -> tuple[float, float]:
     try:
         lo, hi = (float(v) for v in value)
     except (TypeError, ValueError):
@@ -85,18 +99,18 @@ class AnalysisSettings:
     frf_limit: float
     damping: Damping
 
-    def model_options(self):
+    def model_options(self) -> dict[str, int]:
         """Keyword options of :func:`dynstiff.build_model` for ``rung``."""
         if self.rung == "exact":            # the exact cables resolve 1.6 x the band's top
             return {"fmax_hz": max(DEFAULT_FMAX_HZ, 1.6 * float(self.band_hz[1]))}
         return {"segments": self.segments} if self.rung == "lumped" else {}
 
-    def model(self, equilibrium, damped=True):
+    def model(self, equilibrium: Equilibrium, damped: bool = True) -> FrequencyModel:
         """The model of ``rung`` with the settings' damping (``damped=False``: none)."""
         return damped_model(equilibrium, self.damping if damped else Damping(0, 0, 0),
                             self.rung, **self.model_options())
 
-    def check_options(self):
+    def check_options(self) -> dict[str, ArrayLike | str | Damping]:
         """Keyword arguments of :func:`dynstiff.analyses.checks.design_checks`."""
         return dict(band_hz=self.forbidden_hz, margin=self.margin,
                     model_rtol=self.model_rtol, rung=self.rung,
@@ -104,7 +118,7 @@ class AnalysisSettings:
                     damping=self.damping, model_band_hz=self.band_hz,
                     **self.model_options())
 
-    def lines(self):
+    def lines(self) -> list[str]:
         """Lines stating the settings, for every printed report."""
         fb = (f"{self.forbidden_hz[0]:g}-{self.forbidden_hz[1]:g} Hz (margin "
               f"{self.margin:.0%}, modes with platform share >= {self.participation:.0%}, "
@@ -114,7 +128,8 @@ class AnalysisSettings:
                 f"model {self.rung}{seg}, tolerance {self.model_rtol:g}; "
                 + self.damping.text()]
 
-    def metadata(self, pose=None, units=None):
+    def metadata(self, pose: Pose | None = None,
+                 units: str | None = None) -> dict[str, Any]:
         """Dict for the header of a CSV/JSON output, the same keys first in every table:
         dynstiff (version), scene, pose (position [m], rotation [rad]), model, date (UTC,
         ISO 8601); then band, damping, segments (lumped), units."""
@@ -139,9 +154,13 @@ class AnalysisSettings:
         return d
 
 
-def analysis_settings(scene, band_hz=None, forbidden_hz=None, n_modes=None, rung=None,
-                      segments=None, model_rtol=None, margin=None, participation=None,
-                      frf_limit=None, damping=None):
+def analysis_settings(
+        scene: Scene, band_hz: tuple[float, float] | None = None,
+        forbidden_hz: tuple[float, float] | None = None, n_modes: int | None = None,
+        rung: str | None = None, segments: int | None = None, model_rtol: float | None = None,
+        margin: float | None = None, participation: float | None = None,
+        frf_limit: float | None = None, damping: list[float] | tuple[int, int, int] | None = None,
+) -> AnalysisSettings:
     """The settings of ``scene``: each argument given overrides the scene's value, which
     overrides the module default.
 
@@ -166,7 +185,8 @@ def analysis_settings(scene, band_hz=None, forbidden_hz=None, n_modes=None, rung
     InvalidParameterError
         A value out of range, naming it.
     """
-    def pick(given, scene_value, default):
+    def pick(given: ArrayLike | str | None, scene_value: ArrayLike | None,
+             default: ArrayLike | str | None) -> float | str | tuple[float, float]:
         return given if given is not None else (
             scene_value if scene_value is not None else default)
 
@@ -212,7 +232,8 @@ def analysis_settings(scene, band_hz=None, forbidden_hz=None, n_modes=None, rung
     return settings
 
 
-def scene_equilibrium(scene, pose=None, lengths=None):
+def scene_equilibrium(scene: Scene, pose: ArrayLike | Pose | None = None,
+                      lengths: ArrayLike | None = None) -> Equilibrium:
     """The equilibrium of ``scene`` every command uses: inverse statics at ``pose``, forward
     statics from unstretched ``lengths`` [m] (held DOFs kept at the scene's pose), or the
     scene's own equilibrium (its pose or lengths).
@@ -222,6 +243,13 @@ def scene_equilibrium(scene, pose=None, lengths=None):
     InvalidParameterError
         Both ``pose`` and ``lengths``, or ``lengths`` for a scene that holds DOFs without a
         pose to hold them at.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.scene_equilibrium(ds.load_scene("cogiro"), pose=[0.0, 0.0, 1.2])
+    >>> eq.pose.position.tolist()
+    [0.0, 0.0, 1.2]
     """
     if pose is not None and lengths is not None:
         raise InvalidParameterError("give pose or lengths, not both")
@@ -237,7 +265,10 @@ def scene_equilibrium(scene, pose=None, lengths=None):
     return scene.equilibrium()
 
 
-def scene_model(scene, pose=None, *, lengths=None, rung=None, damping=None, **settings):
+def scene_model(scene: Scene, pose: ArrayLike | Pose | None = None, *,
+                lengths: ArrayLike | None = None,
+                rung: str | None = None, damping: Damping | None = None,
+                **settings: Any) -> PlatformModel:
     """The model the command line builds for ``scene``: its ``[analysis]`` cable model (or
     ``rung``) with the options the settings give it, and its ``[damping]`` (or ``damping``;
     ``Damping(0, 0, 0)`` for none), at ``pose``, at unstretched ``lengths`` or at the scene's

@@ -4,8 +4,11 @@ modal assurance criterion of their platform shapes, the other modes listed, infe
 recorded; the veering table and diagram.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,6 +20,18 @@ from dynstiff.models.ladder import build_model
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+    from typing import Any
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.results import ModalResult
+    from dynstiff.robot.pose import Pose
 
 __all__ = ["SweepResult", "sweep"]
 
@@ -66,6 +81,14 @@ class SweepResult:
         their row has kind "infeasible" and NaN frequency, ``modal`` and ``equilibria`` None.
     massless_freq_hz : ndarray of float
         Frequency of the matching massless-cable mode [Hz] (NaN for local modes).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+    >>> s.parameter, s.values.tolist(), s.n_steps, s.n_tracks
+    ('arc length [m]', [0.0, 0.5], 2, 6)
     """
 
     parameter: str
@@ -82,37 +105,52 @@ class SweepResult:
     massless_freq_hz: np.ndarray
     failures: tuple = ()
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.step)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         v = self.values
         return (f"SweepResult({self.parameter} {v.min():.4g}..{v.max():.4g}, {self.n_steps} "
                 f"steps, {len(self)} modes, {self.n_tracks} platform-mode tracks)")
 
-    def plot(self, ax=None, show_local=True):
-        """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure."""
+    def plot(self, ax: Axes | None = None, show_local: bool = True) -> Figure:
+        """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> s = ds.sweep(ds.load_scene("cogiro").robot, [[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> import matplotlib.pyplot as plt
+        >>> plt.close(s.plot())
+        """
         from dynstiff.plot import plot_veering
         return plot_veering(self, ax=ax, show_local=show_local)
 
     @property
-    def n_steps(self):
+    def n_steps(self) -> int:
         """Number of steps."""
         return len(self.values)
 
     @property
-    def n_tracks(self):
+    def n_tracks(self) -> int:
         """Number of platform-mode tracks."""
         t = self.track[self.track != UNTRACKED]
         return int(t.max()) + 1 if t.size else 0
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode and step.
 
         Columns ``step``, ``value``, ``mode``, ``track`` (nullable integer, <NA> for the
         modes that are not platform modes), ``freq [Hz]``, ``kind``, ``cable energy
         fraction [-]``, ``massless freq [Hz]``.
         ``df.attrs["parameter"]`` names the quantity in ``value``.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> s = ds.sweep(ds.load_scene("cogiro").robot, [[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> len(s.to_frame())
+        14
         """
         import pandas as pd
         track = pd.array(self.track, dtype="Int64")
@@ -130,7 +168,7 @@ class SweepResult:
         df.attrs["parameter"] = self.parameter
         return df
 
-    def veering_table(self):
+    def veering_table(self) -> Any:
         """Frequencies of the platform-mode tracks, one row per step and one column per
         track.
 
@@ -139,6 +177,13 @@ class SweepResult:
         pandas.DataFrame, shape (n_steps, n_tracks)
             Frequencies [Hz]; index ``step`` (the abscissa is ``values[step]``), columns the
             track ids. NaN where a track has no platform mode at a step.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> s = ds.sweep(ds.load_scene("cogiro").robot, [[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+        >>> s.veering_table().shape
+        (2, 6)
         """
         import pandas as pd
         table = np.full((self.n_steps, self.n_tracks), np.nan)
@@ -148,7 +193,8 @@ class SweepResult:
                             columns=pd.RangeIndex(self.n_tracks, name="track"))
 
 
-def _mac(X, Mx, Y, My):
+def _mac(X: NDArray[np.float64], Mx: NDArray[np.float64], Y: NDArray[np.float64],
+         My: NDArray[np.float64]) -> NDArray[np.float64]:
     """Mass-weighted MAC between the rows of X (n, 6) and Y (k, 6), shape (n, k) [-].
 
     Uses the mean mass matrix of the two steps, M = (Mx + My)/2 (M_p changes with the pose).
@@ -162,7 +208,8 @@ def _mac(X, Mx, Y, My):
     return xy**2 / np.outer(xx, yy)
 
 
-def _assign(candidates, X, M, mac_min):
+def _assign(candidates: list[tuple[int, NDArray[np.float64], NDArray[np.float64]]],
+            X: NDArray[np.float64], M: NDArray[np.float64], mac_min: float) -> dict[int, int]:
     """Match rows of X to the tracks ``candidates`` (list of (id, shape, M)) by largest total
     MAC (Hungarian algorithm); returns {row: track id} for pairs with MAC >= mac_min."""
     if not candidates or X.shape[0] == 0:
@@ -173,8 +220,13 @@ def _assign(candidates, X, M, mac_min):
     return {int(c): candidates[r][0] for r, c in zip(rows, cols) if mac[r, c] >= mac_min}
 
 
-def _check_sweep_args(robot, poses, parameter, values, build, n_modes, fmax_hz, progress,
-                      mac_min):
+def _check_sweep_args(
+        robot: str | Robot | None,
+        poses: int | list[list[float] | tuple[float, float, float] | Pose] | None,
+        parameter: int | str | None, values: NDArray[np.float64] | list[float | str] | None,
+        build: int | Callable[..., Any] | None, n_modes: float | None, fmax_hz: float | None,
+        progress: int | Callable[..., Any] | None, mac_min: float,
+) -> tuple[list[Pose] | None, NDArray[np.float64], str, float | None, float]:
     if poses is None and build is None:
         raise InvalidParameterError(
             "give poses= (a path of poses for robot) or build= (a callable value -> "
@@ -235,9 +287,14 @@ def _check_sweep_args(robot, poses, parameter, values, build, n_modes, fmax_hz, 
     return poses, values, parameter or "value", fmax_hz, mac_min
 
 
-def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=None,
-          fmax_hz=None, progress=None, mac_min=0.5, rung="dsm", on_error="raise",
-          **model_options):
+def sweep(robot: Robot | None,
+          poses: Sequence[ArrayLike | Pose] | None = None,
+          parameter: str | None = None,
+          values: ArrayLike | None = None,
+          build: Callable[[Any], Equilibrium] | None = None, n_modes: int | None = None,
+          fmax_hz: float | None = None, progress: Callable[..., Any] | None = None,
+          mac_min: float = 0.5, rung: str = "dsm", on_error: str = "raise",
+          **model_options: Any) -> SweepResult:
     """Modes along a path of poses or a parameter, global modes tracked from step to step.
 
     Two ways to call it:
@@ -307,6 +364,19 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
         an Equilibrium. The message names the argument.
     SlackCableError, ConvergenceError
         From the statics at a step (the note on the exception names the step).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> s = ds.sweep(robot, poses=[[0, 0, 1.0], [0.5, 0, 1.0]], n_modes=4)
+    >>> s.n_steps, s.n_tracks
+    (2, 6)
+    >>> print(s.veering_table().round(3))
+    track      0      1      2      3      4      5
+    step
+    0      2.206  2.359  2.991  3.869  4.972  5.854
+    1      2.208  2.369  2.985  3.949  4.971  5.834
     """
     if on_error not in ("raise", "record"):
         raise InvalidParameterError(f"on_error must be 'raise' or 'record', got {on_error!r}")
@@ -397,7 +467,8 @@ def sweep(robot, poses=None, parameter=None, values=None, build=None, n_modes=No
                        massless_freq_hz=col["f0"].astype(float), failures=tuple(failures))
 
 
-def _listed(res, n_modes, fmax_hz, platform):
+def _listed(res: ModalResult, n_modes: int | None, fmax_hz: float | None,
+            platform: NDArray[np.int64]) -> NDArray[np.int64]:
     """Indices of the modes a step lists: those asked (the lowest ``n_modes`` and / or all
     below ``fmax_hz``) and every platform mode."""
     f = np.asarray(res.freq_hz)
@@ -410,7 +481,7 @@ def _listed(res, n_modes, fmax_hz, platform):
     return np.flatnonzero(asked)
 
 
-def _subset(res, keep):
+def _subset(res: ModalResult, keep: NDArray[np.int64]) -> ModalResult:
     """The modes ``keep`` (indices) of a ModalResult."""
     from dataclasses import replace
     return replace(res, freq_hz=res.freq_hz[keep], platform_shapes=res.platform_shapes[keep],

@@ -16,8 +16,11 @@ the band margin of the modes held to it (theory.md §13.2). A sample whose stati
 recorded (``failed``), its values NaN.
 """
 
+from __future__ import annotations
+
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -26,9 +29,24 @@ from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
 from dynstiff.analyses.sensitivity import sensitivities_at
 from dynstiff.analyses.sensitivity_parameters import equilibrium_with, expand_parameters
+from dynstiff.analyses.uncertainty_result import UncertaintyResult
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+    from dynstiff.analyses.sensitivity_parameters import Parameter
+    from dynstiff.analyses.verdicts import CheckOptions
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
+    from dynstiff.scenes.loader import Scene
 
 __all__ = ["UNCERTAIN_CHECK", "Uncertain", "UncertaintyResult", "propagate_uncertainty",
            "uncertain_row"]
@@ -60,7 +78,7 @@ class Uncertain:
     distribution: str = "normal"
     relative: bool = True
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.distribution not in _DISTRIBUTIONS:
             raise InvalidParameterError(f"distribution must be one of {_DISTRIBUTIONS}, got "
                                         f"{self.distribution!r}")
@@ -70,7 +88,7 @@ class Uncertain:
         object.__setattr__(self, "scale", s)
 
     @classmethod
-    def parse(cls, text):
+    def parse(cls, text: str) -> Uncertain:
         """From ``"VALUE[%][:normal|:uniform]"``: a percentage is relative, a plain number
         absolute; normal (standard deviation) unless ``:uniform`` (half-width)."""
         m = re.fullmatch(r"\s*([0-9.eE+-]+)\s*(%?)\s*(?::\s*(normal|uniform))?\s*", str(text))
@@ -86,12 +104,12 @@ class Uncertain:
         rel = m.group(2) == "%"
         return cls(v / 100 if rel else v, m.group(3) or "normal", rel)
 
-    def std(self, value):
+    def std(self, value: float) -> float:
         """Standard deviation in the parameter's unit at ``value``."""
         s = self.scale * (abs(value) if self.relative else 1.0)
         return s / np.sqrt(3.0) if self.distribution == "uniform" else s
 
-    def values(self, value, u):
+    def values(self, value: float, u: ArrayLike) -> NDArray[np.float64]:
         """Parameter values at the uniform [0, 1] sample ``u`` (inverse CDF)."""
         s = self.scale * (abs(value) if self.relative else 1.0)
         if self.distribution == "uniform":
@@ -99,116 +117,13 @@ class Uncertain:
         from scipy.stats import norm
         return value + s * norm.ppf(u)
 
-    def text(self):
+    def text(self) -> str:
         """E.g. ``"+-10 % (uniform)"``."""
         v = f"{100 * self.scale:g} %" if self.relative else f"{self.scale:g}"
         return f"{'+-' if self.distribution == 'uniform' else 'sigma '}{v} ({self.distribution})"
 
 
-@dataclass(frozen=True)
-class UncertaintyResult:
-    """Distributions of the frequencies by first order and by Monte Carlo, side by side.
-
-    Attributes
-    ----------
-    parameters : tuple of str
-    nominal_values : ndarray, shape (p,)
-    uncertain : tuple of Uncertain
-    samples : ndarray, shape (n_samples, p)
-        Parameter values of the Latin-hypercube sample.
-    quantities : tuple of str
-        "f1", "f2", ... (modes by index) [Hz], "first_platform_hz" [Hz] and, with a band,
-        "band_margin" [-].
-    nominal : ndarray, shape (q,)
-    gradient : ndarray, shape (q, p)
-        d quantity / d p at the nominal values.
-    first_order : ndarray, shape (n_samples, q)
-        The linearised model at the samples.
-    monte_carlo : ndarray, shape (n_samples, q) or None
-        The full model at the samples (NaN where the statics failed).
-    failed : int
-        Samples whose statics or modes failed.
-    seed : int
-    """
-
-    parameters: tuple
-    nominal_values: np.ndarray
-    uncertain: tuple
-    samples: np.ndarray
-    quantities: tuple
-    nominal: np.ndarray
-    gradient: np.ndarray
-    first_order: np.ndarray
-    monte_carlo: object
-    failed: int
-    seed: int
-
-    @property
-    def std_first_order(self):
-        """sqrt(sum_j (dq/dp_j sigma_j)^2) of every quantity, shape (q,)."""
-        sig = np.array([u.std(v) for u, v in zip(self.uncertain, self.nominal_values)])
-        return np.sqrt(np.sum((self.gradient * sig[None, :]) ** 2, axis=1))
-
-    def _column(self, quantity, method):
-        if quantity not in self.quantities:
-            raise InvalidParameterError(f"quantity must be one of {self.quantities}, got "
-                                        f"{quantity!r}")
-        data = {"first-order": self.first_order, "monte-carlo": self.monte_carlo}.get(method)
-        if data is None:
-            raise InvalidParameterError(f"method must be 'first-order' or 'monte-carlo' "
-                                        f"(computed), got {method!r}")
-        return data[:, self.quantities.index(quantity)]
-
-    def probability_below(self, quantity, threshold, method="monte-carlo"):
-        """Share of the samples where ``quantity`` < ``threshold`` (a failed sample counts
-        as below: its verdict fails) [-]."""
-        x = self._column(quantity, method)
-        return float(np.mean(~(x >= threshold)))
-
-    def quantile(self, quantity, q, method="monte-carlo"):
-        """The q-quantile of ``quantity`` (failed samples as -inf)."""
-        x = np.where(np.isnan(self._column(quantity, method)), -np.inf,
-                     self._column(quantity, method))
-        return float(np.quantile(x, q))
-
-    def to_frame(self):
-        """pandas DataFrame, one row per quantity: nominal, first-order and Monte Carlo mean,
-        standard deviation and 5 / 95 % quantiles."""
-        import pandas as pd
-        rows = []
-        for i, name in enumerate(self.quantities):
-            row = {"quantity": name, "nominal": self.nominal[i],
-                   "std first order (linear)": self.std_first_order[i]}
-            for method, data in (("first order", self.first_order),
-                                 ("Monte Carlo", self.monte_carlo)):
-                if data is None:
-                    continue
-                x = data[:, i]
-                row[f"mean {method}"] = np.nanmean(x)
-                row[f"std {method}"] = np.nanstd(x, ddof=1)
-                row[f"q05 {method}"], row[f"q95 {method}"] = np.nanquantile(x, [0.05, 0.95])
-            rows.append(row)
-        return pd.DataFrame(rows)
-
-    def plot(self, quantity="first_platform_hz", ax=None):
-        """Histograms of ``quantity`` by first order and Monte Carlo. Returns the Figure."""
-        import matplotlib.pyplot as plt
-        if ax is None:
-            _, ax = plt.subplots(figsize=(5.5, 3.5))
-        for method, data in (("first order", self.first_order),
-                             ("Monte Carlo", self.monte_carlo)):
-            if data is not None:
-                x = data[:, self.quantities.index(quantity)]
-                ax.hist(x[np.isfinite(x)], bins=25, alpha=0.55, label=method)
-        ax.axvline(self.nominal[self.quantities.index(quantity)], color="k", lw=0.8)
-        ax.set(xlabel=quantity, ylabel="samples",
-               title=", ".join(f"{p} {u.text()}" for p, u in zip(self.parameters,
-                                                                  self.uncertain)))
-        ax.legend()
-        return ax.figure
-
-
-def _uncertain_items(uncertain):
+def _uncertain_items(uncertain: dict[str, str]) -> dict[str, Uncertain]:
     if not isinstance(uncertain, dict) or not uncertain:
         raise InvalidParameterError(f"uncertain must be a non-empty dict {{name: Uncertain "
                                     f"or '10%'}}, got {uncertain!r}")
@@ -224,8 +139,10 @@ def _uncertain_items(uncertain):
     return out
 
 
-def evaluate_samples(robot, pose, names, values, rung, model_options, n_modes, band,
-                     participation, tension_reference=None):
+def evaluate_samples(robot: Robot, pose: Pose, names: list[str], values: NDArray[np.float64],
+                     rung: str, model_options: dict[Any, Any], n_modes: int,
+                     band: tuple[float, float] | None, participation: float,
+                     tension_reference: ArrayLike | None = None) -> NDArray[np.float64]:
     """The quantities of :class:`UncertaintyResult` with the full model at every row of
     ``values`` (n, p): (n, q) with NaN where the statics or the modes failed.
 
@@ -255,7 +172,8 @@ def evaluate_samples(robot, pose, names, values, rung, model_options, n_modes, b
     return out
 
 
-def _run(tasks, workers, client):
+def _run(tasks: list[tuple[Any | None, ...]], workers: int | None,
+         client: Any) -> list[NDArray[np.float64]]:
     if client is not None:
         return client.gather([client.submit(evaluate_samples, *t, pure=False) for t in tasks])
     if workers is not None and workers > 1:
@@ -265,11 +183,16 @@ def _run(tasks, workers, client):
     return [evaluate_samples(*t) for t in tasks]
 
 
-def propagate_uncertainty(scene_or_model, pose=None, uncertain=None, n_modes=6,
-                          band_hz=None, participation=PLATFORM_SHARE_THRESHOLD,
-                          n_samples=200, seed=0, method="both", rung="dsm", workers=None,
-                          client=None, chunk_size=25, tension_reference=None,
-                          **model_options):
+def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
+                          pose: ArrayLike | Pose | None = None,
+                          uncertain: dict[str, Uncertain | str | float] | None = None,
+                          n_modes: int = 6,
+                          band_hz: tuple[float, float] | None = None,
+                          participation: float = PLATFORM_SHARE_THRESHOLD, n_samples: int = 200,
+                          seed: int = 0, method: str = "both", rung: str = "dsm",
+                          workers: int | None = None, client: Any | None = None,
+                          chunk_size: int = 25, tension_reference: ArrayLike | None = None,
+                          **model_options: Any) -> UncertaintyResult:
     """Distributions of the frequencies from stated parameter distributions (module notes,
     theory.md §16.6).
 
@@ -394,7 +317,9 @@ def _own_options(model):
     return {}
 
 
-def _margin_gradient(model, pm, band, participation, params, tension_reference):
+def _margin_gradient(model: FrequencyModel, pm: PlatformModes, band: tuple[float, float],
+                     participation: float, params: list[Parameter],
+                     tension_reference: ArrayLike | None) -> NDArray[np.float64]:
     """d(band margin)/dp: the sensitivity of the mode that sets the margin, over f_hi (above
     the band) or -f_lo (below)."""
     m = pm.modes
@@ -416,8 +341,11 @@ def _margin_gradient(model, pm, band, participation, params, tension_reference):
 UNCERTAIN_CHECK = "platform modes outside band, uncertain"
 
 
-def uncertain_row(robot, pose, options, uncertain, rung="dsm", model_options=None,
-                  n_samples=200, seed=0, confidence=0.95, workers=None):
+def uncertain_row(
+        robot: Robot, pose: Pose, options: CheckOptions, uncertain: dict[str, str],
+        rung: str = "dsm", model_options: dict[Any, Any] | None = None, n_samples: int = 200,
+        seed: int = 0, confidence: float = 0.95, workers: int | None = None,
+) -> tuple[dict[str, float | str], UncertaintyResult | None]:
     """The design checks' row for stated uncertainties (theory.md §16.6): the probability
     that a mode with platform share >= ``options.participation`` lies within
     ``options.margin`` of the forbidden band (the margin check fails), by Monte Carlo with

@@ -24,7 +24,10 @@ in a cancellation-free form (divided differences), so the formulas stay accurate
 almost weightless cable (W << H) and for an almost vertical one (H << |V|).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,13 +36,19 @@ from dynstiff.cable.chord import chord_parameters
 from dynstiff.errors import InvalidParameterError
 from dynstiff.params import Cable
 
+if TYPE_CHECKING:
+
+    import pandas as pd
+    from numpy.typing import ArrayLike, NDArray
+
 __all__ = ["CatenaryState", "divided_differences", "end_stiffnesses"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
 # --------------------------------------------------------------------------- kernels
-def divided_differences(a, b, delta):
+def divided_differences(a: NDArray[np.float64] | float, b: NDArray[np.float64] | float,
+                        delta: NDArray[np.float64] | float) -> tuple[NDArray[np.float64], ...]:
     """Cancellation-free divided differences between t = a and t = b = a + delta >= a.
 
     Returns (D_asinh, D_f, D_g, D_sqrt), each (F(b) - F(a)) / delta for
@@ -67,7 +76,8 @@ def divided_differences(a, b, delta):
     return d_asinh, d_f, d_g, d_sqrt
 
 
-def end_offsets_and_flexibility(H, V0, L0, EA, w0):
+def end_offsets_and_flexibility(H: float, V0: float, L0: float, EA: float,
+                                w0: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """End offset (x, z) of B from A and its Jacobian with respect to (H, V0).
 
     Parameters are floats [N, N, m, N, N/m], H > 0. Returns ``xz`` (2,) [m] and
@@ -85,13 +95,13 @@ def end_offsets_and_flexibility(H, V0, L0, EA, w0):
     return np.array([x, z]), np.array([[dx_dH, dx_dV], [dx_dV, dz_dV]])
 
 
-def _mean_tension(H, V0, L0, w0):
+def _mean_tension(H: float, V0: float, L0: float, w0: float) -> float:
     """Mean tension over the unstretched length, (1/L0) int_0^L0 T(s) ds [N]."""
     W = w0 * L0
     if H == 0.0:
         return abs(V0 + 0.5 * W) if V0 * (V0 + W) >= 0 else 0.5 * (V0**2 + (V0 + W) ** 2) / W
 
-    def prim(V):  # int sqrt(H^2 + V^2) dV
+    def prim(V: float) -> float:  # int sqrt(H^2 + V^2) dV
         return 0.5 * (V * np.hypot(H, V) + H * H * np.arcsinh(V / H))
 
     if W < 1e-6 * np.hypot(H, V0):     # Taylor: mean of T over V in [V0, V0+W]
@@ -121,6 +131,14 @@ class CatenaryState:
         Vertical tension component at A [N], positive when the cable rises from A.
     residual : float
         Final relative residual of the end-offset equations [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> print(f"H = {state.H:.2f} N, V0 = {state.V0:.2f} N, chord {state.chord_length:.1f} m")
+    H = 239.24 N, V0 = 177.87 N, chord 5.0 m
     """
 
     anchor: np.ndarray
@@ -134,22 +152,22 @@ class CatenaryState:
 
     # ---- geometry of the cable plane
     @property
-    def chord(self):
+    def chord(self) -> NDArray[np.float64]:
         """Chord vector B - A [m], shape (3,)."""
         return self.end - self.anchor
 
     @property
-    def chord_length(self):
+    def chord_length(self) -> float:
         """Chord length L = |B - A| [m]."""
         return float(np.linalg.norm(self.chord))
 
     @property
-    def horizontal_span(self):
+    def horizontal_span(self) -> float:
         """Horizontal distance l_h between A and B [m]."""
         return float(np.hypot(self.chord[0], self.chord[1]))
 
     @property
-    def horizontal_direction(self):
+    def horizontal_direction(self) -> NDArray[np.float64]:
         """Unit horizontal vector from A towards B, shape (3,).
 
         For an exactly vertical chord it is an arbitrary (fixed) horizontal axis, x.
@@ -161,42 +179,42 @@ class CatenaryState:
 
     # ---- forces
     @property
-    def total_weight(self):
+    def total_weight(self) -> float:
         """W = m g L0 [N]."""
         return self.cable.mass_per_length * self.g * self.unstretched_length
 
     @property
-    def Vb(self):
+    def Vb(self) -> float:
         """Vertical tension component at B, V0 + W [N]."""
         return self.V0 + self.total_weight
 
     @property
-    def horizontal_tension(self):
+    def horizontal_tension(self) -> float:
         """Horizontal tension component H [N]."""
         return self.H
 
     @property
-    def force_on_end(self):
+    def force_on_end(self) -> NDArray[np.float64]:
         """Force of the cable on the end B [N], shape (3,): -(H e_h + Vb e_z)."""
         return -(self.H * self.horizontal_direction + self.Vb * _EZ)
 
     @property
-    def force_on_anchor(self):
+    def force_on_anchor(self) -> NDArray[np.float64]:
         """Force of the cable on the anchor A [N], shape (3,): H e_h + V0 e_z."""
         return self.H * self.horizontal_direction + self.V0 * _EZ
 
     @property
-    def tension_at_end(self):
+    def tension_at_end(self) -> float:
         """Tension at B [N]."""
         return float(np.hypot(self.H, self.Vb))
 
     @property
-    def tension_at_anchor(self):
+    def tension_at_anchor(self) -> float:
         """Tension at A [N]."""
         return float(np.hypot(self.H, self.V0))
 
     @property
-    def min_tension(self):
+    def min_tension(self) -> float:
         """Least tension along the cable [N]: H where the cable has its lowest point between
         A and B (V changes sign), else the smaller end tension (T = sqrt(H^2 + V^2), V
         linear in the arc length)."""
@@ -205,29 +223,29 @@ class CatenaryState:
         return float(np.hypot(self.H, min(abs(self.V0), abs(self.Vb))))
 
     @property
-    def max_tension(self):
+    def max_tension(self) -> float:
         """Largest tension along the cable [N], at the higher-tension end."""
         return max(self.tension_at_end, self.tension_at_anchor)
 
     @property
-    def mean_tension(self):
+    def mean_tension(self) -> float:
         """Tension averaged over the unstretched length [N]."""
         return float(_mean_tension(self.H, self.V0, self.unstretched_length,
                                    self.cable.weight_per_length(self.g)))
 
-    def tension(self, s):
+    def tension(self, s: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
         """Tension T(s) = sqrt(H^2 + (V0 + w0 s)^2) [N] at unstretched arc length s [m]."""
         s = np.asarray(s, dtype=float)
         return np.hypot(self.H, self.V0 + self.cable.weight_per_length(self.g) * s)
 
     @property
-    def stretched_length(self):
+    def stretched_length(self) -> float:
         """Arc length of the stretched cable, L0 + int T/EA ds [m]."""
         L0 = self.unstretched_length
         return L0 * (1.0 + self.mean_tension / self.cable.EA)
 
     # ---- profile
-    def profile_plane(self, s):
+    def profile_plane(self, s: ArrayLike) -> NDArray[np.float64]:
         """In-plane coordinates (x, z) [m] of the points at unstretched arc lengths ``s`` [m].
 
         Returns an array of shape (len(s), 2).
@@ -245,7 +263,7 @@ class CatenaryState:
                 out[k], _ = end_offsets_and_flexibility(self.H, self.V0, sk, EA, w0)
         return out
 
-    def profile(self, n=50):
+    def profile(self, n: int = 50) -> NDArray[np.float64]:
         """Points of the cable, shape (n, 3) [m], equally spaced in unstretched arc length."""
         n = int(n)
         if n < 2:
@@ -254,7 +272,7 @@ class CatenaryState:
         return (self.anchor + np.outer(xz[:, 0], self.horizontal_direction)
                 + np.outer(xz[:, 1], _EZ))
 
-    def to_frame(self, n=50):
+    def to_frame(self, n: int = 50) -> pd.DataFrame:
         """pandas DataFrame of the profile: unstretched arc length s from A [m], the point
         (x, y, z) [m] in the base frame and the tension T(s) [N], ``n`` rows equally spaced
         in s (theory.md §1.1)."""
@@ -265,7 +283,7 @@ class CatenaryState:
                              "z [m]": pts[:, 2], "tension [N]": self.tension(s)})
 
     @property
-    def sag(self):
+    def sag(self) -> float:
         """Largest distance of the cable from its chord *segment* AB [m] (from a 401-point
         profile; a point beyond an end of the segment counts its distance to that end, so a
         slack cable hanging in a U below its lower end shows its true sag)."""
@@ -277,12 +295,12 @@ class CatenaryState:
 
     # ---- chord-frame (parabolic) parameters used by the linear dynamic theory
     @property
-    def cos_theta(self):
+    def cos_theta(self) -> float:
         """cos of the chord inclination to the horizontal [-]."""
         return self.horizontal_span / self.chord_length
 
     @property
-    def lambda_sq(self):
+    def lambda_sq(self) -> float:
         """Irvine parameter lambda^2 [-] (see :func:`dynstiff.cable.chord.chord_parameters`).
 
         The chord theory's value (q L / T)^2 L EA / (T L_e) assumes the parabola of sag
@@ -297,7 +315,7 @@ class CatenaryState:
 
     # ---- stiffness
     @property
-    def in_plane_flexibility(self):
+    def in_plane_flexibility(self) -> NDArray[np.float64]:
         """d(l_h, h)/d(H, Vb) [m/N], shape (2, 2): compliance of the end B in the cable plane."""
         if self.H == 0.0:
             L0, EA = self.unstretched_length, self.cable.EA
@@ -307,7 +325,7 @@ class CatenaryState:
                                             self.cable.EA, self.cable.weight_per_length(self.g))
         return F
 
-    def _vertical_lateral_stiffness(self):
+    def _vertical_lateral_stiffness(self) -> float:
         """H / l_h in the limit H -> 0 (vertical chord) [N/m].
 
         From x = H L0/EA + (H/w0)[asinh(Vb/H) - asinh(V0/H)]:
@@ -318,14 +336,14 @@ class CatenaryState:
         return 1.0 / (L0 / EA + abs(np.log1p(w0 * L0 / self.V0)) / w0)
 
     @property
-    def out_of_plane_stiffness(self):
+    def out_of_plane_stiffness(self) -> float:
         """Stiffness of B perpendicular to the vertical cable plane, H / l_h [N/m]."""
         if self.H == 0.0:
             return float(self._vertical_lateral_stiffness())
         return float(self.H / self.horizontal_span)
 
     @property
-    def end_stiffness(self):
+    def end_stiffness(self) -> NDArray[np.float64]:
         """Static 3x3 stiffness of the end B [N/m] in the global frame, A fixed.
 
         K = -d f_B / d r_B: in-plane block from the inverse of the flexibility
@@ -340,7 +358,7 @@ class CatenaryState:
         return 0.5 * (K + K.T)
 
 
-def end_stiffnesses(states):
+def end_stiffnesses(states: tuple[CatenaryState, ...]) -> NDArray[np.float64]:
     """:attr:`CatenaryState.end_stiffness` of many cables at once [N/m], shape (n, 3, 3).
 
     The same formulas on arrays (in-plane flexibility of §1.1 inverted, out-of-plane term

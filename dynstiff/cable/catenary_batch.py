@@ -21,11 +21,23 @@ vertical or weightless is handed to the scalar bracketing solver
 cannot be reached.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff import compiled as compiled_kernels
 from dynstiff.cable.catenary import CatenaryState, divided_differences
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.params import Cable
 
 __all__ = ["catenary_arrays", "sag_ratios", "states_for_tensions", "taut_catenaries"]
 
@@ -33,7 +45,8 @@ _RTOL = 1e-13          # relative residual of the three equations at convergence
 _MAX_ITER = 40
 
 
-def _equations(H, V0, L0, EA, w0):
+def _equations(H: NDArray[np.float64], V0: NDArray[np.float64], L0: NDArray[np.float64],
+               EA: NDArray[np.float64], w0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """End offsets (x, z) [m], end tension T_B [N] and the 3x3 Jacobian with respect to
     (H, V0, L0), shape (n, 3, 3)."""
     W = w0 * L0
@@ -55,7 +68,9 @@ def _equations(H, V0, L0, EA, w0):
     return x, z, T, J
 
 
-def _straight_start(lh, h, L, t, EA, w0):
+def _straight_start(lh: NDArray[np.float64], h: NDArray[np.float64], L: NDArray[np.float64],
+                    t: NDArray[np.float64], EA: NDArray[np.float64],
+                    w0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """(H, V0, L0) of a straight elastic cable with tension t along its chord (the weight
     taken off at A)."""
     L0 = L / (1.0 + t / EA)
@@ -63,7 +78,12 @@ def _straight_start(lh, h, L, t, EA, w0):
     return t * lh / L, Vb - w0 * L0, L0
 
 
-def _newton(lh, h, L, t, EA, w0, H, V0, L0):
+def _newton(
+        lh: NDArray[np.float64], h: NDArray[np.float64], L: NDArray[np.float64],
+        t: NDArray[np.float64], EA: NDArray[np.float64], w0: NDArray[np.float64],
+        H: NDArray[np.float64], V0: NDArray[np.float64], L0: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_],
+           NDArray[np.float64]]:
     """Newton on (H, V0, L0) for all cables; returns them and a mask of the converged
     taut solutions."""
     scale = np.stack([lh, np.maximum(L, L0), t], axis=1)
@@ -99,7 +119,8 @@ def _newton(lh, h, L, t, EA, w0, H, V0, L0):
     return H, V0, L0, ok, res
 
 
-def _solve(compiled, args, guess):
+def _solve(compiled: Callable[..., Any], args: tuple[NDArray[np.float64], ...],
+           guess: tuple[NDArray[np.float64], ...]) -> list[NDArray[Any]] | None:
     """(H, V0, L0, ok, residual) of Newton from ``guess``: compiled or numpy."""
     if compiled is not None:
         return list(compiled(*args, *guess, _RTOL, _MAX_ITER))
@@ -107,7 +128,12 @@ def _solve(compiled, args, guess):
         return list(_newton(*args, *guess))
 
 
-def taut_catenaries(anchors, ends, tensions, EA, w0, start=None, compiled=True):
+def taut_catenaries(
+        anchors: NDArray[np.float64], ends: NDArray[np.float64], tensions: NDArray[np.float64],
+        EA: NDArray[np.float64], w0: NDArray[np.float64],
+        start: tuple[NDArray[np.float64], ...] | None = None, compiled: bool = True,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+           NDArray[np.bool_]]:
     """(H, V0, L0) of every cable with tension ``tensions`` at its end B (taut branch).
 
     Inputs are taken as valid (finite, ends distinct from anchors, tensions > 0): the
@@ -178,13 +204,15 @@ def taut_catenaries(anchors, ends, tensions, EA, w0, start=None, compiled=True):
     return (*out, pending)
 
 
-def catenary_arrays(states):
+def catenary_arrays(states: tuple[CatenaryState, ...]) -> tuple[NDArray[np.float64], ...]:
     """(H, V0, L0) arrays [N, N, m] of a sequence of CatenaryState (a warm start)."""
     return (np.array([s.H for s in states]), np.array([s.V0 for s in states]),
             np.array([s.unstretched_length for s in states]))
 
 
-def states_for_tensions(anchors, ends, tensions, cables, g, start=None):
+def states_for_tensions(anchors: NDArray[np.float64], ends: NDArray[np.float64],
+                        tensions: NDArray[np.float64], cables: list[Cable], g: float,
+                        start: ArrayLike | None = None) -> list[CatenaryState]:
     """CatenaryState of every cable for its tension at B: :func:`taut_catenaries`, the
     cables it leaves solved one by one by
     :func:`dynstiff.cable.catenary_solve.unstretched_length_for_tension` (which raises
@@ -210,7 +238,9 @@ def states_for_tensions(anchors, ends, tensions, cables, g, start=None):
     return states
 
 
-def sag_ratios(anchors, ends, H, V0, L0, EA, w0, n_points=401):
+def sag_ratios(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: NDArray[np.float64],
+               V0: NDArray[np.float64], L0: NDArray[np.float64], EA: NDArray[np.float64],
+               w0: NDArray[np.float64], n_points: int = 401) -> NDArray[np.float64]:
     """Largest distance of each cable from its chord over the chord length [-], shape (n,).
 
     The profile (docs/theory.md §1.1) at ``n_points`` points equally spaced in unstretched

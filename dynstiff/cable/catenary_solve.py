@@ -4,7 +4,10 @@ guesses; the vertical cable in closed form), and the unstretched length that giv
 prescribed tension at its upper end (bracketing).
 """
 
+from __future__ import annotations
+
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,6 +17,9 @@ from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.params import Cable
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
 __all__ = ["solve_catenary", "unstretched_length_for_tension"]
 
 
@@ -21,7 +27,9 @@ _RTOL = 1e-12
 
 
 # --------------------------------------------------------------------------- solver
-def _validate_ends(anchor, end):
+def _validate_ends(
+        anchor: NDArray[np.float64], end: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
     A = point("anchor", anchor)
     B = point("end", end)
     if max(np.abs(A).max(), np.abs(B).max()) > MAX_COORDINATE:
@@ -36,7 +44,7 @@ def _validate_ends(anchor, end):
     return A, B, L
 
 
-def _vertical_solution(lh, h, L0, EA, w0):
+def _vertical_solution(lh: float, h: float, L0: float, EA: float, w0: float) -> float:
     """Exactly vertical chord: straight cable, H = 0; returns V0 [N]."""
     W = w0 * L0
     # h = L0 (V0 + W/2)/EA + sign * L0 for a cable in tension throughout
@@ -55,7 +63,8 @@ def _vertical_solution(lh, h, L0, EA, w0):
     return V0
 
 
-def _initial_guesses(lh, h, L0, EA, w0):
+def _initial_guesses(lh: float, h: float, L0: float, EA: float,
+                     w0: float) -> list[tuple[float, float]]:
     """Candidate (H, V0) starting points [N]: elastic straight cable, and Peyrot-Goulois."""
     W = w0 * L0
     L = np.hypot(lh, h)
@@ -78,7 +87,8 @@ def _initial_guesses(lh, h, L0, EA, w0):
     return guesses
 
 
-def _newton(lh, h, L0, EA, w0, H, V0, max_iter):
+def _newton(lh: float, h: float, L0: float, EA: float, w0: float, H: float, V0: float,
+            max_iter: int) -> tuple[float, float, float]:
     """Damped Newton on (H, V0) keeping H > 0. Returns (H, V0, relative residual)."""
     target = np.array([lh, h])
     # each offset relative to its own size: x is resolved to 1e-12 of l_h even for
@@ -111,7 +121,8 @@ def _newton(lh, h, L0, EA, w0, H, V0, max_iter):
     return H, V0, res
 
 
-def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, max_iter=100):
+def solve_catenary(anchor: ArrayLike, end: ArrayLike, unstretched_length: float,
+                   cable: Cable, g: float = STANDARD_GRAVITY, max_iter: int = 100) -> CatenaryState:
     """Static equilibrium of an elastic catenary between anchor A and end B.
 
     Solves x(L0) = l_h, z(L0) = h of the exact elastic catenary (theory.md §1.1, Irvine 1981)
@@ -144,6 +155,14 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
         A vertical or weightless cable shorter than its chord would need compression.
     ConvergenceError
         Newton failed from every starting guess; the message gives the residual.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.solve_catenary([0, 0, 0], [4.0, 0, 3.0], 5.0, cable)   # a 5 m chord
+    >>> print(f"H = {state.H:.1f} N, residual below 1e-12: {state.residual < 1e-12}")
+    H = 60.4 N, residual below 1e-12: True
     """
     A, B, L = _validate_ends(anchor, end)
     L0 = positive_scalar("unstretched_length", unstretched_length)
@@ -156,7 +175,7 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
     d = B - A
     lh, h = float(np.hypot(d[0], d[1])), float(d[2])
 
-    def make(H, V0, res):
+    def make(H: float, V0: float, res: float) -> CatenaryState:
         return CatenaryState(anchor=A, end=B, unstretched_length=L0, cable=cable, g=g,
                              H=float(H), V0=float(V0), residual=float(res))
 
@@ -182,7 +201,8 @@ def solve_catenary(anchor, end, unstretched_length, cable, g=STANDARD_GRAVITY, m
         residual=best[2])
 
 
-def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVITY, at="end"):
+def unstretched_length_for_tension(anchor: ArrayLike, end: ArrayLike, tension: float, cable: Cable,
+                                   g: float = STANDARD_GRAVITY, at: str = "end") -> CatenaryState:
     """Unstretched length L0 [m] that gives a prescribed tension at B (or at A).
 
     Parameters
@@ -209,6 +229,14 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
     grows, reaches a minimum, then rises again as the cable hangs deeper; the solution
     returned is the shorter, taut one. Raises :class:`SlackCableError` when the target is
     below the minimum tension any cable between these points can have.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> print(f"L0 = {state.unstretched_length:.6f} m, T_B = {state.tension_at_end:.6f} N")
+    L0 = 4.999103 m, T_B = 300.000000 N
     """
     from scipy.optimize import brentq
 
@@ -218,16 +246,16 @@ def unstretched_length_for_tension(anchor, end, tension, cable, g=STANDARD_GRAVI
         raise InvalidParameterError(f"at must be 'end' or 'anchor', got {at!r}")
     g = positive_scalar("g", g, allow_zero=True)
 
-    def tension_of(state):
+    def tension_of(state: CatenaryState) -> float:
         return state.tension_at_end if at == "end" else state.tension_at_anchor
 
-    def f(L0):
+    def f(L0: float) -> float:
         return np.log(tension_of(solve_catenary(A, B, L0, cable, g)) / T_target)
 
     # Upper bracket: a short cable is stiff, so tension is high; lower tension needs longer L0.
     L_hi_tension = L / (1.0 + 2.0 * T_target / cable.EA)
 
-    def too_long(L0):                  # tension under the target, or slack (vertical cable)
+    def too_long(L0: float) -> bool | None:  # tension under the target, or slack (vertical cable)
         try:
             return f(L0) < 0
         except SlackCableError:

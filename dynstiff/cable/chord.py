@@ -8,17 +8,29 @@ conventions (mean tension, mass per chord length, compliance length L0 (1 + 8 (d
 here once; they are argued in the docstring of :mod:`dynstiff.cable.dsm`.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff._vec import cross
 from dynstiff.errors import InvalidParameterError
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
+
 __all__ = ["ChordParameters", "chord_parameters", "irvine_lambda_sq", "stack_parameters"]
 
 
-def irvine_lambda_sq(q, L, T, EA, L_e):
+def irvine_lambda_sq(q: NDArray[np.float64] | float, L: NDArray[np.float64] | float,
+                     T: NDArray[np.float64] | float, EA: NDArray[np.float64] | float,
+                     L_e: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
     """Irvine parameter lambda^2 = (q L / T)^2 L EA / (T L_e) [-] (theory.md §1.2).
 
     Elementwise over arrays; complex when EA is (hysteretic damping).
@@ -66,40 +78,40 @@ class ChordParameters:
     rotation: np.ndarray
 
     @property
-    def sag(self):
+    def sag(self) -> float:
         """Mid-span sag perpendicular to the chord, d = q L^2 / (8 T) [m]."""
         return self.q * self.L**2 / (8.0 * self.T)
 
     @property
-    def K0(self):
+    def K0(self) -> NDArray[np.float64] | float:
         """EA / L_e [N/m] (complex with hysteretic damping)."""
         return self.EA / self.L_e
 
     @property
-    def alpha(self):
+    def alpha(self) -> NDArray[np.float64] | float:
         """Static end slope relative to the chord, q L / (2 T) [-]."""
         return self.q * self.L / (2.0 * self.T)
 
     @property
-    def lambda_sq(self):
+    def lambda_sq(self) -> NDArray[np.float64] | float:
         """Irvine parameter lambda^2 [-] (:func:`irvine_lambda_sq`; real part if damped),
         a float, or an array for stacked parameters."""
         lam2 = np.real(self.lambda_sq_complex)
         return float(lam2) if np.ndim(lam2) == 0 else lam2
 
     @property
-    def lambda_sq_complex(self):
+    def lambda_sq_complex(self) -> NDArray[np.float64] | float:
         """lambda^2 with the complex EA of hysteretic damping [-]."""
         return irvine_lambda_sq(self.q, self.L, self.T, self.EA, self.L_e)
 
-    def psi(self, omega):
+    def psi(self, omega: NDArray[Any]) -> NDArray[Any]:
         """psi = Omega / 2 = (L/2) sqrt((omega^2 m - i omega c) / T) [-], shape of ``omega``."""
         beta_sq = (omega**2 * self.m - 1j * omega * self.c) / self.T if np.any(self.c != 0) \
             else omega**2 * self.m / self.T
         return 0.5 * self.L * np.sqrt(beta_sq)
 
 
-def chord_parameters(state, tension="mean"):
+def chord_parameters(state: CatenaryState, tension: str = "mean") -> ChordParameters:
     """Chord-frame parameters of the linear theory from an elastic-catenary equilibrium.
 
     Parameters
@@ -113,6 +125,15 @@ def chord_parameters(state, tension="mean"):
     Returns
     -------
     ChordParameters
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> p = ds.chord_parameters(state)
+    >>> print(f"lambda^2 = {p.lambda_sq:.4f}, T = {p.T:.1f} N")
+    lambda^2 = 0.3867, T = 299.1 N
     """
     if tension not in ("mean", "chord"):
         raise InvalidParameterError(f"tension must be 'mean' or 'chord', got {tension!r}")
@@ -144,10 +165,10 @@ def chord_parameters(state, tension="mean"):
                            rotation=np.column_stack([e_u, e_v, e_w]))
 
 
-def stack_parameters(params):
+def stack_parameters(params: tuple[ChordParameters, ...]) -> ChordParameters:
     """ChordParameters of several cables stacked into one with (n_cables,) array fields, for
     evaluating all cables in one broadcast call (see :func:`dynstiff.cable.dsm.local_entries`)."""
-    def arr(name):
+    def arr(name: str) -> NDArray[np.float64]:
         return np.array([getattr(p, name) for p in params])
     return ChordParameters(L=arr("L"), T=arr("T"), m=arr("m"), c=arr("c"), EA=arr("EA"),
                            q=arr("q"), L_e=arr("L_e"), cos_theta=arr("cos_theta"),

@@ -42,7 +42,10 @@ Conventions chosen (and why)
 All matrices give the forces applied **to** the cable ends per unit end displacement.
 """
 
+from __future__ import annotations
+
 import functools
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -52,6 +55,13 @@ from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
 from dynstiff.cable.psi import check_frequency_range, mode_count_psi, psi_functions
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = [
     "ChordParameters", "chord_parameters", "stack_parameters", "local_entries",
@@ -64,7 +74,8 @@ __all__ = [
 DEFAULT_CHORDWISE_INERTIA = True
 
 
-def local_entries(p, omega, chordwise_inertia):
+def local_entries(p: ChordParameters, omega: NDArray[Any],
+                  chordwise_inertia: bool) -> tuple[NDArray[Any], ...]:
     """Independent entries of the local two-end DSM, each shape (n_omega,).
 
     Elementwise: ``p`` may hold arrays of shape (n_cables,) with ``omega`` of shape
@@ -82,7 +93,12 @@ def local_entries(p, omega, chordwise_inertia):
     return _entries_from(p, omega, psi, psi_functions(psi), chordwise_inertia)
 
 
-def _entries_from(p, omega, psi, functions, chordwise_inertia):
+def _entries_from(
+        p: ChordParameters, omega: NDArray[Any], psi: NDArray[Any],
+        functions: tuple[NDArray[Any], NDArray[Any], NDArray[Any], NDArray[Any], NDArray[Any],
+                         NDArray[Any]],
+        chordwise_inertia: bool,
+) -> tuple[NDArray[Any], ...]:
     """:func:`local_entries` from psi and its :func:`psi_functions`."""
     lam2 = p.lambda_sq_complex
     K0, T, L = p.K0, p.T, p.L
@@ -105,14 +121,15 @@ def _entries_from(p, omega, psi, functions, chordwise_inertia):
     return k_uu, k_uv, k_vv, k_vv_AB, kw_s, kw_c, m_axial
 
 
-def _real_if_undamped(p, K, omega):
+def _real_if_undamped(p: ChordParameters, K: NDArray[Any], omega: NDArray[Any]) -> NDArray[Any]:
     """Drop the zero imaginary part for an undamped cable at real frequencies."""
     if p.c == 0 and np.isrealobj(p.EA) and np.isrealobj(omega):
         return np.real(K)
     return K
 
 
-def local_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+def local_end_stiffness(params: ChordParameters, omega: NDArray[Any],
+                        chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA) -> NDArray[Any]:
     """3x3 DSM of end B with A clamped, in the local chord frame (u, v, w).
 
     K_B = [[K0/D, -alpha tau K0/D, 0], [., k_s + (alpha tau)^2 K0/D, 0], [0, 0, k_s]]
@@ -138,7 +155,8 @@ def local_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERT
     return _real_if_undamped(params, K, omega)
 
 
-def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+def local_two_end_stiffness(params: ChordParameters, omega: NDArray[Any],
+                            chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA) -> NDArray[Any]:
     """6x6 DSM of both ends in the local chord frame, ordered (u_A, v_A, w_A, u_B, v_B, w_B).
 
     In-plane: (K0/D) g g^T + [[0,0,0,0],[0,k_s,0,k_c],[0,0,0,0],[0,k_c,0,k_s]],
@@ -167,9 +185,12 @@ def local_two_end_stiffness(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_I
     return _real_if_undamped(params, K, omega)
 
 
-def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
-                            chordwise_inertia=DEFAULT_CHORDWISE_INERTIA, model="closed-form",
-                            guard_rtol=DEFAULT_GUARD_RTOL):
+def cable_dynamic_stiffness(state: CatenaryState, omega: ArrayLike, ends: str = "end",
+                            tension: str = "mean",
+                            chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA,
+                            model: str = "closed-form",
+                            guard_rtol: float | None = DEFAULT_GUARD_RTOL,
+                            ) -> NDArray[np.complex128] | NDArray[np.float64]:
     """Dynamic stiffness matrix of one sagging cable in the global frame.
 
     Parameters
@@ -207,6 +228,17 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
     ------
     InvalidParameterError
         ``omega`` negative or not finite, or ``ends`` / ``tension`` unknown.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> K = ds.cable_dynamic_stiffness(state, [0.0, 10.0])   # omega [rad/s]
+    >>> K.shape
+    (2, 3, 3)
+    >>> print(f"{K[0, 0, 0]:.1f} N/m")
+    203423.5 N/m
     """
     if ends not in ("end", "both"):
         raise InvalidParameterError(f"ends must be 'end' or 'both', got {ends!r}")
@@ -235,7 +267,7 @@ def cable_dynamic_stiffness(state, omega, ends="end", tension="mean",
 DYAD_PAIRS = ((0, 0), (0, 1), (1, 0), (1, 1), (2, 2))
 
 
-def dyad_basis(rotation):
+def dyad_basis(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
     """Global dyads e_i e_j^T of the local pairs ``DYAD_PAIRS``, shape (5, 9).
 
     Every 3x3 block of the cable DSM is a combination of these five dyads, so R K R^T is
@@ -245,14 +277,15 @@ def dyad_basis(rotation):
     return np.stack([np.outer(R[:, i], R[:, j]).ravel() for i, j in DYAD_PAIRS])
 
 
-def _end_block(entries, axis):
+def _end_block(entries: tuple[NDArray[Any], ...], axis: int) -> NDArray[Any]:
     """Dyad coefficients (uu, uv, vu, vv, ww) of K_B from :func:`local_entries`, stacked
     on a new ``axis`` (theory.md §3.4): k_uu + 2 m_axial, -k_uv, -k_uv, k_vv, kw_s."""
     k_uu, k_uv, k_vv, _, kw_s, _, m_ax = entries
     return np.stack([k_uu + 2.0 * m_ax, -k_uv, -k_uv, k_vv, kw_s + 0.0 * k_uu], axis=axis)
 
 
-def end_block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+def end_block_coefficients(params: ChordParameters, omega: NDArray[Any],
+                           chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA) -> NDArray[Any]:
     """Dyad coefficients of the clamped-A end matrix K_B of one or several cables.
 
     Parameters
@@ -273,8 +306,10 @@ def end_block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_IN
     return _end_block(local_entries(params, om, chordwise_inertia), axis=-1)
 
 
-def end_block_coefficients_and_count(params, omega,
-                                     chordwise_inertia=DEFAULT_CHORDWISE_INERTIA):
+def end_block_coefficients_and_count(
+        params: ChordParameters, omega: NDArray[Any],
+        chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA,
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """:func:`end_block_coefficients` of undamped cables at real omega together with their
     clamped-clamped mode counts J0 (:func:`cable_mode_count`), from one evaluation of the psi
     functions (what a Wittrick-Williams count needs, theory.md §5, §14.2).
@@ -294,8 +329,9 @@ def end_block_coefficients_and_count(params, omega,
     return np.real(coef), mode_count_psi(psi, functions[0], functions[3], params.lambda_sq)
 
 
-def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
-                       blocks="end"):
+def block_coefficients(params: ChordParameters, omega: NDArray[np.float64],
+                       chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA,
+                       blocks: str = "end") -> dict[str, NDArray[Any]]:
     """Coefficients of the DSM blocks on the dyad basis, each shape (n_omega, 5).
 
     Parameters
@@ -326,13 +362,13 @@ def block_coefficients(params, omega, chordwise_inertia=DEFAULT_CHORDWISE_INERTI
 CABLE_MODELS = ("closed-form", "exact")
 
 
-def checked_cable_model(model):
+def checked_cable_model(model: str) -> str:
     if model not in CABLE_MODELS:
         raise InvalidParameterError(f"model must be one of {CABLE_MODELS}, got {model!r}")
     return model
 
 
-def lowest_string_omega(state):
+def lowest_string_omega(state: CatenaryState) -> float:
     """pi sqrt(T_mean / m) / L0 [rad/s]: the first taut-string frequency, a floor for the band
     of an exact cable asked for low frequencies only."""
     return np.pi * np.sqrt(state.mean_tension / state.cable.mass_per_length) \
@@ -340,7 +376,8 @@ def lowest_string_omega(state):
 
 
 # --------------------------------------------------------------------------- fields
-def cable_field(p, omega, d_local, x):
+def cable_field(p: ChordParameters, omega: float, d_local: NDArray[np.float64],
+                x: NDArray[np.float64]) -> NDArray[np.float64]:
     """Closed-form displacement (u, v, w) [m] along the chord at positions x [m], shape
     (len(x), 3), for the end-B motion d_local = (u_B, v_B, w_B) [m, chord frame] at omega
     [rad/s] with A clamped (theory.md §5.3); ``p`` the cable's :class:`ChordParameters`:
@@ -359,12 +396,13 @@ def cable_field(p, omega, d_local, x):
 
 
 @functools.lru_cache(maxsize=8)
-def _gauss(n):
+def _gauss(n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Gauss-Legendre nodes and weights on [-1, 1] (cached)."""
     return np.polynomial.legendre.leggauss(n)
 
 
-def cable_kinetic_energy(p, omega, d_local, chordwise_inertia, n_gauss=64):
+def cable_kinetic_energy(p: ChordParameters, omega: float, d_local: NDArray[np.float64],
+                         chordwise_inertia: bool, n_gauss: int = 64) -> float:
     """Kinetic energy per unit omega^2 / 2 of the closed-form field, int m (|v|^2 + |w|^2) dx
     (+ m L/3 |u_B|^2 with ``chordwise_inertia``) [kg m^2 per unit amplitude^2], by
     ``n_gauss``-point Gauss-Legendre quadrature (theory.md §6)."""

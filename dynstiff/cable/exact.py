@@ -32,7 +32,10 @@ U-shaped, near-vertical); a slacker cable is refused up front with one
 :class:`~dynstiff.errors.SlackCableError`, whatever band or order is asked.
 """
 
+from __future__ import annotations
+
 from numbers import Integral, Real
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -41,6 +44,14 @@ from dynstiff._vec import cross
 from dynstiff.cable.exact_condense import axial_coupling, condense, quadrature_state, string_matrix
 from dynstiff.cable.exact_mesh import gll, mesh, static_along, tangent_integrals
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
+    from dynstiff.cable.exact_condense import Quadrature
 
 __all__ = ["ExactCable", "DEFAULT_ORDER", "HALF_WAVES_PER_ELEMENT", "MIN_TENSION_RATIO",
            "STATIC_CHECK_RTOL"]
@@ -102,8 +113,8 @@ class ExactCable:
         That share of the kinetic energy [-].
     """
 
-    def __init__(self, state, omega_max, order=DEFAULT_ORDER, damping=True,
-                 half_waves=HALF_WAVES_PER_ELEMENT):
+    def __init__(self, state: str | CatenaryState, omega_max: float, order: float = DEFAULT_ORDER,
+                 damping: bool = True, half_waves: float = HALF_WAVES_PER_ELEMENT) -> None:
         if not (isinstance(omega_max, Real) and np.isfinite(omega_max) and omega_max > 0):
             raise InvalidParameterError(
                 f"omega_max must be finite and > 0 [rad/s], got {omega_max!r}")
@@ -147,7 +158,8 @@ class ExactCable:
         self.static_mismatch, self.static_floor = self._self_check()
 
     # ------------------------------------------------------------------ construction
-    def _build_modes(self, q, mass, eta, tangent):
+    def _build_modes(self, q: Quadrature, mass: NDArray[np.float64], eta: float,
+                     tangent: NDArray[np.float64]) -> None:
         """Clamped modes of the interior, in flexibility form, and the static constraint
         modes (local 6-vector ordering A x y z, B x y z) (theory.md §11.3): the out-of-plane
         family a string, the in-plane family in mixed form (theory.md §11.2)."""
@@ -186,7 +198,7 @@ class ExactCable:
                   self.node_mass):
             a.flags.writeable = False
 
-    def _self_check(self):
+    def _self_check(self) -> tuple[float, float]:
         """Difference of the discretisation's own static stiffness from the exact one and the
         bound of its rounding, in the energy norm of the exact end stiffness K:
         max over the four 3 x 3 blocks of ||K^-1/2 (K_d,blk -+ K) K^-1/2||_2 (theory.md
@@ -215,7 +227,7 @@ class ExactCable:
                 f"{self.order}, {len(self.edges) - 1} elements", residual=err)
         return err, floor
 
-    def _static_two_end(self, eta):
+    def _static_two_end(self, eta: float) -> NDArray[Any]:
         """Exact static two-end stiffness of the catenary, local frame, (6, 6) [N/m]:
         [[K_s, -K_s], [-K_s, K_s]], K_s = (int D^-1 ds)^-1 (theory.md §11.3)."""
         st = self.state
@@ -233,22 +245,22 @@ class ExactCable:
 
     # ------------------------------------------------------------------ parts
     @property
-    def static_stiffness(self):
+    def static_stiffness(self) -> NDArray[Any]:
         """Exact static two-end stiffness K_s, local frame, (6, 6) [N/m] (theory.md §11.3)."""
         return self._K_s
 
     @property
-    def mass_psi(self):
+    def mass_psi(self) -> NDArray[Any]:
         """M_psi = M_bb + Psi^T M_ii Psi, local frame, (6, 6) [kg] (theory.md §11.3)."""
         return self._M_psi
 
     @property
-    def flexibilities(self):
+    def flexibilities(self) -> NDArray[Any]:
         """mu_j = 1 / lambda_j of every interior mode (damped if the cable is), shape
         (n_modes,) [s^2/rad^2], in the order of :meth:`beta_dyads`."""
         return self._mu
 
-    def beta_dyads(self, ends="end"):
+    def beta_dyads(self, ends: str = "end") -> NDArray[Any]:
         """beta_j beta_j^T of every interior mode, flattened, local frame: (n_modes, 9) for
         the end-B block (``ends="end"``) or (n_modes, 36) (``"both"``) [kg]."""
         if ends == "both":
@@ -257,7 +269,7 @@ class ExactCable:
         return np.einsum("ja,jb->jab", b, b).reshape(b.shape[0], 9)
 
     # ------------------------------------------------------------------ queries
-    def _check(self, omega):
+    def _check(self, omega: NDArray[np.float64]) -> None:
         w = np.abs(omega)
         if w.size and w.max() > self.omega_max * (1 + 1e-12):
             bad = np.asarray(omega).ravel()[int(np.argmax(w))]
@@ -266,14 +278,14 @@ class ExactCable:
                 f" Hz), the band this exact cable model was built for, got {bad:.6g}; build "
                 f"it with a larger omega_max (fmax_hz)")
 
-    def omega_eff_sq(self, omega):
+    def omega_eff_sq(self, omega: NDArray[Any] | float) -> NDArray[Any] | float:
         """w^2 = omega^2 - i omega c / m [rad^2/s^2] (viscous damping as complex mass)."""
         w2 = omega**2
         if self.c > 0:
             w2 = w2 - 1j * omega * self.c / self.m
         return w2
 
-    def local_coefficients(self, omega):
+    def local_coefficients(self, omega: NDArray[Any]) -> NDArray[Any]:
         """Two-end dynamic stiffness in the local frame, flattened, shape (n_omega, 36)
         [N/m], ordering (A x y z, B x y z) x (A x y z, B x y z) (theory.md §11.3).
         ``omega`` [rad/s], validated array (real or complex)."""
@@ -288,7 +300,7 @@ class ExactCable:
             K = K.real
         return K
 
-    def dynamic_stiffness(self, omega, ends="end"):
+    def dynamic_stiffness(self, omega: ArrayLike, ends: str = "end") -> NDArray[Any]:
         """Dynamic stiffness in the global frame [N/m]: (n_omega, 3, 3) for end B with A
         clamped (``ends="end"``) or (n_omega, 6, 6) ordered (A xyz, B xyz) (``"both"``).
         Force applied to the cable end(s) per unit displacement; infinite at the poles."""
@@ -301,13 +313,13 @@ class ExactCable:
         K = E6[None] @ K @ E6.T[None]
         return K[:, 3:, 3:] if ends == "end" else K
 
-    def mode_count(self, omega):
+    def mode_count(self, omega: NDArray[np.float64]) -> NDArray[np.int64]:
         """J0: clamped-cable eigenvalues strictly below omega^2, shape (n_omega,) (damping
         ignored); ``omega`` [rad/s] validated array."""
         self._check(omega)
         return np.searchsorted(self.eigenvalues, np.asarray(omega) ** 2, side="left")
 
-    def end_response(self, omega, u_end):
+    def end_response(self, omega: float, u_end: NDArray[Any]) -> NDArray[np.complex128]:
         """Node displacements (n_nodes, 3) [m], local frame, for the end-B displacement
         ``u_end`` (3,) [m, local frame] with A clamped, at one omega [rad/s]:
         u_i = Psi u_b + w^2 (K_ii - w^2 M_ii)^-1 M_ii Psi u_b (theory.md §11.3)."""
@@ -328,7 +340,7 @@ class ExactCable:
         u[-1] = u_end
         return u
 
-    def discrete_static_stiffness(self):
+    def discrete_static_stiffness(self) -> NDArray[Any]:
         """Static two-end stiffness of the discretisation itself, local frame, (6, 6) [N/m]:
         the Schur complement K_bb - K_bi K_ii^-1 K_ib, computed in mixed form (no entry of
         order EA / h, theory.md §11.2); converges to the exact one."""
@@ -337,14 +349,14 @@ class ExactCable:
             K[np.ix_(f.local, f.local)] += f.static
         return K
 
-    def _static_floor(self):
+    def _static_floor(self) -> NDArray[np.float64]:
         """Bound of the rounding error of :meth:`discrete_static_stiffness`, (6, 6) [N/m]."""
         K = np.zeros((6, 6))
         for f in self._fam:
             K[np.ix_(f.local, f.local)] += f.floor
         return K
 
-    def kinetic_energy(self, omega, u_end):
+    def kinetic_energy(self, omega: float, u_end: NDArray[np.float64]) -> float:
         """sum m_k |u_k|^2 [kg m^2] of the response to ``u_end`` at omega: the cable's kinetic
         energy per unit omega^2 / 2 (theory.md §11.3)."""
         u = self.end_response(omega, u_end)

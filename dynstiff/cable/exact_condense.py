@@ -23,11 +23,22 @@ M^1/2 F M^1/2, F = (Z^-1)_uu, are 1 / lambda_j), the static constraint modes and
 discretisation's own static stiffness with a bound of its rounding error.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.cable.exact_mesh import gll
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = ["Family", "quadrature_state", "string_matrix", "axial_coupling", "condense"]
 
@@ -68,7 +79,8 @@ class Quadrature:
     n: int
 
 
-def quadrature_state(static_along, state, edges, order):
+def quadrature_state(static_along: Callable[..., Any], state: CatenaryState,
+                     edges: NDArray[np.float64], order: int) -> Quadrature:
     """:class:`Quadrature` of the elements ``edges`` [m] at GLL order ``order``."""
     xi, _, _ = gll(order)
     p, n_el = order, len(edges) - 1
@@ -80,7 +92,7 @@ def quadrature_state(static_along, state, edges, order):
     return Quadrature(T=st.T, tx=st.tx, tz=st.tz, Dt=Dt, h=h, idx=idx, n=n_el * p + 1)
 
 
-def string_matrix(q, order):
+def string_matrix(q: Quadrature, order: int) -> NDArray[np.float64]:
     """K_T of one displacement component, (n, n) [N/m]: Ke[a, b] = (2/h) sum_q w_q Dm[q, a]
     Dm[q, b] D_t(s_q), assembled."""
     _, wq, Dm = gll(order)
@@ -92,7 +104,8 @@ def string_matrix(q, order):
     return K
 
 
-def axial_coupling(q, order, EA):
+def axial_coupling(q: Quadrature, order: int,
+                   EA: complex) -> tuple[NDArray[np.float64], NDArray[Any]]:
     """B (n_tau, 2 n) [N/m] and C (n_tau,) [N/m] of the mixed form (module notes), in-plane
     DOFs interleaved (x_0, z_0, x_1, ...); ``EA`` [N] real or complex (hysteretic)."""
     _, wq, Dm = gll(order)
@@ -109,7 +122,9 @@ def axial_coupling(q, order, EA):
     return B, C
 
 
-def condense(K, m_inner, inner, bnd, local, B=None, C=None):
+def condense(K: NDArray[np.float64], m_inner: NDArray[np.float64], inner: NDArray[np.int64],
+             bnd: list[int], local: list[int], B: NDArray[np.float64] | None = None,
+             C: NDArray[np.float64] | None = None) -> Family:
     """Flexibility-form modal condensation of one family (theory.md §11.3).
 
     Parameters

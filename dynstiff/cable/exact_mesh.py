@@ -4,10 +4,18 @@ length, the element boundaries graded towards low tension and sized to the band,
 closed-form integrals of t t^T along the arc (the hysteretic static stiffness, §11.3).
 Internal to :mod:`dynstiff.cable.exact`."""
 
+from __future__ import annotations
+
 import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = ["gll", "static_along", "mesh", "tangent_integrals", "ELEMENTS_PER_EFOLD"]
 
@@ -16,7 +24,7 @@ ELEMENTS_PER_EFOLD = 1.0
 
 
 @functools.lru_cache(maxsize=16)
-def gll(order):
+def gll(order: int) -> tuple[NDArray[np.float64], ...]:
     """Gauss-Lobatto-Legendre nodes xi (p+1,) on [-1, 1], weights (p+1,) and the
     differentiation matrix Dm (p+1, p+1), Dm[q, a] = l_a'(xi_q)."""
     p = int(order)
@@ -43,7 +51,7 @@ class _Static:
     tz: np.ndarray
 
 
-def static_along(state, s):
+def static_along(state: CatenaryState, s: NDArray[np.float64]) -> _Static:
     """T(s), t(s) of the elastic catenary at unstretched arc lengths s [m] (theory.md §1.1)."""
     w0 = state.cable.weight_per_length(state.g)
     V = state.V0 + w0 * np.asarray(s, dtype=float)
@@ -51,7 +59,8 @@ def static_along(state, s):
     return _Static(T=T, tx=state.H / T, tz=V / T)
 
 
-def mesh(state, omega_max, half_waves, per_efold=ELEMENTS_PER_EFOLD):
+def mesh(state: CatenaryState, omega_max: float, half_waves: float,
+         per_efold: float = ELEMENTS_PER_EFOLD) -> NDArray[np.float64]:
     """Element boundaries in s [m], shape (n_el + 1,) (theory.md §11.2).
 
     Elements are spread evenly in the measure
@@ -82,7 +91,7 @@ def mesh(state, omega_max, half_waves, per_efold=ELEMENTS_PER_EFOLD):
     return edges
 
 
-def tangent_integrals(state):
+def tangent_integrals(state: CatenaryState) -> tuple[float, float, float]:
     """int_0^L0 t t^T ds in the cable plane, (I_xx, I_xz, I_zz) [m], closed form."""
     H, V0, Vb, L0 = state.H, state.V0, state.Vb, state.unstretched_length
     W = Vb - V0

@@ -4,7 +4,10 @@ and axial modes), the measured error of its clamped frequencies against the exac
 the warning raised when it is used outside its range.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +15,10 @@ from dynstiff.cable.chord import chord_parameters
 from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.psi import closed_form_spectrum
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
+
+if TYPE_CHECKING:
+    from dynstiff.cable.catenary import CatenaryState
+    from dynstiff.cable.chord import ChordParameters
 
 __all__ = [
     "ClosedFormValidity", "DEFAULT_GUARD_RTOL", "ROBOT_ERROR_FACTOR", "closed_form_local_error",
@@ -67,7 +74,7 @@ class ClosedFormValidity:
     causes: dict
     values: dict
 
-    def reasons(self, rtol):
+    def reasons(self, rtol: float) -> list[str]:
         """Causes whose estimate exceeds ``rtol``, as readable text."""
         v = self.values
         text = {"sag": f"sag d/L = {v['sag_ratio']:.3g}",
@@ -79,7 +86,8 @@ class ClosedFormValidity:
         return [text[k] for k, e in self.causes.items() if e > rtol]
 
 
-def closed_form_validity(state, omega_max=0.0, tension="mean", params=None):
+def closed_form_validity(state: CatenaryState, omega_max: float = 0.0, tension: str = "mean",
+                         params: ChordParameters | None = None) -> ClosedFormValidity:
     """How far the closed form can be trusted for this cable up to omega_max [rad/s]
     (theory.md §11.5); omega_max decides whether axial modes enter the band. ``params``:
     ``chord_parameters(state, tension)`` when the caller has it already.
@@ -107,7 +115,8 @@ def closed_form_validity(state, omega_max=0.0, tension="mean", params=None):
     return ClosedFormValidity(error=float(err), causes=causes, values=values)
 
 
-def guard_cable(state, omega_max, tension, guard_rtol):
+def guard_cable(state: CatenaryState, omega_max: float, tension: str,
+                guard_rtol: float | str | None) -> None:
     """Warn (ClosedFormWarning) when the closed form is used outside its range for one cable
     up to omega_max [rad/s]: slack, axial modes in the band, or a measured error of its
     clamped frequencies above guard_rtol where the envelope exceeds it (theory.md §11.5)."""
@@ -135,7 +144,7 @@ def guard_cable(state, omega_max, tension, guard_rtol):
         cable=None, cause=cause), stacklevel=user_stacklevel())
 
 
-def closed_form_local_error(state, omega_max, tension="mean"):
+def closed_form_local_error(state: CatenaryState, omega_max: float, tension: str = "mean") -> float:
     """Measured relative error of the closed form's clamped-cable frequencies against the
     exact model (theory.md §11.5), over the modes below max(omega_max, 8 omega_1) [rad/s]
     (omega_1 the first taut-string frequency); the exact model's axial modes are left out

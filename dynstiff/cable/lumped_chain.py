@@ -30,8 +30,11 @@ displacement (K u = f_applied); the degree-of-freedom order is node-major,
 (x_0, y_0, z_0, x_1, ..., z_N).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -49,13 +52,17 @@ from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.params import Cable
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
 __all__ = ["ChainState", "chain_equilibrium"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
 # ------------------------------------------------------------------------ initial guess
-def _tension_estimate(anchor, end, unstretched_length, cable, g):
+def _tension_estimate(anchor: NDArray[np.float64], end: NDArray[np.float64],
+                      unstretched_length: float, cable: Cable, g: float) -> float:
     """Rough chord tension [N] of a parabolic elastic cable, used to seed the statics.
 
     Solves L (1 + (8/3)(d/L)^2) = L0 (1 + T/EA) with d = q L^2 / (8 T) and
@@ -72,7 +79,7 @@ def _tension_estimate(anchor, end, unstretched_length, cable, g):
     if q <= 0.0 or cos_theta < 1e-9:
         return straight + cable.mass_per_length * g * L0
 
-    def mismatch(T):
+    def mismatch(T: float) -> float:
         return length * (1.0 + (8.0 / 3.0) * (q * length / (8.0 * T)) ** 2) - L0 * (1.0 + T / EA)
 
     t_lo, t_hi = q * length, q * length + straight
@@ -83,8 +90,9 @@ def _tension_estimate(anchor, end, unstretched_length, cable, g):
     return scipy.optimize.brentq(mismatch, t_lo, t_hi, xtol=1e-12 * t_hi, rtol=1e-10)
 
 
-def _force_space_start(anchor, end, unstretched_length, cable, n_segments, g,
-                       max_iter=50):
+def _force_space_start(anchor: NDArray[np.float64], end: NDArray[np.float64],
+                       unstretched_length: float, cable: Cable, n_segments: int, g: float,
+                       max_iter: int = 50) -> NDArray[np.float64]:
     """Starting nodes from the chain's equations written for the force in the first segment.
 
     Node equilibrium makes the segment forces f_i = f_0 + i m l0 g e_z (i = 0..N-1), and a
@@ -116,11 +124,11 @@ def _force_space_start(anchor, end, unstretched_length, cable, n_segments, g,
     scale = T0 + w * n_segments
     eye = np.eye(3)
 
-    def phi(f0, delta):
+    def phi(f0: NDArray[np.float64], delta: float) -> float:
         T2 = np.sum((f0 + lift) ** 2, axis=1)
         return l0 * np.sum(np.sqrt(T2 + delta * delta) + T2 / (2.0 * EA)) - np.dot(f0, chord)
 
-    def newton(f0, delta, gtol):
+    def newton(f0: NDArray[np.float64], delta: float, gtol: float) -> NDArray[np.float64]:
         value = phi(f0, delta)
         for _ in range(max_iter):
             f = f0 + lift
@@ -174,7 +182,8 @@ def _force_space_start(anchor, end, unstretched_length, cable, n_segments, g,
     return nodes
 
 
-def _slack_segment(chord, unstretched_length, cable, n_segments, g):
+def _slack_segment(chord: NDArray[np.float64], unstretched_length: float, cable: Cable,
+                   n_segments: int, g: float):
     """Index of the segment that is slack at equilibrium, or None if the chain is taut.
 
     At equilibrium the segment forces are f_i = f_0 + i m l0 g e_z. A segment k with zero
@@ -239,29 +248,29 @@ class ChainState:
     residual: float
 
     @property
-    def segment_length(self):
+    def segment_length(self) -> float:
         """Unstretched segment length l0 = L0 / N [m]."""
         return self.unstretched_length / self.n_segments
 
     @property
-    def units(self):
+    def units(self) -> NDArray[np.float64]:
         """Unit vectors n_i of the segments, from node i to node i+1, shape (N, 3) [-]."""
         d = np.diff(self.nodes, axis=0)
         return d / np.linalg.norm(d, axis=1)[:, None]
 
     @property
-    def force_on_end(self):
+    def force_on_end(self) -> NDArray[np.float64]:
         """Force the cable exerts on the end B, shape (3,) [N] (points towards node N-1)."""
         return -self.tensions[-1] * self.units[-1]
 
     @property
-    def force_on_anchor(self):
+    def force_on_anchor(self) -> NDArray[np.float64]:
         """Force the cable exerts on the anchor A, shape (3,) [N] (points towards node 1)."""
         return self.tensions[0] * self.units[0]
 
 
 # ------------------------------------------------------------------------------- analyses
-def checked_integer(name, value, minimum):
+def checked_integer(name: str, value: int, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, Integral):
         raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
     if value < minimum:
@@ -269,8 +278,9 @@ def checked_integer(name, value, minimum):
     return int(value)
 
 
-def chain_equilibrium(anchor, end, unstretched_length, cable, n_segments,
-                      g=STANDARD_GRAVITY, tol=1e-12, max_iter=100):
+def chain_equilibrium(anchor: ArrayLike, end: ArrayLike, unstretched_length: float, cable: Cable,
+                      n_segments: int, g: float = STANDARD_GRAVITY, tol: float = 1e-12,
+                      max_iter: int = 100) -> ChainState:
     """Static equilibrium of a lumped-mass cable hanging between a fixed anchor and an end.
 
     Newton's method on the 3(N-1) interior node coordinates with the analytic tangent
@@ -373,7 +383,9 @@ def chain_equilibrium(anchor, end, unstretched_length, cable, n_segments,
                       n_segments=n_segments, unstretched_length=L0, residual=float(res))
 
 
-def _newton(nodes, l0, EA, total_weight, node_weight, tol, max_iter):
+def _newton(nodes: NDArray[np.float64], l0: float, EA: float, total_weight: float,
+            node_weight: float, tol: float,
+            max_iter: int) -> tuple[NDArray[np.float64], NDArray[np.float64], float, int]:
     """Damped Newton iteration on the interior nodes of a chain (kernel of `chain_equilibrium`).
 
     Parameters
@@ -401,7 +413,8 @@ def _newton(nodes, l0, EA, total_weight, node_weight, tol, max_iter):
     seg[-1] = (nodes[-1] - nodes[0]) - np.sum(seg[:-1], axis=0)   # exact closure
     strain, units = segments_from_vectors(seg, l0)
 
-    def measure(eps, n):
+    def measure(eps: NDArray[np.float64],
+                n: NDArray[np.float64]) -> tuple[NDArray[np.float64], float, bool]:
         forces = interior_forces(eps, n, EA, node_weight)
         res = np.max(np.linalg.norm(forces, axis=1)) if forces.size else 0.0
         return forces, res, res <= tol * (total_weight + EA * max(np.max(eps), 0.0))
@@ -437,7 +450,8 @@ def _newton(nodes, l0, EA, total_weight, node_weight, tol, max_iter):
     return strain, units, res, iteration
 
 
-def _regularised_solve(ab, rhs):
+def _regularised_solve(ab: NDArray[np.float64],
+                       rhs: NDArray[np.float64]) -> NDArray[np.float64] | None:
     """Solve K x = rhs for symmetric positive semi-definite banded K (upper form).
 
     A slack segment has no stiffness, so K may be singular during the iterations; then a
@@ -460,7 +474,7 @@ def _regularised_solve(ab, rhs):
     return None
 
 
-def check_chain_state(state):
+def check_chain_state(state: str | ChainState) -> None:
     if not isinstance(state, ChainState):
         raise InvalidParameterError(
             f"state must be a ChainState, got {type(state).__name__}")

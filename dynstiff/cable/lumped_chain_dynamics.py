@@ -2,7 +2,10 @@
 chain's tangent stiffness and mass, its dynamic stiffness condensed onto the ends, and its
 fixed-end natural frequencies. Notation and conventions as :mod:`dynstiff.cable.lumped_chain`."""
 
+from __future__ import annotations
+
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,16 +19,23 @@ from dynstiff.cable.lumped_elements import (
 )
 from dynstiff.errors import InvalidParameterError, PoleWarning
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.cable.lumped_chain import ChainState
+
 __all__ = ["chain_matrices", "chain_end_dynamic_stiffness", "chain_fixed_end_frequencies"]
 
 
-def _stiffness_elements(state, axial_factor=1.0):
+def _stiffness_elements(state: ChainState, axial_factor: complex = 1.0) -> NDArray[Any]:
     """Element stiffnesses of a converged chain, shape (N, 3, 3) [N/m]."""
     axial = axial_factor * state.cable.EA / state.segment_length
     return element_stiffness(state.units, state.lengths, state.tensions, axial)
 
 
-def chain_matrices(state):
+def chain_matrices(state: str | ChainState) -> tuple[Any, NDArray[np.float64]]:
     """Tangent stiffness and lumped mass of the whole chain, end nodes included.
 
     K = sum_e [[K_e, -K_e], [-K_e, K_e]] with K_e = (EA/l0) n n^T + (T/l)(I - n n^T)
@@ -54,7 +64,8 @@ def chain_matrices(state):
     return K, M
 
 
-def chain_end_dynamic_stiffness(state, omega, ends="end"):
+def chain_end_dynamic_stiffness(state: ChainState, omega: ArrayLike,
+                                ends: str = "end") -> NDArray[Any]:
     """Dynamic stiffness of the chain condensed onto its end nodes.
 
     D(omega) = K - omega^2 M + i omega C, with K built with EA (1 + i eta) in the axial
@@ -138,7 +149,7 @@ def chain_end_dynamic_stiffness(state, omega, ends="end"):
     return out
 
 
-def chain_fixed_end_frequencies(state, n_modes):
+def chain_fixed_end_frequencies(state: ChainState, n_modes: int) -> NDArray[np.float64]:
     """Natural frequencies of the chain with both ends clamped.
 
     Lowest eigenvalues of K_ii phi = omega^2 (m l0) phi, K_ii the interior block of the

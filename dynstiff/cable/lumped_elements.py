@@ -4,7 +4,16 @@ tangent stiffness and the block-tridiagonal assembly of the interior stiffness (
 storage for LAPACK).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
 
 __all__ = [
     "BANDWIDTH", "block_tridiagonal_entries", "element_stiffness", "interior_banded",
@@ -16,7 +25,8 @@ BANDWIDTH = 5          # half bandwidth of a node-major 3-DOF block-tridiagonal 
 
 
 # ------------------------------------------------------------------------------ kernels
-def segments_from_vectors(seg, l0):
+def segments_from_vectors(seg: NDArray[np.float64],
+                          l0: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Split segment vectors into strains and unit vectors.
 
     Parameters
@@ -37,7 +47,8 @@ def segments_from_vectors(seg, l0):
     return lengths / l0 - 1.0, seg / lengths[:, None]
 
 
-def update_segments(strain, units, l0, dseg):
+def update_segments(strain: NDArray[np.float64], units: NDArray[np.float64], l0: float,
+                    dseg: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Add ``dseg`` to the segment vectors l0 (1 + epsilon) n, keeping epsilon accurate.
 
     The length change is formed as (2 d.dd + |dd|^2) / (|d + dd| + |d|), so the strain
@@ -59,7 +70,8 @@ def update_segments(strain, units, l0, dseg):
     return strain + dl / l0, new / new_lengths[:, None]
 
 
-def interior_forces(strain, units, EA, node_weight):
+def interior_forces(strain: NDArray[np.float64], units: NDArray[np.float64], EA: float,
+                    node_weight: float) -> NDArray[np.float64]:
     """Net force on each interior node (the Newton residual).
 
     F_i = T_i n_i - T_{i-1} n_{i-1} - (0, 0, m l0 g) for i = 1..N-1, T = EA max(epsilon, 0):
@@ -74,7 +86,8 @@ def interior_forces(strain, units, EA, node_weight):
     return f[1:] - f[:-1] - node_weight * _EZ
 
 
-def potential_energy(strain, units, l0, EA, node_weight):
+def potential_energy(strain: NDArray[np.float64], units: NDArray[np.float64], l0: float, EA: float,
+                     node_weight: float) -> float:
     """Total potential energy [J] (strain + gravity of interior nodes, heights from A).
 
     Pi = sum_i EA l0 / 2 (epsilon_i)_+^2 + m l0 g sum_{j=1}^{N-1} z_j. It is convex in the
@@ -87,7 +100,9 @@ def potential_energy(strain, units, l0, EA, node_weight):
     return 0.5 * EA * l0 * np.dot(stretch, stretch) + node_weight * np.sum(heights)
 
 
-def element_stiffness(units, lengths, tensions, axial):
+def element_stiffness(units: NDArray[np.float64], lengths: NDArray[np.float64],
+                      tensions: NDArray[np.float64],
+                      axial: NDArray[np.float64] | float) -> NDArray[np.float64]:
     """Element tangent stiffness K_e = k_a n n^T + (T / l)(I - n n^T) (theory.md §7.1).
 
     This is the exact derivative of the element force T n with respect to the segment
@@ -112,7 +127,9 @@ def element_stiffness(units, lengths, tensions, axial):
     return axial * nn + geometric * (np.eye(3) - nn)
 
 
-def block_tridiagonal_entries(ke):
+def block_tridiagonal_entries(
+        ke: NDArray[np.float64],
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
     """Row, column and value arrays of the assembled stiffness of a chain of elements.
 
     Parameters
@@ -136,7 +153,8 @@ def block_tridiagonal_entries(ke):
     return np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
 
 
-def interior_banded(ke, diag_extra=0.0, symmetric=True):
+def interior_banded(ke: NDArray[Any], diag_extra: float = 0.0,
+                    symmetric: bool = True) -> NDArray[Any]:
     """Banded storage of the interior block K_II (nodes 1..N-1) of the chain stiffness.
 
     Parameters

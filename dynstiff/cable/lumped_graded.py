@@ -37,7 +37,10 @@ Notation as :mod:`dynstiff.cable.lumped_chain`; l0_k, the unstretched length of 
 varies along the chain.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -47,12 +50,18 @@ from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.params import Cable
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
 __all__ = ["GradedChain", "graded_edges", "graded_chain"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
 
 
-def graded_edges(unstretched_length, n_segments, s_low=None, core=None):
+def graded_edges(unstretched_length: float, n_segments: int, s_low: float | None = None,
+                 core: float | None = None) -> NDArray[np.float64]:
     """Segment boundaries [m], shape (N + 1,), evenly spread in Phi(s) (module notes).
 
     Parameters
@@ -118,16 +127,17 @@ class GradedChain:
     closure: float
 
     @property
-    def n_segments(self):
+    def n_segments(self) -> int:
         """N."""
         return self.tensions.size
 
     @property
-    def lengths(self):
+    def lengths(self) -> NDArray[np.float64]:
         """Stretched segment lengths l_k = l0_k (1 + T_k / EA) [m], shape (N,)."""
         return self.segment_lengths * (1.0 + self.tensions / self.cable.EA)
 
-    def _saddle(self, omega, clamped):
+    def _saddle(self, omega: float,
+                clamped: list[int]) -> tuple[Any, NDArray[np.int64], NDArray[np.int64]]:
         """The mixed matrix Z(omega) over (u_1, tau_1, ..., u_N-1, tau_N-1 and tau_0 first)
         restricted to the unknowns that are not ``clamped`` nodes, as sparse CSC, and the
         columns of the clamped nodes' coupling (module notes)."""
@@ -141,7 +151,7 @@ class GradedChain:
         # unknown index: node k at 4k..4k+2, tau_k at 4k+3
         rows, cols, vals = [], [], []
 
-        def add(i, j, v):
+        def add(i: NDArray[np.int64], j: NDArray[np.int64], v: NDArray[np.float64]) -> None:
             rows.append(i)
             cols.append(j)
             vals.append(v)
@@ -168,7 +178,7 @@ class GradedChain:
         keep = np.setdiff1d(np.arange(n), fixed)
         return Z, keep, fixed
 
-    def fixed_end_frequencies(self, n_modes):
+    def fixed_end_frequencies(self, n_modes: int) -> NDArray[np.float64]:
         """Lowest ``n_modes`` natural frequencies with both ends clamped [Hz], ascending:
         the largest eigenvalues mu = 1 / omega^2 of M^1/2 F M^1/2, F the interior
         flexibility applied through the LU factors of the mixed matrix (module notes)."""
@@ -185,7 +195,7 @@ class GradedChain:
         r = np.sqrt(np.repeat(self.node_masses[1:-1], 3))
         rhs = np.zeros(keep.size)
 
-        def apply(x):
+        def apply(x: NDArray[np.float64]) -> NDArray[np.float64]:
             rhs[:] = 0.0
             rhs[u_pos] = r * x
             return r * lu.solve(rhs)[u_pos]
@@ -196,7 +206,7 @@ class GradedChain:
                                        ncv=min(u_pos.size, max(2 * n_modes + 1, 40)))
         return np.sort(1.0 / np.sqrt(mu)) / (2.0 * np.pi)
 
-    def end_dynamic_stiffness(self, omega):
+    def end_dynamic_stiffness(self, omega: ArrayLike) -> NDArray[np.float64]:
         """Dynamic stiffness of end B with A clamped, shape (n_omega, 3, 3) [N/m]: the mixed
         matrix condensed onto B, S = Z_bb - Z_br Z_rr^-1 Z_rb, one sparse LU per omega
         [rad/s] (>= 0); the half segment mass at B included (undamped)."""
@@ -215,8 +225,10 @@ class GradedChain:
         return out
 
 
-def graded_chain(anchor, end, unstretched_length, cable, n_segments, g=STANDARD_GRAVITY,
-                 s_low=None, core=None, f0=None, tol=1e-14, max_iter=200):
+def graded_chain(anchor: ArrayLike, end: ArrayLike, unstretched_length: float, cable: str | Cable,
+                 n_segments: int, g: float = STANDARD_GRAVITY, s_low: float | None = None,
+                 core: float | None = None, f0: NDArray[np.float64] | None = None,
+                 tol: float = 1e-14, max_iter: int = 200) -> GradedChain:
     """Static equilibrium of a lumped chain whose segments are graded towards s_low.
 
     Parameters
@@ -271,17 +283,17 @@ def graded_chain(anchor, end, unstretched_length, cable, n_segments, g=STANDARD_
         f0 = -0.5 * W * _EZ + (W * h / hn if hn > 0 else 0.0)
     f0 = np.asarray(f0, dtype=float).copy()
 
-    def parts(f0):
+    def parts(f0: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         f = f0 + lift
         T = np.linalg.norm(f, axis=1)
         return f, T
 
-    def closure(f0):
+    def closure(f0: NDArray[np.float64]) -> float:
         f, T = parts(f0)
         d = (l0 * (1.0 + T / EA) / T)[:, None] * f
         return float(np.linalg.norm(d.sum(axis=0) - chord))
 
-    def energy(f0):
+    def energy(f0: NDArray[np.float64]) -> float:
         _, T = parts(f0)
         return float(np.sum(l0 * (T + T * T / (2.0 * EA))) - f0 @ chord)
 

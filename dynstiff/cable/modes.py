@@ -3,8 +3,11 @@
 poles of the cable's dynamic stiffness of the same model.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -14,6 +17,16 @@ from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
 from dynstiff.cable.psi import closed_form_spectrum
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = ["CableModes", "cable_natural_frequencies"]
 
@@ -33,6 +46,15 @@ class CableModes:
         "out-of-plane", "in-plane" or "axial" (exact model).
     order : ndarray of int, shape (n,)
         Index of the mode within its family, from 1.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> m = ds.cable_natural_frequencies(state, 3)
+    >>> [f"{f:.2f}" for f in m.freq_hz], m.family[0]
+    (['6.84', '6.94', '13.67'], 'out-of-plane')
     """
 
     freq_hz: np.ndarray
@@ -41,32 +63,62 @@ class CableModes:
     order: np.ndarray
 
     @property
-    def labels(self):
-        """Labels such as "in-plane symmetric 1"."""
+    def labels(self) -> tuple[str, ...]:
+        """Labels such as "in-plane symmetric 1".
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> ds.cable_natural_frequencies(state, 2).labels
+        ('out-of-plane 1', 'in-plane symmetric 1')
+        """
         return tuple(f"{f} {k}" for f, k in zip(self.family, self.order))
 
-    def __len__(self):
+    def __len__(self) -> int:
         return len(self.freq_hz)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         f = self.freq_hz
         span = f"{f.min():.4g}-{f.max():.4g} Hz" if len(f) else "none"
         return f"CableModes({len(self)} modes {span}: {', '.join(self.labels[:3])}, ...)"
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """The frequencies by family: :func:`dynstiff.plot.plot_cable_modes`. Returns the
-        matplotlib Figure."""
+        matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> fig = ds.cable_natural_frequencies(state, 3).plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_cable_modes
         return plot_cable_modes(self, ax=ax)
 
-    def to_frame(self):
-        """pandas DataFrame with columns freq [Hz], Omega [-], family, order."""
+    def to_frame(self) -> pd.DataFrame:
+        """pandas DataFrame with columns freq [Hz], Omega [-], family, order.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+        >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+        >>> df = ds.cable_natural_frequencies(state, 3).to_frame()
+        >>> list(df.columns), len(df)
+        (['freq [Hz]', 'Omega [-]', 'family', 'order'], 3)
+        """
         import pandas as pd
         return pd.DataFrame({"freq [Hz]": self.freq_hz, "Omega [-]": self.Omega,
                              "family": list(self.family), "order": self.order})
 
 
-def _exact_modes(state, n):
+def _exact_modes(state: CatenaryState, n: int) -> tuple[NDArray[np.float64], tuple[Any, ...]]:
     """First n clamped modes of the exact cable (theory.md §11), band grown until it holds
     them; returns (omega_j [rad/s], family)."""
     w = 1.2 * (n + 1) * lowest_string_omega(state)
@@ -79,8 +131,9 @@ def _exact_modes(state, n):
     raise InvalidParameterError(f"n_modes = {n} is more than the exact cable resolves")
 
 
-def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form",
-                              guard_rtol=DEFAULT_GUARD_RTOL):
+def cable_natural_frequencies(state: CatenaryState, n_modes: int,
+                              tension: str = "mean", model: str = "closed-form",
+                              guard_rtol: float | None = DEFAULT_GUARD_RTOL) -> CableModes:
     """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
 
     "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane
@@ -103,6 +156,15 @@ def cable_natural_frequencies(state, n_modes, tension="mean", model="closed-form
     Returns
     -------
     CableModes
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> state = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> m = ds.cable_natural_frequencies(state, 3)
+    >>> print(f"{m.freq_hz[0]:.3f} Hz", m.labels[0])     # sqrt(T / m) / 2L, T = 299.1 N
+    6.836 Hz out-of-plane 1
     """
     if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
         raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")

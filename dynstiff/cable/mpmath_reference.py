@@ -44,10 +44,20 @@ local chord frame (u along A -> B, v sag direction, w out of plane), and, with
 (u_A, u_B) (so -omega^2 m~ L / 3 on K_uu of the one-end matrix; theory.md §3.6).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import mpmath
 import numpy as np
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.cable.chord import ChordParameters
 
 __all__ = [
     "params_to_mp_args",
@@ -65,7 +75,7 @@ _LOG10_2 = math.log10(2.0)
 _MAX_DPS = 4000
 
 
-def params_to_mp_args(params):
+def params_to_mp_args(params: ChordParameters) -> tuple[complex, ...]:
     """Scalars of a :class:`dynstiff.cable.dsm.ChordParameters` in the order of this module.
 
     Parameters
@@ -84,7 +94,7 @@ def params_to_mp_args(params):
             float(params.L_e), float(params.q))
 
 
-def _mp(x):
+def _mp(x: complex) -> Any:
     """Exact conversion of a Python/numpy real or complex number to mpf / mpc."""
     if isinstance(x, (mpmath.mpf, mpmath.mpc)):
         return +x
@@ -104,10 +114,10 @@ class _Evaluator:
     0 sets ``lost`` to inf (no finite precision was shown to be enough).
     """
 
-    def __init__(self):
+    def __init__(self) -> None:
         self.lost = 0.0
 
-    def sub(self, a, b):
+    def sub(self, a: Any, b: Any) -> Any:
         r = a - b
         if a != 0 or b != 0:
             if r == 0:
@@ -118,7 +128,8 @@ class _Evaluator:
         return r
 
 
-def _entries(L, T, m, c, EA, L_e, q, omega, chordwise_inertia):
+def _entries(L: float, T: float, m: float, c: float, EA: complex, L_e: float, q: float,
+             omega: float, chordwise_inertia: bool) -> tuple[tuple[Any, Any, Any, Any, Any], float]:
     """Building blocks at the current working precision, plus the digits lost.
 
     Returns ``(parts, lost)`` with parts = (K0/D, alpha tau, k_s, k_c, m_axial), where
@@ -154,7 +165,8 @@ def _entries(L, T, m, c, EA, L_e, q, omega, chordwise_inertia):
     return (K0_D, at, k_s, k_c, m_axial), ev.lost
 
 
-def _entries_to_dps(args, omega, chordwise_inertia, dps):
+def _entries_to_dps(args: tuple[complex, ...], omega: float, chordwise_inertia: bool,
+                    dps: int) -> tuple[tuple[Any, Any, Any, Any, Any], int] | None:
     """Raise the working precision until ``dps`` digits survive the cancellation.
 
     Starts from dps + guard + 2 log10(1/|psi|) (tau = 1 - tan psi / psi loses about
@@ -182,14 +194,15 @@ def _entries_to_dps(args, omega, chordwise_inertia, dps):
         work = need + _GUARD_DIGITS - _SPARE_DIGITS
 
 
-def _to_output(K, as_mpmath):
+def _to_output(K: list[list[Any]], as_mpmath: bool) -> Any:
     if as_mpmath:
         return mpmath.matrix(K)
     return np.array([[complex(x) for x in row] for row in K], dtype=complex)
 
 
-def end_stiffness_mp(L, T, m, c, EA, L_e, q, omega, chordwise_inertia=True, dps=50,
-                     as_mpmath=False):
+def end_stiffness_mp(L: float, T: float, m: float, c: float, EA: complex, L_e: float, q: float,
+                     omega: float, chordwise_inertia: bool = True, dps: int = 50,
+                     as_mpmath: bool = False) -> NDArray[np.complex128] | None:
     """3x3 dynamic stiffness of end B (A clamped), local (u, v, w), at high precision.
 
     Naive forms of theory.md §3.4::
@@ -238,8 +251,9 @@ def end_stiffness_mp(L, T, m, c, EA, L_e, q, omega, chordwise_inertia=True, dps=
         return _to_output(K, as_mpmath)
 
 
-def two_end_stiffness_mp(L, T, m, c, EA, L_e, q, omega, chordwise_inertia=True, dps=50,
-                         as_mpmath=False):
+def two_end_stiffness_mp(L: float, T: float, m: float, c: float, EA: complex, L_e: float, q: float,
+                         omega: float, chordwise_inertia: bool = True, dps: int = 50,
+                         as_mpmath: bool = False) -> Any | None:
     """6x6 dynamic stiffness of both ends, local (u_A, v_A, w_A, u_B, v_B, w_B), mpmath.
 
     Naive forms of theory.md §3.2-3.3: in-plane (K0/D) g g^T + [[0,0,0,0],[0,k_s,0,k_c],
@@ -273,7 +287,7 @@ def two_end_stiffness_mp(L, T, m, c, EA, L_e, q, omega, chordwise_inertia=True, 
         return _to_output(K, as_mpmath)
 
 
-def irvine_symmetric_roots_mp(lambda_sq, n_roots, dps=50):
+def irvine_symmetric_roots_mp(lambda_sq: Any, n_roots: int, dps: int = 50) -> list[Any] | None:
     """First ``n_roots`` symmetric in-plane roots of Irvine & Caughey (1974), mpmath.
 
     tan(Omega/2) = Omega/2 - (4/lambda^2) (Omega/2)^3 (theory.md §2.2). With psi = Omega/2
@@ -321,7 +335,7 @@ def irvine_symmetric_roots_mp(lambda_sq, n_roots, dps=50):
                 continue
             inv = 1 / lam2                             # 0 for lambda^2 = inf
 
-            def g(x, inv=inv):
+            def g(x: Any, inv: Any = inv) -> Any:
                 cx = mpmath.cos(x)
                 return (4 * x**3 * cx * inv - x * cx + mpmath.sin(x)) / (4 * x**3 * inv + x)
 

@@ -17,10 +17,16 @@ chain_run  whole explicit and implicit time-domain runs of the lumped-mass robot
 ========== ==============================================================================
 """
 
+from __future__ import annotations
+
 import functools
 import importlib
 import importlib.util
 import os
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["KERNELS", "load"]
 
@@ -29,7 +35,7 @@ KERNELS = ("dsm", "catenary", "chain", "chain_run")
 
 
 @functools.cache
-def load(name):
+def load(name: str) -> Any | None:
     """The compiled kernel module ``name`` (one of :data:`KERNELS`), or None without numba.
 
     Examples

@@ -12,6 +12,8 @@ whose Newton matrix is exactly singular stops alone (the numpy path stops every 
 Compiled on first use and cached on disk (``cache=True``).
 """
 
+from __future__ import annotations
+
 import math
 
 import numba
@@ -104,7 +106,7 @@ def _residual(x, z, T, lh, h, t, scale, r):
 
 
 @numba.njit(**_JIT)
-def newton_taut(lh, h, L, t, EA, w0, H, V0, L0, rtol, max_iter):
+def newton_taut(lh, h, L, t, EA, w0, H, V0, L0, rtol, max_iter: int):
     """Newton on (H, V0, L0) of every cable, as ``catenary_batch._newton``.
 
     Parameters: arrays of shape (n,) [m, m, m, N, N, N/m, N, N, m] (horizontal and vertical

@@ -12,6 +12,8 @@ cached on disk. The stepping functions write into buffers they are given: a step
 nothing.
 """
 
+from __future__ import annotations
+
 import numba
 import numpy as np
 
@@ -93,7 +95,7 @@ def chain_pass(anchors, X, B, r, vn, twist, seg, l0, EA, c_ax, weight, inner, da
 
 
 @numba.njit(**JIT)
-def weight_wrench(platform_weight, rG, W, Wd):
+def weight_wrench(platform_weight, rG, W, Wd) -> None:
     """W = (m_p g, rG x m_p g), Wd = 0: the start of the wrench sums."""
     for k in range(3):
         W[k] = platform_weight[k]
@@ -158,7 +160,7 @@ def quat(v0, v1, v2):
 
 
 @numba.njit(**JIT)
-def compose(d0, d1, d2, rot):
+def compose(d0, d1, d2, rot) -> None:
     """rot <- the rotation vector of exp(d) R(rot) (as Pose.moved), in place."""
     p0, p1, p2, p3 = quat(d0, d1, d2)
     q0, q1, q2, q3 = quat(rot[0], rot[1], rot[2])
@@ -179,7 +181,7 @@ def compose(d0, d1, d2, rot):
 
 
 @numba.njit(**JIT)
-def platform(rot, attachments, half, mass, com, inertia, R, r, M, rG, first):
+def platform(rot, attachments, half, mass, com, inertia, R, r, M, rG, first) -> None:
     """Rotation-dependent frame quantities (as time_dynamics.Frame), in place: R_p (3, 3),
     lever arms r (n, 3), the 6x6 mass about P of the body and the half node masses ``half``
     at B_i (M6), rG = R_p c_G and the first moment m_p rG + sum half_i r_i."""
@@ -278,7 +280,7 @@ def energies(pos, rot, X, vp, vn, anchors, attachments, seg, l0, EA, node_mass, 
 
 
 @numba.njit(**JIT)
-def solve_free(M, F, free, A, b, out):
+def solve_free(M, F, free, A, b, out) -> None:
     """out <- M_ff^-1 F_f on the free DOFs (0 on held ones): Gaussian elimination with
     partial pivoting of the (n_free, n_free) block copied into the scratch ``A``, ``b``."""
     n = 0
@@ -319,7 +321,7 @@ def solve_free(M, F, free, A, b, out):
 
 
 @numba.njit(**JIT)
-def cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
+def cross_add(a0, a1, a2, b0, b1, b2, scale, out, o) -> None:
     """out[o:o + 3] += scale (a x b)."""
     out[o] += scale * (a1 * b2 - a2 * b1)
     out[o + 1] += scale * (a2 * b0 - a0 * b2)
@@ -327,7 +329,7 @@ def cross_add(a0, a1, a2, b0, b1, b2, scale, out, o):
 
 
 @numba.njit(**JIT)
-def lu_solve(lu, b, y, x):
+def lu_solve(lu, b, y, x) -> None:
     """x <- A^-1 b from the SuperLU factors Pr A Pc = L U (scipy's ``splu``): ``lu`` =
     (L, U as CSR indptr, indices, data, then perm_r, perm_c); ``y`` scratch (n,)."""
     Lp, Li, Lx, Up, Ui, Ux, perm_r, perm_c = lu

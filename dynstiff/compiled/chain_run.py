@@ -4,6 +4,8 @@ factors (implicit), with the records, the energy ledger rows and the checks of e
 Arrays in, arrays out; imports nothing from dynstiff but its sibling kernels.
 """
 
+from __future__ import annotations
+
 import numba
 import numpy as np
 
@@ -83,10 +85,10 @@ def _ledger_row(k, record_every, pos, rot, X, vp, vn, anchors, attachments, seg,
 
 
 @numba.njit(**JIT)
-def _run(implicit, steps, dt, record_every, state, newton, loads, free, anchors, attachments,
-         seg, l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
-         c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger, info, out,
-         rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+def _run(implicit, steps, dt, record_every, state, newton, loads, free, anchors, attachments, seg,
+         l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha, c_visc,
+         cv, beta, K0, lu, tol, max_iter: int, arm, force_weight, ledger, info, out, rec_pose,
+         rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
     """The steps of :func:`explicit_run` (``implicit`` False) or :func:`implicit_run` (True):
     one loop for both schemes, so that the force evaluation, the most expensive part of a
     step, is written once and compiled inline (a call of a separate compiled function with
@@ -350,10 +352,10 @@ def explicit_run(steps, dt, record_every, state, loads, free, anchors, attachmen
 
 
 @numba.njit(**JIT)
-def implicit_run(steps, dt, record_every, state, newton, loads, free, anchors, attachments, seg,
-                 l0, EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu,
-                 alpha, c_visc, cv, beta, K0, lu, tol, max_iter, arm, force_weight, ledger,
-                 info, out, rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
+def implicit_run(steps, dt, record_every, state, newton, loads, free, anchors, attachments, seg, l0,
+                 EA, c_ax, weight, platform_weight, node_mass, g, mass, com, inertia, mu, alpha,
+                 c_visc, cv, beta, K0, lu, tol, max_iter: int, arm, force_weight, ledger, info, out,
+                 rec_pose, rec_vel, rec_t_end, rec_t_anchor, rec_E, rec_X):
     """Newmark average-acceleration steps of the lumped robot with fixed lengths, solved by
     modified Newton iterations with kept LU factors (as time_stepping.implicit_step, step
     after step; theory.md §7.3, §14.4, §14.6).

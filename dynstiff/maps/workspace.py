@@ -21,6 +21,7 @@ import sys
 import time
 import warnings
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -37,12 +38,16 @@ from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
+if TYPE_CHECKING:
+    import xarray
+
 __all__ = ["CHECKS", "box_grid", "evaluate_chunk", "workspace"]
 
 _CABLE_PARAMETERS = tuple(f.name for f in dataclasses.fields(Cable))
 
 
-def box_grid(box, step):
+def box_grid(box: "np.typing.ArrayLike",
+             step: "float | np.typing.ArrayLike") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Axes of a box grid of positions [m].
 
     Parameters
@@ -57,6 +62,13 @@ def box_grid(box, step):
     -------
     tuple of three ndarray
         x, y and z axes [m].
+
+    Examples
+    --------
+    >>> from dynstiff import box_grid
+    >>> x, y, z = box_grid([-0.5, 0.5, 0.0, 0.0, 1.0, 1.0], 0.5)
+    >>> x.tolist(), y.tolist(), z.tolist()
+    ([-0.5, 0.0, 0.5], [0.0], [1.0])
     """
     try:
         b = np.asarray(box, dtype=float)
@@ -330,12 +342,19 @@ def _run(tasks, workers, client, progress):
     return results
 
 
-def workspace(robot, poses=None, *, box=None, step=None, orientations=None, parameter=None,
-              values=None, n_modes=20, band_hz=None, margin=0.05, proximity_rtol=0.03,
-              max_sag_ratio=0.02, model_rtol=1e-2, participation=PLATFORM_SHARE_THRESHOLD,
-              frf_limit=FRF_AMPLIFICATION_LIMIT, damping=DEFAULT_DAMPING, model_band_hz=None,
-              max_modes=MAX_PLATFORM_MODES, rung="dsm", chunk_size=25, workers=None,
-              client=None, progress=False, tensions="default", **model_options):
+def workspace(robot: Robot, poses: "np.typing.ArrayLike | None" = None, *,
+              box: "np.typing.ArrayLike | None" = None,
+              step: "float | np.typing.ArrayLike | None" = None,
+              orientations: "np.typing.ArrayLike | None" = None, parameter: str | None = None,
+              values: "np.typing.ArrayLike | None" = None, n_modes: int = 20,
+              band_hz: tuple[float, float] | None = None, margin: float = 0.05,
+              proximity_rtol: float = 0.03, max_sag_ratio: float = 0.02,
+              model_rtol: float = 1e-2, participation: float = PLATFORM_SHARE_THRESHOLD,
+              frf_limit: float = FRF_AMPLIFICATION_LIMIT, damping: Damping = DEFAULT_DAMPING,
+              model_band_hz: tuple[float, float] | None = None,
+              max_modes: int = MAX_PLATFORM_MODES, rung: str = "dsm", chunk_size: int = 25,
+              workers: int | None = None, client: object = None, progress: bool = False,
+              tensions: str = "default", **model_options: object) -> "xarray.Dataset":
     """Map statics, modes and the design checks over a grid or a list of poses.
 
     Every pose gets the verdicts :func:`dynstiff.analyses.checks.design_checks` gives it
@@ -387,6 +406,16 @@ damping, model_band_hz, max_modes
         Dimensions ``x, y, z[, orientation]`` (or ``pose``) ``[, parameter], mode, cable,
         check``; variables and attributes as :func:`dynstiff.maps.dataset.to_dataset`.
         Infeasible poses hold ``feasible = False``, their ``reason`` and NaN.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> maps = ds.workspace(robot, box=[-0.5, 0.5, 0, 0, 1.0, 1.0], step=0.5, n_modes=3)
+    >>> dict(maps.sizes)
+    {'x': 3, 'y': 1, 'z': 1, 'cable': 8, 'mode': 3, 'check': 5}
+    >>> maps["feasible"].values.ravel().tolist()
+    [True, True, True]
     """
     options = check_options(band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol,
                             participation, frf_limit, model_band_hz, max_modes)

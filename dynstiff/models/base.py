@@ -47,16 +47,31 @@ What a rung can say about its own poles (one of)
   its clamped-cable poles being counted by ``cable_mode_count``.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.platform import platform_mass_matrix
 from dynstiff.robot.robot import geometric_stiffness
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
+    from dynstiff.models.lumped_statics import LumpedEquilibrium
+    from dynstiff.robot.equilibrium import Equilibrium
+    from dynstiff.robot.pose import Pose
+    from dynstiff.robot.robot import Robot
+
 __all__ = ["PlatformModel", "require_model", "require_equilibrium"]
 
 
-def require_equilibrium(equilibrium, name="equilibrium"):
+def require_equilibrium(equilibrium: Equilibrium, name: str = "equilibrium") -> Equilibrium:
     """Raise InvalidParameterError naming ``name`` unless it is a static equilibrium of a
     robot (``Robot.equilibrium(...)``): it needs ``robot``, ``pose``, ``states`` and
     ``unstretched_lengths``."""
@@ -69,7 +84,7 @@ def require_equilibrium(equilibrium, name="equilibrium"):
     return equilibrium
 
 
-def require_model(model, name="model"):
+def require_model(model: PlatformModel, name: str = "model") -> PlatformModel:
     """Raise InvalidParameterError naming ``name`` unless ``model`` has the interface of a
     model of the ladder (``dynamic_stiffness``, ``free_index``, ``pose``, ...)."""
     needed = ("dynamic_stiffness", "cable_mode_count", "massless_stiffness", "undamped",
@@ -93,9 +108,10 @@ class PlatformModel:
     read-only array.
     """
 
-    rung = None
+    rung: str | None = None
 
-    def _init_platform(self, robot, equilibrium, pose):
+    def _init_platform(self, robot: Robot, equilibrium: LumpedEquilibrium | Equilibrium,
+                       pose: Pose) -> None:
         fi = robot.platform.free_index
         self.robot = robot
         self.equilibrium = equilibrium
@@ -106,7 +122,7 @@ class PlatformModel:
         self.platform_mass = platform_mass_matrix(robot.platform, pose.matrix)[np.ix_(fi, fi)]
         self.damped = any(c.is_damped for c in robot.cables)
 
-    def _init_geometric(self, robot, pose, states):
+    def _init_geometric(self, robot: Robot, pose: Pose, states: tuple[CatenaryState, ...]) -> None:
         """K_geo (6, 6) (theory.md §4) and its conservative free block.
 
         With held rotations the reaction moment about a held axis makes the free block of
@@ -119,24 +135,24 @@ class PlatformModel:
         Kg = K_geo[np.ix_(self.free_index, self.free_index)]
         self._K_geo_free = 0.5 * (Kg + Kg.T)
 
-    def _freeze(self):
+    def _freeze(self) -> None:
         for value in vars(self).values():
             if isinstance(value, np.ndarray):
                 value.setflags(write=False)
         object.__setattr__(self, "_frozen", True)
 
-    def __setattr__(self, name, value):
+    def __setattr__(self, name: str, value: Any | None) -> None:
         if getattr(self, "_frozen", False):
             raise AttributeError(
                 f"{type(self).__name__} is immutable: build a new model instead of setting "
                 f"{name!r}")
         object.__setattr__(self, name, value)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"{type(self).__name__}(rung={self.rung!r}, {self.robot.n_cables} cables, "
                 f"free {self.free_dofs}, {self.pose!r}, {self.damping_text()})")
 
-    def damping_text(self):
+    def damping_text(self) -> str:
         """The model's damping in words: "undamped", or its parts (cables' own viscous and
         hysteretic damping, the analysis' cable loss factor and platform modal ratio)."""
         if not self.damped:
@@ -156,11 +172,11 @@ class PlatformModel:
             parts.append(f"cables' own loss factor up to {e:g}")
         return "damped: " + ", ".join(parts)
 
-    def cable_mode_count(self, omega):
+    def cable_mode_count(self, omega: ArrayLike) -> NDArray[np.int64]:
         """J0(omega): natural frequencies below omega with the platform held, shape
         (n_omega,); none for massless cables."""
         return np.zeros(np.size(omega), dtype=int)
 
-    def undamped(self):
+    def undamped(self) -> Any:
         """This model without damping (itself when undamped)."""
         return self

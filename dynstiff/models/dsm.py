@@ -11,8 +11,11 @@ Each K_B,i is a combination of five dyads of its chord frame, so the whole sum o
 single (n_omega, 5 n) @ (5 n, n_free^2) product: no loop over frequencies.
 """
 
+from __future__ import annotations
+
 import warnings
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -41,6 +44,13 @@ from dynstiff.cable.psi import PSI_SERIES, check_frequency_range, mode_count_non
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE", "compiled_arguments", "symmetric_assembly"]
 
@@ -99,13 +109,25 @@ class FrequencyModel(PlatformModel):
         Dyad coefficients of every cable (``cable_coefficients``) -> K on the free DOFs.
     K_geo_free : ndarray, shape (n_free, n_free)
         Symmetric part of K_geo on the free DOFs (the conservative stiffness).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.FrequencyModel(eq)
+    >>> m.rung, m.n_free
+    ('dsm', 6)
+    >>> K = m.dynamic_stiffness([0.0, 10.0])          # K(omega), omega [rad/s]
+    >>> K.shape
+    (2, 6, 6)
     """
 
     rung = "dsm"
 
-    def __init__(self, equilibrium, tension="mean", chordwise_inertia=DEFAULT_CHORDWISE_INERTIA,
-                 damping=True, cable_loss_factor=0.0, platform_damping_ratio=0.0,
-                 guard_rtol=DEFAULT_GUARD_RTOL):
+    def __init__(self, equilibrium: Equilibrium, tension: str = "mean",
+                 chordwise_inertia: bool = DEFAULT_CHORDWISE_INERTIA, damping: bool = True,
+                 cable_loss_factor: float = 0.0, platform_damping_ratio: float = 0.0,
+                 guard_rtol: float = DEFAULT_GUARD_RTOL) -> None:
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         if guard_rtol is not None and not (isinstance(guard_rtol, (int, float))
                                            and not isinstance(guard_rtol, bool)
@@ -163,7 +185,7 @@ class FrequencyModel(PlatformModel):
         if guard_rtol is not None:
             self._guard_static()
 
-    def cable_coefficients(self, omega):
+    def cable_coefficients(self, omega: NDArray[Any]) -> NDArray[Any]:
         """Dyad coefficients (uu, uv, vu, vv, ww) of every cable's end-B DSM, all cables in one
         broadcast call, shape (n_omega, 5 n_cables), cable-major [N/m].
 
@@ -180,7 +202,7 @@ class FrequencyModel(PlatformModel):
             C = np.real(C)
         return C
 
-    def dynamic_stiffness(self, omega):
+    def dynamic_stiffness(self, omega: ArrayLike) -> NDArray[Any]:
         """K(omega) on the free DOFs, shape (n_omega, n_free, n_free) (theory.md §4).
 
         Parameters
@@ -201,12 +223,12 @@ class FrequencyModel(PlatformModel):
             K = K + self._K_platform_damping
         return K - (omega**2)[:, None, None] * self.platform_mass
 
-    def _stiffness(self, omega):
+    def _stiffness(self, omega: NDArray[Any]) -> NDArray[Any]:
         nf = self.n_free
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free
 
-    def static_error(self):
+    def static_error(self) -> tuple[float, int]:
         """First-order relative frequency error of the massless-cable modes caused by the
         closed form's static stiffness, against the exact catenaries (theory.md §11.5).
 
@@ -237,7 +259,7 @@ class FrequencyModel(PlatformModel):
         k = int(np.argmax(total))
         return float(total[k]), int(np.argmax(np.abs(per[:, k])))
 
-    def _guard_static(self):
+    def _guard_static(self) -> None:
         """Warn for slack cables and for a static error above ``guard_rtol``."""
         for i, v in enumerate(self._validity):
             if v.causes["slack"] > 0:
@@ -250,7 +272,7 @@ class FrequencyModel(PlatformModel):
                 f"{err:.2g} (estimate, > guard_rtol {self.guard_rtol:g}; "
                 + "; ".join(self._validity[i].reasons(0.1 * self.guard_rtol)) + ")"))
 
-    def guard_band(self, omega):
+    def guard_band(self, omega: NDArray[Any]) -> None:
         """The closed form's guard for a request up to max |omega| [rad/s] (theory.md §11.5):
         a ClosedFormWarning, once per cable and cause, when omega reaches the cable's axial
         modes, or its local modes while their error, measured against the exact cable,
@@ -286,7 +308,7 @@ class FrequencyModel(PlatformModel):
                 + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
         self._guard_robot(top)
 
-    def cable_error(self, i, omega_max):
+    def cable_error(self, i: int, omega_max: float) -> float:
         """Cable i's own closed-form error up to omega_max [rad/s] (theory.md §11.6): its
         envelope (:func:`dynstiff.cable.guard.closed_form_validity`), or, where that
         exceeds 1e-2, the measured error of its clamped frequencies against the exact cable
@@ -304,7 +326,7 @@ class FrequencyModel(PlatformModel):
             self._measured[i] = (band, err)
         return err
 
-    def robot_error(self, omega_max):
+    def robot_error(self, omega_max: float) -> tuple[float, int]:
         """The bound on the closed form's relative frequency error of the robot's coupled
         modes up to omega_max [rad/s] (theory.md §11.6): ROBOT_ERROR_FACTOR (e_static +
         max_c e_c), e_static the static error (:meth:`static_error`), e_c every cable's own
@@ -321,7 +343,7 @@ class FrequencyModel(PlatformModel):
         i = int(np.argmax(own))
         return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
 
-    def _guard_robot(self, top):
+    def _guard_robot(self, top: float) -> None:
         """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol and no
         cable's warning has pointed to the exact rung already."""
         if (None, "robot") in self._warned or self._issued:
@@ -333,7 +355,7 @@ class FrequencyModel(PlatformModel):
                 f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
                 f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
 
-    def _warn_once(self, cable, cause, message):
+    def _warn_once(self, cable: int, cause: str, message: str) -> None:
         if (cable, cause) in self._warned:
             return
         self._warned.add((cable, cause))
@@ -341,7 +363,9 @@ class FrequencyModel(PlatformModel):
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
                                         cause=cause), stacklevel=user_stacklevel())
 
-    def dynamic_stiffness_and_count(self, omega):
+    def dynamic_stiffness_and_count(
+            self, omega: NDArray[np.float64] | float,
+    ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
         """K(omega) and J0(omega) of the undamped model at real omega, from one evaluation of
         the cable kernels (a Wittrick-Williams count needs both, theory.md §5, §14.2).
 
@@ -370,7 +394,7 @@ class FrequencyModel(PlatformModel):
         K = K + self._K_geo_free - (omega**2)[:, None, None] * self.platform_mass
         return K, J0.sum(axis=1)
 
-    def cable_mode_count(self, omega):
+    def cable_mode_count(self, omega: NDArray[np.float64]) -> NDArray[np.int64]:
         """J0: sum over cables of the clamped-clamped mode counts below omega [rad/s],
         shape (n_omega,) (theory.md §5.2); the damping is ignored."""
         omega = omega_array(omega)
@@ -379,14 +403,14 @@ class FrequencyModel(PlatformModel):
         Omega = omega[:, None] * st.L * np.sqrt(st.m / st.T)
         return mode_count_nondimensional(Omega, st.lambda_sq).sum(axis=1)
 
-    def massless_stiffness(self):
+    def massless_stiffness(self) -> NDArray[np.float64]:
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
         shape (n_free, n_free) [N/m, N, N m/rad]; computed once per model, a copy returned."""
         if "massless" not in self._memo:
             self._memo["massless"] = self.dynamic_stiffness(0.0)[0].real
         return self._memo["massless"].copy()
 
-    def undamped(self):
+    def undamped(self) -> FrequencyModel:
         """The same model with the cables' damping removed (itself when undamped)."""
         if not self.damped:
             return self
@@ -395,13 +419,15 @@ class FrequencyModel(PlatformModel):
             return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                                   damping=False, guard_rtol=self.guard_rtol)
 
-    def with_damping(self, cable_loss_factor=0.0, platform_damping_ratio=0.0):
+    def with_damping(self, cable_loss_factor: float = 0.0,
+                     platform_damping_ratio: float = 0.0) -> FrequencyModel:
         """The same cables with the model-level damping of :class:`FrequencyModel`."""
         return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                               cable_loss_factor=cable_loss_factor,
                               platform_damping_ratio=platform_damping_ratio)
 
-    def _with_model_damping(self, cable_loss_factor, platform_damping_ratio):
+    def _with_model_damping(self, cable_loss_factor: float,
+                            platform_damping_ratio: float) -> FrequencyModel | None:
         """``FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
         cable_loss_factor=..., platform_damping_ratio=..., guard_rtol=self.guard_rtol)``,
         sharing this model's cable parameters, assembly map and platform terms (read-only,
@@ -430,7 +456,7 @@ class FrequencyModel(PlatformModel):
         new._freeze()
         return new
 
-    def cable_kinetic_energies(self, omega, x):
+    def cable_kinetic_energies(self, omega: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
         shape (n_cables,), for the platform motion x (6,) (dp [m], dtheta [rad]) at the
         natural frequency omega [rad/s] (closed-form fields, theory.md §5.3, §6)."""
@@ -440,7 +466,8 @@ class FrequencyModel(PlatformModel):
             out[i] = cable_kinetic_energy(p, omega, p.rotation.T @ dB, self.chordwise_inertia)
         return out
 
-    def cable_displacements(self, omega, x, n_points=41):
+    def cable_displacements(self, omega: float, x: NDArray[np.float64],
+                            n_points: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Cable displacement fields for the platform motion x (6,) at omega [rad/s].
 
         Returns
@@ -464,13 +491,13 @@ class FrequencyModel(PlatformModel):
         return pos, disp
 
 
-def compiled_arguments(model):
+def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
     """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
     (:mod:`dynstiff.compiled.dsm`) for an undamped :class:`FrequencyModel`: contiguous float
     arrays, the psi series and the symmetric assembly map."""
     p = model.stacked_params
 
-    def real(x):
+    def real(x: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
 
     return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
@@ -480,7 +507,7 @@ def compiled_arguments(model):
             np.ascontiguousarray(model.platform_mass, dtype=float))
 
 
-def symmetric_assembly(assembly_map, n_free):
+def symmetric_assembly(assembly_map: NDArray[np.float64], n_free: int) -> NDArray[np.float64]:
     """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
     share the coefficient -k_uv) summed, and the upper triangle of K kept.
 

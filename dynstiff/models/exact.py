@@ -8,6 +8,10 @@ lever map. Each K_BB,i is K_s - w^2 M_psi - w^4 sum_j beta_j beta_j^T mu_j / (1 
 so the whole sum over cables is one (n_omega, n_modes) @ (n_modes, n_free^2) product.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._validate import omega_array, positive_scalar
@@ -15,6 +19,11 @@ from dynstiff.cable.exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCab
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, platform_mass_matrix
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["ExactModel", "DEFAULT_FMAX_HZ"]
 
@@ -68,9 +77,10 @@ class ExactModel(PlatformModel):
 
     rung = "exact"
 
-    def __init__(self, equilibrium, fmax_hz=DEFAULT_FMAX_HZ, order=DEFAULT_ORDER,
-                 half_waves=HALF_WAVES_PER_ELEMENT, damping=True, cable_loss_factor=0.0,
-                 platform_damping_ratio=0.0):
+    def __init__(self, equilibrium: Equilibrium, fmax_hz: float | str = DEFAULT_FMAX_HZ,
+                 order: int = DEFAULT_ORDER, half_waves: float = HALF_WAVES_PER_ELEMENT,
+                 damping: bool = True, cable_loss_factor: float = 0.0,
+                 platform_damping_ratio: float = 0.0) -> None:
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
         try:
             f = float(fmax_hz)
@@ -120,7 +130,7 @@ class ExactModel(PlatformModel):
         self._visc_mode = np.concatenate(visc)
         self._freeze()
 
-    def dynamic_stiffness(self, omega):
+    def dynamic_stiffness(self, omega: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """K(omega) on the free DOFs, shape (n_omega, n_free, n_free) (theory.md §4, §11.3).
 
         Parameters
@@ -145,7 +155,7 @@ class ExactModel(PlatformModel):
             K[a:a + step] = self._block(omega[a:a + step])
         return K
 
-    def _block(self, omega):
+    def _block(self, omega: NDArray[np.float64]) -> NDArray[np.float64]:
         """K(omega) for one block of validated frequencies, (n, n_free, n_free)."""
         w = omega[:, None]
         # cable loss factor: K_B(omega) = s K_B(omega / sqrt(s)), i.e. w^2 -> w^2 / s
@@ -170,7 +180,7 @@ class ExactModel(PlatformModel):
         return (K.reshape(-1, nf, nf) + self._K_geo_free
                 - (omega**2)[:, None, None] * self.platform_mass)
 
-    def _check(self, omega):
+    def _check(self, omega: NDArray[np.float64]) -> None:
         w = np.abs(omega)
         if w.size and w.max() > self.max_omega * (1 + 1e-12):
             bad = np.asarray(omega).ravel()[int(np.argmax(w))]
@@ -179,41 +189,44 @@ class ExactModel(PlatformModel):
                 f"fmax_hz = {self.fmax_hz:g} Hz, got {bad:.6g} rad/s "
                 f"({abs(bad) / 2 / np.pi:.6g} Hz); build it with a larger fmax_hz")
 
-    def cable_mode_count(self, omega):
+    def cable_mode_count(self, omega: NDArray[np.float64] | float) -> NDArray[np.int64]:
         """J0: clamped-cable frequencies below omega of all cables, shape (n_omega,)
         (theory.md §11.3); the damping is ignored."""
         omega = omega_array(omega)
         self._check(omega)
         return sum(c.mode_count(omega) for c in self.cables)
 
-    def massless_stiffness(self):
+    def massless_stiffness(self) -> NDArray[np.float64]:
         """Static stiffness K(0): the exact catenaries' end stiffness + K_geo, shape
         (n_free, n_free) [N/m, N, N m/rad]."""
         return self.dynamic_stiffness(0.0)[0].real
 
-    def undamped(self):
+    def undamped(self) -> ExactModel:
         """The same model with the cables' damping removed (itself when undamped)."""
         if not self.damped:
             return self
         return ExactModel(self.equilibrium, self.fmax_hz, self.order, self.half_waves,
                           damping=False)
 
-    def with_damping(self, cable_loss_factor=0.0, platform_damping_ratio=0.0):
+    def with_damping(self, cable_loss_factor: float = 0.0,
+                     platform_damping_ratio: float = 0.0) -> ExactModel:
         """The same cables with the model-level damping options (theory.md §12.2)."""
         return ExactModel(self.equilibrium, self.fmax_hz, self.order, self.half_waves,
                           cable_loss_factor=cable_loss_factor,
                           platform_damping_ratio=platform_damping_ratio)
 
-    def _end_motion(self, cab, r, x):
+    def _end_motion(self, cab: ExactCable, r: NDArray[np.float64],
+                    x: NDArray[np.float64]) -> NDArray[np.float64]:
         return cab.frame.T @ (x[:3] + np.cross(x[3:], r))
 
-    def cable_kinetic_energies(self, omega, x):
+    def cable_kinetic_energies(self, omega: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
         shape (n_cables,), for the platform motion x (6,) at omega [rad/s] (theory.md §11.3)."""
         return np.array([c.kinetic_energy(omega, self._end_motion(c, r, x))
                          for c, r in zip(self.cables, self.lever_arms)])
 
-    def cable_displacements(self, omega, x, n_points=41):
+    def cable_displacements(self, omega: float, x: NDArray[np.float64],
+                            n_points: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Cable displacement fields for the platform motion x (6,) at omega [rad/s].
 
         Returns

@@ -17,7 +17,10 @@ for every rung: :func:`dynstiff.analyses.frf.frf`, :func:`dynstiff.analyses.eige
 share the platform, the geometric stiffness K_geo and gravity.
 """
 
+from __future__ import annotations
+
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import require_equilibrium
@@ -27,13 +30,20 @@ from dynstiff.models.lumped import LumpedLinearModel
 from dynstiff.models.lumped_robot import LumpedMassModel
 from dynstiff.models.static import StaticCableModel
 
+if TYPE_CHECKING:
+    from typing import Any
+
+    from dynstiff.models.base import PlatformModel
+    from dynstiff.robot.equilibrium import Equilibrium
+
 __all__ = ["RUNGS", "build_model"]
 
 #: The rungs, cheapest first.
 RUNGS = ("spring", "catenary", "dsm", "exact", "lumped")
 
 
-def build_model(equilibrium, rung, segments=30, **options):
+def build_model(equilibrium: Equilibrium, rung: str, segments: int = 30,
+                **options: Any) -> PlatformModel:
     """The model of rung ``rung`` for this equilibrium.
 
     Parameters
@@ -55,6 +65,16 @@ def build_model(equilibrium, rung, segments=30, **options):
     StaticCableModel, FrequencyModel, ExactModel or LumpedLinearModel
         Immutable, with ``.rung``. The lumped model is linearised about its own
         equilibrium for the same unstretched lengths, started from ``equilibrium.pose``.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> for rung in ("spring", "dsm"):
+    ...     m = ds.build_model(eq, rung)
+    ...     print(rung, f"{ds.eigenfrequencies(m, n_modes=1)[0]:.4f} Hz")
+    spring 2.2336 Hz
+    dsm 2.2061 Hz
     """
     allowed = {"dsm": ("tension", "chordwise_inertia", "cable_loss_factor",
                        "platform_damping_ratio", "guard_rtol"),

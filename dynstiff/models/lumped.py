@@ -14,7 +14,10 @@ the platform held, counted exactly from the eigenvalues of (K_ii, M_ii).
 Notation as :mod:`dynstiff.models.lumped_robot`.
 """
 
+from __future__ import annotations
+
 import functools
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,6 +27,11 @@ from dynstiff.models.base import PlatformModel
 from dynstiff.models.lumped_robot import LumpedMassModel
 from dynstiff.models.lumped_statics import LumpedEquilibrium
 from dynstiff.robot.platform import lever_map
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["LumpedLinearModel"]
 
@@ -56,11 +64,22 @@ class LumpedLinearModel(PlatformModel):
         cable has a loss factor.
     C : scipy.sparse.csr_matrix or None
         Viscous damping [N s/m], None if no cable has viscous damping.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.build_model(eq, "lumped", segments=4)
+    >>> type(m).__name__, m.rung
+    ('LumpedLinearModel', 'lumped')
+    >>> print(f"{ds.eigenfrequencies(m, n_modes=1)[0]:.2f} Hz")
+    2.21 Hz
     """
 
     rung = "lumped"
 
-    def __init__(self, mass_model, state, damping=True):
+    def __init__(self, mass_model: LumpedMassModel, state: LumpedEquilibrium,
+                 damping: bool = True) -> None:
         if not isinstance(mass_model, LumpedMassModel):
             raise InvalidParameterError(
                 f"mass_model must be a LumpedMassModel, got {type(mass_model).__name__}")
@@ -87,19 +106,19 @@ class LumpedLinearModel(PlatformModel):
         self._damping = damping
         self._freeze()
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         seg = self.segments
         seg = int(seg[0]) if np.all(seg == seg[0]) else seg.tolist()
         return (f"LumpedLinearModel(rung='lumped', {self.robot.n_cables} cables, segments "
                 f"{seg}, n_dof {self.n_dof}, {self.pose!r})")
 
     # ---------------------------------------------------------------- the interface
-    def matrices(self):
+    def matrices(self) -> tuple[Any, Any]:
         """Undamped tangent stiffness K and mass M, sparse, shape (n_dof, n_dof), the free
         platform DOFs first (then the interior nodes, cable by cable)."""
         return self.K, self.M
 
-    def dynamic_stiffness(self, omega):
+    def dynamic_stiffness(self, omega: ArrayLike) -> NDArray[Any]:
         """K(omega) on the free platform DOFs, interior nodes condensed out exactly, shape
         (n_omega, n_free, n_free) [N/m, N, N m/rad].
 
@@ -145,7 +164,7 @@ class LumpedLinearModel(PlatformModel):
             out[k] = Dpp - Kpi @ sol
         return out
 
-    def massless_stiffness(self):
+    def massless_stiffness(self) -> NDArray[np.float64]:
         """Static stiffness of the platform with the cable nodes condensed out (their
         massless limit), shape (n_free, n_free) [N/m, N, N m/rad]; comparable with
         ``Equilibrium.platform_stiffness()``."""
@@ -158,7 +177,7 @@ class LumpedLinearModel(PlatformModel):
             self.K[nf:, :nf].toarray())
         return Kpp - self.K[:nf, nf:] @ sol
 
-    def cable_mode_count(self, omega):
+    def cable_mode_count(self, omega: NDArray[np.float64] | float) -> NDArray[np.int64]:
         """Natural frequencies of the chains with the platform held below omega [rad/s]
         (J0 of the Wittrick-Williams count), shape (n_omega,)."""
         omega = omega_array(omega)
@@ -166,7 +185,7 @@ class LumpedLinearModel(PlatformModel):
         return np.searchsorted(lam, omega**2, side="left")
 
     @functools.cached_property
-    def _held_platform_eigenvalues(self):
+    def _held_platform_eigenvalues(self) -> NDArray[np.float64]:
         """Eigenvalues omega^2 [rad^2/s^2] of (K_ii, M_ii), ascending (one chain at a time:
         the chains couple only through the platform)."""
         import scipy.linalg
@@ -181,14 +200,14 @@ class LumpedLinearModel(PlatformModel):
                                          eigvals_only=True))
         return np.sort(np.concatenate(lam)) if lam else np.zeros(0)
 
-    def undamped(self):
+    def undamped(self) -> LumpedLinearModel:
         """The same linearisation without damping (itself when undamped)."""
         if not self.damped:
             return self
         return LumpedLinearModel(self.mass_model, self.equilibrium, damping=False)
 
     # ------------------------------------------------------- modal energy of vectors
-    def cable_energies(self, V):
+    def cable_energies(self, V: NDArray[np.float64]) -> NDArray[np.float64]:
         """Kinetic energy of every cable per unit omega^2 / 2 for mode vectors V, shape
         (n_modes, n_cables) [kg m^2 per unit amplitude^2]: sum of m l0 |phi_j|^2 over its
         interior nodes plus (m l0 / 2) |J_i x|^2 at B_i (theory.md §7.1).
@@ -206,7 +225,7 @@ class LumpedLinearModel(PlatformModel):
                                            + 0.5 * np.sum(dB ** 2, axis=0))
         return E
 
-    def node_shapes(self, V):
+    def node_shapes(self, V: NDArray[np.float64]) -> list[NDArray[np.float64]]:
         """Displacement of every node of cable i for mode vectors V (n_dof, n_modes), a list
         of arrays of shape (n_modes, N_i + 1, 3) [m]: the anchor 0, the last node moving
         with the platform."""

@@ -42,7 +42,10 @@ tangent stiffness is K = -dR/dx, so K u = f_applied, as in :mod:`dynstiff.cable.
 Gravity is (0, 0, -g).
 """
 
+from __future__ import annotations
+
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -55,10 +58,19 @@ from dynstiff.robot.platform import lever_map, platform_mass_matrix, skew
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.lumped_statics import LumpedEquilibrium
+    from dynstiff.robot.pose import Pose
+
 __all__ = ["LumpedMassModel"]
 
 
-def _validatedsegment_forces(segments, n):
+def _validatedsegment_forces(segments: ArrayLike | str, n: int) -> NDArray[np.int64]:
     if isinstance(segments, Integral) and not isinstance(segments, bool):
         segments = [segments] * n
     try:
@@ -110,9 +122,18 @@ class LumpedMassModel:
     This model holds no state: :meth:`equilibrium` returns an equilibrium and changes
     nothing. Its linearisation about one is the "lumped" rung,
     :class:`~dynstiff.lumped.LumpedLinearModel` (``build_model(eq, "lumped")``).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> mm = ds.LumpedMassModel(eq.robot, eq.unstretched_lengths, segments=4)
+    >>> mm.segments
+    array([4, 4, 4, 4, 4, 4, 4, 4])
     """
 
-    def __init__(self, robot, unstretched_lengths, segments=30):
+    def __init__(self, robot: Robot, unstretched_lengths: ArrayLike,
+                 segments: int | ArrayLike = 30) -> None:
         if not isinstance(robot, Robot):
             raise InvalidParameterError(
                 f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
@@ -133,19 +154,23 @@ class LumpedMassModel:
                    np.linalg.norm(robot.platform.center_of_mass))
         self._moment_arm = size if size > 0 else 1.0
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"LumpedMassModel({self.robot.n_cables} cables, segments "
                 f"{self.segments.tolist()}, unstretched lengths "
                 f"{np.round(self.unstretched_lengths, 6).tolist()} m)")
 
     # ---------------------------------------------------------------- configuration
-    def full_nodes(self, pose, interior):
+    def full_nodes(
+            self, pose: Pose, interior: list[NDArray[np.float64]],
+    ) -> tuple[list[NDArray[np.float64]], NDArray[np.float64]]:
         B, r = self.robot.attachment_points(pose)
         nodes = [np.vstack((self.robot.anchors[i], interior[i], B[i]))
                  for i in range(self.robot.n_cables)]
         return nodes, r
 
-    def _check_config(self, pose, interior):
+    def _check_config(
+            self, pose: Pose, interior: list[NDArray[np.float64]],
+    ) -> tuple[Pose, list[NDArray[np.float64]]]:
         pose = as_pose(pose)
         if len(interior) != self.robot.n_cables:
             raise InvalidParameterError(
@@ -160,7 +185,8 @@ class LumpedMassModel:
             out.append(x)
         return pose, out
 
-    def displaced(self, pose, interior, dx):
+    def displaced(self, pose: Pose, interior: list[NDArray[np.float64]],
+                  dx: NDArray[np.float64]) -> tuple[Pose, list[NDArray[np.float64]]]:
         """Configuration after the increment dx (platform by :meth:`Pose.moved`).
 
         Parameters
@@ -187,7 +213,7 @@ class LumpedMassModel:
         return pose.moved(d6), new
 
     # ------------------------------------------------------------------- residual
-    def residual(self, pose, interior):
+    def residual(self, pose: Pose, interior: list[NDArray[np.float64]]) -> NDArray[np.float64]:
         """Net applied force R(x) on the free platform DOFs and the interior nodes.
 
         Node j of cable i: T_j n_j - T_{j-1} n_{j-1} + m l0 g_vec. Platform: the wrench about P
@@ -207,7 +233,8 @@ class LumpedMassModel:
         pose, interior = self._check_config(pose, interior)
         return self.residual_unchecked(pose, interior)[0]
 
-    def residual_unchecked(self, pose, interior, extremes=None):
+    def residual_unchecked(self, pose: Pose, interior: list[NDArray[np.float64]],
+                           extremes: list[Any] | None = None) -> tuple[NDArray[np.float64], float]:
         """:meth:`residual` without the argument checks (for solvers and time stepping), and
         the largest tension [N]: (R, shape (n_dof,) [N, N m]; t_max). With a list
         ``extremes``, (smallest tension [N], largest strain l / l0 - 1 [-]) is appended to it
@@ -224,7 +251,9 @@ class LumpedMassModel:
         R[:self.n_free] = W[self.free_index]
         return R, t_max
 
-    def _chain_forces_stacked(self, nodes, extremes=None):
+    def _chain_forces_stacked(
+            self, nodes: list[NDArray[np.float64]], extremes: list[Any] | None = None,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
         """Forces of every chain with the same N at once, from nodes (n, N + 1, 3) [m]:
         interior-node forces (flat, 3 n (N - 1)), forces on the platform at each B_i
         (n, 3) (the last segment and the half node weight) [N], the largest tension [N]
@@ -240,7 +269,9 @@ class LumpedMassModel:
         return ((f[:, 1:] - f[:, :-1] + mg[:, None, :]).ravel(), -f[:, -1] + 0.5 * mg,
                 float(T.max()))
 
-    def _chain_forces_loop(self, nodes, extremes=None):
+    def _chain_forces_loop(
+            self, nodes: list[NDArray[np.float64]], extremes: list[Any] | None = None,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
         """As :meth:`_chain_forces_stacked`, cable by cable (any N per cable)."""
         gvec = self.robot.gravity_vector
         inner, F, t_max = [], np.empty((len(nodes), 3)), 0.0
@@ -257,18 +288,18 @@ class LumpedMassModel:
             extremes.append((t_min, float(strain)))
         return np.concatenate(inner), F, t_max
 
-    def residual_scales(self):
+    def residual_scales(self) -> tuple[float, float]:
         """(moment arm [m], weight [N]) of :meth:`relative_residual`: moments are divided by
         the arm, and the force scale is weight + t_max."""
         return self._moment_arm, self._force_scale(0.0)
 
-    def _force_scale(self, t_max):
+    def _force_scale(self, t_max: float) -> float:
         rob = self.robot
         weight = rob.g * (rob.platform.mass + np.sum(
             [c.mass_per_length for c in rob.cables] * self.unstretched_lengths))
         return max(weight + t_max, np.finfo(float).tiny)
 
-    def rounding_floor(self, pose, t_max):
+    def rounding_floor(self, pose: Pose, t_max: float) -> float:
         """Relative residual [-] below which rounding, not the configuration, decides.
 
         A segment tension EA (l / l0 - 1) is computed from node coordinates of size |x| with
@@ -283,7 +314,7 @@ class LumpedMassModel:
         return float(4 * np.finfo(float).eps * np.max(EA / self.segment_lengths) * size
                      / self._force_scale(t_max))
 
-    def relative_residual(self, R, t_max):
+    def relative_residual(self, R: NDArray[np.float64], t_max: float) -> float:
         """Largest unbalanced force of R (moments divided by the platform size) over the
         force scale m_p g + sum m L0 g + t_max [-]: the measure of ``equilibrium(tol=)``."""
         scaled = np.abs(R)
@@ -292,7 +323,8 @@ class LumpedMassModel:
         return float(scaled.max(initial=0.0)) / self._force_scale(t_max)
 
     # -------------------------------------------------------------------- tangent
-    def tangent_stiffness(self, pose, interior, axial_factor=1.0):
+    def tangent_stiffness(self, pose: Pose, interior: list[NDArray[np.float64]],
+                          axial_factor: ArrayLike = 1.0) -> Any:
         """Tangent stiffness K = -dR/dx, sparse, at any configuration.
 
         Element tangents K_e = k_a n n^T + (T/l)(I - n n^T) (k_a = axial_factor EA / l0 where
@@ -322,7 +354,10 @@ class LumpedMassModel:
                 f"axial_factor must be finite, one value or one per cable, got {axial_factor!r}")
         return self.tangent_unchecked(pose, interior, lambda i: factors[i])
 
-    def tangent_unchecked(self, pose, interior, axial_of, elements=None):
+    def tangent_unchecked(
+            self, pose: Pose, interior: list[NDArray[np.float64]], axial_of: Callable[..., Any],
+            elements: list[tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None,
+    ) -> Any:
         """:meth:`tangent_stiffness` without the argument checks, with ``axial_of(i)`` the
         axial factor of cable i (for solvers and time stepping); ``elements``, a list of
         (K_e (N_i, 3, 3) [N/m], force on the platform at B_i (3,) [N]) per cable, replaces
@@ -376,7 +411,8 @@ class LumpedMassModel:
             shape=(self.n_dof, self.n_dof))
         return K.tocsr()
 
-    def _node_matrix(self, pose, per_node, platform_block):
+    def _node_matrix(self, pose: Pose, per_node: NDArray[np.float64],
+                     platform_block: NDArray[np.float64]) -> Any:
         """Sparse matrix with ``per_node[i]`` on the interior nodes of cable i (diagonal) and
         the free-DOF block ``platform_block`` + sum_i J_i^T (per_node[i] / 2) J_i."""
         import scipy.sparse
@@ -396,7 +432,7 @@ class LumpedMassModel:
              (np.concatenate([ip.ravel(), idx]), np.concatenate([jp.ravel(), idx]))),
             shape=(self.n_dof, self.n_dof)).tocsr()
 
-    def mass_matrix(self, pose):
+    def mass_matrix(self, pose: Pose) -> Any:
         """Lumped mass matrix at a pose, sparse, shape (n_dof, n_dof) [kg, kg m, kg m^2].
 
         Interior nodes m l0 (diagonal); platform block M_p + sum_i J_i^T (m l0 / 2) J_i.
@@ -406,7 +442,7 @@ class LumpedMassModel:
         Mp = platform_mass_matrix(self.robot.platform, pose.matrix)[np.ix_(fi, fi)]
         return self._node_matrix(pose, self.node_masses, Mp)
 
-    def damping_matrix(self, pose):
+    def damping_matrix(self, pose: Pose) -> Any:
         """Viscous damping C at a pose, sparse, shape (n_dof, n_dof) [N s/m]: c l0 at the
         interior nodes, J^T (c l0 / 2) J at B_i, none on the platform."""
         pose = as_pose(pose)
@@ -414,7 +450,8 @@ class LumpedMassModel:
         return self._node_matrix(pose, c, np.zeros((self.n_free, self.n_free)))
 
     # -------------------------------------------------------------------- statics
-    def equilibrium(self, initial_pose=None, tol=1e-10, max_iter=50):
+    def equilibrium(self, initial_pose: ArrayLike | Pose | None = None, tol: float = 1e-10,
+                    max_iter: int = 50) -> LumpedEquilibrium:
         """Static equilibrium of all interior nodes and the free platform DOFs.
 
         Newton's method with the analytic sparse tangent (:meth:`tangent_stiffness`) and a

@@ -3,8 +3,11 @@ platform DOFs from the elastic-catenary equilibrium, the equilibrium record, and
 segment forces of a chain.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,11 +16,20 @@ from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.robot.pose import Pose, as_pose
 
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
+
 __all__ = ["LumpedEquilibrium", "lumped_equilibrium", "segment_forces"]
 
 
 # ------------------------------------------------------------------------------ kernels
-def segment_forces(nodes, l0, EA):
+def segment_forces(nodes: NDArray[np.float64], l0: NDArray[np.float64] | float,
+                   EA: NDArray[np.float64] | float) -> tuple[NDArray[np.float64], ...]:
     """Segment geometry and tensions of one chain, or of a stack of chains.
 
     Parameters
@@ -75,24 +87,24 @@ class LumpedEquilibrium:
     start_pose: Pose
     platform_forces: np.ndarray
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         t = self.end_tensions
         return (f"LumpedEquilibrium({len(self.nodes)} chains, {self.pose!r}, tensions at B "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Tensions of the end segments at B and A: :func:`dynstiff.plot.plot_tensions`.
         Returns the matplotlib Figure."""
         from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
     @property
-    def interior(self):
+    def interior(self) -> list[NDArray[np.float64]]:
         """Interior nodes of every cable, list of (N_i - 1, 3) arrays [m]."""
         return [x[1:-1] for x in self.nodes]
 
     @property
-    def end_tensions(self):
+    def end_tensions(self) -> NDArray[np.float64]:
         """Tension of the last segment of every cable (at the platform) [N], shape (n,)."""
         return np.array([t[-1] for t in self.tensions])
 
@@ -101,7 +113,7 @@ class LumpedEquilibrium:
         """Tension of the first segment of every cable (at the anchor) [N], shape (n,)."""
         return np.array([t[0] for t in self.tensions])
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per cable: segments and end tensions [N]."""
         import pandas as pd
         return pd.DataFrame({
@@ -112,7 +124,8 @@ class LumpedEquilibrium:
         })
 
 
-def lumped_equilibrium(model, initial_pose=None, tol=1e-10, max_iter=50):
+def lumped_equilibrium(model: LumpedMassModel, initial_pose: ArrayLike | Pose | None = None,
+                       tol: float = 1e-10, max_iter: int = 50) -> LumpedEquilibrium:
     """Static equilibrium of a :class:`~dynstiff.models.lumped_robot.LumpedMassModel`: the
     work of its :meth:`~dynstiff.models.lumped_robot.LumpedMassModel.equilibrium` (see there
     for the parameters, the start and the stopping rule).

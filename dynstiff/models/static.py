@@ -3,6 +3,10 @@ stiffness, (EA/L0) u u^T + (T/L)(I - u u^T) for a straight spring or the elastic
 exact 3x3 end stiffness, assembled with the platform's mass; global modes only.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._validate import omega_array
@@ -10,6 +14,13 @@ from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map
 from dynstiff.robot.robot import geometric_stiffness
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["StaticCableModel"]
 
@@ -34,9 +45,17 @@ class StaticCableModel(PlatformModel):
         Stiffness [N/m, N, N m/rad] (symmetric part).
     n_dof : int
         n_free: the platform is the only mass.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> m = ds.StaticCableModel(eq)
+    >>> [f"{f:.3f}" for f in ds.eigenfrequencies(m, n_modes=2)]     # massless cables [Hz]
+    ['2.217', '2.398']
     """
 
-    def __init__(self, equilibrium, stiffness="catenary"):
+    def __init__(self, equilibrium: Equilibrium, stiffness: str = "catenary") -> None:
         if stiffness not in ("spring", "catenary"):
             raise InvalidParameterError(
                 f"stiffness must be 'spring' or 'catenary', got {stiffness!r}")
@@ -62,20 +81,20 @@ class StaticCableModel(PlatformModel):
         self.n_dof = self.n_free
         self._freeze()
 
-    def matrices(self):
+    def matrices(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Stiffness and mass on the free DOFs, (K, M), each (n_free, n_free)."""
         return self.K, self.platform_mass
 
-    def dynamic_stiffness(self, omega):
+    def dynamic_stiffness(self, omega: NDArray[Any] | float) -> NDArray[Any]:
         """K - omega^2 M_p, shape (n_omega, n_free, n_free) [N/m, N, N m/rad]; omega [rad/s]
         real >= 0 or complex."""
         omega = omega_array(omega, complex_ok=True)
         return self.K[None] - (omega**2)[:, None, None] * self.platform_mass[None]
 
-    def massless_stiffness(self):
+    def massless_stiffness(self) -> NDArray[np.float64]:
         """K itself (the cables are massless), shape (n_free, n_free)."""
         return self.K.copy()
 
-    def cable_energies(self, V):
+    def cable_energies(self, V: NDArray[np.float64]) -> NDArray[np.float64]:
         """Massless cables hold no kinetic energy: zeros of shape (n_modes, n_cables)."""
         return np.zeros((np.shape(V)[1], self.robot.n_cables))

@@ -4,11 +4,22 @@ It holds its robot and the exact elastic-catenary state of every cable (docs/the
 the models of :mod:`dynstiff.models.ladder` are built on it.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.robot.pose import Pose
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
+
+    from dynstiff.robot.robot import Robot
 
 __all__ = ["Equilibrium"]
 
@@ -26,50 +37,105 @@ class Equilibrium:
     states : tuple of CatenaryState
     residual : float
         Norm of the free-DOF wrench residual relative to the platform weight [-].
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> eq = ds.load_scene("cogiro").equilibrium()
+    >>> eq.robot.n_cables, f"{eq.residual:.0e}"
+    (8, '9e-14')
     """
 
-    robot: object
+    robot: Robot
     pose: Pose
     unstretched_lengths: np.ndarray
     states: tuple
     residual: float
 
     @property
-    def tensions(self):
-        """Tension at the platform end B of each cable [N], shape (n,)."""
+    def tensions(self) -> NDArray[np.float64]:
+        """Tension at the platform end B of each cable [N], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(f"{eq.tensions.min():.1f} .. {eq.tensions.max():.1f} N")
+        270.3 .. 304.1 N
+        """
         return np.array([s.tension_at_end for s in self.states])
 
     @property
-    def anchor_tensions(self):
-        """Tension at the anchor A of each cable [N], shape (n,)."""
+    def anchor_tensions(self) -> NDArray[np.float64]:
+        """Tension at the anchor A of each cable [N], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(f"{eq.anchor_tensions[0]:.2f} N at A, {eq.tensions[0]:.2f} N at B")
+        295.18 N at A, 292.43 N at B
+        """
         return np.array([s.tension_at_anchor for s in self.states])
 
     @property
-    def min_tensions(self):
+    def min_tensions(self) -> NDArray[np.float64]:
         """Least tension along each cable [N], shape (n,) (the lower end, or H where the
-        cable's lowest point lies between its ends)."""
+        cable's lowest point lies between its ends).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(f"{eq.min_tensions[0]:.2f} N")
+        292.43 N
+        """
         return np.array([s.min_tension for s in self.states])
 
     @property
-    def max_tensions(self):
-        """Largest tension along each cable [N], shape (n,)."""
+    def max_tensions(self) -> NDArray[np.float64]:
+        """Largest tension along each cable [N], shape (n,).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> eq = ds.load_scene("cogiro").equilibrium()
+        >>> print(f"{eq.max_tensions[0]:.2f} N")
+        295.18 N
+        """
         return np.array([s.max_tension for s in self.states])
 
     @property
-    def lever_arms(self):
-        """r_i = R_p b_i [m], shape (n, 3)."""
+    def lever_arms(self) -> NDArray[np.float64]:
+        """r_i = R_p b_i [m], shape (n, 3).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> ds.load_scene("cogiro").equilibrium().lever_arms.shape
+        (8, 3)
+        """
         return self.robot.attachment_points(self.pose)[1]
 
-    def platform_stiffness(self):
-        """6x6 static stiffness about P (all DOFs) [N/m, N, N m/rad]."""
+    def platform_stiffness(self) -> NDArray[np.float64]:
+        """6x6 static stiffness about P (all DOFs) [N/m, N, N m/rad].
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import dynstiff as ds
+        >>> K = ds.load_scene("cogiro").equilibrium().platform_stiffness()
+        >>> print(K.shape, f"k_z = {K[2, 2] / 1e3:.1f} kN/m")
+        (6, 6) k_z = 17.9 kN/m
+        """
         return self.robot.platform_stiffness(self.pose, self.states)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         t = self.tensions
         return (f"Equilibrium({self.robot.n_cables} cables, {self.pose!r}, tensions "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         """Jupyter display: the pose and each cable's tensions, length and sag."""
         from dynstiff._html import html_table
         rows = [[i, s.tension_at_end, s.tension_at_anchor, L0, s.sag]
@@ -81,14 +147,31 @@ class Equilibrium:
             ["cable", "tension at B [N]", "tension at A [N]", "unstretched length [m]",
              "sag [m]"], rows, notes=[f"statics residual {self.residual:.2g}"])
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Cable tensions at B and A with the robot's limits:
-        :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure."""
+        :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> fig = ds.load_scene("cogiro").equilibrium().plot()
+        >>> type(fig).__name__
+        'Figure'
+        >>> import matplotlib.pyplot as plt; plt.close(fig)
+        """
         from dynstiff.plot import plot_tensions
         return plot_tensions(self, ax=ax)
 
-    def to_frame(self):
-        """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2."""
+    def to_frame(self) -> pd.DataFrame:
+        """pandas DataFrame, one row per cable: tensions [N], lengths [m], sag, lambda^2.
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> df = ds.load_scene("cogiro").equilibrium().to_frame()
+        >>> len(df), list(df.columns)[:2]
+        (8, ['cable', 'tension at B [N]'])
+        """
         import pandas as pd
         return pd.DataFrame({
             "cable": np.arange(self.robot.n_cables),

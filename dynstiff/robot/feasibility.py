@@ -25,15 +25,27 @@ The numbers are estimates at the last iterate's directions (sag changes them wit
 tensions); the messages say "about".
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.cable.catenary_solve import solve_catenary
 from dynstiff.errors import DynstiffError, InfeasiblePoseError
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.params import Cable
+    from dynstiff.robot.robot import Robot
+
 __all__ = ["diagnose_limits", "diagnose_unreachable", "least_end_tension"]
 
 
-def _lp(c, A_eq, b_eq, A_ub, b_ub, bounds):
+def _lp(c: NDArray[np.float64], A_eq: NDArray[np.float64], b_eq: NDArray[np.float64],
+        A_ub: NDArray[np.float64], b_ub: NDArray[np.float64],
+        bounds: list[tuple[float | None, float | None]]) -> float:
     """Optimal value of min c x (inf when infeasible, -inf when unbounded)."""
     from scipy.optimize import linprog
     res = linprog(c, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=b_eq, bounds=bounds,
@@ -45,7 +57,8 @@ def _lp(c, A_eq, b_eq, A_ub, b_ub, bounds):
     return float(res.fun) if res.status == 0 else np.nan
 
 
-def limit_bounds(W, w, t_min, t_max, lo, hi):
+def limit_bounds(W: NDArray[np.float64], w: NDArray[np.float64], t_min: float, t_max: float,
+                 lo: NDArray[np.float64], hi: NDArray[np.float64]) -> tuple[float, float]:
     """Largest t_min and smallest t_max [N] for which tensions within the limits balance.
 
     Parameters
@@ -83,7 +96,9 @@ def limit_bounds(W, w, t_min, t_max, lo, hi):
     return best_min, best_max
 
 
-def diagnose_limits(W, w, t_min, t_max, lo, hi, where):
+def diagnose_limits(W: NDArray[np.float64], w: NDArray[np.float64], t_min: float, t_max: float,
+                    lo: NDArray[np.float64], hi: NDArray[np.float64],
+                    where: str) -> InfeasiblePoseError:
     """The :class:`InfeasiblePoseError` of a failed tension distribution.
 
     Parameters
@@ -145,14 +160,15 @@ def diagnose_limits(W, w, t_min, t_max, lo, hi, where):
         f"{remedy}", cause=cause, remedies=remedies)
 
 
-def least_end_tension(anchor, end, cable, g):
+def least_end_tension(anchor: NDArray[np.float64], end: NDArray[np.float64], cable: Cable,
+                      g: float) -> tuple[float, float]:
     """Least tension [N] at the end B any elastic catenary between A and B has (the fold
     where a longer cable stops lowering T_B), and the unstretched length giving it [m]."""
     from scipy.optimize import minimize_scalar
     A, B = np.asarray(anchor, float), np.asarray(end, float)
     chord = float(np.linalg.norm(B - A))
 
-    def T(L0):
+    def T(L0: float) -> float | None:
         try:
             return solve_catenary(A, B, L0, cable, g).tension_at_end
         except DynstiffError:
@@ -167,7 +183,9 @@ def least_end_tension(anchor, end, cable, g):
                                                                     float(grid[j]))
 
 
-def diagnose_unreachable(robot, i, anchor, end, tension, lo_i, where):
+def diagnose_unreachable(robot: Robot, i: int, anchor: NDArray[np.float64],
+                         end: NDArray[np.float64], tension: float, lo_i: float,
+                         where: str) -> InfeasiblePoseError | None:
     """The :class:`InfeasiblePoseError` of a cable whose requested end tension no catenary
     reaches, or None when the least reachable tension is below it (another cause).
 

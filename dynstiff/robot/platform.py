@@ -18,7 +18,10 @@ etc. and off-diagonal entries **I_xy = -int x y dm** (minus the product of inert
 table that prints products of inertia P_xy = int x y dm must be entered with the sign changed.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,18 +30,22 @@ from dynstiff._vec import cross
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
 __all__ = ["Platform", "DOF_NAMES", "skew", "lever_map", "lever_maps", "rotation_matrix",
            "platform_mass_matrix", "rotvec_to_quaternion", "quaternion_to_rotvec",
            "quaternion_product"]
 
 
 
-def skew(a):
+def skew(a: NDArray[np.float64]) -> NDArray[np.float64]:
     """Cross-product matrix [a]x with [a]x b = a x b; a of shape (3,) -> (3, 3)."""
     return np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
 
 
-def lever_map(r, free_index=None):
+def lever_map(r: NDArray[np.float64],
+              free_index: NDArray[np.int64] | None = None) -> NDArray[np.float64]:
     """J = [I, -[r]x] [-, m], shape (3, 6), or (3, n_free) restricted to ``free_index``.
 
     Maps a small platform motion x = (dp, dtheta) about P (base frame) to the motion
@@ -49,7 +56,8 @@ def lever_map(r, free_index=None):
     return J if free_index is None else J[:, free_index]
 
 
-def lever_maps(r, free_index=None):
+def lever_maps(r: NDArray[np.float64],
+               free_index: NDArray[np.int64] | None = None) -> NDArray[np.float64]:
     """:func:`lever_map` of many lever arms at once: r of shape (n, 3) -> (n, 3, 6), or
     (n, 3, n_free) restricted to ``free_index`` [-, m]."""
     r = np.asarray(r, dtype=float)
@@ -63,7 +71,7 @@ def lever_maps(r, free_index=None):
     return J if free_index is None else J[:, :, free_index]
 
 
-def rotation_matrix(rotvec):
+def rotation_matrix(rotvec: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotation matrix [-] of a rotation vector [rad] (axis * angle), shape (3,) -> (3, 3).
 
     From the unit quaternion of :func:`rotvec_to_quaternion` (the same arithmetic as
@@ -76,7 +84,7 @@ def rotation_matrix(rotvec):
         [2 * (x * z - y * w), 2 * (y * z + x * w), w * w - x * x - y * y + z * z]])
 
 
-def rotvec_to_quaternion(rotvec):
+def rotvec_to_quaternion(rotvec: NDArray[np.float64]) -> NDArray[np.float64]:
     """Unit quaternion (x, y, z, w) of a rotation vector [rad], shape (3,) -> (4,); the
     factor sin(theta/2)/theta by its series below theta = 1e-3 (as scipy's Rotation)."""
     v = np.asarray(rotvec, dtype=float)
@@ -89,7 +97,7 @@ def rotvec_to_quaternion(rotvec):
     return np.array([*(scale * v), np.cos(theta / 2)])
 
 
-def quaternion_to_rotvec(q):
+def quaternion_to_rotvec(q: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotation vector [rad] of a unit quaternion (x, y, z, w), angle in [0, pi] (as
     scipy's ``Rotation.as_rotvec``), shape (4,) -> (3,)."""
     q = np.asarray(q, dtype=float)
@@ -105,7 +113,7 @@ def quaternion_to_rotvec(q):
     return scale * q[:3]
 
 
-def quaternion_product(p, q):
+def quaternion_product(p: NDArray[np.float64], q: NDArray[np.float64]) -> NDArray[np.float64]:
     """Quaternion product p q (x, y, z, w): the rotation q followed by p, shape (4,)."""
     pv, pw, qv, qw = p[:3], p[3], q[:3], q[3]
     return np.array([*(pw * qv + qw * pv + cross(pv, qv)), pw * qw - pv @ qv])
@@ -128,6 +136,14 @@ class Platform:
     free_dofs : sequence of str, optional
         Free degrees of freedom among ``DOF_NAMES`` (default all six). Held DOFs are fixed
         (a pinned pendulum, a planar body, a point mass are the same model with some held).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> import numpy as np
+    >>> p = ds.Platform(mass=10.0, inertia=np.diag([0.5, 0.5, 0.8]), free_dofs=("x", "y", "z"))
+    >>> p.mass, p.free_dofs
+    (10.0, ('x', 'y', 'z'))
     """
 
     mass: float
@@ -135,7 +151,7 @@ class Platform:
     inertia: np.ndarray = field(default_factory=lambda: np.zeros((3, 3)))
     free_dofs: tuple = DOF_NAMES
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "mass", positive_scalar("mass", self.mass))
         c = np.asarray(self.center_of_mass, dtype=float)
         if c.shape != (3,) or not np.all(np.isfinite(c)):
@@ -173,12 +189,12 @@ class Platform:
         object.__setattr__(self, "free_dofs", dofs)
 
     @property
-    def free_index(self):
+    def free_index(self) -> NDArray[np.int64]:
         """Indices of the free DOFs in ``DOF_NAMES`` order, shape (n_free,)."""
         return np.array([DOF_NAMES.index(d) for d in self.free_dofs])
 
 
-def platform_mass_matrix(platform, rotation):
+def platform_mass_matrix(platform: Platform, rotation: NDArray[np.float64]) -> NDArray[np.float64]:
     """6x6 rigid-body mass matrix about the reference point P, base axes.
 
     M_p = [[m I, -m [r_G]x], [m [r_G]x, I_G^w - m [r_G]x [r_G]x]], r_G = R_p c_G,

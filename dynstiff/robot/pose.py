@@ -4,7 +4,10 @@ Small motions about a pose are x = (dp, dtheta), dtheta a small rotation vector 
 frame (docs/theory.md §4).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,17 +20,29 @@ from dynstiff.robot.platform import (
     rotvec_to_quaternion,
 )
 
+if TYPE_CHECKING:
+
+    from numpy.typing import NDArray
+
 __all__ = ["Pose", "as_pose"]
 
 
 @dataclass(frozen=True, eq=False)
 class Pose:
-    """Platform pose: position [m] of P and rotation vector [rad], both (3,)."""
+    """Platform pose: position [m] of P and rotation vector [rad], both (3,).
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> pose = ds.Pose([0.0, 0.0, 1.0], rotation=[0.0, 0.0, 0.1])
+    >>> pose.position.tolist(), pose.rotation.tolist()
+    ([0.0, 0.0, 1.0], [0.0, 0.0, 0.1])
+    """
 
     position: np.ndarray
     rotation: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("position", "rotation"):
             try:
                 v = np.asarray(getattr(self, name), dtype=float)
@@ -40,37 +55,37 @@ class Pose:
                     f"{getattr(self, name)!r}")
             object.__setattr__(self, name, v)
 
-    def __eq__(self, other):
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Pose):
             return NotImplemented
         return (np.array_equal(self.position, other.position)
                 and np.array_equal(self.rotation, other.rotation))
 
-    def __hash__(self):
+    def __hash__(self) -> int:
         return hash((tuple(self.position.tolist()), tuple(self.rotation.tolist())))
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         p = ", ".join(f"{v:.5g}" for v in self.position)
         r = ", ".join(f"{v:.3g}" for v in self.rotation)
         return f"Pose(position=[{p}] m, rotation=[{r}] rad)"
 
     @property
-    def matrix(self):
+    def matrix(self) -> NDArray[np.float64]:
         """Rotation matrix R_p, shape (3, 3)."""
         return rotation_matrix(self.rotation)
 
-    def as_vector(self):
+    def as_vector(self) -> NDArray[np.float64]:
         """(x, y, z, rx, ry, rz), shape (6,)."""
         return np.concatenate([self.position, self.rotation])
 
-    def moved(self, dx):
+    def moved(self, dx: NDArray[np.float64]) -> Pose:
         """Pose after the small motion dx = (dp, dtheta) (dtheta in the base frame)."""
         q = quaternion_product(rotvec_to_quaternion(dx[3:]),
                                rotvec_to_quaternion(self.rotation))
         return Pose(self.position + dx[:3], quaternion_to_rotvec(q))
 
 
-def as_pose(pose):
+def as_pose(pose: list[float] | Pose) -> Pose:
     """A :class:`Pose` from a Pose, (position, rotation), or 3 / 6 numbers."""
     if isinstance(pose, Pose):
         return pose

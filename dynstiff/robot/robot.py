@@ -10,8 +10,11 @@ Pose: ``position`` p [m] of the platform reference point P and ``rotation`` vect
 vector in the base frame, so dB_i = dp + dtheta x r_i with r_i = R_p b_i.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +30,13 @@ from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.platform import Platform, lever_map, skew
 from dynstiff.robot.pose import Pose, as_pose
 from dynstiff.robot.statics import forward_statics, inverse_statics
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.cable.catenary import CatenaryState
 
 __all__ = ["Robot", "Pose", "Equilibrium", "as_pose", "geometric_stiffness"]
 
@@ -51,6 +61,16 @@ class Robot:
         Admissible tension range [t_min, t_max] [N] of the tension distribution, held all
         along each cable (inverse statics, design checks).
     name : str, optional
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> robot = ds.load_scene("cogiro").robot
+    >>> robot.n_cables, robot.platform.mass
+    (8, 91.058)
+    >>> eq = robot.equilibrium(pose=[0.0, 0.0, 1.0])
+    >>> print(f"{eq.tensions.min():.1f} N")
+    270.3 N
     """
 
     anchors: np.ndarray
@@ -61,7 +81,7 @@ class Robot:
     tension_limits: tuple = (1.0, np.inf)
     name: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         A = np.asarray(self.anchors, dtype=float)
         b = np.asarray(self.attachments, dtype=float)
         if A.ndim != 2 or A.shape[1] != 3 or not np.all(np.isfinite(A)):
@@ -105,8 +125,9 @@ class Robot:
         object.__setattr__(self, "tension_limits", (t_min, t_max))
 
     @classmethod
-    def from_caspr(cls, bodies_xml, cables_xml, cable, cable_set=None,
-                   inertia_convention="products", g=STANDARD_GRAVITY, min_tension=1.0):
+    def from_caspr(cls, bodies_xml: str | Path, cables_xml: str | Path, cable: Cable,
+                   cable_set: str | None = None, inertia_convention: str = "products",
+                   g: float = STANDARD_GRAVITY, min_tension: float = 1.0) -> Robot:
         """Robot of a single-body CASPR model (:mod:`dynstiff.io.caspr`, theory.md §15.1).
 
         Parameters
@@ -143,37 +164,38 @@ class Robot:
                    name=m.name)
 
     @property
-    def n_cables(self):
+    def n_cables(self) -> int:
         """Number of cables."""
         return self.anchors.shape[0]
 
     @property
-    def gravity_vector(self):
+    def gravity_vector(self) -> NDArray[np.float64]:
         """(0, 0, -g) [m/s^2]."""
         return np.array([0.0, 0.0, -self.g])
 
     # ------------------------------------------------------------------ geometry
-    def attachment_points(self, pose):
+    def attachment_points(self, pose: Pose) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Attachment points B_i in the base frame [m], shape (n, 3), and lever arms r_i."""
         pose = as_pose(pose)
         r = self.attachments @ pose.matrix.T
         return pose.position + r, r
 
-    def gravity_wrench(self, pose):
+    def gravity_wrench(self, pose: Pose) -> NDArray[np.float64]:
         """Gravity wrench on the platform about P [N, N m], shape (6,)."""
         pose = as_pose(pose)
         fg = self.platform.mass * self.gravity_vector
         rG = pose.matrix @ self.platform.center_of_mass
         return np.concatenate([fg, cross(rG, fg)])
 
-    def cable_states(self, pose, unstretched_lengths):
+    def cable_states(self, pose: Pose,
+                     unstretched_lengths: NDArray[np.float64]) -> list[CatenaryState]:
         """Elastic-catenary state of every cable at a pose, list of CatenaryState."""
         B, _ = self.attachment_points(pose)
         L0 = _validate.unstretched_lengths(unstretched_lengths, self.n_cables)
         return [solve_catenary(self.anchors[i], B[i], L0[i], self.cables[i], self.g)
                 for i in range(self.n_cables)]
 
-    def wrench(self, pose, states):
+    def wrench(self, pose: Pose, states: list[CatenaryState]) -> NDArray[np.float64]:
         """Total wrench on the platform about P (cables + gravity), shape (6,)."""
         _, r = self.attachment_points(pose)
         f = np.array([s.force_on_end for s in states])
@@ -182,7 +204,9 @@ class Robot:
         w[3:] += cross(r, f).sum(axis=0)
         return w
 
-    def platform_stiffness(self, pose, states, symmetric_part=False):
+    def platform_stiffness(self, pose: Pose,
+                           states: list[CatenaryState] | tuple[CatenaryState, ...],
+                           symmetric_part: bool = False) -> NDArray[np.float64]:
         """6x6 static stiffness -dW/dx of the platform about P [N/m, N, N m/rad].
 
         K = sum_i J_i^T K_i J_i + K_geo, J_i = [I, -[r_i]x], K_geo = [[0, 0], [0,
@@ -199,8 +223,11 @@ class Robot:
         return 0.5 * (K + K.T) if symmetric_part else K
 
     # ------------------------------------------------------------------ statics
-    def equilibrium(self, pose=None, unstretched_lengths=None, tension_reference=None,
-                    initial_pose=None, tol=1e-10, max_iter=None, start=None):
+    def equilibrium(self, pose: ArrayLike | Pose | None = None,
+                    unstretched_lengths: ArrayLike | None = None,
+                    tension_reference: ArrayLike | None = None,
+                    initial_pose: Pose | None = None, tol: float = 1e-10,
+                    max_iter: int | None = None, start: ArrayLike | None = None) -> Equilibrium:
         """Static equilibrium with sagging cables.
 
         Give exactly one of:
@@ -255,7 +282,7 @@ class Robot:
                                50 if max_iter is None else max_iter)
 
 
-def _refuse_duplicate_cables(A, b):
+def _refuse_duplicate_cables(A: NDArray[np.float64], b: NDArray[np.float64]) -> None:
     """Raise when two cables share both ends: the same anchor and the same attachment point.
 
     Cables may share an anchor (two winches behind one exit point or pulley, the inverted
@@ -281,7 +308,9 @@ def _refuse_duplicate_cables(A, b):
             f"per length and EA the sums of the two) or remove one")
 
 
-def geometric_stiffness(robot, pose, states):
+def geometric_stiffness(
+        robot: Robot, pose: Pose, states: list[CatenaryState] | tuple[CatenaryState, ...],
+) -> NDArray[np.float64]:
     """Rotational block of K_geo [N m/rad], shape (3, 3): -sum [f_i]x [r_i]x - [m g]x [r_G]x."""
     pose = as_pose(pose)
     _, r = robot.attachment_points(pose)

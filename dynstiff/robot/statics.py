@@ -12,6 +12,10 @@ Forward statics (unstretched lengths given): Newton's method on the free-DOF wre
 with the analytic 6x6 stiffness (theory.md §4).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._vec import cross
@@ -23,10 +27,17 @@ from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
 from dynstiff.robot.pose import Pose
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.robot.robot import Robot
+
 __all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
 
 
-def tension_distribution(W, w, t_min, t_max, t_ref=None):
+def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: ArrayLike,
+                         t_max: ArrayLike,
+                         t_ref: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Tensions t [N] with W t = w closest to t_ref in the 2-norm, t_min <= t <= t_max.
 
     Parameters
@@ -52,7 +63,10 @@ def tension_distribution(W, w, t_min, t_max, t_ref=None):
     return _distribution(W, w, t_min, t_max, t_ref)[0]
 
 
-def _distribution(W, w, t_min, t_max, t_ref=None, sides=None, warm=True):
+def _distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: NDArray[np.float64],
+                  t_max: NDArray[np.float64], t_ref: NDArray[np.float64] | None = None,
+                  sides: NDArray[np.int64] | None = None,
+                  warm: bool = True) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """:func:`tension_distribution` and the active set it ends with.
 
     ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),
@@ -116,7 +130,8 @@ def _distribution(W, w, t_min, t_max, t_ref=None, sides=None, warm=True):
     return _closest_in_box(W, w, t_min, ub, t_ref, lp.x @ N.T + t, tol)
 
 
-def _active_solution(W, w, bound, r):
+def _active_solution(W: NDArray[np.float64], w: NDArray[np.float64], bound: NDArray[np.float64],
+                     r: NDArray[np.float64]) -> NDArray[np.float64] | None:
     """Tensions with the active ones at ``bound`` (NaN: free) and the free ones the
     minimum-distance solution of the balance (the target of :func:`_closest_in_box`), or
     None when the free cables cannot balance the rest."""
@@ -134,7 +149,11 @@ def _active_solution(W, w, bound, r):
     return target
 
 
-def _closest_in_box(W, w, lb, ub, r, t, tol, bound=None):
+def _closest_in_box(
+        W: NDArray[np.float64], w: NDArray[np.float64], lb: NDArray[np.float64],
+        ub: NDArray[np.float64], r: NDArray[np.float64], t: NDArray[np.float64], tol: float,
+        bound: NDArray[np.float64] | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """min ||t - r||^2 subject to W t = w, lb <= t <= ub, by a primal active-set method
     (Nocedal & Wright, Numerical Optimization, 2nd ed., Alg. 16.3) from the feasible t.
 
@@ -209,14 +228,16 @@ def _closest_in_box(W, w, lb, ub, r, t, tol, bound=None):
         residual=float(np.linalg.norm(W @ t - w)))
 
 
-def _limits(t_min, t_max):
+def _limits(t_min: NDArray[np.float64], t_max: NDArray[np.float64]) -> str:
     """The limits as text: [lo, hi] when equal for all cables, else per cable."""
     if np.all(t_min == t_min[0]) and np.all(t_max == t_max[0]):     # inf limits included
         return f"[{t_min[0]:g}, {t_max[0]:g}]"
     return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
 
 
-def _end_quantities(anchors, ends, H, V0, L0, w0):
+def _end_quantities(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: NDArray[np.float64],
+                    V0: NDArray[np.float64], L0: NDArray[np.float64],
+                    w0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """Unit force direction on B, shape (n, 3), and the tension margins lo = T_B - min T,
     hi = max T - T_B [N], shape (n,), of catenaries given by arrays (H, V0, L0)."""
     d = ends - anchors
@@ -235,7 +256,10 @@ def _end_quantities(anchors, ends, H, V0, L0, w0):
     return f / T_B[:, None], T_B - T_min, np.maximum(T_B, T_A) - T_B
 
 
-def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50, start=None):
+def inverse_statics(robot: Robot, pose: Pose,
+                    tension_reference: NDArray[np.float64] | float | None = None,
+                    tol: float = 1e-10, max_iter: int = 50,
+                    start: ArrayLike | None = None) -> Equilibrium:
     """Tensions and unstretched lengths that hold the platform at ``pose`` (sag included),
     with every cable's tension within the robot's limits all along its length.
 
@@ -350,7 +374,7 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
                        states=tuple(states), residual=float(res))
 
 
-def _kinematic_guess(robot, L0):
+def _kinematic_guess(robot: Robot, L0: NDArray[np.float64]) -> Pose:
     """Pose guess: free DOFs fitted so that straight chords match L0 (least squares)."""
     from scipy.optimize import least_squares
 
@@ -358,7 +382,7 @@ def _kinematic_guess(robot, L0):
     x0 = np.zeros(6)
     x0[:3] = robot.anchors.mean(axis=0) - [0.0, 0.0, 0.5 * np.ptp(robot.anchors[:, 2]) + 1.0]
 
-    def resid(xf):
+    def resid(xf: NDArray[np.float64]) -> NDArray[np.float64]:
         x = x0.copy()
         x[fi] = xf
         B, _ = robot.attachment_points(Pose(x[:3], x[3:]))
@@ -370,7 +394,8 @@ def _kinematic_guess(robot, L0):
     return Pose(x[:3], x[3:])
 
 
-def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
+def forward_statics(robot: Robot, L0: NDArray[np.float64], initial_pose: Pose | None = None,
+                    tol: float = 1e-10, max_iter: int = 50) -> Equilibrium:
     """Pose of the free DOFs at which the platform is in equilibrium for lengths ``L0``.
 
     Newton's method on the free-DOF wrench W(x) = 0 with the analytic stiffness K = -dW/dx,
@@ -397,7 +422,7 @@ def forward_statics(robot, L0, initial_pose=None, tol=1e-10, max_iter=50):
     pose = initial_pose if initial_pose is not None else _kinematic_guess(robot, L0)
     scale = robot.platform.mass * max(robot.g, 1.0)
 
-    def evaluate(p):
+    def evaluate(p: Pose) -> tuple[list[CatenaryState], NDArray[np.float64]]:
         st = robot.cable_states(p, L0)
         return st, robot.wrench(p, st)[fi]
 

@@ -17,11 +17,17 @@ Source: CASPR (Lau et al., darwinlau/CASPR), ``src/Util/Mathematics/Geometry/Spl
 conditions; time_definition "relative" or "absolute").
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["LAWS", "WaypointPath"]
 
@@ -29,7 +35,9 @@ __all__ = ["LAWS", "WaypointPath"]
 LAWS = ("linear", "cubic", "quintic", "parabolic_blend")
 
 
-def _hermite(ya, va, aa, yb, vb, ab, T, tau, law):
+def _hermite(ya: NDArray[np.float64], va: NDArray[np.float64], aa: NDArray[np.float64],
+             yb: NDArray[np.float64], vb: NDArray[np.float64], ab: NDArray[np.float64], T: float,
+             tau: NDArray[np.float64], law: str) -> NDArray[np.float64]:
     """Per-coordinate polynomial of ``law`` on a segment of duration T [s] at tau in
     [0, 1]; ya.. shape (3,), tau shape (m,). Returns shape (m, 3)."""
     s = tau[:, None]
@@ -51,7 +59,7 @@ def _hermite(ya, va, aa, yb, vb, ab, T, tau, law):
             + h5 * T**2 * ab)
 
 
-def _blend(tau, T, tb):
+def _blend(tau: NDArray[np.float64], T: float, tb: float) -> NDArray[np.float64]:
     """Parabolic blend from 0 to 1 over a segment of duration T [s] with blend time tb [s]
     at each end (CASPR's ``Spline.ParabolicBlend``), shape of tau."""
     t = tau * T
@@ -61,7 +69,7 @@ def _blend(tau, T, tb):
                              0.5 * acc * tb**2 + acc * tb * (t - tb)))
 
 
-def _sigma(tau, law, T, tb):
+def _sigma(tau: NDArray[np.float64], law: str, T: float, tb: float | None) -> NDArray[np.float64]:
     """The scalar law from 0 to 1 with zero end rates (linear: constant rate)."""
     if law == "linear":
         return tau
@@ -72,7 +80,7 @@ def _sigma(tau, law, T, tb):
     return _blend(tau, T, tb)
 
 
-def _rows(name, value, k, required=True):
+def _rows(name: str, value: ArrayLike | None, k: int, required: bool = True) -> NDArray[np.float64]:
     if value is None:
         if required:
             raise InvalidParameterError(f"{name} is required")
@@ -107,6 +115,17 @@ class WaypointPath:
         Blend time of each segment [s] ("parabolic_blend", required there), less than half
         the segment.
     name : str
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> path = ds.WaypointPath(times=[0.0, 2.0], positions=[[0, 0, 1.0], [0.5, 0, 1.0]],
+    ...                     rotations=[[0, 0, 0], [0, 0, 0]])
+    >>> path.duration
+    2.0
+    >>> position, rotation = path.at(1.0)
+    >>> position.tolist()
+    [[0.25, 0.0, 1.0]]
     """
 
     times: np.ndarray
@@ -118,7 +137,7 @@ class WaypointPath:
     blend_times: object = None
     name: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         t = np.asarray(self.times, dtype=float)
         if t.ndim != 1 or t.size < 2 or t[0] != 0 or not np.all(np.isfinite(t)) \
                 or np.any(np.diff(t) <= 0):
@@ -155,11 +174,11 @@ class WaypointPath:
             object.__setattr__(self, name, val)
 
     @property
-    def duration(self):
+    def duration(self) -> float:
         """Time of the last waypoint [s]."""
         return float(self.times[-1])
 
-    def at(self, t):
+    def at(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Positions [m] and rotation vectors [rad] at times ``t`` [s], shapes (m, 3); held
         before 0 and after the end."""
         from scipy.spatial.transform import Rotation
@@ -184,7 +203,7 @@ class WaypointPath:
             R[m] = (Ra * Rotation.from_rotvec(sig[:, None] * rel)).as_rotvec()
         return P, R
 
-    def poses(self, n):
+    def poses(self, n: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``n`` poses (x y z rx ry rz [m, rad]) at equally spaced times from 0 to the end,
         shape (n, 6), and those times [s], shape (n,)."""
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 2:

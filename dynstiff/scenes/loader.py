@@ -3,6 +3,7 @@
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,9 @@ from dynstiff.robot.platform import Platform
 from dynstiff.robot.pose import Pose
 from dynstiff.robot.robot import Robot
 from dynstiff.robot.waypoints import WaypointPath
+
+if TYPE_CHECKING:
+    from dynstiff.robot.equilibrium import Equilibrium
 
 __all__ = ["Scene", "SceneError", "read_scene", "load_scene", "list_scenes"]
 
@@ -93,7 +97,21 @@ def _type_error(value, kind):
 
 
 class SceneError(DynstiffError, ValueError):
-    """A scene file is malformed; the message names the file, the key and its line."""
+    """A scene file is malformed; the message names the file, the key and its line.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import dynstiff as ds
+    >>> path = os.path.join(tempfile.mkdtemp(), "bad.toml")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("robot = 1")
+    >>> try:
+    ...     ds.load_scene(path)
+    ... except ds.SceneError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, ValueError))
+    SceneError True
+    """
 
 @dataclass(frozen=True)
 class Scene:
@@ -128,6 +146,16 @@ class Scene:
     workspace_box : tuple of 6 float or None
         ``[workspace] box`` (x0, x1, y0, y1, z0, z1) [m]: the default box of a workspace
         map.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> scene.pose.position.tolist()
+    [0.0, 0.0, 1.0]
+    >>> eq = scene.equilibrium()
+    >>> print(f"{eq.tensions.max():.1f} N")
+    304.1 N
     """
 
     robot: Robot
@@ -150,7 +178,9 @@ class Scene:
     def __post_init__(self):
         object.__setattr__(self, "trajectories", dict(self.trajectories or {}))
 
-    def equilibrium(self, pose=None, unstretched_lengths=None, **kw):
+    def equilibrium(self, pose: "Pose | np.typing.ArrayLike | None" = None,
+                    unstretched_lengths: "np.typing.ArrayLike | None" = None,
+                    **kw: object) -> "Equilibrium":
         """Static equilibrium of the scene's robot (:meth:`Robot.equilibrium`).
 
         At ``pose`` (inverse statics) or for ``unstretched_lengths`` [m] (forward statics)
@@ -347,17 +377,31 @@ def read_scene(path):
                  workspace_box=None if box is None else tuple(float(b) for b in box))
 
 
-def list_scenes():
-    """Names of the built-in scenes."""
+def list_scenes() -> list[str]:
+    """Names of the built-in scenes.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> ds.list_scenes()
+    ['cogiro', 'fourcable', 'pendulum', 'planar2', 'simulator', 'sixcable']
+    """
     return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
 
 
-def load_scene(name):
+def load_scene(name: str | Path) -> Scene:
     """Built-in scene by name (see :func:`list_scenes`) or a path to a TOML file.
 
     Returns
     -------
     Scene
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> scene = ds.load_scene("cogiro")
+    >>> scene.name, scene.robot.n_cables
+    ('cogiro', 8)
     """
     p = Path(name)
     if p.suffix == ".toml" or p.exists():

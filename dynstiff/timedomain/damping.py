@@ -1,12 +1,20 @@
 """Damping of the lumped-mass time-domain model and the explicit scheme's stability limit
 (theory.md §7.3)."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
 
 __all__ = ["TimeDamping", "explicit_step_limit"]
 
@@ -34,7 +42,7 @@ class TimeDamping:
     beta: float = 0.0
     axial: object = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "alpha", positive_scalar("alpha", self.alpha, True))
         object.__setattr__(self, "beta", positive_scalar("beta", self.beta, True))
         c = np.atleast_1d(np.asarray(self.axial, dtype=float))
@@ -46,14 +54,14 @@ class TimeDamping:
                            tuple(float(x) for x in c) if c.size > 1 else float(c[0]))
 
     @classmethod
-    def rayleigh(cls, zeta, freq1_hz, freq2_hz):
+    def rayleigh(cls, zeta: float, freq1_hz: float, freq2_hz: float) -> TimeDamping:
         """Rayleigh damping with ratio ``zeta`` [-] at the two frequencies [Hz]."""
         zeta = positive_scalar("zeta", zeta, True)
         w1 = 2 * np.pi * positive_scalar("freq1_hz", freq1_hz)
         w2 = 2 * np.pi * positive_scalar("freq2_hz", freq2_hz)
         return cls(alpha=2 * zeta * w1 * w2 / (w1 + w2), beta=2 * zeta / (w1 + w2))
 
-    def axial_per_cable(self, n):
+    def axial_per_cable(self, n: int) -> NDArray[np.float64]:
         """c_ax of every cable [N s], shape (n,)."""
         if np.ndim(self.axial) == 0:
             return np.full(n, float(self.axial))
@@ -64,7 +72,8 @@ class TimeDamping:
         return np.array(self.axial, dtype=float)
 
 
-def explicit_step_limit(model, unstretched_lengths=None, damping=None):
+def explicit_step_limit(model: LumpedMassModel, unstretched_lengths=None,
+                        damping: TimeDamping | None = None) -> float:
     """Predicted stability limit of the explicit scheme [s].
 
     Central differences are stable for omega_max dt < 2 (sqrt(1 + zeta^2) - zeta), with the

@@ -30,15 +30,24 @@ snaps included: with the momentum balance written at the mid-step, the scheme co
 energy of the cables and the translating platform to the Newton tolerance.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff._vec import cross
 from dynstiff.robot.platform import skew
 
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
+
 __all__ = ["rotation_mean", "secant_tension", "discrete_gradient_force", "secant_elements"]
 
 
-def rotation_mean(theta):
+def rotation_mean(theta: NDArray[np.float64]) -> NDArray[np.float64]:
     """Phi(theta) = int_0^1 exp(s [theta]x) ds, shape (3, 3) [-], for a rotation vector
     theta (3,) [rad]: I + (1 - cos t) / t^2 [theta]x + (t - sin t) / t^3 [theta]x^2,
     t = |theta|; the first coefficient as 2 sin^2(t/2) / t^2 (no cancellation), the second
@@ -55,7 +64,9 @@ def rotation_mean(theta):
     return np.eye(3) + a * S + b * (S @ S)
 
 
-def secant_tension(l_a, l_b, l0, EA):
+def secant_tension(l_a: NDArray[np.float64], l_b: NDArray[np.float64],
+                   l0: NDArray[np.float64] | float,
+                   EA: NDArray[np.float64] | float) -> NDArray[np.float64]:
     """Mean tension T_sec [N] of segments whose length goes from ``l_a`` to ``l_b`` [m]
     (module notes); arrays broadcasting together with l0 [m] and EA [N]."""
     k = EA / l0
@@ -68,8 +79,11 @@ def secant_tension(l_a, l_b, l0, EA):
     return k * np.where(both, 0.5 * (a + b), one)
 
 
-def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec, dashpot=None,
-                            h=None):
+def discrete_gradient_force(model: LumpedMassModel, nodes_a: list[NDArray[np.float64]],
+                            nodes_b: list[NDArray[np.float64]], r_a: NDArray[np.float64],
+                            theta: NDArray[np.float64], r_G: NDArray[np.float64],
+                            g_vec: NDArray[np.float64], dashpot: NDArray[np.float64] | None = None,
+                            h: float | None = None) -> tuple[NDArray[np.float64], float, float]:
     """Generalised force R_bar (n_dof,) [N, N m] with R_bar . d = -(V_b - V_a) - D.
 
     Parameters
@@ -148,7 +162,9 @@ def discrete_gradient_force(model, nodes_a, nodes_b, r_a, theta, r_G, g_vec, das
     return R, t_max, dissipated
 
 
-def _mean_dashpot(la, lb, l0, dashpot, h):
+def _mean_dashpot(la: NDArray[np.float64], lb: NDArray[np.float64], l0: NDArray[np.float64],
+                  dashpot: NDArray[np.float64] | None,
+                  h: float | None) -> tuple[NDArray[np.float64] | float, float]:
     """Mean axial dashpot force over a step [N], shape of la, and its dissipation [J]
     (:func:`discrete_gradient_force`); dashpot (n,) or None."""
     if dashpot is None or not np.any(dashpot):
@@ -165,7 +181,9 @@ def _mean_dashpot(la, lb, l0, dashpot, h):
     T_d = c * theta * rate
     return T_d, float(np.sum(T_d * (lb - la)))
 
-def secant_elements(model, nodes_a, nodes_b, dashpot, dt):
+def secant_elements(model: LumpedMassModel, nodes_a: list[NDArray[np.float64]],
+                    nodes_b: list[NDArray[np.float64]], dashpot: NDArray[np.float64],
+                    dt: float) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
     """Newton elements of the energy scheme: per cable (K_e (N_i, 3, 3) [N/m], force on the
     platform at B_i (3,) [N]), K_e = 2 [T_sec' m m^T + T_sec / (l_a + l_b) (I - m m^T)]
     + 2 c_ax / (dt l0) m m^T (taut), m the unit vector of d_a + d_b and T_sec' = dT_sec /

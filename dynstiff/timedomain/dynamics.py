@@ -3,7 +3,10 @@ with exactly composed rotations, the pose-dependent platform terms, damping forc
 potential energy and the :class:`Dynamics` that assembles forces, mass and the Newton
 matrix. Internal to :mod:`dynstiff.timedomain.simulation` (see its notes for the equations)."""
 
+from __future__ import annotations
+
 import functools
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,15 +25,23 @@ from dynstiff.robot.platform import (
 )
 from dynstiff.robot.robot import Pose
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
 
-def model_at(model, L0):
+    from numpy.typing import NDArray
+
+    from dynstiff.timedomain.damping import TimeDamping
+
+
+def model_at(model: LumpedMassModel, L0: NDArray[np.float64]) -> LumpedMassModel:
     """The model with other unstretched lengths (same robot and segments)."""
     if np.array_equal(L0, model.unstretched_lengths):
         return model
     return LumpedMassModel(model.robot, L0, [int(s) for s in model.segments])
 
 
-def interior_views(model, X):
+def interior_views(model: LumpedMassModel, X: NDArray[np.float64]) -> list[NDArray[np.float64]]:
     """Views of the flat interior-node vector X as the model's list of (N_i - 1, 3)."""
     nf = model.n_free
     return [X[o - nf:o - nf + 3 * (N - 1)].reshape(-1, 3)
@@ -42,17 +53,18 @@ class FastPose(Pose):
     tangent and the platform terms all ask for it), built by the integrator without the
     user-input checks of :class:`Pose` (its state is checked for finiteness every step)."""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         object.__setattr__(self, "position", np.asarray(self.position, dtype=float))
         object.__setattr__(self, "rotation", np.asarray(self.rotation, dtype=float))
 
     @functools.cached_property
-    def matrix(self):
+    def matrix(self) -> NDArray[np.float64]:
         """Rotation matrix R_p, shape (3, 3)."""
         return super().matrix
 
 
-def advance(model, pose, X, dx):
+def advance(model: LumpedMassModel, pose: FastPose, X: NDArray[np.float64],
+            dx: NDArray[np.float64]) -> tuple[FastPose, NDArray[np.float64]]:
     """Configuration after the increment dx (rotation composed exactly)."""
     d6 = np.zeros(6)
     d6[model.free_index] = dx[:model.n_free]
@@ -68,7 +80,7 @@ def advance(model, pose, X, dx):
     return pose, X + dx[model.n_free:]
 
 
-def twist_of(model, v):
+def twist_of(model: LumpedMassModel, v: NDArray[np.float64]) -> NDArray[np.float64]:
     """Full platform twist (v_P, w), shape (6,), from the free-DOF velocities."""
     t = np.zeros(6)
     t[model.free_index] = v[:model.n_free]
@@ -82,7 +94,7 @@ class Frame:
     are the same (always so for a platform without free rotations).
     """
 
-    def __init__(self, model, pose, like=None):
+    def __init__(self, model: LumpedMassModel, pose: Pose, like: Frame | None = None) -> None:
         rob = model.robot
         if like is not None and like.model is model and \
                 np.array_equal(like.rotation, pose.rotation):
@@ -112,17 +124,18 @@ class Frame:
         self.zG = pose.position[2] + rG[2]
 
     @property
-    def J(self):
+    def J(self) -> list[NDArray[np.float64]]:
         """Lever maps J_i restricted to the free DOFs, list of (3, n_free)."""
         return [lever_map(ri, self._fi) for ri in self.r]
 
 
-def node_mass_vector(model):
+def node_mass_vector(model: LumpedMassModel) -> NDArray[np.float64]:
     """Diagonal of the interior-node mass, shape (n_dof - n_free,) [kg]."""
     return np.repeat(model.node_masses, 3 * (model.segments - 1))
 
 
-def gyroscopic(model, frame, tw):
+def gyroscopic(model: LumpedMassModel, frame: Frame,
+               tw: NDArray[np.float64]) -> NDArray[np.float64]:
     """Centripetal / gyroscopic terms g(q, v) on the free DOFs [N, N m].
 
     [w x (w x S); w x (I_P w)] with S the first moment and I_P the inertia about P of the
@@ -136,14 +149,18 @@ def gyroscopic(model, frame, tw):
     return g6[model.free_index]
 
 
-def _axial_dashpot(model, frame, X, v, tw, c_ax):
+def _axial_dashpot(model: LumpedMassModel, frame: Frame, X: NDArray[np.float64],
+                   v: NDArray[np.float64], tw: NDArray[np.float64],
+                   c_ax: NDArray[np.float64]) -> NDArray[np.float64]:
     """Generalised force of the axial dashpots c_ax d(epsilon)/dt (taut segments only)."""
     if np.all(model.segments == model.segments[0]):
         return _axial_dashpot_stacked(model, frame, X, v, tw, c_ax)
     return _axial_dashpot_loop(model, frame, X, v, tw, c_ax)
 
 
-def _axial_dashpot_stacked(model, frame, X, v, tw, c_ax):
+def _axial_dashpot_stacked(model: LumpedMassModel, frame: Frame, X: NDArray[np.float64],
+                           v: NDArray[np.float64], tw: NDArray[np.float64],
+                           c_ax: NDArray[np.float64]) -> NDArray[np.float64]:
     """:func:`_axial_dashpot` for chains of equal N, all at once (one segment_forces call)."""
     rob = model.robot
     n, N, nf = rob.n_cables, int(model.segments[0]), model.n_free
@@ -166,7 +183,9 @@ def _axial_dashpot_stacked(model, frame, X, v, tw, c_ax):
     return F
 
 
-def _axial_dashpot_loop(model, frame, X, v, tw, c_ax):
+def _axial_dashpot_loop(model: LumpedMassModel, frame: Frame, X: NDArray[np.float64],
+                        v: NDArray[np.float64], tw: NDArray[np.float64],
+                        c_ax: NDArray[np.float64]) -> NDArray[np.float64]:
     """:func:`_axial_dashpot` cable by cable (any N per cable)."""
     F = np.zeros(model.n_dof)
     nf = model.n_free
@@ -193,7 +212,9 @@ def _axial_dashpot_loop(model, frame, X, v, tw, c_ax):
     return F
 
 
-def potential_energy(model, frame, X):
+def potential_energy(
+        model: LumpedMassModel, frame: Frame, X: NDArray[np.float64],
+) -> tuple[float, float, NDArray[np.float64], NDArray[np.float64], list[tuple[int, int]], float]:
     """Elastic and gravity energy [J], end tensions [N], slack segments, largest strain."""
     rob = model.robot
     g = rob.g
@@ -218,7 +239,8 @@ def potential_energy(model, frame, X):
 class Dynamics:
     """Forces, mass and Newton matrix of the lumped robot at given lengths (internal)."""
 
-    def __init__(self, model, damping, K0, excitation):
+    def __init__(self, model: LumpedMassModel, damping: TimeDamping, K0: Any | None,
+                 excitation: Callable[..., Any] | None) -> None:
         self.model = model
         n = model.robot.n_cables
         self.damping = damping
@@ -233,7 +255,7 @@ class Dynamics:
         self.extremes = (np.inf, 0.0)
         self.set_model(model)
 
-    def set_model(self, model):
+    def set_model(self, model: LumpedMassModel) -> None:
         self.model = model
         self.EA = np.array([cb.EA for cb in model.robot.cables])
         self.node_weights = model.node_masses[:, None] * model.robot.gravity_vector
@@ -243,7 +265,7 @@ class Dynamics:
         self.mu = node_mass_vector(model)
         self.cv = np.repeat(self.c_visc * model.segment_lengths, 3 * (model.segments - 1))
 
-    def load(self, t):
+    def load(self, t: float) -> NDArray[np.float64]:
         """External load at t [s] on the free DOFs, shape (n_dof,); the excitation is
         called once per time (the Newton iterations of a step share it)."""
         if self._load is not None and self._load[0] == t:
@@ -254,18 +276,21 @@ class Dynamics:
         self._load = (t, F)
         return F.copy()
 
-    def mass_times(self, frame, a):
+    def mass_times(self, frame: Frame, a: NDArray[np.float64]) -> NDArray[np.float64]:
         nf = self.model.n_free
         return np.concatenate([frame.Mff @ a[:nf], self.mu * a[nf:]])
 
-    def platform_viscous(self, frame):
+    def platform_viscous(self, frame: Frame) -> NDArray[np.float64]:
         m = self.model
         Cb = np.zeros((m.n_free, m.n_free))
         for i, J in enumerate(frame.J):
             Cb += 0.5 * self.c_visc[i] * m.segment_lengths[i] * J.T @ J
         return Cb
 
-    def forces(self, pose, X, v, t, dashpots=True):
+    def forces(
+            self, pose: FastPose, X: NDArray[np.float64], v: NDArray[np.float64], t: float,
+            dashpots: bool = True,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, Frame]:
         """Total generalised force F and its external and damping parts, max tension; the
         smallest tension and largest strain of the configuration are kept in
         ``self.extremes``."""
@@ -298,7 +323,10 @@ class Dynamics:
         F = R + fe + fd - np.concatenate([gyroscopic(m, frame, tw), np.zeros(m.n_dof - nf)])
         return F, fe, fd, t_max, frame
 
-    def _compiled_chain_forces(self, fast, frame, pose, X, v, tw):
+    def _compiled_chain_forces(
+            self, fast: Any, frame: Frame, pose: FastPose, X: NDArray[np.float64],
+            v: NDArray[np.float64], tw: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
         """Residual R, axial-dashpot force and largest tension from the compiled chain kernel
         (:mod:`dynstiff.compiled.chain`); sets ``extremes``."""
         m = self.model
@@ -311,7 +339,10 @@ class Dynamics:
         fi = m.free_index
         return np.concatenate([W[fi], inner]), np.concatenate([Wd[fi], d_inner]), t_max
 
-    def newton_matrix(self, pose, X, dt, elements=None):
+    def newton_matrix(
+            self, pose: FastPose, X: NDArray[np.float64], dt: float,
+            elements: list[tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None,
+    ) -> Any:
         """K + 4 M / dt^2 + 2 C / dt at a configuration (sparse CSC); ``elements`` as
         :meth:`LumpedMassModel.tangent_unchecked` (their axial dashpots included)."""
         import scipy.sparse
@@ -331,16 +362,16 @@ class Dynamics:
             J = J + (2.0 * self.beta / dt) * self.K0
         return J.tocsc()
 
-    def accelerations(self, frame, F):
+    def accelerations(self, frame: Frame, F: NDArray[np.float64]) -> NDArray[np.float64]:
         nf = self.model.n_free
         return np.concatenate([np.linalg.solve(frame.Mff, F[:nf]) if nf else np.zeros(0),
                                F[nf:] / self.mu])
 
-    def kinetic(self, frame, v):
+    def kinetic(self, frame: Frame, v: NDArray[np.float64]) -> float:
         return 0.5 * float(v @ self.mass_times(frame, v))
 
 
-def load_at(excitation, t):
+def load_at(excitation: Callable[..., Any], t: float) -> NDArray[np.float64]:
     f = np.asarray(excitation(t), dtype=float)
     if f.shape != (6,) or not np.all(np.isfinite(f)):
         raise InvalidParameterError(

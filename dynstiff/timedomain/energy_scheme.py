@@ -31,6 +31,10 @@ energy carried in with the paid-out mass as 1/4 dmu (|v_a|^2 + |v_b|^2) (exact f
 with the mid-step masses).
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import ConvergenceError
@@ -45,6 +49,16 @@ from dynstiff.timedomain.dynamics import (
 )
 from dynstiff.timedomain.stepping import carried_energy
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
+    from dynstiff.timedomain.dynamics import Dynamics, FastPose, Frame
+    from dynstiff.timedomain.stepping import StepNewton
+
 __all__ = ["EnergyStepper", "MAX_HALVINGS"]
 
 #: Halvings of a step whose Newton iteration fails (theory.md §7.3).
@@ -56,7 +70,7 @@ _DIVERGED = 1e3
 class _Failed(Exception):
     """A step's Newton iteration failed (the step is retried as two halves)."""
 
-    def __init__(self, message, residual):
+    def __init__(self, message: str, residual: float) -> None:
         super().__init__(message)
         self.residual = residual
 
@@ -82,16 +96,21 @@ class EnergyStepper:
         Steps that were split (each halving counts once).
     """
 
-    def __init__(self, dyn, model, length_fn, newton):
+    def __init__(self, dyn: Dynamics, model: LumpedMassModel, length_fn: Callable[..., Any] | None,
+                 newton: StepNewton) -> None:
         self.dyn, self.model, self.length_fn, self.newton = dyn, model, length_fn, newton
         self.substeps = 0
 
-    def _model(self, t):
+    def _model(self, t: float) -> LumpedMassModel:
         if self.length_fn is None:
             return self.model
         return model_at(self.model, self.length_fn(t))
 
-    def step(self, pose, X, v, fe, fd, frame, t_a, dt, k):
+    def step(
+            self, pose: FastPose, X: NDArray[np.float64], v: NDArray[np.float64],
+            fe: NDArray[np.float64], fd: NDArray[np.float64], frame: Frame, t_a: float, dt: float,
+            k: int,
+    ) -> tuple[tuple[NDArray[np.float64] | FastPose | Frame, ...], NDArray[np.float64]]:
         """One step of ``dt`` [s] from t_a [s] (step k of the run; ``frame`` the platform
         terms at the start), halved where Newton fails. Returns (pose, X, v, a, fe, fd,
         frame) at t_a + dt and the ledger increments (external work, dissipated, winch
@@ -105,7 +124,13 @@ class EnergyStepper:
         out = self._interval(state, t_a, dt, m_a, k, 0, work)
         return out, work
 
-    def _interval(self, state, t_a, h, m_a, k, depth, work):
+    def _interval(
+            self,
+            state: tuple[FastPose, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+                         NDArray[np.float64], Frame],
+            t_a: float, h: float, m_a: LumpedMassModel, k: int, depth: int,
+            work: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64] | FastPose | Frame, ...]:
         m_b = self._model(t_a + h)
         try:
             return self._single(state, t_a, h, m_a, m_b, k, work)
@@ -122,7 +147,13 @@ class EnergyStepper:
         return self._interval((pose, X, v, fe, fd, frame), t_a + 0.5 * h, 0.5 * h, m_h, k,
                               depth + 1, work)
 
-    def _single(self, state, t_a, h, m_a, m_b, k, work):
+    def _single(
+            self,
+            state: tuple[FastPose, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64],
+                         NDArray[np.float64], Frame],
+            t_a: float, h: float, m_a: LumpedMassModel, m_b: LumpedMassModel, k: int,
+            work: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64] | FastPose | Frame, ...]:
         """One step without step control; raises _Failed. Adds its ledger increments to
         ``work`` only when it succeeds."""
         import scipy.sparse.linalg
@@ -185,14 +216,14 @@ class EnergyStepper:
         return pose_b, X_b, v_b, a_b, fe_b, fd_b, frame_b
 
 
-def _geometry(nodes):
+def _geometry(nodes: list[NDArray[np.float64]]) -> list[tuple[NDArray[np.float64], float]]:
     """Per cable: segment lengths (N_i,) [m] and sum of the interior node heights plus half
     the height of B_i [m] (what the energy depends on at fixed configuration)."""
     return [(np.sqrt(np.sum(np.diff(x, axis=0) ** 2, axis=1)),
              x[1:-1, 2].sum() + 0.5 * x[-1, 2]) for x in nodes]
 
 
-def _stored(model, geometry):
+def _stored(model: LumpedMassModel, geometry: list[tuple[NDArray[np.float64], float]]) -> float:
     """Elastic energy and the cables' gravity energy [J] of ``model``'s unstretched lengths
     and node masses at the configuration ``geometry`` (:func:`_geometry`); the platform's
     own weight is left out (it does not depend on the lengths)."""

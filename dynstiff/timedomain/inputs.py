@@ -3,17 +3,29 @@ time or a table interpolated in time), the platform excitation, the initial offs
 velocity, and the number of steps.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
 
 __all__ = ["excitation_function", "initial_state", "interpolated_table", "lengths_function",
            "step_count"]
 
 
 # -------------------------------------------------------------------------- inputs
-def lengths_function(lengths, n):
+def lengths_function(lengths: Callable[..., Any] | None, n: int) -> Callable[..., Any] | None:
     if lengths is None:
         return None
     if callable(lengths):
@@ -29,7 +41,7 @@ def lengths_function(lengths, n):
                 f"table (times (k,) [s], lengths (k, {n}) [m]), got {lengths!r}") from None
         fn = interpolated_table(times, table, n, "lengths", "lengths", "m")
 
-    def checked(t):
+    def checked(t: float) -> NDArray[np.float64]:
         L = np.asarray(fn(t), dtype=float)
         if L.shape != (n,) or not np.all(np.isfinite(L)) or np.any(L <= 0):
             raise InvalidParameterError(
@@ -39,7 +51,9 @@ def lengths_function(lengths, n):
     return checked
 
 
-def excitation_function(excitation):
+def excitation_function(
+        excitation: Callable[..., Any] | None,
+) -> tuple[Callable[..., Any] | None, None]:
     """(callable t -> (6,) or None, the table (times, loads) or None) from ``excitation``."""
     if excitation is None or callable(excitation):
         return excitation, None
@@ -55,7 +69,7 @@ def excitation_function(excitation):
     return fn, (times, loads)
 
 
-def interpolated_table(times, values, n, name, column, unit, finite=False):
+def interpolated_table(times, values, n, name, column, unit, finite: bool = False):
     """t -> values interpolated linearly in a table (times (k,) [s], values (k, n)), checked:
     times finite, strictly increasing, starting at t <= 0 (and the values finite with
     ``finite``); the error names ``name``."""
@@ -75,7 +89,10 @@ def interpolated_table(times, values, n, name, column, unit, finite=False):
     return fn
 
 
-def initial_state(initial, model):
+def initial_state(
+        initial: list[float] | tuple[NDArray[np.float64] | list[float], list[float]] | None,
+        model: LumpedMassModel,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(offset (6,), velocity (6,)) from ``initial``."""
     zero = np.zeros(6)
     if initial is None:
@@ -104,5 +121,5 @@ def initial_state(initial, model):
     return out[0], out[1]
 
 
-def step_count(t_end, dt):
+def step_count(t_end: float, dt: float) -> int:
     return max(1, int(np.ceil(t_end / dt - 1e-9)))

@@ -1,12 +1,21 @@
 """Results of the time-domain simulation (:mod:`dynstiff.timedomain.simulation`): the energy
 ledger, the time response with its pandas and plot views, and its spectrum."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+    from numpy.typing import NDArray
 
 __all__ = ["EnergyBalance", "TimeResponse", "Spectrum"]
 
@@ -42,12 +51,12 @@ class EnergyBalance:
     static_energy: float
 
     @property
-    def total(self):
+    def total(self) -> NDArray[np.float64]:
         """kinetic + gravity + elastic [J], shape (n_t,)."""
         return self.kinetic + self.gravity + self.elastic
 
     @property
-    def scale(self):
+    def scale(self) -> float:
         """Energy scale of the run [J]: the initial energy above the static equilibrium
         plus the largest magnitudes of the external, winch, carried and dissipated terms."""
         return float(abs(self.total[0] - self.static_energy)
@@ -55,7 +64,7 @@ class EnergyBalance:
                      + np.abs(self.carried_kinetic).max() + np.abs(self.dissipated).max())
 
     @property
-    def relative_residual(self):
+    def relative_residual(self) -> NDArray[np.float64]:
         """residual / scale [-], shape (n_t,) (relative to max |total| for a run that stays
         at rest, whose scale is 0)."""
         scale = self.scale
@@ -119,7 +128,7 @@ class TimeResponse:
     wall_time: float = 0.0
     substeps: int = 0
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return (f"TimeResponse({self.scheme}, {self.times[-1]:.4g} s in {self.n_steps} steps of "
                 f"{self.dt:.3g} s, {self.times.size} records, free {self.free_dofs})")
 
@@ -133,7 +142,7 @@ class TimeResponse:
         """Simulated seconds per wall-clock second [-]."""
         return self.times[-1] / self.wall_time if self.wall_time > 0 else np.inf
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame indexed by time [s]: pose, twist, tensions, lengths, energies."""
         import pandas as pd
         cols = {}
@@ -153,8 +162,8 @@ class TimeResponse:
             cols[f"{name} [J]"] = getattr(e, name)
         return pd.DataFrame(cols, index=pd.Index(self.times, name="t [s]"))
 
-    def spectrum(self, channel="z", window="hann", t_start=0.0, threshold=1e-3,
-                 prominence=None):
+    def spectrum(self, channel: str = "z", window: str = "hann", t_start: float = 0.0,
+                 threshold: float = 1e-3, prominence=None) -> Spectrum:
         """Windowed amplitude spectrum of a platform channel, with identified peaks.
 
         The mean is removed, the window applied and the one-sided amplitude scaled by the
@@ -215,7 +224,7 @@ class TimeResponse:
                         peak_amplitudes=peak_amp[order], channel=channel,
                         window=str(window), resolution_hz=fs / y.size)
 
-    def plot(self, ax=None, channels=None):
+    def plot(self, ax: Axes | None = None, channels=None) -> Figure:
         """Platform displacement from the equilibrium against time; returns the figure.
 
         Parameters
@@ -268,12 +277,12 @@ class Spectrum:
     window: str
     resolution_hz: float
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         peaks = ", ".join(f"{f:.4g}" for f in self.peaks_hz[:4])
         return (f"Spectrum({self.channel}, {self.freq_hz.size} bins of {self.resolution_hz:.3g} "
                 f"Hz, peaks [{peaks}{', ...' if self.peaks_hz.size > 4 else ''}] Hz)")
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame: freq [Hz], amplitude, and a ``peak`` flag."""
         import pandas as pd
         peak = np.zeros(self.freq_hz.size, dtype=bool)
@@ -282,7 +291,7 @@ class Spectrum:
         return pd.DataFrame({"freq [Hz]": self.freq_hz, "amplitude": self.amplitude,
                              "peak": peak})
 
-    def plot(self, ax=None):
+    def plot(self, ax: Axes | None = None) -> Figure:
         """Amplitude (log scale) with the peaks marked; returns the figure."""
         import matplotlib.pyplot as plt
         if ax is None:

@@ -94,9 +94,12 @@ options and the explicit step limit, ``dynamics`` the forces, mass and Newton ma
 its forces.
 """
 
+from __future__ import annotations
+
 import time as _time
 import warnings
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -144,6 +147,12 @@ from dynstiff.timedomain.stepping import (
     implicit_step,
 )
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import NDArray
+
 __all__ = [
     "simulate", "TimeResponse", "EnergyBalance", "Spectrum", "TimeDamping", "IntegrationError",
     "SlackSegmentWarning", "TimeStepWarning", "EnergyBalanceWarning", "explicit_step_limit"
@@ -160,9 +169,15 @@ class TimeStepWarning(DynstiffWarning, RuntimeWarning):
 
 
 # -------------------------------------------------------------------------- simulate
-def simulate(model, t_end, dt, excitation=None, lengths=None, scheme="implicit",
-             initial=None, damping=None, record_every=1, *, record_nodes=False, tol=1e-9,
-             max_iter=25, start=None, max_records=1_000_000):
+def simulate(
+        model: LumpedLinearModel | LumpedMassModel, t_end: float, dt: float,
+        excitation: Callable[..., Any] | None = None, lengths: Callable[..., Any] | None = None,
+        scheme: str = "implicit",
+        initial: list[float] | tuple[NDArray[np.float64] | list[float], list[float]] | None = None,
+        damping: TimeDamping | None = None, record_every: int = 1, *, record_nodes: bool = False,
+        tol: float = 1e-9, max_iter: int = 25, start: LumpedEquilibrium | None = None,
+        max_records: int = 1_000_000,
+) -> TimeResponse:
     """Integrate the nonlinear equations of motion of the lumped-mass robot.
 
     Starts from a static equilibrium (``start``, or the equilibrium for ``lengths(0)``),

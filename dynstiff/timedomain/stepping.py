@@ -3,7 +3,10 @@ average-acceleration and velocity-Verlet steps, the blow-up checks, the running 
 ledger and the recorder. Internal to :mod:`dynstiff.timedomain.simulation` (see its notes for
 the schemes and the energy bookkeeping), except the failure types it raises."""
 
+from __future__ import annotations
+
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -12,6 +15,17 @@ from dynstiff.errors import ConvergenceError, DynstiffError, DynstiffWarning
 from dynstiff.timedomain.damping import explicit_step_limit
 from dynstiff.timedomain.dynamics import FastPose, advance, interior_views, load_at, twist_of
 from dynstiff.timedomain.response import EnergyBalance, TimeResponse
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.models.lumped_robot import LumpedMassModel
+    from dynstiff.robot.pose import Pose
+    from dynstiff.timedomain.damping import TimeDamping
+    from dynstiff.timedomain.dynamics import Dynamics, Frame
 
 #: A segment stretched beyond this strain means the integration has blown up.
 _STRAIN_LIMIT = 1.0
@@ -28,7 +42,8 @@ class IntegrationError(DynstiffError, RuntimeError):
     Attributes ``step``, ``time`` [s] and ``dt`` [s] locate the failure.
     """
 
-    def __init__(self, message, step=None, time=None, dt=None):
+    def __init__(self, message: str, step: int | None = None, time: float | None = None,
+                 dt: float | None = None) -> None:
         super().__init__(message)
         self.step, self.time, self.dt = step, time, dt
 
@@ -40,14 +55,16 @@ class EnergyBalanceWarning(DynstiffWarning, RuntimeWarning):
 class StepNewton:
     """Newton options, the kept LU factors and the iteration counters of a run."""
 
-    def __init__(self, tol, max_iter):
+    def __init__(self, tol: float, max_iter: int) -> None:
         self.tol, self.max_iter = tol, max_iter
         self.lu = None
         self.a_prev = None
         self.iterations = self.updates = 0
 
 
-def implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
+def implicit_step(dyn: Dynamics, pose: FastPose, X: NDArray[np.float64], v: NDArray[np.float64],
+                  a: NDArray[np.float64], t1: float, dt: float, k: int,
+                  newton: StepNewton) -> tuple[NDArray[np.float64] | FastPose | Frame, ...]:
     """One Newmark average-acceleration step solved by (modified) Newton iterations.
 
     Unknown: the increment d = x_{n+1} - x_n; a_{n+1} = 4 (d - dt v_n) / dt^2 - a_n and
@@ -92,7 +109,9 @@ def implicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
+def explicit_step(dyn: Dynamics, pose: FastPose, X: NDArray[np.float64], v: NDArray[np.float64],
+                  a: NDArray[np.float64], t1: float, dt: float, k: int,
+                  newton: StepNewton) -> tuple[NDArray[np.float64] | FastPose | Frame, ...]:
     """One velocity-Verlet step (velocity-dependent forces at the half-step velocity)."""
     m = dyn.model
     vh = v + 0.5 * dt * a
@@ -110,7 +129,8 @@ def explicit_step(dyn, pose, X, v, a, t1, dt, k, newton):
     return d, pose1, X1, v1, a1, fe1, fd1, frame1
 
 
-def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stacklevel=3):
+def check_blow_up(strain: float, residual: float, ledger: Ledger, scheme: str, dt: float, k: int,
+                  t1: float, m: LumpedMassModel, damping: TimeDamping, stacklevel: int = 3) -> None:
     """IntegrationError when a strain exceeds 1 or the energy balance residual exceeds
     ``_BLOW_UP`` times the energy scale of the run (plus 1e-3 of the initial strain
     energy); an :class:`EnergyBalanceWarning`, once, when it passes ``_LEDGER_WARN`` of it.
@@ -134,7 +154,8 @@ def check_blow_up(strain, residual, ledger, scheme, dt, k, t1, m, damping, stack
         f"{why}{hint}", step=k, time=t1, dt=dt)
 
 
-def ledger_warning(k, t1, residual, scale, dt, stacklevel=5):
+def ledger_warning(k: int, t1: float, residual: float, scale: float, dt: float,
+                   stacklevel: int = 5) -> None:
     """The :class:`EnergyBalanceWarning` of step k (residual and energy scale [J])."""
     warnings.warn(
         f"simulate: at step {k} (t = {t1:g} s) the energy balance residual {residual:.3g} "
@@ -145,7 +166,8 @@ def ledger_warning(k, t1, residual, scale, dt, stacklevel=5):
         f"check the motion", EnergyBalanceWarning, stacklevel=stacklevel)
 
 
-def carried_energy(m, m_prev, frame, v, dmu):
+def carried_energy(m: LumpedMassModel, m_prev: LumpedMassModel, frame: Frame,
+                   v: NDArray[np.float64], dmu: NDArray[np.float64]) -> float:
     """sum dmu |v|^2 of the interior nodes and the half masses at B_i [J * 2]."""
     nf = m.n_free
     tw = twist_of(m, v)
@@ -157,7 +179,7 @@ def carried_energy(m, m_prev, frame, v, dmu):
 class Ledger:
     """Running energy balance E - E0 = W_ext - D + W_w + E_c + residual (module notes)."""
 
-    def __init__(self, E0, V_eq, elastic0):
+    def __init__(self, E0: float, V_eq: float, elastic0: float) -> None:
         self.E0 = E0
         self.excess = abs(E0 - V_eq)
         self.floor = 1e-3 * elastic0          # for runs that start at rest, unloaded
@@ -165,30 +187,34 @@ class Ledger:
         self.peaks = np.zeros(4)
         self.warned = False
 
-    def track(self):
+    def track(self) -> None:
         """Update the peaks of the work terms (the energy scale) at a step without a row."""
         p = self.peaks
         p[0], p[1] = max(p[0], abs(self.ext)), max(p[1], abs(self.winch))
         p[2], p[3] = max(p[2], abs(self.carried)), max(p[3], abs(self.diss))
 
-    def row(self, kinetic, pot):
+    def row(
+            self, kinetic: float,
+            pot: tuple[float, float, NDArray[np.float64], NDArray[np.float64], list[tuple[int,
+                       int]], float],
+    ) -> tuple[float, ...]:
         """(kinetic, gravity, elastic, ext, winch, carried, dissipated, residual) [J]."""
         self.track()
         E = kinetic + pot[0] + pot[1]
         res = E - self.E0 - (self.ext - self.diss + self.winch + self.carried)
         return (kinetic, pot[1], pot[0], self.ext, self.winch, self.carried, self.diss, res)
 
-    def scale(self):
+    def scale(self) -> float:
         """Energy scale of the run so far [J] (as EnergyBalance.scale)."""
         return self.excess + float(self.peaks.sum())
 
-    def limit(self):
+    def limit(self) -> float:
         """Energy scale with its floor [J]: the reference of the blow-up test."""
         return self.scale() + self.floor
 
 
 class Recorder:
-    def __init__(self, n_rec, n, model, nodes):
+    def __init__(self, n_rec: int, n: int, model: LumpedMassModel, nodes: bool) -> None:
         self.t = np.empty(n_rec)
         self.pose = np.empty((n_rec, 6))
         self.vel = np.empty((n_rec, 6))
@@ -198,7 +224,12 @@ class Recorder:
         self.E = np.empty((n_rec, 8))
         self.nodes = [np.empty((n_rec, N + 1, 3)) for N in model.segments] if nodes else None
 
-    def store(self, j, t, pose, v, model, pot, row, X):
+    def store(
+            self, j: int, t: float, pose: FastPose, v: NDArray[np.float64], model: LumpedMassModel,
+            pot: tuple[float, float, NDArray[np.float64], NDArray[np.float64], list[tuple[int,
+                       int]], float],
+            row: tuple[float, ...], X: NDArray[np.float64],
+    ) -> None:
         self.t[j] = t
         self.pose[j] = pose.as_vector()
         self.vel[j] = twist_of(model, v)
@@ -208,12 +239,14 @@ class Recorder:
         if self.nodes is not None:
             self.store_nodes(j, pose, model, X)
 
-    def store_nodes(self, j, pose, model, X):
+    def store_nodes(self, j: int, pose: FastPose, model: LumpedMassModel,
+                    X: NDArray[np.float64]) -> None:
         B, _ = model.robot.attachment_points(pose)
         for i, xi in enumerate(interior_views(model, X)):
             self.nodes[i][j] = np.vstack((model.robot.anchors[i], xi, B[i]))
 
-    def result(self, model, eq_pose, static_energy, **info):
+    def result(self, model: LumpedMassModel, eq_pose: Pose, static_energy: float,
+               **info: float | str) -> TimeResponse:
         self.E.setflags(write=False)
         energy = EnergyBalance(*self.E.T, static_energy=static_energy)
         out = [self.t, self.pose, self.vel, self.t_end, self.t_anchor, self.L, energy]
@@ -228,7 +261,8 @@ class Recorder:
 _BLOCK = 32768
 
 
-def excitation_loads(excitation, table, free, dt, k0, k1):
+def excitation_loads(excitation: Callable[..., Any] | None, table, free: NDArray[np.bool_],
+                     dt: float, k0: int, k1: int) -> NDArray[np.float64]:
     """External loads at the end of steps k0 + 1 ... k1, shape (k1 - k0, 6), held DOFs 0 (or
     (0, 6) without excitation): the table interpolated at all steps at once, or the callable
     called step by step (checked as :func:`load_at`)."""
@@ -252,14 +286,19 @@ def excitation_loads(excitation, table, free, dt, k0, k1):
     return loads
 
 
-def _six(model, x):
+def _six(model: LumpedMassModel, x: NDArray[np.float64]) -> NDArray[np.float64]:
     """The free-DOF part of x as a full 6-vector (0 on the held DOFs)."""
     out = np.zeros(6)
     out[model.free_index] = x[:model.n_free]
     return out
 
 
-def _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger):
+def _kernel_arguments(
+        dyn: Dynamics, pose: FastPose, X: NDArray[np.float64], v: NDArray[np.float64],
+        a: NDArray[np.float64], fe: NDArray[np.float64], fd: NDArray[np.float64], rec: Recorder,
+        ledger: Ledger,
+) -> tuple[NDArray[np.bool_], tuple[NDArray[np.float64], ...], tuple[NDArray[Any], ...],
+           tuple[NDArray[Any], ...]]:
     """(free (6,) bool, state, constants, tail) of the compiled runs: the state arrays as
     in :func:`dynstiff.compiled.chain_run.explicit_run`, the model's constants from free
     to K0, then the ledger, counters and records (ledger, info, out, records, rec_X)."""
@@ -290,8 +329,11 @@ def _kernel_arguments(dyn, pose, X, v, a, fe, fd, rec, ledger):
     return free, state, consts, tail
 
 
-def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
-                          ledger, damping, slack_warning, table):
+def compiled_explicit_run(fast: Any, dyn: Dynamics, pose: FastPose, X: NDArray[np.float64],
+                          v: NDArray[np.float64], a: NDArray[np.float64], fe: NDArray[np.float64],
+                          fd: NDArray[np.float64], dt: float, n_steps: int, record_every: int,
+                          rec: Recorder, ledger: Ledger, damping: TimeDamping, slack_warning: type,
+                          table) -> int:
     """The velocity-Verlet steps of a run with fixed lengths (any damping, any N per cable)
     in calls of ``_BLOCK`` steps of the compiled kernel
     (:func:`dynstiff.compiled.chain_run.explicit_run`, theory.md §14.5), records, ledger
@@ -309,7 +351,7 @@ def compiled_explicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
                                damping, slack_warning, "explicit")
 
 
-def _lu_arrays(lu):
+def _lu_arrays(lu: Any) -> tuple[NDArray[Any], ...]:
     """The SuperLU factors as arrays for compiled_chain._lu_solve (L, U in CSR, perms)."""
     L, U = lu.L.tocsr(), lu.U.tocsr()
     return (L.indptr.astype(np.int64), L.indices.astype(np.int64), L.data.astype(float),
@@ -317,8 +359,11 @@ def _lu_arrays(lu):
             lu.perm_r.astype(np.int64), lu.perm_c.astype(np.int64))
 
 
-def compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_every, rec,
-                          ledger, damping, slack_warning, table, newton):
+def compiled_implicit_run(fast: Any, dyn: Dynamics, pose: FastPose, X: NDArray[np.float64],
+                          v: NDArray[np.float64], a: NDArray[np.float64], fe: NDArray[np.float64],
+                          fd: NDArray[np.float64], dt: float, n_steps: int, record_every: int,
+                          rec: Recorder, ledger: Ledger, damping: TimeDamping, slack_warning: type,
+                          table, newton: StepNewton) -> int:
     """The Newmark steps of a run with fixed lengths in calls of the compiled kernel
     (:func:`dynstiff.compiled.chain_run.implicit_run`, theory.md §14.6): Newton with the
     kept LU factors runs in the kernel; when they are missing or Newton slows down, the
@@ -365,8 +410,9 @@ def compiled_implicit_run(fast, dyn, pose, X, v, a, fe, fd, dt, n_steps, record_
     return slack_steps
 
 
-def finish_compiled_run(status, step, tail, ledger, rec, m, dt, record_every, damping,
-                        slack_warning, scheme):
+def finish_compiled_run(status: int, step: int, tail: tuple[NDArray[Any], ...], ledger: Ledger,
+                        rec: Recorder, m: LumpedMassModel, dt: float, record_every: int,
+                        damping: TimeDamping, slack_warning: type, scheme: str) -> int:
     """After a compiled run: the ledger back, the warnings in the order of their steps, the
     failure the kernel reported, the record times, lengths and nodes. Returns the number of
     steps with a slack segment."""

@@ -14,7 +14,10 @@ or with a smooth start and stop (``ramp`` > 0: the speed follows (1 - cos) / 2 o
 seconds).
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,6 +25,13 @@ from dynstiff._validate import positive_scalar
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any
+
+    import pandas as pd
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["Trajectory", "line", "circle", "following", "quasi_static_lengths",
            "TrackingResult", "track"]
@@ -51,7 +61,7 @@ class Trajectory:
     name: str = ""
     path: object = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         t = np.asarray(self.times, dtype=float)
         p = np.asarray(self.positions, dtype=float)
         r = np.asarray(self.rotations, dtype=float)
@@ -68,11 +78,11 @@ class Trajectory:
         object.__setattr__(self, "rotations", r)
 
     @property
-    def duration(self):
+    def duration(self) -> float:
         """Last sample time [s]."""
         return float(self.times[-1])
 
-    def at(self, t):
+    def at(self, t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Positions [m] and rotation vectors [rad] at times ``t`` [s], shapes (n, 3): from
         the exact path when there is one, else linearly interpolated; held after the end."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
@@ -82,7 +92,7 @@ class Trajectory:
         R = np.column_stack([np.interp(t, self.times, self.rotations[:, k]) for k in range(3)])
         return P, R
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame: time [s], x y z [m], rx ry rz [rad]."""
         import pandas as pd
         cols = {"time [s]": self.times}
@@ -93,7 +103,7 @@ class Trajectory:
         return pd.DataFrame(cols)
 
 
-def _arc_length(total, speed, ramp):
+def _arc_length(total: float, speed: float, ramp: float) -> tuple[float, Callable[..., Any]]:
     """(duration [s], s(t) [m]): arc length of a constant-speed move with smooth
     (1 - cos) / 2 speed ramps of ``ramp`` seconds at both ends (s(duration) = total)."""
     total = positive_scalar("length", total)
@@ -105,24 +115,27 @@ def _arc_length(total, speed, ramp):
             f"ramp = {ramp:g} s is too long for a {total:g} m move at {speed:g} m/s "
             f"(at most {total / speed:g} s)")
 
-    def s(t):
+    def s(t: NDArray[np.float64]) -> NDArray[np.float64]:
         t = np.clip(np.asarray(t, dtype=float), 0.0, duration)
         if ramp == 0:
             return speed * t
 
-        def up(x):                             # distance covered x seconds into a ramp
+        # distance covered x seconds into a ramp
+        def up(x: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
             return 0.5 * speed * (x - ramp / np.pi * np.sin(np.pi * x / ramp))
         return np.where(t < ramp, up(t), np.where(
             t > duration - ramp, total - up(duration - t), up(ramp) + speed * (t - ramp)))
     return duration, s
 
 
-def _sampled(duration, samples_per_s):
+def _sampled(duration: float, samples_per_s: float) -> NDArray[np.float64]:
     samples_per_s = positive_scalar("samples_per_s", samples_per_s)
     return np.linspace(0.0, duration, max(int(np.ceil(duration * samples_per_s)), 2) + 1)
 
 
-def line(start, end, speed, rotation=(0.0, 0.0, 0.0), ramp=0.0, samples_per_s=10.0):
+def line(start: list[float], end: list[float], speed: float,
+         rotation: tuple[float, float, float] = (0.0, 0.0, 0.0), ramp: float = 0.0,
+         samples_per_s: float = 10.0) -> Trajectory:
     """Straight line of P from ``start`` to ``end`` [m] at ``speed`` [m/s], fixed
     ``rotation`` (rotation vector [rad]); ``ramp`` [s] smooths the start and the stop.
 
@@ -142,15 +155,15 @@ def line(start, end, speed, rotation=(0.0, 0.0, 0.0), ramp=0.0, samples_per_s=10
     u = (b - a) / length
     rot = as_pose([0, 0, 0, *rotation]).rotation
 
-    def path(t):
+    def path(t: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         t = np.atleast_1d(t)
         return a + s(t)[:, None] * u, np.broadcast_to(rot, (t.size, 3)).copy()
     t = _sampled(duration, samples_per_s)
     return Trajectory(t, *path(t), name=f"line at {speed:g} m/s", path=path)
 
 
-def circle(center, radius, speed, turns=1.0, start_angle=0.0, rotation=(0.0, 0.0, 0.0),
-           ramp=0.0, samples_per_s=10.0):
+def circle(center, radius, speed, turns: float = 1.0, start_angle: float = 0.0,
+           rotation=(0.0, 0.0, 0.0), ramp: float = 0.0, samples_per_s: float = 10.0):
     """Horizontal circle of P about ``center`` [m] of ``radius`` [m], counter-clockwise from
     ``start_angle`` [rad], at ``speed`` [m/s] for ``turns`` turns, fixed ``rotation``.
 
@@ -176,7 +189,7 @@ def circle(center, radius, speed, turns=1.0, start_angle=0.0, rotation=(0.0, 0.0
                       path=path)
 
 
-def following(waypoints, samples_per_s=10.0):
+def following(waypoints, samples_per_s: float = 10.0):
     """The :class:`Trajectory` of a :class:`dynstiff.WaypointPath` (a scene's trajectory,
     e.g. a CASPR joint trajectory): its exact path, sampled at ``samples_per_s`` [1/s] for
     the quasi-static inverse kinematics, and at every waypoint.
@@ -194,7 +207,9 @@ def following(waypoints, samples_per_s=10.0):
                       path=waypoints.at)
 
 
-def quasi_static_lengths(robot, trajectory, progress=None):
+def quasi_static_lengths(
+        robot: Robot, trajectory: Trajectory, progress: Callable[..., Any] | bool | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Unstretched cable lengths along a path from the quasi-static inverse kinematics with
     sagging cables (inverse statics at every sample, :meth:`Robot.equilibrium`).
 
@@ -267,12 +282,12 @@ class TrackingResult:
     mean_cable_length: float
 
     @property
-    def deviation(self):
+    def deviation(self) -> NDArray[np.float64]:
         """Distance of P from the desired position at the recorded times [m], (n_t,)."""
         return np.linalg.norm(self.response.pose[:, :3] - self.desired[:, :3], axis=1)
 
     @property
-    def max_deviation(self):
+    def max_deviation(self) -> float:
         """Largest deviation [m]."""
         return float(self.deviation.max())
 
@@ -281,7 +296,7 @@ class TrackingResult:
         """Largest deviation / mean cable length [-]."""
         return self.max_deviation / self.mean_cable_length
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame indexed by time [s]: simulated and desired x y z [m], deviation
         [m], end tensions [N]."""
         import pandas as pd
@@ -296,8 +311,10 @@ class TrackingResult:
         return pd.DataFrame(cols, index=pd.Index(r.times, name="time [s]"))
 
 
-def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit",
-          damping=None, record_every=1, lengths=None, progress=None, t_end=None):
+def track(robot: Robot, trajectory: Trajectory, segments: int = 10, dt: float = 2e-3,
+          settle: float = 0.0, scheme: str = "implicit", damping=None, record_every: int = 1,
+          lengths: ArrayLike | None = None, progress: Callable[..., Any] | bool | None = None,
+          t_end=None) -> TrackingResult:
     """Command a path through its quasi-static cable lengths and simulate the motion.
 
     The lumped-mass robot (``segments`` per cable) starts from its static equilibrium at
@@ -347,7 +364,7 @@ def track(robot, trajectory, segments=10, dt=2e-3, settle=0.0, scheme="implicit"
     spline = CubicSpline(trajectory.times, L, axis=0)     # not-a-knot: keeps the end speeds
     t_path = trajectory.duration
 
-    def commanded(t):                  # smooth between samples, held after the end
+    def commanded(t: float) -> NDArray[np.float64]:  # smooth between samples, held after the end
         return spline(min(t, t_path))
 
     model = LumpedMassModel(robot, L[0], segments)

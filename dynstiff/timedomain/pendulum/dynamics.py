@@ -1,11 +1,19 @@
 """Equations of motion of the pendulum and its cables, batched over excitation cases:
 end motion, segment tensions, right-hand side and exact Jacobian, rest state."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.timedomain.pendulum.model import CablePendulum
 
 
 @dataclass(frozen=True)
@@ -17,18 +25,19 @@ class _Excitation:
     phase: np.ndarray
 
     @property
-    def omega(self):
+    def omega(self) -> NDArray[np.float64]:
         return 2 * np.pi * self.freq_hz
 
-    def take(self, idx):
+    def take(self, idx: NDArray[np.int64]) -> _Excitation:
         return _Excitation(self.freq_hz[idx], self.amplitude[idx], self.phase[idx])
 
-    def repeat(self, r):
+    def repeat(self, r: int) -> _Excitation:
         return _Excitation(np.tile(self.freq_hz, r), np.tile(self.amplitude, r),
                            np.tile(self.phase, r))
 
 
-def excitation_at(freq_hz, amplitude, phase):
+def excitation_at(freq_hz: NDArray[np.float64] | float, amplitude: NDArray[np.float64] | float,
+                  phase: NDArray[np.float64] | float) -> _Excitation:
     f, x0, ph = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float))
                                       for v in (freq_hz, amplitude, phase)))
     for name, v, zero in (("freq_hz", f, False), ("amplitude", x0, True)):
@@ -42,7 +51,8 @@ def excitation_at(freq_hz, amplitude, phase):
     return _Excitation(f.ravel().copy(), x0.ravel().copy(), ph.ravel().copy())
 
 
-def _ends(model, t, exc):
+def _ends(model: CablePendulum, t: NDArray[np.float64],
+          exc: _Excitation) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """End positions and velocities E, dE/dt, shape (c, 2, 2) [m, m/s]."""
     c = t.shape[0]
     a1, a2 = exc.omega * t, exc.omega * t - exc.phase
@@ -56,7 +66,8 @@ def _ends(model, t, exc):
     return E, V
 
 
-def segment_geometry(model, t, y, exc):
+def segment_geometry(model: CablePendulum, t: NDArray[np.float64], y: NDArray[np.float64],
+                     exc: _Excitation) -> tuple[NDArray[np.float64], ...]:
     """Geometry and tensions of all cable segments, batched over c cases.
 
     Returns D, tD = dD/dphi (c, 2); the segment vectors r, their rates w and unit vectors e
@@ -85,7 +96,8 @@ def segment_geometry(model, t, y, exc):
     return D, tD, r, w, e, length, s, np.maximum(s, 0.0)
 
 
-def evaluate_rhs(model, t, y, exc, jac):
+def evaluate_rhs(model: CablePendulum, t: NDArray[np.float64], y: NDArray[np.float64],
+                 exc: _Excitation, jac: bool) -> tuple[NDArray[np.float64], None]:
     """Right-hand side (and Jacobian) of the first-order system, batched over c cases.
 
     Returns
@@ -160,7 +172,9 @@ def evaluate_rhs(model, t, y, exc, jac):
     return ydot, J
 
 
-def _batch_args(model, t, y, freq_hz, amplitude, phase):
+def _batch_args(model: CablePendulum, t: NDArray[np.float64] | float, y: NDArray[np.float64],
+                freq_hz: float, amplitude: float,
+                phase: float) -> tuple[NDArray[np.float64], NDArray[np.float64], _Excitation]:
     exc = excitation_at(freq_hz, amplitude, phase)
     y = np.atleast_2d(np.asarray(y, dtype=float))
     if y.shape[-1] != 2 * model.n_dof:
@@ -183,7 +197,8 @@ def _batch_args(model, t, y, freq_hz, amplitude, phase):
                              np.broadcast_to(exc.phase, (c,)))
 
 
-def rhs(model, t, y, freq_hz, amplitude, phase=0.0):
+def rhs(model: CablePendulum, t: float, y: NDArray[np.float64], freq_hz: float, amplitude: float,
+        phase: float = 0.0) -> NDArray[np.float64]:
     """Nonlinear right-hand side dy/dt of the pendulum and its cables.
 
     Parameters
@@ -204,7 +219,8 @@ def rhs(model, t, y, freq_hz, amplitude, phase=0.0):
     return evaluate_rhs(model, t, y, exc, False)[0]
 
 
-def jacobian(model, t, y, freq_hz, amplitude, phase=0.0):
+def jacobian(model: CablePendulum, t: NDArray[np.float64] | float, y: NDArray[np.float64],
+             freq_hz: float, amplitude: float, phase: float = 0.0) -> NDArray[np.float64]:
     """Jacobian d(dy/dt)/dy of :func:`rhs` (exact, piecewise: slack segments contribute 0).
 
     Parameters
@@ -220,7 +236,7 @@ def jacobian(model, t, y, freq_hz, amplitude, phase=0.0):
     return evaluate_rhs(model, t, y, exc, True)[1]
 
 
-def rest_state(model, phi=0.0):
+def rest_state(model: CablePendulum, phi: float = 0.0) -> NDArray[np.float64]:
     """State at rest with the ends in their mean position, shape (2 n_dof,).
 
     The point masses hang in the static equilibrium of each cable between E and D (Newton,
@@ -247,7 +263,7 @@ def rest_state(model, phi=0.0):
 
 
 
-def start_state(model, exc):
+def start_state(model: CablePendulum, exc: _Excitation) -> NDArray[np.float64]:
     """Rest state whose point masses move with the ends as at t = 0 (velocity interpolated
     along each cable), so that a start from rest does not jolt the stiff cable, (c, n_y)."""
     c, n, nq = exc.omega.size, model.n_masses, model.n_dof

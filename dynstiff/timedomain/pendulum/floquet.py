@@ -1,7 +1,10 @@
 """Floquet multipliers of the pendulum linearised about its periodic response (Newton
 shooting on the Radau period map, or growth per period along an aperiodic response)."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -16,6 +19,14 @@ from dynstiff.timedomain.pendulum.radau import (
     stage_matrix,
     steps_per_period_of,
 )
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    import pandas as pd
+    from numpy.typing import NDArray
+
+    from dynstiff.timedomain.pendulum.model import CablePendulum
 
 
 @dataclass(frozen=True)
@@ -67,16 +78,16 @@ class FloquetResult:
         return np.abs(self.multipliers[:, 0])
 
     @property
-    def pendulum_abs(self):
+    def pendulum_abs(self) -> NDArray[np.float64]:
         """|mu| of the pendulum's motion, shape (c,) [-]."""
         return np.abs(self.pendulum_multiplier)
 
     @property
-    def stable(self):
+    def stable(self) -> NDArray[np.bool_]:
         """The upright pendulum is stable: |pendulum mu| <= 1 + tol, shape (c,) bool."""
         return self.pendulum_abs <= 1.0 + self.tol
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per case, units in the column names."""
         import pandas as pd
         return pd.DataFrame({
@@ -94,9 +105,10 @@ class FloquetResult:
 
 
 
-def floquet(model, freq_hz, amplitude, phase=0.0, steps_min=64, steps_per_cycle=40,
-            transient_periods=None, tol=1e-6, orbit_tol=1e-9, max_shooting=12,
-            average_periods=20):
+def floquet(model: CablePendulum, freq_hz: NDArray[np.float64] | float, amplitude: float,
+            phase: float = 0.0, steps_min: int = 64, steps_per_cycle: int = 40,
+            transient_periods=None, tol: float = 1e-6, orbit_tol: float = 1e-9,
+            max_shooting: int = 12, average_periods: int = 20) -> FloquetResult:
     """Floquet multipliers of the pendulum linearised about its periodic response.
 
     The periodic response y_p(t) = y_p(t + T_e) is found by integrating
@@ -178,7 +190,8 @@ def floquet(model, freq_hz, amplitude, phase=0.0, steps_min=64, steps_per_cycle=
                          steps_per_period=n_steps, tol=tol)
 
 
-def _rest_monodromy(model, exc, n_steps, block=2048):
+def _rest_monodromy(model: CablePendulum, exc: Any, n_steps: int,
+                    block: int = 2048) -> NDArray[np.float64]:
     """Monodromy matrix about the orbit y = 0 of massless cables under symmetric excitation
     (phi = 0 is a solution), shape (c, 2, 2): the same Radau step derivatives as
     `_radau_step`, formed for all steps at once and multiplied by pairwise reduction."""
@@ -201,11 +214,16 @@ def _rest_monodromy(model, exc, n_steps, block=2048):
     return M
 
 
-def _by_modulus(mu):
+def _by_modulus(mu: NDArray[np.complex128]) -> NDArray[np.complex128]:
     return np.take_along_axis(mu, np.argsort(-np.abs(mu), axis=1), axis=1)
 
 
-def _shooting_step(model, exc, n_steps, scale, U, bases, v):
+def _shooting_step(
+        model: CablePendulum, exc: Any, n_steps: int, scale: NDArray[np.float64],
+        U: NDArray[np.float64], bases: tuple[NDArray[np.float64], NDArray[np.float64]],
+        v: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], list[NDArray[np.float64]], NDArray[np.float64],
+           NDArray[np.float64]]:
     """One period from v: y(T_e), the monodromy matrices, the scaled residual and the Newton
     step, limited so that no node moves by more than 5 % of the chord (phi by 0.05 rad)."""
     vT, M = period_map(model, v, exc, n_steps, scale, U, bases)
@@ -217,8 +235,11 @@ def _shooting_step(model, exc, n_steps, scale, U, bases, v):
     return vT, M, np.max(np.abs(r) / scale, axis=1), step
 
 
-def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_shooting,
-                   n_average):
+def _floquet_group(
+        model: CablePendulum, exc: Any, n_steps: int, symmetric: bool, n_transient: int,
+        orbit_tol: float, max_shooting: int, n_average: int,
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.float64], NDArray[np.bool_],
+           NDArray[np.float64]]:
     """Multipliers of c cases sharing the number of steps per period (see `floquet`)."""
     c = exc.omega.size
     if symmetric and model.n_masses == 0:
@@ -236,7 +257,10 @@ def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_s
     for _ in range(n_transient):
         y = period_map(model, y, exc, n_steps, scale, U)[0]
 
-    def evaluate(v):
+    def evaluate(
+            v: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], list[NDArray[np.float64]], NDArray[np.float64],
+               NDArray[np.float64]]:
         return _shooting_step(model, exc, n_steps, scale, U, bases, v)
 
     def try_evaluate(v, fallback):
@@ -320,7 +344,7 @@ def _floquet_group(model, exc, n_steps, symmetric, n_transient, orbit_tol, max_s
             periodic, err)
 
 
-def _pendulum_share(model, V):
+def _pendulum_share(model: CablePendulum, V: NDArray[np.complex128]) -> NDArray[np.float64]:
     """Share of the pendulum angle in the energy norm sum_i m_i (|dv_i|^2 + omega_n^2
     |dq_i|^2) of state vectors V, shape (c, n_y, k) -> (c, k)."""
     nq = model.n_dof

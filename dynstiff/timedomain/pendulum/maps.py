@@ -1,15 +1,23 @@
 """Stability maps over excitation frequency, amplitude, preload and cable mass."""
 
+from __future__ import annotations
+
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.timedomain.pendulum.floquet import FloquetResult, floquet
 
+if TYPE_CHECKING:
+    from typing import Any
 
-def stability_map(model, freqs_hz, amplitudes, preloads=None, cable_masses=None, phase=0.0,
-                  **floquet_options):
+    from numpy.typing import NDArray
+
+
+def stability_map(model, freqs_hz, amplitudes, preloads=None, cable_masses=None, phase: float = 0.0,
+                  **floquet_options: Any):
     """Floquet stability over a grid of excitation frequency, amplitude, preload and cable
     mass.
 
@@ -94,7 +102,8 @@ def _floquet_frame(model, F, X, phase, options):
     return pd.concat(frames, ignore_index=True)
 
 
-def unstable_intervals(freqs_hz, stable):
+def unstable_intervals(freqs_hz: NDArray[np.float64],
+                       stable: NDArray[np.bool_]) -> list[tuple[float, float]]:
     """Runs of unstable grid frequencies as (first, last) pairs [Hz].
 
     Parameters

@@ -1,14 +1,22 @@
 """The cable pendulum's parameters and derived data, and its construction from a scene
 (notation: :mod:`dynstiff.timedomain.pendulum`)."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 from numbers import Integral
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from dynstiff._validate import positive_scalar
 from dynstiff.constants import STANDARD_GRAVITY
 from dynstiff.errors import InvalidParameterError
+
+if TYPE_CHECKING:
+    from numpy.typing import NDArray
+
+    from dynstiff.scenes.loader import Scene
 
 
 @dataclass(frozen=True)
@@ -61,7 +69,7 @@ class CablePendulum:
     end_height: float = 0.0
     g: float = STANDARD_GRAVITY
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("inertia", "mass", "attach_distance", "half_span", "stiffness"):
             object.__setattr__(self, name, positive_scalar(name, getattr(self, name)))
         for name in ("com_distance", "damping", "preload", "cable_mass", "g"):
@@ -92,36 +100,36 @@ class CablePendulum:
 
     # ------------------------------------------------------------------ derived data
     @property
-    def chord_length(self):
+    def chord_length(self) -> float:
         """L = |E_i - D| at rest [m]."""
         return float(np.hypot(self.half_span, self.attach_distance - self.end_height))
 
     @property
-    def unstretched_length(self):
+    def unstretched_length(self) -> float:
         """L0 = L - P / k [m]."""
         return self.chord_length - self.preload / self.stiffness
 
     @property
-    def node_mass(self):
+    def node_mass(self) -> float:
         """Mass of one interior point mass m_c / (n + 1) [kg] (0 for massless cables)."""
         return self.cable_mass / (self.n_masses + 1) if self.n_masses else 0.0
 
     @property
-    def pin_inertia(self):
+    def pin_inertia(self) -> float:
         """I_A plus the two end half masses at D [kg m^2]."""
         return self.inertia + self.node_mass * self.attach_distance ** 2
 
     @property
-    def n_dof(self):
+    def n_dof(self) -> int:
         """Degrees of freedom 1 + 4 n."""
         return 1 + 4 * self.n_masses
 
     @property
-    def lever_factor(self):
+    def lever_factor(self) -> float:
         """dL/dphi at rest, a d / L [m/rad]."""
         return self.half_span * self.attach_distance / self.chord_length
 
-    def linear_stiffness(self):
+    def linear_stiffness(self) -> float:
         """Rotational stiffness of the upright pendulum on straight cables at rest [N m/rad].
 
         K_phi = 2 [k (dL/dphi)^2 + P d^2L/dphi^2] - m g c with dL/dphi = a d / L and
@@ -134,25 +142,25 @@ class CablePendulum:
         return 2.0 * (self.stiffness * s ** 2 + self.preload * curv) - (
             self.mass * self.g * self.com_distance)
 
-    def natural_frequency_hz(self):
+    def natural_frequency_hz(self) -> float:
         """sqrt(K_phi / I_A) / (2 pi) [Hz] of the massless model at rest (0 if K_phi <= 0)."""
         return float(np.sqrt(max(self.linear_stiffness(), 0.0) / self.pin_inertia) / (2 * np.pi))
 
-    def slack_amplitude(self):
+    def slack_amplitude(self) -> float:
         """Excitation amplitude [m] above which both cables go slack when the ends move
         inward (quasi-static, straight cables): x0 = P / (k dL/dx), dL/dx = a / L."""
         return self.preload * self.chord_length / (self.stiffness * self.half_span)
 
     # ------------------------------------------------------------------ kernels
-    def gravity_moment(self):
+    def gravity_moment(self) -> float:
         """Coefficient of sin(phi) in the gravity moment about A [N m]."""
         return (self.mass * self.com_distance + self.node_mass * self.attach_distance) * self.g
 
-    def mass_diagonal(self):
+    def mass_diagonal(self) -> NDArray[np.float64]:
         """Diagonal of the mass matrix: pin inertia [kg m^2], then the node masses [kg]."""
         return np.concatenate([[self.pin_inertia], np.full(4 * self.n_masses, self.node_mass)])
 
-    def state_scale(self, omega):
+    def state_scale(self, omega: NDArray[np.float64]) -> NDArray[np.float64]:
         """Per-component scale of the state (rad, m, rad/s, m/s), shape (c, 2 n_dof)."""
         w = np.maximum(np.asarray(omega, dtype=float), 2 * np.pi * self.natural_frequency_hz())
         q = np.concatenate([[1.0], np.full(4 * self.n_masses, self.chord_length)])
@@ -161,15 +169,15 @@ class CablePendulum:
 
 
 
-def checked_integer(name, value, minimum):
+def checked_integer(name: str, value: int, minimum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, Integral) or value < minimum:
         raise InvalidParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return int(value)
 
 
 
-def from_scene(scene, preload=None, cable_mass=None, n_masses=0, damping=None,
-               end_height=None):
+def from_scene(scene: Scene, preload=None, cable_mass=None, n_masses: int = 0, damping=None,
+               end_height=None) -> CablePendulum:
     """The pendulum of a scene: a 1-DOF platform (free DOF "ry") on two cables.
 
     Reads the pin (platform frame origin), the centre of mass, I_A = I_G,yy + m |c_G|^2, the

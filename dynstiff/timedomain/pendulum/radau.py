@@ -1,22 +1,34 @@
 """Fixed-step two-stage Radau IIA integration of the pendulum over excitation periods, with
 the exact derivative of the discrete period map (the monodromy matrix)."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from dynstiff.errors import ConvergenceError
 from dynstiff.timedomain.pendulum.dynamics import evaluate_rhs
+
+if TYPE_CHECKING:
+    from typing import Any
+
+    from numpy.typing import NDArray
+
+    from dynstiff.timedomain.pendulum.model import CablePendulum
 
 # two-stage Radau IIA (order 3, stiffly accurate)
 RADAU_C = np.array([1.0 / 3.0, 1.0])
 _RADAU_A = np.array([[5.0 / 12.0, -1.0 / 12.0], [3.0 / 4.0, 1.0 / 4.0]])
 
 
-def _project(J, U):
+def _project(J: NDArray[np.float64], U: NDArray[np.float64]) -> NDArray[np.float64]:
     """U^T J U for a batch of square matrices (U None: J itself)."""
     return J if U is None else U.T @ J @ U
 
 
-def stage_matrix(h, Js):
+def stage_matrix(h: NDArray[np.float64],
+                 Js: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """I - h (A kron J) for stage Jacobians Js of shape (c, 2, m, m) -> (c, 2m, 2m), and
     h sum_j a_ij J_j stacked over i, shape (c, 2m, m)."""
     c, _, m, _ = Js.shape
@@ -25,7 +37,10 @@ def stage_matrix(h, Js):
     return Mat, hAJ.sum(axis=2).reshape(c, 2 * m, m)
 
 
-def _radau_step(model, t, y, h, exc, scale, U=None, derivative=(), tol=1e-10, max_iter=25):
+def _radau_step(model: CablePendulum, t: NDArray[np.float64], y: NDArray[np.float64],
+                h: NDArray[np.float64], exc: Any, scale: NDArray[np.float64],
+                U: NDArray[np.float64] | None = None, derivative: tuple[Any, ...] = (),
+                tol: float = 1e-10, max_iter: int = 25) -> tuple[NDArray[np.float64], list[Any]]:
     """One two-stage Radau IIA step for c cases.
 
     The stage increments live in the span of the orthonormal columns of ``U`` (None: the whole
@@ -72,7 +87,10 @@ def _radau_step(model, t, y, h, exc, scale, U=None, derivative=(), tol=1e-10, ma
     return y_new, out
 
 
-def _robust_step(model, t, y, h, exc, scale, U, derivative, depth=0):
+def _robust_step(model: CablePendulum, t: NDArray[np.float64], y: NDArray[np.float64],
+                 h: NDArray[np.float64], exc: Any, scale: NDArray[np.float64],
+                 U: NDArray[np.float64], derivative: tuple[Any, ...],
+                 depth: int = 0) -> tuple[NDArray[np.float64], list[Any]]:
     """A Radau step, split in halves (up to 4 times) where Newton fails: a tension switching
     between slack and taut inside the step can make Newton cycle."""
     try:
@@ -86,14 +104,18 @@ def _robust_step(model, t, y, h, exc, scale, U, derivative, depth=0):
     return y2, [b @ a for a, b in zip(S1, S2)]
 
 
-def steps_per_period_of(model, exc, steps_min, steps_per_cycle):
+def steps_per_period_of(model: CablePendulum, exc: Any, steps_min: int,
+                        steps_per_cycle: int) -> NDArray[np.int64]:
     f = exc.freq_hz
     fn = max(model.natural_frequency_hz(), 1.0)
     n = np.maximum(steps_min, np.ceil(steps_per_cycle * fn / f))
     return (2 ** np.ceil(np.log2(n))).astype(int)       # powers of two: few distinct groups
 
 
-def period_map(model, y, exc, n_steps, scale, U=None, derivative=(), t0=0.0):
+def period_map(model: CablePendulum, y: NDArray[np.float64], exc: Any, n_steps: int,
+               scale: NDArray[np.float64], U: NDArray[np.float64] | None = None,
+               derivative: tuple[NDArray[np.float64], ...] = (),
+               t0: float = 0.0) -> tuple[NDArray[np.float64], list[NDArray[np.float64]]]:
     """Integrate one excitation period from t0: y(T_e), and the monodromy matrix in each basis
     of ``derivative``."""
     c, ny = y.shape
@@ -107,7 +129,7 @@ def period_map(model, y, exc, n_steps, scale, U=None, derivative=(), t0=0.0):
     return y, M
 
 
-def mirror_bases(model):
+def mirror_bases(model: CablePendulum) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Orthonormal bases (U_sym, U_anti) of the states that the mirror x -> -x keeps,
     resp. reverses; shapes (n_y, 4 n) and (n_y, 4 n + 2)."""
     n, nq = model.n_masses, model.n_dof

@@ -1,6 +1,9 @@
 """Nonlinear time response of the pendulum and its cables (scipy ``solve_ivp``)."""
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +16,10 @@ from dynstiff.timedomain.pendulum.dynamics import (
     start_state,
 )
 from dynstiff.timedomain.pendulum.model import CablePendulum, checked_integer
+
+if TYPE_CHECKING:
+    import pandas as pd
+    from numpy.typing import NDArray
 
 
 @dataclass(frozen=True)
@@ -48,7 +55,7 @@ class PendulumResponse:
     wall_time: float
 
     @property
-    def phi(self):
+    def phi(self) -> NDArray[np.float64]:
         """Pendulum angle [rad], shape (n_t,)."""
         return self.y[:, 0]
 
@@ -57,7 +64,7 @@ class PendulumResponse:
         exc = excitation_at(self.freq_hz, self.amplitude, self.phase).repeat(self.t.size)
         return segment_geometry(self.model, self.t, self.y, exc)[-1][:, :, -1]
 
-    def amplitude_growth(self, periods=2):
+    def amplitude_growth(self, periods: int = 2):
         """max |phi| over the last ``periods`` excitation periods / max |phi| over the first
         ones [-]: > 1 where a disturbance grows."""
         T = periods / self.freq_hz
@@ -65,7 +72,7 @@ class PendulumResponse:
         last = np.abs(self.phi[self.t >= self.t[-1] - T]).max()
         return float(last / max(first, 1e-300))
 
-    def to_frame(self):
+    def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame: time [s], phi [rad], the two tensions at D [N]."""
         import pandas as pd
         Tn = self.tensions()
@@ -73,8 +80,9 @@ class PendulumResponse:
                              "T_B [N]": Tn[:, 0], "T_C [N]": Tn[:, 1]})
 
 
-def simulate(model, freq_hz, amplitude, t_end, phase=0.0, phi0=1e-4, method=None, rtol=1e-8,
-             max_step=None, n_out=None):
+def simulate(model: CablePendulum, freq_hz: float, amplitude: float, t_end: float,
+             phase: float = 0.0, phi0: float = 1e-4, method=None, rtol: float = 1e-8, max_step=None,
+             n_out: int | None = None) -> PendulumResponse:
     """Nonlinear response from rest with the pendulum tilted by ``phi0``.
 
     The ends start moving at t = 0 (x(t) = x0 sin(2 pi f t)); the point masses start in
@@ -136,7 +144,7 @@ def simulate(model, freq_hz, amplitude, t_end, phase=0.0, phi0=1e-4, method=None
     if not np.isfinite(y0[0]):
         raise InvalidParameterError(f"phi0 must be finite [rad], got {phi0!r}")
 
-    def fun(t, y):
+    def fun(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
         return evaluate_rhs(model, np.array([t]), y[None], exc, False)[0][0]
 
     def jac(t, y):
