@@ -102,7 +102,8 @@ def _cmd_frf(args):
         from dynstiff.plot import plot_frf
         fig = plot_frf(res, marks, pairs=[(o, i) for o in res.outputs for i in res.inputs])
         fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
+        from dynstiff.cli.common import save_figure
+        save_figure(fig, args.plot, dpi=120)
     h = np.abs(res.H[:, 0, 0])
     k = int(np.argmax(h))
     info(args).write(f"{res.kind} {res.outputs[0]}/{res.inputs[0]}: {len(f)} frequencies "

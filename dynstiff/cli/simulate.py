@@ -54,7 +54,8 @@ def _cmd_simulate(args):
             from dynstiff.plot import plot_tracking
             fig = plot_tracking(tr)
             fig.tight_layout()
-            fig.savefig(args.plot, dpi=120)
+            from dynstiff.cli.common import save_figure
+            save_figure(fig, args.plot, dpi=120)
     else:
         offset = np.zeros(6)
         fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
@@ -103,7 +104,8 @@ def _cmd_simulate(args):
             from dynstiff.plot import plot_spectrum
             fig = plot_spectrum(sp, modes=f_model, band_hz=band)
             fig.tight_layout()
-            fig.savefig(args.plot, dpi=120)
+            from dynstiff.cli.common import save_figure
+            save_figure(fig, args.plot, dpi=120)
     if args.csv:
         from dynstiff._version import __version__
         write_table(df, args.csv, "csv", {

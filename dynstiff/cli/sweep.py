@@ -113,7 +113,8 @@ def _cmd_sweep(args):
                            label="waypoints" if k == 0 else None)
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
         fig.tight_layout()
-        fig.savefig(args.plot, dpi=120)
+        from dynstiff.cli.common import save_figure
+        save_figure(fig, args.plot, dpi=120)
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
     vt.columns = [vt.columns[0]] + [f"track {c} [Hz]" for c in vt.columns[1:]]

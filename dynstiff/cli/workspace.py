@@ -110,10 +110,8 @@ def _cmd_workspace(args):
             ds = workspace(scene.robot, client=client, **kw)
     else:
         ds = workspace(scene.robot, **kw)
-    if out.suffix == ".zarr":
-        ds.to_zarr(out, mode="w")
-    else:
-        ds.to_netcdf(out)
+    from dynstiff.maps.dataset import write_workspace
+    write_workspace(ds, out)
     f1 = ds["first_platform_hz"].values
     info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
                f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "
@@ -126,11 +124,13 @@ def _cmd_workspace(args):
         if args.csv == "-":
             sys.stdout.write(text)
         else:
-            Path(args.csv).write_text(text)
+            from dynstiff.io.files import write_text
+            write_text(args.csv, text)
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
-        ds.dynstiff.plot().savefig(args.plot, dpi=120)
+        from dynstiff.cli.common import save_figure
+        save_figure(ds.dynstiff.plot(), args.plot, dpi=120)
     for name in (args.out, args.plot, args.csv):
         if name and name != "-":
             info.write(f"wrote {name}\n")

@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff.io.files import atomic_path, write_text
+
 __all__ = ["robot_report", "write_csv"]
 
 
@@ -23,7 +25,7 @@ def write_csv(df, path, metadata):
     text = head + df.to_csv(index=False)
     if path is None:
         return text
-    Path(path).write_text(text)
+    write_text(path, text)
     return None
 
 
@@ -106,7 +108,8 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
                                             f"{modes.freq_hz[kk[0]]:.4g} Hz)"))
     pngs = []
     for fig, name, caption in figs:
-        fig.savefig(out / name, dpi=120, bbox_inches="tight")
+        with atomic_path(out / name) as tmp:
+            fig.savefig(tmp, dpi=120, bbox_inches="tight")
         pngs.append((figure_png(fig), caption))
         plt.close(fig)
         files.append(out / name)
@@ -133,6 +136,6 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
                   ("table", table[cols + [c for c in table.columns
                                          if c.startswith(("x", "y", "z", "r"))]]),
                   ("h2", "Figures")] + [("png", p) for p in pngs]
-        (out / "report.html").write_text(html_page(f"dynstiff report: {scene.name}", blocks))
+        write_text(out / "report.html", html_page(f"dynstiff report: {scene.name}", blocks))
         files.append(out / "report.html")
     return text + "\n", files
