@@ -9,6 +9,7 @@ __all__ = ["add_parsers"]
 
 def add_parsers(sub):
     """Add the ``workspace`` subcommand to the subparsers ``sub`` of the dynstiff parser."""
+    from dynstiff.maps.guards import MAX_POSES
     ws = sub.add_parser(
         "workspace", help="map statics, modes and design checks over a box grid of positions "
                           "(optionally x orientations x a cable parameter); netCDF output")
@@ -45,6 +46,10 @@ def add_parsers(sub):
     ws.add_argument("--plot", help="write the slices of the map (PNG, PDF, ...)")
     ws.add_argument("--csv", help="write the table, one row per pose ('-': standard output)")
     ws.add_argument("--quiet", action="store_true", help="no progress line")
+    ws.add_argument("--resume", action="store_true",
+                    help="continue an interrupted run (its chunks are saved in OUT.parts)")
+    ws.add_argument("--max-poses", type=int, default=MAX_POSES,
+                    help="refuse a map of more poses (default %(default)s)")
     ws.set_defaults(func=_cmd_workspace)
     return ws
 
@@ -64,6 +69,7 @@ def _orientations(path):
 
 
 def _cmd_workspace(args):
+    import shutil
     from pathlib import Path
 
     import numpy as np
@@ -98,7 +104,8 @@ def _cmd_workspace(args):
     kw = dict(box=box, step=args.step, orientations=rot, parameter=args.parameter,
               values=args.values, n_modes=args.n, band_hz=band, margin=args.margin,
               chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet,
-              tensions=args.tensions)
+              tensions=args.tensions, max_poses=args.max_poses,
+              checkpoint=f"{out}.parts", resume=args.resume)
     info = sys.stderr if args.csv == "-" else sys.stdout
     if args.scheduler:
         try:
@@ -112,6 +119,7 @@ def _cmd_workspace(args):
         ds = workspace(scene.robot, **kw)
     from dynstiff.maps.dataset import write_workspace
     write_workspace(ds, out)
+    shutil.rmtree(f"{out}.parts", ignore_errors=True)      # the saved chunks: in the map now
     f1 = ds["first_platform_hz"].values
     info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
                f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "
