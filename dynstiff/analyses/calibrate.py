@@ -48,9 +48,11 @@ spectrum. The sensitivities at the estimate are the analytic ones, or central di
 """
 
 from dataclasses import dataclass, replace
+from numbers import Real
 
 import numpy as np
 
+from dynstiff._validate import positive_scalar
 from dynstiff.analyses.calibration_checks import calibration_findings, report_findings
 from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
@@ -74,6 +76,9 @@ JACOBIANS = ("auto", "analytic", "differences")
 def _expand(parameters, n_cables):
     if isinstance(parameters, str):
         parameters = (parameters,)
+    if not isinstance(parameters, (tuple, list)) or not parameters:
+        raise InvalidParameterError(f"parameters must be a name or a sequence of names among "
+                                    f"{PARAMETERS}, got {parameters!r}")
     names = []
     for p in parameters:
         if p == "EA_*":
@@ -330,8 +335,16 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
             "jacobian='analytic' needs frequency residuals only (no FRF, no damping "
             f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
     analytic = analytic and jacobian != "differences"
-    if not 0 < confidence < 1:
+    if (isinstance(confidence, (bool, np.bool_)) or not isinstance(confidence, Real)
+            or not 0 < confidence < 1):
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
+    try:
+        b_lo, b_hi = (positive_scalar("bounds", b) for b in bounds)
+    except (TypeError, ValueError):
+        b_lo = b_hi = np.nan
+    if not b_lo < 1 < b_hi:
+        raise InvalidParameterError(f"bounds must be (low, high) factors of the start with "
+                                    f"0 < low < 1 < high, got {bounds!r}")
     for name, value in (start or {}).items():
         if name not in names:
             raise InvalidParameterError(f"start names {name!r}, not a fitted parameter {names}")
@@ -427,7 +440,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
 
     u0 = np.zeros(n)
     first = evaluate(u0)
-    lo, hi = np.log(bounds[0]), np.log(bounds[1])
+    lo, hi = np.log(b_lo), np.log(b_hi)
     sol = least_squares(residual, u0, jac=jacobian, bounds=(np.full(n, lo), np.full(n, hi)),
                         xtol=xtol, max_nfev=max_nfev)
     if sol.status <= 0:
@@ -459,7 +472,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         measured, last["f"], (pairing if chosen_pairing is None else "chosen")
         if measured is not None else None,
         [first.get("modes"), last.get("modes")] if measured is not None else [], names,
-        sol.x, bounds), strict)
+        sol.x, (b_lo, b_hi)), strict)
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
         ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
