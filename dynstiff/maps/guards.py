@@ -1,4 +1,4 @@
-"""Checks of a workspace map made before its first pose (docs/theory.md §13): the options of
+"""Checks of a workspace map made before its first pose (docs/theory.md §13.7): the options of
 the model (a bad one is an error naming it, never a map of "infeasible" poses), the shape
 of the orientations (checked, never reshaped), and the size of the run (poses, memory and
 time estimated, refused beyond a stated limit with the option to change).
@@ -23,8 +23,8 @@ from dynstiff.errors import InvalidParameterError
 __all__ = ["MAX_POSES", "check_model_options", "check_orientations", "check_size",
            "estimate_text", "map_bytes"]
 
-#: Poses a map computes unless ``max_poses`` says more (about an hour on one core at the
-#: closed-form rung's 50-100 poses/s).
+#: Poses a map computes unless ``max_poses`` says more: about half an hour on one core at
+#: the closed-form rung's 8 ms a CoGiRo pose (docs/theory.md §13.5), and about 0.5 GiB.
 MAX_POSES = 200_000
 
 # The options of each rung (dynstiff.models.ladder.build_model) and what each must be.
