@@ -21,18 +21,34 @@ load average of the machine next to each figure, since the machine may be shared
   serial CPU time, its efficiency serial CPU / (2 x wall);
 - the projected wall time of 10,000 poses on 2 idle cores: (serial CPU + the 2-process
   pool's overhead) per pose x 10,000 / 2.
+
+``--per-pose`` prints only the cost of a map per pose (``dynstiff.workspace``, serial, 20
+modes and every check; the grid of ``--poses``), with the forbidden band (0, 1.5) Hz and
+without it, and where it goes (cProfile: statics, model, damped model, platform modes,
+receptance, cable model, sag, the rest; each stage's share of the profiled run times the
+unprofiled CPU time). ``--against REV`` measures a git revision of this repository the same
+way, side by side in the same run (each measurement in a fresh interpreter, the two trees
+alternated, the least of ``--repeats``), and says whether both trees give the same map
+(feasibility, verdicts; frequencies to the largest relative difference).
 """
 
 import argparse
+import cProfile
+import json
 import os
+import pstats
 import resource
+import subprocess
+import sys
+import tempfile
 import time
 from contextlib import contextmanager
 
 import numpy as np
 
 import dynstiff as ds
-from dynstiff.maps.workspace import evaluate_chunk
+from dynstiff.analyses.checks import check_options
+from dynstiff.maps.workspace import CHECKS, evaluate_chunk
 from dynstiff.robot import statics
 
 N_MODES = 20
@@ -117,8 +133,10 @@ def chunked_statics(robot, X, chunk):
 
 
 def map_chunks(robot, X, chunk):
+    options = check_options(BAND)
     for s in range(0, len(X), chunk):
-        evaluate_chunk(robot, X[s:s + chunk], N_MODES, BAND, 0.05, 0.03, 0.02, "dsm", {})
+        evaluate_chunk(robot, X[s:s + chunk], N_MODES, options, "dsm", ds.Damping(), {},
+                       CHECKS)
 
 
 def cpu_rows(robot, grid, chunk, repeats):
@@ -184,12 +202,168 @@ def throughput(robot, grid, chunk, use_dask):
     return out
 
 
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+#: Stages of a pose: (label, function names; a name "f<g" is f where g called it).
+STAGES = (("statics", ("tension_equilibrium",)),
+          ("statics rows + sag", ("statics_rows", "equilibrium_sag_ratios<evaluate_chunk",
+                                  "equilibrium_sag_ratios<_evaluate_pose")),
+          ("model", ("build_model<evaluate_chunk", "build_model<_evaluate_pose")),
+          ("damped model", ("damped_model",)),
+          ("platform modes", ("find_platform_modes",)),
+          ("receptance in band", ("receptance_amplification",)),
+          ("cable model error", ("estimated_error",)),
+          ("proximity", ("proximity_warnings",)))
+
+
+def _stage_times(stats):
+    """{stage: cumulative profiled s} and the profiled s of evaluate_chunk."""
+    by_name = {}
+    for (_, _, name), (_, _, _, ct, callers) in stats.stats.items():
+        by_name.setdefault(name, []).append((ct, callers))
+    out = {}
+    for label, names in STAGES:
+        t = 0.0
+        for n in names:
+            f, _, caller = n.partition("<")
+            for ct, callers in by_name.get(f, []):
+                t += ct if not caller else sum(v[3] for (_, _, g), v in callers.items()
+                                               if g == caller)
+        out[label] = t
+    total = sum(ct for ct, _ in by_name.get("evaluate_chunk", []))
+    return out, total
+
+
+def per_pose_child(n_poses, chunk, profile, dump):
+    """In a fresh interpreter: CPU ms per pose of a serial map with and without the band,
+    the stage breakdown (profile) and the map's arrays (dump, .npz). Prints JSON."""
+    robot = ds.load_scene("cogiro").robot
+    X = grid_of_poses(n_poses)
+    kw = {"n_modes": N_MODES, "chunk_size": chunk}
+    ds.workspace(robot, X[:3], band_hz=BAND, **kw)   # kernels and modules loaded first
+    out = {}
+    for name, band in (("band", BAND), ("no band", None)):
+        t = time.process_time()
+        m = ds.workspace(robot, X, band_hz=band, **kw)
+        res = {"ms": 1e3 * (time.process_time() - t) / len(X), "load": load(),
+               "poses": len(X), "feasible": int(m["feasible"].sum()),
+               "dynamic": int(m["dynamic"].sum())}
+        if profile:
+            pr = cProfile.Profile()
+            pr.runcall(ds.workspace, robot, X, band_hz=band, **kw)
+            stages, total = _stage_times(pstats.Stats(pr))
+            res["stages"] = {k: v / total for k, v in stages.items()}
+        if dump:
+            np.savez(f"{dump}-{name.replace(' ', '_')}.npz",
+                     **{k: m[k].values for k in ("feasible", "passed", "unknown", "freq",
+                                                 "first_platform_hz", "band_margin",
+                                                 "tension")})
+        out[name] = res
+    print(json.dumps(out))
+
+
+def _export(rev, where):
+    """The package of git revision ``rev`` in folder ``where``."""
+    tar = subprocess.run(["git", "-C", ROOT, "archive", rev, "dynstiff"], check=True,
+                         capture_output=True).stdout
+    os.makedirs(where, exist_ok=True)
+    subprocess.run(["tar", "-x", "-C", where], input=tar, check=True)
+    return where
+
+
+def _child(tree, n_poses, chunk, profile, dump):
+    env = {**os.environ, "PYTHONPATH": tree, "OPENBLAS_NUM_THREADS": "1"}
+    cmd = [sys.executable, os.path.abspath(__file__), "--child", "--poses", str(n_poses),
+           "--chunk", str(chunk)] + (["--profile"] if profile else []) + \
+        (["--dump", dump] if dump else [])
+    run = subprocess.run(cmd, env=env, check=True, capture_output=True, text=True)
+    return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def _same_map(a, b):
+    """In words: do two dumped maps agree (feasibility and verdicts exactly, numbers to
+    their largest relative difference)?"""
+    A, B = np.load(a), np.load(b)
+    same = all(np.array_equal(A[k], B[k]) for k in ("feasible", "passed", "unknown"))
+    rel = {}
+    for k in ("freq", "first_platform_hz", "tension"):
+        x, y = A[k], B[k]
+        if not np.array_equal(np.isnan(x), np.isnan(y)):
+            return "NaNs differ in " + k
+        f = ~np.isnan(x)
+        rel[k] = float(np.max(np.abs(x[f] / y[f] - 1.0), initial=0.0))
+    d = np.nanmax(np.abs(A["band_margin"] - B["band_margin"]), initial=0.0)
+    return (("feasibility and verdicts identical" if same else "VERDICTS DIFFER")
+            + "; largest relative difference: " + ", ".join(f"{k} {v:.1e}" for k, v in
+                                                            rel.items())
+            + f", band margin {d:.1e} absolute")
+
+
+def per_pose(n_poses, repeats, against):
+    """The per-pose table, this tree and (optionally) revision ``against`` side by side."""
+    chunk = 25
+    n = len(grid_of_poses(n_poses))
+    print(f"OPENBLAS_NUM_THREADS=1, {os.cpu_count()} CPUs; CoGiRo map of {n} grid poses "
+          f"over the frame, {N_MODES} modes, chunks of {chunk}, serial; CPU ms per pose, "
+          f"least of {repeats}", flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        trees = [("this tree", ROOT)]
+        if against:
+            trees.append((against, _export(against, os.path.join(tmp, "rev"))))
+        runs = {name: [] for name, _ in trees}
+        for r in range(repeats):
+            for name, path in (trees if r % 2 == 0 else trees[::-1]):
+                dump = os.path.join(tmp, f"map{len(runs[name])}-{name.replace(' ', '_')}") \
+                    if r == 0 else None
+                runs[name].append(_child(path, n_poses, chunk, r == 0, dump))
+        cases = ("band", "no band")
+        best = {name: {c: min(x[c]["ms"] for x in rs) for c in cases}
+                for name, rs in runs.items()}
+        names = [name for name, _ in trees]
+        head = f"{'':<22s}" + "".join(f"{f'{nm}, {c}':>24s}" for nm in names for c in cases)
+        print(head)
+        print(f"{'ms per pose':<22s}" + "".join(f"{best[nm][c]:24.2f}" for nm in names
+                                                 for c in cases))
+        for label, _ in STAGES:
+            print(f"{'  ' + label:<22s}" + "".join(
+                f"{runs[nm][0][c]['stages'][label] * best[nm][c]:24.2f}"
+                for nm in names for c in cases))
+        print(f"{'  rest':<22s}" + "".join(
+            f"{(1 - sum(runs[nm][0][c]['stages'].values())) * best[nm][c]:24.2f}"
+            for nm in names for c in cases))
+        loads = [x[c]["load"] for rs in runs.values() for x in rs for c in cases]
+        r0 = runs[names[0]][0]
+        print(f"(stages: cProfile shares x the unprofiled CPU; load {min(loads):.1f}-"
+              f"{max(loads):.1f}; feasible {r0['band']['feasible']} of {n}, dynamic "
+              f"workspace {r0['band']['dynamic']} with the band, {r0['no band']['dynamic']} "
+              f"without)")
+        if against:
+            for c in cases:
+                print(f"{c}: {against} / this tree = {best[against][c] / best[names[0]][c]:.2f}"
+                      f"x; " + _same_map(os.path.join(tmp, f"map0-this_tree-"
+                                                            f"{c.replace(' ', '_')}.npz"),
+                                         os.path.join(tmp, f"map0-{against}-"
+                                                           f"{c.replace(' ', '_')}.npz")))
+    return runs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--poses", type=int, default=300, help="grid size of the map")
     ap.add_argument("--repeats", type=int, default=3, help="repeats of the CPU rows")
     ap.add_argument("--no-dask", action="store_true", help="skip the Dask cluster")
+    ap.add_argument("--per-pose", action="store_true",
+                    help="only the per-pose cost with and without the band, by stage")
+    ap.add_argument("--against", metavar="REV",
+                    help="with --per-pose: a git revision measured side by side")
+    ap.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--chunk", type=int, default=25, help=argparse.SUPPRESS)
+    ap.add_argument("--profile", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--dump", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.child:
+        return per_pose_child(args.poses, args.chunk, args.profile, args.dump)
+    if args.per_pose:
+        return per_pose(args.poses, args.repeats, args.against)
     robot = ds.load_scene("cogiro").robot
     grid = grid_of_poses(args.poses)
     chunk = max(5, len(grid) // 16)

@@ -54,6 +54,7 @@ from dynstiff.errors import (
     UnsupportedAnalysisError,
 )
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel
+from dynstiff.maps import register_accessor as _register_accessor
 from dynstiff.maps.workspace import box_grid, workspace
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS, build_model
@@ -143,3 +144,5 @@ __all__ = [
     "solve_catenary",
     "unstretched_length_for_tension",
 ]
+
+_register_accessor()           # dataset.dynstiff, once xarray is imported (dynstiff.maps)

@@ -95,25 +95,45 @@ class FRFResult:
         return (f"FRFResult({self.kind}, {len(self.freq_hz)} frequencies {_span(self.freq_hz)}, "
                 f"outputs {self.outputs}, inputs {self.inputs}, {self.damping})")
 
+    def _repr_html_(self):
+        """Jupyter display: the largest |H| of each channel and where it is."""
+        from dynstiff._html import html_table
+        f = np.asarray(self.freq_hz)
+        rows = []
+        for o, out in enumerate(self.outputs):
+            for i, inp in enumerate(self.inputs):
+                a = np.abs(np.asarray(self.H)[:, o, i])
+                k = int(np.nanargmax(np.where(np.isfinite(a), a, -1.0))) if a.size else 0
+                rows.append([out, inp, self.unit(out, inp), a[k] if a.size else np.nan,
+                             f[k] if a.size else np.nan])
+        return html_table(f"FRFResult: {self.kind}, {len(f)} frequencies {_span(f)}, "
+                          f"{self.damping}", ["output", "input", "unit", "largest |H|",
+                                              "at [Hz]"], rows)
+
     def plot(self, ax=None, modes=None, pairs=None, phase=False):
         """Magnitude (and phase) against frequency: :func:`dynstiff.plot.plot_frf`.
         Returns the matplotlib Figure."""
         from dynstiff.plot import plot_frf
         return plot_frf(self, modes=modes, pairs=pairs, ax=ax, phase=phase)
 
-    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False):
+    def to_uff(self, path, node=1, entity="platform", point_node=None, binary=False,
+               even=False):
         """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
         binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
+        ``even=True`` (the step of the grid's uniform part) or a step [Hz] resamples on an
+        even grid (:func:`dynstiff.io.exchange.even_grid`), as the records then say.
         Returns the path."""
         from dynstiff.io.exchange import write_uff58
         return write_uff58(self, path, node=node, entity=entity, point_node=point_node,
-                           binary=binary)
+                           binary=binary, even=even)
 
-    def to_control(self):
+    def to_control(self, name=None):
         """python-control ``FrequencyResponseData`` (outputs x inputs x frequencies, omega
-        [rad/s]): :func:`dynstiff.io.exchange.frf_to_control`."""
+        [rad/s]), named with its channels, that ``control.bode_plot`` draws as it is; a
+        channel below 1e-12 of the largest (zero by symmetry) is exact zeros:
+        :func:`dynstiff.io.exchange.frf_to_control`."""
         from dynstiff.io.exchange import frf_to_control
-        return frf_to_control(self)
+        return frf_to_control(self, name=name)
 
     def to_frame(self):
         """Tidy pandas DataFrame: freq [Hz], input, output, magnitude |H|, phase [deg],
@@ -232,6 +252,14 @@ class ModalResult:
         n = {c: sum(k == c for k in self.kind) for c in ("global", "mixed", "local")}
         return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
                 f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
+
+    def _repr_html_(self):
+        """Jupyter display: frequency, kind, platform share and dominant DOF of each mode."""
+        from dynstiff._html import html_table
+        rows = zip(range(1, len(self) + 1), self.freq_hz, self.kind, self.platform_share,
+                   self.dominant_dof)
+        return html_table(repr(self), ["mode", "freq [Hz]", "kind", "platform share [-]",
+                                       "dominant dof"], rows)
 
     def plot(self, ax=None):
         """Frequencies against platform share, coloured by kind:

@@ -222,3 +222,32 @@ def inverted_stewart(mass=100.0, mass_per_length=1e-4, EA=1e7, inertia=(10.0, 10
     return ds.Robot(np.array([a[k] for k, _ in pairs]), np.array([b[j] for _, j in pairs]),
                     ds.Cable(mass_per_length, EA),
                     ds.Platform(mass, inertia=np.diag(inertia)))
+
+
+def assert_valid_html(text):
+    """Assert ``text`` parses as HTML with every opened element closed in order (no script)
+    and return its text content."""
+    from html.parser import HTMLParser
+    void = {"br", "img", "meta", "hr", "input", "link"}
+
+    class Check(HTMLParser):
+        def __init__(self):
+            super().__init__()
+            self.stack, self.text = [], []
+
+        def handle_starttag(self, tag, attrs):
+            assert tag != "script"
+            if tag not in void:
+                self.stack.append(tag)
+
+        def handle_endtag(self, tag):
+            assert self.stack and self.stack.pop() == tag, f"unbalanced </{tag}>"
+
+        def handle_data(self, data):
+            self.text.append(data)
+
+    p = Check()
+    p.feed(text)
+    p.close()
+    assert not p.stack, f"unclosed {p.stack}"
+    return " ".join(p.text)

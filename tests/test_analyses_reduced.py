@@ -123,3 +123,22 @@ def test_truncation_error_grows_as_omega_squared(dsm, mm):
     e = np.linalg.norm(mm.receptance(2 * np.pi * f) - H, axis=(1, 2)) / \
         np.linalg.norm(H, axis=(1, 2))
     np.testing.assert_allclose(e[1:] / e[:-1], 4.0, rtol=0.05)
+
+
+def test_statespace_is_named_floored_and_bode_plots():
+    control = pytest.importorskip("control")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    # planar2 at x = 0 is mirror symmetric: its x and z modes do not couple
+    dsm = ds.build_model(ds.load_scene("planar2").equilibrium(), "dsm")
+    sys = to_statespace(dsm, n_modes=4, damping=0.02, inputs=["fx", "fz"],
+                        outputs=["x", "z"])
+    assert sys.name == "dynstiff modal model"
+    n = sys.nstates // 2
+    B = np.asarray(sys.B)[n:]                    # modal forces of fx, fz
+    assert n >= 2 and np.count_nonzero(B) == n   # each mode driven by one input only
+    assert np.all(np.count_nonzero(B, axis=1) == 1)
+    cp = control.bode_plot(sys, 2 * np.pi * np.linspace(0.05, 3.0, 50))
+    assert "dynstiff modal model" in cp.figure._suptitle.get_text()
+    plt.close(cp.figure)

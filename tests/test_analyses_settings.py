@@ -58,6 +58,8 @@ def test_metadata_names_scene_pose_model_damping_version():
     assert md["model"] == "dsm" and md["units"] == "Hz"
     assert md["pose"]["position [m]"] == [0.0, 0.0, 1.0]
     assert md["damping"]["cable_loss_factor"] == 0.01
+    # every table of the command line and of the report starts with the same keys
+    assert list(md)[:5] == ["dynstiff", "scene", "pose", "model", "date"]
 
 
 @pytest.mark.integration

@@ -6,6 +6,7 @@ import os
 import re
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 from conftest import run_cli
@@ -84,6 +85,9 @@ def test_cli_version_and_metadata_in_json(tmp_path):
     (["modes", "cogiro", "--fmax", "1e9"], "fmax_hz = 1e\\+09 Hz is out of"),
     (["modes", "planar2", "--pose", "0", "0"], "--pose needs 3 numbers .* got 2: \\[0.0, 0.0\\]"),
     (["modes", "planar2", "--bogus"], "unrecognized arguments: --bogus"),
+    (["modes", "planar2", "-n", "30", "--max-modes", "20"], "-n 30 is more than --max-modes 20"),
+    (["check", "planar2", "--forbidden-band", "3", "1"], "--forbidden-band must be LO HI"),
+    (["frf", "planar2", "--band", "1", "2", "--fmax", "3"], "not allowed with argument"),
     ([], "required: command"),
 ])
 def test_bad_command_lines_give_one_line_and_exit_2(tmp_path, capsys, argv, message):
@@ -160,3 +164,117 @@ def test_no_command_writes_over_its_inputs_or_one_output_over_another(tmp_path):
     assert _files(*keep) == before
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
         ["scene.toml", "m.csv", "link.csv", "x.nc", "bodies.xml"])
+
+
+# ------------------------------------------------------------------- one vocabulary
+#: The one meaning of every flag more than one command takes: the first words of its help.
+FLAG_MEANINGS = {
+    "scene": ("scene", "scene: a built-in scene name or the path of a TOML scene file"),
+    "--pose": ("pose", "platform pose x y z [m] (and rx ry rz [rad]), by inverse statics"),
+    "--lengths": ("lengths", "unstretched cable lengths [m], by forward statics"),
+    "--band": ("band", "band of interest LO HI [Hz]"),
+    "--fmax": ("fmax", "top of the band of interest [Hz]"),
+    "--forbidden-band": ("forbidden_band", "forbidden excitation band LO HI [Hz]"),
+    "--n-modes": ("n", "number of modes"),
+    "--max-modes": ("max_modes", "most modes computed"),
+    "--model": ("model", "cable model"),
+    "--segments": ("segments", "segments per cable of the lumped model"),
+    "--damping": ("damping", "damping ZETA_P [ETA_C [C]]"),
+    "--margin": ("margin", "relative margin of the platform modes to the forbidden band [-]"),
+    "--points": ("points", "uniform frequencies of the FRFs"),
+    "--parameter": ("parameter", "model parameter by name"),
+    "--values": ("values", "values of --parameter"),
+    "--trajectory": ("trajectory", "the scene's trajectory NAME"),
+    "--csv": ("csv", "write the table as CSV"),
+    "--json": ("json", "write the table as JSON"),
+    "--plot": ("plot", "write a figure"),
+    "--out": ("out", "write the main result to"),
+    "--quiet": ("quiet", "no progress bars"),
+}
+
+
+def _options():
+    """{flag: [(command, dest, help)]} of every subcommand, from build_parser()."""
+    import argparse
+
+    from dynstiff.cli import build_parser
+    sub = next(a for a in build_parser()._actions
+               if isinstance(a, argparse._SubParsersAction))
+    found = {}
+    for command, parser in sub.choices.items():
+        for a in parser._actions:
+            if isinstance(a, argparse._HelpAction):
+                continue
+            flag = (a.option_strings[-1] if a.option_strings else a.dest)
+            found.setdefault(flag, []).append((command, a.dest, a.help))
+    return found
+
+
+def test_one_flag_one_meaning():
+    """Every option has help; a flag that several commands take has one dest and one meaning
+    (its help starts with the meaning of FLAG_MEANINGS) in all of them; the renamed flags are
+    gone (frf --from/--to, simulate --to, check/workspace --band as a forbidden band, demo
+    --scene)."""
+    found = _options()
+    for flag, uses in found.items():
+        for command, _, text in uses:
+            assert text and text.strip(), f"{command} {flag} has no help"
+        if len(uses) > 1:
+            assert flag in FLAG_MEANINGS, f"{flag} is in {[u[0] for u in uses]}: add its meaning"
+        if flag in FLAG_MEANINGS:
+            dest, meaning = FLAG_MEANINGS[flag]
+            for command, d, text in uses:
+                assert d == dest, (flag, command, d)
+                assert text.startswith(meaning), (flag, command, text)
+    assert "--from" not in found and "--to" not in found and "--scene" not in found
+    assert {c for c, _, _ in found["--band"]}.isdisjoint({"check", "workspace"})
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    table = readme.split("its one meaning", 1)[1].split("\n\n", 1)[0]
+    for flag in FLAG_MEANINGS:
+        if flag != "scene":
+            assert f"`{flag}" in table or f"`-n`, `{flag}" in table, flag
+
+
+def test_renamed_flags_are_refused_with_their_new_name(capsys):
+    from dynstiff.cli import main
+    for argv, new in ((["frf", "planar2", "--from", "fx"], "--load"),
+                      (["simulate", "planar2", "--to", "0", "0", "1"], "--target"),
+                      (["check", "planar2", "--band", "1", "2"], "--forbidden-band"),
+                      (["demo", "--scene", "planar2"], "positional")):
+        assert main(argv) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and new in err, err
+
+
+# ------------------------------------------------------------------------ the console
+def test_package_warnings_print_as_one_line_each(capsys):
+    """A ClosedFormWarning (the pendulum's closed form asked up to 3 kHz, above its cables'
+    axial modes at 2318 Hz) prints as one line `dynstiff: warning: MESSAGE`, without the
+    file, line or class name Python's format shows; Python's own display is back after."""
+    import warnings
+
+    from dynstiff.cli import main
+    from dynstiff.errors import ClosedFormWarning
+    before = warnings.showwarning
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", ClosedFormWarning)     # the warning is the subject
+        assert main(["modes", "pendulum", "--fmax", "3000"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2, err
+    for k, line in enumerate(err):
+        assert line.startswith(f"dynstiff: warning: cable {k}: its axial modes from 2318 Hz")
+        assert "up to 3000 Hz" in line
+        assert "ClosedFormWarning" not in line and ".py" not in line
+    assert warnings.showwarning is before
+
+
+def test_check_of_the_pendulum_judges_its_own_band(capsys):
+    """`check pendulum`: the cable model judged up to the scene's 200 Hz, no warning (the
+    search for the platform modes once asked 40 modes whatever the band, up to 4096 Hz,
+    beyond the cables' axial modes at 2318 Hz; a warning here is an error under pytest)."""
+    from dynstiff.cli import main
+    assert main(["check", "pendulum"]) == 0
+    cap = capsys.readouterr()
+    assert cap.err == ""
+    line = next(ln for ln in cap.out.splitlines() if ln.startswith("PASS    cable model"))
+    assert "up to 200 Hz" in line

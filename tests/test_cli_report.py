@@ -33,8 +33,10 @@ def test_demo_main_job_on_cogiro(tmp_path):
     frf = pd.read_csv(tmp_path / "frf.csv", comment="#")
     # 400 uniform frequencies plus the clusters at the modes of the 0.1-12 Hz band
     assert set(frf["input"]) == {"fx", "fz"} and frf["freq [Hz]"].nunique() > 400
-    for name in ("frf.png", "mode_shape.png"):
-        assert (tmp_path / name).stat().st_size > 10_000
+    shapes = sorted(tmp_path.glob("mode_shape_*.png"))      # one per platform mode
+    assert len(shapes) == (modes["platform mode"]).sum() >= 6
+    for path in [tmp_path / "frf.png", *shapes]:
+        assert path.stat().st_size > 10_000
     assert "recommended model: dsm" in out.stdout
     assert "cheapest adequate" not in out.stdout
     head = (tmp_path / "modes.csv").read_text().splitlines()[:12]
@@ -65,7 +67,7 @@ def test_demo_and_report_write_one_self_contained_html(tmp_path):
 
         def handle_data(self, data):
             self.text.append(data)
-    for argv in (["demo", "--scene", "fourcable"], ["report", "fourcable"]):
+    for argv in (["demo", "fourcable"], ["report", "fourcable"]):
         out_dir = tmp_path / argv[0]
         out = subprocess.run([sys.executable, "-m", "dynstiff", *argv, "--out", str(out_dir),
                               "--points", "200"], capture_output=True, text=True)
@@ -73,12 +75,16 @@ def test_demo_and_report_write_one_self_contained_html(tmp_path):
         p = Collect()
         p.feed((out_dir / "report.html").read_text())
         text = " ".join(p.text)
-        assert "script" not in p.tags and "link" not in p.tags and not p.links
-        assert p.tags.count("table") >= 3 and len(p.srcs) == 2
+        assert "script" not in p.tags and "link" not in p.tags
+        assert [ln.split(",")[0] for ln in p.links] == ["data:text/csv;base64"]  # modes.csv
+        assert base64.b64decode(p.links[0].split(",", 1)[1]).decode() == \
+            (out_dir / "modes.csv").read_text()
+        shapes = list(out_dir.glob("mode_shape_*.png"))
+        assert p.tags.count("table") >= 3 and len(p.srcs) == 1 + len(shapes) > 1
         for src in p.srcs:
             assert src.startswith("data:image/png;base64,")
             assert base64.b64decode(src.split(",", 1)[1])[:8] == b"\x89PNG\r\n\x1a\n"
-        assert "PASS" in text and "recommended model" in text and "damping" in text
+        assert "PASS" in text and "Recommended for this band" in text and "damping" in text
 
 
 def test_demo_and_check_agree_on_every_scene(tmp_path):
@@ -93,7 +99,7 @@ def test_demo_and_check_agree_on_every_scene(tmp_path):
                        text)
         return {(r, n or k) for r, n, k in m}
     for name in ds.list_scenes():
-        demo = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--scene", name,
+        demo = subprocess.run([sys.executable, "-m", "dynstiff", "demo", name,
                                "--out", str(tmp_path / name), "--points", "100"],
                               capture_output=True, text=True)
         check = subprocess.run([sys.executable, "-m", "dynstiff", "check", name],

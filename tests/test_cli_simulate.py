@@ -28,7 +28,7 @@ def test_cli_simulate_free_vibration_and_line(tmp_path):
     assert min(abs(p - f1) for p in peaks) < 0.5                       # resolution 0.5 Hz
     import pandas as pd
     assert len(pd.read_csv(tmp_path / "t.csv", comment="#")) == 1001
-    out = run_cli("simulate", "planar2", "--to", "1", "0", "-10", "--speed", "1", "--ramp",
+    out = run_cli("simulate", "planar2", "--target", "1", "0", "-10", "--speed", "1", "--ramp",
                   "0.5", "--time", "0.2", "--segments", "2", "--quiet", "--plot",
                   str(tmp_path / "line.png"))
     assert out.returncode == 0, out.stderr
@@ -72,7 +72,7 @@ def test_cli_simulate_follows_a_trajectory_of_the_scene(tmp_path):
     import pandas as pd
     df = pd.read_csv(tmp_path / "t.csv", comment="#")
     assert len(df) == 161 and abs(df["x desired [m]"].iloc[-1] - 0.2) < 1e-12
-    bad = run_cli("simulate", str(scene), "--trajectory", "swing", "--to", "0", "0", "1")
-    assert bad.returncode == 2 and "--to or --trajectory, not both" in bad.stderr
+    bad = run_cli("simulate", str(scene), "--trajectory", "swing", "--target", "0", "0", "1")
+    assert bad.returncode == 2 and "--target or --trajectory, not both" in bad.stderr
     bad = run_cli("simulate", "fourcable", "--trajectory", "swing")
     assert bad.returncode == 2 and "no [[trajectories]]" in bad.stderr

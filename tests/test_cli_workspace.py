@@ -30,7 +30,13 @@ def test_workspace_command_writes_map_figure_and_table(tmp_path):
     np.testing.assert_allclose(m["rotation"].values[1], [0, 0, 0.1])
     assert m.attrs["band_hz"].tolist() == [0.0, 1.5]          # the scene's forbidden band
     assert (tmp_path / "map.png").stat().st_size > 10_000
-    assert len((tmp_path / "map.csv").read_text().splitlines()) == 1 + 6
+    import pandas as pd
+    df = pd.read_csv(tmp_path / "map.csv", comment="#")      # the one metadata header
+    assert len(df) == 6 and {"x [m]", "first platform freq [Hz]", "band margin [-]",
+                             "least tension [N]"} <= set(df.columns)
+    head = [ln for ln in (tmp_path / "map.csv").read_text().splitlines() if ln[:1] == "#"]
+    assert [ln.split(":")[0] for ln in head[:5]] == ["# dynstiff", "# scene", "# pose",
+                                                     "# model", "# date"]
 
 
 @pytest.mark.integration

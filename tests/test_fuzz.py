@@ -210,15 +210,15 @@ def _cli_fuzzer(n):
     @given(command=st.sampled_from(["modes", "frf", "check", "sweep", "simulate", "demo",
                                     "scenes", "nope"]),
            options=st.lists(st.tuples(st.sampled_from(
-               ["-n", "--fmax", "--points", "--band", "--margin", "--max-sag", "--pose",
-                "--lengths", "--csv", "--plot", "--time", "--dt", "--segments", "--steps",
-                "--bogus"]), OPTION_VALUES), max_size=3))
+               ["-n", "--fmax", "--points", "--band", "--forbidden-band", "--margin",
+                "--max-sag", "--pose", "--lengths", "--csv", "--plot", "--time", "--dt",
+                "--segments", "--steps", "--bogus"]), OPTION_VALUES), max_size=3))
     def check(command, options):
         argv = [command] + (["planar2"] if command not in ("demo", "scenes", "nope") else [])
         for opt, val in options:
             argv += [opt, val]
-            if opt in ("--band", "--pose"):
-                argv += ["1.0"] if opt == "--band" else ["0.0", "-10.0"]
+            if opt in ("--band", "--forbidden-band", "--pose"):
+                argv += ["0.0", "-10.0"] if opt == "--pose" else ["1.0"]
         if command in ("simulate", "demo") and "--time" not in argv:
             return                   # the long runs are exercised elsewhere
         err, out = io.StringIO(), io.StringIO()

@@ -123,3 +123,71 @@ def test_a_bad_frf_leaves_an_existing_uff_file_as_it_was(tmp_path, model, monkey
         res.to_uff(path)
     assert (path.read_bytes(), path.stat().st_mtime_ns) == before
     assert [p.name for p in tmp_path.iterdir()] == ["old.uff"]
+
+
+@pytest.fixture(scope="module")
+def symmetric():
+    """planar2 at x = 0: mirror symmetric about x = 0, so x/fz and z/fx vanish."""
+    eq = ds.load_scene("planar2").equilibrium()
+    return ds.build_model(eq, "dsm", platform_damping_ratio=0.02)
+
+
+def test_to_control_is_named_and_bode_plots_it_as_it_is(symmetric):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    res = ds.frf(symmetric, 2 * np.pi * np.linspace(0.05, 3.0, 120), inputs=["fx", "fz"],
+                 outputs=["x", "z"])
+    top = np.abs(res.H).max()
+    cross = np.abs(res.H[:, 0, 1]).max()
+    assert 0 < cross < 1e-12 * top              # rounding only: zero by symmetry
+    frd = res.to_control()
+    assert frd.name == "dynstiff receptance"
+    assert frd.input_labels == ["fx", "fz"] and frd.output_labels == ["x", "z"]
+    data = np.asarray(frd.frdata)
+    assert np.all(data[0, 1] == 0) and np.all(data[1, 0] == 0)
+    np.testing.assert_array_equal(data[0, 0], res.H[:, 0, 0])       # the rest untouched
+    cp = control.bode_plot(frd)
+    assert "dynstiff receptance" in cp.figure._suptitle.get_text()
+    # the direct channels' phases stay within one turn (no unwrapped rounding noise)
+    for line in cp.lines[1, 0]:
+        assert np.all(np.abs(line.get_ydata()) <= 360.0)
+    plt.close(cp.figure)
+
+
+def test_even_uff_of_a_grid_refined_at_the_modes_is_its_uniform_part(tmp_path):
+    """An FRF on the grid refined at the modes (theory.md §12.3) written with even=True:
+    the records read back on an even abscissa (spacing code 1) at the uniform part's
+    step, with exactly the result's values at those points (binary), and say so."""
+    from dynstiff.analyses.freqgrid import refined_grid
+    model = ds.scene_model(ds.load_scene("cogiro"))
+    modes = ds.eigenfrequencies(model, 6)
+    f = refined_grid((0.5, 6.0), 111, modes)
+    assert f.size > 400                                  # 111 uniform + refinement
+    res = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs="z")
+    s = pyuff.UFF(str(res.to_uff(tmp_path / "even.uff", binary=True, even=True))).read_sets()
+    uniform = np.linspace(0.5, 6.0, 111)
+    assert s["abscissa_spacing"] == 1 and "even grid, step 0.05 Hz" in s["id3"]
+    np.testing.assert_allclose(s["x"], uniform, rtol=1e-12, atol=1e-12)
+    on = np.searchsorted(f, uniform)
+    assert np.abs(f[on] - uniform).max() < 1e-12
+    np.testing.assert_array_equal(s["data"], res.H[on, 0, 0])
+
+
+def test_even_uff_at_a_step_interpolates_and_refuses_bad_steps(tmp_path, model):
+    """even=step [Hz]: linear interpolation of the real and imaginary parts between the
+    result's points (checked on a straight-line FRF, which it reproduces); steps that are
+    not positive numbers up to the band, and booleans as numbers, are refused naming
+    'even', before the file is touched."""
+    f = np.linspace(1.0, 2.0, 11)
+    H = ((2.0 + 3.0j) * f - 1j)[:, None, None]
+    res = ds.FRFResult(f, H, ("fz",), ("z",), "receptance")
+    s = pyuff.UFF(str(res.to_uff(tmp_path / "a.uff", binary=True, even=0.03))).read_sets()
+    np.testing.assert_allclose(s["x"], 1.0 + 0.03 * np.arange(34), rtol=1e-12)
+    np.testing.assert_allclose(s["data"], (2.0 + 3.0j) * s["x"] - 1j, rtol=1e-12)
+    target = tmp_path / "keep.uff"
+    target.write_text("old")
+    for bad in (0.0, -0.1, 2.0, np.nan, "0.1", np.True_):
+        with pytest.raises(ds.InvalidParameterError, match="even"):
+            res.to_uff(target, even=bad)
+    assert target.read_text() == "old"

@@ -3,6 +3,7 @@ massless-cable limit against an independent straight-cable model, the geometric 
 at equilibrium, and frequencies and mode shapes that turn and mirror with the robot."""
 
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -509,3 +510,31 @@ def test_cable_fields_without_motion_and_the_loss_factor_with_chordwise_inertia_
                                sq**2 * plain.cable_coefficients(w / sq), rtol=1e-12)
     with_inertia = ds.FrequencyModel(cogiro_eq, cable_loss_factor=0.03)
     assert np.abs(with_inertia.cable_coefficients(w) - lossy.cable_coefficients(w)).max() > 1.0
+
+
+def test_on_fast_the_guard_warns_or_the_closed_form_is_within_guard_rtol_mode_by_mode():
+    # the FAST feed support at the bottom of its focal surface: cables ~0.9 x the cabin's mass
+    eq = ds.load_scene("fast").equilibrium()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ds.errors.ClosedFormWarning)
+        m = ds.FrequencyModel(eq)
+        f_d = ds.eigenfrequencies(m, fmax_hz=0.4)
+    warned = any(isinstance(w.message, ds.errors.ClosedFormWarning) for w in caught)
+    f_x = ds.eigenfrequencies(ds.build_model(eq, "exact", fmax_hz=0.45), fmax_hz=0.4)
+    assert f_d.size == f_x.size > 20
+    err = np.abs(f_d / f_x - 1)
+    assert warned or err.max() <= m.guard_rtol
+    # the robot-level bound holds here: measured 5.1e-3, bound 2.5 x (static + own) >= it
+    bound = m.robot_error(2 * np.pi * 0.4)[0]
+    assert err.max() <= bound
+    assert warned == (bound > m.guard_rtol)
+
+
+def test_robot_error_is_the_factor_times_static_plus_largest_cable_error(cogiro_eq):
+    from dynstiff.cable.guard import ROBOT_ERROR_FACTOR
+    m = ds.FrequencyModel(cogiro_eq)
+    w = 2 * np.pi * 12.0
+    own = [m.cable_error(i, w) for i in range(8)]
+    bound, i = m.robot_error(w)
+    assert bound == pytest.approx(ROBOT_ERROR_FACTOR * (m.static_error()[0] + max(own)))
+    assert own[i] == max(own)

@@ -31,3 +31,18 @@ def test_import_does_not_load_heavy_scipy_submodules_or_numba():
             f"print(','.join(m for m in {heavy!r} if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert "scipy.optimize" in out.stdout
+
+
+@pytest.mark.parametrize("first", ["dynstiff", "xarray"])
+def test_xarray_accessor_works_in_either_import_order_without_loading_xarray(first):
+    pytest.importorskip("xarray")
+    second = "xarray" if first == "dynstiff" else "dynstiff"
+    code = (f"import sys; import {first}; "
+            "print('xarray' in sys.modules, 'pandas' in sys.modules); "
+            f"import {second}; import xarray as xr; "
+            "print(type(xr.Dataset().dynstiff).__name__)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded, name = out.stdout.split("\n")[:2]
+    if first == "dynstiff":
+        assert loaded == "False False"           # import dynstiff alone loads neither
+    assert name == "WorkspaceAccessor"

@@ -38,12 +38,13 @@ def test_frf_marks_band_modes_and_draws_phase(cogiro_model, cogiro_modes):
                                    cogiro_modes.freq_hz[in_band])
         n_global = sum(k == "global" for k, b in zip(cogiro_modes.kind, in_band) if b)
         assert sum(ln.get_gid() == "mode-global" for ln in marks) == n_global
-    curves = [ln for ln in mag.get_lines() if ln.get_gid() is None]
+    curves = [ln for ln in mag.get_lines() if ln.get_gid().startswith("frf-")]
     assert [c.get_label() for c in curves] == ["z / fz", "x / fx"]
     np.testing.assert_allclose(curves[0].get_ydata(), np.abs(res.H[:, 0, 0]))
     assert mag.get_yscale() == "log" and "receptance" in mag.get_ylabel()
     assert ph.get_xlabel() == "frequency [Hz]" and ph.get_ylabel() == "phase [deg]"
-    phase = np.concatenate([ln.get_ydata() for ln in ph.get_lines() if ln.get_gid() is None])
+    phase = np.concatenate([ln.get_ydata() for ln in ph.get_lines()
+                            if ln.get_gid().startswith("frf-")])
     np.testing.assert_allclose(phase[:5], np.degrees(np.angle(res.H[:5, 0, 0])))
     assert np.nanmax(np.abs(phase)) <= 180.0
 
@@ -106,3 +107,35 @@ def test_frf_legend_names_the_mode_markers():
     assert any(lb.startswith("local mode") for lb in labels)
     mixed = [ln for ln in ax.get_lines() if ln.get_gid() == "mode-mixed"]
     assert any(abs(ln.get_xdata()[0] - 2.216) < 1e-3 for ln in mixed)
+
+
+def test_frf_curves_mode_lines_twins_and_legend_stay_apart(cogiro_model, cogiro_modes):
+    """Curve colours are none of the mode classes'; x / fz and its reciprocal twin z / fx
+    (equal) are both visible, the twin dashed and wider; the legend lies outside the
+    axes, so no peak is under it."""
+    from matplotlib.colors import to_rgba
+
+    from dynstiff.plot.common import COLORS
+    res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(0.5, 3.3, 300), inputs=["fx", "fz"],
+                 outputs=["x", "z"])
+    pairs = [("x", "fx"), ("z", "fz"), ("x", "fz"), ("z", "fx")]
+    fig = plot_frf(res, cogiro_modes, pairs=pairs, phase=True)
+    mag = fig.axes[0]
+    curves = {ln.get_gid(): ln for ln in mag.get_lines()
+              if (ln.get_gid() or "").startswith("frf-")}
+    assert sorted(curves) == sorted(f"frf-{o}-{i}" for o, i in pairs)
+    curve_colours = {to_rgba(ln.get_color()) for ln in curves.values()}
+    assert len(curve_colours) == 4                                   # one per channel
+    assert not curve_colours & {to_rgba(c) for c in COLORS.values()}  # none a mode class's
+    a, b = curves["frf-x-fz"], curves["frf-z-fx"]
+    np.testing.assert_allclose(a.get_ydata(), b.get_ydata(), rtol=1e-6)   # reciprocity
+    assert a.get_linestyle() == "-" and b.get_linestyle() != "-"
+    assert b.get_linewidth() > a.get_linewidth()
+    fig.canvas.draw()
+    leg = mag.get_legend().get_window_extent()
+    box = mag.get_window_extent()
+    assert leg.x0 >= box.x1                                           # right of the axes
+    # the axes' limits hold every curve
+    lo, hi = mag.get_ylim()
+    for ln in curves.values():
+        assert lo <= np.min(ln.get_ydata()) and np.max(ln.get_ydata()) <= hi

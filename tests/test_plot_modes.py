@@ -64,8 +64,19 @@ def test_equilibrium_plot_bars_are_the_tensions_and_the_limits(cogiro_eq):
     np.testing.assert_allclose(heights, cogiro_eq.tensions, rtol=1e-12)
     heights = [p.get_height() for p in by_gid(ax, "tension-A")]
     np.testing.assert_allclose(heights, cogiro_eq.anchor_tensions, rtol=1e-12)
-    limits = sorted(line.get_ydata()[0] for line in by_gid(ax, "limit-"))
-    assert limits == sorted(v for v in cogiro_eq.robot.tension_limits if np.isfinite(v))
+    # CoGiRo: tensions 270-306 N, limits 100 and 5000 N: t_max is named, not drawn, and
+    # the axis is scaled to the tensions
+    limits = [line.get_ydata()[0] for line in by_gid(ax, "limit-")]
+    assert limits == [100.0]
+    assert "t_max = 5000 N" in ax.get_title()
+    lo, hi = ax.get_ylim()
+    top = max(cogiro_eq.tensions.max(), cogiro_eq.anchor_tensions.max())
+    assert lo == 0 and top < hi < 1.3 * top
+    # limits within reach are both drawn, and the axis holds them
+    fig = ds.plot.plot_tensions(cogiro_eq, limits=(150.0, 400.0))
+    ax = fig.axes[0]
+    assert sorted(line.get_ydata()[0] for line in by_gid(ax, "limit-")) == [150.0, 400.0]
+    assert ax.get_ylim()[1] > 400.0 and "off scale" not in ax.get_title()
 
 
 def test_recommendation_plot_marks_rungs_that_miss_modes(cogiro_eq):

@@ -81,3 +81,26 @@ def test_veering_bridges_interior_gaps_only():
     assert "dotted" in ax.get_title()
 
 
+
+
+@pytest.mark.parametrize("values, scale", [([1e10, 3e10, 1e11], "log"),
+                                           ([1e10, 2e10, 5e10], "linear"),
+                                           ([-1.0, 0.0, 10.0], "linear")])
+def test_a_decade_of_a_positive_parameter_is_drawn_on_a_log_axis(values, scale):
+    class Stub:
+        parameter = "EA [N]"
+        n_tracks = 1
+        value = np.array(values)
+        freq_hz = np.array([3.0, 3.1, 3.2])
+        kind = np.array(["local"] * 3)
+
+        def veering_table(self):
+            return pd.DataFrame({0: [2.0, 2.2, 2.5]})
+
+    Stub.values = np.array(values)
+    ax = plot_veering(Stub()).axes[0]
+    assert ax.get_xscale() == scale
+    lo, hi = ax.get_xlim()
+    assert lo < min(values) and max(values) < hi
+    (track,) = by_gid(ax, "track-")
+    np.testing.assert_array_equal(track.get_xdata(), values)

@@ -53,6 +53,32 @@ def test_spectrum_log_amplitude_and_mode_markers():
         plot_spectrum(sz, band_hz=(5.0, 1.0))
 
 
+def test_spectrum_is_labelled_with_the_channels_unit():
+    sz = synthetic_spectrum("z", [2.2], [1e-3])
+    srx = synthetic_spectrum("rx", [2.4], [5e-4])
+    ax = plot_spectrum(sz).axes[0]
+    assert ax.get_ylabel() == "amplitude [m]"
+    ax = plot_spectrum(srx).axes[0]
+    assert ax.get_ylabel() == "amplitude [rad]"
+    ax = plot_spectrum([sz, srx]).axes[0]                     # mixed: units per channel
+    assert ax.get_ylabel() == "amplitude [units in the legend]"
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["z [m]", "rx [rad]"]
+
+
+def test_amplitude_of_a_sinusoid_is_its_amplitude():
+    from types import SimpleNamespace
+
+    from dynstiff.timedomain.response import TimeResponse
+    t = np.arange(4000) * 0.01
+    pose = np.zeros((t.size, 6))
+    pose[:, 2] = 3e-3 * np.sin(2 * np.pi * 2.05 * t) + 0.5     # on a bin, with a mean
+    r = SimpleNamespace(times=t, pose=pose, dt=0.01, record_every=1)
+    s = TimeResponse.spectrum(r, "z")
+    np.testing.assert_allclose(s.peaks_hz[0], 2.05, atol=1e-9)
+    np.testing.assert_allclose(s.peak_amplitudes[0], 3e-3, rtol=1e-6)
+    assert s.amplitude[0] < 1e-12                               # the mean removed
+
+
 def test_spectrum_of_a_simulation_marks_model_modes():
     """A short lumped-mass run of the point-mass robot: its z spectrum peaks near a
     frequency-domain eigenfrequency, which the figure marks (coloured by kind)."""

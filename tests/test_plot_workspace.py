@@ -58,3 +58,34 @@ def test_a_list_of_poses_has_no_slices():
     ds = synthetic_map().stack(pose=("x", "y", "z")).reset_index("pose")
     with pytest.raises(InvalidParameterError, match="grid"):
         plot_workspace_slices(ds)
+
+
+def five_level_map():
+    x, y, z = np.array([0.0, 1.0]), np.array([0.0, 1.0]), np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    X, Y, Z = np.meshgrid(x, y, z, indexing="ij")
+    f1 = 1.0 + X + Z
+    dims = ("x", "y", "z")
+    return xr.Dataset({"first_platform_hz": (dims, f1), "band_margin": (dims, f1 / 3 - 1),
+                       "dynamic": (dims, f1 > 3), "feasible": (dims, np.ones_like(f1, bool))},
+                      coords={"x": x, "y": y, "z": z},
+                      attrs={"robot": "a robot with a rather long name for its title",
+                             "margin": 0.05, "band_hz": [0.0, 1.5]})
+
+
+def test_every_height_gets_its_panels_and_the_title_fits():
+    ds = five_level_map()
+    fig = ds.dynstiff.plot()
+    heights = [a.get_title() for a in fig.axes if a.get_title().startswith("z = ")]
+    assert heights == [f"z = {v:.3g} m" for v in ds["z"].values]     # z = 3 m included
+    fig.canvas.draw()
+    box = fig.get_window_extent()
+    title = fig._suptitle.get_window_extent()
+    assert box.x0 <= title.x0 and title.x1 <= box.x1 and title.y1 <= box.y1
+    plt.close(fig)
+    fig = plot_workspace_slices(ds, n_slices=3)                   # fewer asked: said so
+    heights = [a.get_title() for a in fig.axes if a.get_title().startswith("z = ")]
+    assert heights == ["z = 1 m", "z = 3 m", "z = 5 m"]
+    assert "3 of 5 heights drawn" in fig._suptitle.get_text().replace("\n", " ")
+    plt.close(fig)
+    with pytest.raises(InvalidParameterError, match="n_slices"):
+        plot_workspace_slices(ds, n_slices=0)

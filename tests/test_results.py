@@ -92,3 +92,19 @@ def test_one_labelling_by_platform_share():
                          cable_energy=np.zeros((3, 1)))
     assert res.kind == ("global", "mixed", "local")
     assert np.isnan(res.massless_freq_hz).all() and np.isnan(res.participation).all()
+
+
+def test_rich_displays_hold_the_key_numbers(cogiro_model):
+    from conftest import assert_valid_html
+    md = ds.modes(cogiro_model, 30)
+    text = assert_valid_html(md._repr_html_())
+    assert f"{md.freq_hz[0]:.5g}" in text and f"{md.freq_hz[19]:.5g}" in text
+    assert f"{md.freq_hz[20]:.5g}" not in text and "10 more rows" in text
+    assert md.kind[0] in text and f"{md.platform_share[3]:.5g}" in text
+    omega = 2 * np.pi * np.linspace(0.5, 3.0, 40)
+    with pytest.warns(ds.ResonanceWarning):     # undamped across the modes, on purpose
+        r = ds.frf(cogiro_model, omega, inputs=["fx", "mz"], outputs=["x"])
+    text = assert_valid_html(r._repr_html_())
+    a = np.abs(r.H[:, 0, 1])
+    assert f"{a.max():.5g}" in text and f"{r.freq_hz[np.argmax(a)]:.5g}" in text
+    assert "m/(N m)" in text and "receptance" in text

@@ -45,3 +45,11 @@ def test_equilibria_compare_by_their_poses(cogiro):
     np.testing.assert_allclose(a.unstretched_lengths, b.unstretched_lengths, rtol=1e-14)
     with pytest.raises(AttributeError):
         a.pose = b.pose                                   # frozen record
+
+
+def test_rich_display_holds_the_pose_and_the_tensions(cogiro_eq):
+    from conftest import assert_valid_html
+    text = assert_valid_html(cogiro_eq._repr_html_())
+    for t in (*cogiro_eq.tensions, *cogiro_eq.anchor_tensions):
+        assert f"{t:.5g}" in text
+    assert str(np.round(cogiro_eq.pose.position, 4).tolist()) in text

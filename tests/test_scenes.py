@@ -60,7 +60,9 @@ def test_scene_loads_by_name_and_path(cogiro):
         ds.load_scene("nope")
 
 
-@pytest.mark.parametrize("name", ["cogiro", "planar2", "sixcable", "fourcable"])
+# the closed form's robot-level bound warns on sixcable and fast (theory.md §11.6): not the subject
+@pytest.mark.filterwarnings("ignore::dynstiff.errors.ClosedFormWarning")
+@pytest.mark.parametrize("name", ["cogiro", "planar2", "sixcable", "fourcable", "fast"])
 def test_builtin_scenes_load_and_equilibrate(name):
     scene = ds.load_scene(name)
     same = ds.load_scene(ds.scenes.loader.SCENE_DIR / f"{name}.toml").robot
@@ -76,6 +78,8 @@ def test_builtin_scenes_load_and_equilibrate(name):
 SEED_SCENES = ("cogiro", "planar2", "sixcable", "fourcable", "pendulum", "simulator")
 
 
+# the closed form's robot-level bound warns on sixcable and fast (theory.md §11.6): not the subject
+@pytest.mark.filterwarnings("ignore::dynstiff.errors.ClosedFormWarning")
 @pytest.mark.parametrize("name", SEED_SCENES)
 def test_every_seed_scene_loads_by_name_and_path_and_balances(name):
     """Every robot of the seed papers is a built-in scene: by name and from its TOML file

@@ -51,3 +51,11 @@ def test_bad_trajectories_and_boxes_are_refused_before_writing(tmp_path, kw, mat
     with pytest.raises(ds.InvalidParameterError, match=match):
         write_scene(tmp_path / "s.toml", r, **kw)
     assert not (tmp_path / "s.toml").exists()
+
+
+def test_names_with_quotes_backslashes_and_newlines_read_back_exactly(tmp_path):
+    sc = ds.load_scene("planar2")
+    text = 'robot "A"\\B\nsecond line\ttab'
+    path = write_scene(tmp_path / "s.toml", sc.robot, sc.pose, name=text, description=text)
+    back = ds.load_scene(path)
+    assert back.name == text and back.description == text

@@ -284,3 +284,44 @@ def test_design_for_frequency():
     assert s["largest |P first order - P Monte Carlo| [-]"] <= 0.02
     p = df.set_index(["x [m]", "y [m]"])["P fail Monte Carlo [-]"]
     assert p[(-4.0, -3.0)] == 1.0 and p[(0.0, 0.0)] == 0.0
+
+
+def test_fast_telescope_quick():
+    # Li et al., Universe 10, 450 (2024): lowest frequency 0.12-0.2 Hz over the working range
+    mod = load("fast_telescope")
+    df = mod.run(zeniths=(0, 40), azimuths=(30,))
+    assert df["in measured band"].all()
+    assert df["f cabin exact [Hz]"].between(0.12, 0.2).all()
+    assert df["f1 exact [Hz]"].between(0.12, 0.2).all()
+    assert (df["closed form vs exact [-]"] < 1e-2).all()
+    # the bottom of the focal surface: 0.1564 Hz (exact rung), the scene's reference pose
+    assert df["f1 exact [Hz]"].iloc[0] == pytest.approx(0.1564, abs=5e-4)
+
+
+@pytest.mark.slow
+def test_fast_telescope_full():
+    mod = load("fast_telescope")
+    df = mod.run()
+    assert df["in measured band"].all() and len(df) == 13
+    conv = mod.convergence()
+    # lumped chains converge on the exact rung as N^-2: Richardson 20/40 within 1e-6
+    assert conv["largest difference from exact [-]"].iloc[-1] < 1e-6
+    sens = mod.sensitivity()
+    # the rope's mass moves the lowest frequency by < 10 % at +-20 %, EA by < 0.1 %
+    assert sens["change [-]"].abs().max() < 0.1
+    assert sens.loc[sens["parameter"] == "EA", "change [-]"].abs().max() < 1e-3
+
+
+def test_guard_bound_quick():
+    # the closed form's robot-level bound holds on 20 random heavy-cable robots
+    df = load("guard_bound").run(n_robots=20, seed=0)
+    assert len(df) == 20
+    assert df["ratio [-]"].max() <= 1.0
+    assert df["mass ratio [-]"].between(0.01, 2.0).all()
+
+
+@pytest.mark.slow
+def test_guard_bound_200_robots():
+    df = load("guard_bound").run(n_robots=200, seed=1)
+    assert df["ratio [-]"].max() <= 1.0
+    assert (df["measured [-]"] > 1e-2).any()          # the study reaches beyond guard_rtol

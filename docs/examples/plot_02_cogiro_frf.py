@@ -17,7 +17,7 @@ scene = ds.load_scene("cogiro")
 eq = scene.equilibrium()                        # inverse statics at the scene's pose
 print(eq.to_frame().round(4))
 
-model = ds.FrequencyModel(eq)                   # closed-form dynamic stiffness
+model = ds.scene_model(scene)                   # closed form, the scene's [damping]
 modes = ds.modes(model, fmax_hz=8.0)
 print(modes.to_frame()[["mode", "freq [Hz]", "kind", "platform share [-]"]].head(12))
 

@@ -23,7 +23,7 @@ print(checks.text())
 # The receptances with the modes marked (red global, purple mixed, blue local) and the
 # forbidden band shaded:
 
-model = ds.FrequencyModel(eq)
+model = ds.scene_model(scene)                   # the scene's cable model and damping
 res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 6.0, 3000), inputs=["fx", "fz"],
              outputs=["x", "z"])
 fig = plot_frf(res, ds.modes(model, fmax_hz=6.0))

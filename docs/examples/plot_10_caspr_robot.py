@@ -40,4 +40,3 @@ print(modes.to_frame()[["mode", "freq [Hz]", "kind", "platform share [-]"]])
 # The first global mode, its cables drawn with their own displacement fields:
 k = next(j for j, kind in enumerate(modes.kind) if kind == "global")
 fig = plot_robot(eq, modes, k, model=model)
-fig.axes[0].get_legend().set_bbox_to_anchor((1.13, 0.5))   # the legend inside the figure

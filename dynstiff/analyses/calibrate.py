@@ -200,6 +200,18 @@ class CalibrationResult:
         return (f"CalibrationResult({est} ({100 * self.confidence:g} %), {fit}, "
                 f"{self.n_evaluations} evaluations)")
 
+    def _repr_html_(self):
+        """Jupyter display: each parameter's estimate and interval, each mode's residual."""
+        from dynstiff._html import html_table
+        pars = html_table(repr(self), ["parameter", "initial", "estimate", "ci low",
+                                       "ci high"],
+                          zip(self.parameters, self.initial, self.estimate, self.ci_low,
+                              self.ci_high))
+        return pars + html_table("modes", ["mode", "measured [Hz]", "fitted [Hz]",
+                                           "residual [-]", "MAC"],
+                                 zip(range(1, self.measured_hz.size + 1), self.measured_hz,
+                                     self.fitted_hz, self.residual, self.mac))
+
     def text(self):
         """A short report: estimates with intervals, then the residual per mode."""
         lines = [f"{'parameter':<10} {'initial':>12} {'estimate':>12} "
@@ -335,6 +347,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
             "jacobian='analytic' needs frequency residuals only (no FRF, no damping "
             f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
     analytic = analytic and jacobian != "differences"
+    asked_jacobian = jacobian
     if (isinstance(confidence, (bool, np.bool_)) or not isinstance(confidence, Real)
             or not 0 < confidence < 1):
         raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
@@ -427,10 +440,18 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         """Analytic (from the evaluation at u), else differences in ln p with a step far
         above the statics' tolerance (1e-10): forward (reusing the residual just evaluated
         at u) during the search, central for the sensitivities at the estimate."""
+        nonlocal analytic
         if analytic:
             if not np.array_equal(last_eval.get("u"), u):
                 residual(u)
-            return analytic_jacobian(last_eval["out"])
+            try:
+                return analytic_jacobian(last_eval["out"])
+            except InvalidParameterError:
+                # the statics' derivative is singular (e.g. cables exactly at t_min):
+                # "auto" falls back to differences, "analytic" says so
+                if asked_jacobian == "analytic":
+                    raise
+                analytic = False
         if central:
             return np.column_stack([(residual(u + h * e) - residual(u - h * e)) / (2 * h)
                                     for e in np.eye(n)])
@@ -468,6 +489,8 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
     except np.linalg.LinAlgError:
         se = np.full(n, np.nan)
     p0 = np.array([_value(robot, nm) for nm in names])
+    with np.errstate(over="ignore"):      # a parameter the data do not fix: an infinite bound
+        ci_low, ci_high = p0 * np.exp(sol.x - q * se), p0 * np.exp(sol.x + q * se)
     report_findings(calibration_findings(
         measured, last["f"], (pairing if chosen_pairing is None else "chosen")
         if measured is not None else None,
@@ -475,7 +498,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
         sol.x, (b_lo, b_hi)), strict)
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
-        ci_low=p0 * np.exp(sol.x - q * se), ci_high=p0 * np.exp(sol.x + q * se),
+        ci_low=ci_low, ci_high=ci_high,
         confidence=confidence,
         measured_hz=empty if measured is None else measured.freq_hz,
         initial_hz=first["f"], fitted_hz=last["f"], mac=last["mac"],

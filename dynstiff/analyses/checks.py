@@ -21,7 +21,7 @@ __all__ = ["CheckResult", "check_options", "damped_model", "design_checks",
            "modal_model_options"]
 
 
-def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", **options):
+def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", like=None, **options):
     """The model of ``rung`` at ``equilibrium`` with the analysis damping ``damping``.
 
     The viscous part is added to every cable's own ``viscous_damping`` (all rungs with
@@ -35,12 +35,23 @@ def damped_model(equilibrium, damping=DEFAULT_DAMPING, rung="dsm", **options):
     equilibrium : Equilibrium
     damping : Damping
     rung : str
+    like : model, optional
+        The model of ``rung`` built at ``equilibrium`` with ``options`` and no damping: the
+        closed form's damped model then shares its cable terms (the same model, built
+        without recomputing them, theory.md §13.7).
     **options
         Passed to :func:`dynstiff.build_model`.
     """
     if not isinstance(damping, Damping):
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     eq = equilibrium
+    if (like is not None and rung == "dsm" and damping.cable_viscous_damping == 0
+            and set(options) <= {"tension", "chordwise_inertia", "guard_rtol"}
+            and like.equilibrium is eq and all(
+                getattr(like, k) == v for k, v in options.items())):
+        new = like._with_model_damping(damping.cable_loss_factor, damping.platform_ratio)
+        if new is not None:
+            return new
     if damping.cable_viscous_damping > 0 and rung in ("dsm", "exact", "lumped"):
         from dynstiff.robot.robot import Robot
         rob = eq.robot
@@ -89,6 +100,14 @@ class CheckResult:
     def verdicts(self):
         """{check: verdict}."""
         return {r["check"]: r["verdict"] for r in self.rows}
+
+    def _repr_html_(self):
+        """Jupyter display: the verdict, check and reason of every row."""
+        from dynstiff._html import html_table
+        return html_table(
+            "Design checks: " + ("all passed" if self.passed else "some FAILED"),
+            ["verdict", "check", "detail"],
+            [[r["verdict"].upper(), r["check"], r["detail"]] for r in self.rows])
 
     def to_frame(self):
         """pandas DataFrame, one row per check."""
@@ -189,10 +208,10 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         Ceiling of the modes computed; beyond it the modal verdicts are "unknown" (which
         fails the pose).
     uncertain : dict, optional
-        Stated uncertainties {parameter: Uncertain or "10%"} (:func:`dynstiff.
-        propagate_uncertainty`): a last row gives the probability that the margin check
-        fails and the band margin at ``confidence`` (theory.md §16.6); the other rows are
-        those of the nominal robot.
+        Stated uncertainties {parameter: Uncertain or "10%"}
+        (:func:`~dynstiff.propagate_uncertainty`): a last row gives the probability that
+        the margin check fails and the band margin at ``confidence`` (theory.md §16.6); the
+        other rows are those of the nominal robot.
     n_samples, seed : int
         The Monte Carlo's Latin-hypercube sample and its seed.
     confidence : float
@@ -223,8 +242,14 @@ def design_checks(robot, pose, band_hz=None, margin=0.05, proximity_rtol=0.03,
         raise InvalidParameterError(f"confidence must be a number in (0, 1), got "
                                     f"{confidence!r}")
     options_of = modal_model_options(rung, options, model_options)
-    rows, eq, pm = pose_rows(robot, pose, lambda eq: build_model(eq, rung, **options_of),
-                             options, lambda eq: damped_model(eq, damping, rung, **options_of))
+    built = []
+
+    def model_of(eq):
+        built.append(build_model(eq, rung, **options_of))
+        return built[-1]
+    rows, eq, pm = pose_rows(robot, pose, model_of, options,
+                             lambda eq: damped_model(eq, damping, rung, built[-1],
+                                                     **options_of))
     res = None
     if uncertain:
         row, res = uncertain_row(robot, pose, options, uncertain, rung, options_of, n_samples,

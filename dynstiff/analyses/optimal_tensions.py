@@ -156,8 +156,9 @@ def optimal_tensions(robot, pose, objective="first_global_hz", band_hz=None,
     pose : Pose or array_like
     objective : {"first_global_hz", "band_margin"}
         "first_global_hz": the frequency of the first platform mode (the lowest of the
-        modes every free DOF's verdict is about, :func:`dynstiff.analyses.platform_modes.
-        find_platform_modes`: the global modes and each DOF's carrier); "band_margin": the
+        modes every free DOF's verdict is about,
+        :func:`~dynstiff.analyses.platform_modes.find_platform_modes`: the global modes and
+        each DOF's carrier); "band_margin": the
         relative margin to ``band_hz`` of the modes with platform share >= ``participation``.
     band_hz : (float, float), optional
         Forbidden band [Hz] ("band_margin").

@@ -84,14 +84,15 @@ def platform_shares(model, freq_hz):
     steps = np.array([1.0, 1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
     K = model.dynamic_stiffness(w)
     Ks = model.dynamic_stiffness(np.outer(steps[1:5], w).ravel()).reshape(4, n, *K.shape[1:])
-    J0 = model.cable_mode_count(np.outer(steps[1:], w).ravel()).reshape(6, n)
+    # cable counts at 1 +- h (a pole within the steps) and 1 +- 1e-9 (a pole at the root)
+    J0 = model.cable_mode_count(np.outer(steps[[1, 2, 5, 6]], w).ravel()).reshape(4, n)
     Mp = model.platform_mass
     fin = np.flatnonzero(np.all(np.isfinite(K), axis=(1, 2)))
     if not fin.size:
         return out, shapes
     ev, V = np.linalg.eigh(K[fin])
     least = np.abs(ev).min(axis=1)
-    pole = J0[4, fin] > J0[5, fin]             # a cable pole at the root
+    pole = J0[2, fin] > J0[3, fin]             # a cable pole at the root
     if np.any(pole):
         scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
         keep = ~pole | (least <= 1e-6 * scale)

@@ -78,8 +78,29 @@ class PlatformModes:
     def describe(self, k):
         """One mode in words: frequency, kind, share and the DOF it carries most."""
         m = self.modes
+        r = np.nan_to_num(m.participation[k])        # ModalResult.dominant_dof of mode k
+        dof = DOF_NAMES[int(np.argmax(r))] if np.nanmax(r, initial=0) > 0 else "-"
         return (f"{m.freq_hz[k]:.4g} Hz ({m.kind[k]}, platform share "
-                f"{100 * m.platform_share[k]:.0f} %, mostly {m.dominant_dof[k]})")
+                f"{100 * m.platform_share[k]:.0f} %, mostly {dof})")
+
+    def spread(self):
+        """When a free DOF is carried by cable-dominated modes only (its carrier's platform
+        share < 50 %, theory.md §12.4), the sentence saying which DOFs and over how many
+        cable-dominated modes up to ``found_hz`` (where each free DOF is half found) their
+        motion is spread; "" otherwise or when the search is incomplete."""
+        m = self.modes
+        if not self.complete or not len(m):
+            return ""
+        share = np.asarray(m.platform_share)
+        dofs = [d for d, k in self.carriers.items() if share[k] < 0.5]
+        if not dofs:
+            return ""
+        below = np.asarray(m.freq_hz) <= self.found_hz
+        n = int(np.sum(below & (share < 0.5)))
+        return (f"no mode is platform-dominated in {', '.join(dofs)}: the platform's motion "
+                f"there is spread over {n} cable-dominated modes up to {self.found_hz:.4g} Hz "
+                f"(largest platform share among them {100 * share[below & (share < 0.5)].max():.0f}"
+                f" %); the platform modes are the carriers of each DOF by participation")
 
     def __repr__(self):
         if not self.complete:

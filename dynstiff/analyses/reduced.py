@@ -28,7 +28,7 @@ import numpy as np
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
-from dynstiff.io.exchange import require
+from dynstiff.io.exchange import ZERO_FLOOR, require
 from dynstiff.models.base import require_model
 
 __all__ = ["ModalModel", "modal_model", "to_statespace"]
@@ -172,7 +172,7 @@ def modal_model(model, n_modes=None, fmax_hz=None, damping=0.0, residual=True,
 
 
 def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, outputs=None,
-                  point=None, residual=True):
+                  point=None, residual=True, name="dynstiff modal model"):
     """python-control ``StateSpace`` of the platform from its modes (theory.md §15.4).
 
     States (q_1 .. q_n, dq_1/dt .. dq_n/dt), modal coordinates of the kept modes:
@@ -190,11 +190,15 @@ def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, o
         except that ``residual=False`` drops its residual)
     inputs, outputs, point : as :func:`dynstiff.frf`
         Loads on the platform (about P) and motions of a platform point (default P).
+    name : str
+        The system's name (``control.bode_plot`` titles its figure with it).
 
     Returns
     -------
     control.StateSpace
-        Inputs and outputs named after the channels; 2 n states.
+        Inputs, outputs and states named; 2 n states. Entries of B, C and D at most
+        :data:`dynstiff.io.exchange.ZERO_FLOOR` (1e-12) times the largest of their matrix
+        are exact zeros: a coupling that vanishes by symmetry holds only rounding.
     """
     ct = require("control")
     mm = model if isinstance(model, ModalModel) else modal_model(
@@ -211,5 +215,15 @@ def to_statespace(model, n_modes=None, fmax_hz=None, damping=0.0, inputs=None, o
     C = np.hstack([C_out @ Phi, np.zeros((C_out.shape[0], n))])
     D = C_out @ mm.residual @ B_in if (mm.residual is not None and residual) else \
         np.zeros((C_out.shape[0], B_in.shape[1]))
+    B, C, D = (_floor(M) for M in (B, C, D))
     return ct.ss(A, B, C, D, inputs=list(in_names), outputs=list(out_names),
-                 states=[f"q{r + 1}" for r in range(n)] + [f"dq{r + 1}" for r in range(n)])
+                 states=[f"q{r + 1}" for r in range(n)] + [f"dq{r + 1}" for r in range(n)],
+                 name=name)
+
+
+def _floor(M):
+    """``M`` with the entries at most ZERO_FLOOR times its largest set to exact zeros."""
+    M = np.array(M, dtype=float)
+    top = np.abs(M).max() if M.size else 0.0
+    M[np.abs(M) <= ZERO_FLOOR * top] = 0.0
+    return M

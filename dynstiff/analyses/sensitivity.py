@@ -193,8 +193,9 @@ def sensitivities_at(model, freq_hz, parameters, hold="pose", tension_reference=
     """:func:`frequency_sensitivities` at frequencies already computed (``freq_hz`` [Hz],
     ascending, the undamped model's: e.g. from a search done anyway); parameters as there,
     or a list of :class:`~dynstiff.analyses.sensitivity_parameters.Parameter`;
-    ``linearisation``: the model's :class:`~dynstiff.analyses.sensitivity_statics.
-    LinearisedEquilibrium` when one was built already (continuous rungs).
+    ``linearisation``: the model's
+    :class:`~dynstiff.analyses.sensitivity_statics.LinearisedEquilibrium` when one was built
+    already (continuous rungs).
 
     Examples
     --------

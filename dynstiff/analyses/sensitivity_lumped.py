@@ -4,8 +4,9 @@ with the parameters.
 
 The lumped equilibrium z (free platform DOFs, interior nodes) solves R(z; L0, p) = 0
 (:meth:`dynstiff.models.lumped_robot.LumpedMassModel.residual`), with the unstretched
-lengths L0 from the catenary statics at the pose (:mod:`dynstiff.analyses.
-sensitivity_statics`) or given (fixed lengths). With K = -dR/dz its tangent,
+lengths L0 from the catenary statics at the pose
+(:mod:`dynstiff.analyses.sensitivity_statics`) or given (fixed lengths). With K = -dR/dz
+its tangent,
 
     dz = K^-1 (dR/dp) dp,     d lambda = phi^T (dK - lambda dM) phi   (phi^T M phi = 1),
 

@@ -225,8 +225,13 @@ class LinearisedEquilibrium:
 
     @staticmethod
     def _factor(J):
+        import warnings
+
         import scipy.linalg
-        lu = scipy.linalg.lu_factor(J)
+        with warnings.catch_warnings():
+            # an exactly singular J is refused below, by its pivots, with its reason
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            lu = scipy.linalg.lu_factor(J)
         if np.min(np.abs(np.diag(lu[0]))) <= 1e-13 * np.abs(np.diag(lu[0])).max():
             raise np.linalg.LinAlgError("singular")
         return lu

@@ -115,10 +115,18 @@ class AnalysisSettings:
                 + self.damping.text()]
 
     def metadata(self, pose=None, units=None):
-        """Dict for the header of a CSV/JSON output: scene, pose, model, damping, units,
-        version."""
+        """Dict for the header of a CSV/JSON output, the same keys first in every table:
+        dynstiff (version), scene, pose (position [m], rotation [rad]), model, date (UTC,
+        ISO 8601); then band, damping, segments (lumped), units."""
+        from datetime import UTC, datetime
+
         from dynstiff._version import __version__
-        d = {"dynstiff": __version__, "scene": self.scene, "model": self.rung,
+        d = {"dynstiff": __version__, "scene": self.scene,
+             "pose": None if pose is None else {
+                 "position [m]": [float(v) for v in pose.position],
+                 "rotation [rad]": [float(v) for v in pose.rotation]},
+             "model": self.rung,
+             "date": datetime.now(UTC).isoformat(timespec="seconds"),
              "band_hz": list(self.band_hz),
              "damping": {"platform_ratio": self.damping.platform_ratio,
                          "cable_loss_factor": self.damping.cable_loss_factor,
@@ -126,9 +134,6 @@ class AnalysisSettings:
                              self.damping.cable_viscous_damping}}
         if self.rung == "lumped":
             d["segments"] = self.segments
-        if pose is not None:
-            d["pose"] = {"position [m]": [float(v) for v in pose.position],
-                         "rotation [rad]": [float(v) for v in pose.rotation]}
         if units is not None:
             d["units"] = units
         return d

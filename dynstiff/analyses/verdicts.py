@@ -100,9 +100,10 @@ def equilibrium_sag_ratios(robot, equilibrium):
     return sag_ratios(robot.anchors, B, *catenary_arrays(eq.states), EA, w0)
 
 
-def statics_rows(robot, equilibrium, error, options):
+def statics_rows(robot, equilibrium, error, options, sag=None):
     """The workspace, tension and sag rows from the statics (``error``: the exception of a
-    failed statics, else None)."""
+    failed statics, else None; ``sag``: :func:`equilibrium_sag_ratios` when the caller has
+    them already)."""
     if error is not None:
         return [_row(CHECKS[0], "fail", detail=str(error))] + [
             _row(c, "unknown", detail="no equilibrium at this pose") for c in CHECKS[1:]]
@@ -111,7 +112,7 @@ def statics_rows(robot, equilibrium, error, options):
     lo, hi = eq.min_tensions, eq.max_tensions
     tol = 1e-9 * max(1.0, t_min)
     ok = bool(np.all(lo >= t_min - tol) and np.all(hi <= t_max + tol))
-    sag = equilibrium_sag_ratios(robot, eq)
+    sag = equilibrium_sag_ratios(robot, eq) if sag is None else sag
     return [
         _row(CHECKS[0], "pass", eq.residual, 1e-10, f"statics residual {eq.residual:.1e}"),
         _row(CHECKS[1], "pass" if ok else "fail", hi.max(), t_max,
@@ -130,8 +131,10 @@ def modal_rows(model, options, damped_model=None):
     ----------
     model : model of any rung (undamped modes are used)
     options : CheckOptions
-    damped_model : model, optional
-        The model of the receptance check (with the analysis damping); default ``model``.
+    damped_model : model or callable, optional
+        The model of the receptance check (with the analysis damping), or a function of no
+        argument that builds it (called only when a forbidden band is given); default
+        ``model``.
 
     Returns
     -------
@@ -147,6 +150,8 @@ def modal_rows(model, options, damped_model=None):
         rows.append(_row(CHECKS[4], "not asked", detail="no forbidden band given"))
     else:
         in_band = [] if pm.modes is None else pm.modes.freq_hz
+        if callable(damped_model):
+            damped_model = damped_model()
         ratio, f_at, dof = receptance_amplification(damped_model or model, fb, in_band)
         rows.append(_row(
             CHECKS[4], "pass" if ratio <= o.frf_limit else "fail", ratio, o.frf_limit,
@@ -172,7 +177,8 @@ def pose_rows(robot, pose, model_of, options, damped_of=None):
     rows = statics_rows(robot, eq, error, options)
     if eq is None:
         return rows, None, None
-    modal, pm = modal_rows(model_of(eq), options, None if damped_of is None else damped_of(eq))
+    modal, pm = modal_rows(model_of(eq), options,
+                           None if damped_of is None else lambda: damped_of(eq))
     return rows + modal, eq, pm
 
 
@@ -193,7 +199,8 @@ def _margin_row(pm, o, cover):
         ks = np.flatnonzero(near)
         return _row(CHECKS[3], "fail", f[ks[0]], o.margin,
                     f"{ks.size} mode(s) with platform share >= {o.participation:.0%} within "
-                    f"{o.margin:.1%} of [{lo:g}, {hi:g}] Hz: " + "; ".join(map(name, ks)))
+                    f"{o.margin:.1%} of [{lo:g}, {hi:g}] Hz: " + "; ".join(map(name, ks))
+                    + _spread(pm))
     ks = np.flatnonzero(checked)
     if ks.size:
         gap = np.where(f[ks] < lo, (lo - f[ks]) / max(lo, 1e-300), (f[ks] - hi) / hi)
@@ -203,7 +210,13 @@ def _margin_row(pm, o, cover):
         k, closest = None, ""
     return _row(CHECKS[3], "pass", f[k] if k is not None else np.nan, o.margin,
                 f"no mode with platform share >= {o.participation:.0%} within {o.margin:.1%} "
-                f"of [{lo:g}, {hi:g}] Hz{closest}")
+                f"of [{lo:g}, {hi:g}] Hz{closest}" + _spread(pm))
+
+
+def _spread(pm):
+    """"; " and the sentence of a spread platform motion, or ""."""
+    text = pm.spread()
+    return f"; {text}" if text else ""
 
 
 def _proximity_row(pm, o):
@@ -215,7 +228,7 @@ def _proximity_row(pm, o):
     if warns:
         return _row(CHECKS[5], "fail", min(w.relative_gap for w in warns), o.proximity_rtol,
                     f"{len(warns)} local mode(s) within {o.proximity_rtol:.2%} of a platform "
-                    f"mode, closest gap {min(w.relative_gap for w in warns):.2%}")
+                    f"mode, closest gap {min(w.relative_gap for w in warns):.2%}" + _spread(pm))
     return _row(CHECKS[5], "pass", np.nan, o.proximity_rtol,
                 f"no local mode within {o.proximity_rtol:.2%} of the {pm.index.size} platform "
-                f"modes ({pm.freq_hz.min():.4g}-{pm.freq_hz.max():.4g} Hz)")
+                f"modes ({pm.freq_hz.min():.4g}-{pm.freq_hz.max():.4g} Hz)" + _spread(pm))

@@ -2,13 +2,15 @@
 
 One module per command group (``report``, ``analysis``, ``sweep``, ``simulate``, ``exchange``,
 ``workspace``), each adding its subcommands to the parser; :mod:`dynstiff.cli.common` holds
-what they share.
+what they share, :mod:`dynstiff.cli.options` the options several commands take (one meaning
+per flag) and :mod:`dynstiff.cli.console` the warnings and progress bars.
 """
 
 import argparse
 import sys
 
 from dynstiff.cli.common import check_outputs
+from dynstiff.cli.console import compile_notice, one_line_warnings
 from dynstiff.errors import DynstiffError
 
 __all__ = ["build_parser", "main"]
@@ -35,14 +37,21 @@ def main(argv=None):
     failed, 2 an error, reported on one line (``--debug`` shows the traceback), 130
     interrupted (Ctrl-C; a workspace map says what it saved and how to resume)."""
     parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
         args = parser.parse_args(argv)
     except _UsageError as exc:
-        sys.stderr.write(f"dynstiff: error: {exc} (dynstiff -h, or dynstiff COMMAND -h)\n")
+        from dynstiff.cli.options import renamed_hint
+        hint = next((renamed_hint(c, argv) for c in argv if renamed_hint(c, argv)), None)
+        sys.stderr.write(f"dynstiff: error: {exc}" + (f"; {hint}" if hint else "")
+                         + " (dynstiff -h, or dynstiff COMMAND -h)\n")
         return 2
     try:
         check_outputs(args)
-        return args.func(args)
+        if args.command != "scenes":
+            compile_notice(getattr(args, "quiet", False))
+        with one_line_warnings():
+            return args.func(args)
     except BrokenPipeError:             # output piped into e.g. `head`: stop quietly
         import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

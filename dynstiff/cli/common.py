@@ -1,12 +1,15 @@
 """What every command shares: the analysis settings of a scene with the command line's
 overrides, the equilibrium asked for, the checks of output paths and options made before any
-work, the report stream, table writers and a progress bar."""
+work, the report stream, the tables (one metadata header, one column naming) and figures."""
 
 import sys
 
+from dynstiff.cli.console import ProgressBar
+
 __all__ = ["FIGURE_SUFFIXES", "INPUT_ARGS", "OUTPUT_ARGS", "ProgressBar", "check_outputs",
-           "damping_option", "equilibrium", "file_arguments", "info", "save_figure",
-           "scene_settings", "scene_trajectory", "write_table"]
+           "damping_option", "equilibrium", "file_arguments", "info", "pose_metadata",
+           "save_figure", "scene_settings", "scene_trajectory", "table_metadata",
+           "write_table", "write_tables"]
 
 
 def scene_settings(scene, args):
@@ -16,14 +19,17 @@ def scene_settings(scene, args):
     band = getattr(args, "band", None)
     fmax = getattr(args, "fmax", None)
     kw = {}
-    if getattr(args, "command", None) == "check":
-        kw = dict(forbidden_hz=tuple(band) if band else None, margin=args.margin,
-                  model_rtol=args.rtol, participation=args.participation,
-                  frf_limit=args.frf_limit)
-        band = None
-    elif band:
+    forbidden = getattr(args, "forbidden_band", None)
+    if forbidden:
+        kw["forbidden_hz"] = tuple(forbidden)
+    for name in ("margin", "participation", "frf_limit"):
+        if getattr(args, name, None) is not None:
+            kw[name] = getattr(args, name)
+    if getattr(args, "rtol", None) is not None:
+        kw["model_rtol"] = args.rtol
+    if band:
         kw["band_hz"] = tuple(band)
-    elif fmax is not None and getattr(args, "command", None) in ("demo", "report", "frf"):
+    elif fmax is not None:
         from dynstiff.analyses.settings import DEFAULT_BAND_HZ
         lo = (scene.band_hz or DEFAULT_BAND_HZ)[0]
         kw["band_hz"] = (min(lo, 0.5 * fmax), fmax)
@@ -35,21 +41,6 @@ def scene_settings(scene, args):
     return analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
 
 
-class ProgressBar:
-    """A text progress bar on standard error: ``[#####.....] 5/10``."""
-
-    def __init__(self, label, width=30, stream=None):
-        self.label, self.width = label, width
-        self.stream = stream or sys.stderr
-
-    def __call__(self, done, total):
-        n = int(round(self.width * done / total))
-        self.stream.write(f"\r{self.label} [{'#' * n}{'.' * (self.width - n)}] {done}/{total}")
-        if done == total:
-            self.stream.write("\n")
-        self.stream.flush()
-
-
 def equilibrium(scene, args):
     """The equilibrium of ``--pose`` or ``--lengths`` (or the scene's own):
     :func:`dynstiff.analyses.settings.scene_equilibrium`."""
@@ -59,7 +50,8 @@ def equilibrium(scene, args):
 
 def damping_option(p):
     p.add_argument("--damping", type=float, nargs="+", metavar="V",
-                   help="ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss factor "
+                   help="damping ZETA_P [ETA_C [C]]: platform modal damping ratio, cable loss "
+                        "factor "
                         "(all cable motions), cable viscous damping [N s/m^2]; values not "
                         "given keep the scene's [damping] (defaults 0.01 0.01 0); "
                         "--damping 0 0 0: undamped")
@@ -120,11 +112,12 @@ def check_outputs(args):
         if opt == "plot" and p.suffix.lower() not in FIGURE_SUFFIXES:
             raise InvalidParameterError(
                 f"--plot {value}: the file name must end in one of {FIGURE_SUFFIXES}")
-    for opt in ("points", "steps", "segments", "n"):
+    for opt in ("points", "steps", "segments", "n", "max_modes"):
         value = getattr(args, opt, None)
         least = 2 if opt in ("points", "steps") else 1
         if value is not None and value < least:
-            raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt} must be >= {least}, "
+            raise InvalidParameterError(f"{'-n' if opt == 'n' else '--' + opt.replace('_', '-')} "
+                                        f"must be >= {least}, "
                                         f"got {value}")
     for opt in ("fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag",
                 "participation", "frf_limit"):
@@ -132,10 +125,11 @@ def check_outputs(args):
         if value is not None and not (value > 0 and value < float("inf")):
             raise InvalidParameterError(
                 f"--{opt.replace('_', '-')} must be finite and > 0, got {value}")
-    band = getattr(args, "band", None)
-    if band is not None and not (0 <= band[0] < band[1] < float("inf")):
-        raise InvalidParameterError(f"--band must be LO HI with 0 <= LO < HI [Hz], got "
-                                    f"{band[0]} {band[1]}")
+    for opt in ("band", "forbidden_band"):
+        band = getattr(args, opt, None)
+        if band is not None and not (0 <= band[0] < band[1] < float("inf")):
+            raise InvalidParameterError(f"--{opt.replace('_', '-')} must be LO HI with 0 <= LO "
+                                        f"< HI [Hz], got {band[0]} {band[1]}")
     pose = getattr(args, "pose", None)
     if pose is not None and len(pose) not in (3, 6):
         raise InvalidParameterError(
@@ -150,12 +144,42 @@ def info(args):
     return sys.stderr if to_stdout else sys.stdout
 
 
+def pose_metadata(pose):
+    """The pose of a table's header: position [m] and rotation [rad] (None: not one pose)."""
+    if pose is None:
+        return None
+    return {"position [m]": [float(v) for v in pose.position],
+            "rotation [rad]": [float(v) for v in pose.rotation]}
+
+
+def table_metadata(scene, pose, model, **extra):
+    """The header every table of the command line carries, in this order: ``dynstiff``
+    (version), ``scene``, ``pose`` (position [m], rotation [rad]; a text where the table
+    spans many poses), ``model``, ``date`` (UTC, ISO 8601), then ``extra``."""
+    from dynstiff._version import __version__
+    if pose is not None and not isinstance(pose, (str, dict)):
+        pose = pose_metadata(pose)
+    return {"dynstiff": __version__, "scene": scene, "pose": pose, "model": model,
+            "date": _now(), **extra}
+
+
+def _now():
+    from datetime import UTC, datetime
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
 def write_table(df, path, kind, metadata=None):
-    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output). With
-    ``metadata`` (a dict: scene, pose, model, damping, units, version): CSV gets a header of
-    ``# key: value`` lines (``pandas.read_csv(path, comment="#")``), JSON is
-    ``{"metadata": {...}, "data": [records]}``."""
+    """Write ``df`` as CSV or JSON to ``path`` (``-``: standard output). ``metadata`` (a dict;
+    :func:`table_metadata` or :meth:`dynstiff.analyses.settings.AnalysisSettings.metadata`)
+    gets the keys of :func:`table_metadata` first: CSV gets a header of ``# key: value``
+    lines (``pandas.read_csv(path, comment="#")``), JSON is
+    ``{"metadata": {...}, "data": [records]}``. Columns are named ``name [unit]``."""
     import json
+    if metadata is not None:
+        head = table_metadata(metadata.get("scene"), metadata.get("pose"),
+                              metadata.get("model"))
+        metadata = {**head, **{k: v for k, v in metadata.items() if k not in ("date",)}}
+        metadata["date"] = head["date"]
     if kind == "csv":
         text = df.to_csv(index=False)
         if metadata:
@@ -168,14 +192,26 @@ def write_table(df, path, kind, metadata=None):
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
     else:
         from dynstiff.io.files import write_text
-        write_text(path, text)
+        write_text(path, text)                   # atomic: a failure leaves the old file
 
 
-def save_figure(fig, path, **kw):
-    """``fig.savefig(path, **kw)``, atomically (:func:`dynstiff.io.files.atomic_path`)."""
+def write_tables(args, df, metadata):
+    """``--csv`` and ``--json`` of a command (each if asked), with the one metadata header."""
+    for kind in ("csv", "json"):
+        path = getattr(args, kind, None)
+        if path:
+            write_table(df, path, kind, metadata)
+
+
+def save_figure(fig, path):
+    """Save a figure of ``--plot`` (laid out, 120 dpi), atomically
+    (:func:`dynstiff.io.files.atomic_path`), and close it."""
+    import matplotlib.pyplot as plt
+
     from dynstiff.io.files import atomic_path
     with atomic_path(path) as tmp:
-        fig.savefig(tmp, **kw)
+        fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    plt.close(fig)
 
 
 def scene_trajectory(scene, name):

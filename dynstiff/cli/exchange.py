@@ -7,6 +7,17 @@ reported on one line by :func:`dynstiff.cli.main`.
 import sys
 import warnings
 
+from dynstiff.cli.common import save_figure, table_metadata, write_tables
+from dynstiff.cli.options import (
+    MEANINGS,
+    PARAMETERS,
+    add_model,
+    add_outputs,
+    add_pose,
+    add_quiet,
+    add_scene,
+)
+
 __all__ = ["add_parsers"]
 
 
@@ -45,7 +56,7 @@ def cmd_import_caspr(args):
     kinds = scene.study.get("caspr_trajectory_kinds", {})
     text = scene_text(scene.robot, scene.pose, name=scene.name, description=scene.description,
                       comments=caspr_comments(scene, args.bodies, args.cables, traj, ops),
-                      cable_names=scene.study["caspr_cable_names"],
+                      cable_names=[f"CASPR {n!r}" for n in scene.study["caspr_cable_names"]],
                       trajectories=scene.trajectories.values(),
                       workspace_box=scene.workspace_box,
                       trajectory_notes={k: f"CASPR {v}" for k, v in kinds.items()})
@@ -78,26 +89,31 @@ def cmd_calibrate(args):
     """``dynstiff calibrate SCENE --measured FILE --parameter EA [...]``."""
     from dynstiff.analyses.calibrate import calibrate
     from dynstiff.analyses.measured import read_measured_modes
-    from dynstiff.errors import InvalidParameterError
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
     measured = read_measured_modes(args.measured)
-    pose = None
-    if args.pose is not None:
-        if len(args.pose) not in (3, 6):
-            raise InvalidParameterError(f"--pose needs 3 or 6 numbers, got {len(args.pose)}")
-        from dynstiff.robot.pose import Pose
-        pose = Pose(args.pose[:3], args.pose[3:] if len(args.pose) == 6 else [0, 0, 0])
-    res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
-                    rung=args.model, confidence=args.confidence)
-    info = sys.stderr if args.csv == "-" else sys.stdout
+    from dynstiff.cli.common import info as report_stream
+    from dynstiff.cli.console import elapsed
+    from dynstiff.robot.pose import as_pose
+    pose = as_pose(args.pose) if args.pose is not None else None
+    with elapsed(f"calibrate {scene.name}", args.quiet):
+        res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
+                        rung=args.model, confidence=args.confidence)
+    info = report_stream(args)
     info.write(f"{scene.name}: {len(measured)} measured modes, {args.model} model, "
                f"{res.n_evaluations} evaluations\n")
     info.write(res.text())
-    if args.csv:
-        _out(args.csv, res.to_frame().to_csv(index=False))
-        if args.csv != "-":
-            info.write(f"wrote {args.csv}\n")
+    where = pose if pose is not None else scene.pose
+    write_tables(args, res.to_frame(), table_metadata(
+        scene.name, where, args.model, measured=str(args.measured),
+        parameters=list(args.parameter), confidence=args.confidence))
+    if args.plot:
+        import matplotlib
+        matplotlib.use("Agg")
+        save_figure(res.plot(), args.plot)
+    for name in (args.csv, args.json, args.plot):
+        if name and name != "-":
+            info.write(f"wrote {name}\n")
     return 0
 
 
@@ -108,9 +124,9 @@ def add_parsers(sub):
     ic.add_argument("bodies", help="CASPR *_bodies.xml")
     ic.add_argument("cables", help="CASPR *_cables.xml")
     ic.add_argument("--mass-per-length", type=float, required=True,
-                    help="cable mass per unstretched length [kg/m] (CASPR holds none)")
+                    help=f"{PARAMETERS['mass_per_length']} (CASPR holds none)")
     ic.add_argument("--EA", type=float, required=True,
-                    help="cable axial stiffness [N] (CASPR holds none)")
+                    help=f"{PARAMETERS['EA']} (CASPR holds none)")
     ic.add_argument("--cable-set", help="cable set id (default: the file's default_cable_set)")
     ic.add_argument("--inertia-convention", default="products", choices=["products", "tensor"],
                     help="printed Ixy, Ixz, Iyz are products of inertia (default; tensor entry "
@@ -128,24 +144,27 @@ def add_parsers(sub):
                     help="do not read the trajectories and operational-space files beside "
                          "BODIES")
     ic.add_argument("--name", help="scene name (default: the CASPR link's name)")
-    ic.add_argument("--out", required=True, help="scene file to write ('-': standard output)")
+    ic.add_argument("--out", required=True, metavar="FILE",
+                    help=MEANINGS["--out"] + ": the scene file ('-': standard output); its "
+                         "cables are numbered from 0, as in every output")
     ic.set_defaults(func=cmd_import_caspr)
     ca = sub.add_parser("calibrate", help="fit EA, platform mass ... to measured natural "
                                           "frequencies; estimates with confidence intervals")
-    ca.add_argument("scene", help="built-in scene name or path to a TOML scene file")
-    ca.add_argument("--measured", required=True,
+    add_scene(ca)
+    ca.add_argument("--measured", required=True, metavar="FILE",
                     help="CSV of measured modes: 'freq [Hz]', optional 'sigma [Hz]' and "
                          "shape columns x y z rx ry rz")
     ca.add_argument("--parameter", action="append", required=True,
-                    help="parameter to fit (repeat for several): EA, EA_<i>, EA_*, mass, "
-                         "inertia, t_min, loss_factor, viscous_damping (the last two need a "
-                         "'damping ratio [-]' column and a nonzero value in the scene)")
-    ca.add_argument("--pose", type=float, nargs="+", metavar="X",
-                    help="pose of the measurement x y z [m] (rx ry rz [rad]); default the "
-                         "scene's")
-    ca.add_argument("--model", default="dsm", choices=["dsm", "lumped", "catenary", "spring"],
-                    help="cable model (default %(default)s)")
+                    help=MEANINGS["--parameter"] + ": to fit (repeat for several): " + ", ".join(
+                        f"{n} ({PARAMETERS[n]})" for n in ("EA", "mass", "t_min"))
+                    + ", EA_<i> (cable i's, from 0), EA_* (each cable's), inertia, "
+                      "loss_factor, viscous_damping (the last two need a 'damping ratio "
+                      "[-]' column and a nonzero value in the scene)")
+    add_pose(ca, lengths=False, what="of the measurement (default: the scene's pose)")
+    add_model(ca, default="dsm")
     ca.add_argument("--confidence", type=float, default=0.95,
                     help="level of the intervals (default %(default)s)")
-    ca.add_argument("--csv", help="write the residual of every mode (CSV; '-' for stdout)")
+    add_outputs(ca, csv="the residual of every mode", json="the residual of every mode",
+                plot="the relative error of every mode before and after the fit")
+    add_quiet(ca)
     ca.set_defaults(func=cmd_calibrate)

@@ -2,36 +2,63 @@
 tables, figures and a self-contained HTML page."""
 
 from dynstiff.cli.common import damping_option, info, scene_settings
+from dynstiff.cli.console import elapsed
+from dynstiff.cli.options import add_band, add_model, add_n_modes, add_pose, add_quiet, add_scene
 
 __all__ = ["add_parsers"]
 
 
-def _cmd_report(args):
-    from dynstiff.report.robot import robot_report
+def _scene_at_pose(args):
+    """The scene, moved to ``--pose`` if given (the report analyses the scene's pose)."""
+    from dataclasses import replace
+
+    from dynstiff.robot.pose import as_pose
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
-    settings = scene_settings(scene, args)
-    text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
+    if args.pose is not None:
+        pose = as_pose(args.pose)
+        scene.robot.equilibrium(pose=pose)          # an infeasible pose fails before any file
+        scene = replace(scene, pose=pose, unstretched_lengths=None)
+    return scene
+
+
+def _cmd_report(args):
+    from dynstiff.report.robot import robot_report
+    scene = _scene_at_pose(args)
+    settings = scene_settings(scene, args)          # every input checked before any file
+    with elapsed(f"{args.command} {scene.name}", args.quiet):
+        text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
     info(args).write(text)
     info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
     return 0
 
 
 def _cmd_demo(args):
-    if args.cable:
-        from dynstiff.report.cable import cable_report, write_report
-        rep = cable_report(fmax_hz=args.fmax or 12.0, n_points=args.points)
+    if not args.cable:
+        return _cmd_report(args)
+    from dynstiff.report.cable import cable_report, write_report
+    band = args.band[1] if args.band else args.fmax
+    with elapsed("demo --cable", args.quiet):
+        rep = cable_report(fmax_hz=band or 12.0, n_points=args.points)
         files = write_report(rep, args.out)
-        info(args).write(rep.text())
-    else:
-        from dynstiff.report.robot import robot_report
-        from dynstiff.scenes import load_scene
-        scene = load_scene(args.scene)
-        settings = scene_settings(scene, args)          # every input checked before any file
-        text, files = robot_report(scene, args.out, settings=settings, n_points=args.points)
-        info(args).write(text)
+    info(args).write(rep.text())
     info(args).write("\nwrote:\n" + "".join(f"  {f}\n" for f in files))
     return 0
+
+
+def _common(p, out):
+    add_pose(p, lengths=False, what="default: the scene's pose")
+    add_band(p)
+    add_n_modes(p, "in the modes table (default: the scene's n_modes)")
+    add_model(p)
+    p.add_argument("--points", type=int, default=3000,
+                   help="uniform frequencies of the FRFs: refined around every mode "
+                        "(default %(default)s)")
+    damping_option(p)
+    p.add_argument("--out", default=out, metavar="FOLDER",
+                   help="write the main result to: the output folder, created (default "
+                        "%(default)s)")
+    add_quiet(p)
 
 
 def add_parsers(sub):
@@ -39,23 +66,15 @@ def add_parsers(sub):
     demo = sub.add_parser(
         "demo", help="main job on a scene (default: CoGiRo): statics, modes, model choice, "
                      "design checks, FRF and mode-shape figures, CSV tables")
-    demo.add_argument("--scene", default="cogiro", help="scene (default %(default)s)")
+    add_scene(demo, optional=True)
     demo.add_argument("--cable", action="store_true",
                       help="single-cable report instead (CoGiRo cable 0: statics, fixed-end "
-                           "frequencies, dynamic stiffness plot)")
-    demo.add_argument("--out", default="dynstiff-demo", help="output folder (default %(default)s)")
-    demo.add_argument("--fmax", type=float,
-                      help="band upper end [Hz] (default: the scene's band)")
-    demo.add_argument("--points", type=int, default=3000,
-                      help="uniform frequencies of the FRFs, refined around every mode")
-    damping_option(demo)
+                           "frequencies, dynamic stiffness plot; the top of --band or --fmax, "
+                           "default 12 Hz)")
+    _common(demo, "dynstiff-demo")
     demo.set_defaults(func=_cmd_demo)
     rp = sub.add_parser("report", help="the demo's analysis of one scene: tables, figures and "
                                        "a self-contained report.html")
-    rp.add_argument("scene", help="built-in scene name or path to a TOML scene file")
-    rp.add_argument("--out", default="dynstiff-report", help="output folder")
-    rp.add_argument("--fmax", type=float, help="band upper end [Hz] (default: the scene's)")
-    rp.add_argument("--points", type=int, default=3000,
-                    help="uniform frequencies of the FRFs, refined around every mode")
-    damping_option(rp)
+    add_scene(rp)
+    _common(rp, "dynstiff-report")
     rp.set_defaults(func=_cmd_report)

@@ -2,7 +2,17 @@
 spectrum, or a line or a trajectory of the scene commanded through quasi-static cable
 lengths)."""
 
-from dynstiff.cli.common import ProgressBar, equilibrium, info, scene_trajectory, write_table
+from dynstiff.cli.common import (
+    ProgressBar,
+    equilibrium,
+    info,
+    save_figure,
+    scene_trajectory,
+    table_metadata,
+    write_tables,
+)
+from dynstiff.cli.console import elapsed
+from dynstiff.cli.options import add_outputs, add_pose, add_quiet, add_scene
 
 __all__ = ["add_parsers"]
 
@@ -19,24 +29,25 @@ def _cmd_simulate(args):
     from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
     scene = load_scene(args.scene)
-    if args.trajectory is not None and args.to is not None:
-        raise InvalidParameterError("give --to or --trajectory, not both")
+    if args.trajectory is not None and args.target is not None:
+        raise InvalidParameterError("give --target or --trajectory, not both")
     path = None if args.trajectory is None else scene_trajectory(scene, args.trajectory)
     eq = equilibrium(scene, args) if path is None else None
     start = None if eq is None else (eq.pose.position, eq.pose.rotation)
-    if args.to is not None or args.trajectory is not None:
+    if args.target is not None or args.trajectory is not None:
         from dynstiff.timedomain.trajectory import following, line, track
         if args.trajectory is not None:
             traj = following(path)
             what = (f"trajectory {args.trajectory!r} ({traj.duration:g} s, "
                     f"{path.times.size} waypoints)")
         else:
-            traj = line(eq.pose.position, args.to, args.speed, rotation=eq.pose.rotation,
+            traj = line(eq.pose.position, args.target, args.speed, rotation=eq.pose.rotation,
                         ramp=args.ramp)
-            what = (f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.to)} m at "
+            what = (f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.target)} m at "
                     f"{args.speed:g} m/s (ramp {args.ramp:g} s)")
-        bar = None if args.quiet else ProgressBar("quasi-static lengths")
-        with warnings.catch_warnings():
+        bar = _Stages(ProgressBar("quasi-static lengths", args.quiet, unit="pose"),
+                      elapsed("time stepping", args.quiet))
+        with warnings.catch_warnings(), bar:
             warnings.simplefilter("ignore", SlackSegmentWarning)
             tr = track(scene.robot, traj, segments=args.segments, dt=args.dt,
                        settle=args.time, progress=bar)
@@ -52,10 +63,7 @@ def _cmd_simulate(args):
             import matplotlib
             matplotlib.use("Agg")
             from dynstiff.plot import plot_tracking
-            fig = plot_tracking(tr)
-            fig.tight_layout()
-            from dynstiff.cli.common import save_figure
-            save_figure(fig, args.plot, dpi=120)
+            save_figure(plot_tracking(tr), args.plot)
     else:
         offset = np.zeros(6)
         fd = [k for k, n in enumerate(DOF_NAMES) if n in scene.robot.platform.free_dofs]
@@ -68,16 +76,14 @@ def _cmd_simulate(args):
         else:
             offset[fd[0]] = 1e-3
         model = build_model(eq, "lumped", segments=args.segments)
-        resp = simulate(model, args.time, args.dt, initial=offset)
+        with elapsed(f"simulate {scene.name}", args.quiet):
+            resp = simulate(model, args.time, args.dt, initial=offset)
         df = resp.to_frame().reset_index()
         ch = args.channel or DOF_NAMES[fd[0]]
         sp = resp.spectrum(ch, prominence=_SPECTRUM_PROMINENCE)
         f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
         if args.band is not None:
             band = tuple(args.band)
-            if not 0 <= band[0] < band[1]:
-                raise InvalidParameterError(
-                    f"--band must be LO HI with 0 <= LO < HI [Hz], got {list(args.band)}")
         else:
             band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
         info(args).write(
@@ -102,19 +108,13 @@ def _cmd_simulate(args):
             import matplotlib
             matplotlib.use("Agg")
             from dynstiff.plot import plot_spectrum
-            fig = plot_spectrum(sp, modes=f_model, band_hz=band)
-            fig.tight_layout()
-            from dynstiff.cli.common import save_figure
-            save_figure(fig, args.plot, dpi=120)
-    if args.csv:
-        from dynstiff._version import __version__
-        write_table(df, args.csv, "csv", {
-            "dynstiff": __version__, "scene": scene.name, "model": "lumped",
-            "segments": args.segments, "dt [s]": args.dt,
-            "pose": {"position [m]": [float(v) for v in start[0]],
-                     "rotation [rad]": [float(v) for v in start[1]]},
-            "damping": "the cables' own (time domain)", "units": "SI, in the column names"})
-    for name in (args.csv, args.plot):
+            save_figure(plot_spectrum(sp, modes=f_model, band_hz=band), args.plot)
+    from dynstiff.robot.pose import Pose
+    write_tables(args, df, table_metadata(
+        scene.name, Pose(start[0], start[1]), "lumped", segments=args.segments,
+        **{"dt [s]": args.dt}, damping="the cables' own (time domain)",
+        units="SI, in the column names"))
+    for name in (args.csv, args.json, args.plot):
         if name and name != "-":
             info(args).write(f"wrote {name}\n")
     return 0
@@ -125,35 +125,60 @@ def _cmd_simulate(args):
 _SPECTRUM_PROMINENCE = 0.03
 
 
+class _Stages:
+    """The progress of ``track``: a bar over the quasi-static poses, then the time elapsed
+    while the motion is stepped."""
+
+    def __init__(self, bar, stepping):
+        self.bar, self.stepping, self.started = bar, stepping, False
+
+    def __call__(self, done, total):
+        self.bar(done, total)
+        if done >= total and not self.started:
+            self.started = True
+            self.stepping.__enter__()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.bar.close()
+        if self.started:
+            self.stepping.__exit__(*exc)
+        return False
+
+
 def add_parsers(sub):
     """Add the ``simulate`` subcommands to the subparsers ``sub``."""
     si = sub.add_parser("simulate", help="time domain (lumped-mass cables): free vibration "
                                          "from an offset, or a line commanded through "
                                          "quasi-static cable lengths")
-    si.add_argument("scene", help="built-in scene name or path to a TOML scene file")
-    grp = si.add_mutually_exclusive_group()
-    grp.add_argument("--pose", type=float, nargs="+", metavar="X")
-    grp.add_argument("--lengths", type=float, nargs="+", metavar="L0")
+    add_scene(si)
+    add_pose(si, what="the start (default: the scene's pose)")
     si.add_argument("--time", type=float, default=5.0,
-                    help="duration [s] (after the path's end with --to or --trajectory; "
+                    help="duration [s] (after the path's end with --target or --trajectory; "
                          "default %(default)s)")
     si.add_argument("--dt", type=float, default=2e-3, help="time step [s] (default %(default)s)")
-    si.add_argument("--segments", type=int, default=10, help="segments per cable")
+    si.add_argument("--segments", type=int, default=10,
+                    help="segments per cable of the lumped model (default %(default)s)")
     si.add_argument("--offset", type=float, nargs="+", metavar="D",
                     help="initial platform offset dx dy dz [m] drx dry drz [rad] (default "
                          "1 mm along the first free DOF)")
     si.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
-                    help="band of the spectrum [Hz] (default: the scene's band)")
+                    help="band of interest LO HI [Hz]: the spectrum's peaks and the model's "
+                         "frequencies in it are listed (default: the scene's band_hz)")
     si.add_argument("--channel", choices=["x", "y", "z", "rx", "ry", "rz"],
                     help="channel of the spectrum (default: the first free DOF)")
-    si.add_argument("--to", type=float, nargs=3, metavar=("X", "Y", "Z"),
-                    help="move P in a straight line to this point [m] instead")
+    si.add_argument("--target", type=float, nargs=3, metavar=("X", "Y", "Z"),
+                    help="target point: move P in a straight line to it [m] instead")
     si.add_argument("--trajectory", metavar="NAME",
-                    help="follow the scene's trajectory NAME ([[trajectories]], e.g. from "
+                    help="the scene's trajectory NAME: follow it ([[trajectories]], e.g. from "
                          "dynstiff import-caspr) through quasi-static cable lengths instead")
-    si.add_argument("--speed", type=float, default=0.5, help="path speed [m/s]")
-    si.add_argument("--ramp", type=float, default=1.0, help="speed ramp duration [s]")
-    si.add_argument("--csv", help="write the time history (CSV)")
-    si.add_argument("--plot", help="write the spectrum with the model's frequencies (PNG)")
-    si.add_argument("--quiet", action="store_true", help="no progress bar")
+    si.add_argument("--speed", type=float, default=0.5,
+                    help="path speed of --target [m/s] (default %(default)s)")
+    si.add_argument("--ramp", type=float, default=1.0,
+                    help="speed ramp duration of --target [s] (default %(default)s)")
+    add_outputs(si, csv="the time history", json="the time history",
+                plot="the spectrum with the model's frequencies, or the path followed")
+    add_quiet(si)
     si.set_defaults(func=_cmd_simulate)

@@ -1,7 +1,26 @@
 """``sweep``: modes along a path (a line, a file of poses, a trajectory of the scene) or over
 a parameter, the platform modes tracked, the veering diagram."""
 
-from dynstiff.cli.common import ProgressBar, info, scene_settings, scene_trajectory, write_table
+from dynstiff.cli.common import (
+    ProgressBar,
+    info,
+    save_figure,
+    scene_settings,
+    scene_trajectory,
+    table_metadata,
+    write_tables,
+)
+from dynstiff.cli.options import (
+    PARAMETERS,
+    add_band,
+    add_model,
+    add_n_modes,
+    add_outputs,
+    add_pose,
+    add_quiet,
+    add_scene,
+    parameter_help,
+)
 
 __all__ = ["add_parsers"]
 
@@ -39,14 +58,15 @@ def _read_path(path, rotation):
 
 
 def _with_parameter(robot, name, value):
-    """The robot with one parameter changed: EA [N] of every cable, platform mass [kg], or
-    the minimum tension t_min [N] of the tension distribution."""
+    """The robot with one parameter changed (:data:`dynstiff.cli.options.PARAMETERS`): EA [N]
+    or mass_per_length [kg/m] of every cable, platform mass [kg], or the minimum tension
+    t_min [N] of the tension distribution."""
     from dataclasses import replace
 
     from dynstiff.robot.robot import Robot
     cables, platform, limits = robot.cables, robot.platform, robot.tension_limits
-    if name == "EA":
-        cables = [replace(c, EA=value) for c in cables]
+    if name in ("EA", "mass_per_length"):
+        cables = [replace(c, **{name: value}) for c in cables]
     elif name == "mass":
         platform = replace(platform, mass=value)
     elif name == "t_min":
@@ -64,8 +84,12 @@ def _cmd_sweep(args):
     scene = load_scene(args.scene)
     st = scene_settings(scene, args)
     robot = scene.robot
-    bar = None if args.quiet else ProgressBar(f"sweep {scene.name}")
-    n_modes = None if args.fmax and args.n is None else st.n_modes
+    bar = ProgressBar(f"sweep {scene.name}", args.quiet)
+    banded = args.band is not None or args.fmax is not None
+    fmax = st.band_hz[1] if banded else None
+    n_modes = None if banded and args.n is None else st.n_modes
+    opts = dict(rung=st.rung, on_error="record", progress=bar, n_modes=n_modes, fmax_hz=fmax,
+                **st.model_options())
     given = [name for name in ("line", "path", "trajectory", "parameter")
              if getattr(args, name) is not None]
     if len(given) != 1:
@@ -77,30 +101,32 @@ def _cmd_sweep(args):
     rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
     if args.trajectory is not None:
         poses, times = scene_trajectory(scene, args.trajectory).poses(args.steps)
-        res = sweep(robot, poses=poses, values=times, n_modes=n_modes, fmax_hz=args.fmax,
-                    progress=bar, on_error="record",
-                    parameter=f"time along trajectory {args.trajectory} [s]")
+        res = sweep(robot, poses=poses, values=times,
+                    parameter=f"time along trajectory {args.trajectory} [s]", **opts)
     elif args.line is not None:
         pts = np.linspace(args.line[:3], args.line[3:], args.steps)
-        res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar, on_error="record")
+        res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], **opts)
     elif args.path is not None:
-        res = sweep(robot, poses=_read_path(args.path, rot), n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar, on_error="record")
+        res = sweep(robot, poses=_read_path(args.path, rot), **opts)
     else:
         if not args.values:
             raise InvalidParameterError("--parameter needs --values V1 V2 ...")
-        pose = scene.pose if scene.pose is not None else scene.equilibrium().pose
-        units = {"EA": "N", "mass": "kg", "t_min": "N"}
+        from dynstiff.robot.pose import as_pose
+        pose = (as_pose(args.pose) if args.pose is not None else scene.pose
+                if scene.pose is not None else scene.equilibrium().pose)
+        units = {"EA": "N", "mass_per_length": "kg/m", "mass": "kg", "t_min": "N"}
 
         def build(v):
             return _with_parameter(robot, args.parameter, v).equilibrium(pose=pose)
-        res = sweep(None, build=build, values=args.values, n_modes=n_modes,
-                    fmax_hz=args.fmax, progress=bar, on_error="record",
-                    parameter=f"{args.parameter} [{units[args.parameter]}]")
+        res = sweep(None, build=build, values=args.values,
+                    parameter=f"{args.parameter} [{units[args.parameter]}]", **opts)
+    bar.close()
     df = res.to_frame()
-    if args.csv:
-        write_table(df, args.csv, "csv", st.metadata(units="Hz; value in " + res.parameter))
+    where = (pose if args.parameter is not None else
+             f"along {res.parameter} (the pose columns of each step)")
+    write_tables(args, df, table_metadata(scene.name, where, st.rung, **{
+        k: v for k, v in st.metadata().items() if k in ("band_hz", "segments")},
+        units="Hz; value in " + res.parameter))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -112,9 +138,7 @@ def _cmd_sweep(args):
                 ax.axvline(t, color="0.55", ls=":", lw=1.0, zorder=0, gid=f"waypoint-{k}",
                            label="waypoints" if k == 0 else None)
             ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
-        fig.tight_layout()
-        from dynstiff.cli.common import save_figure
-        save_figure(fig, args.plot, dpi=120)
+        save_figure(fig, args.plot)
     vt = res.veering_table()
     vt.insert(0, res.parameter, res.values)
     vt.columns = [vt.columns[0]] + [f"track {c} [Hz]" for c in vt.columns[1:]]
@@ -126,7 +150,7 @@ def _cmd_sweep(args):
     for k, v, msg in res.failures:
         info(args).write(f"step {k} ({res.parameter} = {v:g}): infeasible, skipped: "
                          f"{msg.splitlines()[0]}\n")
-    for name in (args.csv, args.plot):
+    for name in (args.csv, args.json, args.plot):
         if name and name != "-":
             info(args).write(f"wrote {name}\n")
     return 0
@@ -136,7 +160,7 @@ def add_parsers(sub):
     """Add the ``sweep`` subcommands to the subparsers ``sub``."""
     sw = sub.add_parser("sweep", help="modes along a straight path or over a parameter, platform "
                                       "modes tracked; table and veering diagram")
-    sw.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    add_scene(sw)
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
     sw.add_argument("--steps", type=int, default=11,
@@ -145,15 +169,18 @@ def add_parsers(sub):
                     help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
                          "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
     sw.add_argument("--trajectory", metavar="NAME",
-                    help="poses along the scene's trajectory NAME ([[trajectories]], e.g. "
+                    help="the scene's trajectory NAME: poses along it ([[trajectories]], e.g. "
                          "from dynstiff import-caspr), --steps of them equally spaced in time")
-    sw.add_argument("--parameter", choices=["EA", "mass", "t_min"],
-                    help="sweep a parameter at the scene's pose: EA of every cable [N], "
-                         "platform mass [kg], minimum tension [N]")
-    sw.add_argument("--values", type=float, nargs="+", metavar="V", help="parameter values")
-    sw.add_argument("-n", type=int, help="modes per step (default: the scene's n_modes)")
-    sw.add_argument("--fmax", type=float, help="all modes below this frequency [Hz]")
-    sw.add_argument("--csv", help="write the tidy table (one row per mode and step)")
-    sw.add_argument("--plot", help="write the veering diagram (PNG)")
-    sw.add_argument("--quiet", action="store_true", help="no progress bar")
+    sw.add_argument("--parameter", choices=list(PARAMETERS),
+                    help=parameter_help(PARAMETERS, "swept at the scene's pose (or --pose)"))
+    sw.add_argument("--values", type=float, nargs="+", metavar="V",
+                    help="values of --parameter, in its unit")
+    add_pose(sw, lengths=False, what="of the --parameter sweep (default: the scene's pose)")
+    add_n_modes(sw, "per step (default: the scene's n_modes; with --band or --fmax, all in "
+                    "the band)")
+    add_band(sw, "every mode up to its top at every step (default: the first --n-modes)")
+    add_model(sw)
+    add_outputs(sw, csv="one row per mode and step", json="one row per mode and step",
+                plot="the veering diagram")
+    add_quiet(sw)
     sw.set_defaults(func=_cmd_sweep)

@@ -2,9 +2,26 @@
 the scene's ``[workspace] box``; docs/theory.md §13), written to netCDF (or Zarr) with an
 optional figure and table."""
 
-import sys
+
+from dynstiff.cli.common import save_figure, table_metadata, write_tables
+from dynstiff.cli.options import (
+    MEANINGS,
+    add_forbidden_band,
+    add_max_modes,
+    add_n_modes,
+    add_outputs,
+    add_quiet,
+    add_scene,
+    parameter_help,
+)
 
 __all__ = ["add_parsers"]
+
+#: Columns of the workspace table, named as in every table of the command line.
+COLUMNS = {"x": "x [m]", "y": "y [m]", "z": "z [m]", "rx": "rx [rad]", "ry": "ry [rad]",
+           "rz": "rz [rad]", "residual": "statics residual [N]",
+           "first_platform_hz": "first platform freq [Hz]",
+           "band_margin": "band margin [-]", "proximity_gap": "proximity gap [-]"}
 
 
 def add_parsers(sub):
@@ -13,25 +30,27 @@ def add_parsers(sub):
     ws = sub.add_parser(
         "workspace", help="map statics, modes and design checks over a box grid of positions "
                           "(optionally x orientations x a cable parameter); netCDF output")
-    ws.add_argument("scene", help="built-in scene name or path to a TOML scene file")
+    add_scene(ws)
     ws.add_argument("--box", type=float, nargs=6,
                     metavar=("X0", "X1", "Y0", "Y1", "Z0", "Z1"),
                     help="grid box [m] (default: the scene's [workspace] box, e.g. a CASPR "
                          "joint's q_min / q_max)")
-    ws.add_argument("--step", type=float, required=True, help="grid spacing [m]")
+    ws.add_argument("--step", type=float,
+                    help="grid spacing [m] (default: a quarter of the box's longest side)")
     ws.add_argument("--orientations", metavar="FILE",
                     help="rotation vectors rx ry rz [rad], one a line ('#' comments), "
                          "crossed with the positions (default: the scene's rotation)")
     ws.add_argument("--parameter", choices=["EA", "mass_per_length"],
-                    help="cable parameter set on every cable: EA [N] or mass_per_length "
-                         "[kg/m]")
-    ws.add_argument("--values", type=float, nargs="+", metavar="V", help="parameter values")
-    ws.add_argument("-n", type=int, default=20, help="modes per pose (default %(default)s)")
-    ws.add_argument("--band", type=float, nargs=2, metavar=("LO", "HI"),
-                    help="forbidden band [Hz] (default: the scene's forbidden_band_hz)")
-    ws.add_argument("--margin", type=float, default=0.05,
-                    help="relative margin of the global modes to the band (default "
-                         "%(default)s)")
+                    help=parameter_help(["EA", "mass_per_length"], "set on every cable, "
+                                        "crossed with the poses"))
+    ws.add_argument("--values", type=float, nargs="+", metavar="V",
+                    help="values of --parameter, in its unit")
+    add_n_modes(ws, "per pose (default: the scene's n_modes)")
+    add_max_modes(ws, _max_platform_modes())
+    add_forbidden_band(ws)
+    ws.add_argument("--margin", type=float,
+                    help="relative margin of the platform modes to the forbidden band [-] "
+                         "(default: the scene's, else 0.05)")
     ws.add_argument("--tensions", choices=["default", "max-frequency"], default="default",
                     help="tension distribution at every pose: the default (closest to t_min) "
                          "or the one that maximises the first platform mode")
@@ -41,17 +60,23 @@ def add_parsers(sub):
     run.add_argument("--workers", type=int, help="local worker processes")
     run.add_argument("--scheduler", metavar="ADDRESS",
                      help="Dask scheduler address, e.g. tcp://10.0.0.5:8786")
-    ws.add_argument("--out", required=True,
-                    help="map file: NAME.nc (netCDF) or NAME.zarr (Zarr folder)")
-    ws.add_argument("--plot", help="write the slices of the map (PNG, PDF, ...)")
-    ws.add_argument("--csv", help="write the table, one row per pose ('-': standard output)")
-    ws.add_argument("--quiet", action="store_true", help="no progress line")
+    ws.add_argument("--out", required=True, metavar="FILE",
+                    help=MEANINGS["--out"] + ": the map file, NAME.nc (netCDF) or NAME.zarr "
+                                             "(Zarr folder)")
+    add_outputs(ws, csv="one row per pose", json="one row per pose",
+                plot="the slices of the map")
+    add_quiet(ws)
     ws.add_argument("--resume", action="store_true",
                     help="continue an interrupted run (its chunks are saved in OUT.parts)")
     ws.add_argument("--max-poses", type=int, default=MAX_POSES,
                     help="refuse a map of more poses (default %(default)s)")
     ws.set_defaults(func=_cmd_workspace)
     return ws
+
+
+def _max_platform_modes():
+    from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
+    return MAX_PLATFORM_MODES
 
 
 def _orientations(path):
@@ -100,13 +125,20 @@ def _cmd_workspace(args):
     rot = (_orientations(args.orientations) if args.orientations else
            None if scene.pose is None or not np.any(scene.pose.rotation)
            else scene.pose.rotation[None, :])
-    band = tuple(args.band) if args.band else scene.forbidden_band_hz
-    kw = dict(box=box, step=args.step, orientations=rot, parameter=args.parameter,
-              values=args.values, n_modes=args.n, band_hz=band, margin=args.margin,
-              chunk_size=args.chunk_size, workers=args.workers, progress=not args.quiet,
-              tensions=args.tensions, max_poses=args.max_poses,
-              checkpoint=f"{out}.parts", resume=args.resume)
-    info = sys.stderr if args.csv == "-" else sys.stdout
+    from dynstiff.cli.common import info as report_stream
+    from dynstiff.cli.common import scene_settings
+    st = scene_settings(scene, args)
+    step = args.step if args.step is not None else max(
+        box[1] - box[0], box[3] - box[2], box[5] - box[4]) / 4 or 1.0
+    kw = dict(box=box, step=step, orientations=rot, parameter=args.parameter,
+              values=args.values, n_modes=st.n_modes, band_hz=st.forbidden_hz,
+              margin=st.margin, max_modes=args.max_modes, model_band_hz=st.band_hz,
+              model_rtol=st.model_rtol, participation=st.participation,
+              frf_limit=st.frf_limit, damping=st.damping, chunk_size=args.chunk_size,
+              workers=args.workers, progress=not args.quiet, tensions=args.tensions,
+              rung=st.rung, max_poses=args.max_poses, checkpoint=f"{out}.parts",
+              resume=args.resume, **st.model_options())
+    info = report_stream(args)
     if args.scheduler:
         try:
             from distributed import Client
@@ -126,20 +158,18 @@ def _cmd_workspace(args):
                f"{int(ds['dynamic'].sum())} pass every check; first platform frequency "
                + (f"{np.nanmin(f1):.3f}-{np.nanmax(f1):.3f} Hz\n" if np.isfinite(f1).any()
                   else "not found\n"))
-    if args.csv:
-        df = ds.dynstiff.to_frame()
-        text = df.to_csv(index=False)
-        if args.csv == "-":
-            sys.stdout.write(text)
-        else:
-            from dynstiff.io.files import write_text
-            write_text(args.csv, text)
+    if args.csv or args.json:
+        df = ds.dynstiff.to_frame().rename(columns=COLUMNS)
+        write_tables(args, df, table_metadata(
+            scene.name, "the grid of the map (the pose columns)", st.rung,
+            box=[float(v) for v in box], **{"step [m]": step}, map=str(args.out),
+            forbidden_band_hz=list(st.forbidden_hz) if st.forbidden_hz else None,
+            margin=st.margin, n_modes=st.n_modes))
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
-        from dynstiff.cli.common import save_figure
-        save_figure(ds.dynstiff.plot(), args.plot, dpi=120)
-    for name in (args.out, args.plot, args.csv):
+        save_figure(ds.dynstiff.plot(), args.plot)
+    for name in (args.out, args.plot, args.csv, args.json):
         if name and name != "-":
             info.write(f"wrote {name}\n")
     return 0

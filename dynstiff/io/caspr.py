@@ -322,7 +322,7 @@ def _read_cables(path, cable_set, com):
         raise CasprError(f"{path}: cable set {chosen!r} not found; sets: {list(sets)}")
     anchors, attach, fmin, fmax, names = [], [], [], [], []
     for k, c in enumerate(e for e in sets[chosen] if e.tag.startswith("cable")):
-        name = c.get("name", f"cable {k + 1}")
+        name = c.get("name", f"cable {k}")
         where = f"cable {name!r}"
         other = [e.tag for e in c.findall("attachments/*") if e.tag != "attachment"]
         if other:

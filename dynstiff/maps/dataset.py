@@ -214,7 +214,7 @@ class WorkspaceAccessor:
         drop = [v for v in ds.coords if v not in ds.dims]
         return ds.drop_vars(drop).to_dataframe().reset_index()
 
-    def plot(self, n_slices=4, fig=None):
+    def plot(self, n_slices=None, fig=None):
         """Slices of the first platform frequency, the band margin and the dynamic workspace:
         :func:`dynstiff.plot.workspace.plot_workspace_slices`. Returns the Figure."""
         from dynstiff.plot.workspace import plot_workspace_slices

@@ -19,6 +19,7 @@ numbers. Results come back as an ``xarray.Dataset`` (:mod:`dynstiff.maps.dataset
 import dataclasses
 import sys
 import time
+import warnings
 from numbers import Integral
 
 import numpy as np
@@ -29,7 +30,7 @@ from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
-from dynstiff.errors import DynstiffError, Interrupted, InvalidParameterError
+from dynstiff.errors import ClosedFormWarning, DynstiffError, Interrupted, InvalidParameterError
 from dynstiff.maps.guards import (
     MAX_POSES,
     check_model_options,
@@ -38,6 +39,7 @@ from dynstiff.maps.guards import (
     estimate_text,
 )
 from dynstiff.maps.store import resumed
+from dynstiff.models.dsm import ROBOT_BOUND_MESSAGE
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
 from dynstiff.robot.pose import as_pose
@@ -143,8 +145,8 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
     checks : tuple of str
         The checks mapped (those asked).
     tensions : {"default", "max-frequency"}
-        The tension distribution (:func:`dynstiff.analyses.optimal_tensions.
-        tension_equilibrium`).
+        The tension distribution
+        (:func:`~dynstiff.analyses.optimal_tensions.tension_equilibrium`).
 
     Returns
     -------
@@ -177,12 +179,18 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
                                          **model_options)   # a far neighbour: start afresh
         except DynstiffError as exc:
             error = exc
-        rows = statics_rows(robot, eq, error, options)
+        sag = None if eq is None else equilibrium_sag_ratios(robot, eq)
+        rows = statics_rows(robot, eq, error, options, sag)
         pm = None
         if eq is not None:
             try:
-                modal, pm = modal_rows(build_model(eq, rung, **model_options), options,
-                                       damped_model(eq, damping, rung, **model_options))
+                with warnings.catch_warnings():
+                    # the closed form's robot-level bound is each pose's "cable model" row
+                    warnings.filterwarnings("ignore", ROBOT_BOUND_MESSAGE, ClosedFormWarning)
+                    model = build_model(eq, rung, **model_options)
+                    modal, pm = modal_rows(model, options,
+                                           lambda: damped_model(eq, damping, rung, model,
+                                                                **model_options))
                 rows += modal
             except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 error, eq = exc, None
@@ -200,7 +208,7 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
         out["unstretched_length"][j] = eq.unstretched_lengths
         out["min_tension"][j] = eq.min_tensions
         out["max_tension"][j] = eq.max_tensions
-        out["sag_ratio"][j] = equilibrium_sag_ratios(robot, eq)
+        out["sag_ratio"][j] = sag
         if pm.modes is not None:
             r = min(m, len(pm.modes))
             out["freq"][j, :r] = pm.modes.freq_hz[:r]
@@ -294,23 +302,21 @@ def _validated(robot, poses, box, step, orientations, parameter, values, n_modes
 
 
 class _Progress:
-    """One line on stderr: poses done, rate and time left."""
+    """A tqdm bar on stderr: poses done, rate and time left (off when ``show`` is False or
+    stderr is not a terminal)."""
 
     def __init__(self, total, show):
-        self.total, self.done, self.show, self.t0 = total, 0, show, time.perf_counter()
+        self.bar = None
+        if show:
+            from tqdm import tqdm
+            self.bar = tqdm(total=total, desc="workspace", unit="pose", file=sys.stderr,
+                            disable=None, dynamic_ncols=True)
 
     def __call__(self, n):
-        self.done += n
-        if not self.show:
-            return
-        dt = time.perf_counter() - self.t0
-        rate = self.done / dt if dt > 0 else 0.0
-        left = (self.total - self.done) / rate if rate > 0 else float("nan")
-        sys.stderr.write(f"\rworkspace: {self.done}/{self.total} poses, {rate:.0f} poses/s, "
-                         f"{left:.0f} s left ")
-        if self.done >= self.total:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+        if self.bar is not None:
+            self.bar.update(n)
+            if self.bar.n >= self.bar.total:
+                self.bar.close()
 
 
 def _run(tasks, workers, client, progress, results, done):

@@ -32,6 +32,8 @@ from dynstiff.cable.dsm import (
 from dynstiff.cable.guard import (
     AXIAL_MARGIN,
     DEFAULT_GUARD_RTOL,
+    MEASURE_ABOVE,
+    ROBOT_ERROR_FACTOR,
     closed_form_local_error,
     closed_form_validity,
 )
@@ -40,7 +42,10 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stack
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
 
-__all__ = ["FrequencyModel", "compiled_arguments", "symmetric_assembly"]
+__all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE", "compiled_arguments", "symmetric_assembly"]
+
+#: How the robot-level bound's warning begins (theory.md §11.6), for filters of it.
+ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
 
 
 class FrequencyModel(PlatformModel):
@@ -74,8 +79,9 @@ class FrequencyModel(PlatformModel):
         The closed form's guard (theory.md §11.5): a :class:`ClosedFormWarning` names every
         slack cable and every cable whose static error shifts a global mode by more than this
         (at build), and every cable whose axial modes, or local modes measured further than
-        this from the exact cable's, the asked omega reaches (:meth:`guard_band`). None: no
-        warnings.
+        this from the exact cable's, the asked omega reaches (:meth:`guard_band`); where no
+        cable has warned, the robot once its bound on the coupled modes' error up to the
+        asked omega exceeds this (:meth:`robot_error`, theory.md §11.6). None: no warnings.
 
     Attributes
     ----------
@@ -122,6 +128,7 @@ class FrequencyModel(PlatformModel):
             self.cable_loss_factor = self.platform_damping_ratio = 0.0
         elif self.cable_loss_factor > 0 or self.platform_damping_ratio > 0:
             self.damped = True
+        self._own_params = bool(damping)     # params are the cables' own
         self.params = tuple(params)
         self.stacked_params = stack_parameters(self.params)
         validity = [closed_form_validity(s, 0.0, tension, p)
@@ -132,6 +139,9 @@ class FrequencyModel(PlatformModel):
         self._local_omega = np.array([np.pi * np.sqrt(p.T / p.m) / p.L for p in params])
         self._warned = set()                 # (cable, cause) already reported
         self._guarded = [0.0]                # highest omega the guard has checked [rad/s]
+        self._memo = {}                      # static_error, massless_stiffness (immutable)
+        self._measured = {}                  # cable -> (band [rad/s], measured local error)
+        self._issued = []                    # causes warned of (a cable's warning says it)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
@@ -202,7 +212,13 @@ class FrequencyModel(PlatformModel):
 
         Returns (error [-], cable): the largest |x^T dK x| / (2 x^T K x) over the modes x of
         (K_exact(0), M_p), dK = K_dsm(0) - K_exact(0), and the cable with the largest share of
-        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`)."""
+        it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`); computed
+        once per model (the guard at build, the cable-model check)."""
+        if "static_error" not in self._memo:
+            self._memo["static_error"] = self._static_error()
+        return self._memo["static_error"]
+
+    def _static_error(self):
         nf, n = self.n_free, len(self.params)
         J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
         Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
@@ -268,11 +284,60 @@ class FrequencyModel(PlatformModel):
                 f"are in the band asked and the closed form's are {err:.2g} off the exact "
                 f"model's (> guard_rtol {self.guard_rtol:g}; "
                 + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
+        self._guard_robot(top)
+
+    def cable_error(self, i, omega_max):
+        """Cable i's own closed-form error up to omega_max [rad/s] (theory.md §11.6): its
+        envelope (:func:`dynstiff.cable.guard.closed_form_validity`), or, where that
+        exceeds 1e-2, the measured error of its clamped frequencies against the exact cable
+        (kept for later calls up to the same band); inf when the closed form does not apply
+        (slack, axial modes below omega_max)."""
+        v = self._validity[i]
+        if not np.isfinite(v.error) or omega_max >= self._axial_omega[i]:
+            return np.inf
+        if v.error <= MEASURE_ABOVE:
+            return float(v.error)
+        band, err = self._measured.get(i, (-1.0, None))
+        if omega_max > band:
+            band = float(max(omega_max, 8 * self._local_omega[i]))
+            err = closed_form_local_error(self.equilibrium.states[i], omega_max, self.tension)
+            self._measured[i] = (band, err)
+        return err
+
+    def robot_error(self, omega_max):
+        """The bound on the closed form's relative frequency error of the robot's coupled
+        modes up to omega_max [rad/s] (theory.md §11.6): ROBOT_ERROR_FACTOR (e_static +
+        max_c e_c), e_static the static error (:meth:`static_error`), e_c every cable's own
+        error (:meth:`cable_error`). Returns (bound [-], the cable of the largest e_c).
+
+        Examples
+        --------
+        >>> import dynstiff as ds
+        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+        >>> bool(m.robot_error(2 * 3.1416 * 12.0)[0] < 1e-2)
+        True
+        """
+        own = [self.cable_error(i, float(omega_max)) for i in range(len(self.params))]
+        i = int(np.argmax(own))
+        return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
+
+    def _guard_robot(self, top):
+        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol and no
+        cable's warning has pointed to the exact rung already."""
+        if (None, "robot") in self._warned or self._issued:
+            return
+        bound, i = self.robot_error(top)
+        if np.isfinite(bound) and bound > self.guard_rtol:
+            self._warn_once(None, "robot", (
+                f"{ROBOT_BOUND_MESSAGE} up to {top / 2 / np.pi:.4g} Hz "
+                f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
+                f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
 
     def _warn_once(self, cable, cause, message):
         if (cable, cause) in self._warned:
             return
         self._warned.add((cable, cause))
+        self._issued.append(cause)
         warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
                                         cause=cause), stacklevel=user_stacklevel())
 
@@ -316,8 +381,10 @@ class FrequencyModel(PlatformModel):
 
     def massless_stiffness(self):
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
-        shape (n_free, n_free) [N/m, N, N m/rad]."""
-        return self.dynamic_stiffness(0.0)[0].real
+        shape (n_free, n_free) [N/m, N, N m/rad]; computed once per model, a copy returned."""
+        if "massless" not in self._memo:
+            self._memo["massless"] = self.dynamic_stiffness(0.0)[0].real
+        return self._memo["massless"].copy()
 
     def undamped(self):
         """The same model with the cables' damping removed (itself when undamped)."""
@@ -333,6 +400,35 @@ class FrequencyModel(PlatformModel):
         return FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
                               cable_loss_factor=cable_loss_factor,
                               platform_damping_ratio=platform_damping_ratio)
+
+    def _with_model_damping(self, cable_loss_factor, platform_damping_ratio):
+        """``FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
+        cable_loss_factor=..., platform_damping_ratio=..., guard_rtol=self.guard_rtol)``,
+        sharing this model's cable parameters, assembly map and platform terms (read-only,
+        the same numbers a new build computes) instead of recomputing them; None unless
+        this model is an undamped build of the cables' own parameters. The build's static
+        guard is not repeated (this model ran it on the same cables); the band guard starts
+        afresh, as for a new build. A map's receptance check takes it (theory.md §13.7)."""
+        if type(self) is not FrequencyModel or self.damped or not self._own_params:
+            return None
+        new = object.__new__(FrequencyModel)
+        d = dict(vars(self))
+        del d["_frozen"]
+        d.update(cable_loss_factor=positive_scalar("cable_loss_factor", cable_loss_factor,
+                                                   allow_zero=True),
+                 platform_damping_ratio=positive_scalar(
+                     "platform_damping_ratio", platform_damping_ratio, allow_zero=True),
+                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None,
+                 _measured=dict(self._measured), _issued=[])
+        d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
+        for k, v in d.items():
+            object.__setattr__(new, k, v)
+        if new.platform_damping_ratio > 0:
+            Ks = new._stiffness(np.zeros(1)).real[0]
+            object.__setattr__(new, "_K_platform_damping",
+                               2j * new.platform_damping_ratio * 0.5 * (Ks + Ks.T))
+        new._freeze()
+        return new
 
     def cable_kinetic_energies(self, omega, x):
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],

@@ -4,10 +4,21 @@ and named by class.
 
 import numpy as np
 
+from dynstiff.constants import DOF_NAMES, LOAD_NAMES
 from dynstiff.errors import InvalidParameterError
 from dynstiff.plot.common import CATEGORY_LABELS, COLORS, figure_axes, mode_categories, require
 
-__all__ = ["plot_frf"]
+__all__ = ["CHANNEL_COLORS", "plot_frf"]
+
+#: Colours of the FRF curves, cycled: none is a mode class's colour (red, purple, blue).
+CHANNEL_COLORS = ("black", "tab:orange", "tab:green", "tab:brown", "tab:olive", "tab:cyan",
+                  "tab:pink", "tab:gray")
+
+
+def _reciprocal(o, i):
+    """The channel (output, input) reciprocal to (o, i): the input's DOF over the output's
+    load."""
+    return DOF_NAMES[LOAD_NAMES.index(i)], LOAD_NAMES[DOF_NAMES.index(o)]
 
 
 # ------------------------------------------------------------------------------- FRF
@@ -21,7 +32,10 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     modes : ModalResult, optional
         Marks each mode inside the band by a dashed vertical line coloured by its platform
         share (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
-        blue (``mode-local``); the legend names the three.
+        blue (``mode-local``); the legend names the three. The curves take other colours
+        (:data:`CHANNEL_COLORS`); a channel drawn after its reciprocal twin (``z / fx``
+        after ``x / fz``, equal by reciprocity) is dashed and wider so both stay visible.
+        The legend stands right of the axes, clear of the peaks.
     pairs : list of (output, input), optional
         Channels to draw, e.g. ``[("z", "fz")]`` (default: the pairs ``(outputs[k],
         inputs[k])`` present in ``result``).
@@ -55,9 +69,10 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
             raise InvalidParameterError(
                 f"pairs must hold (output, input) with outputs among {tuple(result.outputs)} "
                 f"and inputs among {tuple(result.inputs)}, got {pair!r}") from None
+    own = ax is None
     if ax is None and phase:
         import matplotlib.pyplot as plt
-        fig, (ax, ax_ph) = plt.subplots(2, 1, sharex=True, figsize=(8, 6),
+        fig, (ax, ax_ph) = plt.subplots(2, 1, sharex=True, figsize=(10, 6),
                                         height_ratios=(2, 1))
     else:
         fig, ax = figure_axes(ax)
@@ -66,13 +81,22 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     unit = getattr(result, "unit", None)
     units = {(o, i): unit(o, i) for o, i, _, _ in idx} if callable(unit) else {}
     one_unit = len(set(units.values())) == 1
-    for o, i, ko, ki in idx:
+    drawn = set()
+    for n, (o, i, ko, ki) in enumerate(idx):
         h = result.H[:, ko, ki]
         tag = "" if one_unit or not units else f" [{units[(o, i)]}]"
-        ax.semilogy(f, np.abs(h), lw=1.0, label=f"{o} / {i}{tag}")
+        twin = _reciprocal(o, i)
+        style = dict(color=CHANNEL_COLORS[n % len(CHANNEL_COLORS)], lw=1.0, ls="-",
+                     gid=f"frf-{o}-{i}")
+        label = f"{o} / {i}{tag}"
+        if twin in drawn and twin != (o, i):
+            style.update(ls=(0, (4, 3)), lw=2.0)
+            label += f" (= {twin[0]} / {twin[1]}, reciprocity)"
+        drawn.add((o, i))
+        ax.semilogy(f, np.abs(h), label=label, **style)
         if ax_ph is not None:
             with np.errstate(invalid="ignore"):
-                ax_ph.plot(f, np.degrees(np.angle(h)), lw=1.0)
+                ax_ph.plot(f, np.degrees(np.angle(h)), **style)
     shown = []
     if modes is not None:
         cats = mode_categories(modes)
@@ -88,16 +112,17 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     ax.set_ylabel(f"|{result.kind}|" + (f" [{next(iter(units.values()))}]" if one_unit
                                          else " [units in the legend]" if units else ""))
     damping = getattr(result, "damping", "not stated")
-    ax.set_title(f"FRF ({result.kind}, {damping}), natural frequencies dashed"
-                 + ("\nundamped: each peak is the grid's value next to a pole"
-                    if damping == "undamped" else ""))
+    ax.set_title(f"FRF ({result.kind}), natural frequencies dashed\n{damping}"
+                 + ("; each peak is the grid's value next to a pole"
+                    if damping == "undamped" else ""), fontsize=10)
     from matplotlib.lines import Line2D
     handles, labels = ax.get_legend_handles_labels()
     for cat in ("global", "mixed", "local"):
         if cat in shown:
             handles.append(Line2D([], [], color=COLORS[cat], lw=0.8, ls="--"))
             labels.append(CATEGORY_LABELS[cat])
-    ax.legend(handles, labels, loc="upper right", fontsize=8)
+    ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8,
+              borderaxespad=0.0)
     ax.set_xlim(f[0], f[-1])
     if ax_ph is None:
         ax.set_xlabel("frequency [Hz]")
@@ -107,5 +132,6 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
         ax_ph.set_ylim(-190.0, 190.0)
         ax_ph.set_yticks([-180, -90, 0, 90, 180])
         ax_ph.grid(True, alpha=0.3)
+    if own:
         fig.tight_layout()
     return fig

@@ -125,8 +125,10 @@ def plot_tensions(equilibrium, ax=None, limits=None):
         ``tensions`` or ``end_tensions`` (n,) and ``anchor_tensions`` (n,) [N].
     ax : matplotlib Axes, optional
     limits : (float, float), optional
-        Admissible [t_min, t_max] [N], drawn as dashed lines (default: the robot's
-        ``tension_limits`` when the equilibrium carries its robot).
+        Admissible [t_min, t_max] [N] (default: the robot's ``tension_limits`` when the
+        equilibrium carries its robot). A limit is drawn as a dashed line when it lies
+        below twice the largest tension; otherwise it is named in the title, so that the
+        axis stays scaled to the tensions (from 0 to 1.25 times the largest value drawn).
 
     Returns
     -------
@@ -149,15 +151,24 @@ def plot_tensions(equilibrium, ax=None, limits=None):
     k = np.arange(tB.size)
     ax.bar(k - 0.2, tB, 0.4, label="at B (platform)", gid="tension-B", color="tab:red")
     ax.bar(k + 0.2, tA, 0.4, label="at A (anchor)", gid="tension-A", color="tab:blue")
+    top = float(max(tB.max(initial=0.0), tA.max(initial=0.0)))
+    drawn, off = [top], []
     if limits is not None:
         for name, value in zip(("t_min", "t_max"), limits):
-            if np.isfinite(value):
+            if not np.isfinite(value):
+                continue
+            if value <= 2.0 * top:
                 ax.axhline(value, color="0.3", ls="--", lw=0.8, gid=f"limit-{name}")
+                drawn.append(float(value))
+            else:
+                off.append(f"{name} = {value:.4g} N")
+    ax.set_ylim(0.0, 1.25 * max(drawn) if max(drawn) > 0 else 1.0)
     ax.set_xticks(k)
     ax.set_xlabel("cable")
     ax.set_ylabel("tension [N]")
-    ax.set_title("static cable tensions (dashed: admissible limits)")
-    ax.legend(loc="best", fontsize=8, framealpha=0.9)
+    ax.set_title("static cable tensions (dashed: admissible limits)"
+                 + (f"\noff scale: {', '.join(off)}" if off else ""), fontsize=10)
+    ax.legend(loc="upper right", ncol=2, fontsize=8, framealpha=0.9)
     return fig
 
 

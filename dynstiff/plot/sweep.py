@@ -6,7 +6,11 @@ import numpy as np
 
 from dynstiff.plot.common import figure_axes, require
 
-__all__ = ["plot_veering"]
+__all__ = ["LOG_SPAN", "plot_veering"]
+
+#: A positive swept quantity whose largest value is this many times its least is drawn on a
+#: logarithmic axis.
+LOG_SPAN = 10.0
 
 
 # --------------------------------------------------------------------------- veering
@@ -43,7 +47,9 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     Returns
     -------
     matplotlib Figure
-        x label ``sweep_result.parameter``, y label ``"frequency [Hz]"``.
+        x label ``sweep_result.parameter``, y label ``"frequency [Hz]"``; the x axis is
+        logarithmic when the values are positive and span :data:`LOG_SPAN` (a decade) or
+        more, and its limits hold every value.
 
     Raises
     ------
@@ -87,7 +93,11 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     if n <= 12:
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, borderaxespad=0)
     ax.grid(True, alpha=0.3)
-    if x.size > 1:
+    if x.size > 1 and x.min() > 0 and x.max() >= LOG_SPAN * x.min():
+        ax.set_xscale("log")                  # a decade or more of a positive parameter
+        pad = (x.max() / x.min()) ** 0.02
+        ax.set_xlim(x.min() / pad, x.max() * pad)
+    elif x.size > 1:
         pad = 0.02 * (x.max() - x.min())
         ax.set_xlim(x.min() - pad, x.max() + pad)
     return fig

@@ -75,12 +75,14 @@ def plot_spectrum(spectrum, ax=None, channels=None, modes=None, band_hz=None):
                 f"band_hz must be (f_lo, f_hi) [Hz] with 0 <= f_lo < f_hi, got {band_hz!r}")
     mode_f, mode_kind = (None, None) if modes is None else mode_frequencies(modes)
     fig, ax = figure_axes(ax)
+    units = {s.channel: "rad" if s.channel.startswith("r") else "m" for s in items}
+    one = len(set(units.values())) == 1
     for s in items:
-        unit = "rad" if s.channel.startswith("r") else "m"
+        unit = units[s.channel]
         f, a = np.asarray(s.freq_hz), np.asarray(s.amplitude)
         sel = (f > 0) & (f >= band[0]) & (f <= band[1])   # the mean (0 Hz) is removed
         (line,) = ax.semilogy(f[sel], a[sel], lw=1.0, gid=f"spectrum-{s.channel}",
-                              label=f"{s.channel} [{unit}]")
+                              label=s.channel if one else f"{s.channel} [{unit}]")
         pk = (s.peaks_hz >= band[0]) & (s.peaks_hz <= band[1])
         ax.plot(s.peaks_hz[pk], s.peak_amplitudes[pk], "v", ms=5, color=line.get_color(),
                 gid=f"peaks-{s.channel}")
@@ -91,7 +93,8 @@ def plot_spectrum(spectrum, ax=None, channels=None, modes=None, band_hz=None):
                 ax.axvline(fm, color=color, lw=0.7, ls="--", alpha=0.7, gid="mode-marker")
     ax.set_xlim(*band)
     ax.set_xlabel("frequency [Hz]")
-    ax.set_ylabel("amplitude [m or rad]")
+    ax.set_ylabel(f"amplitude [{next(iter(units.values()))}]" if one
+                  else "amplitude [units in the legend]")
     res = min(s.resolution_hz for s in items)
     title = f"Amplitude spectrum ({items[0].window} window, resolution {res:.3g} Hz)"
     if mode_f is not None:

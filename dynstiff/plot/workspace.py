@@ -11,7 +11,8 @@ import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 
-__all__ = ["plot_workspace_3d", "plot_workspace_slices", "worst_case"]
+__all__ = ["MAX_SLICES", "plot_workspace_3d", "plot_workspace_slices", "slice_levels",
+           "worst_case"]
 
 _REDUCED = ("orientation", "parameter")
 
@@ -40,23 +41,53 @@ def _edges(v):
     return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
 
-def plot_workspace_slices(ds, n_slices=4, fig=None):
-    """Horizontal slices (x, y) at up to ``n_slices`` heights z: first platform frequency
-    [Hz] (top), band margin [-] (middle, 0 and the required margin as contours) and the
-    dynamic workspace (bottom: every check passes / a check fails / infeasible).
+#: Most heights the slices figure draws by default.
+MAX_SLICES = 8
+
+
+def slice_levels(n_z, n_slices=None):
+    """Indices of the heights drawn: every one of the ``n_z`` levels when ``n_slices`` is
+    None and ``n_z`` <= :data:`MAX_SLICES`, else ``n_slices`` (default MAX_SLICES) evenly
+    spread from the lowest to the highest."""
+    if n_slices is None:
+        n_slices = MAX_SLICES
+    if isinstance(n_slices, bool) or not isinstance(n_slices, int | np.integer) \
+            or n_slices < 1:
+        raise InvalidParameterError(f"n_slices must be an integer >= 1, got {n_slices!r}")
+    if n_z <= n_slices:
+        return np.arange(n_z)
+    return np.unique(np.linspace(0, n_z - 1, n_slices).round().astype(int))
+
+
+def plot_workspace_slices(ds, n_slices=None, fig=None):
+    """Horizontal slices (x, y) at the heights z: first platform frequency [Hz] (top), band
+    margin [-] (middle, 0 and the required margin as contours) and the dynamic workspace
+    (bottom: every check passes / a check fails / infeasible).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A grid map of :func:`dynstiff.workspace`.
+    n_slices : int, optional
+        Most heights drawn (:func:`slice_levels`); default every height of the grid up to
+        :data:`MAX_SLICES`. When fewer heights than the grid's are drawn, the title says
+        which.
+    fig : matplotlib Figure, optional
 
     Returns
     -------
     matplotlib.figure.Figure
+        One column of three panels per height drawn, each titled ``z = ... m``.
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
 
     f1, mg, dyn, feas = worst_case(ds)
     x, y, z = (ds[c].values for c in ("x", "y", "z"))
-    ks = np.unique(np.linspace(0, z.size - 1, min(n_slices, z.size)).round().astype(int))
+    ks = slice_levels(z.size, n_slices)
+    width = max(3.4 * ks.size + 1.2, 8.0)
     if fig is None:
-        fig = plt.figure(figsize=(3.4 * ks.size + 1.2, 9.0), layout="constrained")
+        fig = plt.figure(figsize=(width, 9.0), layout="constrained")
     axs = np.asarray(fig.subplots(3, ks.size, squeeze=False, sharex=True, sharey=True))
     xe, ye = _edges(x), _edges(y)
     finite = np.isfinite(f1.values)
@@ -92,9 +123,15 @@ def plot_workspace_slices(ds, n_slices=4, fig=None):
             f"{need:.0%}" if not isinstance(band, str) and band is not None else "no band")
     worst = " (worst case over " + ", ".join(d for d in _REDUCED if d in ds.dims) + ")" \
         if any(d in ds.dims for d in _REDUCED) else ""
-    fig.suptitle(f"{ds.attrs.get('robot', '')} workspace map{worst}: {int(dyn.sum())} of "
-                 f"{dyn.size} positions in the dynamic workspace\n{band}; grey: infeasible, "
-                 f"or platform modes not all found")
+    shown = ("" if ks.size == z.size else
+             f"; {ks.size} of {z.size} heights drawn (z = "
+             + ", ".join(f"{z[k]:.3g}" for k in ks) + " m)")
+    import textwrap
+    lines = [f"{ds.attrs.get('robot', '')} workspace map{worst}: {int(dyn.sum())} of "
+             f"{dyn.size} positions in the dynamic workspace{shown}",
+             f"{band}; grey: infeasible, or platform modes not all found"]
+    chars = int(fig.get_figwidth() * 11)          # about 11 characters per inch at 12 pt
+    fig.suptitle("\n".join(textwrap.fill(t, chars) for t in lines))
     return fig
 
 

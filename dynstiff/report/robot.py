@@ -1,7 +1,7 @@
 """The main job on a scene (``dynstiff demo``, ``dynstiff report``): statics, modal table with
 platform participation, the model the scene needs, design checks, damped FRFs with the modes
-marked and a 3-D view of the first platform mode, written as CSV tables, PNG figures and one
-self-contained ``report.html``. Every setting comes from
+marked and a 3-D view of every platform mode, written as CSV tables, PNG figures and one
+self-contained ``report.html`` (:mod:`dynstiff.report.document`). Every setting comes from
 :func:`dynstiff.analyses.settings.analysis_settings` (the same as ``dynstiff check``).
 
 pandas and matplotlib are imported here, on demand.
@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff.constants import PLATFORM_SHARE_THRESHOLD
 from dynstiff.io.files import atomic_path, write_text
 
 __all__ = ["robot_report", "write_csv"]
@@ -60,10 +61,10 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     from dynstiff.analyses.freqgrid import refined_grid
     from dynstiff.analyses.frf import frf
     from dynstiff.analyses.modes import modes as modal
-    from dynstiff.analyses.recommend import recommend_model
+    from dynstiff.analyses.recommend import estimated_error, recommend_model
     from dynstiff.analyses.settings import analysis_settings
     from dynstiff.plot import plot_frf
-    from dynstiff.report.html import figure_png, html_page
+    from dynstiff.report.html import figure_png
     from dynstiff.report.robot3d import plot_robot
 
     st = settings or analysis_settings(scene)
@@ -76,6 +77,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         modes = modal(model, n_modes=min(st.n_modes, getattr(model, "n_dof", st.n_modes)))
     marks = modal(model, fmax_hz=st.band_hz[1])
     rec = recommend_model(eq, band_hz=st.band_hz, rtol=st.model_rtol)
+    err, cause = estimated_error(model, st.band_hz)
     f = refined_grid(st.band_hz, n_points, marks.freq_hz)
     inputs = [c for c in ("fx", "fz") if c[1] in eq.robot.platform.free_dofs]
     outputs = [c[1] for c in inputs]
@@ -87,30 +89,34 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     meta = st.metadata(eq.pose)
 
     def save_csv(df, name, units):
-        write_csv(df, out / name, {**meta, "table": name, "units": units})
+        text = write_csv(df, None, {**meta, "table": name, "units": units})
+        write_text(out / name, text)
         files.append(out / name)
+        return text
 
     statics = eq.to_frame()
     save_csv(statics, "statics.csv", "SI, in the column names")
     table = modes.to_frame()
     table.insert(3, "platform mode", np.isin(np.arange(len(modes)), pm.index))
-    save_csv(table, "modes.csv", "Hz; mode shapes normalised to unit platform kinetic energy")
+    modes_csv = save_csv(table, "modes.csv",
+                         "Hz; mode shapes normalised to unit platform kinetic energy")
     save_csv(checks.to_frame(), "checks.csv", "as each row's value and limit")
     save_csv(response.to_frame(), "frf.csv", "in each row's unit column")
-    figs = []
-    fig = plot_frf(response, marks, phase=True)
-    figs.append((fig, "frf.png", "Damped platform FRFs with the modes marked"))
-    kk = list(pm.index)
-    if kk:
-        fig = plot_robot(eq, modes, kk[0], model=model if model.rung == "dsm" else None)
-        figs.append((fig, "mode_shape.png", f"Mode {kk[0] + 1} (first platform mode, "
-                                            f"{modes.kind[kk[0]]}, "
-                                            f"{modes.freq_hz[kk[0]]:.4g} Hz)"))
+    figs = [(plot_frf(response, marks, phase=True), "frf.png",
+             "Damped platform FRFs (magnitude and phase) with every mode of the band marked "
+             "by class")]
+    dsm = model if model.rung == "dsm" else None
+    for k in pm.index:
+        figs.append((plot_robot(eq, modes, int(k), model=dsm), f"mode_shape_{k + 1}.png",
+                     f"Platform mode {k + 1}: {pm.describe(int(k))}"))
     pngs = []
-    for fig, name, caption in figs:
-        with atomic_path(out / name) as tmp:
-            fig.savefig(tmp, dpi=120, bbox_inches="tight")
-        pngs.append((figure_png(fig), caption))
+    for n, (fig, name, caption) in enumerate(figs):
+        # drawn once, for the file and the page; the mode shapes, shown side by side, at a
+        # lower resolution
+        png = figure_png(fig, dpi=110 if n == 0 else 90)
+        with atomic_path(out / name) as tmp, open(tmp, "wb") as fh:
+            fh.write(png)
+        pngs.append((png, caption))
         plt.close(fig)
         files.append(out / name)
 
@@ -130,12 +136,76 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     ]
     text = "\n".join(head + [""] + [f"{t}\n{b}\n" for t, b in sections])
     if html:
-        blocks = [("pre", "\n".join(head)), ("h2", "Design checks"),
-                  ("checks", checks.rows), ("h2", "Cable model"), ("pre", rec.text()),
-                  ("h2", "Statics"), ("table", statics), ("h2", "Modes"),
-                  ("table", table[cols + [c for c in table.columns
-                                         if c.startswith(("x", "y", "z", "r"))]]),
-                  ("h2", "Figures")] + [("png", p) for p in pngs]
-        write_text(out / "report.html", html_page(f"dynstiff report: {scene.name}", blocks))
+        page = _page(scene, eq, st, checks, pm, rec, (err, cause), statics, pngs, modes_csv,
+                     len(modes), len(f))
+        write_text(out / "report.html", page)
         files.append(out / "report.html")
     return text + "\n", files
+
+
+def _page(scene, eq, st, checks, pm, rec, error, statics, pngs, modes_csv, n_modes, n_freq):
+    """The HTML page (:mod:`dynstiff.report.document`)."""
+    from dynstiff.report.document import (
+        cable_frame,
+        input_rows,
+        platform_mode_table,
+        spread_note,
+        title_rows,
+    )
+    from dynstiff.report.html import html_page
+    err, cause = error
+    verdict = "all checks passed" if checks.passed else "some checks FAILED"
+    found = (f"{pm.index.size} platform mode(s), the first at {pm.first_hz:.4g} Hz"
+             if pm.complete else "the platform modes not all found")
+    share = 1.0 - np.asarray(pm.modes.cable_energy_fraction)
+    held = np.flatnonzero(share >= st.check_options().get("participation",
+                                                         PLATFORM_SHARE_THRESHOLD))
+    if held.size and pm.complete and pm.modes.freq_hz[held[0]] < pm.first_hz:
+        k = int(held[0])            # a mode below the first platform mode moves the platform
+        found += (f" (the lowest mode the platform moves in, with a share of "
+                  f"{share[k]:.0%}, is mode {k + 1} at {pm.modes.freq_hz[k]:.4g} Hz)")
+    blocks = [("kv", title_rows(scene)), ("p", f"Summary: {verdict}; {found}; cable "
+              f"model {st.rung} with estimated error {err:.2g} up to "
+              f"{st.band_hz[1]:g} Hz."),
+              ("h2", "Inputs"), ("kv", input_rows(eq, st)), ("table", cable_frame(eq)),
+              ("h2", "Design checks"), ("checks", checks.rows),
+              ("h2", "Platform modes"),
+              ("p", "The modes every modal verdict is about (theory.md §12.4): the mode "
+                    "that moves each free DOF most and every global mode below the "
+                    "frequency by which every free DOF has half of its participation"
+                    + (f" ({pm.found_hz:.4g} Hz)" if pm.complete else "")
+                    + "; undamped frequencies.")]
+    note = spread_note(pm)
+    if note:
+        blocks.append(("note", note))
+    if not pm.complete:
+        blocks.append(("note", f"The search for the platform modes is incomplete: {pm.reason}"))
+    blocks += [("table", platform_mode_table(pm))]
+    blocks += [("pngs", pngs[1:])]
+    blocks += [("h2", "Frequency response"), ("png", pngs[0]),
+               ("h2", "Cable model"),
+               ("p", f"The analysis uses the {st.rung} model: estimated relative frequency "
+                     f"error {err:.2g} up to {st.band_hz[1]:g} Hz ({cause}; theory.md "
+                     f"§12.5), admissible {st.model_rtol:g}. Recommended for this band: "
+                     f"{rec.rung}" + (f" with {rec.segments} segments" if rec.segments else "")
+                     + f" (predicted error {rec.predicted_error:.2g})."),
+               ("table", rec.to_frame()),
+               ("h2", "Assumptions"),
+               ("ul", [st.damping.text(),
+                       f"band of interest {st.band_hz[0]:g}-{st.band_hz[1]:g} Hz: FRFs on "
+                       f"{n_freq} frequencies, refined around every mode of the band",
+                       "forbidden band " + (f"{st.forbidden_hz[0]:g}-{st.forbidden_hz[1]:g}"
+                                            " Hz" if st.forbidden_hz else "none given: "
+                                            "its two checks are not asked"),
+                       "linear vibration about the static equilibrium (elastic catenaries); "
+                       "natural frequencies undamped, every mode below the highest listed "
+                       "found (Wittrick-Williams count)",
+                       "mode shapes normalised to unit platform kinetic energy; figures "
+                       "exaggerate the displacements"]),
+               ("h2", "Statics"), ("table", statics),
+               ("h2", "Downloads"),
+               ("download", ("modes.csv", modes_csv.encode("utf-8"), "text/csv",
+                             f"All {n_modes} modes computed (modes.csv: frequencies, kinds, "
+                             "participations, platform shapes; also written beside this "
+                             "page)"))]
+    return html_page(f"dynstiff report: {scene.name}", blocks)

@@ -14,7 +14,9 @@ scale.
 
 Artists carry a ``gid``: ``anchors``, ``P``, ``cable-<i>`` (static cable i), ``platform``
 (platform edges), ``platform-faces``; with a mode ``cable-<i>-mode``, ``platform-mode``,
-``platform-mode-faces`` and ``P-mode``.
+``platform-mode-faces`` and ``P-mode``. A platform smaller than a tenth of the robot gets a
+close-up axes of its own (gid ``platform-inset``, lines ``inset-platform`` and
+``inset-platform-mode``), where its motion is drawn at its own scale.
 """
 
 from pathlib import Path
@@ -156,6 +158,57 @@ def _set_limits(ax, geo, factors):
         axis.set_major_locator(MaxNLocator(int(np.clip(round(8 * length / span.max()), 3, 8))))
 
 
+#: A platform smaller than this fraction of the robot's size gets a close-up beside it.
+_INSET_BELOW = 0.1
+
+
+def _platform_inset(fig, geo):
+    """A close-up of the platform when it is small beside the robot (gid
+    ``platform-inset``): the static platform in grey, the mode's platform motion in orange at
+    its own scale (the largest attachment-point motion 25 % of the platform's size) and the
+    last stretch of every cable. Returns the inset Axes or None."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    B, P = geo["B"], geo["P"]
+    pts = np.vstack([geo["anchors"], B])
+    size = float(np.ptp(pts, axis=0).max())
+    plat = float(np.ptp(B, axis=0).max())
+    if geo["dB"] is None or not 0 < plat < _INSET_BELOW * size:
+        return None
+    motion = max(float(np.linalg.norm(geo["dB"], axis=1).max()), float(np.linalg.norm(geo["dP"])))
+    f = 0.25 * plat / motion if motion > 0 else 0.0
+    ax = fig.add_axes((0.72, 0.02, 0.27, 0.5), projection="3d")
+    ax.set_gid("platform-inset")
+    reach = 0.9 * plat
+    for i, c in enumerate(geo["cables"]):
+        near = np.linalg.norm(c - B[i], axis=1) <= reach
+        ax.plot(*c[near].T, color=_GHOST, lw=1.0)
+    for pts_, color, gid in ((B, _GHOST, "inset-platform"),
+                             (B + f * geo["dB"], _PLATFORM, "inset-platform-mode")):
+        if geo["faces"]:
+            ax.add_collection3d(Poly3DCollection([pts_[fc] for fc in geo["faces"]],
+                                                 facecolor=color, alpha=0.35,
+                                                 edgecolor="none"))
+        if geo["path"]:
+            pp = path_points(pts_, geo["path"])
+            ax.plot(pp[:, 0], pp[:, 1], pp[:, 2], color=color, lw=1.8, gid=gid)
+    Pd = P + f * geo["dP"]
+    ax.scatter([Pd[0]], [Pd[1]], [Pd[2]], marker="D", s=30, color=_PLATFORM, edgecolor="k",
+               depthshade=False)
+    allp = np.vstack([B, B + f * geo["dB"], Pd[None, :]])
+    mid = 0.5 * (allp.min(axis=0) + allp.max(axis=0))
+    half = 0.5 * max(float(np.ptp(allp, axis=0).max()), 1e-9) * 1.5
+    for setter, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid):
+        setter(m - half, m + half)
+    ax.set_box_aspect((1, 1, 1))
+    ax.view_init(elev=22, azim=-60)
+    from matplotlib.ticker import MaxNLocator
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(MaxNLocator(3))
+    ax.tick_params(labelsize=6, pad=0)
+    ax.set_title(f"platform close-up, motion x {f:.3g}", fontsize=8)
+    return ax
+
+
 def _title(eq, geo, k, n_modes, scale, sag_scale):
     name = getattr(eq.robot, "name", "") or "robot"
     if geo["dB"] is None:
@@ -190,8 +243,8 @@ def _axes3d(ax, figsize=(8.0, 6.0)):
     if ax is None:
         import matplotlib.pyplot as plt
         fig = plt.figure(figsize=figsize)
-        ax = fig.add_subplot(projection="3d")
-        fig.subplots_adjust(left=-0.02, right=0.72, bottom=-0.22, top=1.12)
+        # the robot on the left, the legend and the platform's close-up on the right
+        ax = fig.add_axes((-0.03, -0.07, 0.74, 0.98), projection="3d")
         return fig, ax
     if getattr(ax, "name", "") != "3d":
         raise InvalidParameterError(
@@ -251,6 +304,7 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
         FrequencyModel of ``eq``, ``ax`` not 3-D.
     """
     geo, k, scale, sag_scale = prepare(eq, modes, mode, scale, n_points, model, sag_scale)
+    new = ax is None
     fig, ax = _axes3d(ax, figsize=_figsize(geo))
     _draw(ax, geo, scale if modes is not None else 0.0)
     _draw_annotations(ax, geo, scale if modes is not None else 0.0)
@@ -260,8 +314,13 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
     ax.set_title(_title(eq, geo, k, None if modes is None else len(modes), scale, sag_scale),
-                 fontsize=10, y=0.9)
-    ax.legend(loc="center left", bbox_to_anchor=(1.17, 0.5), fontsize=7, framealpha=0.8)
+                 fontsize=10, y=0.98 if new else 0.9)
+    if new:
+        fig.legend(*ax.get_legend_handles_labels(), loc="upper left",
+                   bbox_to_anchor=(0.71, 0.97), fontsize=7, framealpha=0.8)
+        _platform_inset(fig, geo)
+    else:
+        ax.legend(loc="center left", bbox_to_anchor=(1.17, 0.5), fontsize=7, framealpha=0.8)
     return fig
 
 

@@ -69,6 +69,18 @@ class Equilibrium:
         return (f"Equilibrium({self.robot.n_cables} cables, {self.pose!r}, tensions "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
+    def _repr_html_(self):
+        """Jupyter display: the pose and each cable's tensions, length and sag."""
+        from dynstiff._html import html_table
+        rows = [[i, s.tension_at_end, s.tension_at_anchor, L0, s.sag]
+                for i, (s, L0) in enumerate(zip(self.states, self.unstretched_lengths))]
+        return html_table(
+            f"Equilibrium of {self.robot.n_cables} cables at P = "
+            f"{np.round(self.pose.position, 4).tolist()} m, rotation "
+            f"{np.round(self.pose.rotation, 4).tolist()} rad",
+            ["cable", "tension at B [N]", "tension at A [N]", "unstretched length [m]",
+             "sag [m]"], rows, notes=[f"statics residual {self.residual:.2g}"])
+
     def plot(self, ax=None):
         """Cable tensions at B and A with the robot's limits:
         :func:`dynstiff.plot.plot_tensions`. Returns the matplotlib Figure."""

@@ -286,14 +286,26 @@ def inverse_statics(robot, pose, tension_reference=None, tol=1e-10, max_iter=50,
         hi = np.zeros(n)
     best, since_best = np.inf, 0
     sides = None                          # the last distribution's active set
+    straight = start is None              # directions of straight chords (first iteration)
     for _ in range(max_iter):
         W = np.vstack([u.T, cross(r, u).T])[fi]
         try:
             t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
                                      sides)
         except SlackCableError:
-            raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
-                                  f"pose {pose.as_vector().tolist()}") from None
+            # straight chords of heavy cables leave the platform at other angles than their
+            # catenaries, and their limits may not fit where the catenaries' do (theory.md
+            # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
+            # directions then meet the limits
+            try:
+                if not straight:
+                    raise
+                t, sides = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
+                                         tension_reference, sides)
+            except SlackCableError:
+                raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
+                                      f"pose {pose.as_vector().tolist()}") from None
+        straight = False
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
         for i in np.flatnonzero(pending):

@@ -1,7 +1,8 @@
 """Scene files written from a robot: the inverse of :func:`read_scene`.
 
-Numbers are written with ``repr`` (the shortest text that reads back to the same float), so
-``read_scene(write_scene(...))`` gives the same robot bit for bit.
+Values are formatted by tomli-w (strings escaped; floats with ``repr``, the shortest text
+that reads back to the same float), so ``read_scene(write_scene(...))`` gives the same robot
+bit for bit; the layout and the comments (units, conventions) are the writer's.
 """
 
 from pathlib import Path
@@ -15,9 +16,14 @@ from dynstiff.robot.waypoints import WaypointPath
 __all__ = ["scene_text", "write_scene"]
 
 
+def _value(v):
+    """TOML text of one string or number, formatted by tomli-w (floats as ``repr``)."""
+    import tomli_w
+    return tomli_w.dumps({"v": v})[4:].rstrip("\n")
+
+
 def _num(v):
-    v = float(v)
-    return repr(int(v)) + ".0" if v.is_integer() and abs(v) < 1e15 else repr(v)
+    return _value(float(v))
 
 
 def _vec(v):
@@ -25,7 +31,7 @@ def _vec(v):
 
 
 def _toml_str(s):
-    return '"' + str(s).replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
+    return _value(str(s))
 
 
 def _cable_lines(c):
@@ -70,7 +76,8 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     comments : sequence of str
         Lines for the header comment (source, conventions ...).
     cable_names : sequence of str, optional
-        A comment above each ``[[cables]]``.
+        Names in the comment above each ``[[cables]]``, after its 0-based number
+        (``# cable 0 (NAME)``).
     trajectories : sequence of WaypointPath
         Written as ``[[trajectories]]`` tables (names must differ).
     workspace_box : sequence of 6 float, optional
@@ -120,9 +127,10 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     out += ["[tension_limits]", f"min = {_num(t_min)}                                # [N]"]
     if np.isfinite(t_max):
         out += [f"max = {_num(t_max)}                                # [N]"]
-    out += ["", "# anchor a_j [m, base frame]; attachment b_j [m, platform frame]"]
+    out += ["", "# anchor a_j [m, base frame]; attachment b_j [m, platform frame]; cables are",
+            "# numbered from 0 in the order below, as in every output of dynstiff"]
     for k in range(robot.n_cables):
-        label = cable_names[k] if cable_names is not None else f"cable {k + 1}"
+        label = f"cable {k}" + (f" ({cable_names[k]})" if cable_names is not None else "")
         out += [f"[[cables]]                                  # {label}",
                 f"anchor = {_vec(robot.anchors[k])}",
                 f"attachment = {_vec(robot.attachments[k])}"]

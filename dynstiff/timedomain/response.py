@@ -158,7 +158,9 @@ class TimeResponse:
         """Windowed amplitude spectrum of a platform channel, with identified peaks.
 
         The mean is removed, the window applied and the one-sided amplitude scaled by the
-        window sum, so that a sinusoid of amplitude A gives a peak of about A. Peaks are
+        window sum (:func:`scipy.signal.periodogram`, ``scaling="spectrum"``, whose power
+        A^2 / 2 of a sinusoid gives back its amplitude A), so that a sinusoid of amplitude A
+        gives a peak of about A. Peaks are
         local maxima (:func:`scipy.signal.find_peaks`) above ``threshold`` times the
         largest one and at least 4 bins apart (the Hann main lobe width, so its side lobes
         are not reported; closer modes are not separated); each is refined by a parabola
@@ -193,10 +195,9 @@ class TimeResponse:
             raise InvalidParameterError(
                 f"t_start = {t_start!r} leaves {y.size} samples; at least 8 are needed")
         fs = 1.0 / (self.dt * self.record_every)
-        w = scipy.signal.get_window(window, y.size)
-        X = np.fft.rfft((y - y.mean()) * w)
-        amp = np.abs(X) * 2.0 / w.sum()
-        freq = np.fft.rfftfreq(y.size, 1.0 / fs)
+        freq, power = scipy.signal.periodogram(y, fs=fs, window=window, detrend="constant",
+                                               scaling="spectrum")
+        amp = np.sqrt(2.0 * power)              # a sinusoid's power A^2 / 2 -> amplitude A
         top = amp[1:].max(initial=0.0)
         idx, _ = scipy.signal.find_peaks(
             amp, height=threshold * top, distance=4,

@@ -1,0 +1,64 @@
+"""The console of the command line (dynstiff/cli/console.py): progress bars (tqdm) on a
+terminal, silenced by --quiet and off where standard error is not a terminal."""
+
+import io
+import sys
+
+from dynstiff.cli import main
+from dynstiff.cli.console import ProgressBar, elapsed
+
+
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+def _tty(monkeypatch):
+    """Standard error as a terminal (set in the test itself: pytest sets its own capture
+    at the start of each phase)."""
+    err = _Terminal()
+    monkeypatch.setattr(sys, "stderr", err)
+    return err
+
+
+def test_progress_bar_counts_to_the_end_on_a_terminal(monkeypatch):
+    tty = _tty(monkeypatch)
+    bar = ProgressBar("poses", unit="pose")
+    for k in range(1, 5):
+        bar(k, 4)
+    text = tty.getvalue()
+    assert "poses: 100%" in text and "4/4" in text
+    assert bar.bar.n == 4
+
+
+def test_progress_is_off_when_quiet_or_not_a_terminal(monkeypatch):
+    tty = _tty(monkeypatch)
+    ProgressBar("poses", quiet=True)(2, 2)
+    with elapsed("work", quiet=True):
+        pass
+    assert tty.getvalue() == ""
+    pipe = io.StringIO()                        # not a tty: tqdm switches itself off
+    monkeypatch.setattr(sys, "stderr", pipe)
+    ProgressBar("poses")(2, 2)
+    assert pipe.getvalue() == ""
+
+
+def test_sweep_draws_its_bar_and_quiet_silences_it(monkeypatch):
+    tty = _tty(monkeypatch)
+    import dynstiff as ds
+    m = ds.load_scene("planar2").robot.platform.mass
+    argv = ["sweep", "planar2", "--parameter", "mass", "--values", str(m), str(1.1 * m), "-n",
+            "2"]
+    assert main(argv) == 0
+    assert "sweep planar2: 100%" in tty.getvalue() and "2/2" in tty.getvalue()
+    tty.seek(0)
+    tty.truncate()
+    assert main(argv + ["--quiet"]) == 0
+    assert tty.getvalue() == ""
+
+
+def test_elapsed_shows_the_label_and_the_time(monkeypatch):
+    tty = _tty(monkeypatch)
+    with elapsed("report planar2"):
+        pass
+    assert "report planar2: 00:00" in tty.getvalue()      # drawn, then cleared (leave=False)
