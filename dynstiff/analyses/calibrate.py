@@ -48,12 +48,10 @@ spectrum. The sensitivities at the estimate are the analytic ones, or central di
 """
 
 from dataclasses import dataclass, replace
-from numbers import Real
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
-from dynstiff.analyses.calibration_checks import calibration_findings, report_findings
+from dynstiff.analyses.calibration_checks import calibration_findings, fit_options, report_findings
 from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
@@ -77,8 +75,7 @@ def _expand(parameters, n_cables):
     if isinstance(parameters, str):
         parameters = (parameters,)
     if not isinstance(parameters, (tuple, list)) or not parameters:
-        raise InvalidParameterError(f"parameters must be a name or a sequence of names among "
-                                    f"{PARAMETERS}, got {parameters!r}")
+        raise InvalidParameterError(f"parameters must be names among {PARAMETERS}")
     names = []
     for p in parameters:
         if p == "EA_*":
@@ -348,16 +345,7 @@ def calibrate(scene_or_robot, measured, parameters=("EA",), pose=None, rung="dsm
             f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
     analytic = analytic and jacobian != "differences"
     asked_jacobian = jacobian
-    if (isinstance(confidence, (bool, np.bool_)) or not isinstance(confidence, Real)
-            or not 0 < confidence < 1):
-        raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
-    try:
-        b_lo, b_hi = (positive_scalar("bounds", b) for b in bounds)
-    except (TypeError, ValueError):
-        b_lo = b_hi = np.nan
-    if not b_lo < 1 < b_hi:
-        raise InvalidParameterError(f"bounds must be (low, high) factors of the start with "
-                                    f"0 < low < 1 < high, got {bounds!r}")
+    b_lo, b_hi = fit_options(confidence, bounds)
     for name, value in (start or {}).items():
         if name not in names:
             raise InvalidParameterError(f"start names {name!r}, not a fitted parameter {names}")
