@@ -1,4 +1,4 @@
-"""Checks of a workspace map made before its first pose (docs/theory.md §13.7): the options of
+"""Checks of a workspace map made before its first pose (docs/theory.md §13.8): the options of
 the model (a bad one is an error naming it, never a map of "infeasible" poses), the shape
 of the orientations (checked, never reshaped), and the size of the run (poses, memory and
 time estimated, refused beyond a stated limit with the option to change).

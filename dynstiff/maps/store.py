@@ -1,4 +1,4 @@
-"""The saved chunks of a workspace map, so that an interrupted run resumes (docs/theory.md §13.7).
+"""The saved chunks of a workspace map, so that an interrupted run resumes (docs/theory.md §13.8).
 
 A checkpoint is a folder: ``run.json`` (a fingerprint of everything the numbers depend on:
 the poses, the robots, the options, the model and the chunking) and one
