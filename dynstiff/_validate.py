@@ -15,7 +15,10 @@ if TYPE_CHECKING:
 
 
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
-    """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0."""
+    """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0
+    (a bool is not a number: ``True`` is refused, never read as 1)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
     try:
         x = float(value)
     except (TypeError, ValueError):

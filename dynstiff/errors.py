@@ -24,6 +24,7 @@ __all__ = [
     "ResonanceWarning",
     "CalibrationWarning",
     "CalibrationError",
+    "Interrupted",
 ]
 
 
@@ -224,3 +225,14 @@ def user_stacklevel() -> int:
     while frame is not None and frame.f_code.co_filename.startswith(package):
         frame, level = frame.f_back, level + 1
     return level
+
+
+class Interrupted(KeyboardInterrupt):
+    """A long run stopped by Ctrl-C (a KeyboardInterrupt) after saving what it had: the
+    message says how much is saved and how to resume; ``saved`` and ``total`` count the
+    items (e.g. poses)."""
+
+    def __init__(self, message, saved=0, total=0):
+        super().__init__(message)
+        self.saved = saved
+        self.total = total

@@ -35,7 +35,8 @@ class Cable:
         Viscous damping c per unit length [N s/m^2], >= 0. Enters the linear dynamics as the
         complex mass m - i c / omega (Starossek 1994, eq. 1: H v'' + h y'' = m v_tt + c v_t).
     loss_factor : float, optional
-        Hysteretic (structural) loss factor eta [-], >= 0; the dynamics use EA (1 + i eta).
+        Hysteretic (structural) loss factor eta [-], in [0, 1) (steel and fibre ropes hold
+        1e-3 to 0.1; eta >= 1 is no longer light damping); the dynamics use EA (1 + i eta).
 
     Raises
     ------
@@ -62,8 +63,11 @@ class Cable:
         object.__setattr__(self, "viscous_damping",
                            positive_scalar("viscous_damping", self.viscous_damping,
                                            allow_zero=True))
-        object.__setattr__(self, "loss_factor",
-                           positive_scalar("loss_factor", self.loss_factor, allow_zero=True))
+        eta = positive_scalar("loss_factor", self.loss_factor, allow_zero=True)
+        if not eta < 1:
+            from dynstiff.errors import InvalidParameterError
+            raise InvalidParameterError(f"loss_factor must be in [0, 1) [-], got {eta!r}")
+        object.__setattr__(self, "loss_factor", eta)
 
     @property
     def is_damped(self) -> bool:

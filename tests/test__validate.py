@@ -15,7 +15,8 @@ def test_errors_are_typed_and_subclass_builtins():
 
 @pytest.mark.parametrize("value, match", [
     ("abc", "g must be a real number"), (np.nan, "g must be finite"), (-1.0, "g must be > 0"),
-    (0.0, "g must be > 0")])
+    (0.0, "g must be > 0"), (True, "g must be a real number, got True"),
+    (np.bool_(True), "g must be a real number")])
 def test_positive_scalar(value, match):
     with pytest.raises(InvalidParameterError, match=match):
         positive_scalar("g", value)

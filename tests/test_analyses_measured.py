@@ -112,6 +112,36 @@ def test_measured_frf_files_read_back(tmp_path, model, suffix):
     np.testing.assert_allclose(back.freq_hz, res.freq_hz, rtol=1e-14)
 
 
+def test_uff_direction_signs_are_honoured_and_unknown_types_refused(tmp_path, model):
+    """A response along -z (direction code -3) is the +z response with its sign flipped, as
+    is a force along -fz; a second record of the same pair, another function type (time
+    response), an unknown data type or a time abscissa is refused naming the record."""
+    pyuff = pytest.importorskip("pyuff")
+    from dynstiff.io.exchange import uff58_records
+    res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 4.0, 12), inputs=["fz", "mx"],
+                 outputs=["z"])
+    recs = uff58_records(res, binary=True)
+
+    def read(records, name):
+        path = tmp_path / name
+        pyuff.UFF(str(path)).write_sets(records, mode="add")
+        return read_measured_frf(path)
+    flipped = [dict(recs[0], rsp_dir=-3), dict(recs[1], ref_dir=-4)]
+    back = read(flipped, "neg.uff")
+    assert back.outputs == ("z",) and back.inputs == ("fz", "mx")
+    np.testing.assert_array_equal(back.H, -res.H)
+    both = [dict(recs[0], rsp_dir=-3, ref_dir=-3)]
+    np.testing.assert_array_equal(read(both, "both.uff").H[:, 0, 0], res.H[:, 0, 0])
+    for k, (change, match) in enumerate([
+            ({"rsp_dir": -3}, "record 2 .*: a second record of z/fz"),
+            ({"func_type": 1}, "record 2 .*function type 1 is not one dynstiff reads"),
+            ({"ordinate_spec_data_type": 9}, "record 2 .*data type 9 is not one"),
+            ({"abscissa_spec_data_type": 17}, "record 2 .*abscissa type 17"),
+            ({"rsp_dir": 7}, "record 2 .*direction rsp_dir=7")]):
+        with pytest.raises(ds.InvalidParameterError, match=match):
+            read([recs[0], dict(recs[0], **change)], f"bad{k}.uff")
+
+
 def test_compare_frf_overlays_and_scores(model):
     f = np.linspace(0.5, 4.0, 40)
     truth = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs=["z", "rx"])

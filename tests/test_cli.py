@@ -2,6 +2,7 @@
 modes, frf, sweep, simulate and check; their tables and figures are read back and compared
 with the library, and bad arguments exit with status 2 and a message naming them."""
 
+import os
 import re
 import subprocess
 import sys
@@ -117,6 +118,52 @@ def test_debug_shows_the_traceback_and_dash_writes_to_stdout(capsys):
     assert "dsm model" in cap.err                 # the report moves out of the data's way
 
 
+
+
+# ---------------------------------------------------------- outputs never replace inputs
+def _files(*paths):
+    return [(p.read_bytes(), p.stat().st_mtime_ns) for p in paths]
+
+
+def test_no_command_writes_over_its_inputs_or_one_output_over_another(tmp_path):
+    """Each command refuses, before any work, an output that is one of its inputs (also
+    through a link) or another output: exit 2, one line naming both, the files unchanged."""
+    from pathlib import Path
+    scene = tmp_path / "scene.toml"
+    scene.write_text((Path(ds.__file__).parent / "scenes" / "fourcable.toml").read_text())
+    measured = tmp_path / "m.csv"
+    measured.write_text("freq [Hz]\n4.2\n")
+    link = tmp_path / "link.csv"
+    os.link(measured, link)
+    old_map = tmp_path / "x.nc"
+    old_map.write_bytes(b"an old map")
+    caspr = Path(__file__).parent / "data" / "caspr"
+    bodies = tmp_path / "bodies.xml"
+    bodies.write_text((caspr / "CoGiRo_bodies.xml").read_text())
+    keep = [scene, measured, old_map, bodies]
+    before = _files(*keep)
+    cases = [
+        (("workspace", scene, "--step", 0.5, "--out", tmp_path / "w.nc", "--csv", scene),
+         "--csv .*scene.toml is the same file as scene"),
+        (("calibrate", scene, "--measured", measured, "--parameter", "EA", "--csv", measured),
+         "--csv .*m.csv is the same file as --measured"),
+        (("calibrate", "cogiro", "--measured", measured, "--parameter", "EA", "--csv", link),
+         "--csv .*link.csv is the same file as --measured"),          # a hard link
+        (("import-caspr", bodies, caspr / "CoGiRo_cables.xml", "--mass-per-length", 0.01,
+          "--EA", 1e5, "--out", bodies), "--out .*bodies.xml is the same file as bodies"),
+        (("workspace", scene, "--step", 0.5, "--out", old_map, "--csv", old_map),
+         "--csv .*x.nc is the same file as --out .*two outputs"),
+        (("frf", scene, "--uff", scene), "--uff .* is the same file as scene"),
+        (("modes", scene, "--csv", tmp_path / "t.csv", "--json", tmp_path / "t.csv"),
+         "--json .* is the same file as --csv"),
+    ]
+    for args, message in cases:
+        out = run_cli(*map(str, args))
+        assert out.returncode == 2, (args, out.stderr)
+        assert out.stderr.count("\n") == 1 and re.search(message, out.stderr), out.stderr
+    assert _files(*keep) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["scene.toml", "m.csv", "link.csv", "x.nc", "bodies.xml"])
 
 
 # ------------------------------------------------------------------- one vocabulary

@@ -81,7 +81,7 @@ def test_import_caspr_never_writes_over_an_input(tmp_path):
     before = cables.read_text()
     out = run_cli("import-caspr", DATA / "InvertedStewart_bodies.xml", cables,
                   "--mass-per-length", 0.01, "--EA", 1e5, "--out", cables)
-    assert out.returncode == 2 and "is one of the input files" in out.stderr
+    assert out.returncode == 2 and "is the same file as cables" in out.stderr
     assert cables.read_text() == before
 
 

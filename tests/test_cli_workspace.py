@@ -59,6 +59,12 @@ def test_workspace_command_maps_the_frequency_optimal_tensions(tmp_path):
       "--workers", "2", "--scheduler", "tcp://x:1"], "not allowed with"),
     (["--step", "1", "--out", "m.nc"], "--box X0 X1 Y0 Y1 Z0 Z1 is needed: scene 'cogiro' "
                                        "has no [workspace] box"),
+    (["--box", "-6", "6", "-4", "4", "0", "5", "--step", "0.1", "--out", "m.nc"],
+     "gives 499,851 poses, more than max_poses=200,000 (about "),
+    (["--box", "-6", "6", "-4", "4", "0", "5", "--step", "0.0005", "--out", "m.nc"],
+     "more than 10000: raise step= (--step)"),
+    (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc", "-n", "30000"],
+     "n_modes must be at most max_modes=2000"),
 ])
 def test_bad_workspace_arguments_fail_on_one_line(tmp_path, args, match):
     r = run("cogiro", *args, cwd=tmp_path)
@@ -76,3 +82,42 @@ def test_workspace_box_defaults_to_the_scenes(tmp_path):
     m = open_workspace(tmp_path / "m.nc")
     assert m["x"].values.tolist() == [-1.0, 1.0] and m["z"].values.tolist() == [0.5, 2.5]
     assert int(m["feasible"].sum()) == 8
+
+
+def test_an_interrupted_workspace_command_resumes(tmp_path, monkeypatch, capsys):
+    """Ctrl-C (planted in the per-pose statics) stops the command with one line, exit 130,
+    the completed chunks saved beside --out; a run without --resume is refused; --resume
+    writes the map of an uninterrupted run and removes the saved chunks."""
+    import dynstiff.maps.workspace as wsmod
+    from dynstiff.cli import main
+    from dynstiff.maps.dataset import open_workspace
+    monkeypatch.chdir(tmp_path)
+    args = ["workspace", "cogiro", "--box", "-6", "6", "-4", "4", "1", "1", "--step", "4",
+            "-n", "3", "--chunk-size", "4", "--quiet"]
+    assert main(args + ["--out", "whole.nc"]) == 0
+    statics, calls = wsmod.tension_equilibrium, [0]
+
+    def planted(*a, **kw):
+        calls[0] += 1
+        if calls[0] > 5:
+            raise KeyboardInterrupt
+        return statics(*a, **kw)
+    monkeypatch.setattr(wsmod, "tension_equilibrium", planted)
+    capsys.readouterr()
+    assert main(args + ["--out", "m.nc"]) == 130
+    err = capsys.readouterr().err.strip()
+    assert err == ("dynstiff: workspace interrupted: 4 of 12 poses saved in m.nc.parts; run "
+                   "again with resume=True (dynstiff workspace --resume) to continue")
+    assert not (tmp_path / "m.nc").exists() and (tmp_path / "m.nc.parts").is_dir()
+    monkeypatch.undo()
+    monkeypatch.chdir(tmp_path)
+    assert main(args + ["--out", "m.nc"]) == 2
+    assert "holds a run already: give resume=True (--resume)" in capsys.readouterr().err
+    assert main(args + ["--out", "m.nc", "--resume"]) == 0
+    assert not (tmp_path / "m.nc.parts").exists()
+    a, b = open_workspace(tmp_path / "m.nc"), open_workspace(tmp_path / "whole.nc")
+    for name in a.data_vars:
+        if a[name].dtype == object:                    # the reasons
+            assert a[name].values.tolist() == b[name].values.tolist(), name
+        else:
+            assert a[name].values.tobytes() == b[name].values.tobytes(), name

@@ -5,7 +5,9 @@ TypeError, OverflowError, LinAlgError, a NaN in a result, a traceback from the c
 is a failure.
 
 Each fuzzer runs a few dozen examples in the default tier and thousands in the slow tier
-(``-m slow``: 11,000 examples in all).
+(``-m slow``: 22,000 examples in all). The workspace options, the calibration, the readers
+and writers of files and the output paths of the command line add one more rule: on an
+error, no file is changed.
 """
 
 import contextlib
@@ -236,3 +238,251 @@ def _in_tmp(tmp_path, monkeypatch):
 
 test_command_line = _cli_fuzzer(FAST)
 test_command_line_long = pytest.mark.slow(_cli_fuzzer(1000))
+
+
+
+# ------------------------------------------------------------- workspace and calibration
+counts = st.one_of(weird_scalars, st.integers(-2, 5))
+orientation_arrays = st.one_of(
+    st.none(), weird_vectors, st.sampled_from([np.zeros((3, 2)), np.zeros((2, 3)),
+                                               np.zeros((1, 3, 1)), np.zeros((0, 3)),
+                                               np.array([[0, 0, 0.1]]), [[0, 0, np.nan]]]))
+
+
+def _workspace_fuzzer(n):
+    @_settings(n)
+    @given(step=weird_scalars, n_modes=counts, chunk_size=counts, max_poses=counts,
+           orientations=orientation_arrays, rung=st.sampled_from(["dsm", "spring", "exact"]),
+           option=st.sampled_from(["fmax_hz", "guard_rtol", "cable_loss_factor", "tension",
+                                   "order", None]), value=weird_scalars,
+           values=st.one_of(st.none(), weird_vectors))
+    def check(robot, step, n_modes, chunk_size, max_poses, orientations, rung, option, value,
+              values):
+        kw = {} if option is None else {option: value}
+        if rung == "exact" and option not in (None, "fmax_hz"):
+            return                          # the exact rung's poses are mapped elsewhere
+        if rung == "exact":
+            kw["fmax_hz"] = -1.0 if option is None else value   # refused, or mapped quickly
+        names = ["step", "n_modes", "chunk_size", "max_poses", "orientations", "values",
+                 "box", "poses", "EA", *kw]
+        ds_ = obey_the_rule(lambda: ds.workspace(
+            robot, box=(0.0, 0.0, 0.0, 0.0, -10.0, -10.0), step=step, n_modes=n_modes,
+            chunk_size=chunk_size, max_poses=max_poses, orientations=orientations,
+            parameter=None if values is None else "EA", values=values, max_modes=5,
+            rung=rung, **kw), names)
+        if ds_ is not None:
+            feasible = ds_["feasible"].values
+            assert np.all(np.isfinite(ds_["tension"].values[feasible]))
+            assert ds_["feasible"].size <= (max_poses if isinstance(max_poses, int) else 1e9)
+    return check
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return ds.load_scene("planar2").robot
+
+
+test_workspace_options = _workspace_fuzzer(FAST)
+test_workspace_options_long = pytest.mark.slow(_workspace_fuzzer(1500))
+
+
+def _calibration_fuzzer(n):
+    @_settings(n)
+    # frequencies up to 8 Hz: a measured mode at kHz asks the model for thousands of
+    # modes (refused beyond max_modes, but only after they are counted)
+    @given(freq=st.one_of(weird_vectors.filter(lambda v: not isinstance(v, (int, float))
+                                               or isinstance(v, bool) or not abs(v) > 8),
+                          st.lists(st.floats(0.5, 5.0), min_size=1, max_size=3)),
+           parameters=st.one_of(st.sampled_from(["EA", "mass_per_length", "platform_mass",
+                                                 ("EA", "EA"), "stiffness", ()]),
+                                weird_scalars),
+           confidence=st.one_of(st.just(0.95), weird_scalars),
+           bounds=st.one_of(st.just((1e-2, 1e2)), weird_vectors))
+    def check(planar2, freq, parameters, confidence, bounds):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ds.CalibrationWarning)   # the oracle's subject
+            def fit():          # the numbers that must be finite (an interval may be NaN
+                r = ds.calibrate(planar2, freq, parameters=parameters,  # when the fit has
+                                 confidence=confidence, bounds=bounds,  # no residual left)
+                                 max_nfev=5)
+                return r.estimate, r.initial, r.fitted_hz, r.measured_hz
+            # max_nfev=5 keeps the examples short: a search it stops is a ConvergenceError
+            res = obey_the_rule(fit, ["measured", "freq", "parameter", "confidence",
+                                      "bounds", "damping", "EA", "mass", "fmax_hz",
+                                      "did not converge"])
+        if res is not None:
+            assert np.all(res[0] > 0)
+    return check
+
+
+@pytest.fixture(scope="module")
+def planar2():
+    return ds.load_scene("planar2")
+
+
+test_calibration = _calibration_fuzzer(FAST)
+test_calibration_long = pytest.mark.slow(_calibration_fuzzer(500))
+
+
+# ------------------------------------------------------------------ readers and writers
+CELLS = st.one_of(st.sampled_from(["4.2", "0,5", "", "nan", "inf", "-1", "1e400", "x",
+                                   "\"1,2\"", " 3 ", "#", "1.0.0", "0x10", "½"]),
+                  st.floats(allow_nan=True).map(repr), st.text(max_size=5))
+HEADERS = st.lists(st.sampled_from(["freq [Hz]", "frequency [Hz]", "x", "z [m]", "rz",
+                                    "sigma [Hz]", "damping ratio [-]", "note", "x"]),
+                   max_size=4)
+
+
+def _reader_fuzzer(n):
+    @_settings(n)
+    @given(header=HEADERS, rows=st.lists(st.lists(CELLS, max_size=5), max_size=4),
+           comment=st.booleans())
+    def check(tmp_path, header, rows, comment):
+        path = tmp_path / "measured.csv"
+        text = ("# scene: \"x\"\n" if comment else "") + "\n".join(
+            ",".join(r) for r in [header, *rows])
+        path.write_bytes(text.encode("utf-8", "surrogatepass"))
+        from dynstiff.analyses.measured import read_measured_modes
+        # NaN in a shape is "not measured": the frequencies, sigma and damping are finite
+        def numbers():
+            r = read_measured_modes(path)
+            return [r.freq_hz] + [v for v in (r.sigma_hz, r.damping_ratio) if v is not None]
+        m = obey_the_rule(numbers, [str(path)])
+        if m is not None:
+            assert np.all(m[0] > 0)
+        assert path.read_bytes() == text.encode("utf-8", "surrogatepass")
+    return check
+
+
+test_measured_tables = _reader_fuzzer(FAST)
+test_measured_tables_long = pytest.mark.slow(_reader_fuzzer(4000))
+
+
+def _writer_fuzzer(n):
+    @_settings(n)
+    @given(text=st.text(max_size=50), fail_at=st.one_of(st.none(), st.integers(0, 3)),
+           store=st.booleans())
+    def check(tmp_path, text, fail_at, store):
+        from dynstiff.io.files import atomic_path, write_text
+        target = tmp_path / ("old.zarr" if store else "old.csv")
+        if store:
+            target.mkdir(exist_ok=True)
+            (target / "a").write_text("old")
+        else:
+            target.write_text("old")
+        before = sorted(p.name for p in tmp_path.iterdir())
+        try:
+            with atomic_path(target) as tmp:
+                for step in range(4):
+                    if step == fail_at:
+                        raise OSError("planted")
+                    if step == 1:
+                        if store:
+                            import os
+                            os.mkdir(tmp)
+                            write_text(os.path.join(tmp, "a"), text)
+                        else:
+                            write_text(tmp, text)
+        except OSError as exc:
+            assert "planted" in str(exc) or "wrote nothing" in str(exc)
+            assert (target / "a" if store else target).read_text() == "old"
+        else:
+            with open(target / "a" if store else target, encoding="utf-8", newline="") as fh:
+                assert fh.read() == text
+        assert sorted(p.name for p in tmp_path.iterdir()) == before
+    return check
+
+
+test_atomic_writes = _writer_fuzzer(FAST)
+test_atomic_writes_long = pytest.mark.slow(_writer_fuzzer(1500))
+
+
+def _uff_fuzzer(n):
+    @_settings(n)
+    @given(bad=st.lists(st.sampled_from([np.nan, np.inf, -np.inf, 1.0, 1e308]), min_size=1,
+                        max_size=3), kind=st.sampled_from(["receptance", "mobility",
+                                                            "compliance"]))
+    def check(tmp_path, bad, kind):
+        pytest.importorskip("pyuff")
+        path = tmp_path / "old.uff"
+        path.write_bytes(b"an old file")
+        H = np.ones((len(bad) + 1, 1, 1), complex)
+        H[1:, 0, 0] = bad
+        res = ds.FRFResult(np.arange(1.0, len(bad) + 2), H, ("fz",), ("z",), kind)
+        got = obey_the_rule(lambda: res.to_uff(path), ["inf or NaN", "kind"])
+        if got is None:
+            assert path.read_bytes() == b"an old file"
+        else:
+            assert np.all(np.isfinite(H)) and kind != "compliance"
+        assert [p.name for p in tmp_path.iterdir()] == ["old.uff"]
+    return check
+
+
+test_uff_writer = _uff_fuzzer(FAST)
+test_uff_writer_long = pytest.mark.slow(_uff_fuzzer(500))
+
+
+# ---------------------------------------------------------------------- output paths
+PATH_CHOICES = ["scene.toml", "m.csv", "link.csv", "sym.csv", "new.csv", "new.nc", "-",
+                "sub/../m.csv", "./scene.toml", "other.png"]
+
+
+def _paths_fuzzer(n):
+    @_settings(n)
+    @given(command=st.sampled_from(["workspace", "calibrate", "modes", "frf", "sweep"]),
+           outputs=st.lists(st.tuples(st.sampled_from(["--csv", "--json", "--plot",
+                                                       "--uff", "--out"]),
+                                      st.sampled_from(PATH_CHOICES)), max_size=3,
+                            unique_by=lambda t: t[0]))
+    def check(tmp_path, command, outputs):
+        import os
+
+        from dynstiff.cli import build_parser
+        from dynstiff.cli.common import check_outputs
+        from dynstiff.io.files import OutputPathError
+        for name in ("scene.toml", "m.csv"):
+            if not (tmp_path / name).exists():
+                (tmp_path / name).write_text("old")
+        if not (tmp_path / "link.csv").exists():
+            os.link(tmp_path / "m.csv", tmp_path / "link.csv")
+            os.symlink(tmp_path / "scene.toml", tmp_path / "sym.csv")
+            (tmp_path / "sub").mkdir()
+        argv = [command, "scene.toml"]
+        argv += {"workspace": ["--step", "1"], "calibrate": ["--measured", "m.csv",
+                                                              "--parameter", "EA"]}.get(
+                                                                  command, [])
+        for opt, value in outputs:
+            argv += [opt, value]
+        try:
+            args = build_parser().parse_args(argv)
+        except BaseException:            # an option the command does not take
+            return
+        real = {}
+        for opt, value in outputs:
+            if value != "-" or opt in ("--plot", "--uff", "--out"):
+                real.setdefault(os.path.realpath(value) if value != "sym.csv"
+                                else str(tmp_path / "scene.toml"), []).append(opt)
+        inputs = {str(tmp_path / "scene.toml")} | (
+            {str(tmp_path / "m.csv")} if command == "calibrate" else set())
+        hard = {str(tmp_path / "link.csv"): str(tmp_path / "m.csv")}
+        merged = {}
+        for k, v in real.items():
+            merged.setdefault(hard.get(k, k), []).extend(v)
+        real = merged
+        clash = any(k in inputs or len(v) > 1 for k, v in real.items())
+        try:
+            check_outputs(args)
+        except OutputPathError as exc:
+            assert clash, str(exc)
+            assert any(opt in str(exc) for opt, _ in outputs)
+        except ds.InvalidParameterError:
+            pass                         # another check of the same place (a suffix)
+        else:
+            assert not clash, argv
+        assert (tmp_path / "scene.toml").read_text() == "old"
+        assert (tmp_path / "m.csv").read_text() == "old"
+    return check
+
+
+test_output_paths = _paths_fuzzer(FAST)
+test_output_paths_long = pytest.mark.slow(_paths_fuzzer(3000))

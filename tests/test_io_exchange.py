@@ -100,6 +100,31 @@ def test_missing_library_names_the_extra(monkeypatch):
         require("pyuff")
 
 
+def test_a_bad_frf_leaves_an_existing_uff_file_as_it_was(tmp_path, model, monkeypatch):
+    """The data are checked before the file is touched; a writer failing half way through
+    (a planted error in pyuff) leaves the old file byte for byte and no temporary."""
+    res = ds.frf(model, [1.0, 2.0], inputs="fz", outputs="z")
+    path = tmp_path / "old.uff"
+    res.to_uff(path)
+    before = (path.read_bytes(), path.stat().st_mtime_ns)
+    H = res.H.copy()
+    H[1, 0, 0] = np.nan
+    bad = ds.FRFResult(res.freq_hz, H, res.inputs, res.outputs, res.kind)
+    with pytest.raises(ds.InvalidParameterError, match="inf or NaN"):
+        bad.to_uff(path)
+    assert (path.read_bytes(), path.stat().st_mtime_ns) == before
+
+    def broken(self, sets, mode="add"):
+        with open(self._filename, "a") as fh:
+            fh.write("    -1\n    58\n")
+        raise OSError("disk full (planted)")
+    monkeypatch.setattr(pyuff.UFF, "write_sets", broken)
+    with pytest.raises(OSError, match="planted"):
+        res.to_uff(path)
+    assert (path.read_bytes(), path.stat().st_mtime_ns) == before
+    assert [p.name for p in tmp_path.iterdir()] == ["old.uff"]
+
+
 @pytest.fixture(scope="module")
 def symmetric():
     """planar2 at x = 0: mirror symmetric about x = 0, so x/fz and z/fx vanish."""

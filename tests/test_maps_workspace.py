@@ -167,6 +167,24 @@ def test_box_grid_axes():
     ({"poses": [[0, 0, 1]], "rung": "beam"}, "rung"),
     ({"poses": [[0, 0, 1]], "workers": 0}, "workers"),
     ({"poses": [], }, "at least one pose"),
+    # options checked before the first pose: never a map of "infeasible" poses
+    ({"poses": [[0, 0, 1]], "rung": "exact", "fmax_hz": -1.0}, "fmax_hz must be > 0"),
+    ({"poses": [[0, 0, 1]], "rung": "exact", "fmax_hz": float("nan")}, "fmax_hz must be fin"),
+    ({"poses": [[0, 0, 1]], "rung": "exact", "fmax_hz": True}, "fmax_hz must be a number"),
+    ({"poses": [[0, 0, 1]], "fmax_hz": 10.0}, r"\['fmax_hz'\] do not apply to rung 'dsm'"),
+    ({"poses": [[0, 0, 1]], "cable_loss_factor": 1.5}, r"cable_loss_factor .*\[0, 1\)"),
+    ({"poses": [[0, 0, 1]], "rung": "lumped", "segments": 0}, "segments must be an integer"),
+    ({"poses": [[0, 0, 1]], "n_modes": 30000}, "n_modes must be at most max_modes=2000"),
+    ({"poses": [[0, 0, 1]], "n_modes": True}, "n_modes must be an integer"),
+    ({"box": (0, 1, 0, 1, 1, 2), "step": True}, "step must be a number > 0"),
+    ({"box": (0, 1, 0, 1, 1, 2), "step": 0.5, "orientations": np.zeros((3, 2))},
+     r"orientations .*shape \(n, 3\).*got shape \(3, 2\)"),
+    ({"box": (0, 1, 0, 1, 1, 2), "step": 0.5, "orientations": np.zeros((2, 3, 1))},
+     r"got shape \(2, 3, 1\)"),
+    ({"poses": [[0, 0, 1]], "parameter": "EA", "values": [True]}, "values must be"),
+    ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.001}, r"more than 10000: raise step= \(--step\)"),
+    ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.05}, r"3,918,901 poses, more than max_poses="),
+    ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.002, "max_poses": None}, r"GiB of memory \(this"),
 ])
 def test_bad_arguments_are_named(robot, kw, match):
     with pytest.raises(ds.InvalidParameterError, match=match):

@@ -15,6 +15,8 @@ from dynstiff.errors import InvalidParameterError
     (dict(mass_per_length=float("nan"), EA=1e5), "mass_per_length"),
     (dict(mass_per_length=0.1, EA=float("inf")), "EA"),
     (dict(mass_per_length=0.1, EA=1e5, loss_factor=-0.1), "loss_factor"),
+    (dict(mass_per_length=0.1, EA=1e5, loss_factor=1.0), r"loss_factor must be in \[0, 1\)"),
+    (dict(mass_per_length=0.1, EA=True), "EA must be a real number, got True"),
     (dict(mass_per_length=0.1, EA=1e5, viscous_damping=float("nan")), "viscous_damping"),
 ])
 def test_bad_cable_raises_naming_field(kwargs, name):

@@ -9,7 +9,8 @@ import importlib
 PACKAGES = ("dynstiff", "dynstiff.plot", "dynstiff.plot.workspace", "dynstiff.report.robot3d",
             "dynstiff.lumped", "dynstiff.scenes", "dynstiff.timedomain.trajectory",
             "dynstiff.timedomain.pendulum", "dynstiff.maps.workspace", "dynstiff.maps.dataset",
-            "dynstiff.io.caspr", "dynstiff.io.caspr_motion", "dynstiff.io.exchange")
+            "dynstiff.maps.guards", "dynstiff.maps.store", "dynstiff.io.caspr",
+            "dynstiff.io.caspr_motion", "dynstiff.io.exchange", "dynstiff.io.files")
 
 
 def missing_pages(env):

@@ -54,7 +54,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff.analyses.calibration_checks import calibration_findings, report_findings
+from dynstiff.analyses.calibration_checks import calibration_findings, fit_options, report_findings
 from dynstiff.analyses.calibration_result import CalibrationResult
 from dynstiff.analyses.damped import damped_modes
 from dynstiff.analyses.frf import frf as frf_of
@@ -89,6 +89,8 @@ JACOBIANS = ("auto", "analytic", "differences")
 def _expand(parameters: str | list[str] | tuple[str], n_cables: int) -> tuple[str, ...]:
     if isinstance(parameters, str):
         parameters = (parameters,)
+    if not isinstance(parameters, (tuple, list)) or not parameters:
+        raise InvalidParameterError(f"parameters must be names among {PARAMETERS}")
     names = []
     for p in parameters:
         if p == "EA_*":
@@ -254,8 +256,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
             f"parameter) on one of the rungs {SENSITIVITY_RUNGS}")
     analytic = analytic and jacobian != "differences"
     asked_jacobian = jacobian
-    if not 0 < confidence < 1:
-        raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
+    b_lo, b_hi = fit_options(confidence, bounds)
     for name, value in (start or {}).items():
         if name not in names:
             raise InvalidParameterError(f"start names {name!r}, not a fitted parameter {names}")
@@ -360,7 +361,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
 
     u0 = np.zeros(n)
     first = evaluate(u0)
-    lo, hi = np.log(bounds[0]), np.log(bounds[1])
+    lo, hi = np.log(b_lo), np.log(b_hi)
     sol = least_squares(residual, u0, jac=jacobian, bounds=(np.full(n, lo), np.full(n, hi)),
                         xtol=xtol, max_nfev=max_nfev)
     if sol.status <= 0:
@@ -394,7 +395,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
         measured, last["f"], (pairing if chosen_pairing is None else "chosen")
         if measured is not None else None,
         [first.get("modes"), last.get("modes")] if measured is not None else [], names,
-        sol.x, bounds), strict)
+        sol.x, (b_lo, b_hi)), strict)
     return CalibrationResult(
         parameters=names, initial=p0, estimate=p0 * np.exp(sol.x),
         ci_low=ci_low, ci_high=ci_high,

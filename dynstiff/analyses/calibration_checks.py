@@ -6,12 +6,20 @@ uncertainty, and whether an estimate sits on its search bound. Each finding is a
 """
 
 import warnings
+from numbers import Real
 
 import numpy as np
 
-from dynstiff.errors import CalibrationError, CalibrationWarning, user_stacklevel
+from dynstiff._validate import positive_scalar
+from dynstiff.errors import (
+    CalibrationError,
+    CalibrationWarning,
+    InvalidParameterError,
+    user_stacklevel,
+)
 
 __all__ = ["DEFAULT_RELATIVE_UNCERTAINTY", "RESIDUAL_LIMIT", "calibration_findings",
+           "fit_options",
            "report_findings"]
 
 #: Relative standard uncertainty of a measured frequency without ``sigma [Hz]`` [-].
@@ -90,3 +98,20 @@ def report_findings(findings, strict=False):
             raise CalibrationError(f"calibration: {message}", cause=cause)
         warnings.warn(CalibrationWarning(f"calibration: {message}", cause=cause),
                       stacklevel=user_stacklevel())
+
+
+def fit_options(confidence, bounds):
+    """The search bounds (low, high) of a calibration's factors, checked with its confidence
+    level (0 < confidence < 1; 0 < low < 1 < high: the start, factor 1, inside); a bool is
+    not a number. Raises InvalidParameterError naming the argument."""
+    if (isinstance(confidence, (bool, np.bool_)) or not isinstance(confidence, Real)
+            or not 0 < confidence < 1):
+        raise InvalidParameterError(f"confidence must be in (0, 1), got {confidence!r}")
+    try:
+        lo, hi = (positive_scalar("bounds", b) for b in bounds)
+    except (TypeError, ValueError):
+        lo = hi = np.nan
+    if not lo < 1 < hi:
+        raise InvalidParameterError(f"bounds must be (low, high) factors of the start with "
+                                    f"0 < low < 1 < high, got {bounds!r}")
+    return lo, hi

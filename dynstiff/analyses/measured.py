@@ -79,7 +79,10 @@ class MeasuredModes:
     damping_ratio: object = None
 
     def __post_init__(self) -> None:
-        f = np.atleast_1d(np.asarray(self.freq_hz, dtype=float))
+        try:
+            f = np.atleast_1d(np.asarray(self.freq_hz, dtype=float))
+        except (TypeError, ValueError):
+            f = np.empty(0)                     # text, complex or ragged: refused below
         if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):
             raise InvalidParameterError(
                 f"freq_hz must be a non-empty list of finite frequencies > 0 [Hz], got "

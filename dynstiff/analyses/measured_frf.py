@@ -33,9 +33,11 @@ def read_measured_frf(path: str | Path) -> FRFResult:
     Returns
     -------
     FRFResult
-        Channels from the UFF direction codes (1-6: x..rz for responses, fx..mz for loads);
+        Channels from the UFF direction codes (1-6: x..rz for responses, fx..mz for loads;
+        a negative code, a measurement along the negative axis, flips the sign of its data);
         kind from the ordinate data type (8, 11, 12). All records must share one frequency
-        axis and one kind.
+        axis and one kind; any other dataset 58 function type (4 only), data type or
+        abscissa (frequency) is refused naming its record.
 
     Examples
     --------
@@ -58,32 +60,42 @@ def read_measured_frf(path: str | Path) -> FRFResult:
     pyuff = require("pyuff")
     sets = pyuff.UFF(str(path)).read_sets()
     sets = [sets] if isinstance(sets, dict) else list(sets)
-    sets = [s for s in sets if s.get("type") == 58 and s.get("func_type") == 4]
+    sets = [(k, s) for k, s in enumerate(sets, start=1) if s.get("type") == 58]
+    kinds = {v: k for k, v in UFF_DATA_TYPES.items()}
+    loads = ("fx", "fy", "fz", "mx", "my", "mz")
+    for k, s in sets:
+        where = f"{path}: record {k} ({s.get('id1', '')!r})"
+        for key, known, what in (("func_type", (4,), "function type"),
+                                 ("ordinate_spec_data_type", tuple(kinds), "data type"),
+                                 ("abscissa_spec_data_type", (0, 18), "abscissa type")):
+            if s.get(key, 0 if key.startswith("abscissa") else None) not in known:
+                raise InvalidParameterError(
+                    f"{where}: {what} {s.get(key)!r} is not one dynstiff reads (one of "
+                    f"{known}: an FRF of receptance, mobility or accelerance over frequency)")
+        for key in ("rsp_dir", "ref_dir"):
+            if not 1 <= abs(int(s[key])) <= 6:
+                raise InvalidParameterError(f"{where}: direction {key}={s[key]} is not one "
+                                            f"of the 6 platform DOFs (+-1 to +-6)")
     if not sets:
         raise InvalidParameterError(f"{path}: no UFF 58 frequency response record "
                                     f"(function type 4)")
-    kinds = {v: k for k, v in UFF_DATA_TYPES.items()}
-    kind = {kinds.get(s.get("ordinate_spec_data_type"), "receptance") for s in sets}
-    f = np.asarray(sets[0]["x"], dtype=float)
+    kind = {kinds[s["ordinate_spec_data_type"]] for _, s in sets}
+    f = np.asarray(sets[0][1]["x"], dtype=float)
     if len(kind) > 1 or any(np.asarray(s["x"]).shape != f.shape
-                            or not np.allclose(s["x"], f, rtol=1e-5) for s in sets):
+                            or not np.allclose(s["x"], f, rtol=1e-5) for _, s in sets):
         raise InvalidParameterError(f"{path}: the records mix kinds {sorted(kind)} or "
                                     f"frequency axes; give one kind on one axis")
-    outs, ins = [], []
-    for s in sets:
-        for lst, name, names in ((outs, "rsp_dir", DOF_NAMES),
-                                 (ins, "ref_dir", ("fx", "fy", "fz", "mx", "my", "mz"))):
-            d = abs(int(s[name]))
-            if not 1 <= d <= 6:
-                raise InvalidParameterError(f"{path}: direction {s[name]} is not one of the "
-                                            f"6 platform DOFs (1-6)")
-            if names[d - 1] not in lst:
-                lst.append(names[d - 1])
+    pair = [(DOF_NAMES[abs(int(s["rsp_dir"])) - 1], loads[abs(int(s["ref_dir"])) - 1])
+            for _, s in sets]
+    outs, ins = list(dict.fromkeys(o for o, _ in pair)), list(dict.fromkeys(i for _, i in pair))
     H = np.full((f.size, len(outs), len(ins)), np.nan + 0j)
-    for s in sets:
-        o = outs.index(DOF_NAMES[abs(int(s["rsp_dir"])) - 1])
-        i = ins.index(("fx", "fy", "fz", "mx", "my", "mz")[abs(int(s["ref_dir"])) - 1])
-        H[:, o, i] = np.asarray(s["data"], dtype=complex)
+    for n, ((k, s), (o, i)) in enumerate(zip(sets, pair)):
+        if (o, i) in pair[:n]:
+            raise InvalidParameterError(f"{path}: record {k} ({s.get('id1', '')!r}): a "
+                                        f"second record of {o}/{i}")
+        # a response or a load along a negative direction (-1..-6): the sign is honoured
+        sign = np.sign(int(s["rsp_dir"])) * np.sign(int(s["ref_dir"]))
+        H[:, outs.index(o), ins.index(i)] = sign * np.asarray(s["data"], dtype=complex)
     return FRFResult(freq_hz=f, H=H, inputs=tuple(ins), outputs=tuple(outs), kind=kind.pop())
 
 

@@ -34,7 +34,8 @@ def build_parser():
 
 def main(argv=None):
     """Entry point; returns the process exit code: 0 done (``check``: all passed), 1 a check
-    failed, 2 an error, reported on one line (``--debug`` shows the traceback)."""
+    failed, 2 an error, reported on one line (``--debug`` shows the traceback), 130
+    interrupted (Ctrl-C; a workspace map says what it saved and how to resume)."""
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else list(argv)
     try:
@@ -55,6 +56,11 @@ def main(argv=None):
         import os
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except KeyboardInterrupt as exc:    # Ctrl-C: what is saved (dynstiff.errors.Interrupted)
+        if args.debug:
+            raise
+        sys.stderr.write(f"\ndynstiff: {exc or 'interrupted'}\n")
+        return 130
     except (DynstiffError, OSError, UnicodeDecodeError, MemoryError) as exc:
         if args.debug:
             raise

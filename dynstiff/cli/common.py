@@ -6,9 +6,10 @@ import sys
 
 from dynstiff.cli.console import ProgressBar
 
-__all__ = ["FIGURE_SUFFIXES", "ProgressBar", "check_outputs", "damping_option", "equilibrium",
-           "info", "pose_metadata", "save_figure", "scene_settings", "scene_trajectory",
-           "table_metadata", "write_table", "write_tables"]
+__all__ = ["FIGURE_SUFFIXES", "INPUT_ARGS", "OUTPUT_ARGS", "ProgressBar", "check_outputs",
+           "damping_option", "equilibrium", "file_arguments", "info", "pose_metadata",
+           "save_figure", "scene_settings", "scene_trajectory", "table_metadata",
+           "write_table", "write_tables"]
 
 
 def scene_settings(scene, args):
@@ -61,12 +62,43 @@ FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif
                     ".webp")
 
 
+#: The parsed arguments (attribute names) that name files a command reads ...
+INPUT_ARGS = ("scene", "measured", "bodies", "cables", "trajectories", "operational_spaces",
+              "orientations", "path")
+#: ... and those that name files (or folders) it writes.
+OUTPUT_ARGS = ("out", "csv", "json", "plot", "uff")
+
+
+def file_arguments(args):
+    """The (option, path) pairs of the files a command reads and of those it writes, from
+    the parsed arguments named in :data:`INPUT_ARGS` and :data:`OUTPUT_ARGS` (a scene given
+    by a built-in name is no file and is left out)."""
+    import os
+
+    def pairs(names):
+        found = []
+        for name in names:
+            value = getattr(args, name, None)
+            if isinstance(value, str) and value != "-":
+                if name == "scene" and not os.path.exists(value):
+                    continue
+                found.append((name if name in ("scene", "bodies", "cables")
+                              else "--" + name.replace("_", "-"), value))
+        return found
+    return pairs(INPUT_ARGS), pairs(OUTPUT_ARGS)
+
+
 def check_outputs(args):
-    """Refuse an output path before any work: a folder, a missing folder, or a figure format
+    """Refuse an output path before any work: one that is an input of the command or another
+    of its outputs (the same file, also through links:
+    :func:`dynstiff.io.files.check_paths`), a folder, a missing folder, or a figure format
     matplotlib does not write. ``-`` (``--csv``, ``--json``) is standard output."""
     from pathlib import Path
 
     from dynstiff.errors import InvalidParameterError
+    from dynstiff.io.files import check_paths
+    inputs, outputs = file_arguments(args)
+    check_paths(inputs, outputs)
     for opt in ("csv", "json", "plot", "uff"):
         value = getattr(args, opt, None)
         if value is None or (value == "-" and opt not in ("plot", "uff")):
@@ -159,8 +191,8 @@ def write_table(df, path, kind, metadata=None):
     if path == "-":
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
     else:
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write(text)
+        from dynstiff.io.files import write_text
+        write_text(path, text)                   # atomic: a failure leaves the old file
 
 
 def write_tables(args, df, metadata):
@@ -172,9 +204,13 @@ def write_tables(args, df, metadata):
 
 
 def save_figure(fig, path):
-    """Save a figure of ``--plot`` (laid out, 120 dpi) and close it."""
+    """Save a figure of ``--plot`` (laid out, 120 dpi), atomically
+    (:func:`dynstiff.io.files.atomic_path`), and close it."""
     import matplotlib.pyplot as plt
-    fig.savefig(path, dpi=120, bbox_inches="tight")
+
+    from dynstiff.io.files import atomic_path
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=120, bbox_inches="tight")
     plt.close(fig)
 
 

@@ -25,31 +25,26 @@ def _out(path, text):
     if path == "-":
         sys.stdout.write(text)
     else:
-        with open(path, "w", encoding="utf-8") as fh:
-            fh.write(text)
+        from dynstiff.io.files import write_text
+        write_text(path, text)
 
 
 def cmd_import_caspr(args):
     """``dynstiff import-caspr BODIES CABLES --mass-per-length M --EA EA --out FILE``."""
-    from pathlib import Path
 
-    from dynstiff.errors import InvalidParameterError
     from dynstiff.io.caspr import InertiaConventionWarning
+    from dynstiff.io.files import check_paths
     from dynstiff.params import Cable
     from dynstiff.scenes.caspr import caspr_comments, caspr_siblings, import_caspr
     from dynstiff.scenes.writer import scene_text
-    if args.out != "-":
-        given = [Path(p).resolve() for p in (args.bodies, args.cables, args.trajectories,
-                                             args.operational_spaces) if p]
-        if Path(args.out).resolve() in given:
-            raise InvalidParameterError(f"--out {args.out} is one of the input files; give "
-                                        f"another name")
     cable = Cable(mass_per_length=args.mass_per_length, EA=args.EA)
     traj, ops = args.trajectories, args.operational_spaces
     if not args.no_siblings:                 # CASPR's other files beside the bodies file
         found = caspr_siblings(args.bodies)
         traj = traj or found[0]
         ops = ops or found[1]
+    check_paths([("bodies", args.bodies), ("cables", args.cables), ("--trajectories", traj),
+                 ("--operational-spaces", ops)], [("--out", args.out)])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", InertiaConventionWarning)
         scene = import_caspr(args.bodies, args.cables, cable, cable_set=args.cable_set,

@@ -26,6 +26,7 @@ COLUMNS = {"x": "x [m]", "y": "y [m]", "z": "z [m]", "rx": "rx [rad]", "ry": "ry
 
 def add_parsers(sub):
     """Add the ``workspace`` subcommand to the subparsers ``sub`` of the dynstiff parser."""
+    from dynstiff.maps.guards import MAX_POSES
     ws = sub.add_parser(
         "workspace", help="map statics, modes and design checks over a box grid of positions "
                           "(optionally x orientations x a cable parameter); netCDF output")
@@ -65,6 +66,10 @@ def add_parsers(sub):
     add_outputs(ws, csv="one row per pose", json="one row per pose",
                 plot="the slices of the map")
     add_quiet(ws)
+    ws.add_argument("--resume", action="store_true",
+                    help="continue an interrupted run (its chunks are saved in OUT.parts)")
+    ws.add_argument("--max-poses", type=int, default=MAX_POSES,
+                    help="refuse a map of more poses (default %(default)s)")
     ws.set_defaults(func=_cmd_workspace)
     return ws
 
@@ -89,6 +94,7 @@ def _orientations(path):
 
 
 def _cmd_workspace(args):
+    import shutil
     from pathlib import Path
 
     import numpy as np
@@ -130,7 +136,8 @@ def _cmd_workspace(args):
               model_rtol=st.model_rtol, participation=st.participation,
               frf_limit=st.frf_limit, damping=st.damping, chunk_size=args.chunk_size,
               workers=args.workers, progress=not args.quiet, tensions=args.tensions,
-              rung=st.rung, **st.model_options())
+              rung=st.rung, max_poses=args.max_poses, checkpoint=f"{out}.parts",
+              resume=args.resume, **st.model_options())
     info = report_stream(args)
     if args.scheduler:
         try:
@@ -142,10 +149,9 @@ def _cmd_workspace(args):
             ds = workspace(scene.robot, client=client, **kw)
     else:
         ds = workspace(scene.robot, **kw)
-    if out.suffix == ".zarr":
-        ds.to_zarr(out, mode="w")
-    else:
-        ds.to_netcdf(out)
+    from dynstiff.maps.dataset import write_workspace
+    write_workspace(ds, out)
+    shutil.rmtree(f"{out}.parts", ignore_errors=True)      # the saved chunks: in the map now
     f1 = ds["first_platform_hz"].values
     info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
                f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "

@@ -179,15 +179,19 @@ def uff58_records(result, node=1, entity="platform", point_node=None, binary=Fal
 def write_uff58(result, path, **kw):
     """Write an FRF result to a UFF file (dataset 58; keywords: :func:`uff58_records`).
 
-    An existing file at ``path`` is replaced. Returns the path.
+    The records are built (and the data checked) first; then they are written to a
+    temporary file beside ``path`` that replaces it in one step
+    (:func:`dynstiff.io.files.atomic_path`), so an error leaves an existing file as it was.
+    Returns the path.
     """
     pyuff = require("pyuff")
     from pathlib import Path
+
+    from dynstiff.io.files import atomic_path
     path = Path(path)
-    if path.exists():
-        path.unlink()
-    uff = pyuff.UFF(str(path))
-    uff.write_sets(uff58_records(result, **kw), mode="add")
+    records = uff58_records(result, **kw)
+    with atomic_path(path) as tmp:
+        pyuff.UFF(tmp).write_sets(records, mode="add")
     return path
 
 

@@ -17,7 +17,7 @@ try:
 except ImportError as exc:            # pragma: no cover - depends on the environment
     raise ImportError('workspace maps need xarray: pip install "dynstiff[workspace]"') from exc
 
-__all__ = ["VARIABLES", "WorkspaceAccessor", "open_workspace", "to_dataset"]
+__all__ = ["VARIABLES", "WorkspaceAccessor", "open_workspace", "to_dataset", "write_workspace"]
 
 #: Variables of a workspace map: (extra dimensions, units, description).
 VARIABLES = {
@@ -159,6 +159,20 @@ def open_workspace(path, **kw):
         if name in ds and ds[name].dtype != bool:
             ds[name] = ds[name].astype(bool)
     return ds
+
+
+def write_workspace(ds, path):
+    """Write a workspace map to ``path``: netCDF, or Zarr for a name ending in ``.zarr``,
+    atomically (a temporary beside ``path`` that replaces it when complete:
+    :func:`dynstiff.io.files.atomic_path`), so a failure leaves an existing file as it was.
+    Returns ``path``; :func:`open_workspace` reads it back."""
+    from dynstiff.io.files import atomic_path
+    with atomic_path(path) as tmp:
+        if str(path).endswith(".zarr"):
+            ds.to_zarr(tmp, mode="w")
+        else:
+            ds.to_netcdf(tmp)
+    return path
 
 
 def _points(ds):

@@ -16,88 +16,34 @@ and ``chunk_size``, so a serial run, local processes and a Dask cluster compute 
 numbers. Results come back as an ``xarray.Dataset`` (:mod:`dynstiff.maps.dataset`).
 """
 
-import dataclasses
 import sys
 import time
 import warnings
-from numbers import Integral
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
 from dynstiff.analyses.checks import check_options, damped_model, modal_model_options
 from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
-from dynstiff.errors import ClosedFormWarning, DynstiffError, InvalidParameterError
+from dynstiff.errors import ClosedFormWarning, DynstiffError, Interrupted, InvalidParameterError
+from dynstiff.maps.arguments import box_grid, robot_with, validate_arguments
+from dynstiff.maps.guards import MAX_POSES, check_model_options, check_size, estimate_text
+from dynstiff.maps.store import resumed
 from dynstiff.models.dsm import ROBOT_BOUND_MESSAGE
-from dynstiff.models.ladder import RUNGS, build_model
-from dynstiff.params import DEFAULT_DAMPING, Cable, Damping
+from dynstiff.models.ladder import build_model
+from dynstiff.params import DEFAULT_DAMPING, Damping
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
 if TYPE_CHECKING:
+    import os
+
     import xarray
 
 __all__ = ["CHECKS", "box_grid", "evaluate_chunk", "workspace"]
-
-_CABLE_PARAMETERS = tuple(f.name for f in dataclasses.fields(Cable))
-
-
-def box_grid(box: "np.typing.ArrayLike",
-             step: "float | np.typing.ArrayLike") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Axes of a box grid of positions [m].
-
-    Parameters
-    ----------
-    box : sequence of 6 float
-        (x0, x1, y0, y1, z0, z1) [m], x0 <= x1 etc.
-    step : float
-        Grid spacing [m], > 0; each axis runs from its low end in steps of ``step`` up to
-        its high end (included when it falls on the grid, within 1e-9 step).
-
-    Returns
-    -------
-    tuple of three ndarray
-        x, y and z axes [m].
-
-    Examples
-    --------
-    >>> from dynstiff import box_grid
-    >>> x, y, z = box_grid([-0.5, 0.5, 0.0, 0.0, 1.0, 1.0], 0.5)
-    >>> x.tolist(), y.tolist(), z.tolist()
-    ([-0.5, 0.0, 0.5], [0.0], [1.0])
-    """
-    try:
-        b = np.asarray(box, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(f"box must be 6 numbers x0 x1 y0 y1 z0 z1 [m], got "
-                                    f"{box!r}") from None
-    if b.shape != (6,) or not np.all(np.isfinite(b)) or np.any(b[1::2] < b[0::2]):
-        raise InvalidParameterError(
-            f"box must be 6 finite numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1, y0 <= y1, "
-            f"z0 <= z1, got {box!r}")
-    step = positive_scalar("step", step)
-    axes = []
-    for lo, hi in b.reshape(3, 2):
-        n = int(np.floor((hi - lo) / step + 1e-9)) + 1
-        if n > 10_000:
-            raise InvalidParameterError(
-                f"step {step!r} m gives {n} points along one axis of box {b.tolist()}; "
-                f"at most 10000")
-        axes.append(lo + step * np.arange(n))
-    return tuple(axes)
-
-
-def _robot_with(robot, parameter, value):
-    """The robot with cable field ``parameter`` set to ``value`` on every cable."""
-    if parameter is None:
-        return robot
-    cables = tuple(dataclasses.replace(c, **{parameter: float(value)}) for c in robot.cables)
-    return dataclasses.replace(robot, cables=cables)
-
 
 def _band_margin(pm, options):
     """Smallest relative distance outside the forbidden band of the modes the margin check
@@ -228,74 +174,6 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
     return out
 
 
-def _validated(robot, poses, box, step, orientations, parameter, values, n_modes, rung,
-               chunk_size, workers, client, damping):
-    if not isinstance(robot, Robot):
-        raise InvalidParameterError(f"robot must be a dynstiff.Robot, got "
-                                    f"{type(robot).__name__}")
-    if (poses is None) == (box is None):
-        raise InvalidParameterError("give exactly one of poses= (a list of poses) or box= "
-                                    "(with step=, a grid of positions)")
-    if box is not None:
-        if step is None:
-            raise InvalidParameterError("box= needs step= (the grid spacing [m])")
-        axes = box_grid(box, step)
-        rot = np.zeros((1, 3))
-        if orientations is not None:
-            try:
-                rot = np.asarray(orientations, dtype=float).reshape(-1, 3)
-            except (TypeError, ValueError):
-                raise InvalidParameterError(
-                    f"orientations must be rotation vectors, shape (n, 3) [rad], got "
-                    f"{orientations!r}") from None
-            if rot.shape[0] == 0 or not np.all(np.isfinite(rot)):
-                raise InvalidParameterError(
-                    f"orientations must be finite rotation vectors, shape (n, 3) [rad], got "
-                    f"{orientations!r}")
-        P = np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
-        X = np.concatenate([np.repeat(P, len(rot), axis=0), np.tile(rot, (len(P), 1))], 1)
-        layout = {"kind": "grid", "axes": axes, "orientations": None if orientations is None
-                      else rot}
-    else:
-        if orientations is not None:
-            raise InvalidParameterError("orientations= goes with box=; give each pose its "
-                                        "rotation in poses=")
-        try:
-            X = np.array([as_pose(p).as_vector() for p in poses])
-        except (TypeError, ValueError, DynstiffError) as exc:
-            raise InvalidParameterError(f"poses must be a sequence of poses (3 or 6 numbers "
-                                        f"or Pose): {exc}") from None
-        if X.shape[0] == 0:
-            raise InvalidParameterError("poses must hold at least one pose")
-        layout = {"kind": "poses"}
-    if (parameter is None) != (values is None):
-        raise InvalidParameterError("parameter= and values= go together")
-    if parameter is not None:
-        if parameter not in _CABLE_PARAMETERS:
-            raise InvalidParameterError(f"parameter must be a cable field, one of "
-                                        f"{_CABLE_PARAMETERS}, got {parameter!r}")
-        values = np.atleast_1d(np.asarray(values, dtype=float))
-        if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)):
-            raise InvalidParameterError(f"values must be a non-empty 1-D sequence of finite "
-                                        f"numbers, got {values!r}")
-        for v in values:                  # each value makes a valid cable (checked once)
-            _robot_with(robot, parameter, v)
-    for name, v in (("n_modes", n_modes), ("chunk_size", chunk_size)):
-        if isinstance(v, bool) or not isinstance(v, Integral) or v < 1:
-            raise InvalidParameterError(f"{name} must be an integer >= 1, got {v!r}")
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, Integral)
-                                or workers < 1):
-        raise InvalidParameterError(f"workers must be an integer >= 1, got {workers!r}")
-    if workers is not None and client is not None:
-        raise InvalidParameterError("give workers= (local processes) or client= (Dask), "
-                                    "not both")
-    if rung not in RUNGS:
-        raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
-    if not isinstance(damping, Damping):
-        raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
-    return X, layout, values
-
-
 class _Progress:
     """A tqdm bar on stderr: poses done, rate and time left (off when ``show`` is False or
     stderr is not a terminal)."""
@@ -314,31 +192,42 @@ class _Progress:
                 self.bar.close()
 
 
-def _run(tasks, workers, client, progress):
-    """Results of ``evaluate_chunk(*args)`` for every task, in task order: serially, on
-    ``workers`` local processes or on a Dask client."""
-    results = [None] * len(tasks)
+def _run(tasks, workers, client, progress, results, done):
+    """Fill ``results[i]`` with ``evaluate_chunk(*tasks[i])`` where it is None, in task
+    order: serially, on ``workers`` local processes or on a Dask client; ``done(i)`` is
+    called as each task completes (the checkpoint saves it)."""
+    todo = [i for i, r in enumerate(results) if r is None]
     if client is not None:
         from distributed import as_completed
-        futures = [client.submit(evaluate_chunk, *args, pure=False) for args in tasks]
-        index = {f.key: i for i, f in enumerate(futures)}
-        for fut in as_completed(futures):
-            i = index[fut.key]
-            results[i] = fut.result()
-            progress(len(tasks[i][1]))
+        futures = [client.submit(evaluate_chunk, *tasks[i], pure=False) for i in todo]
+        index = {f.key: i for i, f in zip(todo, futures)}
+        try:
+            for fut in as_completed(futures):
+                i = index[fut.key]
+                results[i] = fut.result()
+                done(i)
+                progress(len(tasks[i][1]))
+        finally:
+            client.cancel([f for f in futures if not f.done()])
         return results
     if workers is not None and workers > 1:
         from concurrent.futures import ProcessPoolExecutor, as_completed
         with ProcessPoolExecutor(max_workers=workers) as pool:
-            futures = {pool.submit(evaluate_chunk, *args): i for i, args in enumerate(tasks)}
-            for fut in as_completed(futures):
-                i = futures[fut]
-                results[i] = fut.result()
-                progress(len(tasks[i][1]))
+            futures = {pool.submit(evaluate_chunk, *tasks[i]): i for i in todo}
+            try:
+                for fut in as_completed(futures):
+                    i = futures[fut]
+                    results[i] = fut.result()
+                    done(i)
+                    progress(len(tasks[i][1]))
+            except BaseException:
+                pool.shutdown(wait=True, cancel_futures=True)
+                raise
         return results
-    for i, args in enumerate(tasks):
-        results[i] = evaluate_chunk(*args)
-        progress(len(args[1]))
+    for i in todo:
+        results[i] = evaluate_chunk(*tasks[i])
+        done(i)
+        progress(len(tasks[i][1]))
     return results
 
 
@@ -354,7 +243,9 @@ def workspace(robot: Robot, poses: "np.typing.ArrayLike | None" = None, *,
               model_band_hz: tuple[float, float] | None = None,
               max_modes: int = MAX_PLATFORM_MODES, rung: str = "dsm", chunk_size: int = 25,
               workers: int | None = None, client: object = None, progress: bool = False,
-              tensions: str = "default", **model_options: object) -> "xarray.Dataset":
+              tensions: str = "default", max_poses: int = MAX_POSES,
+              checkpoint: "str | os.PathLike[str] | None" = None, resume: bool = False,
+              **model_options: object) -> "xarray.Dataset":
     """Map statics, modes and the design checks over a grid or a list of poses.
 
     Every pose gets the verdicts :func:`dynstiff.analyses.checks.design_checks` gives it
@@ -397,8 +288,20 @@ damping, model_band_hz, max_modes
         The tension distribution at every pose: the default (closest to t_min) or the one
         that maximises the first platform mode (:func:`dynstiff.optimal_tensions`,
         warm-started from the neighbour's optimum along a chunk).
+    max_poses : int or None
+        Refuse a map of more poses (times parameter values) than this, before any work
+        (:data:`dynstiff.maps.guards.MAX_POSES`; None: no limit but the machine's memory,
+        :func:`dynstiff.maps.guards.check_size`).
+    checkpoint : str or path-like, optional
+        A folder where each task's results are saved as it completes
+        (:mod:`dynstiff.maps.store`); it is left in place (remove it once the map is saved).
+    resume : bool
+        Continue the run saved in ``checkpoint``: its tasks are read, not computed again,
+        and the map equals that of an uninterrupted run bit for bit. Without ``resume``, a
+        checkpoint that holds a run is refused.
     **model_options
-        Passed to :func:`dynstiff.models.ladder.build_model`.
+        Passed to :func:`dynstiff.models.ladder.build_model`; checked before any pose
+        (:func:`dynstiff.maps.guards.check_model_options`).
 
     Returns
     -------
@@ -406,6 +309,14 @@ damping, model_band_hz, max_modes
         Dimensions ``x, y, z[, orientation]`` (or ``pose``) ``[, parameter], mode, cable,
         check``; variables and attributes as :func:`dynstiff.maps.dataset.to_dataset`.
         Infeasible poses hold ``feasible = False``, their ``reason`` and NaN.
+
+    Raises
+    ------
+    InvalidParameterError
+        A bad argument, before the first pose.
+    dynstiff.errors.Interrupted
+        Ctrl-C (a KeyboardInterrupt) during the run: its message says how many poses are
+        saved in ``checkpoint`` and how to resume.
 
     Examples
     --------
@@ -419,23 +330,46 @@ damping, model_band_hz, max_modes
     """
     options = check_options(band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol,
                             participation, frf_limit, model_band_hz, max_modes)
-    X, layout, values = _validated(robot, poses, box, step, orientations, parameter, values,
-                                   n_modes, rung, chunk_size, workers, client, damping)
+    X, layout, values = validate_arguments(robot, poses, box, step, orientations, parameter, values,
+                                   n_modes, rung, chunk_size, workers, client, damping,
+                                   options.max_modes, max_poses)
     if tensions not in TENSIONS:
         raise InvalidParameterError(f"tensions must be one of {TENSIONS}, got {tensions!r}")
+    check_model_options(rung, model_options)
     from dynstiff.maps.dataset import to_dataset
     checks = tuple(c for c in CHECKS if options.forbidden_hz is not None
                    or c not in ("platform modes outside band", "platform receptance in band"))
     model_options = modal_model_options(rung, options, model_options)
     robots = ([robot] if parameter is None
-              else [_robot_with(robot, parameter, v) for v in values])
+              else [robot_with(robot, parameter, v) for v in values])
     tasks = []
     for rob in robots:
         for s in range(0, len(X), chunk_size):
             tasks.append((rob, X[s:s + chunk_size], n_modes, options, rung, damping,
                           model_options, checks, tensions))
+    results, done = resumed(tasks, checkpoint, resume)
+    total = len(X) * len(robots)
+    if progress:
+        sample = np.unique(np.linspace(0, len(X) - 1, min(5, len(X))).round().astype(int))
+        evaluate_chunk(tasks[0][0], X[:1], *tasks[0][2:])       # warm up, then time a sample
+        t0 = time.perf_counter()
+        evaluate_chunk(tasks[0][0], X[sample], *tasks[0][2:])
+        per_pose = (time.perf_counter() - t0) / len(sample)
+        sys.stderr.write(estimate_text(total, per_pose, check_size(
+            total, robot.n_cables, n_modes, len(checks), None), workers or 1) + "\n")
     t0 = time.perf_counter()
-    results = _run(tasks, workers, client, _Progress(len(X) * len(robots), progress))
+    bar = _Progress(total, progress)
+    if any(r is not None for r in results):
+        bar(sum(len(tasks[i][1]) for i, r in enumerate(results) if r is not None))
+    try:
+        results = _run(tasks, workers, client, bar, results, done)
+    except KeyboardInterrupt:
+        saved = sum(len(tasks[i][1]) for i, r in enumerate(results) if r is not None)
+        how = (f"saved in {checkpoint}; run again with resume=True (dynstiff workspace "
+               f"--resume) to continue" if checkpoint is not None
+               else "not saved (give checkpoint= to keep them)")
+        raise Interrupted(f"workspace interrupted: {saved} of {total} poses {how}",
+                          saved=saved, total=total) from None
     settings = {"checks": checks, "n_modes": n_modes, "band_hz": options.forbidden_hz,
                 "margin": options.margin, "proximity_rtol": options.proximity_rtol,
                 "max_sag_ratio": options.max_sag_ratio, "model_rtol": options.model_rtol,

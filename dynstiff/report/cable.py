@@ -163,12 +163,14 @@ def write_report(report, out_dir):
     out.mkdir(parents=True, exist_ok=True)
     files = [out / "report.txt", out / "statics.csv", out / "modes.csv",
              out / "dynamic_stiffness.png"]
-    files[0].write_text(report.text())
-    report.statics_frame().to_csv(files[1], index=False)
-    report.modes.to_frame().to_csv(files[2], index=False)
+    from dynstiff.io.files import atomic_path, write_text
+    write_text(files[0], report.text())
+    write_text(files[1], report.statics_frame().to_csv(index=False))
+    write_text(files[2], report.modes.to_frame().to_csv(index=False))
     fig = report.plot()
     fig.tight_layout()
-    fig.savefig(files[3], dpi=120)
+    with atomic_path(files[3]) as tmp:
+        fig.savefig(tmp, dpi=120)
     import matplotlib.pyplot as plt
     plt.close(fig)
     return files

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from dynstiff.constants import PLATFORM_SHARE_THRESHOLD
+from dynstiff.io.files import atomic_path, write_text
 
 __all__ = ["robot_report", "write_csv"]
 
@@ -25,7 +26,7 @@ def write_csv(df, path, metadata):
     text = head + df.to_csv(index=False)
     if path is None:
         return text
-    Path(path).write_text(text)
+    write_text(path, text)
     return None
 
 
@@ -89,7 +90,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
 
     def save_csv(df, name, units):
         text = write_csv(df, None, {**meta, "table": name, "units": units})
-        (out / name).write_text(text)
+        write_text(out / name, text)
         files.append(out / name)
         return text
 
@@ -113,7 +114,8 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         # drawn once, for the file and the page; the mode shapes, shown side by side, at a
         # lower resolution
         png = figure_png(fig, dpi=110 if n == 0 else 90)
-        (out / name).write_bytes(png)
+        with atomic_path(out / name) as tmp, open(tmp, "wb") as fh:
+            fh.write(png)
         pngs.append((png, caption))
         plt.close(fig)
         files.append(out / name)
@@ -136,7 +138,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     if html:
         page = _page(scene, eq, st, checks, pm, rec, (err, cause), statics, pngs, modes_csv,
                      len(modes), len(f))
-        (out / "report.html").write_text(page, encoding="utf-8")
+        write_text(out / "report.html", page)
         files.append(out / "report.html")
     return text + "\n", files
 

@@ -148,6 +148,7 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
 
 def write_scene(path, robot, pose=None, **kw):
     """Write :func:`scene_text` to ``path`` (keywords as there); returns the Path."""
+    from dynstiff.io.files import write_text
     path = Path(path)
-    path.write_text(scene_text(robot, pose, **kw), encoding="utf-8")
+    write_text(path, scene_text(robot, pose, **kw))      # atomic: all or nothing
     return path

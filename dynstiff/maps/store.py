@@ -1,0 +1,120 @@
+"""The saved chunks of a workspace map, so that an interrupted run resumes (docs/theory.md §13.8).
+
+A checkpoint is a folder: ``run.json`` (a fingerprint of everything the numbers depend on:
+the poses, the robots, the options, the model and the chunking) and one
+``chunk-NNNNNN.npz`` per completed task (the arrays of
+:func:`dynstiff.maps.workspace.evaluate_chunk`, written atomically as each task completes).
+A task's numbers depend only on its own poses and settings, so the saved chunks joined to
+the rest computed later give the map of an uninterrupted run, bit for bit.
+
+Example
+-------
+>>> import tempfile, numpy as np
+>>> from dynstiff.maps.store import Checkpoint
+>>> cp = Checkpoint(tempfile.mkdtemp() + "/map.parts", fingerprint="abc", n_tasks=2)
+>>> cp.save(1, {"freq": np.arange(3.0), "reason": ["", "x", ""]})
+>>> sorted(cp.load())
+[1]
+"""
+
+import hashlib
+import json
+import os
+import pickle
+import shutil
+
+import numpy as np
+
+from dynstiff.errors import InvalidParameterError
+
+__all__ = ["Checkpoint", "fingerprint", "resumed"]
+
+
+def fingerprint(tasks):
+    """SHA-256 of the tasks' arguments (robots, poses, options, model, chunking): two runs
+    with the same fingerprint compute the same numbers."""
+    h = hashlib.sha256()
+    for args in tasks:
+        h.update(pickle.dumps(args, protocol=4))
+    return h.hexdigest()
+
+
+class Checkpoint:
+    """The folder of saved chunks of one run (module notes).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The folder (created when the first chunk is saved).
+    fingerprint : str
+        Of the run (:func:`fingerprint`).
+    n_tasks : int
+    """
+
+    def __init__(self, path, fingerprint, n_tasks):
+        self.path, self.fingerprint, self.n_tasks = os.fspath(path), fingerprint, n_tasks
+
+    def _chunk(self, i):
+        return os.path.join(self.path, f"chunk-{i:06d}.npz")
+
+    def exists(self):
+        """True when the folder holds a run."""
+        return os.path.isfile(os.path.join(self.path, "run.json"))
+
+    def _start(self):
+        from dynstiff.io.files import write_text
+        if not self.exists():
+            os.makedirs(self.path, exist_ok=True)
+            write_text(os.path.join(self.path, "run.json"), json.dumps(
+                {"fingerprint": self.fingerprint, "n_tasks": self.n_tasks}) + "\n")
+
+    def save(self, i, result):
+        """Save the result of task ``i`` (a dict of arrays and the list ``reason``)."""
+        from dynstiff.io.files import atomic_path
+        self._start()
+        arrays = {k: np.asarray(v) for k, v in result.items() if k != "reason"}
+        arrays["reason"] = np.asarray(result["reason"], dtype=str)
+        with atomic_path(self._chunk(i)) as tmp:
+            np.savez(tmp, **arrays)
+
+    def load(self):
+        """The saved results, {task index: result}; refuses a folder of another run."""
+        if not self.exists():
+            return {}
+        with open(os.path.join(self.path, "run.json"), encoding="utf-8") as fh:
+            meta = json.load(fh)
+        if meta.get("fingerprint") != self.fingerprint or meta.get("n_tasks") != self.n_tasks:
+            raise InvalidParameterError(
+                f"checkpoint {self.path} holds another run (other poses, robot, options or "
+                f"chunk size): resume with the same settings, or remove the folder")
+        out = {}
+        for i in range(self.n_tasks):
+            if os.path.isfile(self._chunk(i)):
+                with np.load(self._chunk(i), allow_pickle=False) as z:
+                    res = {k: z[k] for k in z.files}
+                res["reason"] = [str(r) for r in res["reason"]]
+                out[i] = res
+        return out
+
+    def remove(self):
+        """Delete the folder (after the map is written)."""
+        shutil.rmtree(self.path, ignore_errors=True)
+
+
+def resumed(tasks, checkpoint, resume):
+    """The results already saved in ``checkpoint`` (a list, None where a task is to be
+    computed) and the function that saves a completed task."""
+    results = [None] * len(tasks)
+    if checkpoint is None:
+        if resume:
+            raise InvalidParameterError("resume=True needs checkpoint= (the folder of the "
+                                        "saved chunks)")
+        return results, lambda i: None
+    store = Checkpoint(checkpoint, fingerprint(tasks), len(tasks))
+    if store.exists() and not resume:
+        raise InvalidParameterError(
+            f"checkpoint {checkpoint} holds a run already: give resume=True (--resume) to "
+            f"continue it, or remove the folder")
+    for i, res in store.load().items():
+        results[i] = res
+    return results, lambda i: store.save(i, results[i])

@@ -1,0 +1,134 @@
+"""Resumable workspace maps (dynstiff/maps/store.py, docs/theory.md §13): a run interrupted
+by Ctrl-C (a KeyboardInterrupt planted in the per-pose statics) stops with one line saying
+how many poses are saved; resumed, serially or on a Dask cluster, it gives the map of an
+uninterrupted run bit for bit; a checkpoint of another run is refused."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+import dynstiff.maps.workspace as wsmod
+
+xr = pytest.importorskip("xarray")
+from dynstiff.errors import Interrupted  # noqa: E402
+from dynstiff.maps.store import Checkpoint  # noqa: E402
+
+# 4 x 3 poses of CoGiRo (feasible and infeasible ones) in 4 tasks of 3
+KW = {"box": (-6.0, 6.0, -4.0, 4.0, 1.0, 1.0), "step": 4.0, "n_modes": 4,
+      "band_hz": (0.0, 1.5), "chunk_size": 3}
+VOLATILE = ("wall_time_s", "history", "engine")     # differ between any two runs
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return ds.load_scene("cogiro").robot
+
+
+@pytest.fixture(scope="module")
+def whole(robot):
+    return wsmod.workspace(robot, **KW)
+
+
+def _interrupt_after(monkeypatch, n_calls):
+    calls = [0]
+    statics = wsmod.tension_equilibrium
+
+    def planted(*a, **kw):
+        calls[0] += 1
+        if calls[0] > n_calls:
+            raise KeyboardInterrupt
+        return statics(*a, **kw)
+    monkeypatch.setattr(wsmod, "tension_equilibrium", planted)
+
+
+def assert_same_map(a, b):
+    """Every variable, coordinate and attribute equal, bit for bit (NaN where NaN), but the
+    run's wall time, date and engine."""
+    a = a.copy()
+    b = b.copy()
+    for d in (a, b):
+        for k in VOLATILE:
+            d.attrs.pop(k, None)
+    xr.testing.assert_identical(a, b)
+    for name in a.data_vars:
+        if a[name].dtype == object:                    # the reasons
+            assert a[name].values.tolist() == b[name].values.tolist(), name
+        else:
+            assert a[name].values.tobytes() == b[name].values.tobytes(), name
+
+
+def test_an_interrupted_run_resumes_to_the_uninterrupted_map(robot, whole, tmp_path,
+                                                             monkeypatch):
+    cp = tmp_path / "map.parts"
+    _interrupt_after(monkeypatch, 7)           # tasks 0 and 1 (6 poses) done, then Ctrl-C
+    with pytest.raises(Interrupted, match=r"^workspace interrupted: 6 of 12 poses saved "
+                                             r"in .*map.parts; run again with resume=True"):
+        wsmod.workspace(robot, checkpoint=cp, **KW)
+    assert sorted(p.name for p in cp.iterdir()) == ["chunk-000000.npz", "chunk-000001.npz",
+                                                    "run.json"]
+    monkeypatch.undo()
+    with pytest.raises(ds.InvalidParameterError, match="holds a run already.*resume=True"):
+        wsmod.workspace(robot, checkpoint=cp, **KW)
+    computed = []
+    evaluate = wsmod.evaluate_chunk
+
+    def counted(robot, poses, *a):
+        computed.append(len(poses))
+        return evaluate(robot, poses, *a)
+    monkeypatch.setattr(wsmod, "evaluate_chunk", counted)
+    resumed = wsmod.workspace(robot, checkpoint=cp, resume=True, **KW)
+    assert computed == [3, 3]                   # only the two tasks not saved
+    assert_same_map(resumed, whole)
+    assert isinstance(Interrupted("x"), KeyboardInterrupt)
+
+
+def test_an_interrupt_without_a_checkpoint_says_nothing_is_saved(robot, monkeypatch):
+    _interrupt_after(monkeypatch, 1)
+    with pytest.raises(Interrupted, match="0 of 12 poses not saved .*checkpoint="):
+        wsmod.workspace(robot, **KW)
+    with pytest.raises(ds.InvalidParameterError, match="resume=True needs checkpoint="):
+        wsmod.workspace(robot, resume=True, **KW)
+
+
+def test_a_checkpoint_of_another_run_is_refused(robot, tmp_path, monkeypatch):
+    cp = tmp_path / "map.parts"
+    _interrupt_after(monkeypatch, 4)
+    with pytest.raises(Interrupted, match="3 of 12"):
+        wsmod.workspace(robot, checkpoint=cp, **KW)
+    monkeypatch.undo()
+    for change in ({"n_modes": 5}, {"chunk_size": 4}, {"band_hz": (0.0, 1.4)},
+                   {"step": 3.0}):
+        with pytest.raises(ds.InvalidParameterError, match="holds another run"):
+            wsmod.workspace(robot, checkpoint=cp, resume=True, **{**KW, **change})
+
+
+def test_saved_chunks_read_back_exactly(tmp_path):
+    cp = Checkpoint(tmp_path / "c", fingerprint="f", n_tasks=3)
+    res = {"freq": np.array([1.0, np.nan, 1e-300]), "feasible": np.array([True, False, True]),
+           "reason": ["", "InfeasiblePoseError: ünïcode, ; text", ""]}
+    cp.save(2, res)
+    back = cp.load()
+    assert list(back) == [2] and back[2]["reason"] == res["reason"]
+    assert back[2]["freq"].tobytes() == res["freq"].tobytes()
+    assert back[2]["feasible"].dtype == bool
+    cp.remove()
+    assert not (tmp_path / "c").exists()
+
+
+@pytest.mark.integration
+def test_a_run_resumed_on_a_dask_cluster_equals_the_serial_map(robot, whole, tmp_path,
+                                                               monkeypatch):
+    """Interrupted serially, resumed on a real dask.distributed LocalCluster (2 worker
+    processes): the same map, bit for bit."""
+    distributed = pytest.importorskip("distributed", reason="needs dask.distributed")
+    cp = tmp_path / "map.parts"
+    _interrupt_after(monkeypatch, 4)
+    with pytest.raises(Interrupted, match="3 of 12"):
+        wsmod.workspace(robot, checkpoint=cp, **KW)
+    monkeypatch.undo()
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        resumed = wsmod.workspace(robot, checkpoint=cp, resume=True, client=client, **KW)
+    assert_same_map(resumed, whole)
+    assert len(list(cp.glob("chunk-*.npz"))) == 4
