@@ -232,7 +232,7 @@ class Interrupted(KeyboardInterrupt):
     message says how much is saved and how to resume; ``saved`` and ``total`` count the
     items (e.g. poses)."""
 
-    def __init__(self, message, saved=0, total=0):
+    def __init__(self, message: str, saved: int = 0, total: int = 0) -> None:
         super().__init__(message)
         self.saved = saved
         self.total = total

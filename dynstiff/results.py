@@ -159,11 +159,9 @@ class FRFResult:
     def to_uff(self, path: Path, node: int = 1, entity: str = "platform",
                point_node: int | None = None, binary: bool = False,
                even: bool | float = False) -> Path:
-        """Write every (output, input) pair as a UFF 58 record through pyuff (ASCII, or
-        binary with exact doubles): :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
-        ``even=True`` (the step of the grid's uniform part) or a step [Hz] resamples on an
-        even grid (:func:`dynstiff.io.exchange.even_grid`), as the records then say.
-        Returns the path.
+        """Write every (output, input) pair as a UFF 58 record (ASCII, or binary with exact
+        doubles; ``even=True`` or a step [Hz]: on an even grid, as the records say) and
+        return the path: :func:`dynstiff.io.exchange.write_uff58` (theory.md §15.3).
 
         Examples
         --------

@@ -7,7 +7,7 @@ import pytest
 
 import dynstiff as ds
 from dynstiff.analyses.frf import channel_maps
-from dynstiff.models.dsm import compiled_arguments, symmetric_assembly
+from dynstiff.models.dsm_compiled import compiled_arguments, symmetric_assembly
 
 cf = pytest.importorskip("dynstiff.compiled.dsm", exc_type=ImportError)
 

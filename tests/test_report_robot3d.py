@@ -204,6 +204,9 @@ def test_point_platform_is_visible_on_a_large_frame():
     assert pm.get_sizes()[0] >= 50
 
 
+# the closed form's robot-level bound on sixcable exceeds guard_rtol (theory.md §11.6): it
+# warns, which this figure's test does not look at
+@pytest.mark.filterwarnings("ignore::dynstiff.errors.ClosedFormWarning")
 def test_small_platform_gets_a_close_up_that_holds_it_and_its_motion():
     """sixcable: a 2 m platform on a 60 m frame. The main axes hold every cable point; the
     close-up's limits hold the static and displaced platform, which fills most of it, and

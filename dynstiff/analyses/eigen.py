@@ -34,7 +34,8 @@ from dynstiff.analyses import eigen_matrix
 from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import ConvergenceError, InvalidParameterError, UnsupportedAnalysisError
 from dynstiff.models.base import require_model
-from dynstiff.models.dsm import FrequencyModel, compiled_arguments
+from dynstiff.models.dsm import FrequencyModel
+from dynstiff.models.dsm_compiled import compiled_arguments
 from dynstiff.results import ModalResult
 
 if TYPE_CHECKING:

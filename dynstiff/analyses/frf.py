@@ -18,7 +18,8 @@ from dynstiff._validate import point as validated_point
 from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning, ResonanceWarning, user_stacklevel
 from dynstiff.models.base import require_model
-from dynstiff.models.dsm import FrequencyModel, compiled_arguments
+from dynstiff.models.dsm import FrequencyModel
+from dynstiff.models.dsm_compiled import compiled_arguments
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 from dynstiff.robot.platform import skew
 

@@ -122,7 +122,7 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
     series : tuple (radius, E_coef, P_coef)
         ``cable_dsm.PSI_SERIES``.
     assembly : ndarray, shape (4 n_cables, nf (nf + 1) / 2)
-        :func:`dynstiff.models.dsm.symmetric_assembly` of ``FrequencyModel.assembly_map``.
+        :func:`dynstiff.models.dsm_compiled.symmetric_assembly` of ``FrequencyModel.assembly_map``.
     K_static, M : ndarray, shape (nf, nf)
         Geometric stiffness and platform mass on the free DOFs.
     B, C : ndarray, shape (nf, n_in), (n_out, nf)

@@ -229,7 +229,7 @@ def frf_to_control(result, name=None):
     >>> H[:, 0, 1] = 1e-25
     >>> r = FRFResult(np.array([1.0, 2.0, 3.0]), H, ("fx", "fz"), ("x", "z"), "receptance")
     >>> sys = frf_to_control(r)
-    >>> sys.name, sys.input_labels, complex(sys.fresp[0, 1, 0])
+    >>> sys.name, sys.input_labels, complex(sys.frdata[0, 1, 0])
     ('dynstiff receptance', ['fx', 'fz'], 0j)
     """
     ct = require("control")

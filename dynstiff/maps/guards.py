@@ -6,10 +6,11 @@ time estimated, refused beyond a stated limit with the option to change).
 Example
 -------
 >>> from dynstiff.maps.guards import check_size
->>> check_size(1_000_000, n_cables=8, n_modes=20, n_checks=9, max_poses=200_000)
+>>> check_size(1_000_000, n_cables=8, n_modes=20, n_checks=9,
+...            max_poses=200_000)  # doctest: +ELLIPSIS
 Traceback (most recent call last):
 ...
-dynstiff.errors.InvalidParameterError: the map has 1,000,000 poses ...
+dynstiff.errors.InvalidParameterError: the map gives 1,000,000 poses, more than ...
 """
 
 import os

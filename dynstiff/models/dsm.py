@@ -40,7 +40,7 @@ from dynstiff.cable.guard import (
     closed_form_local_error,
     closed_form_validity,
 )
-from dynstiff.cable.psi import PSI_SERIES, check_frequency_range, mode_count_nondimensional
+from dynstiff.cable.psi import check_frequency_range, mode_count_nondimensional
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
@@ -52,7 +52,7 @@ if TYPE_CHECKING:
 
     from dynstiff.robot.equilibrium import Equilibrium
 
-__all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE", "compiled_arguments", "symmetric_assembly"]
+__all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE"]
 
 #: How the robot-level bound's warning begins (theory.md §11.6), for filters of it.
 ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
@@ -489,32 +489,3 @@ class FrequencyModel(PlatformModel):
             dB = x[:3] + cross(x[3:], r)
             disp[i] = np.real(cable_field(p, omega, p.rotation.T @ dB, xs)) @ p.rotation.T
         return pos, disp
-
-
-def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
-    """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
-    (:mod:`dynstiff.compiled.dsm`) for an undamped :class:`FrequencyModel`: contiguous float
-    arrays, the psi series and the symmetric assembly map."""
-    p = model.stacked_params
-
-    def real(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
-
-    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
-            bool(model.chordwise_inertia), PSI_SERIES,
-            symmetric_assembly(model.assembly_map, model.n_free),
-            np.ascontiguousarray(model.K_geo_free, dtype=float),
-            np.ascontiguousarray(model.platform_mass, dtype=float))
-
-
-def symmetric_assembly(assembly_map: NDArray[np.float64], n_free: int) -> NDArray[np.float64]:
-    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
-    share the coefficient -k_uv) summed, and the upper triangle of K kept.
-
-    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
-    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
-    """
-    A = assembly_map.reshape(-1, 5, n_free, n_free)
-    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
-    iu, ju = np.triu_indices(n_free)
-    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))

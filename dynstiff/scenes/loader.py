@@ -384,7 +384,7 @@ def list_scenes() -> list[str]:
     --------
     >>> import dynstiff as ds
     >>> ds.list_scenes()
-    ['cogiro', 'fourcable', 'pendulum', 'planar2', 'simulator', 'sixcable']
+    ['cogiro', 'fast', 'fourcable', 'pendulum', 'planar2', 'simulator', 'sixcable']
     """
     return sorted(p.stem for p in SCENE_DIR.glob("*.toml"))
 

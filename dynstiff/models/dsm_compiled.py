@@ -1,0 +1,47 @@
+"""The closed-form model's arrays for the compiled kernels (:mod:`dynstiff.compiled.dsm`;
+theory.md §14.1-§14.2): the cables' chord parameters as contiguous arrays, the psi series,
+and the assembly map reduced to a symmetric K."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from dynstiff.cable.psi import PSI_SERIES
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike, NDArray
+
+    from dynstiff.models.dsm import FrequencyModel
+
+__all__ = ["compiled_arguments", "symmetric_assembly"]
+
+
+def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
+    """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
+    (:mod:`dynstiff.compiled.dsm`) for an undamped :class:`FrequencyModel`: contiguous float
+    arrays, the psi series and the symmetric assembly map."""
+    p = model.stacked_params
+
+    def real(x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
+
+    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
+            bool(model.chordwise_inertia), PSI_SERIES,
+            symmetric_assembly(model.assembly_map, model.n_free),
+            np.ascontiguousarray(model.K_geo_free, dtype=float),
+            np.ascontiguousarray(model.platform_mass, dtype=float))
+
+
+def symmetric_assembly(assembly_map: NDArray[np.float64], n_free: int) -> NDArray[np.float64]:
+    """The dyad -> K map reduced to what a symmetric K needs: the uv and vu dyads (which
+    share the coefficient -k_uv) summed, and the upper triangle of K kept.
+
+    assembly_map : ndarray, shape (5 n_cables, n_free**2), dyads (uu, uv, vu, vv, ww).
+    Returns ndarray, shape (4 n_cables, n_free (n_free + 1) / 2), dyads (uu, uv + vu, vv, ww).
+    """
+    A = assembly_map.reshape(-1, 5, n_free, n_free)
+    A = np.stack([A[:, 0], A[:, 1] + A[:, 2], A[:, 3], A[:, 4]], axis=1)
+    iu, ju = np.triu_indices(n_free)
+    return np.ascontiguousarray(A[:, :, iu, ju].reshape(-1, iu.size))
