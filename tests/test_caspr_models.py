@@ -133,14 +133,16 @@ def test_every_spatial_robot_solves_at_q_initial(robot):
 def test_every_spatial_robot_has_modes(robot):
     """Six modes whose Wittrick-Williams count agrees (none below the first, six below just
     above the sixth), of the closed form, or of the exact rung where the closed form's
-    guard asks for it."""
+    guard asks for it (its cables' own guard on the robots of EXACT, whose light cables sag
+    5-14 % of the chord; the robot-level bound of theory.md §11.6 on some others)."""
     eq = load(robot).equilibrium()
-    if robot in EXACT:
-        with pytest.warns(ds.errors.ClosedFormWarning, match="use the 'exact' rung"):
-            f = ds.eigenfrequencies(ds.build_model(eq, "dsm"), n_modes=6)
-        model = ds.build_model(eq, "exact", fmax_hz=1.3 * f[-1])
-    else:
-        model = ds.build_model(eq, "dsm")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ds.errors.ClosedFormWarning)
+        f = ds.eigenfrequencies(ds.build_model(eq, "dsm"), n_modes=6)
+    asks = any("use the 'exact' rung" in str(w.message) for w in caught)
+    assert asks or robot not in EXACT
+    model = ds.build_model(eq, "exact", fmax_hz=1.3 * f[-1]) if asks else ds.build_model(
+        eq, "dsm")
     f = ds.eigenfrequencies(model, n_modes=6)
     assert np.all(f > 0) and np.all(np.diff(f) >= 0)
     w = 2 * np.pi * np.array([f[0] * (1 - 1e-6), f[5] * (1 + 1e-6)])
@@ -150,17 +152,19 @@ def test_every_spatial_robot_has_modes(robot):
 @pytest.mark.parametrize("robot", [
     r if r in QUICK_CHECKS else pytest.param(r, marks=pytest.mark.slow) for r in ROBOTS])
 def test_every_spatial_robot_runs_the_design_checks(robot):
-    """The checks up to the sixth mode: the statics and tension rows pass (the pose was
-    solved within the limits), every row has its detail."""
+    """The design checks (modes until the platform modes are found): the statics and
+    tension rows pass (the pose was solved within the limits), every row has its detail."""
     sc = load(robot)
     rung = "exact" if robot in EXACT else "dsm"
     kw = {"fmax_hz": 4.0} if rung == "exact" else {}
-    f6 = ds.eigenfrequencies(ds.build_model(sc.equilibrium(), rung, **kw), n_modes=6)[-1]
-    res = design_checks(sc.robot, sc.pose, fmax_hz=1.01 * f6, rung=rung)
+    with warnings.catch_warnings():
+        # the closed form's guard: the cable-model row reports what it would warn of
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        res = design_checks(sc.robot, sc.pose, rung=rung, **kw)
     rows = {r["check"]: r for r in res.rows}
     assert rows["workspace (tension-feasible pose)"]["passed"]
     assert rows["tension limits"]["passed"]
-    assert {"sag / chord", "cable model", "local modes near global modes"} <= set(rows)
+    assert {"sag / chord", "cable model", "local modes near platform modes"} <= set(rows)
     assert all(r["detail"] for r in res.rows)
 
 
@@ -226,7 +230,8 @@ def test_a_caspr_trajectory_drives_a_sweep():
                    parameter="time along general_1 [s]")
     assert res.failures == () and res.n_steps == 5
     f0 = ds.eigenfrequencies(ds.build_model(robot.equilibrium(pose=poses[0]), "dsm"), 6)
-    np.testing.assert_allclose(res.freq_hz[res.step == 0], f0, rtol=1e-9)
+    # the sweep lists at least the modes asked (more where the platform modes lie higher)
+    np.testing.assert_allclose(res.freq_hz[res.step == 0][:6], f0, rtol=1e-9)
 
 
 @pytest.mark.parametrize("family, match", [
