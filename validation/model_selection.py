@@ -10,6 +10,8 @@ natural frequencies in the band, infinite when it has a different number of mode
 Run ``python validation/model_selection.py`` for the case table and the confusion table.
 """
 
+import warnings
+
 import numpy as np
 import pandas as pd
 
@@ -80,8 +82,12 @@ def run(quick=False):
         bands = [(0.01, 0.8 * cf1), (0.01, 1.8 * cf1)]
         ref = reference_frequencies(eq, max(b[1] for b in bands))
         top = bands[-1][1] * 1.5
-        f_rung = {r: ds.eigenfrequencies(build_model(eq, r), fmax_hz=top)
-                  for r in ("spring", "catenary", "dsm")}
+        with warnings.catch_warnings():
+            # the closed form's guard may ask for the exact rung: the study measures every
+            # rung's actual error against the reference instead
+            warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+            f_rung = {r: ds.eigenfrequencies(build_model(eq, r), fmax_hz=top)
+                      for r in ("spring", "catenary", "dsm")}
         f_rung["exact"] = ds.eigenfrequencies(build_model(eq, "exact", fmax_hz=1.1 * top),
                                               fmax_hz=top)
         for band in bands:

@@ -114,7 +114,11 @@ def run(quick=False, dt=1e-3, segments=4):
                 "wall time [s]": res.response.wall_time})
     poses = [np.concatenate([p, scene.pose.rotation]) for p in np.linspace(
         [-3.0, 0.0, DEPTH], [1.0, 1.0, DEPTH], 3 if quick else 9)]
-    sw = ds.sweep(scene.robot, poses=poses, n_modes=12)
+    with warnings.catch_warnings():
+        # the closed form's robot-level bound (theory.md §11.6) exceeds 1e-2 on this robot;
+        # its measured error against the exact rung is 4.0e-3 (recommend_model)
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        sw = ds.sweep(scene.robot, poses=poses, n_modes=12)
     return pd.DataFrame(rows), sw.to_frame()
 
 
@@ -149,8 +153,11 @@ def depth_sensitivity(depths=(-10.0, -15.0, -20.0, -30.0), speed=1.0, dt=1e-3, s
             continue
         row["tension-feasible line"] = True
         row["min tension [N]"] = min(float(eq.min_tensions.min()) for eq in eqs)
-        row["lowest first mode [Hz]"] = min(
-            float(ds.eigenfrequencies(ds.FrequencyModel(eq), 1)[0]) for eq in eqs)
+        with warnings.catch_warnings():
+            # the first mode only: the robot-level bound speaks of the whole band
+            warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+            row["lowest first mode [Hz]"] = min(
+                float(ds.eigenfrequencies(ds.FrequencyModel(eq), 1)[0]) for eq in eqs)
         if simulate:
             traj, _ = paths(speed, scene, depth)["line"]
             try:

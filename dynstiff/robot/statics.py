@@ -292,7 +292,13 @@ def inverse_statics(robot: Robot, pose: Pose,
     n = robot.n_cables
     w0 = np.array([c.mass_per_length for c in robot.cables]) * robot.g
     EA = np.array([c.EA for c in robot.cables])
-    wg = robot.gravity_wrench(pose)
+    with np.errstate(over="ignore", invalid="ignore"):     # an overflow is refused below
+        wg = robot.gravity_wrench(pose)
+    if not np.all(np.isfinite(wg)):
+        raise InvalidParameterError(
+            f"platform: its weight's wrench at pose {pose.as_vector().tolist()} is not finite "
+            f"({wg.tolist()}): mass {robot.platform.mass!r} kg times g {robot.g!r} m/s^2 "
+            f"overflows")
     t_min, t_max = robot.tension_limits
     # the limits hold along the whole cable: the platform-end tension t_i is bounded by
     # [t_min + lo_i, t_max - hi_i], lo_i = T_B - min T, hi_i = max T - T_B of the last
