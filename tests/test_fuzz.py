@@ -143,7 +143,7 @@ def _statics_fuzzer(n):
                                                             "workspace", "converge"))
         obey_the_rule(lambda: rob.equilibrium(unstretched_lengths=lengths,
                                               initial_pose=scene.pose),
-                      ("unstretched_lengths", "slack", "converge", "residual"))
+                      ("unstretched_length", "slack", "converge", "residual"))
         obey_the_rule(lambda: rob.equilibrium(pose=scene.pose, tol=tol), ("tol",))
         obey_the_rule(lambda: design_checks(rob, scene.pose, margin=margin,
                                             max_sag_ratio=sag, model_band_hz=(0.0, 2.0)),

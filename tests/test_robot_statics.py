@@ -574,3 +574,13 @@ def test_a_weight_that_overflows_is_refused_by_name():
         scene.robot.platform, mass=1.8325108408382424e307))
     with pytest.raises(ds.InvalidParameterError, match="platform: its weight"):
         robot.equilibrium(pose=scene.pose)
+
+
+def test_forward_statics_with_lengths_that_cannot_reach_says_it_did_not_converge():
+    """planar2 with unstretched lengths of 1e-300 m (found by the statics fuzzer): the
+    straight cable's strain to its chord overflows float64; the error names the unstretched
+    length, never a non-finite pose reached by a Newton step (a step to a non-finite pose
+    counts as a failed step), and no overflow warning is raised on the way."""
+    scene = ds.load_scene("planar2")
+    with pytest.raises(ds.InvalidParameterError, match="unstretched_length 1e-300 m"):
+        scene.robot.equilibrium(unstretched_lengths=[1e-300, 1e-300], initial_pose=scene.pose)

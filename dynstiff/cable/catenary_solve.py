@@ -67,10 +67,14 @@ def _initial_guesses(lh: float, h: float, L0: float, EA: float,
                      w0: float) -> list[tuple[float, float]]:
     """Candidate (H, V0) starting points [N]: elastic straight cable, and Peyrot-Goulois."""
     W = w0 * L0
-    L = np.hypot(lh, h)
+    L = float(np.hypot(lh, h))
     guesses = []
     if L > L0:          # taut: straight elastic cable, tension from strain, plus weight
         T = EA * (L / L0 - 1.0)
+        if not np.isfinite(T):      # a strain beyond float64 (L0 ~ 1e-300 m): no guess
+            raise InvalidParameterError(
+                f"unstretched_length {L0!r} m: the straight cable's strain to its chord "
+                f"{L!r} m overflows (EA {EA!r} N)")
         T = max(T, 0.5 * W)
         H = T * lh / L
         guesses.append((H, T * h / L - 0.5 * W))

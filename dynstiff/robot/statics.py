@@ -447,8 +447,8 @@ def forward_statics(robot: Robot, L0: NDArray[np.float64], initial_pose: Pose | 
         while step > 1e-4:
             dx = np.zeros(6)
             dx[fi] = step * dxf
-            trial = pose.moved(dx)
-            try:
+            try:                            # a step to a non-finite pose counts as a failure
+                trial = pose.moved(dx)
                 st_t, w_t = evaluate(trial)
                 res_t = np.linalg.norm(w_t) / scale
             except DynstiffError:
