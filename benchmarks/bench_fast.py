@@ -15,10 +15,10 @@ Set OPENBLAS_NUM_THREADS=1 on a shared machine.
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_fast.py
 """
 
-import time
 import warnings
 
 import numpy as np
+from bench_exact import interleaved  # the same interleaved timing (benchmarks/ on the path)
 
 import dynstiff as ds
 from dynstiff.errors import ClosedFormWarning
@@ -26,19 +26,6 @@ from dynstiff.errors import ClosedFormWarning
 FMAX_HZ = 0.4
 N_FRF = 2_000
 REPEATS = 3
-
-
-def interleaved(jobs, repeats=REPEATS):
-    """Run every job once per round, ``repeats`` rounds; the minimum time [s] of each job
-    and its last result."""
-    best = {k: np.inf for k in jobs}
-    out = {}
-    for _ in range(repeats):
-        for k, fn in jobs.items():
-            t0 = time.perf_counter()
-            out[k] = fn()
-            best[k] = min(best[k], time.perf_counter() - t0)
-    return best, out
 
 
 def main():
@@ -49,7 +36,7 @@ def main():
     def modes(rung):
         m = ds.build_model(eq, rung, **({"fmax_hz": 1.05 * FMAX_HZ} if rung == "exact" else {}))
         return ds.eigenfrequencies(m, fmax_hz=FMAX_HZ)
-    t, f = interleaved({r: (lambda r=r: modes(r)) for r in ("dsm", "exact")})
+    t, f = interleaved({r: (lambda r=r: modes(r)) for r in ("dsm", "exact")}, REPEATS)
     err = float(np.max(np.abs(f["dsm"] / f["exact"] - 1)))
     print(f"modes below {FMAX_HZ} Hz: {f['exact'].size} (closed form {f['dsm'].size}); "
           f"largest closed form vs exact {err:.2e}")
@@ -58,7 +45,7 @@ def main():
 
     omega = 2 * np.pi * np.linspace(0.02, FMAX_HZ, N_FRF)
     models = {r: ds.scene_model(sc, rung=r) for r in ("dsm", "exact")}   # scene's damping
-    t, _ = interleaved({k: (lambda m=m: ds.frf(m, omega)) for k, m in models.items()})
+    t, _ = interleaved({k: (lambda m=m: ds.frf(m, omega)) for k, m in models.items()}, REPEATS)
     print(f"FRF, {N_FRF} frequencies, 6x6: closed form {t['dsm']:.3f} s, exact "
           f"{t['exact']:.3f} s (ratio {t['exact'] / t['dsm']:.1f})")
 

@@ -188,8 +188,7 @@ def _cmd_check(args):
         info(args).write(rec.text().splitlines()[0] + f" (over {st.band_hz[0]:g}-"
                          f"{st.band_hz[1]:g} Hz, the closed form measured against the exact "
                          f"rung)\n")
-        row = res.verdicts.get("cable model") if hasattr(res, "verdicts") else None
-        if row == "fail" and rec.rung == st.rung:
+        if res.verdicts.get("cable model") == "fail" and rec.rung == st.rung:
             # the verdict holds the model to its bound, computed without the exact rung;
             # the advice measures it: say why they differ and what passes the row
             info(args).write(

@@ -14,6 +14,7 @@ with the analytic 6x6 stiffness (theory.md §4).
 
 from __future__ import annotations
 
+import contextlib
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -327,14 +328,15 @@ def inverse_statics(robot: Robot, pose: Pose,
             # catenaries, and their limits may not fit where the catenaries' do (theory.md
             # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
             # directions then meet the limits
-            try:
-                if not straight:
-                    raise
-                t, sides = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
-                                         tension_reference, sides)
-            except SlackCableError:
+            relaxed = None
+            if straight:
+                with contextlib.suppress(SlackCableError):
+                    relaxed = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
+                                            tension_reference, sides)
+            if relaxed is None:
                 raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
                                       f"pose {pose.as_vector().tolist()}") from None
+            t, sides = relaxed
         straight = False
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
