@@ -163,3 +163,17 @@ def test_order_pairing_of_a_three_cycle(md):
     np.testing.assert_array_equal(idx, glob[cycle])
     idx, _ = pair_modes(md, MeasuredModes(md.freq_hz[glob[cycle]] * 1.01), "frequency")
     np.testing.assert_array_equal(idx, glob[cycle])
+
+
+@pytest.mark.parametrize(("kw", "named"), [
+    ({"shapes": "abc"}, "shapes"),
+    ({"shapes": [[1j] * 6] * 2}, "shapes"),
+    ({"sigma_hz": "x"}, "sigma_hz"),
+    ({"sigma_hz": [0.1, 0.1, 0.1]}, "sigma_hz"),
+    ({"damping_ratio": [[0.01]]}, "damping_ratio"),
+])
+def test_measured_modes_refuse_text_complex_and_misshapen_arrays_by_name(kw, named):
+    with pytest.raises(ds.InvalidParameterError, match=named):
+        ds.MeasuredModes(freq_hz=[1.0, 2.0], **kw)
+    # one number for every mode is still taken as such
+    assert ds.MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=[0.1]).sigma_hz.tolist() == [0.1, 0.1]

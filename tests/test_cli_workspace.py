@@ -121,3 +121,19 @@ def test_an_interrupted_workspace_command_resumes(tmp_path, monkeypatch, capsys)
             assert a[name].values.tolist() == b[name].values.tolist(), name
         else:
             assert a[name].values.tobytes() == b[name].values.tobytes(), name
+
+
+def test_a_users_folder_at_the_checkpoint_path_is_refused_before_work(tmp_path, capsys):
+    """OUT.parts is where the command saves its chunks and what it removes at the end: a
+    folder of the user's there is refused (one line, exit 2) and left as it was."""
+    from dynstiff.cli import main
+    user = tmp_path / "m.nc.parts"
+    user.mkdir()
+    (user / "scene.toml").write_text("mine")
+    args = ["workspace", "cogiro", "--box", "-6", "6", "-4", "4", "1", "1", "--step", "4",
+            "-n", "3", "--quiet", "--out", str(tmp_path / "m.nc")]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "scene.toml" in err[0] and "m.nc.parts" in err[0]
+    assert (user / "scene.toml").read_text() == "mine"
+    assert not (tmp_path / "m.nc").exists()

@@ -132,3 +132,27 @@ def test_a_run_resumed_on_a_dask_cluster_equals_the_serial_map(robot, whole, tmp
         resumed = wsmod.workspace(robot, checkpoint=cp, resume=True, client=client, **KW)
     assert_same_map(resumed, whole)
     assert len(list(cp.glob("chunk-*.npz"))) == 4
+
+
+def test_a_folder_or_file_that_is_not_a_checkpoint_is_refused_and_kept(robot, tmp_path):
+    """A user's folder (or file) at the checkpoint's path is refused before any pose, and
+    nothing in it is touched; removing a checkpoint leaves foreign files where they are."""
+    from dynstiff.maps.store import remove_folder
+    user = tmp_path / "map.parts"
+    user.mkdir()
+    (user / "notes.txt").write_text("mine")
+    with pytest.raises(ds.InvalidParameterError, match="notes.txt"):
+        wsmod.workspace(robot, checkpoint=user, **KW)
+    assert sorted(p.name for p in user.iterdir()) == ["notes.txt"]
+    plain = tmp_path / "file.parts"
+    plain.write_text("x")
+    with pytest.raises(ds.InvalidParameterError, match="not a checkpoint folder"):
+        wsmod.workspace(robot, checkpoint=plain, **KW)
+    assert plain.read_text() == "x"
+    cp = Checkpoint(user, fingerprint="f", n_tasks=1)
+    (user / "notes.txt").unlink()
+    cp.save(0, {"freq": np.ones(2), "reason": ["", ""]})
+    (user / ".chunk-000001.npz.tmp").mkdir()          # the temporary folder of a killed run
+    (user / "notes.txt").write_text("mine")           # added by hand after the run began
+    remove_folder(user)
+    assert sorted(p.name for p in user.iterdir()) == ["notes.txt"]

@@ -20,6 +20,7 @@ Pairing a measured mode with a model mode (:func:`pair_modes`):
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -89,7 +90,7 @@ class MeasuredModes:
                 f"{self.freq_hz!r}")
         object.__setattr__(self, "freq_hz", f)
         if self.shapes is not None:
-            S = np.asarray(self.shapes, dtype=float)
+            S = _floats("shapes", self.shapes)
             if S.shape != (f.size, 6):
                 raise InvalidParameterError(
                     f"shapes must have shape ({f.size}, 6) (x y z rx ry rz per mode, NaN where "
@@ -101,7 +102,11 @@ class MeasuredModes:
             v = getattr(self, name)
             if v is None:
                 continue
-            v = np.broadcast_to(np.asarray(v, dtype=float), f.shape).copy()
+            v = _floats(name, v)
+            if v.shape not in ((), (1,), f.shape):
+                raise InvalidParameterError(
+                    f"{name} must be one number or one per mode ({f.size}), got shape {v.shape}")
+            v = np.broadcast_to(v, f.shape).copy()
             if name == "damping_ratio" and not np.all((v >= 0) & (v < 1)):
                 raise InvalidParameterError(
                     f"damping_ratio must be in [0, 1) (an underdamped mode), one per mode, "
@@ -140,6 +145,17 @@ class MeasuredModes:
             for k, name in enumerate(DOF_NAMES):
                 df[name] = self.shapes[:, k]
         return df
+
+
+def _floats(name: str, value: object) -> np.ndarray:
+    """``value`` as a float array, or InvalidParameterError naming ``name`` (text, complex
+    or ragged input)."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", np.exceptions.ComplexWarning)
+            return np.asarray(value, dtype=float)
+    except (TypeError, ValueError, np.exceptions.ComplexWarning):
+        raise InvalidParameterError(f"{name} must be real numbers, got {value!r}") from None
 
 
 def read_measured_modes(path: str | Path) -> MeasuredModes:

@@ -94,7 +94,6 @@ def _orientations(path):
 
 
 def _cmd_workspace(args):
-    import shutil
     from pathlib import Path
 
     import numpy as np
@@ -117,6 +116,8 @@ def _cmd_workspace(args):
         raise InvalidParameterError("--parameter and --values go together")
     if args.workers is not None and args.workers < 1:
         raise InvalidParameterError(f"--workers must be >= 1, got {args.workers}")
+    from dynstiff.maps.store import check_folder, remove_folder
+    check_folder(f"{out}.parts")
     scene = load_scene(args.scene)
     box = args.box if args.box is not None else scene.workspace_box
     if box is None:
@@ -151,7 +152,7 @@ def _cmd_workspace(args):
         ds = workspace(scene.robot, **kw)
     from dynstiff.maps.dataset import write_workspace
     write_workspace(ds, out)
-    shutil.rmtree(f"{out}.parts", ignore_errors=True)      # the saved chunks: in the map now
+    remove_folder(f"{out}.parts")                   # the saved chunks: in the map now
     f1 = ds["first_platform_hz"].values
     info.write(f"{int(ds['feasible'].size)} poses in {ds.attrs['wall_time_s']:.1f} s "
                f"({ds.attrs['engine']}): {int(ds['feasible'].sum())} feasible, "

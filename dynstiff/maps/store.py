@@ -21,13 +21,66 @@ import hashlib
 import json
 import os
 import pickle
+import re
 import shutil
 
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
 
-__all__ = ["Checkpoint", "fingerprint", "resumed"]
+__all__ = ["Checkpoint", "check_folder", "fingerprint", "remove_folder", "resumed"]
+
+_OURS = re.compile(r"(run\.json|chunk-\d{6}\.npz)$|\.(run\.json|chunk-\d{6}\.npz)\.")
+
+
+def _ours(name):
+    """An entry a checkpoint writes: run.json, its chunks and their temporary folders
+    (:func:`dynstiff.io.files.atomic_path`)."""
+    return bool(_OURS.match(name))
+
+
+def check_folder(path):
+    """Refuse ``path`` as a checkpoint folder when it is a file or a folder holding anything a
+    checkpoint does not write (its files would be mixed with, then removed as, the saved
+    chunks); a missing folder or a checkpoint's own folder passes.
+
+    Raises
+    ------
+    InvalidParameterError
+        Naming the path and the first foreign entry.
+    """
+    path = os.fspath(path)
+    if not os.path.lexists(path):
+        return
+    if os.path.islink(path) or not os.path.isdir(path):
+        raise InvalidParameterError(
+            f"checkpoint {path} exists and is not a checkpoint folder: move it away or give "
+            f"another output name")
+    foreign = sorted(n for n in os.listdir(path) if not _ours(n))
+    if foreign:
+        raise InvalidParameterError(
+            f"checkpoint {path} holds files a checkpoint does not write ({foreign[0]!r}"
+            f"{' ...' if len(foreign) > 1 else ''}): move them away or give another output name")
+
+
+def remove_folder(path):
+    """Delete a checkpoint's own files (run.json, the chunks, their temporary files) and the
+    folder when that leaves it empty; anything else in it is left where it is."""
+    path = os.fspath(path)
+    if not os.path.isdir(path) or os.path.islink(path):
+        return
+    for name in os.listdir(path):
+        entry = os.path.join(path, name)
+        if not _ours(name) or os.path.islink(entry):
+            continue
+        if os.path.isdir(entry):
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            os.remove(entry)
+    try:
+        os.rmdir(path)
+    except OSError:
+        pass
 
 
 def fingerprint(tasks):
@@ -97,8 +150,8 @@ class Checkpoint:
         return out
 
     def remove(self):
-        """Delete the folder (after the map is written)."""
-        shutil.rmtree(self.path, ignore_errors=True)
+        """Delete the saved chunks (after the map is written): :func:`remove_folder`."""
+        remove_folder(self.path)
 
 
 def resumed(tasks, checkpoint, resume):
@@ -110,6 +163,7 @@ def resumed(tasks, checkpoint, resume):
             raise InvalidParameterError("resume=True needs checkpoint= (the folder of the "
                                         "saved chunks)")
         return results, lambda i: None
+    check_folder(checkpoint)
     store = Checkpoint(checkpoint, fingerprint(tasks), len(tasks))
     if store.exists() and not resume:
         raise InvalidParameterError(
