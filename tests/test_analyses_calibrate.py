@@ -3,6 +3,7 @@ synthetic frequencies of the model itself (within the reported interval), and fr
 frequencies of the independent lumped model, whose discretisation bias falls at the rate of
 its convergence (O(1/N^2)); per-cable EA and platform mass; bad requests named."""
 
+import warnings
 from dataclasses import replace
 
 import numpy as np
@@ -11,6 +12,7 @@ import pytest
 import dynstiff as ds
 from dynstiff.analyses.calibrate import calibrate
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing
+from dynstiff.errors import ClosedFormWarning
 
 AREA = 8.2051e-6          # CoGiRo cable cross-section [m^2] (theory.md §8.1)
 E_TRUE = 60e9             # [Pa], inside CoGiRo's 17-120 GPa
@@ -288,3 +290,20 @@ def test_a_singular_statics_derivative_falls_back_to_differences():
     assert fit.estimate[0] == pytest.approx(1.3 * EA0, rel=1e-2)
     with pytest.raises(ds.InvalidParameterError, match="singular"):
         ds.calibrate(scene, f_meas, parameters="EA", rung="dsm", jacobian="analytic")
+
+
+def test_a_measured_frequency_far_above_the_cables_modes_is_refused_before_the_fit(scene):
+    """3000 Hz (a unit slip) holds thousands of the model's modes in its band: refused from
+    one count, naming the measured mode and the count, instead of computing them all."""
+    model = ds.FrequencyModel(scene.equilibrium())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ClosedFormWarning)   # the band holds axial modes
+        n = int(ds.mode_count(model, 2 * np.pi * 1.3 * 3000.0)[0])
+    assert n > 2000
+    with pytest.raises(ds.InvalidParameterError,
+                       match=f"measured mode 3 at 3000 Hz: the model has {n} modes below "
+                             f"3900 Hz .* max_modes = 2000"):
+        calibrate(scene, [2.2, 2.4, 3000.0], parameters="EA")
+    for bad in (True, 0, 2.5):
+        with pytest.raises(ds.InvalidParameterError, match="max_modes must be an integer"):
+            calibrate(scene, [2.2, 2.4], parameters="EA", max_modes=bad)

@@ -49,7 +49,9 @@ spectrum. The sensitivities at the estimate are the analytic ones, or central di
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import replace
+from numbers import Integral
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -57,12 +59,13 @@ import numpy as np
 from dynstiff.analyses.calibration_checks import calibration_findings, fit_options, report_findings
 from dynstiff.analyses.calibration_result import CalibrationResult
 from dynstiff.analyses.damped import damped_modes
+from dynstiff.analyses.eigen import mode_count
 from dynstiff.analyses.frf import frf as frf_of
 from dynstiff.analyses.measured import MeasuredModes, massless_pairing, pair_modes
 from dynstiff.analyses.modes import modes
 from dynstiff.analyses.sensitivity import RUNGS as SENSITIVITY_RUNGS
 from dynstiff.analyses.sensitivity import sensitivities_at
-from dynstiff.errors import ConvergenceError, InvalidParameterError
+from dynstiff.errors import ClosedFormWarning, ConvergenceError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 
 if TYPE_CHECKING:
@@ -145,6 +148,23 @@ def _with(robot: Robot, names: tuple[str, ...], factors: NDArray[np.float64]) ->
     return replace(robot, cables=cables, platform=platform, tension_limits=limits)
 
 
+def _refuse_too_many_modes(model: Any, measured: MeasuredModes, fmax: float,
+                           fmax_factor: float, max_modes: int) -> None:
+    """Refuse, from one Wittrick-Williams count, a band of the start model holding more than
+    ``max_modes`` modes, naming the highest measured mode. The closed form's band warnings
+    are held back here: it misses the axial modes, so its count is a lower bound, and the
+    modes computed after this check give the warnings where they apply."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ClosedFormWarning)
+        n = int(mode_count(model, 2 * np.pi * fmax)[0])
+    if n > max_modes:
+        k = int(np.argmax(measured.freq_hz))
+        raise InvalidParameterError(
+            f"measured mode {k + 1} at {measured.freq_hz[k]:g} Hz: the model has {n} modes below "
+            f"{fmax:g} Hz (fmax_factor {fmax_factor:g} times it), more than max_modes = "
+            f"{max_modes}; check the measured frequencies' unit (Hz), or raise max_modes")
+
+
 def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes | None,
               parameters: str | Sequence[str] = ("EA",),
               pose: ArrayLike | Pose | None = None, rung: str = "dsm", pairing: str | None = None,
@@ -152,7 +172,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
               xtol: float = 1e-6, max_nfev: int = 40, fmax_factor: float = 1.3,
               start: dict[str, float] | None = None, frf: FRFResult | None = None,
               frf_point: ArrayLike | None = None, jacobian: str = "auto", strict: bool = False,
-              **model_options: Any) -> CalibrationResult:
+              max_modes: int = 2000, **model_options: Any) -> CalibrationResult:
     """Fit robot parameters to measured natural frequencies (module notes, theory.md §15.6).
 
     Parameters
@@ -196,6 +216,11 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
         residuals of EA, EA_i, mass, inertia, t_min on the rungs "dsm", "exact", "lumped",
         "spring", "catenary"), "differences" by finite differences, "auto" the first where
         it applies.
+    max_modes : int
+        Most modes of the model computed per evaluation: a measured frequency whose band
+        (``fmax_factor`` times it) holds more is refused before the fit, since it is almost
+        always a unit error (rad/s or mHz for Hz) or a mode far above the cables' first
+        modes, which the model pairs only by chance.
     strict : bool
         Raise a :class:`~dynstiff.errors.CalibrationError` instead of warning when the
         calibration finds fault with itself
@@ -287,6 +312,8 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
             raise InvalidParameterError(f"pairing must be 'mac' (measured shapes) or "
                                         f"'massless', got {pairing!r}")
         fmax = fmax_factor * measured.freq_hz.max()
+    if isinstance(max_modes, bool) or not isinstance(max_modes, Integral) or max_modes < 1:
+        raise InvalidParameterError(f"max_modes must be an integer >= 1, got {max_modes!r}")
     count = [0]
     empty = np.zeros(0)
 
@@ -298,7 +325,9 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
         count[0] += 1
         out = {"f": empty, "mac": empty, "share": empty, "zeta": None, "r_frf": empty}
         if measured is not None:
-            md = modes(model, fmax_hz=fmax)
+            if count[0] == 1:
+                _refuse_too_many_modes(model, measured, fmax, fmax_factor, max_modes)
+            md = modes(model, fmax_hz=fmax, max_modes=max_modes)
             if pairing == "mac":
                 idx, mac = pair_modes(md, measured, "mac")
             else:

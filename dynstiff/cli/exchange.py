@@ -11,6 +11,7 @@ from dynstiff.cli.common import save_figure, table_metadata, write_tables
 from dynstiff.cli.options import (
     MEANINGS,
     PARAMETERS,
+    add_max_modes,
     add_model,
     add_outputs,
     add_pose,
@@ -98,7 +99,8 @@ def cmd_calibrate(args):
     pose = as_pose(args.pose) if args.pose is not None else None
     with elapsed(f"calibrate {scene.name}", args.quiet):
         res = calibrate(scene, measured, parameters=tuple(args.parameter), pose=pose,
-                        rung=args.model, confidence=args.confidence)
+                        rung=args.model, confidence=args.confidence,
+                        max_modes=args.max_modes)
     info = report_stream(args)
     info.write(f"{scene.name}: {len(measured)} measured modes, {args.model} model, "
                f"{res.n_evaluations} evaluations\n")
@@ -162,6 +164,7 @@ def add_parsers(sub):
                       "[-]' column and a nonzero value in the scene)")
     add_pose(ca, lengths=False, what="of the measurement (default: the scene's pose)")
     add_model(ca, default="dsm")
+    add_max_modes(ca, 2000)
     ca.add_argument("--confidence", type=float, default=0.95,
                     help="level of the intervals (default %(default)s)")
     add_outputs(ca, csv="the residual of every mode", json="the residual of every mode",
