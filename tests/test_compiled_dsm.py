@@ -2,6 +2,8 @@
 the fused K(omega) + solve of the "dsm" rung, the batched real solve, the reduced assembly
 map, and exact singularity."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -112,3 +114,58 @@ def test_one_loader_gives_every_kernel_or_none(monkeypatch):
         compiled.load.cache_clear()
     with pytest.raises(ValueError, match="'nope'"):
         compiled.load("nope")
+
+
+def test_pivot_signs_count_negative_eigenvalues_or_say_they_are_not_sure():
+    """Sylvester's law of inertia: where the elimination is sure, its negative pivots are
+    the negative eigenvalues and their product is det K; a zero leading pivot (inertia (1,
+    1) of [[0, 1], [1, 0]]) or a tiny one is 'not sure', never a wrong count."""
+    rng = np.random.default_rng(7)
+    work = np.empty((6, 6))
+    sure = 0
+    for _ in range(400):
+        A = rng.normal(size=(6, 6)) * 10.0 ** rng.uniform(-3, 6)
+        K = A + A.T
+        neg, det, ok = cf._pivots(K, work, False)
+        if ok:
+            sure += 1
+            assert neg == int(np.sum(np.linalg.eigvalsh(K) < 0))
+            assert det == pytest.approx(np.linalg.det(K), rel=1e-9)
+    assert sure > 300
+    work2 = np.empty((2, 2))
+    for K in (np.array([[0.0, 1.0], [1.0, 0.0]]), np.array([[1e-12, 1.0], [1.0, 1e-12]])):
+        assert cf._pivots(K, work2, False)[2] is False
+    # the last pivot may vanish for the determinant (next to a root), not for the count
+    K = np.array([[2.0, 1.0], [1.0, 0.5]])
+    assert cf._pivots(K, work2, True)[:2] == (0, 0.0)
+    assert cf._pivots(K, work2, False)[2] is False
+
+
+@pytest.mark.parametrize("scene", ["cogiro", "simulator", "planar2"])
+def test_compiled_search_equals_the_numpy_search(scene, monkeypatch):
+    """The compiled W-W search (bisection on pivot signs, Illinois on (-1)^s det K) and the
+    numpy one (Illinois on the crossing eigenvalue) close brackets of relative width rtol
+    on the same roots: they agree to 2 rtol, over enough modes to hold clusters of local
+    cable modes (identical cables: multiple roots, bisected) and roots near cable poles."""
+    from dynstiff.analyses import eigen
+    from dynstiff.errors import ClosedFormWarning
+    sc = ds.load_scene(scene)
+    m = ds.FrequencyModel(sc.equilibrium(), damping=False)
+    # 120 modes reach beyond the closed form's accurate band (it warns): the two searches
+    # solve the same K(omega), which is what is compared here
+    monkeypatch.setattr(warnings, "filters", list(warnings.filters))
+    warnings.simplefilter("ignore", ClosedFormWarning)
+    fast = ds.eigenfrequencies(m, n_modes=120, rtol=1e-12)
+    counter = eigen._counter
+
+    def without_search(model):
+        count = counter(model)
+        return lambda omega: count(omega)
+    monkeypatch.setattr(eigen, "_counter", without_search)
+    ref = ds.eigenfrequencies(m, n_modes=120, rtol=1e-12)
+    np.testing.assert_allclose(fast, ref, rtol=2e-12, atol=0)
+    if scene != "cogiro":                                   # symmetric: multiple roots
+        assert np.any(np.diff(ref) < 1e-9 * ref[1:])
+    k = np.arange(120)
+    assert np.all(ds.mode_count(m, 2 * np.pi * fast * (1 - 1e-9)) <= k)
+    assert np.all(ds.mode_count(m, 2 * np.pi * fast * (1 + 1e-9)) >= k + 1)

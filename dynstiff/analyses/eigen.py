@@ -154,6 +154,20 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
             ev, J0 = fast.dsm_count(omega, *args)
             with np.errstate(invalid="ignore"):
                 return J0 + np.sum(ev < 0, axis=1), ev, J0
+
+        def search(grid: NDArray[np.float64], J: NDArray[np.int64], ev: NDArray[np.float64],
+                   J0: NDArray[np.int64], N: int, rtol: float,
+                   max_iter: int = 200) -> NDArray[np.float64]:
+            # every frequency of the search lies in [0, grid[-1]], checked by count(grid)
+            J, J0 = J.copy(), J0.copy()
+            J[0] = J0[0] = 0
+            roots, failed, width = fast.dsm_search(grid, J, J0, N, rtol, max_iter, *args)
+            if failed >= 0:
+                raise ConvergenceError(
+                    f"the regula falsi left the bracket of root {failed + 1} wider than rtol = "
+                    f"{rtol:g} after {max_iter} steps", residual=width)
+            return roots
+        count.search = search                       # type: ignore[attr-defined]
         return count
 
     def count(
@@ -262,6 +276,9 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
         J, ev, J0 = count(grid)
     if N == 0:
         return np.zeros(0)
+    search = getattr(count, "search", None)
+    if search is not None:                          # the compiled search ("dsm" rung)
+        return search(grid, J, ev, J0, N, rtol) / _TWO_PI
     return _search(count, N, grid, J, ev, J0, rtol) / _TWO_PI
 
 
