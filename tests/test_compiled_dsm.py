@@ -169,3 +169,42 @@ def test_compiled_search_equals_the_numpy_search(scene, monkeypatch):
     k = np.arange(120)
     assert np.all(ds.mode_count(m, 2 * np.pi * fast * (1 - 1e-9)) <= k)
     assert np.all(ds.mode_count(m, 2 * np.pi * fast * (1 + 1e-9)) >= k + 1)
+
+
+@pytest.mark.parametrize("damping", [
+    {"cable_loss_factor": 0.01, "platform_damping_ratio": 0.01},
+    {"cable_loss_factor": 0.05},
+    {"platform_damping_ratio": 0.02},
+    "own",
+])
+def test_damped_kernel_equals_numpy_k_and_solve(cogiro_eq, damping):
+    """The complex kernel (loss factors through K(w / sqrt(1 + i eta)) (1 + i eta), the
+    platform's damping in K_static, a cable's own complex EA) against numpy's K and solve,
+    over a band with cable and robot modes (series branch included)."""
+    from dataclasses import replace
+
+    from dynstiff.models.dsm_compiled import damped_compiled_arguments
+    eq = cogiro_eq
+    if damping == "own":
+        robot = replace(eq.robot, cables=[replace(c, loss_factor=0.02) for c in eq.robot.cables])
+        eq, damping = robot.equilibrium(pose=eq.pose), {}
+    m = ds.FrequencyModel(eq, **damping)
+    assert m.damped or damping == {}
+    omega = 2 * np.pi * np.concatenate([[0.0, 1e-3], np.linspace(0.05, 6.0, 1201)])
+    B, C = np.eye(6), np.eye(6)[[0, 2, 5]]
+    H, kmax, singular = cf.dsm_receptance_damped(omega, *damped_compiled_arguments(m), B, C)
+    K = m.dynamic_stiffness(omega)
+    H0 = C @ np.linalg.solve(K, np.broadcast_to(B, K.shape))
+    assert np.iscomplexobj(K) and not singular.any()
+    assert _relative_error(H, H0).max() < 1e-11
+    np.testing.assert_allclose(kmax, np.abs(K).max(axis=(1, 2)), rtol=1e-13)
+
+
+def test_viscous_cable_damping_is_left_to_the_numpy_path(cogiro_eq):
+    from dataclasses import replace
+
+    from dynstiff.models.dsm_compiled import damped_compiled_arguments
+    robot = replace(cogiro_eq.robot,
+                    cables=[replace(c, viscous_damping=0.1) for c in cogiro_eq.robot.cables])
+    m = ds.FrequencyModel(robot.equilibrium(pose=cogiro_eq.pose))
+    assert damped_compiled_arguments(m) is None

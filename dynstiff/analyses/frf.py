@@ -19,7 +19,7 @@ from dynstiff.cable.psi import check_frequency_range
 from dynstiff.errors import InvalidParameterError, PoleWarning, ResonanceWarning, user_stacklevel
 from dynstiff.models.base import require_model
 from dynstiff.models.dsm import FrequencyModel
-from dynstiff.models.dsm_compiled import compiled_arguments
+from dynstiff.models.dsm_compiled import compiled_arguments, damped_compiled_arguments
 from dynstiff.results import INPUT_NAMES, OUTPUT_NAMES, FRFResult, response_factor
 from dynstiff.robot.platform import skew
 
@@ -231,9 +231,11 @@ def _receptance(
     """C K(omega)^-1 B of ``model`` at omega (n,) [rad/s], shape (n, n_out, n_in), complex.
 
     Returns (H, kmax, singular): kmax (n,) the largest |K_ij| per frequency, singular (n,)
-    where K is exactly singular (H undefined there). Undamped "dsm" models take the fused
-    compiled kernel when numba is installed; every other model solves its K(omega) batched
-    over frequency, in real arithmetic when K is real (theory.md §14.1).
+    where K is exactly singular (H undefined there). "dsm" models take a fused compiled
+    kernel when numba is installed (real for undamped cables, complex for hysteretic
+    damping: loss factors and the platform's modal damping); every other model (viscous
+    cable damping, other rungs) solves its K(omega) batched over frequency, in real
+    arithmetic when K is real (theory.md §14.1).
     """
     fast = compiled.load("dsm")
     # exactly the closed-form class: a subclass may change the cable kernels
@@ -243,6 +245,14 @@ def _receptance(
         H, kmax, singular = fast.dsm_receptance(np.ascontiguousarray(omega, dtype=float),
                                                 *compiled_arguments(model), B, C)
         return H, kmax, singular
+    if fast is not None and type(model) is FrequencyModel and np.isrealobj(omega):
+        args = damped_compiled_arguments(model)       # None with viscous cable damping
+        if args is not None:
+            check_frequency_range(model.stacked_params, omega)
+            model.guard_band(omega)
+            return fast.dsm_receptance_damped(np.ascontiguousarray(omega, dtype=float), *args,
+                                              np.ascontiguousarray(B, dtype=float),
+                                              np.ascontiguousarray(C, dtype=float))
     K = model.dynamic_stiffness(omega)
     H, singular = _solve(K, B, C, fast)
     return H, np.abs(K).max(axis=(1, 2)), singular

@@ -471,3 +471,112 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
             return roots, r, (b_ - a_) / b_
         roots[r] = 0.5 * (a_ + b_)
     return roots, -1, 0.0
+
+
+@numba.njit(**_JIT)
+def _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, series, assembly):
+    """Cable part of a damped K (upper entries, complex, shape (w.size, nf (nf + 1) / 2)) at
+    the real frequencies w [rad/s]: every cable's coefficients of :func:`_assembled_block`,
+    complex, evaluated at w / sqrt(scale) and multiplied by ``scale`` = 1 + i eta (a
+    hysteretic loss factor eta of every cable stiffness force,
+    ``FrequencyModel.cable_coefficients``); the series branch where |psi| < its radius."""
+    radius, e_coef, p_coef = series
+    nc = L.size
+    half_L = 0.5 * L
+    TL = T / L
+    k0_4 = 4.0 * K0
+    k0_4a = 4.0 * alpha * K0
+    m_l6 = m * L / 6.0 if chordwise else np.zeros(nc)
+    root = np.sqrt(scale)
+    coef = np.empty((w.size, 4 * nc), dtype=np.complex128)
+    for b in range(w.size):
+        wc = w[b] / root
+        w2 = wc * wc
+        for j in range(nc):
+            psi = half_L[j] * np.sqrt(w2 * m[j] / T[j])
+            s, c = np.sin(psi), np.cos(psi)
+            cos2 = c * c - s * s
+            psi2 = psi * psi
+            if abs(psi) < radius:
+                s_over_psi = 1.0 + 0j if psi == 0.0 else s / psi
+                E = _horner_c(e_coef, psi2)
+                Pt = _horner_c(p_coef, psi2)
+            else:
+                s_over_psi = s / psi
+                ip3 = 1.0 / (psi2 * psi)
+                E = (psi * c - s) * ip3
+                Pt = ((1.0 + psi2) * s * c - psi) * ip3
+            iden = 1.0 / (4.0 * c - lam2[j] * E)
+            coef[b, 4 * j] = scale * (k0_4[j] * c * iden - 2.0 * w2 * m_l6[j])
+            coef[b, 4 * j + 1] = -scale * k0_4a[j] * psi2 * E * iden
+            coef[b, 4 * j + 2] = scale * TL[j] * (4.0 * cos2 + lam2[j] * Pt) * iden / s_over_psi
+            coef[b, 4 * j + 3] = scale * TL[j] * cos2 / (s_over_psi * c)
+    return coef @ assembly
+
+
+@numba.njit(**_JIT)
+def _horner_c(coef, x):
+    y = 0.0 + 0j
+    for a in coef:
+        y = y * x + a
+    return y
+
+
+@numba.njit(**_JIT)
+def dsm_receptance_damped(omega, scale, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
+                          K_static, M, B, C):
+    """Receptance C K(omega)^-1 B of the "dsm" rung with hysteretic damping (a loss factor
+    of the cables, :func:`_assembled_block_damped`, and the platform's modal damping in the
+    complex ``K_static``), K(omega) built and solved one frequency at a time in complex
+    arithmetic (theory.md §12.2, §14.1). Cables with viscous damping are not handled here.
+
+    Parameters
+    ----------
+    omega : ndarray, shape (n,)
+        [rad/s], >= 0, within the closed form's range (checked by the caller).
+    scale : complex
+        1 + i eta, eta the model's cable loss factor.
+    L, m, T : ndarray, shape (n_cables,)
+        Chord length [m], mass per chord length [kg/m], tension [N] (real).
+    lam2, alpha, K0 : ndarray of complex, shape (n_cables,)
+        Irvine lambda^2, end slope, EA / L_e [N/m] (complex where a cable's own EA is).
+    chordwise, series :
+        As :func:`dsm_receptance`.
+    assembly : ndarray of complex, shape (4 n_cables, nf (nf + 1) / 2)
+    K_static : ndarray of complex, shape (nf, nf)
+        Geometric stiffness plus the platform's damping on the free DOFs.
+    M, B, C :
+        Real; as :func:`dsm_receptance`.
+
+    Returns
+    -------
+    H, kmax, singular :
+        As :func:`dsm_receptance`; H complex.
+    """
+    n, nf = omega.size, K_static.shape[0]
+    c_identity = C.shape[0] == nf and (C == np.eye(nf)).all()
+    Bc = B.astype(np.complex128)
+    Cc = C.astype(np.complex128)
+    H = np.zeros((n, C.shape[0], B.shape[1]), dtype=np.complex128)
+    Hk = np.empty((C.shape[0], B.shape[1]), dtype=np.complex128)
+    kmax = np.empty(n)
+    singular = np.zeros(n, dtype=np.bool_)
+    Kk = np.empty((nf, nf), dtype=np.complex128)
+    work = np.empty((nf, B.shape[1]), dtype=np.complex128)
+    for start in range(0, n, _BLOCK):
+        w = omega[start:start + _BLOCK]
+        Kb = _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, series,
+                                     assembly)
+        for b in range(w.size):
+            k = start + b
+            big = _unpack(Kb[b], K_static, M, w[b], Kk)
+            if not np.isfinite(big):                   # exactly on a cable pole
+                kmax[k] = np.inf
+                H[k] = np.nan
+                continue
+            kmax[k] = big
+            singular[k] = not _lu_solve_into(Kk, Bc, Cc, c_identity, Hk, work)
+            for o in range(Hk.shape[0]):
+                for i in range(Hk.shape[1]):
+                    H[k, o, i] = Hk[o, i]
+    return H, kmax, singular

@@ -11,11 +11,13 @@ import numpy as np
 from dynstiff.cable.psi import PSI_SERIES
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.models.dsm import FrequencyModel
 
-__all__ = ["compiled_arguments", "symmetric_assembly"]
+__all__ = ["compiled_arguments", "damped_compiled_arguments", "symmetric_assembly"]
 
 
 def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
@@ -32,6 +34,29 @@ def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
             symmetric_assembly(model.assembly_map, model.n_free),
             np.ascontiguousarray(model.K_geo_free, dtype=float),
             np.ascontiguousarray(model.platform_mass, dtype=float))
+
+
+def damped_compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...] | None:
+    """The arguments scale .. M of ``dsm_receptance_damped`` (:mod:`dynstiff.compiled.dsm`)
+    for a damped :class:`FrequencyModel` whose damping is hysteretic (the model's cable loss
+    factor, the cables' own complex EA, the platform's modal damping); None where a cable has
+    viscous damping (its mass is complex and frequency-dependent: the numpy path)."""
+    p = model.stacked_params
+    if np.any(np.asarray(p.c) != 0):
+        return None
+
+    def arr(x: NDArray[Any], kind: type) -> NDArray[Any]:
+        return np.ascontiguousarray(np.broadcast_to(x, p.L.shape), dtype=kind)
+
+    K_static = model.K_geo_free.astype(complex)
+    if model._K_platform_damping is not None:
+        K_static = K_static + model._K_platform_damping
+    return (complex(1.0 + 1j * model.cable_loss_factor), arr(np.real(p.L), float),
+            arr(np.real(p.m), float), arr(np.real(p.T), float),
+            arr(p.lambda_sq_complex, complex), arr(p.alpha, complex), arr(p.K0, complex),
+            bool(model.chordwise_inertia), PSI_SERIES,
+            symmetric_assembly(model.assembly_map, model.n_free).astype(complex),
+            np.ascontiguousarray(K_static), np.ascontiguousarray(model.platform_mass, dtype=float))
 
 
 def symmetric_assembly(assembly_map: NDArray[np.float64], n_free: int) -> NDArray[np.float64]:
