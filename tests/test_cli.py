@@ -190,6 +190,7 @@ FLAG_MEANINGS = {
     "--plot": ("plot", "write a figure"),
     "--out": ("out", "write the main result to"),
     "--quiet": ("quiet", "no progress bars"),
+    "--uncertain": ("uncertain", "a parameter's uncertainty NAME=VALUE, repeatable"),
 }
 
 

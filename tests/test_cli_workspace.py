@@ -137,3 +137,26 @@ def test_a_users_folder_at_the_checkpoint_path_is_refused_before_work(tmp_path, 
     assert len(err) == 1 and "scene.toml" in err[0] and "m.nc.parts" in err[0]
     assert (user / "scene.toml").read_text() == "mine"
     assert not (tmp_path / "m.nc").exists()
+
+
+def test_workspace_command_maps_the_uncertain_row_as_check_does(tmp_path, capsys):
+    """--uncertain adds the checks' uncertain row to every pose (200 samples, seed 0, as
+    `dynstiff check --uncertain`); the CSV holds its probability and verdict."""
+    import pandas as pd
+
+    from dynstiff.analyses.checks import design_checks
+    from dynstiff.cli import main
+    from dynstiff.scenes import load_scene
+    args = ["workspace", "cogiro", "--box", "4", "4", "-3", "-3", "1", "1", "--step", "1",
+            "-n", "3", "--uncertain", "mass=10%", "--quiet", "--out", str(tmp_path / "m.nc"),
+            "--csv", str(tmp_path / "m.csv")]
+    assert main(args) == 0
+    df = pd.read_csv(tmp_path / "m.csv", comment="#")
+    res = design_checks(load_scene("cogiro").robot, [4.0, -3.0, 1.0], band_hz=(0.0, 1.5),
+                        uncertain={"mass": "10%"})
+    col = "check: platform modes outside band, uncertain"
+    assert df[col].tolist() == [res.rows[-1]["verdict"]]
+    assert df["probability of a platform mode in the band [-]"].tolist() == [
+        pytest.approx(res.rows[-1]["value"], abs=0)]
+    assert main(args[:-4] + ["--uncertain", "mass", "--out", str(tmp_path / "n.nc")]) == 2
+    assert "--uncertain mass: give NAME=VALUE[%]" in capsys.readouterr().err

@@ -185,6 +185,19 @@ def test_box_grid_axes():
     ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.001}, r"more than 10000: raise step= \(--step\)"),
     ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.05}, r"3,918,901 poses, more than max_poses="),
     ({"box": (-6, 6, -4, 4, 0, 5), "step": 0.002, "max_poses": None}, r"GiB of memory \(this"),
+    # the uncertain row: its settings and parameters checked before the first pose
+    ({"poses": [[0, 0, 1]], "uncertain": {"EA": "10%"}}, "uncertain= needs band_hz"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EB": "10%"}}, "EB"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "ten"}}, "ten"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {}}, "non-empty dict"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "n_samples": 0},
+     "n_samples must be an integer >= 1"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "seed": True},
+     "seed must be an integer"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "confidence": 1.0},
+     r"confidence must be a number in \(0, 1\)"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"},
+      "tensions": "max-frequency"}, "default tensions"),
 ])
 def test_bad_arguments_are_named(robot, kw, match):
     with pytest.raises(ds.InvalidParameterError, match=match):
@@ -272,3 +285,30 @@ def test_max_frequency_tensions_map_the_optimal_distribution(robot):
     assert opt["min_tension"].values.min() >= robot.tension_limits[0] - 1e-6
     with pytest.raises(ds.InvalidParameterError, match="tensions must be one of"):
         workspace(robot, poses, tensions="optimal")
+
+
+def test_the_uncertain_row_of_a_map_is_the_design_checks_at_every_pose(robot):
+    """The platform mass known to 10 %: at each pose the map's probability, margin at 95 %
+    and verdict are those of design_checks with the same uncertainties, sample and seed
+    (two poses whose nominal margin passes fail the uncertain row, one passes it), and the
+    dynamic workspace holds the row."""
+    from dynstiff.analyses.uncertainty import UNCERTAIN_CHECK
+    poses = [[4.0, -3.0, 1.0], [-2.0, -1.0, 1.0], [-4.0, -3.0, 1.5]]
+    kw = {"band_hz": BAND, "uncertain": {"mass": "10%"}, "n_samples": 24, "seed": 3}
+    m = workspace(robot, poses, n_modes=3, chunk_size=2, **kw)
+    assert m["check"].values.tolist()[-1] == UNCERTAIN_CHECK
+    assert m.attrs["uncertain"] == "mass sigma 10 % (normal)" and m.attrs["n_samples"] == 24
+    verdicts = []
+    for k, pose in enumerate(poses):
+        res = design_checks(robot, pose, **kw)
+        row = res.rows[-1]
+        assert row["check"] == UNCERTAIN_CHECK
+        assert m["uncertain_probability"].values[k] == row["value"]
+        q = res.uncertainty.quantile("band_margin", 1.0 - 0.95)
+        assert m["uncertain_margin"].values[k] == q
+        assert bool(m["passed"].values[k, -1]) == (row["verdict"] == "pass")
+        assert bool(m["dynamic"].values[k]) == res.passed
+        verdicts.append((row["verdict"], res.verdicts["platform modes outside band"]))
+    assert verdicts == [("fail", "pass"), ("pass", "pass"), ("fail", "pass")]
+    frame = m.dynstiff.to_frame()
+    assert {"uncertain_probability", f"check: {UNCERTAIN_CHECK}"} <= set(frame.columns)

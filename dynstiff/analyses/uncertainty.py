@@ -49,7 +49,7 @@ if TYPE_CHECKING:
     from dynstiff.scenes.loader import Scene
 
 __all__ = ["UNCERTAIN_CHECK", "Uncertain", "UncertaintyResult", "propagate_uncertainty",
-           "uncertain_row"]
+           "uncertain_items", "uncertain_parameters", "uncertain_row"]
 
 _DISTRIBUTIONS = ("normal", "uniform")
 
@@ -137,6 +137,27 @@ def _uncertain_items(uncertain: dict[str, str]) -> dict[str, Uncertain]:
             raise InvalidParameterError(f"uncertain[{name!r}] must be an Uncertain or a "
                                         f"string like '10%', got {u!r}")
     return out
+
+
+def uncertain_parameters(names: list[str], robot: Robot, pose: Pose,
+                         tension_reference: NDArray[np.float64] | float | None = None,
+                         ) -> list[Parameter]:
+    """The :class:`~dynstiff.analyses.sensitivity_parameters.Parameter` of each uncertain
+    name at ``pose``, refusing a loss factor (it moves no undamped frequency) and wildcards
+    (each parameter needs its own distribution)."""
+    params = expand_parameters(names, robot, pose, "pose", tension_reference)
+    if any(p.kind == "damping" for p in params):
+        raise InvalidParameterError("uncertain: a loss factor moves no undamped frequency")
+    if len(params) != len(names):
+        raise InvalidParameterError("uncertain: give each parameter by its own name (no "
+                                    "wildcards: each needs its distribution)")
+    return params
+
+
+def uncertain_items(uncertain: dict[str, str]) -> dict[str, Uncertain]:
+    """{name: Uncertain} of ``uncertain`` ({name: Uncertain or "10%"}), or
+    InvalidParameterError naming the entry."""
+    return _uncertain_items(uncertain)
 
 
 def evaluate_samples(robot: Robot, pose: Pose, names: list[str], values: NDArray[np.float64],
@@ -262,12 +283,7 @@ def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
             raise InvalidParameterError(f"band_hz must be (lo, hi), 0 <= lo < hi [Hz], got "
                                         f"{band_hz!r}")
     names = list(items)
-    params = expand_parameters(names, robot, pose, "pose", tension_reference)
-    if any(p.kind == "damping" for p in params):
-        raise InvalidParameterError("uncertain: a loss factor moves no undamped frequency")
-    if len(params) != len(names):
-        raise InvalidParameterError("uncertain: give each parameter by its own name (no "
-                                    "wildcards: each needs its distribution)")
+    params = uncertain_parameters(names, robot, pose, tension_reference)
     eq = robot.equilibrium(pose=pose, tension_reference=tension_reference)
     model = build_model(eq, rung, **model_options).undamped()
     pm = find_platform_modes(model, band_hz[1] * 1.05 if band_hz else 0.0)

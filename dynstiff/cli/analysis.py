@@ -19,6 +19,8 @@ from dynstiff.cli.options import (
     add_pose,
     add_quiet,
     add_scene,
+    add_uncertain,
+    uncertain_items,
 )
 
 __all__ = ["add_parsers"]
@@ -172,7 +174,7 @@ def _cmd_check(args):
     if pose is None:
         pose = scene.equilibrium().pose
     band = st.forbidden_hz
-    uncertain = _uncertain(args.uncertain)
+    uncertain = uncertain_items(args.uncertain)
     with elapsed(f"check {scene.name}", args.quiet):
         res = design_checks(scene.robot, pose, proximity_rtol=args.proximity,
                             max_sag_ratio=args.max_sag, uncertain=uncertain,
@@ -198,22 +200,6 @@ def _cmd_check(args):
     write_tables(args, res.to_frame(), st.metadata(as_pose(pose)))
     _wrote(args)
     return 0 if res.passed else 1
-
-
-def _uncertain(items):
-    """{name: Uncertain} of the ``--uncertain NAME=VALUE[%][:normal|:uniform]`` options."""
-    from dynstiff.analyses.uncertainty import Uncertain
-    from dynstiff.errors import InvalidParameterError
-    out = {}
-    for item in items or ():
-        name, sep, value = item.partition("=")
-        if not sep or not name.strip():
-            raise InvalidParameterError(f"--uncertain {item}: give NAME=VALUE[%], e.g. EA=10%")
-        try:
-            out[name.strip()] = Uncertain.parse(value)
-        except InvalidParameterError as exc:
-            raise InvalidParameterError(f"--uncertain {item}: {exc}") from None
-    return out
 
 
 def add_parsers(sub):
@@ -287,11 +273,7 @@ def add_parsers(sub):
                     help="relative distance local-global mode that fails (default %(default)s)")
     ck.add_argument("--max-sag", type=float, default=0.02,
                     help="largest admissible sag/chord (default %(default)s)")
-    ck.add_argument("--uncertain", action="append", metavar="NAME=VALUE[%]",
-                    help="a parameter's uncertainty (repeatable): EA=10%% is a standard "
-                         "deviation of 10 %%, EA=10%%:uniform +-10 %%, mass=2 absolute; adds "
-                         "the probability that a platform mode enters the band and the margin "
-                         "at 95 %% confidence (Monte Carlo, 200 samples)")
+    add_uncertain(ck)
     add_outputs(ck, csv="the checks table", json="the checks table")
     add_quiet(ck)
     ck.set_defaults(func=_cmd_check)

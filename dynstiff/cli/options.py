@@ -9,7 +9,8 @@ Renamed options are refused with a one-line error that names the new one
 
 __all__ = ["MEANINGS", "PARAMETERS", "RENAMED", "add_band", "add_forbidden_band",
            "add_max_modes", "add_model", "add_n_modes", "add_outputs", "add_pose",
-           "add_quiet", "add_scene", "parameter_help", "renamed_hint"]
+           "add_quiet", "add_scene", "add_uncertain", "parameter_help", "renamed_hint",
+           "uncertain_items"]
 
 #: The meaning of each shared option: the first words of its help in every command.
 MEANINGS = {
@@ -34,6 +35,7 @@ MEANINGS = {
     "--plot": "write a figure",
     "--out": "write the main result to",
     "--quiet": "no progress bars",
+    "--uncertain": "a parameter's uncertainty NAME=VALUE, repeatable",
 }
 
 #: Parameters by name, one meaning in every command that varies or fits them.
@@ -92,6 +94,31 @@ def add_forbidden_band(p):
     p.add_argument("--forbidden-band", type=float, nargs=2, metavar=("LO", "HI"),
                    help=_help("--forbidden-band", "no platform mode may lie in it (default: "
                                                   "the scene's forbidden_band_hz)"))
+
+
+def add_uncertain(p):
+    p.add_argument("--uncertain", action="append", metavar="NAME=VALUE[%]",
+                   help=_help("--uncertain", "EA=10%% is a standard deviation of 10 %%, "
+                                             "EA=10%%:uniform +-10 %%, mass=2 absolute; adds "
+                                             "the probability that a platform mode enters "
+                                             "the band and the margin at 95 %% confidence "
+                                             "(Monte Carlo, 200 samples)"))
+
+
+def uncertain_items(items):
+    """{name: Uncertain} of the ``--uncertain NAME=VALUE[%][:normal|:uniform]`` options."""
+    from dynstiff.analyses.uncertainty import Uncertain
+    from dynstiff.errors import InvalidParameterError
+    out = {}
+    for item in items or ():
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise InvalidParameterError(f"--uncertain {item}: give NAME=VALUE[%], e.g. EA=10%")
+        try:
+            out[name.strip()] = Uncertain.parse(value)
+        except InvalidParameterError as exc:
+            raise InvalidParameterError(f"--uncertain {item}: {exc}") from None
+    return out
 
 
 def add_n_modes(p, what="default: the scene's n_modes"):

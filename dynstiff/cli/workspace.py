@@ -12,7 +12,9 @@ from dynstiff.cli.options import (
     add_outputs,
     add_quiet,
     add_scene,
+    add_uncertain,
     parameter_help,
+    uncertain_items,
 )
 
 __all__ = ["add_parsers"]
@@ -21,7 +23,9 @@ __all__ = ["add_parsers"]
 COLUMNS = {"x": "x [m]", "y": "y [m]", "z": "z [m]", "rx": "rx [rad]", "ry": "ry [rad]",
            "rz": "rz [rad]", "residual": "statics residual [N]",
            "first_platform_hz": "first platform freq [Hz]",
-           "band_margin": "band margin [-]", "proximity_gap": "proximity gap [-]"}
+           "band_margin": "band margin [-]", "proximity_gap": "proximity gap [-]",
+           "uncertain_probability": "probability of a platform mode in the band [-]",
+           "uncertain_margin": "band margin at the confidence [-]"}
 
 
 def add_parsers(sub):
@@ -51,6 +55,7 @@ def add_parsers(sub):
     ws.add_argument("--margin", type=float,
                     help="relative margin of the platform modes to the forbidden band [-] "
                          "(default: the scene's, else 0.05)")
+    add_uncertain(ws)
     ws.add_argument("--tensions", choices=["default", "max-frequency"], default="default",
                     help="tension distribution at every pose: the default (closest to t_min) "
                          "or the one that maximises the first platform mode")
@@ -138,7 +143,8 @@ def _cmd_workspace(args):
               frf_limit=st.frf_limit, damping=st.damping, chunk_size=args.chunk_size,
               workers=args.workers, progress=not args.quiet, tensions=args.tensions,
               rung=st.rung, max_poses=args.max_poses, checkpoint=f"{out}.parts",
-              resume=args.resume, **st.model_options())
+              resume=args.resume, uncertain=uncertain_items(args.uncertain) or None,
+              **st.model_options())
     info = report_stream(args)
     if args.scheduler:
         try:

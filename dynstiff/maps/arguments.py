@@ -3,7 +3,7 @@ robot at each value of a cable parameter, and every argument checked before the 
 (a bad one is an error naming it, never a column of "infeasible" poses)."""
 
 import dataclasses
-from numbers import Integral
+from numbers import Integral, Real
 
 import numpy as np
 
@@ -16,7 +16,7 @@ from dynstiff.params import Cable, Damping
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 
-__all__ = ["CABLE_PARAMETERS", "box_grid", "robot_with", "validate_arguments"]
+__all__ = ["CABLE_PARAMETERS", "box_grid", "checked_uncertain", "robot_with", "validate_arguments"]
 
 CABLE_PARAMETERS = tuple(f.name for f in dataclasses.fields(Cable))
 
@@ -152,3 +152,29 @@ def validate_arguments(robot, poses, box, step, orientations, parameter, values,
     if not isinstance(damping, Damping):
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     return X, layout, values
+
+
+def checked_uncertain(robot, first_pose, uncertain, n_samples, seed, confidence, options,
+                      tensions):
+    """The map's uncertain row settings (:func:`dynstiff.maps.workspace.workspace`) checked
+    before any pose: (items, n_samples, seed, confidence), items {name: Uncertain} with
+    every name a parameter of ``robot`` at ``first_pose`` (6 numbers)."""
+    from dynstiff.analyses.uncertainty import uncertain_items, uncertain_parameters
+    items = uncertain_items(uncertain)
+    for name, v in (("n_samples", n_samples), ("seed", seed)):
+        if isinstance(v, bool) or not isinstance(v, Integral) or v < (1 if name == "n_samples"
+                                                                     else 0):
+            raise InvalidParameterError(f"{name} must be an integer >= "
+                                        f"{1 if name == 'n_samples' else 0}, got {v!r}")
+    if isinstance(confidence, bool) or not isinstance(confidence, Real) \
+            or not 0 < confidence < 1:
+        raise InvalidParameterError(f"confidence must be a number in (0, 1), got "
+                                    f"{confidence!r}")
+    if options.forbidden_hz is None:
+        raise InvalidParameterError("uncertain= needs band_hz: its row is the probability "
+                                    "that a platform mode enters the forbidden band")
+    if tensions != "default":
+        raise InvalidParameterError(f"uncertain= maps the default tensions (those of the "
+                                    f"design checks), not tensions={tensions!r}")
+    uncertain_parameters(list(items), robot, as_pose(first_pose))
+    return items, int(n_samples), int(seed), float(confidence)

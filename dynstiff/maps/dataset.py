@@ -37,6 +37,11 @@ VARIABLES = {
                               "modes held to the margin (negative inside)")),
     "proximity_gap": ((), "1", ("smallest relative gap between a local and a platform mode "
                                 "within proximity_rtol (NaN if none)")),
+    "uncertain_probability": ((), "1", ("probability that a mode held to the margin lies "
+                                        "within it of the forbidden band, Monte Carlo (NaN "
+                                        "without uncertain=)")),
+    "uncertain_margin": ((), "1", ("band margin reached with probability confidence "
+                                   "(NaN without uncertain=)")),
     "passed": (("check",), "1", "check verdict pass"),
     "unknown": (("check",), "1", ("check verdict unknown: what it needs was not computed "
                                   "(it fails the pose)")),
@@ -190,13 +195,16 @@ class WorkspaceAccessor:
     def to_frame(self):
         """pandas DataFrame, one row per pose (and parameter value): the pose coordinates,
         ``feasible``, ``reason``, ``first_platform_hz``, ``band_margin``,
-        ``proximity_gap``, ``dynamic``, the verdict of each check ("pass", "fail",
-        "unknown") and the least and largest tension [N]."""
+        ``proximity_gap``, ``dynamic`` (and ``uncertain_probability``,
+        ``uncertain_margin`` in a map with uncertainties), the verdict of each check
+        ("pass", "fail", "unknown") and the least and largest tension [N]."""
         ds = self._ds
         if "check" not in ds.dims or "feasible" not in ds:
             raise InvalidParameterError("to_frame needs a workspace map (dynstiff.workspace)")
         keep = ["feasible", "reason", "residual", "first_platform_hz", "band_margin",
                 "proximity_gap", "dynamic"]
+        if str(ds.attrs.get("uncertain", "none")) != "none":
+            keep += ["uncertain_probability", "uncertain_margin"]
         base = ds[keep].copy()
         for c in ds["check"].values:
             passed = ds["passed"].sel(check=c, drop=True)

@@ -27,9 +27,10 @@ from dynstiff.analyses.checks import check_options, damped_model, modal_model_op
 from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
+from dynstiff.analyses.uncertainty import UNCERTAIN_CHECK, uncertain_row
 from dynstiff.analyses.verdicts import CHECKS, equilibrium_sag_ratios, modal_rows, statics_rows
 from dynstiff.errors import ClosedFormWarning, DynstiffError, Interrupted, InvalidParameterError
-from dynstiff.maps.arguments import box_grid, robot_with, validate_arguments
+from dynstiff.maps.arguments import box_grid, checked_uncertain, robot_with, validate_arguments
 from dynstiff.maps.guards import MAX_POSES, check_model_options, check_size, estimate_text
 from dynstiff.maps.store import resumed
 from dynstiff.models.dsm import ROBOT_BOUND_MESSAGE
@@ -75,7 +76,7 @@ def _proximity_gap(pm):
 
 
 def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options, checks,
-                   tensions="default"):
+                   tensions="default", uncertain=None):
     """Statics, modes and the verdicts of :mod:`dynstiff.analyses.verdicts` at consecutive
     poses, each warm-started from the last feasible one (the statics, and nothing else,
     depend on the start: the verdicts are those of
@@ -97,6 +98,10 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
     tensions : {"default", "max-frequency"}
         The tension distribution
         (:func:`~dynstiff.analyses.optimal_tensions.tension_equilibrium`).
+    uncertain : (dict, int, int, float), optional
+        Stated uncertainties {name: Uncertain}, the Monte Carlo's sample size and seed and
+        the confidence of the uncertain row
+        (:func:`dynstiff.analyses.uncertainty.uncertain_row`, as the design checks give it).
 
     Returns
     -------
@@ -112,7 +117,8 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
            "sag_ratio": np.full((k, n), nan), "freq": np.full((k, m), nan),
            "platform_share": np.full((k, m), nan), "is_platform": np.zeros((k, m), bool),
            "first_platform_hz": np.full(k, nan), "band_margin": np.full(k, nan),
-           "proximity_gap": np.full(k, nan), "passed": np.zeros((k, len(checks)), bool),
+           "proximity_gap": np.full(k, nan), "uncertain_probability": np.full(k, nan),
+           "uncertain_margin": np.full(k, nan), "passed": np.zeros((k, len(checks)), bool),
            "unknown": np.zeros((k, len(checks)), bool)}
     reasons = [""] * k
     prev = None
@@ -145,6 +151,14 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
             except (DynstiffError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 error, eq = exc, None
                 rows = statics_rows(robot, None, exc, options)
+        if uncertain is not None:
+            items, n_samples, seed, confidence = uncertain
+            row, res = uncertain_row(robot, pose, options, items, rung, model_options,
+                                     n_samples, seed, confidence)
+            rows.append(row)
+            out["uncertain_probability"][j] = row["value"]
+            if res is not None:
+                out["uncertain_margin"][j] = res.quantile("band_margin", 1.0 - confidence)
         verdict = {r["check"]: r["verdict"] for r in rows}
         out["passed"][j] = [verdict[c] == "pass" for c in checks]
         out["unknown"][j] = [verdict[c] == "unknown" for c in checks]
@@ -245,7 +259,8 @@ def workspace(robot: Robot, poses: "np.typing.ArrayLike | None" = None, *,
               workers: int | None = None, client: object = None, progress: bool = False,
               tensions: str = "default", max_poses: int = MAX_POSES,
               checkpoint: "str | os.PathLike[str] | None" = None, resume: bool = False,
-              **model_options: object) -> "xarray.Dataset":
+              uncertain: dict | None = None, n_samples: int = 200, seed: int = 0,
+              confidence: float = 0.95, **model_options: object) -> "xarray.Dataset":
     """Map statics, modes and the design checks over a grid or a list of poses.
 
     Every pose gets the verdicts :func:`dynstiff.analyses.checks.design_checks` gives it
@@ -299,6 +314,17 @@ damping, model_band_hz, max_modes
         Continue the run saved in ``checkpoint``: its tasks are read, not computed again,
         and the map equals that of an uninterrupted run bit for bit. Without ``resume``, a
         checkpoint that holds a run is refused.
+    uncertain : dict, optional
+        Stated uncertainties {parameter: Uncertain or "10%"}: every pose gets the design
+        checks' uncertain row (the check ``"platform modes outside band, uncertain"``, the
+        variables ``uncertain_probability`` and ``uncertain_margin``), the same Monte Carlo
+        :func:`dynstiff.analyses.checks.design_checks` runs at that pose (theory.md §16.6):
+        ``n_samples`` equilibria and mode searches per pose. Needs ``band_hz`` and the
+        default tensions.
+    n_samples, seed : int
+        The Monte Carlo's Latin-hypercube sample and its seed.
+    confidence : float
+        Level in (0, 1) of the margin the uncertain row holds to ``margin``.
     **model_options
         Passed to :func:`dynstiff.models.ladder.build_model`; checked before any pose
         (:func:`dynstiff.maps.guards.check_model_options`).
@@ -339,6 +365,10 @@ damping, model_band_hz, max_modes
     from dynstiff.maps.dataset import to_dataset
     checks = tuple(c for c in CHECKS if options.forbidden_hz is not None
                    or c not in ("platform modes outside band", "platform receptance in band"))
+    if uncertain is not None:
+        uncertain = checked_uncertain(robot, X[0], uncertain, n_samples, seed, confidence,
+                                      options, tensions)
+        checks += (UNCERTAIN_CHECK,)
     model_options = modal_model_options(rung, options, model_options)
     robots = ([robot] if parameter is None
               else [robot_with(robot, parameter, v) for v in values])
@@ -346,7 +376,7 @@ damping, model_band_hz, max_modes
     for rob in robots:
         for s in range(0, len(X), chunk_size):
             tasks.append((rob, X[s:s + chunk_size], n_modes, options, rung, damping,
-                          model_options, checks, tensions))
+                          model_options, checks, tensions, uncertain))
     results, done = resumed(tasks, checkpoint, resume)
     total = len(X) * len(robots)
     if progress:
@@ -377,6 +407,10 @@ damping, model_band_hz, max_modes
                 "participation": options.participation, "frf_limit": options.frf_limit,
                 "damping": damping.text(), "max_modes": options.max_modes, "rung": rung,
                 "chunk_size": chunk_size, "tensions": tensions,
+                "uncertain": ("none" if uncertain is None else "; ".join(
+                    f"{n} {u.text()}" for n, u in uncertain[0].items())),
+                "n_samples": n_samples if uncertain else 0, "seed": seed,
+                "confidence": confidence,
                 "wall_time_s": time.perf_counter() - t0,
                 "engine": ("dask" if client is not None else
                            f"{workers} processes" if workers and workers > 1 else "serial")}
