@@ -20,6 +20,9 @@ __all__ = ["dsm_receptance", "dsm_count", "dsm_search", "real_receptance"]
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 #: Frequencies per block of the fused kernel (its coefficients stay in cache).
 _BLOCK = 256
+#: The search's Illinois step adds a second point 0.45 rtol hi beyond its iterate (to close
+#: the bracket at once) when the iterate moved less than this many rtol hi since the last.
+_NEAR = 64.0
 
 
 @numba.njit(**_JIT)
@@ -363,9 +366,10 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
     tightens the brackets of the roots above that contain its frequency. In an isolated
     bracket exactly one eigenvalue of K crosses zero, decreasing, so g = (-1)^s det K (s the
     negative eigenvalues at its low end) goes once from >= 0 to < 0; the Illinois iteration
-    of :func:`dynstiff.analyses.eigen._illinois` closes the bracket on g (each step with a
-    second point 0.45 rtol hi towards the far end, Anderson-Bjorck scaling, a bisection
-    where the bracket has not halved in three steps). Multiple roots and roots on a cable
+    of :func:`dynstiff.analyses.eigen._illinois` closes the bracket on g (Anderson-Bjorck
+    scaling, a bisection where the bracket has not halved in three steps, and once the
+    iterates settle (within ``_NEAR`` rtol hi) a second point 0.45 rtol hi towards the far
+    end, which closes the bracket at once). Multiple roots and roots on a cable
     pole are bisected to ``rtol``.
 
     Parameters
@@ -431,6 +435,7 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
         fh = sign * _det_one(b_, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
                              K_static, M, Kk, work)
         side, stall = 0, 0
+        last = np.inf
         for _ in range(max_iter):
             if not b_ - a_ > rtol * b_:
                 break
@@ -438,16 +443,24 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
             x = (a_ * fh - b_ * fl) / (fh - fl)
             if not np.isfinite(x) or x <= a_ or x >= b_ or stall >= 3:
                 x = 0.5 * (a_ + b_)
-            step = (1.0 if b_ - x > x - a_ else -1.0) * 0.45 * rtol * b_
-            x2 = min(max(x + step, np.nextafter(a_, b_)), np.nextafter(b_, a_))
+            near = abs(x - last) <= _NEAR * rtol * b_   # the iterates have settled
+            last = x
             fx = sign * _det_one(x, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
                                  K_static, M, Kk, work)
-            fx2 = sign * _det_one(x2, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                                  K_static, M, Kk, work)
+            if near:
+                step = (1.0 if b_ - x > x - a_ else -1.0) * 0.45 * rtol * b_
+                x2 = min(max(x + step, np.nextafter(a_, b_)), np.nextafter(b_, a_))
+                fx2 = sign * _det_one(x2, L, m, T, lam2, alpha, K0, chordwise, series,
+                                      assembly, K_static, M, Kk, work)
+            else:
+                x2, fx2 = x, fx
             a, b = min(x, x2), max(x, x2)
             fa, fb = (fx, fx2) if x <= x2 else (fx2, fx)
             up = fb >= 0                            # both points below the root: lo moves
             dn = fa < 0                             # both above: hi moves
+            if not near and not up and not dn:      # g not finite at x: bisect next
+                stall = 3
+                continue
             g_up, g_dn = 1.0 - fb / fl, 1.0 - fa / fh
             if not (g_up > 0 and g_up < 1):
                 g_up = 0.5
