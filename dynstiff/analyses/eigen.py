@@ -161,7 +161,8 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
             # every frequency of the search lies in [0, grid[-1]], checked by count(grid)
             J, J0 = J.copy(), J0.copy()
             J[0] = J0[0] = 0
-            roots, failed, width = fast.dsm_search(grid, J, J0, N, rtol, max_iter, *args)
+            roots, failed, width = compiled.load("dsm_search").dsm_search(
+                grid, J, J0, N, rtol, max_iter, *args)
             if failed >= 0:
                 raise ConvergenceError(
                     f"the regula falsi left the bracket of root {failed + 1} wider than rtol = "

@@ -10,7 +10,9 @@ cached on disk.
 ========== ==============================================================================
 module     kernels
 ========== ==============================================================================
-dsm        the "dsm" rung's K(omega) fused with an FRF solve or a Wittrick-Williams count
+dsm        the "dsm" rung's K(omega) fused with an FRF solve (undamped or hysteretic) or a
+           Wittrick-Williams count
+dsm_search the "dsm" rung's whole Wittrick-Williams search after its seed grid
 catenary   Newton on many taut elastic catenaries at once (inverse statics)
 chain      forces, energies and small solves of the lumped-mass chains (time domain)
 chain_run  whole explicit and implicit time-domain runs of the lumped-mass robot
@@ -31,7 +33,7 @@ if TYPE_CHECKING:
 __all__ = ["KERNELS", "load"]
 
 #: The kernel modules of this package.
-KERNELS = ("dsm", "catenary", "chain", "chain_run")
+KERNELS = ("dsm", "dsm_search", "catenary", "chain", "chain_run")
 
 
 @functools.cache
