@@ -48,6 +48,18 @@ def check_folder(path):
     ------
     InvalidParameterError
         Naming the path and the first foreign entry.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> check_folder(os.path.join(folder, "map.nc.parts"))     # missing: a checkpoint may go there
+    >>> open(os.path.join(folder, "notes.txt"), "w").close()
+    >>> try:
+    ...     check_folder(folder)
+    ... except ValueError as exc:
+    ...     print(str(exc).split(": ")[0].split("holds ")[1])
+    files a checkpoint does not write ('notes.txt')
     """
     path = os.fspath(path)
     if not os.path.lexists(path):
@@ -65,7 +77,16 @@ def check_folder(path):
 
 def remove_folder(path):
     """Delete a checkpoint's own files (run.json, the chunks, their temporary files) and the
-    folder when that leaves it empty; anything else in it is left where it is."""
+    folder when that leaves it empty; anything else in it is left where it is.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "map.nc.parts")
+    >>> Checkpoint(path, fingerprint="abc", n_tasks=1).save(0, {"f": [1.0], "reason": [""]})
+    >>> remove_folder(path); os.path.exists(path)
+    False
+    """
     path = os.fspath(path)
     if not os.path.isdir(path) or os.path.islink(path):
         return
