@@ -236,6 +236,24 @@ def _limits(t_min: NDArray[np.float64], t_max: NDArray[np.float64]) -> str:
     return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
 
 
+def _carried(u: NDArray[np.float64], c_old: NDArray[np.float64],
+             c_new: NDArray[np.float64]) -> NDArray[np.float64]:
+    """u (n, 3) turned with each chord from c_old to c_new (n, 3) by the least rotation
+    (Rodrigues): a neighbouring equilibrium's cable-end directions keep their angle to the
+    chord, which moves little with the pose, while the chord itself moves with it."""
+    a = c_old / np.linalg.norm(c_old, axis=1)[:, None]
+    b = c_new / np.linalg.norm(c_new, axis=1)[:, None]
+    k = np.cross(a, b)
+    cos = np.einsum("ij,ij->i", a, b)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = np.where(cos > -0.5, 1.0 / (1.0 + cos), 0.0)     # (1 - cos) / sin^2
+    turned = (u * cos[:, None] + np.cross(k, u)
+              + k * (np.einsum("ij,ij->i", k, u) * f)[:, None])
+    keep = cos <= -0.5                            # a chord turned past 120 degrees: as given
+    turned[keep] = u[keep]
+    return turned / np.linalg.norm(turned, axis=1)[:, None]
+
+
 def _end_quantities(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: NDArray[np.float64],
                     V0: NDArray[np.float64], L0: NDArray[np.float64],
                     w0: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
@@ -306,7 +324,10 @@ def inverse_statics(robot: Robot, pose: Pose,
     # catenaries (a cable going down to its anchor is least tensioned there)
     if start is not None:
         warm = catenary_arrays(start.states)
-        u, lo, hi = _end_quantities(A, B, *warm, w0)
+        A0 = np.array([s.anchor for s in start.states])
+        B0 = np.array([s.end for s in start.states])
+        u, lo, hi = _end_quantities(A0, B0, *warm, w0)
+        u = _carried(u, A0 - B0, A - B)       # the start's sag angles on the new chords
     else:
         warm = None
         u = A - B
@@ -315,7 +336,7 @@ def inverse_statics(robot: Robot, pose: Pose,
         # dT = w0 dz / (1 + T/EA), so a cable rising to B has about w0 h less tension at A
         lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
         hi = np.zeros(n)
-    best, since_best = np.inf, 0
+    best, since_best, last = np.inf, 0, np.inf
     sides = None                          # the last distribution's active set
     straight = start is None              # directions of straight chords (first iteration)
     for _ in range(max_iter):
@@ -359,7 +380,12 @@ def inverse_statics(robot: Robot, pose: Pose,
         # change for 10 iterations (slow but steady contraction near slack keeps going; the
         # wrench residual below decides whether the result is good)
         best, since_best = (change, 0) if change < best else (best, since_best + 1)
-        if change < 1e-15 or (best < 1e-9 and since_best >= 10):
+        # a linear contraction rho = change / last leaves rho / (1 - rho) change to go: done
+        # when that is below rounding (the next iteration would change nothing)
+        rho = change / last if 0 < last < np.inf else 1.0
+        last = change
+        if change < 1e-15 or (rho < 0.5 and change * rho / (1 - rho) < 2e-16) \
+                or (best < 1e-9 and since_best >= 10):
             break
     else:
         raise ConvergenceError(
