@@ -584,3 +584,25 @@ def test_forward_statics_with_lengths_that_cannot_reach_says_it_did_not_converge
     scene = ds.load_scene("planar2")
     with pytest.raises(ds.InvalidParameterError, match="unstretched_length 1e-300 m"):
         scene.robot.equilibrium(unstretched_lengths=[1e-300, 1e-300], initial_pose=scene.pose)
+
+
+def test_a_neighbours_cable_directions_turn_with_their_chords():
+    """The warm start's directions keep their angle to the chord while the chord turns to
+    the new pose; the same chord leaves them as they are, and so does a chord turned past
+    120 degrees (no neighbour)."""
+    from dynstiff.robot.statics import _carried
+    rng = np.random.default_rng(3)
+    c_old = rng.normal(size=(50, 3))
+    c_new = c_old + 0.5 * rng.normal(size=(50, 3))
+    u = c_old / np.linalg.norm(c_old, axis=1)[:, None] + 0.05 * rng.normal(size=(50, 3))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    v = _carried(u, c_old, c_new)
+    unit = lambda x: x / np.linalg.norm(x, axis=1)[:, None]   # noqa: E731
+    cos_old = np.einsum("ij,ij->i", u, unit(c_old))
+    cos_new = np.einsum("ij,ij->i", v, unit(c_new))
+    near = np.einsum("ij,ij->i", unit(c_old), unit(c_new)) > -0.5
+    assert 0 < np.sum(~near) < 10
+    np.testing.assert_allclose(cos_new[near], cos_old[near], atol=1e-12)
+    np.testing.assert_allclose(v[~near], u[~near], atol=1e-15)
+    np.testing.assert_allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-15)
+    np.testing.assert_allclose(_carried(u, c_old, 2.0 * c_old), u, atol=1e-15)
