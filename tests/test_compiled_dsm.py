@@ -209,3 +209,18 @@ def test_viscous_cable_damping_is_left_to_the_numpy_path(cogiro_eq):
                     cables=[replace(c, viscous_damping=0.1) for c in cogiro_eq.robot.cables])
     m = ds.FrequencyModel(robot.equilibrium(pose=cogiro_eq.pose))
     assert damped_compiled_arguments(m) is None
+
+
+def test_stiffness_kernel_equals_numpy_k_and_cable_count(cogiro_eq):
+    """K(omega) and J0 of the compiled kernel against FrequencyModel's numpy path, across
+    cable poles and the series branch: the same formulas in another order of operations,
+    so within a few eps of the largest entry, up to tens of eps next to a pole, where the
+    entries divide by a vanishing denominator (the bound of the count kernel's test)."""
+    m = ds.FrequencyModel(cogiro_eq, damping=False)
+    omega = np.linspace(0.0, 150.0, 3001)
+    K, J0 = cf.dsm_stiffness(omega, *compiled_arguments(m))
+    K_ref, J0_ref = m.dynamic_stiffness_and_count(omega)
+    np.testing.assert_array_equal(J0, J0_ref)
+    scale = np.abs(K_ref).max(axis=(1, 2), keepdims=True)
+    assert np.all(np.abs(K - K_ref) <= 50 * np.finfo(float).eps * scale)
+    assert np.array_equal(K, np.swapaxes(K, 1, 2))

@@ -16,7 +16,7 @@ import numba
 import numpy as np
 
 __all__ = ["JIT", "assembled_block", "dsm_count", "dsm_receptance", "dsm_receptance_damped",
-           "real_receptance", "unpack_symmetric"]
+           "dsm_stiffness", "real_receptance", "unpack_symmetric"]
 
 #: Options of every kernel here (cached on disk, numpy errors, no GIL).
 JIT = {"cache": True, "error_model": "numpy", "nogil": True}
@@ -382,3 +382,27 @@ def dsm_receptance_damped(omega, scale, L, m, T, lam2, alpha, K0, chordwise, ser
                 for i in range(Hk.shape[1]):
                     H[k, o, i] = Hk[o, i]
     return H, kmax, singular
+
+
+@numba.njit(**JIT)
+def dsm_stiffness(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M):
+    """K(omega) of the "dsm" rung with undamped cables and the cable count J0(omega), from
+    one evaluation of the cable kernels per frequency (as
+    ``FrequencyModel.dynamic_stiffness_and_count``). Arguments as :func:`dsm_receptance`.
+
+    Returns
+    -------
+    K : ndarray, shape (n, nf, nf)
+        Real, symmetric; not finite exactly on a cable pole.
+    J0 : ndarray of int, shape (n,)
+    """
+    n, nf = omega.size, K_static.shape[0]
+    K = np.empty((n, nf, nf))
+    J0 = np.empty(n, dtype=np.int64)
+    for start in range(0, n, _BLOCK):
+        w = omega[start:start + _BLOCK]
+        Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
+                             J0[start:start + _BLOCK], True)
+        for b in range(w.size):
+            unpack_symmetric(Kb[b], K_static, M, w[b], K[start + b])
+    return K, J0
