@@ -137,14 +137,14 @@ def test_batched_participation_equals_the_mode_by_mode_one(robot, position, monk
     rest, and modes with a pole within the steps) too. With the compiled K, whose entries
     agree with numpy's to 50 eps (test_compiled_dsm), the difference quotient over the
     relative step 1e-6 carries that to 50 eps / 1e-6 = 1.1e-8 at most."""
-    import dynstiff.analyses.participation as participation
+    from dynstiff import compiled
     m = ds.build_model(robot.equilibrium(pose=position), "dsm")
     f = ds.eigenfrequencies(m, n_modes=30)
     pole = np.pi * np.sqrt(m.params[0].T / m.params[0].m) / m.params[0].L / (2 * np.pi)
     g = np.sort(np.concatenate([f[:5], [pole, pole * (1 + 3e-7)]]))
     ref_f, ref_g = _participation_mode_by_mode(m, f), _participation_mode_by_mode(m, g)
     compiled_f, compiled_g = platform_shares(m, f)[0], platform_shares(m, g)[0]
-    monkeypatch.setattr(participation.compiled, "load", lambda name: None)
+    monkeypatch.setattr(compiled, "load", lambda name: None)
     np.testing.assert_allclose(platform_shares(m, f)[0], ref_f, rtol=0, atol=1e-12)
     np.testing.assert_allclose(platform_shares(m, g)[0], ref_g, rtol=0, atol=1e-12)
     np.testing.assert_allclose(compiled_f, ref_f, rtol=0, atol=1.1e-8)

@@ -27,22 +27,20 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff import compiled
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.eigen_matrix import massless_pairing
 from dynstiff.analyses.freqgrid import refined_grid
 from dynstiff.analyses.frf import frf
 from dynstiff.analyses.modes import modes as modal
-from dynstiff.cable.psi import check_frequency_range
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
-from dynstiff.models.dsm import FrequencyModel
-from dynstiff.models.dsm_compiled import compiled_arguments
+from dynstiff.models.dsm_compiled import stiffness_and_count
 from dynstiff.results import ModalResult
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.models.base import PlatformModel
+    from dynstiff.models.dsm import FrequencyModel
 
 __all__ = ["GLOBAL_SHARE", "PLATFORM_SHARE_THRESHOLD", "FRF_AMPLIFICATION_LIMIT",
            "modal_data", "platform_shares", "receptance_amplification"]
@@ -59,21 +57,6 @@ def _quadratic(x: NDArray[np.float64], A: NDArray[np.float64]) -> NDArray[np.flo
     products, so the same rounding, as one mode at a time: the form is close to
     cancellation, and the order of its sums moves it by 1e-9)."""
     return np.array([xk @ Ak @ xk for xk, Ak in zip(x, A)])
-
-
-def _stiffness_and_count(model: FrequencyModel, omega: NDArray[np.float64],
-                         ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """K(omega) and the cable count J0(omega) of an undamped closed-form model at real omega
-    [rad/s]: one compiled kernel call when numba is installed
-    (:func:`dynstiff.compiled.dsm.dsm_stiffness`), else
-    ``FrequencyModel.dynamic_stiffness_and_count``."""
-    fast = compiled.load("dsm")
-    if fast is None or type(model) is not FrequencyModel or model.damped:
-        return model.dynamic_stiffness_and_count(omega)
-    check_frequency_range(model.stacked_params, omega)
-    model.guard_band(omega)
-    return fast.dsm_stiffness(np.ascontiguousarray(omega, dtype=float),
-                              *compiled_arguments(model))
 
 
 def platform_shares(
@@ -113,7 +96,7 @@ def platform_shares(
     steps = np.array([1.0, 1 + h, 1 - h, 1 + h / 2, 1 - h / 2, 1 + 1e-9, 1 - 1e-9])
     # K at the steps 1 .. 1 -+ h/2; cable counts at 1 +- h (a pole within the steps) and
     # 1 +- 1e-9 (a pole at the root)
-    K_all, J0_all = _stiffness_and_count(model, np.outer(steps, w).ravel())
+    K_all, J0_all = stiffness_and_count(model, np.outer(steps, w).ravel())
     K_all, J0_all = K_all.reshape(7, n, *K_all.shape[1:]), J0_all.reshape(7, n)
     K, Ks, J0 = K_all[0], K_all[1:5], J0_all[[1, 2, 5, 6]]
     Mp = model.platform_mass
