@@ -24,10 +24,10 @@ from dynstiff._vec import cross
 from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
+    DYAD_PAIRS,
     cable_field,
     cable_kinetic_energy,
     chord_parameters,
-    dyad_basis,
     end_block_coefficients,
     end_block_coefficients_and_count,
     stack_parameters,
@@ -43,7 +43,7 @@ from dynstiff.cable.guard import (
 from dynstiff.cable.psi import check_frequency_range, mode_count_nondimensional
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
 from dynstiff.models.base import PlatformModel, require_equilibrium
-from dynstiff.robot.platform import lever_map, lever_maps, platform_mass_matrix
+from dynstiff.robot.platform import lever_maps, platform_mass_matrix
 
 if TYPE_CHECKING:
     from typing import Any
@@ -166,13 +166,13 @@ class FrequencyModel(PlatformModel):
         self._issued = []                    # causes warned of (a cable's warning says it)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         fi = self.free_index
-        # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix
-        blocks = []
-        for p, r in zip(self.params, self.lever_arms):
-            J = lever_map(r, fi)                                   # (3, nf)
-            D = dyad_basis(p.rotation).reshape(5, 3, 3)
-            blocks.append(np.einsum("ai,kab,bj->kij", J, D, J).reshape(5, -1))
-        self._assembly = np.vstack(blocks)
+        # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix:
+        # J^T (e_a e_b^T) J = (J^T e_a)(J^T e_b)^T for the dyads (a, b) of DYAD_PAIRS
+        G = np.einsum("cai,cam->cim", lever_maps(self.lever_arms, fi),
+                      np.array([p.rotation for p in self.params]))   # (n, nf, 3)
+        a, b = np.array(DYAD_PAIRS).T
+        self._assembly = np.einsum("cik,cjk->ckij", G[:, :, a], G[:, :, b]).reshape(
+            5 * len(self.params), -1)
         self.assembly_map = self._assembly
         self._init_geometric(robot, pose, equilibrium.states)
         self.K_geo_free = self._K_geo_free
