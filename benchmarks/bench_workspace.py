@@ -87,8 +87,9 @@ def grid_of_poses(n_poses):
 
 @contextmanager
 def previous_statics():
-    """Inverse statics as before theory.md §13.6: the numpy Newton, and every tension
-    distribution that leaves the limits started from the LP's feasible point."""
+    """Inverse statics as before theory.md §13.6: the numpy loop with the numpy Newton, and
+    every tension distribution that leaves the limits started from the LP's feasible
+    point."""
     batched, dist = statics.taut_catenaries, statics._distribution
 
     def numpy_newton(*args, **kw):
@@ -96,11 +97,14 @@ def previous_statics():
 
     def lp_started(W, w, t_min, t_max, t_ref=None, sides=None):
         return dist(W, w, t_min, t_max, t_ref, warm=False)
+    fixed = statics._compiled_fixed_point
     statics.taut_catenaries, statics._distribution = numpy_newton, lp_started
+    statics._compiled_fixed_point = lambda *a, **k: None          # the numpy loop
     try:
         yield
     finally:
         statics.taut_catenaries, statics._distribution = batched, dist
+        statics._compiled_fixed_point = fixed
 
 
 @contextmanager
@@ -111,11 +115,14 @@ def brent_statics():
     def scalar_only(anchors, ends, tensions, EA, w0, start=None):
         nan = np.full(len(tensions), np.nan)
         return nan, nan.copy(), nan.copy(), nan.copy(), np.ones(len(tensions), bool)
+    fixed = statics._compiled_fixed_point
     statics.taut_catenaries = scalar_only
+    statics._compiled_fixed_point = lambda *a, **k: None          # the numpy loop
     try:
         yield
     finally:
         statics.taut_catenaries = batched
+        statics._compiled_fixed_point = fixed
 
 
 def chunked_statics(robot, X, chunk):

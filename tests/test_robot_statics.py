@@ -274,6 +274,7 @@ def test_warm_active_set_gives_the_lp_started_distribution_bitwise(monkeypatch):
              for z in (0.5, 1.6, 3.0)]
     warm, used = [], []
     plain = statics._distribution
+    monkeypatch.setattr(statics, "_compiled_fixed_point", lambda *a, **k: None)  # numpy loop
 
     def spy(W, w, t_min, t_max, t_ref=None, sides=None):
         used.append(sides is not None and bool(np.any(sides)))
@@ -330,7 +331,7 @@ def test_forward_statics_with_its_defaults_inverts_inverse_statics():
     """statics.forward_statics called with its own defaults (tol 1e-10) returns the pose
     whose inverse statics gave the lengths, to 1e-9 m, and the same tensions."""
     import dynstiff as ds
-    from dynstiff.robot.statics import forward_statics
+    from dynstiff.robot.forward_statics import forward_statics
     rob = ds.load_scene("cogiro").robot
     eq = rob.equilibrium(pose=[0.3, -0.2, 1.1, 0.02, -0.01, 0.03])
     fe = forward_statics(rob, eq.unstretched_lengths)
@@ -407,7 +408,7 @@ def test_equilibrium_states_carry_their_catenary_residuals_and_failures_theirs()
 def test_straight_chord_guess_is_near_the_sagging_equilibrium():
     """The start of forward statics (straight chords of 0.999 L0 fitted to the lengths)
     lands within 0.15 m and 0.02 rad of the CoGiRo equilibrium, rotation included."""
-    from dynstiff.robot.statics import _kinematic_guess
+    from dynstiff.robot.forward_statics import _kinematic_guess
     rob = ds.load_scene("cogiro").robot
     for pose in ([0.3, -0.2, 1.1, 0.02, -0.01, 0.03], [1.0, 0.5, 2.0, 0.1, -0.05, 0.25]):
         eq = rob.equilibrium(pose=pose)
@@ -494,7 +495,7 @@ def test_forward_statics_whose_newton_cannot_descend_says_so(monkeypatch):
     """With the platform stiffness of the wrong sign, no step of the line search lowers the
     wrench residual: ConvergenceError with that residual, not a pose."""
     from dynstiff.errors import ConvergenceError
-    from dynstiff.robot.statics import forward_statics
+    from dynstiff.robot.forward_statics import forward_statics
     rob = ds.load_scene("cogiro").robot
     L0 = rob.equilibrium(pose=[0.3, -0.2, 1.1]).unstretched_lengths
     orig = ds.Robot.platform_stiffness

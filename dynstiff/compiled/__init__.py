@@ -14,6 +14,7 @@ dsm        the "dsm" rung's K(omega) fused with an FRF solve (undamped or hyster
            Wittrick-Williams count
 dsm_search the "dsm" rung's whole Wittrick-Williams search after its seed grid
 catenary   Newton on many taut elastic catenaries at once (inverse statics)
+statics    the inverse statics' fixed point of directions and tension distribution
 chain      forces, energies and small solves of the lumped-mass chains (time domain)
 chain_run  whole explicit and implicit time-domain runs of the lumped-mass robot
 ========== ==============================================================================
@@ -33,7 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["KERNELS", "load"]
 
 #: The kernel modules of this package.
-KERNELS = ("dsm", "dsm_search", "catenary", "chain", "chain_run")
+KERNELS = ("dsm", "dsm_search", "catenary", "statics", "chain", "chain_run")
 
 
 @functools.cache

@@ -27,9 +27,10 @@ from dynstiff.errors import InvalidParameterError
 from dynstiff.io.caspr import read_caspr
 from dynstiff.params import Cable
 from dynstiff.robot.equilibrium import Equilibrium
+from dynstiff.robot.forward_statics import forward_statics
 from dynstiff.robot.platform import Platform, lever_map, skew
 from dynstiff.robot.pose import Pose, as_pose
-from dynstiff.robot.statics import forward_statics, inverse_statics
+from dynstiff.robot.statics import inverse_statics
 
 if TYPE_CHECKING:
     from pathlib import Path

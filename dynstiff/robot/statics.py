@@ -19,21 +19,24 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff import compiled
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
-from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
 from dynstiff.robot.pose import Pose
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.robot.robot import Robot
 
-__all__ = ["tension_distribution", "inverse_statics", "forward_statics"]
+__all__ = ["tension_distribution", "inverse_statics"]
 
 
 def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: ArrayLike,
@@ -275,6 +278,107 @@ def _end_quantities(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: 
     return f / T_B[:, None], T_B - T_min, np.maximum(T_B, T_A) - T_B
 
 
+def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np.float64],
+                 r: NDArray[np.float64], fi: NDArray[np.int64], wg: NDArray[np.float64],
+                 EA: NDArray[np.float64], w0: NDArray[np.float64], t_min: NDArray[np.float64],
+                 t_max: NDArray[np.float64], tension_reference: NDArray[np.float64] | float | None,
+                 u: NDArray[np.float64], lo: NDArray[np.float64], hi: NDArray[np.float64],
+                 warm: tuple[NDArray[np.float64], ...] | None, straight: bool,
+                 max_iter: int) -> tuple[Any, ...]:
+    """The fixed point of cable directions and tension distribution of
+    :func:`inverse_statics` from the directions u and margins lo, hi (``straight``: u are
+    straight chords): (t, H, V0, L0, residual, {cable: CatenaryState of the scalar
+    solver})."""
+    best, since_best, last = np.inf, 0, np.inf
+    sides = None                          # the last distribution's active set
+    for _ in range(max_iter):
+        W = np.vstack([u.T, cross(r, u).T])[fi]
+        try:
+            t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
+                                     sides)
+        except SlackCableError:
+            # straight chords of heavy cables leave the platform at other angles than their
+            # catenaries, and their limits may not fit where the catenaries' do (theory.md
+            # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
+            # directions then meet the limits
+            relaxed = None
+            if straight:
+                with contextlib.suppress(SlackCableError):
+                    relaxed = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
+                                            tension_reference, sides)
+            if relaxed is None:
+                raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
+                                      f"pose {pose.as_vector().tolist()}") from None
+            t, sides = relaxed
+        straight = False
+        H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
+        scalar = {}
+        for i in np.flatnonzero(pending):
+            try:
+                scalar[i] = unstretched_length_for_tension(A[i], B[i], t[i], robot.cables[i],
+                                                           robot.g)
+            except SlackCableError as exc:
+                where = f"pose {pose.as_vector().tolist()}"
+                raise (diagnose_unreachable(robot, i, A[i], B[i], t[i], lo[i], where)
+                       or SlackCableError(f"{where}: {exc}")) from None
+            H[i], V0[i], L0[i] = scalar[i].H, scalar[i].V0, scalar[i].unstretched_length
+            res[i] = scalar[i].residual
+        warm = (H, V0, L0)
+        u_new, lo_new, hi_new = _end_quantities(A, B, H, V0, L0, w0)
+        change = max(np.abs(u_new - u).max(),
+                     np.abs(np.concatenate([lo_new - lo, hi_new - hi])).max() / t.max())
+        u, lo, hi = u_new, lo_new, hi_new
+        # fixed point reached, or stalled at rounding level: below 1e-9 and no new smallest
+        # change for 10 iterations (slow but steady contraction near slack keeps going; the
+        # wrench residual below decides whether the result is good)
+        best, since_best = (change, 0) if change < best else (best, since_best + 1)
+        # a linear contraction rho = change / last leaves rho / (1 - rho) change to go: done
+        # when that is below rounding (the next iteration would change nothing)
+        rho = change / last if 0 < last < np.inf else 1.0
+        last = change
+        if change < 1e-15 or (rho < 0.5 and change * rho / (1 - rho) < 2e-16) \
+                or (best < 1e-9 and since_best >= 10):
+            break
+    else:
+        raise ConvergenceError(
+            f"inverse statics: cable directions still change by {change:.2e} after "
+            f"{max_iter} iterations (max_iter)", residual=change)
+    return t, H, V0, L0, res, scalar
+
+
+def _compiled_fixed_point(A: NDArray[np.float64], B: NDArray[np.float64],
+                          r: NDArray[np.float64], fi: NDArray[np.int64],
+                          w: NDArray[np.float64], EA: NDArray[np.float64],
+                          w0: NDArray[np.float64], t_min: NDArray[np.float64],
+                          t_max: NDArray[np.float64],
+                          tension_reference: NDArray[np.float64] | float | None,
+                          u: NDArray[np.float64], lo: NDArray[np.float64],
+                          hi: NDArray[np.float64], warm: tuple[NDArray[np.float64], ...] | None,
+                          max_iter: int) -> tuple[Any, ...] | None:
+    """:func:`_fixed_point` in one compiled call (:func:`dynstiff.compiled.statics.fixed_point`)
+    when numba is installed and the case is the regular one (every distribution from an
+    active set, every cable solved by the batched Newton); None otherwise, and the numpy
+    loop runs (it is the reference, and says what went wrong)."""
+    kernels = compiled.load("statics")
+    if kernels is None:
+        return None
+    n = len(EA)
+    has_ref = tension_reference is not None
+    ref = (np.broadcast_to(np.asarray(tension_reference, dtype=float), (n,)).copy() if has_ref
+           else np.zeros(n))
+    H, V0, L0 = warm if warm is not None else (np.full(n, np.nan),) * 3
+    f = np.ascontiguousarray
+    status, t, H, V0, L0, res = kernels.fixed_point(
+        f(A, dtype=float), f(B, dtype=float), f(r, dtype=float), f(fi, dtype=np.int64),
+        f(w, dtype=float), f(EA, dtype=float), f(w0, dtype=float),
+        f(np.broadcast_to(t_min, (n,)), dtype=float), f(np.broadcast_to(t_max, (n,)), dtype=float),
+        ref, has_ref, f(u, dtype=float), f(lo, dtype=float), f(hi, dtype=float),
+        f(H, dtype=float), f(V0, dtype=float), f(L0, dtype=float), warm is not None, max_iter)
+    if status != kernels.CONVERGED:
+        return None
+    return t, H, V0, L0, res, {}
+
+
 def inverse_statics(robot: Robot, pose: Pose,
                     tension_reference: NDArray[np.float64] | float | None = None,
                     tol: float = 1e-10, max_iter: int = 50,
@@ -336,61 +440,11 @@ def inverse_statics(robot: Robot, pose: Pose,
         # dT = w0 dz / (1 + T/EA), so a cable rising to B has about w0 h less tension at A
         lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
         hi = np.zeros(n)
-    best, since_best, last = np.inf, 0, np.inf
-    sides = None                          # the last distribution's active set
-    straight = start is None              # directions of straight chords (first iteration)
-    for _ in range(max_iter):
-        W = np.vstack([u.T, cross(r, u).T])[fi]
-        try:
-            t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
-                                     sides)
-        except SlackCableError:
-            # straight chords of heavy cables leave the platform at other angles than their
-            # catenaries, and their limits may not fit where the catenaries' do (theory.md
-            # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
-            # directions then meet the limits
-            relaxed = None
-            if straight:
-                with contextlib.suppress(SlackCableError):
-                    relaxed = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
-                                            tension_reference, sides)
-            if relaxed is None:
-                raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
-                                      f"pose {pose.as_vector().tolist()}") from None
-            t, sides = relaxed
-        straight = False
-        H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
-        scalar = {}
-        for i in np.flatnonzero(pending):
-            try:
-                scalar[i] = unstretched_length_for_tension(A[i], B[i], t[i], robot.cables[i],
-                                                           robot.g)
-            except SlackCableError as exc:
-                where = f"pose {pose.as_vector().tolist()}"
-                raise (diagnose_unreachable(robot, i, A[i], B[i], t[i], lo[i], where)
-                       or SlackCableError(f"{where}: {exc}")) from None
-            H[i], V0[i], L0[i] = scalar[i].H, scalar[i].V0, scalar[i].unstretched_length
-            res[i] = scalar[i].residual
-        warm = (H, V0, L0)
-        u_new, lo_new, hi_new = _end_quantities(A, B, H, V0, L0, w0)
-        change = max(np.abs(u_new - u).max(),
-                     np.abs(np.concatenate([lo_new - lo, hi_new - hi])).max() / t.max())
-        u, lo, hi = u_new, lo_new, hi_new
-        # fixed point reached, or stalled at rounding level: below 1e-9 and no new smallest
-        # change for 10 iterations (slow but steady contraction near slack keeps going; the
-        # wrench residual below decides whether the result is good)
-        best, since_best = (change, 0) if change < best else (best, since_best + 1)
-        # a linear contraction rho = change / last leaves rho / (1 - rho) change to go: done
-        # when that is below rounding (the next iteration would change nothing)
-        rho = change / last if 0 < last < np.inf else 1.0
-        last = change
-        if change < 1e-15 or (rho < 0.5 and change * rho / (1 - rho) < 2e-16) \
-                or (best < 1e-9 and since_best >= 10):
-            break
-    else:
-        raise ConvergenceError(
-            f"inverse statics: cable directions still change by {change:.2e} after "
-            f"{max_iter} iterations (max_iter)", residual=change)
+    fast = _compiled_fixed_point(A, B, r, fi, -wg[fi], EA, w0, t_min, t_max,
+                                 tension_reference, u, lo, hi, warm, max_iter)
+    t, H, V0, L0, res, scalar = fast if fast is not None else _fixed_point(
+        robot, pose, A, B, r, fi, wg, EA, w0, t_min, t_max, tension_reference, u, lo, hi,
+        warm, start is None, max_iter)
     states = [scalar[i] if i in scalar else
               CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
                             cable=robot.cables[i], g=robot.g, H=float(H[i]), V0=float(V0[i]),
@@ -406,87 +460,3 @@ def inverse_statics(robot: Robot, pose: Pose,
             f"{pose.as_vector().tolist()}", residual=res)
     return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0.copy(),
                        states=tuple(states), residual=float(res))
-
-
-def _kinematic_guess(robot: Robot, L0: NDArray[np.float64]) -> Pose:
-    """Pose guess: free DOFs fitted so that straight chords match L0 (least squares)."""
-    from scipy.optimize import least_squares
-
-    fi = robot.platform.free_index
-    x0 = np.zeros(6)
-    x0[:3] = robot.anchors.mean(axis=0) - [0.0, 0.0, 0.5 * np.ptp(robot.anchors[:, 2]) + 1.0]
-
-    def resid(xf: NDArray[np.float64]) -> NDArray[np.float64]:
-        x = x0.copy()
-        x[fi] = xf
-        B, _ = robot.attachment_points(Pose(x[:3], x[3:]))
-        return np.linalg.norm(robot.anchors - B, axis=1) - L0 * 0.999
-
-    sol = least_squares(resid, x0[fi])
-    x = x0.copy()
-    x[fi] = sol.x
-    return Pose(x[:3], x[3:])
-
-
-def forward_statics(robot: Robot, L0: NDArray[np.float64], initial_pose: Pose | None = None,
-                    tol: float = 1e-10, max_iter: int = 50) -> Equilibrium:
-    """Pose of the free DOFs at which the platform is in equilibrium for lengths ``L0``.
-
-    Newton's method on the free-DOF wrench W(x) = 0 with the analytic stiffness K = -dW/dx,
-    with backtracking on |W|. Converged when |W_free| <= tol * m g.
-
-    Returns
-    -------
-    Equilibrium
-
-    Raises
-    ------
-    ConvergenceError
-        With the final residual, if Newton fails; :class:`SlackCableError` if a cable cannot
-        be in tension.
-    """
-    fi = robot.platform.free_index
-    held = set(range(6)) - set(fi.tolist())
-    rotations_matter = (np.any(robot.attachments != 0)
-                        or np.any(robot.platform.center_of_mass != 0))
-    if initial_pose is None and (held & {0, 1, 2} or (held & {3, 4, 5} and rotations_matter)):
-        raise InvalidParameterError(
-            f"initial_pose is required when DOFs are held (free_dofs="
-            f"{robot.platform.free_dofs}): it fixes the held coordinates")
-    pose = initial_pose if initial_pose is not None else _kinematic_guess(robot, L0)
-    scale = robot.platform.mass * max(robot.g, 1.0)
-
-    def evaluate(p: Pose) -> tuple[list[CatenaryState], NDArray[np.float64]]:
-        st = robot.cable_states(p, L0)
-        return st, robot.wrench(p, st)[fi]
-
-    states, w = evaluate(pose)
-    res = np.linalg.norm(w) / scale
-    for _ in range(max_iter):
-        if res <= tol:
-            return Equilibrium(robot=robot, pose=pose, unstretched_lengths=L0,
-                               states=tuple(states), residual=float(res))
-        K = robot.platform_stiffness(pose, states)[np.ix_(fi, fi)]
-        try:
-            dxf = np.linalg.solve(K, w)
-        except np.linalg.LinAlgError:
-            break
-        step = 1.0
-        while step > 1e-4:
-            dx = np.zeros(6)
-            dx[fi] = step * dxf
-            try:                            # a step to a non-finite pose counts as a failure
-                trial = pose.moved(dx)
-                st_t, w_t = evaluate(trial)
-                res_t = np.linalg.norm(w_t) / scale
-            except DynstiffError:
-                res_t = np.inf
-            if res_t < res:
-                break
-            step *= 0.5
-        else:
-            break
-        pose, states, w, res = trial, st_t, w_t, res_t
-    raise ConvergenceError(
-        f"forward statics did not converge: wrench residual {res:.3e} (relative to m g) > "
-        f"tol {tol:.0e} at pose {pose.as_vector().tolist()}", residual=res)
