@@ -25,16 +25,22 @@ def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
     """The arguments L .. M of the compiled kernels ``dsm_receptance`` and ``dsm_count``
     (:mod:`dynstiff.compiled.dsm`) for an undamped :class:`FrequencyModel`: contiguous float
     arrays, the psi series and the symmetric assembly map."""
+    memo = getattr(model, "_memo", None)         # the model is immutable: computed once
+    if memo is not None and "compiled_arguments" in memo:
+        return memo["compiled_arguments"]
     p = model.stacked_params
 
     def real(x: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
 
-    return (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
+    args = (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
             bool(model.chordwise_inertia), PSI_SERIES,
             symmetric_assembly(model.assembly_map, model.n_free),
             np.ascontiguousarray(model.K_geo_free, dtype=float),
             np.ascontiguousarray(model.platform_mass, dtype=float))
+    if memo is not None:
+        memo["compiled_arguments"] = args
+    return args
 
 
 def damped_compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...] | None:

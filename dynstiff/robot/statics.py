@@ -246,11 +246,11 @@ def _carried(u: NDArray[np.float64], c_old: NDArray[np.float64],
     chord, which moves little with the pose, while the chord itself moves with it."""
     a = c_old / np.linalg.norm(c_old, axis=1)[:, None]
     b = c_new / np.linalg.norm(c_new, axis=1)[:, None]
-    k = np.cross(a, b)
+    k = cross(a, b)
     cos = np.einsum("ij,ij->i", a, b)
     with np.errstate(invalid="ignore", divide="ignore"):
         f = np.where(cos > -0.5, 1.0 / (1.0 + cos), 0.0)     # (1 - cos) / sin^2
-    turned = (u * cos[:, None] + np.cross(k, u)
+    turned = (u * cos[:, None] + cross(k, u)
               + k * (np.einsum("ij,ij->i", k, u) * f)[:, None])
     keep = cos <= -0.5                            # a chord turned past 120 degrees: as given
     turned[keep] = u[keep]
