@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 
 import dynstiff as ds
+from dynstiff import compiled
+from dynstiff.robot import statics
 
-pytest.importorskip("dynstiff.compiled.statics", exc_type=ImportError)
-
-from dynstiff.robot import statics  # noqa: E402
+pytestmark = pytest.mark.skipif(compiled.load("statics") is None,
+                                reason="numba not installed or switched off")
 
 
 def _grid(scene, k=4):
