@@ -30,6 +30,7 @@ import re
 import subprocess
 import sys
 import time
+import zlib
 
 import numpy as np
 
@@ -707,6 +708,26 @@ def _results():
     return res
 
 
+def _durations():
+    """{mutant name: seconds its tests took} of every judged mutant (mutmut's .meta files):
+    with one child, a module's wall time is their sum (the per-run overhead apart)."""
+    import json
+    import pathlib
+    out = {}
+    for meta in pathlib.Path("mutants").rglob("*.py.meta"):
+        out.update(json.loads(meta.read_text()).get("durations_by_key", {}))
+    return out
+
+
+def _generate():
+    """Write every module's mutants (mutants/), without running any test: the sample is
+    drawn from them. One process (the machine is shared)."""
+    code = ("import os; from mutmut.__main__ import copy_src_dir, copy_also_copy_files, "
+            "setup_source_paths, create_mutants; os.makedirs('mutants', exist_ok=True); "
+            "copy_src_dir(); copy_also_copy_files(); setup_source_paths(); create_mutants(1)")
+    subprocess.run([sys.executable, "-c", code], check=True, stdout=subprocess.DEVNULL)
+
+
 def _module(name):
     return re.match(r"(dynstiff\.[\w.]+?)\.x", name).group(1)
 
@@ -723,23 +744,24 @@ def _verdict(name, status):
 
 def _sample(names, size, seed, chunk=100):
     """A seeded uniform sample of ``size`` mutants per module, drawn without replacement in
-    rounds of ``chunk`` per module over every module (then filtered): each round draws from
-    the mutants not drawn yet (a partial last round takes the first of a whole round's
-    draw), so a larger sample contains the smaller one (the judged mutants are reused) and
-    stays uniform."""
-    rng = np.random.default_rng(seed)
+    rounds of ``chunk`` from the mutants not drawn yet (a partial last round takes the first
+    of a whole round's draw), so a larger sample contains the smaller one (the judged mutants
+    are reused) and stays uniform. Each module has its own generator, seeded by ``seed`` and
+    the module's name: its sample does not depend on which other modules exist."""
     pools = collections.defaultdict(list)
     for n in names:
         pools[_module(n)].append(n)
-    pools = {mod: sorted(pool) for mod, pool in sorted(pools.items())}
-    drawn = collections.defaultdict(list)
-    for start in range(0, size, chunk):
-        for mod, pool in pools.items():
-            if pool:             # a whole round is drawn always: the same draws for any size
-                pick = rng.choice(pool, min(chunk, len(pool)), replace=False)
-                drawn[mod].extend(pick[:size - start])
-                pools[mod] = sorted(set(pool) - set(pick))
-    return [n for mod in drawn for n in drawn[mod]]
+    drawn = []
+    for mod, pool in sorted(pools.items()):
+        rng = np.random.default_rng([seed, zlib.crc32(mod.encode())])
+        pool = sorted(pool)
+        for start in range(0, size, chunk):
+            if not pool:
+                break
+            pick = rng.choice(pool, min(chunk, len(pool)), replace=False)
+            drawn.extend(pick[:size - start])
+            pool = sorted(set(pool) - set(pick))
+    return drawn
 
 
 def _wilson(k, n, z=1.96):
@@ -766,6 +788,9 @@ def main(argv):
     prefixes = [m[:-3].replace("/", ".") + ".x" for m in args.modules]
     t0 = time.perf_counter()
     res = _results()
+    if not res:
+        _generate()
+        res = _results()
     names = list(res)
     if args.sample:
         names = _sample(names, args.sample, args.seed)
@@ -774,20 +799,24 @@ def main(argv):
         redo = ("unchecked", "survived") if args.recheck else ("unchecked",)
         todo = [n for n in names if _verdict(n, res[n]) in redo]
         for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
-            subprocess.run(["mutmut", "run"] + todo[k:k + 2000], check=False)
+            subprocess.run(["mutmut", "run", "--max-children", "1"] + todo[k:k + 2000],
+                           check=False)
         res = _results()
     wall = time.perf_counter() - t0
+    took = _durations()
     status = collections.defaultdict(collections.Counter)
+    seconds = collections.Counter()
     survivors = []
     for n in names:
         v = _verdict(n, res[n])
         status[_module(n)][v] += 1
+        seconds[_module(n)] += took.get(n, 0.0)
         if v == "survived":
             survivors.append(n)
     kind = f"sample of {args.sample} per module" if args.sample else "all mutants"
     print(f"mutation score ({kind}; equivalent mutants excluded)")
-    print(f"{'module':<26s} {'mutants':>8s} {'killed':>7s} {'survived':>9s} "
-          f"{'equivalent':>11s} {'unchecked':>10s} {'score':>7s}"
+    print(f"{'module':<34s} {'mutants':>7s} {'killed':>6s} {'survived':>8s} "
+          f"{'equivalent':>10s} {'unchecked':>9s} {'score':>6s} {'tests':>7s}"
           + ("  95 % interval" if args.sample else ""))
     total = collections.Counter()
     for module, c in sorted(status.items()):
@@ -795,18 +824,34 @@ def main(argv):
         judged = c["killed"] + c["survived"]
         lo, hi = _wilson(c["killed"], judged)
         score = c["killed"] / judged if judged else float("nan")
-        print(f"{module:<26s} {sum(c.values()):8d} {c['killed']:7d} {c['survived']:9d} "
-              f"{c['equivalent']:11d} {c['unchecked']:10d} {score:7.1%}  "
-              + (f"[{lo:.1%}, {hi:.1%}]" if args.sample else ""))
+        print(f"{module:<34s} {sum(c.values()):7d} {c['killed']:6d} {c['survived']:8d} "
+              f"{c['equivalent']:10d} {c['unchecked']:9d} {score:6.1%} "
+              f"{seconds[module] / 60:5.1f}mn"
+              + (f"  [{lo:.1%}, {hi:.1%}]" if args.sample else ""))
     judged = total["killed"] + total["survived"]
     if judged:
-        print(f"{'all':<26s} {sum(total.values()):8d} {total['killed']:7d} "
-              f"{total['survived']:9d} {total['equivalent']:11d} {total['unchecked']:10d} "
-              f"{total['killed'] / judged:7.1%}")
-    print(f"\nrun time {wall / 60:.1f} min; surviving mutants ({len(survivors)}):")
+        print(f"{'all':<34s} {sum(total.values()):7d} {total['killed']:6d} "
+              f"{total['survived']:8d} {total['equivalent']:10d} {total['unchecked']:9d} "
+              f"{total['killed'] / judged:6.1%}")
+    if not prefixes:
+        print(f"\nmodules without mutants: {', '.join(_without_mutants(res))}")
+    print(f"\nrun time {wall / 60:.1f} min (tests: the time of the mutants' tests); "
+          f"surviving mutants ({len(survivors)}):")
     for name in survivors:
         print(f"  {name}   (mutmut show {name})")
 
+
+def _without_mutants(res):
+    """The modules of the package mutmut wrote no mutant for (NO_MUTANTS says why)."""
+    import pathlib
+    root = pathlib.Path(__file__).resolve().parents[1]
+    have = {_module(n) for n in res}
+    out = []
+    for path in sorted((root / "dynstiff").rglob("*.py")):
+        module = ".".join(path.relative_to(root).with_suffix("").parts)
+        if module.removesuffix(".__init__") not in have:
+            out.append(module)
+    return out
 
 if __name__ == "__main__":
     main(sys.argv[1:])
