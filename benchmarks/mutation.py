@@ -26,6 +26,7 @@ Measured (2 cores, mutmut 3.8.1, 2 children):
 
 import argparse
 import collections
+import os
 import re
 import subprocess
 import sys
@@ -708,6 +709,30 @@ def _results():
     return res
 
 
+#: mutmut's command line, its check that a forced failure fails the tests made to accept a
+#: failed conftest import: tests/conftest.py builds cables at import, so the forced failure
+#: (every trampoline raising) stops the run there, which pytest reports as a usage error.
+_MUTMUT = """
+import sys
+import mutmut.__main__ as m
+from mutmut.runners.harness import BadTestExecutionCommandsException
+
+forced_fail = m.run_forced_fail_test
+
+
+def run_forced_fail_test(runner):
+    try:
+        forced_fail(runner)
+    except BadTestExecutionCommandsException:
+        pass
+
+
+m.run_forced_fail_test = run_forced_fail_test
+sys.argv = ["mutmut"] + sys.argv[1:]
+m.cli()
+"""
+
+
 def _durations():
     """{mutant name: seconds its tests took} of every judged mutant (mutmut's .meta files):
     with one child, a module's wall time is their sum (the per-run overhead apart)."""
@@ -799,8 +824,9 @@ def main(argv):
         redo = ("unchecked", "survived") if args.recheck else ("unchecked",)
         todo = [n for n in names if _verdict(n, res[n]) in redo]
         for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
-            subprocess.run(["mutmut", "run", "--max-children", "1"] + todo[k:k + 2000],
-                           check=False)
+            subprocess.run([sys.executable, "-c", _MUTMUT, "run", "--max-children", "1"]
+                           + todo[k:k + 2000], check=False,
+                           env=dict(os.environ, HYPOTHESIS_PROFILE="mutation"))
         res = _results()
     wall = time.perf_counter() - t0
     took = _durations()

@@ -145,3 +145,78 @@ def test_light_cables_leave_no_spread_sentence(cogiro):
     pm = find_platform_modes(ds.FrequencyModel(cogiro.equilibrium()))
     assert pm.complete and pm.spread() == ""
     assert "spread over" not in design_checks(cogiro.robot, cogiro.pose).text()
+
+
+def _rows(rows):
+    return {r["check"]: r for r in rows}
+
+
+def test_a_value_equal_to_its_limit_passes_and_one_ulp_above_fails(cogiro):
+    """Each limit is admissible itself (module table: "<="): the receptance ratio, the
+    model's estimated error and the sag taken as their own limits pass, and fail once the
+    limit is one float below them."""
+    band = (0.1, 20.0)
+    first = _rows(design_checks(cogiro.robot, cogiro.pose, band_hz=band).rows)
+    names = {"platform receptance in band": "frf_limit", "cable model": "model_rtol",
+             "sag / chord": "max_sag_ratio"}
+    at = {opt: first[check]["value"] for check, opt in names.items()}
+    assert at["frf_limit"] > 1 and 0 < at["model_rtol"] and 0 < at["max_sag_ratio"]
+    equal = verdicts(cogiro.robot, cogiro.pose, band_hz=band, **at)
+    below = verdicts(cogiro.robot, cogiro.pose, band_hz=band,
+                     **{k: np.nextafter(v, 0.0) for k, v in at.items()})
+    for check in names:
+        assert (equal[check], below[check]) == ("pass", "fail"), check
+
+
+def test_the_receptance_is_taken_at_the_platform_modes_in_the_band(cogiro):
+    """Over a wide band the receptance row's ratio is at least the direct receptance over
+    its static value at every platform mode in the band (the grid is refined there: a
+    uniform grid of the wide band misses the resonance peak by 5 %)."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.constants import DOF_NAMES
+    band = (0.1, 20.0)
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=band)
+    value = _rows(res.rows)["platform receptance in band"]["value"]
+    m = damped_model(cogiro.equilibrium())
+    names = [DOF_NAMES[k] for k in m.free_index]
+    loads = ["f" + n if len(n) == 1 else "m" + n[1] for n in names]
+    f = res.platform.freq_hz
+    f = f[(f >= band[0]) & (f <= band[1])]
+    H = ds.frf(m, 2 * np.pi * np.concatenate([[0.0], f]), inputs=loads, outputs=names).H
+    d = np.abs(np.diagonal(H, axis1=1, axis2=2))
+    at_modes = np.max(d[1:] / d[0])
+    assert f.size == 6 and value >= at_modes * (1 - 1e-9)
+
+
+def test_the_modes_cover_the_forbidden_band_with_its_margin(cogiro):
+    """A forbidden band above the platform modes: the modes are computed up to its top times
+    (1 + margin), beyond where the platform modes alone would stop (7.3 Hz)."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.verdicts import CheckOptions, modal_rows
+    eq = cogiro.equilibrium()
+    rows, pm = modal_rows(ds.FrequencyModel(eq), CheckOptions(forbidden_hz=(8.0, 10.0),
+                                                              margin=0.1),
+                          damped_model=lambda: damped_model(eq))
+    assert pm.complete and pm.searched_hz >= 11.0
+    assert np.max(pm.modes.freq_hz) >= 11.0 * 0.95
+
+
+def test_modal_rows_without_a_band_or_past_the_ceiling_say_so(cogiro):
+    """No forbidden band: its two rows are "not asked" with that reason; a ceiling of 3
+    modes leaves the platform modes unfound: the margin and proximity rows are "unknown"
+    (never a pass)."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.verdicts import CHECKS, CheckOptions, modal_rows
+    model = ds.FrequencyModel(cogiro.equilibrium())
+    rows, _ = modal_rows(model, CheckOptions())
+    got = _rows(rows)
+    for check in CHECKS[3:5]:
+        assert got[check]["verdict"] == "not asked" and got[check]["passed"]
+        assert got[check]["detail"] == "no forbidden band given"
+    rows, pm = modal_rows(model, CheckOptions(forbidden_hz=(0.5, 1.0), max_modes=3),
+                          damped_model=damped_model(cogiro.equilibrium()))
+    got = _rows(rows)
+    assert not pm.complete
+    for check in (CHECKS[3], CHECKS[5]):
+        assert got[check]["verdict"] == "unknown" and not got[check]["passed"], check
+    assert got[CHECKS[3]]["detail"].startswith("the modes up to 1.05 Hz were not all computed")
