@@ -3,6 +3,7 @@ for the design checks, the workspace maps and the reports; each check moved by i
 options only; nothing passes on modes not computed."""
 
 import dataclasses
+import re
 import warnings
 
 import numpy as np
@@ -138,6 +139,11 @@ def test_fast_platform_modes_found_by_participation_and_said_to_be_spread():
     assert float(np.min(pm.modes.platform_share[pm.index])) < 0.5
     # the margin check still sees the lowest mode the cabin moves in (8 % share, 0.1558 Hz)
     assert "closest 0.1558 Hz" in text
+    # local modes lie next to the carriers (none of them global): the proximity row fails
+    row = {r["check"]: r for r in res.rows}["local modes near platform modes"]
+    assert row["verdict"] == "fail" and 0 <= row["value"] <= 0.03
+    assert re.match(r"\d+ local mode\(s\) within 3\.00% of a platform mode, closest gap "
+                    r"\d\.\d\d%", row["detail"])
 
 
 def test_light_cables_leave_no_spread_sentence(cogiro):
@@ -220,3 +226,57 @@ def test_modal_rows_without_a_band_or_past_the_ceiling_say_so(cogiro):
     for check in (CHECKS[3], CHECKS[5]):
         assert got[check]["verdict"] == "unknown" and not got[check]["passed"], check
     assert got[CHECKS[3]]["detail"].startswith("the modes up to 1.05 Hz were not all computed")
+    assert got[CHECKS[5]]["detail"] == f"the platform modes were not all found: {pm.reason}"
+    assert "more than 3 modes" in pm.reason
+
+
+def test_a_mode_whose_share_equals_the_threshold_is_held_to_the_margin(cogiro):
+    """"Platform share >= participation" is inclusive: with the threshold set to a mode's
+    own share and the band just above it, that mode fails the margin row; one float above
+    its share, it is not held to the margin (and no other mode is near)."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.verdicts import CHECKS, CheckOptions, modal_rows
+    eq = cogiro.equilibrium()
+    model, damped = ds.FrequencyModel(eq), damped_model(eq)
+    pm = find_platform_modes(model)
+    k = int(pm.index[0])                        # the lowest platform mode, 2.206 Hz
+    f, share = float(pm.modes.freq_hz[k]), float(pm.modes.platform_share[k])
+    others = np.delete(np.asarray(pm.modes.freq_hz), k)
+    band = (f * 1.01, f * 1.02)
+    assert not np.any((others > band[0] * 0.99) & (others < band[1] * 1.01))
+
+    def margin_row(participation):
+        opts = CheckOptions(forbidden_hz=band, margin=0.01, participation=participation)
+        return _rows(modal_rows(model, opts, damped_model=damped)[0])[CHECKS[3]]
+    assert margin_row(share)["verdict"] == "fail"
+    assert margin_row(share)["value"] == f
+    assert margin_row(np.nextafter(share, 1.0))["verdict"] == "pass"
+
+
+def test_no_mode_held_to_the_margin_passes_with_no_closest_mode(cogiro):
+    """A threshold above every share (possible in CheckOptions, which is not validated):
+    no mode is checked, the margin row passes with no value and names no closest mode."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.verdicts import CHECKS, CheckOptions, modal_rows
+    eq = cogiro.equilibrium()
+    rows, _ = modal_rows(ds.FrequencyModel(eq), CheckOptions(forbidden_hz=(0.5, 1.0),
+                                                             participation=1.01),
+                         damped_model=damped_model(eq))
+    row = _rows(rows)[CHECKS[3]]
+    assert row["verdict"] == "pass" and np.isnan(row["value"])
+    assert "closest" not in row["detail"]
+
+
+def test_the_proximity_row_follows_its_own_tolerance(cogiro):
+    """CoGiRo's closest local mode is 6.1 % from a platform mode: the proximity row passes
+    at 0.9 times that gap and fails at 1.5 times it, with the gap as its value."""
+    from dynstiff.analyses.interaction import proximity_warnings
+    pm = find_platform_modes(ds.FrequencyModel(cogiro.equilibrium()), 0.0, 1.0)
+    gap = min(w.relative_gap for w in proximity_warnings(pm.modes, rtol=1.0,
+                                                          platform=pm.index))
+    assert 0.05 < gap < 0.07
+    key = "local modes near platform modes"
+    near = {r["check"]: r for r in design_checks(cogiro.robot, cogiro.pose,
+                                                  proximity_rtol=1.5 * gap).rows}[key]
+    assert near["verdict"] == "fail" and near["value"] == pytest.approx(gap, rel=1e-9)
+    assert verdicts(cogiro.robot, cogiro.pose, proximity_rtol=0.9 * gap)[key] == "pass"
