@@ -167,7 +167,10 @@ def test_a_value_equal_to_its_limit_passes_and_one_ulp_above_fails(cogiro):
              "sag / chord": "max_sag_ratio"}
     at = {opt: first[check]["value"] for check, opt in names.items()}
     assert at["frf_limit"] > 1 and 0 < at["model_rtol"] and 0 < at["max_sag_ratio"]
-    equal = verdicts(cogiro.robot, cogiro.pose, band_hz=band, **at)
+    rows = _rows(design_checks(cogiro.robot, cogiro.pose, band_hz=band, **at).rows)
+    equal = {check: row["verdict"] for check, row in rows.items()}
+    for check, opt in names.items():
+        assert rows[check]["limit"] == at[opt] and rows[check]["value"] == at[opt]
     below = verdicts(cogiro.robot, cogiro.pose, band_hz=band,
                      **{k: np.nextafter(v, 0.0) for k, v in at.items()})
     for check in names:

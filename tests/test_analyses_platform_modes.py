@@ -1,0 +1,115 @@
+"""The platform modes of a robot (dynstiff/analyses/platform_modes.py, theory.md §12.4):
+each free DOF's carrier is its largest participation below the frequency by which every DOF
+is half found; the search grows until then, covers what it is asked to, and says when a
+ceiling stops it."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.analyses.platform_modes import (
+    PLATFORM_FOUND,
+    find_platform_modes,
+    select_platform_modes,
+)
+from dynstiff.constants import DOF_NAMES
+from dynstiff.errors import InvalidParameterError
+
+
+@pytest.fixture(scope="module")
+def model():
+    return ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+
+
+@pytest.fixture(scope="module")
+def pm(model):
+    return find_platform_modes(model)
+
+
+def test_found_frequency_is_where_every_dof_is_half_found(model, pm):
+    """found_hz is a mode's frequency; the participations of the modes up to it sum to at
+    least one half for every free DOF, and up to the mode below it not for all of them."""
+    f = np.asarray(pm.modes.freq_hz)
+    p = np.nan_to_num(pm.modes.participation)[:, model.free_index]
+    k = int(np.flatnonzero(f == pm.found_hz)[0])
+    assert np.all(p[:k + 1].sum(axis=0) >= PLATFORM_FOUND)
+    assert not np.all(p[:k].sum(axis=0) >= PLATFORM_FOUND)
+    assert pm.complete and pm.reason == "" and pm.searched_hz >= pm.found_hz
+
+
+def test_carriers_are_the_largest_participations_below_the_found_frequency(model, pm):
+    f = np.asarray(pm.modes.freq_hz)
+    p = np.nan_to_num(pm.modes.participation)
+    below = f <= pm.found_hz
+    expected = {DOF_NAMES[j]: int(np.flatnonzero(below)[np.argmax(p[below, j])])
+                for j in model.free_index}
+    assert pm.carriers == expected
+    glob = np.flatnonzero(below & (np.asarray(pm.modes.kind) == "global"))
+    assert list(pm.index) == sorted(set(glob) | set(expected.values()))
+    assert pm.index.dtype.kind == "i"
+    # CoGiRo: one global mode per DOF, 2.2061 Hz first
+    assert len(pm.index) == 6 and pm.first_hz == pytest.approx(2.2061, abs=1e-4)
+    np.testing.assert_array_equal(pm.freq_hz, f[pm.index])
+
+
+def test_select_below_a_frequency_under_every_mode_finds_nothing(pm, model):
+    index, carriers = select_platform_modes(pm.modes, model.free_index, 0.5)
+    assert index.size == 0 and carriers == {}
+    index, carriers = select_platform_modes(pm.modes, model.free_index, np.inf)
+    assert set(carriers.values()) <= set(index)
+
+
+def test_the_search_covers_what_it_is_asked_to(model, pm):
+    """Every mode below cover_hz (1 + neighbours_rtol) is computed, whatever the platform
+    modes need: the same lowest modes as a direct eigen-solution."""
+    res = find_platform_modes(model, cover_hz=12.0, neighbours_rtol=0.1)
+    assert res.searched_hz >= 12.0 and res.complete
+    f = np.asarray(res.modes.freq_hz)
+    assert f.max() >= 12.0 and f.max() <= 12.0 * 1.1 * 1.5
+    direct = ds.eigenfrequencies(model, len(f))
+    np.testing.assert_allclose(f, direct, rtol=1e-8)
+    assert res.carriers == pm.carriers
+    assert res.found_hz == pytest.approx(pm.found_hz, rel=1e-9)
+    # without a cover the search stops at its first step past the found frequency
+    assert pm.searched_hz < 12.0 and np.max(pm.modes.freq_hz) <= pm.searched_hz
+
+
+def test_a_ceiling_of_modes_makes_the_search_incomplete(model):
+    res = find_platform_modes(model, max_modes=3)
+    assert not res.complete and np.isnan(res.found_hz) and np.isnan(res.first_hz)
+    assert res.index.size == 0 and res.carriers == {}
+    assert res.reason.startswith("more than 3 modes below ")
+    assert res.reason.endswith("Hz, the ceiling of the search for the platform modes")
+    assert repr(res) == f"PlatformModes(incomplete: {res.reason})"
+    assert res.spread() == ""
+
+
+def test_the_band_of_an_exact_model_ends_the_search():
+    """An exact model built up to 3 Hz cannot hold CoGiRo's platform modes (found by
+    5.9 Hz): the search stops at the model's band and names the option to change."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    res = find_platform_modes(ds.build_model(eq, "exact", fmax_hz=3.0))
+    assert not res.complete
+    assert res.reason.startswith("the model's band ends at ")
+    assert "build it with a larger fmax_hz" in res.reason
+    assert res.modes is not None and res.searched_hz <= 3.0 * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(cover_hz=-1.0), "cover_hz"),
+                                      (dict(cover_hz=np.nan), "cover_hz"),
+                                      (dict(cover_hz=np.inf), "cover_hz"),
+                                      (dict(neighbours_rtol=-0.1), "neighbours_rtol"),
+                                      (dict(neighbours_rtol=np.inf), "neighbours_rtol")])
+def test_bad_arguments_are_named(model, kw, name):
+    with pytest.raises(InvalidParameterError, match=name):
+        find_platform_modes(model, **kw)
+
+
+def test_describe_and_repr_say_the_numbers(pm):
+    k = int(pm.index[0])
+    m = pm.modes
+    dof = DOF_NAMES[int(np.argmax(np.nan_to_num(m.participation[k])))]
+    assert pm.describe(k) == (f"{m.freq_hz[k]:.4g} Hz ({m.kind[k]}, platform share "
+                              f"{100 * m.platform_share[k]:.0f} %, mostly {dof})")
+    assert repr(pm) == (f"PlatformModes(6 of {len(m)} modes, first {pm.first_hz:.4g} Hz, "
+                        f"found by {pm.found_hz:.4g} Hz)")
