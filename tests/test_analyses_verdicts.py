@@ -283,3 +283,31 @@ def test_the_proximity_row_follows_its_own_tolerance(cogiro):
                                                   proximity_rtol=1.5 * gap).rows}[key]
     assert near["verdict"] == "fail" and near["value"] == pytest.approx(gap, rel=1e-9)
     assert verdicts(cogiro.robot, cogiro.pose, proximity_rtol=0.9 * gap)[key] == "pass"
+
+
+def test_a_pose_without_equilibrium_fails_the_workspace_row_with_its_reason(cogiro):
+    """statics_rows given the statics' error: the workspace row fails with the error's text,
+    every other row is "unknown" (no equilibrium to judge)."""
+    from dynstiff.analyses.verdicts import CHECKS, CheckOptions, statics_rows
+    error = ds.errors.InfeasiblePoseError("no tensions within the limits at this pose")
+    rows = statics_rows(cogiro.robot, None, error, CheckOptions())
+    assert [r["check"] for r in rows] == list(CHECKS)
+    assert rows[0]["verdict"] == "fail" and rows[0]["detail"] == str(error)
+    assert not rows[0]["passed"] and np.isnan(rows[0]["value"])
+    for r in rows[1:]:
+        assert (r["verdict"], r["passed"], r["detail"]) == (
+            "unknown", False, "no equilibrium at this pose")
+
+
+def test_the_tension_row_fails_when_a_tension_leaves_the_limits(cogiro):
+    """The same equilibrium judged against limits that end just below its largest tension
+    fails the tension row (value: that tension, limit: t_max), and passes at limits that
+    end at it exactly."""
+    from dynstiff.analyses.verdicts import CHECKS, CheckOptions, statics_rows
+    eq = cogiro.equilibrium()
+    top = float(eq.max_tensions.max())
+    t_min = cogiro.robot.tension_limits[0]
+    for t_max, verdict in ((top * (1 - 1e-6), "fail"), (top, "pass")):
+        robot = dataclasses.replace(cogiro.robot, tension_limits=(t_min, t_max))
+        row = {r["check"]: r for r in statics_rows(robot, eq, None, CheckOptions())}[CHECKS[1]]
+        assert (row["verdict"], row["value"], row["limit"]) == (verdict, top, t_max)
