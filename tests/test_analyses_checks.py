@@ -222,3 +222,88 @@ def test_the_static_error_and_massless_stiffness_are_computed_once(cogiro_eq):
     K = m.massless_stiffness()
     K[0, 0] = np.nan
     np.testing.assert_array_equal(m.massless_stiffness(), m.dynamic_stiffness(0.0)[0].real)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(participation=0.5 + 1e-12), r"participation must be in \(0, 0\.5\]"),
+    (dict(participation=0.0), "participation"),
+    (dict(frf_limit=1.0), "frf_limit must be > 1, got 1.0"),
+    (dict(max_modes=True), "max_modes must be an integer >= 1, got True"),
+    (dict(max_modes=2.0), "max_modes must be an integer >= 1, got 2.0"),
+    (dict(max_modes=0), "max_modes must be an integer >= 1, got 0"),
+    (dict(band_hz=(2.0, 2.0)), r"band_hz must be \(low, high\) with 0 <= low < high \[Hz\], "
+                               r"got \(2\.0, 2\.0\)"),
+    (dict(band_hz=(-1.0, 2.0)), r"band_hz must be \(low, high\)"),
+    (dict(band_hz=3.0), r"band_hz must be \(low, high\)"),
+    (dict(model_band_hz=(5.0, 1.0)), r"model_band_hz must be \(low, high\)"),
+    (dict(margin=-0.1), "margin"), (dict(proximity_rtol=0.0), "proximity_rtol"),
+    (dict(max_sag_ratio=np.nan), "max_sag_ratio"), (dict(model_rtol=-1.0), "model_rtol")])
+def test_check_options_name_each_bad_argument(kw, message):
+    from dynstiff.analyses.checks import check_options
+    with pytest.raises(InvalidParameterError, match=message):
+        check_options(**kw)
+
+
+def test_check_options_keep_what_they_are_given():
+    from dynstiff.analyses.checks import check_options
+    from dynstiff.analyses.verdicts import CheckOptions
+    o = check_options(band_hz=(0, 2), margin=0, proximity_rtol=0.01, max_sag_ratio=0.1,
+                      model_rtol=0.2, participation=0.5, frf_limit=1.5,
+                      model_band_hz=(1, 3), max_modes=7)
+    assert o == CheckOptions(forbidden_hz=(0.0, 2.0), margin=0.0, participation=0.5,
+                             frf_limit=1.5, proximity_rtol=0.01, max_sag_ratio=0.1,
+                             model_rtol=0.2, model_band_hz=(1.0, 3.0), max_modes=7)
+    assert check_options().forbidden_hz is None
+    assert check_options().model_band_hz == (0.0, 20.0)
+    assert type(check_options(max_modes=np.int64(5)).max_modes) is int
+
+
+def test_the_exact_rungs_band_holds_what_the_checks_compute():
+    """fmax_hz of the exact rung: 1.1 x the highest of the band of interest and the
+    forbidden band's top with its margin, times (1 + proximity_rtol); other rungs and a
+    given fmax_hz are left alone."""
+    from dynstiff.analyses.checks import check_options, modal_model_options
+    o = check_options(band_hz=(1.0, 30.0), margin=0.1, proximity_rtol=0.05,
+                      model_band_hz=(0.0, 20.0))
+    got = modal_model_options("exact", o, {"segments": 3})
+    assert got == {"fmax_hz": pytest.approx(1.1 * 33.0 * 1.05, rel=1e-15), "segments": 3}
+    o = check_options(band_hz=(1.0, 10.0), margin=0.1, proximity_rtol=0.05,
+                      model_band_hz=(0.0, 20.0))
+    assert modal_model_options("exact", o, {})["fmax_hz"] == pytest.approx(1.1 * 20 * 1.05)
+    no_band = check_options(model_band_hz=(0.0, 8.0), proximity_rtol=0.03)
+    assert modal_model_options("exact", no_band, {})["fmax_hz"] == pytest.approx(
+        1.1 * 8 * 1.03)
+    assert modal_model_options("exact", o, {"fmax_hz": 5.0}) == {"fmax_hz": 5.0}
+    assert modal_model_options("dsm", o, {"tension": "x"}) == {"tension": "x"}
+
+
+def test_the_design_checks_refuse_bad_damping_rung_and_confidence(cogiro):
+    pose = cogiro.pose
+    with pytest.raises(InvalidParameterError, match="damping must be a dynstiff.Damping"):
+        design_checks(cogiro.robot, pose, damping=0.02)
+    with pytest.raises(InvalidParameterError, match="rung must be one of"):
+        design_checks(cogiro.robot, pose, rung="beam")
+    for bad in (1.0, 0.0, 1, "0.9"):
+        with pytest.raises(InvalidParameterError, match=r"confidence must be a number in "
+                                                        r"\(0, 1\), got"):
+            design_checks(cogiro.robot, pose, confidence=bad)
+    from dynstiff.analyses.checks import damped_model
+    with pytest.raises(InvalidParameterError, match="damping must be a dynstiff.Damping"):
+        damped_model(cogiro.equilibrium(), damping=None)
+
+
+def test_repr_and_text_of_a_result(cogiro):
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=(2.0, 2.3))
+    bad = [f"{r['check']} ({r['verdict']})" for r in res.rows if not r["passed"]]
+    assert bad and repr(res) == (f"CheckResult(FAILED: {', '.join(bad)}; "
+                                 f"{len(res.rows)} checks)")
+    lines = res.text().splitlines()
+    assert lines[-1] == "some checks FAILED" and len(lines) == len(res.rows) + 1
+    assert lines[3].startswith("FAIL    platform modes outside band ")
+    ok = design_checks(cogiro.robot, cogiro.pose)
+    assert repr(ok) == f"CheckResult(passed; {len(ok.rows)} checks)"
+    text = ok.text().splitlines()
+    assert text[-1] == "all checks passed"
+    assert text[3] == "n/a     platform modes outside band       no forbidden band given"
+    frame = ok.to_frame()
+    assert list(frame["verdict"]) == [r["verdict"] for r in ok.rows]
