@@ -666,6 +666,8 @@ EQUIVALENT.update({
     "dynstiff.analyses.verdicts.x__margin_row__mutmut_34":
         "f >= lo (1 - margin) instead of >: a mode exactly at the lower end of the margin "
         "band (" + _BOUNDARY + ")",
+    "dynstiff.analyses.platform_modes.x__incomplete__mutmut_5":
+        "the top of a search with no completed step: unused (searched_hz is 0 then)",
 })
 
 def _definitions():

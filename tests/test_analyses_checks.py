@@ -304,6 +304,10 @@ def test_repr_and_text_of_a_result(cogiro):
     assert repr(ok) == f"CheckResult(passed; {len(ok.rows)} checks)"
     text = ok.text().splitlines()
     assert text[-1] == "all checks passed"
+    assert "<p><b>Design checks: all passed</b></p>" in ok._repr_html_()
+    html = res._repr_html_()
+    assert "<p><b>Design checks: some FAILED</b></p>" in html
+    assert "<tr><th>verdict</th><th>check</th><th>detail</th></tr>" in html
     assert text[3] == "n/a     platform modes outside band       no forbidden band given"
     frame = ok.to_frame()
     assert list(frame["verdict"]) == [r["verdict"] for r in ok.rows]
