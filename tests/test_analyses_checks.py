@@ -309,5 +309,25 @@ def test_repr_and_text_of_a_result(cogiro):
     assert "<p><b>Design checks: some FAILED</b></p>" in html
     assert "<tr><th>verdict</th><th>check</th><th>detail</th></tr>" in html
     assert text[3] == "n/a     platform modes outside band       no forbidden band given"
+    assert rows_by_name(ok)["cable model"]["limit"] == 1e-2        # the default model_rtol
     frame = ok.to_frame()
+    unknown = design_checks(cogiro.robot, cogiro.pose, max_modes=3).text().splitlines()
+    assert unknown[5].startswith("UNKNOWN local modes near platform modes ")
     assert list(frame["verdict"]) == [r["verdict"] for r in ok.rows]
+
+
+def test_the_receptance_check_uses_the_models_options_with_viscous_damping(cogiro):
+    """With viscous cable damping the damped model is built anew: with the model options
+    of the checks (here the chord tension), so the receptance row is that model's."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.participation import receptance_amplification
+    band, damping = (1.5, 3.0), ds.Damping(0.01, 0.01, 0.5)
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=band, damping=damping,
+                        tension="chord")
+    value = rows_by_name(res)["platform receptance in band"]["value"]
+    eq = cogiro.equilibrium()
+    chord = receptance_amplification(damped_model(eq, damping, tension="chord"), band,
+                                     res.platform.modes.freq_hz)[0]
+    plain = receptance_amplification(damped_model(eq, damping), band,
+                                     res.platform.modes.freq_hz)[0]
+    assert value == pytest.approx(chord, rel=1e-12) and abs(chord - plain) > 1e-6 * chord
