@@ -113,3 +113,23 @@ def test_describe_and_repr_say_the_numbers(pm):
                               f"{100 * m.platform_share[k]:.0f} %, mostly {dof})")
     assert repr(pm) == (f"PlatformModes(6 of {len(m)} modes, first {pm.first_hz:.4g} Hz, "
                         f"found by {pm.found_hz:.4g} Hz)")
+
+
+def test_describe_names_no_dof_for_a_mode_without_participation():
+    """A mode that moves no DOF (participations zero or NaN) is "mostly -"; otherwise the
+    DOF of its largest participation."""
+    from types import SimpleNamespace
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+    p = np.zeros((3, 6))
+    p[1, 4] = 0.7
+    p[1, 0] = 0.2
+    p[2] = np.nan
+    modes = SimpleNamespace(participation=p, freq_hz=np.array([1.0, 2.0, 3.0]),
+                            kind=("local", "global", "local"),
+                            platform_share=np.array([0.0, 0.9, 0.01]))
+    pm = PlatformModes(modes=modes, index=np.array([1]), carriers={"ry": 1}, complete=True,
+                       found_hz=2.0, searched_hz=3.0, reason="")
+    assert pm.describe(0) == "1 Hz (local, platform share 0 %, mostly -)"
+    assert pm.describe(1) == "2 Hz (global, platform share 90 %, mostly ry)"
+    assert pm.describe(2) == "3 Hz (local, platform share 1 %, mostly -)"
