@@ -208,6 +208,14 @@ def test_the_damped_model_from_the_undamped_one_is_the_damped_build(cogiro_eq, d
     assert a.static_error() == b.static_error()
     np.testing.assert_array_equal(ds.eigenfrequencies(a, n_modes=8),
                                   ds.eigenfrequencies(b, n_modes=8))
+    # the undamped model's cable terms are shared (the same arrays, not recomputed) when
+    # only the model damping differs: no viscous damping, no damping among the options
+    shared = [k for k, v in vars(like).items()
+              if isinstance(v, np.ndarray) and vars(b).get(k) is v]
+    reusable = damping.cable_viscous_damping == 0 and "cable_loss_factor" not in options
+    assert bool(shared) == reusable, shared
+    assert not [k for k, v in vars(like).items()
+                if isinstance(v, np.ndarray) and vars(a).get(k) is v]
     other = ds.build_model(eq.robot.equilibrium(pose=[1.0, 0.5, 1.2]), "dsm", **options)
     c = damped_model(eq, damping, "dsm", other, **options)
     np.testing.assert_array_equal(a.dynamic_stiffness(w), c.dynamic_stiffness(w))
