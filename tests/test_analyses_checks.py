@@ -339,3 +339,8 @@ def test_the_receptance_check_uses_the_models_options_with_viscous_damping(cogir
     plain = receptance_amplification(damped_model(eq, damping), band,
                                      res.platform.modes.freq_hz)[0]
     assert value == pytest.approx(chord, rel=1e-12) and abs(chord - plain) > 1e-6 * chord
+    # the viscous part is added to each cable's own; the robot keeps its name and limits
+    rob = damped_model(eq, damping).equilibrium.robot
+    assert rob.name == eq.robot.name and rob.tension_limits == eq.robot.tension_limits
+    assert [c.viscous_damping for c in rob.cables] == [c.viscous_damping + 0.5
+                                                       for c in eq.robot.cables]
