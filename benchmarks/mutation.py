@@ -668,6 +668,9 @@ EQUIVALENT.update({
         "band (" + _BOUNDARY + ")",
     "dynstiff.analyses.platform_modes.x__incomplete__mutmut_5":
         "the top of a search with no completed step: unused (searched_hz is 0 then)",
+    "dynstiff.analyses.checks.x__band__mutmut_2":
+        "positive_scalar(None, ...) for a band's end: the name is used only in the message "
+        "of an error that _band catches and replaces with its own, naming the band",
     "dynstiff.analyses.platform_modes.xǁPlatformModesǁdescribe__mutmut_10":
         "np.nanmax(r, initial=None): r is a mode's row of six participations, never empty, "
         "so the initial value is never used",

@@ -234,7 +234,8 @@ def test_the_static_error_and_massless_stiffness_are_computed_once(cogiro_eq):
 
 @pytest.mark.parametrize("kw, message", [
     (dict(participation=0.5 + 1e-12), r"participation must be in \(0, 0\.5\]"),
-    (dict(participation=0.0), "participation"),
+    (dict(participation=0.0), "^participation must be > 0"),
+    (dict(frf_limit=-1.0), "^frf_limit must be > 0"),
     (dict(frf_limit=1.0), "frf_limit must be > 1, got 1.0"),
     (dict(max_modes=True), "max_modes must be an integer >= 1, got True"),
     (dict(max_modes=2.0), "max_modes must be an integer >= 1, got 2.0"),
@@ -244,8 +245,8 @@ def test_the_static_error_and_massless_stiffness_are_computed_once(cogiro_eq):
     (dict(band_hz=(-1.0, 2.0)), r"band_hz must be \(low, high\)"),
     (dict(band_hz=3.0), r"band_hz must be \(low, high\)"),
     (dict(model_band_hz=(5.0, 1.0)), r"model_band_hz must be \(low, high\)"),
-    (dict(margin=-0.1), "margin"), (dict(proximity_rtol=0.0), "proximity_rtol"),
-    (dict(max_sag_ratio=np.nan), "max_sag_ratio"), (dict(model_rtol=-1.0), "model_rtol")])
+    (dict(margin=-0.1), "^margin must be"), (dict(proximity_rtol=0.0), "^proximity_rtol "),
+    (dict(max_sag_ratio=np.nan), "^max_sag_ratio "), (dict(model_rtol=-1.0), "^model_rtol ")])
 def test_check_options_name_each_bad_argument(kw, message):
     from dynstiff.analyses.checks import check_options
     with pytest.raises(InvalidParameterError, match=message):
@@ -263,6 +264,7 @@ def test_check_options_keep_what_they_are_given():
                              model_rtol=0.2, model_band_hz=(1.0, 3.0), max_modes=7)
     assert check_options().forbidden_hz is None
     assert check_options().model_band_hz == (0.0, 20.0)
+    assert check_options() == CheckOptions(model_band_hz=(0.0, 20.0))    # the defaults
     assert type(check_options(max_modes=np.int64(5)).max_modes) is int
 
 
