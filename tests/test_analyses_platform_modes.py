@@ -133,3 +133,26 @@ def test_describe_names_no_dof_for_a_mode_without_participation():
     assert pm.describe(0) == "1 Hz (local, platform share 0 %, mostly -)"
     assert pm.describe(1) == "2 Hz (global, platform share 90 %, mostly ry)"
     assert pm.describe(2) == "3 Hz (local, platform share 1 %, mostly -)"
+
+
+def test_spread_counts_the_cable_dominated_modes_up_to_the_found_frequency():
+    """Carriers x and y with platform shares below one half: the sentence names both and
+    counts the cable-dominated modes up to found_hz (2 of the 3 below it; the 60 % mode
+    and the mode above found_hz are not counted)."""
+    from types import SimpleNamespace
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+
+    class Modes(SimpleNamespace):
+        def __len__(self):
+            return 4
+    modes = Modes(freq_hz=np.array([1.0, 2.0, 3.0, 4.0]),
+                  platform_share=np.array([0.2, 0.6, 0.3, 0.1]))
+    kw = dict(index=np.array([0, 1, 2]), found_hz=3.0, searched_hz=4.0, reason="")
+    pm = PlatformModes(modes=modes, carriers={"x": 0, "y": 2, "z": 1}, complete=True, **kw)
+    assert pm.spread() == (
+        "no mode is platform-dominated in x, y: the platform's motion there is spread over "
+        "2 cable-dominated modes up to 3 Hz (largest platform share among them 30 %); the "
+        "platform modes are the carriers of each DOF by participation")
+    assert PlatformModes(modes=modes, carriers={"z": 1}, complete=True, **kw).spread() == ""
+    assert PlatformModes(modes=modes, carriers={"x": 0}, complete=False, **kw).spread() == ""
