@@ -1,22 +1,47 @@
-"""Mutation testing of the physics core (not part of CI: it takes hours on two cores).
+"""Mutation testing of every module of the package (not part of CI: it takes hours on two
+cores).
 
 Run:  pip install ".[test,mutation]" && python benchmarks/mutation.py [module ...]
 
-mutmut (configured in ``[tool.mutmut]`` of pyproject.toml) plants one small bug at a time in
-the core modules (cable statics and DSM, platform, assembly, statics, eigen, frf, interaction,
-the lumped chain) and runs the tests that reach the mutated function. This script runs it
-and prints the score per module (killed / (killed + survived), equivalent mutants listed in
-``EQUIVALENT`` excluded) and every surviving mutant. ``module`` arguments restrict the run,
-e.g. ``dynstiff/cable/chord.py``; ``--report-only`` prints the last run's results; ``--recheck``
-runs the survivors again too, after tests were added; ``--sample N`` judges a seeded uniform
-sample of N mutants per module (nested: a larger sample contains a smaller one) and gives
-each score a 95 % Wilson interval (the whole core, about 9200 mutants, takes many hours on
-two cores; a sample of 100 per module one to two).
+mutmut (configured in ``[tool.mutmut]`` of pyproject.toml: ``source_paths = ["dynstiff/"]``)
+plants one small bug at a time in any module of the package and runs the tests that reach the
+mutated function, in ONE child process (``--max-children 1``: the machine is shared). This
+script writes the mutants first when there are none, runs mutmut and prints the score per
+module (killed / (killed + survived), equivalent mutants listed in ``EQUIVALENT`` excluded),
+the time the mutants' tests took per module, and every surviving mutant. ``module``
+arguments restrict the run, e.g. ``dynstiff/cable/chord.py``; ``--report-only`` prints the
+last run's results; ``--recheck`` runs the survivors again too, after tests were added;
+``--sample N`` judges a seeded uniform sample of N mutants per module (nested: a larger
+sample contains a smaller one; each module has its own generator, so its sample does not
+depend on the other modules) and gives each score a 95 % Wilson interval.
 
-Measured (2 cores, mutmut 3.8.1, 2 children):
-- ``--sample 200`` (seed 20261202): 2382 mutants (chord has 182 in all), 2193 killed,
-  1 survived, 188 equivalent: 99.95 %; every module's 95 % interval starts at 97.1 % or
-  above. About 2.5 h of wall time in all, the rechecks after new tests included.
+What mutmut cannot mutate, and why (nothing else is left out): functions with a decorator
+other than ``staticmethod``/``classmethod`` (mutmut leaves them alone: its trampoline would
+replace the decorated object), so the numba kernels of ``compiled/`` (``@numba.njit``:
+catenary, chain, chain_run and dsm have no mutant at all), ``compiled.load``
+(``functools.cache``), properties and context managers (``io.files.atomic_path``) are not
+mutated; modules without functions (``__main__``, ``_version``, ``constants``, the package
+``__init__`` files) have none. ``maps/__init__`` and ``cli/__init__`` do have mutants (their
+names drop ``__init__``: ``dynstiff.maps.x_register_accessor__mutmut_1``). The run prints
+the modules left without mutants.
+
+How the runs are made to work on the whole package: ``tests/test_docs_examples.py`` is left
+out of mutmut's test selection (it walks the classes' attributes, where mutmut's copies of
+every method appear); tests/conftest.py builds cables when it is imported, so mutmut's check
+that a forced failure fails the tests (every trampoline raising) sees a failed conftest
+import, a pytest usage error: ``_MUTMUT`` accepts that as the failure it is; the hypothesis
+profile "mutation" (set here) does not shrink a failing example; mutmut's timeout is three
+times (CPU, twice over) the clean tests' time (``timeout_multiplier = 3``; its default 15
+spent up to half an hour on one hanging mutant), a timeout counting as a detection.
+
+Measured (2 cores shared, mutmut 3.8.1, 1 child, ``--sample 100``, seed 20261202):
+MEASURED_TABLE
+
+Earlier, the physics core only (2 children; the sample was then drawn with one generator
+over the core's modules, so today's per-module samples are other mutants):
+- ``--sample 200``: 2382 mutants (chord has 182 in all), 2193 killed, 1 survived, 188
+  equivalent: 99.95 %; every module's 95 % interval starts at 97.1 % or above. About 2.5 h
+  of wall time in all, the rechecks after new tests included.
 - Every mutant of chord (182), platform (393), exact_model (410), frf (330) and assembly
   (650): 100 % each but assembly, 99.8 %; the last four modules took 7 to 20 min each.
 - Per mutant, the tests alone take 0.8 s when they kill it, 13 s when it survives (every
@@ -668,6 +693,9 @@ EQUIVALENT.update({
         "band (" + _BOUNDARY + ")",
     "dynstiff.analyses.platform_modes.x__incomplete__mutmut_5":
         "the top of a search with no completed step: unused (searched_hz is 0 then)",
+    "dynstiff.analyses.checks.x_modal_model_options__mutmut_5":
+        "a given fmax_hz no longer recognised: the computed one is then overridden by the "
+        "given one (**model_options last), the same dict",
     "dynstiff.analyses.checks.x__band__mutmut_2":
         "positive_scalar(None, ...) for a band's end: the name is used only in the message "
         "of an error that _band catches and replaces with its own, naming the band",
@@ -824,7 +852,8 @@ def main(argv):
     ap.add_argument("--recheck", action="store_true",
                     help="run the surviving mutants again too (after tests were added)")
     args = ap.parse_args(argv)
-    prefixes = [m[:-3].replace("/", ".") + ".x" for m in args.modules]
+    prefixes = [m[:-3].replace("/", ".").removesuffix(".__init__") + ".x"
+                for m in args.modules]
     t0 = time.perf_counter()
     res = _results()
     if not res:

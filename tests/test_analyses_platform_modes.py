@@ -156,3 +156,19 @@ def test_spread_counts_the_cable_dominated_modes_up_to_the_found_frequency():
         "platform modes are the carriers of each DOF by participation")
     assert PlatformModes(modes=modes, carriers={"z": 1}, complete=True, **kw).spread() == ""
     assert PlatformModes(modes=modes, carriers={"x": 0}, complete=False, **kw).spread() == ""
+
+
+def test_a_dof_no_mode_below_moves_has_no_carrier():
+    """Below 1.5 Hz only the first two modes: x moves in both (carrier: the larger), y in
+    neither (no carrier, not the first mode by default); the global mode is kept."""
+    from types import SimpleNamespace
+    p = np.zeros((3, 6))
+    p[:, 0] = [0.2, 0.5, 0.3]
+    p[2, 1] = 1.0
+    modes = SimpleNamespace(freq_hz=np.array([1.0, 1.2, 2.0]), participation=p,
+                            kind=("global", "local", "global"))
+    index, carriers = select_platform_modes(modes, [0, 1], 1.5)
+    assert carriers == {"x": 1}
+    assert list(index) == [0, 1] and index.dtype.kind == "i"
+    index, carriers = select_platform_modes(modes, [0, 1], 2.0)
+    assert carriers == {"x": 1, "y": 2} and list(index) == [0, 1, 2]
