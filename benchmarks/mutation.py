@@ -696,6 +696,15 @@ EQUIVALENT.update({
     "dynstiff.analyses.checks.x_modal_model_options__mutmut_5":
         "a given fmax_hz no longer recognised: the computed one is then overridden by the "
         "given one (**model_options last), the same dict",
+    "dynstiff.analyses.platform_modes.x__below__mutmut_8":
+        "the truncated mode table of the found-frequency test without its cable energies: "
+        "only its frequencies and participations are read",
+    "dynstiff.analyses.platform_modes.x__below__mutmut_15":
+        "kind=None dropped: replace() then copies the full table's kinds into the truncated "
+        "one, whose kinds the found-frequency test does not read",
+    "dynstiff.analyses.platform_modes.x__below__mutmut_16":
+        "massless_freq_hz not truncated (replace() copies the full table's): the "
+        "found-frequency test reads only frequencies and participations",
     "dynstiff.analyses.checks.x__band__mutmut_2":
         "positive_scalar(None, ...) for a band's end: the name is used only in the message "
         "of an error that _band catches and replaces with its own, naming the band",
