@@ -3,6 +3,8 @@ each free DOF's carrier is its largest participation below the frequency by whic
 is half found; the search grows until then, covers what it is asked to, and says when a
 ceiling stops it."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -99,6 +101,8 @@ def test_the_band_of_an_exact_model_ends_the_search():
     assert not res.complete
     assert res.reason.startswith("the model's band ends at ")
     assert "build it with a larger fmax_hz" in res.reason
+    assert re.search(r"found only in part \(x \d+%, y \d+%, z \d+%, rx \d+%, ry \d+%, "
+                     r"rz \d+%\)", res.reason), res.reason
     assert res.modes is not None and res.searched_hz == pytest.approx(3.0, rel=1e-12)
 
 
