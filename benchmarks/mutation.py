@@ -39,7 +39,7 @@ Measured (2 cores shared, mutmut 3.8.1, 1 child, ``--sample 100``, seed 20261202
 module (mutants in all)            judged   killed  survived  equivalent  score [95 % int.]   tests
 =================================  =======  ======  ========  ==========  ==================  =====
 analyses.verdicts (442)            100      99      0         1           100 % [96.3, 100]   4.7mn
-analyses.platform_modes (297)      99       92      2         5           97.9 % [92.6, 99.4] 7.0mn
+analyses.platform_modes (297)      99       93      1         5           98.9 % [94.2, 99.8] 6.3mn
 analyses.checks (413)              100      98      0         2           100 % [96.2, 100]   2.5mn
 =================================  =======  ======  ========  ==========  ==================  =====
 
@@ -52,11 +52,10 @@ analyses.checks (413)              100      98      0         2           100 % 
   a minute for these modules, which the design checks, the maps and the commands reach).
   One mutant of platform_modes is unchecked (``x_find_platform_modes__mutmut_142``,
   ``_GROWTH / top``: the search's growth made a shrink, a probable hang stopped before its
-  timeout). The two survivors are not equivalent and have no test yet:
+  timeout). The survivor is not equivalent and has no test yet:
   ``x_find_platform_modes__mutmut_38`` (the first search's base taken from an empty array
   when no massless platform mode has a positive stiffness: no robot in equilibrium gives
-  one, a stand-in model would) and ``x_find_platform_modes__mutmut_128`` (the DOFs of the
-  band-end reason joined by "XX, XX"; a test was added after the last run: RECHECK128).
+  one; a stand-in model would).
 
   NOT run (no mutant judged; the first ones are next in priority): analyses.measured
   (mode pairing, 559 mutants), analyses.calibrate (788), analyses.calibration_checks (120),
