@@ -36,9 +36,11 @@ def test_an_output_that_is_an_input_is_refused_naming_both(tmp_path, scene, how,
 
 
 def test_two_outputs_on_one_file_and_distinct_files(tmp_path, scene):
-    with pytest.raises(OutputPathError, match="--csv .* same file as --out .* two outputs"):
+    with pytest.raises(OutputPathError, match="--csv .* same file as --out .* two outputs") \
+            as exc:
         check_paths([("scene", scene)], [("--out", tmp_path / "x.nc"),
                                          ("--csv", tmp_path / "x.nc")])
+    assert f"({os.path.realpath(tmp_path / 'x.nc')})" in str(exc.value)
     # distinct files, standard output twice and options not given pass
     check_paths([("scene", scene), ("--measured", None)],
                 [("--out", tmp_path / "x.nc"), ("--csv", "-"), ("--json", "-"),
