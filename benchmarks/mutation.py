@@ -49,8 +49,9 @@ io.files (53, all)                 53       52      0         1           100 % 
   tests) and the rechecks included: verdicts alone 16.7 min (78 killed, 22 survived before
   its new tests); platform_modes, checks and the rechecks of all three 37 min; io.files
   5 min with its recheck. Before the new tests the first pass gave verdicts 78.0 %
-  [68.9, 85.0], checks 70.7 % [61.1, 78.8] and io.files 90.6 % [79.7, 95.9] (3.4 min); io.files was run before the pairing and the
-  calibration modules, out of their order, because it alone fitted in the time left.
+  [68.9, 85.0], checks 70.7 % [61.1, 78.8] and io.files 90.6 % [79.7, 95.9] (3.4 min).
+  io.files was run before the pairing and the calibration modules, out of their order,
+  because it alone fitted in the time left.
   Throughput: 5 to 13 mutants a minute (a survivor runs every test that reaches it: up to
   a minute for these modules, which the design checks, the maps and the commands reach).
   One mutant of platform_modes is unchecked (``x_find_platform_modes__mutmut_142``,
