@@ -22,7 +22,7 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
 import numpy as np
 import pytest
 import scipy.linalg
-from hypothesis import settings
+from hypothesis import Phase, settings
 
 import dynstiff as ds
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
@@ -32,6 +32,9 @@ from dynstiff.params import Cable
 # HYPOTHESIS_PROFILE=random to draw new ones.
 settings.register_profile("derandomized", derandomize=True, database=None)
 settings.register_profile("random")
+# mutation runs (benchmarks/mutation.py): a failing example is not shrunk, the failure is enough
+settings.register_profile("mutation", derandomize=True, database=None,
+                          phases=(Phase.explicit, Phase.reuse, Phase.generate))
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "derandomized"))
 
 #: CoGiRo cable: 4 mm steel, 0.064 kg/m, area 8.2051e-6 m^2 (CoGiRo description, §C).

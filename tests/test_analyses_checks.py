@@ -208,6 +208,14 @@ def test_the_damped_model_from_the_undamped_one_is_the_damped_build(cogiro_eq, d
     assert a.static_error() == b.static_error()
     np.testing.assert_array_equal(ds.eigenfrequencies(a, n_modes=8),
                                   ds.eigenfrequencies(b, n_modes=8))
+    # the undamped model's cable terms are shared (the same arrays, not recomputed) when
+    # only the model damping differs: no viscous damping, no damping among the options
+    shared = [k for k, v in vars(like).items()
+              if isinstance(v, np.ndarray) and vars(b).get(k) is v]
+    reusable = damping.cable_viscous_damping == 0 and "cable_loss_factor" not in options
+    assert bool(shared) == reusable, shared
+    assert not [k for k, v in vars(like).items()
+                if isinstance(v, np.ndarray) and vars(a).get(k) is v]
     other = ds.build_model(eq.robot.equilibrium(pose=[1.0, 0.5, 1.2]), "dsm", **options)
     c = damped_model(eq, damping, "dsm", other, **options)
     np.testing.assert_array_equal(a.dynamic_stiffness(w), c.dynamic_stiffness(w))
@@ -222,3 +230,119 @@ def test_the_static_error_and_massless_stiffness_are_computed_once(cogiro_eq):
     K = m.massless_stiffness()
     K[0, 0] = np.nan
     np.testing.assert_array_equal(m.massless_stiffness(), m.dynamic_stiffness(0.0)[0].real)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(participation=0.5 + 1e-12), r"participation must be in \(0, 0\.5\]"),
+    (dict(participation=0.0), "^participation must be > 0"),
+    (dict(frf_limit=-1.0), "^frf_limit must be > 0"),
+    (dict(frf_limit=1.0), "frf_limit must be > 1, got 1.0"),
+    (dict(max_modes=True), "max_modes must be an integer >= 1, got True"),
+    (dict(max_modes=2.0), "max_modes must be an integer >= 1, got 2.0"),
+    (dict(max_modes=0), "max_modes must be an integer >= 1, got 0"),
+    (dict(band_hz=(2.0, 2.0)), r"band_hz must be \(low, high\) with 0 <= low < high \[Hz\], "
+                               r"got \(2\.0, 2\.0\)"),
+    (dict(band_hz=(-1.0, 2.0)), r"band_hz must be \(low, high\)"),
+    (dict(band_hz=3.0), r"band_hz must be \(low, high\)"),
+    (dict(model_band_hz=(5.0, 1.0)), r"model_band_hz must be \(low, high\)"),
+    (dict(margin=-0.1), "^margin must be"), (dict(proximity_rtol=0.0), "^proximity_rtol "),
+    (dict(max_sag_ratio=np.nan), "^max_sag_ratio "), (dict(model_rtol=-1.0), "^model_rtol ")])
+def test_check_options_name_each_bad_argument(kw, message):
+    from dynstiff.analyses.checks import check_options
+    with pytest.raises(InvalidParameterError, match=message):
+        check_options(**kw)
+
+
+def test_check_options_keep_what_they_are_given():
+    from dynstiff.analyses.checks import check_options
+    from dynstiff.analyses.verdicts import CheckOptions
+    o = check_options(band_hz=(0, 2), margin=0, proximity_rtol=0.01, max_sag_ratio=0.1,
+                      model_rtol=0.2, participation=0.5, frf_limit=1.5,
+                      model_band_hz=(1, 3), max_modes=7)
+    assert o == CheckOptions(forbidden_hz=(0.0, 2.0), margin=0.0, participation=0.5,
+                             frf_limit=1.5, proximity_rtol=0.01, max_sag_ratio=0.1,
+                             model_rtol=0.2, model_band_hz=(1.0, 3.0), max_modes=7)
+    assert check_options().forbidden_hz is None
+    assert check_options().model_band_hz == (0.0, 20.0)
+    assert check_options() == CheckOptions(model_band_hz=(0.0, 20.0))    # the defaults
+    assert type(check_options(max_modes=np.int64(5)).max_modes) is int
+
+
+def test_the_exact_rungs_band_holds_what_the_checks_compute():
+    """fmax_hz of the exact rung: 1.1 x the highest of the band of interest and the
+    forbidden band's top with its margin, times (1 + proximity_rtol); other rungs and a
+    given fmax_hz are left alone."""
+    from dynstiff.analyses.checks import check_options, modal_model_options
+    o = check_options(band_hz=(1.0, 30.0), margin=0.1, proximity_rtol=0.05,
+                      model_band_hz=(0.0, 20.0))
+    got = modal_model_options("exact", o, {"segments": 3})
+    assert got == {"fmax_hz": pytest.approx(1.1 * 33.0 * 1.05, rel=1e-15), "segments": 3}
+    o = check_options(band_hz=(1.0, 10.0), margin=0.1, proximity_rtol=0.05,
+                      model_band_hz=(0.0, 20.0))
+    assert modal_model_options("exact", o, {})["fmax_hz"] == pytest.approx(1.1 * 20 * 1.05)
+    no_band = check_options(model_band_hz=(0.0, 8.0), proximity_rtol=0.03)
+    assert modal_model_options("exact", no_band, {})["fmax_hz"] == pytest.approx(
+        1.1 * 8 * 1.03)
+    assert modal_model_options("exact", o, {"fmax_hz": 5.0}) == {"fmax_hz": 5.0}
+    assert modal_model_options("dsm", o, {"tension": "x"}) == {"tension": "x"}
+
+
+def test_the_design_checks_refuse_bad_damping_rung_and_confidence(cogiro):
+    pose = cogiro.pose
+    with pytest.raises(InvalidParameterError, match="damping must be a dynstiff.Damping"):
+        design_checks(cogiro.robot, pose, damping=0.02)
+    with pytest.raises(InvalidParameterError, match="rung must be one of"):
+        design_checks(cogiro.robot, pose, rung="beam")
+    for bad in (1.0, 0.0, 1, "0.9"):
+        with pytest.raises(InvalidParameterError, match=r"confidence must be a number in "
+                                                        r"\(0, 1\), got"):
+            design_checks(cogiro.robot, pose, confidence=bad)
+    from dynstiff.analyses.checks import damped_model
+    with pytest.raises(InvalidParameterError, match="damping must be a dynstiff.Damping"):
+        damped_model(cogiro.equilibrium(), damping=None)
+
+
+def test_repr_and_text_of_a_result(cogiro):
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=(2.0, 2.3))
+    bad = [f"{r['check']} ({r['verdict']})" for r in res.rows if not r["passed"]]
+    assert bad and repr(res) == (f"CheckResult(FAILED: {', '.join(bad)}; "
+                                 f"{len(res.rows)} checks)")
+    lines = res.text().splitlines()
+    assert lines[-1] == "some checks FAILED" and len(lines) == len(res.rows) + 1
+    assert lines[3].startswith("FAIL    platform modes outside band ")
+    ok = design_checks(cogiro.robot, cogiro.pose)
+    assert repr(ok) == f"CheckResult(passed; {len(ok.rows)} checks)"
+    text = ok.text().splitlines()
+    assert text[-1] == "all checks passed"
+    assert "<p><b>Design checks: all passed</b></p>" in ok._repr_html_()
+    html = res._repr_html_()
+    assert "<p><b>Design checks: some FAILED</b></p>" in html
+    assert "<tr><th>verdict</th><th>check</th><th>detail</th></tr>" in html
+    assert text[3] == "n/a     platform modes outside band       no forbidden band given"
+    assert rows_by_name(ok)["cable model"]["limit"] == 1e-2        # the default model_rtol
+    frame = ok.to_frame()
+    unknown = design_checks(cogiro.robot, cogiro.pose, max_modes=3).text().splitlines()
+    assert unknown[5].startswith("UNKNOWN local modes near platform modes ")
+    assert list(frame["verdict"]) == [r["verdict"] for r in ok.rows]
+
+
+def test_the_receptance_check_uses_the_models_options_with_viscous_damping(cogiro):
+    """With viscous cable damping the damped model is built anew: with the model options
+    of the checks (here the chord tension), so the receptance row is that model's."""
+    from dynstiff.analyses.checks import damped_model
+    from dynstiff.analyses.participation import receptance_amplification
+    band, damping = (1.5, 3.0), ds.Damping(0.01, 0.01, 0.5)
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=band, damping=damping,
+                        tension="chord")
+    value = rows_by_name(res)["platform receptance in band"]["value"]
+    eq = cogiro.equilibrium()
+    chord = receptance_amplification(damped_model(eq, damping, tension="chord"), band,
+                                     res.platform.modes.freq_hz)[0]
+    plain = receptance_amplification(damped_model(eq, damping), band,
+                                     res.platform.modes.freq_hz)[0]
+    assert value == pytest.approx(chord, rel=1e-12) and abs(chord - plain) > 1e-6 * chord
+    # the viscous part is added to each cable's own; the robot keeps its name and limits
+    rob = damped_model(eq, damping).equilibrium.robot
+    assert rob.name == eq.robot.name and rob.tension_limits == eq.robot.tension_limits
+    assert [c.viscous_damping for c in rob.cables] == [c.viscous_damping + 0.5
+                                                       for c in eq.robot.cables]

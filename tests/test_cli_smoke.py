@@ -178,7 +178,7 @@ def _cases_outputs():
                 yield pytest.param(command, option, True, id=f"{command}{option}-stdout")
 
 
-@pytest.mark.parametrize("command, scene", _cases_defaults())
+@pytest.mark.parametrize("command, scene", list(_cases_defaults()))
 def test_every_command_on_every_scene(command, scene, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)                  # default output folders land here
     argv = [command] + ([] if scene is None else [scene]) + _extra(command, scene or QUICK,
@@ -191,7 +191,7 @@ def test_every_command_on_every_scene(command, scene, tmp_path, capsys, monkeypa
     assert out.strip(), err                          # every command reports something
 
 
-@pytest.mark.parametrize("command, option, stdout", _cases_outputs())
+@pytest.mark.parametrize("command, option, stdout", list(_cases_outputs()))
 def test_every_output_option(command, option, stdout, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
     scene = [] if command in SCENELESS else [QUICK]

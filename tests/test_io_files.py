@@ -32,12 +32,15 @@ def test_an_output_that_is_an_input_is_refused_naming_both(tmp_path, scene, how,
                                               r"never replaces an input") as exc:
         check_paths([("scene", scene)], [("--csv", other)])
     assert isinstance(exc.value, InvalidParameterError) and str(scene) in str(exc.value)
+    assert f"({os.path.realpath(other)})" in str(exc.value)   # the output file, resolved
 
 
 def test_two_outputs_on_one_file_and_distinct_files(tmp_path, scene):
-    with pytest.raises(OutputPathError, match="--csv .* same file as --out .* two outputs"):
+    with pytest.raises(OutputPathError, match="--csv .* same file as --out .* two outputs") \
+            as exc:
         check_paths([("scene", scene)], [("--out", tmp_path / "x.nc"),
                                          ("--csv", tmp_path / "x.nc")])
+    assert f"({os.path.realpath(tmp_path / 'x.nc')})" in str(exc.value)
     # distinct files, standard output twice and options not given pass
     check_paths([("scene", scene), ("--measured", None)],
                 [("--out", tmp_path / "x.nc"), ("--csv", "-"), ("--json", "-"),
@@ -79,3 +82,12 @@ def test_atomic_path_replaces_a_store_folder_and_keeps_its_suffix(tmp_path):
         with atomic_path(tmp_path / "none.csv"):
             pass
     assert sorted(os.listdir(tmp_path)) == ["map.zarr"]
+
+
+def test_write_text_encodes_as_asked(tmp_path):
+    """UTF-8 by default, whatever the locale; another encoding when given."""
+    target = tmp_path / "note.txt"
+    assert write_text(target, "\u00e9") == target
+    assert target.read_bytes() == b"\xc3\xa9"
+    write_text(target, "\u00e9", encoding="latin-1")
+    assert target.read_bytes() == b"\xe9"

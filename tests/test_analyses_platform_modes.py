@@ -1,0 +1,185 @@
+"""The platform modes of a robot (dynstiff/analyses/platform_modes.py, theory.md §12.4):
+each free DOF's carrier is its largest participation below the frequency by which every DOF
+is half found; the search grows until then, covers what it is asked to, and says when a
+ceiling stops it."""
+
+import re
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.analyses.platform_modes import (
+    PLATFORM_FOUND,
+    find_platform_modes,
+    select_platform_modes,
+)
+from dynstiff.constants import DOF_NAMES
+from dynstiff.errors import InvalidParameterError
+
+
+@pytest.fixture(scope="module")
+def model():
+    return ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+
+
+@pytest.fixture(scope="module")
+def pm(model):
+    return find_platform_modes(model)
+
+
+def test_found_frequency_is_where_every_dof_is_half_found(model, pm):
+    """found_hz is a mode's frequency; the participations of the modes up to it sum to at
+    least one half for every free DOF, and up to the mode below it not for all of them."""
+    f = np.asarray(pm.modes.freq_hz)
+    p = np.nan_to_num(pm.modes.participation)[:, model.free_index]
+    k = int(np.flatnonzero(f == pm.found_hz)[0])
+    assert np.all(p[:k + 1].sum(axis=0) >= PLATFORM_FOUND)
+    assert not np.all(p[:k].sum(axis=0) >= PLATFORM_FOUND)
+    assert pm.complete and pm.reason == "" and pm.searched_hz >= pm.found_hz
+
+
+def test_carriers_are_the_largest_participations_below_the_found_frequency(model, pm):
+    f = np.asarray(pm.modes.freq_hz)
+    p = np.nan_to_num(pm.modes.participation)
+    below = f <= pm.found_hz
+    expected = {DOF_NAMES[j]: int(np.flatnonzero(below)[np.argmax(p[below, j])])
+                for j in model.free_index}
+    assert pm.carriers == expected
+    glob = np.flatnonzero(below & (np.asarray(pm.modes.kind) == "global"))
+    assert list(pm.index) == sorted(set(glob) | set(expected.values()))
+    assert pm.index.dtype.kind == "i"
+    # CoGiRo: one global mode per DOF, 2.2061 Hz first
+    assert len(pm.index) == 6 and pm.first_hz == pytest.approx(2.2061, abs=1e-4)
+    np.testing.assert_array_equal(pm.freq_hz, f[pm.index])
+
+
+def test_select_below_a_frequency_under_every_mode_finds_nothing(pm, model):
+    index, carriers = select_platform_modes(pm.modes, model.free_index, 0.5)
+    assert index.size == 0 and carriers == {}
+    index, carriers = select_platform_modes(pm.modes, model.free_index, np.inf)
+    assert set(carriers.values()) <= set(index)
+
+
+def test_the_search_covers_what_it_is_asked_to(model, pm):
+    """Every mode below cover_hz (1 + neighbours_rtol) is computed, whatever the platform
+    modes need: the same lowest modes as a direct eigen-solution."""
+    res = find_platform_modes(model, cover_hz=12.0, neighbours_rtol=0.1)
+    assert res.searched_hz >= 12.0 and res.complete
+    f = np.asarray(res.modes.freq_hz)
+    assert f.max() >= 12.0 and f.max() <= 12.0 * 1.1 * 1.5
+    direct = ds.eigenfrequencies(model, len(f))
+    np.testing.assert_allclose(f, direct, rtol=1e-8)
+    assert res.carriers == pm.carriers
+    assert res.found_hz == pytest.approx(pm.found_hz, rel=1e-9)
+    # without a cover the search stops at its first step past the found frequency
+    assert pm.searched_hz < 12.0 and np.max(pm.modes.freq_hz) <= pm.searched_hz
+
+
+def test_a_ceiling_of_modes_makes_the_search_incomplete(model):
+    res = find_platform_modes(model, max_modes=3)
+    assert not res.complete and np.isnan(res.found_hz) and np.isnan(res.first_hz)
+    assert res.index.size == 0 and res.carriers == {}
+    # the first step searches up to 1.25 x the highest massless-cable platform frequency
+    import scipy.linalg
+    K0 = model.massless_stiffness()
+    lam = scipy.linalg.eigh(0.5 * (K0 + K0.T), model.platform_mass, eigvals_only=True)
+    first = 1.25 * np.sqrt(lam.max()) / (2 * np.pi)
+    assert res.reason.startswith(f"more than 3 modes below {first:.4g} Hz")
+    wider = find_platform_modes(model, neighbours_rtol=0.2, max_modes=3)
+    assert wider.reason.startswith(f"more than 3 modes below {first * 1.2:.4g} Hz")
+    assert res.reason.endswith("Hz, the ceiling of the search for the platform modes")
+    assert repr(res) == f"PlatformModes(incomplete: {res.reason})"
+    assert res.spread() == ""
+
+
+def test_the_band_of_an_exact_model_ends_the_search():
+    """An exact model built up to 3 Hz cannot hold CoGiRo's platform modes (found by
+    5.9 Hz): the search stops at the model's band and names the option to change."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    res = find_platform_modes(ds.build_model(eq, "exact", fmax_hz=3.0))
+    assert not res.complete
+    assert res.reason.startswith("the model's band ends at ")
+    assert "build it with a larger fmax_hz" in res.reason
+    assert re.search(r"found only in part \(x \d+%, y \d+%, z \d+%, rx \d+%, ry \d+%, "
+                     r"rz \d+%\)", res.reason), res.reason
+    assert res.modes is not None and res.searched_hz == pytest.approx(3.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(cover_hz=-1.0), "cover_hz"),
+                                      (dict(cover_hz=np.nan), "cover_hz"),
+                                      (dict(cover_hz=np.inf), "cover_hz"),
+                                      (dict(neighbours_rtol=-0.1), "neighbours_rtol"),
+                                      (dict(neighbours_rtol=np.inf), "neighbours_rtol")])
+def test_bad_arguments_are_named(model, kw, name):
+    with pytest.raises(InvalidParameterError, match=name):
+        find_platform_modes(model, **kw)
+
+
+def test_describe_and_repr_say_the_numbers(pm):
+    k = int(pm.index[0])
+    m = pm.modes
+    dof = DOF_NAMES[int(np.argmax(np.nan_to_num(m.participation[k])))]
+    assert pm.describe(k) == (f"{m.freq_hz[k]:.4g} Hz ({m.kind[k]}, platform share "
+                              f"{100 * m.platform_share[k]:.0f} %, mostly {dof})")
+    assert repr(pm) == (f"PlatformModes(6 of {len(m)} modes, first {pm.first_hz:.4g} Hz, "
+                        f"found by {pm.found_hz:.4g} Hz)")
+
+
+def test_describe_names_no_dof_for_a_mode_without_participation():
+    """A mode that moves no DOF (participations zero or NaN) is "mostly -"; otherwise the
+    DOF of its largest participation."""
+    from types import SimpleNamespace
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+    p = np.zeros((3, 6))
+    p[1, 4] = 0.7
+    p[1, 0] = 0.2
+    p[2] = np.nan
+    modes = SimpleNamespace(participation=p, freq_hz=np.array([1.0, 2.0, 3.0]),
+                            kind=("local", "global", "local"),
+                            platform_share=np.array([0.0, 0.9, 0.01]))
+    pm = PlatformModes(modes=modes, index=np.array([1]), carriers={"ry": 1}, complete=True,
+                       found_hz=2.0, searched_hz=3.0, reason="")
+    assert pm.describe(0) == "1 Hz (local, platform share 0 %, mostly -)"
+    assert pm.describe(1) == "2 Hz (global, platform share 90 %, mostly ry)"
+    assert pm.describe(2) == "3 Hz (local, platform share 1 %, mostly -)"
+
+
+def test_spread_counts_the_cable_dominated_modes_up_to_the_found_frequency():
+    """Carriers x and y with platform shares below one half: the sentence names both and
+    counts the cable-dominated modes up to found_hz (2 of the 3 below it; the 60 % mode
+    and the mode above found_hz are not counted)."""
+    from types import SimpleNamespace
+
+    from dynstiff.analyses.platform_modes import PlatformModes
+
+    class Modes(SimpleNamespace):
+        def __len__(self):
+            return 4
+    modes = Modes(freq_hz=np.array([1.0, 2.0, 3.0, 4.0]),
+                  platform_share=np.array([0.2, 0.6, 0.3, 0.1]))
+    kw = dict(index=np.array([0, 1, 2]), found_hz=3.0, searched_hz=4.0, reason="")
+    pm = PlatformModes(modes=modes, carriers={"x": 0, "y": 2, "z": 1}, complete=True, **kw)
+    assert pm.spread() == (
+        "no mode is platform-dominated in x, y: the platform's motion there is spread over "
+        "2 cable-dominated modes up to 3 Hz (largest platform share among them 30 %); the "
+        "platform modes are the carriers of each DOF by participation")
+    assert PlatformModes(modes=modes, carriers={"z": 1}, complete=True, **kw).spread() == ""
+    assert PlatformModes(modes=modes, carriers={"x": 0}, complete=False, **kw).spread() == ""
+
+
+def test_a_dof_no_mode_below_moves_has_no_carrier():
+    """Below 1.5 Hz only the first two modes: x moves in both (carrier: the larger), y in
+    neither (no carrier, not the first mode by default); the global mode is kept."""
+    from types import SimpleNamespace
+    p = np.zeros((3, 6))
+    p[:, 0] = [0.2, 0.5, 0.3]
+    p[2, 1] = 1.0
+    modes = SimpleNamespace(freq_hz=np.array([1.0, 1.2, 2.0]), participation=p,
+                            kind=("global", "local", "global"))
+    index, carriers = select_platform_modes(modes, [0, 1], 1.5)
+    assert carriers == {"x": 1}
+    assert list(index) == [0, 1] and index.dtype.kind == "i"
+    index, carriers = select_platform_modes(modes, [0, 1], 2.0)
+    assert carriers == {"x": 1, "y": 2} and list(index) == [0, 1, 2]
