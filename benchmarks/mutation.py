@@ -18,7 +18,7 @@ depend on the other modules) and gives each score a 95 % Wilson interval.
 What mutmut cannot mutate, and why (nothing else is left out): functions with a decorator
 other than ``staticmethod``/``classmethod`` (mutmut leaves them alone: its trampoline would
 replace the decorated object), so the numba kernels of ``compiled/`` (``@numba.njit``:
-catenary, chain, chain_run and dsm have no mutant at all), ``compiled.load``
+catenary, chain, chain_run, dsm, dsm_search and statics have no mutant at all), ``compiled.load``
 (``functools.cache``), properties and context managers (``io.files.atomic_path``) are not
 mutated; modules without functions (``__main__``, ``_version``, ``constants``, the package
 ``__init__`` files) have none. ``maps/__init__`` and ``cli/__init__`` do have mutants (their
