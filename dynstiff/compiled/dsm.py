@@ -125,6 +125,25 @@ def real_receptance(K, B, C):
 
 
 @numba.njit(**JIT)
+def _solve_block(Kb, w, start, K_static, M, B, C, c_identity, H, kmax, singular, Kk, Hk, work):
+    """H[start + b] = C K^-1 B for the block's upper entries Kb (w.size, nf (nf + 1) / 2) at
+    the frequencies w [rad/s], with kmax and singular as :func:`dsm_receptance`; Kk, Hk and
+    work are scratch of K's dtype (real or complex)."""
+    for b in range(w.size):
+        k = start + b
+        big = unpack_symmetric(Kb[b], K_static, M, w[b], Kk)
+        if not np.isfinite(big):                   # exactly on a cable pole
+            kmax[k] = np.inf
+            H[k] = np.nan
+            continue
+        kmax[k] = big
+        singular[k] = not _lu_solve_into(Kk, B, C, c_identity, Hk, work)
+        for o in range(Hk.shape[0]):
+            for i in range(Hk.shape[1]):
+                H[k, o, i] = Hk[o, i]
+
+
+@numba.njit(**JIT)
 def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static,
                    M, B, C):
     """Receptance C K(omega)^-1 B of the "dsm" rung with undamped cables, K(omega) built and
@@ -169,18 +188,8 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
         w = omega[start:start + _BLOCK]
         Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, J0,
                               False)
-        for b in range(w.size):
-            k = start + b
-            big = unpack_symmetric(Kb[b], K_static, M, w[b], Kk)
-            if not np.isfinite(big):                   # exactly on a cable pole
-                kmax[k] = np.inf
-                H[k] = np.nan
-                continue
-            kmax[k] = big
-            singular[k] = not _lu_solve_into(Kk, B, C, c_identity, Hk, work)
-            for o in range(Hk.shape[0]):
-                for i in range(Hk.shape[1]):
-                    H[k, o, i] = Hk[o, i]
+        _solve_block(Kb, w, start, K_static, M, B, C, c_identity, H, kmax, singular, Kk, Hk,
+                     work)
     return H, kmax, singular
 
 
@@ -319,8 +328,8 @@ def _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, serie
             psi2 = psi * psi
             if abs(psi) < radius:
                 s_over_psi = 1.0 + 0j if psi == 0.0 else s / psi
-                E = _horner_c(e_coef, psi2)
-                Pt = _horner_c(p_coef, psi2)
+                E = _horner(e_coef, psi2)
+                Pt = _horner(p_coef, psi2)
             else:
                 s_over_psi = s / psi
                 ip3 = 1.0 / (psi2 * psi)
@@ -332,14 +341,6 @@ def _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, serie
             coef[b, 4 * j + 2] = scale * TL[j] * (4.0 * cos2 + lam2[j] * Pt) * iden / s_over_psi
             coef[b, 4 * j + 3] = scale * TL[j] * cos2 / (s_over_psi * c)
     return _matmul(coef, assembly)
-
-
-@numba.njit(**JIT)
-def _horner_c(coef, x):
-    y = 0.0 + 0j
-    for a in coef:
-        y = y * x + a
-    return y
 
 
 @numba.njit(**JIT)
@@ -387,18 +388,8 @@ def dsm_receptance_damped(omega, scale, L, m, T, lam2, alpha, K0, chordwise, ser
         w = omega[start:start + _BLOCK]
         Kb = _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, series,
                                      assembly)
-        for b in range(w.size):
-            k = start + b
-            big = unpack_symmetric(Kb[b], K_static, M, w[b], Kk)
-            if not np.isfinite(big):                   # exactly on a cable pole
-                kmax[k] = np.inf
-                H[k] = np.nan
-                continue
-            kmax[k] = big
-            singular[k] = not _lu_solve_into(Kk, Bc, Cc, c_identity, Hk, work)
-            for o in range(Hk.shape[0]):
-                for i in range(Hk.shape[1]):
-                    H[k, o, i] = Hk[o, i]
+        _solve_block(Kb, w, start, K_static, M, Bc, Cc, c_identity, H, kmax, singular, Kk, Hk,
+                     work)
     return H, kmax, singular
 
 
