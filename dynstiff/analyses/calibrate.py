@@ -154,11 +154,17 @@ def _refuse_too_many_modes(model: Any, measured: MeasuredModes, fmax: float,
     ``max_modes`` modes, naming the highest measured mode. The closed form's band warnings
     are held back here: it misses the axial modes, so its count is a lower bound, and the
     modes computed after this check give the warnings where they apply."""
+    k = int(np.argmax(measured.freq_hz))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ClosedFormWarning)
-        n = int(mode_count(model, 2 * np.pi * fmax)[0])
+        try:
+            n = int(mode_count(model, 2 * np.pi * fmax)[0])
+        except InvalidParameterError as err:     # beyond the cable model's frequency range
+            raise InvalidParameterError(
+                f"measured mode {k + 1} at {measured.freq_hz[k]:g} Hz: the band up to {fmax:g} "
+                f"Hz (fmax_factor {fmax_factor:g} times it) is beyond the model: {err}; check "
+                f"the measured frequencies' unit (Hz)") from None
     if n > max_modes:
-        k = int(np.argmax(measured.freq_hz))
         raise InvalidParameterError(
             f"measured mode {k + 1} at {measured.freq_hz[k]:g} Hz: the model has {n} modes below "
             f"{fmax:g} Hz (fmax_factor {fmax_factor:g} times it), more than max_modes = "
