@@ -72,15 +72,58 @@ def test_the_compiled_fixed_point_is_the_numpy_loop(name, monkeypatch):
     assert np.isfinite(ref[:, 0]).any()
 
 
-def test_a_case_the_kernel_does_not_take_goes_to_the_numpy_loop():
-    """The motion simulator at its pose: its tension distributions need the LP's feasible
-    point (no active set from the limits gives a feasible start), which the kernel leaves
-    to the numpy loop: it says so (None), and the numpy loop gives the equilibrium."""
-    robot = ds.load_scene("simulator").robot
-    pose = ds.load_scene("simulator").pose
-    assert statics._compiled_fixed_point(*_arguments(robot, pose)) is None
-    eq = robot.equilibrium(pose=pose)
-    assert eq.residual < 1e-10
+def test_a_distribution_that_needs_the_lp_is_found_by_it_and_the_kernel_goes_on(monkeypatch):
+    """The motion simulator at its pose: its first distribution needs the LP's feasible point
+    (no active set from the limits gives a feasible start). The numpy distribution finds the
+    optimum's active set, the kernel goes on from it, and the equilibrium is the numpy
+    loop's."""
+    scene = ds.load_scene("simulator")
+    result, start = statics._compiled_fixed_point(*_arguments(scene.robot, scene.pose))
+    assert start is None
+    eq = scene.robot.equilibrium(pose=scene.pose)
+    monkeypatch.setattr(statics, "_compiled_fixed_point", lambda *a, **k: None)
+    ref = scene.robot.equilibrium(pose=scene.pose)
+    np.testing.assert_allclose(eq.tensions, ref.tensions, rtol=1e-12)
+    np.testing.assert_allclose(eq.unstretched_lengths, ref.unstretched_lengths, rtol=1e-12)
+    np.testing.assert_allclose(result[0], ref.tensions, rtol=1e-12)
+
+
+def test_the_numpy_loop_goes_on_from_the_kernels_state(monkeypatch):
+    """A kernel stopped after 3 iterations (planted: as if it had not converged) hands its
+    state to the numpy loop, which ends at the same equilibrium as from the start."""
+    kernels = compiled.load("statics")
+    real, seen = kernels.fixed_point, []
+
+    def three_then_stop(*a):
+        out = real(*a[:-1], 3)
+        seen.append(out[1])
+        return (kernels._NUMPY,) + out[1:]
+    robot = ds.load_scene("cogiro").robot
+    x = [1.0, -0.5, 2.0, 0.0, 0.0, 0.1]
+    monkeypatch.setattr(kernels, "fixed_point", three_then_stop)
+    eq = robot.equilibrium(pose=x)
+    monkeypatch.undo()
+    assert seen == [3]
+    monkeypatch.setattr(statics, "_compiled_fixed_point", lambda *a, **k: None)
+    ref = robot.equilibrium(pose=x)
+    np.testing.assert_allclose(eq.tensions, ref.tensions, rtol=1e-12)
+    np.testing.assert_allclose(eq.unstretched_lengths, ref.unstretched_lengths, rtol=1e-12)
+
+
+def test_the_numpy_loop_goes_on_from_where_the_kernel_stopped(monkeypatch):
+    """Infeasible CoGiRo poses (outside the frame's wrench-feasible set): the kernel stops at
+    the distribution with no feasible point, and the numpy loop, from the kernel's state,
+    raises the same error as from the start."""
+    robot = ds.load_scene("cogiro").robot
+    for x in ([7.4, 5.2, 0.5, 0, 0, 0], [-7.2, 0.0, 5.5, 0, 0, 0]):
+        with pytest.raises(ds.DynstiffError) as fast:
+            robot.equilibrium(pose=x)
+        with monkeypatch.context() as m:
+            m.setattr(statics, "_compiled_fixed_point", lambda *a, **k: None)
+            with pytest.raises(ds.DynstiffError) as ref:
+                robot.equilibrium(pose=x)
+        assert type(fast.value) is type(ref.value)
+        assert str(fast.value) == str(ref.value)
 
 
 def _arguments(robot, pose):
@@ -93,5 +136,5 @@ def _arguments(robot, pose):
     u = (A - B) / np.linalg.norm(A - B, axis=1)[:, None]
     t_min, t_max = robot.tension_limits
     lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
-    return (A, B, r, fi, -robot.gravity_wrench(pose)[fi], EA, w0, t_min, t_max, None, u, lo,
+    return (pose, A, B, r, fi, -robot.gravity_wrench(pose)[fi], EA, w0, t_min, t_max, None, u, lo,
             np.zeros(len(EA)), None, 50)

@@ -4,10 +4,12 @@ directions and tension distribution (theory.md §13.1, §13.6) in one call.
 :func:`fixed_point` is the loop of :func:`dynstiff.robot.statics.inverse_statics` for its
 regular case: the distribution found by the active-set method from the previous active set
 or from the limits the minimum-distance solution violates, and every cable solved by the
-batched Newton (:func:`dynstiff.compiled.catenary.newton_taut`). Whatever else happens (a
-distribution that needs the LP's feasible point, a singular configuration, a cable left to
-the scalar solver, no convergence) returns a status and the caller runs the numpy loop,
-which stays the reference and says what went wrong.
+batched Newton (:func:`dynstiff.compiled.catenary.newton_taut`). A distribution that needs
+the LP's feasible point returns :data:`NEEDS_LP` with the state it stopped at: the caller
+finds the active set by the LP and calls again from that state. Whatever else happens (a
+singular configuration, no feasible distribution, a cable left to the scalar solver, no
+convergence) returns a status and the state of the failing iteration, from which the
+numpy loop continues: it stays the reference and says what went wrong.
 """
 
 import numba
@@ -15,12 +17,14 @@ import numpy as np
 
 from dynstiff.compiled.catenary import newton_taut
 
-__all__ = ["CONVERGED", "fixed_point"]
+__all__ = ["CONVERGED", "NEEDS_LP", "fixed_point"]
 
 _JIT = {"cache": True, "error_model": "numpy", "nogil": True}
-#: Status of :func:`fixed_point`: converged; anything else is the numpy loop's case.
+#: Status of :func:`fixed_point`: converged; a distribution needs the LP's feasible point
+#: (the caller finds its active set and calls again); anything else is the numpy loop's case.
 CONVERGED = 0
 _NUMPY = 1
+NEEDS_LP = 2
 _EPS = np.finfo(np.float64).eps
 _CAT_RTOL = 1e-13         # as dynstiff.cable.catenary_batch
 _CAT_MAX_ITER = 40
@@ -131,7 +135,10 @@ def _distribution(W, w, t_min, t_max, t_ref, sides):
             continue
         bound = np.where(guess < 0, t_min, np.where(guess > 0, t_max, np.nan))
         start, ok = _active_solution(W, w, bound, t_ref)
-        if ok and np.all(start >= t_min) and np.all(start <= t_max):
+        # within the limits to rounding: the LP's optimum has free tensions on a limit
+        # (its active set, given as ``sides``, puts them there to the last digits)
+        near = 1e-12 * max(1.0, np.abs(start).max())
+        if ok and np.all(start >= t_min - near) and np.all(start <= t_max + near):
             return _closest_in_box(W, w, t_min, t_max, t_ref, start, tol, bound)
     return t, zero, False
 
@@ -187,7 +194,7 @@ def _catenaries(A, B, t, EA, w0, H, V0, L0, warm):
 
 @numba.njit(**_JIT)
 def fixed_point(A, B, r, free_index, w, EA, w0, t_min, t_max, t_ref, has_ref, u, lo, hi,
-                H, V0, L0, warm, max_iter):
+                H, V0, L0, warm, sides, max_iter):
     """The fixed point of :func:`dynstiff.robot.statics.inverse_statics` (module notes).
 
     Parameters
@@ -210,21 +217,31 @@ def fixed_point(A, B, r, free_index, w, EA, w0, t_min, t_max, t_ref, has_ref, u,
         The start: unit cable-end directions and the tension margins along the cables [N].
     H, V0, L0 : ndarray, shape (n,)
         Catenaries to start Newton from when ``warm``.
+    sides : ndarray of int, shape (n,)
+        The active set to try first (-1 / +1 at the lower / upper limit, 0 free), e.g. that
+        of the LP's distribution at this start.
     max_iter : int
 
     Returns
     -------
     status : int
-        :data:`CONVERGED`, else the numpy loop's case.
+        :data:`CONVERGED`; :data:`NEEDS_LP` when a distribution needs the LP's feasible
+        point; else the numpy loop's case.
+    iterations : int
+        Iterations done; at a failure, the failing one is not counted.
     t, H, V0, L0, residual : ndarray, shape (n,)
-        Tensions at B [N] and the catenaries [N, N, m], their relative residual [-].
+        Tensions at B [N] and the catenaries [N, N, m], their relative residual [-]; at a
+        failure, H, V0, L0 are the start's catenaries of the failing iteration.
+    u, lo, hi : ndarray, shape (n, 3), (n,), (n,)
+        The directions and margins the last iteration started from (at a failure, the
+        numpy loop continues from them, with ``warm`` = iterations > 0 or the start's).
     """
     n, k = u.shape[0], free_index.size
-    sides = np.zeros(n, dtype=np.int64)
+    sides = sides.copy()
     best, since_best, last = np.inf, 0, np.inf
     t = np.full(n, np.nan)
     res = np.full(n, np.nan)
-    for _ in range(max_iter):
+    for it in range(max_iter):
         W = np.empty((k, n))
         for i in range(n):
             m0 = r[i, 1] * u[i, 2] - r[i, 2] * u[i, 1]          # r x u
@@ -236,10 +253,11 @@ def fixed_point(A, B, r, free_index, w, EA, w0, t_min, t_max, t_ref, has_ref, u,
         lower, upper = t_min + lo, t_max - hi
         t, sides, ok = _distribution(W, w, lower, upper, t_ref if has_ref else lower, sides)
         if not ok:
-            return _NUMPY, t, H, V0, L0, res
-        H, V0, L0, res, ok = _catenaries(A, B, t, EA, w0, H, V0, L0, warm)
+            return NEEDS_LP, it, t, H, V0, L0, res, u, lo, hi
+        H1, V1, L1, res, ok = _catenaries(A, B, t, EA, w0, H, V0, L0, warm)
         if not ok:
-            return _NUMPY, t, H, V0, L0, res
+            return _NUMPY, it, t, H, V0, L0, res, u, lo, hi
+        H, V0, L0 = H1, V1, L1
         warm = True
         u_new, lo_new, hi_new = _end_quantities(A, B, H, V0, L0, w0)
         change = max(np.abs(u_new - u).max(),
@@ -253,5 +271,5 @@ def fixed_point(A, B, r, free_index, w, EA, w0, t_min, t_max, t_ref, has_ref, u,
         last = change
         if change < 1e-15 or (rho < 0.5 and change * rho / (1 - rho) < 2e-16) \
                 or (best < 1e-9 and since_best >= 10):
-            return CONVERGED, t, H, V0, L0, res
-    return _NUMPY, t, H, V0, L0, res
+            return CONVERGED, it + 1, t, H, V0, L0, res, u, lo, hi
+    return _NUMPY, max_iter, t, H, V0, L0, res, u, lo, hi

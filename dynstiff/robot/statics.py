@@ -278,38 +278,48 @@ def _end_quantities(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: 
     return f / T_B[:, None], T_B - T_min, np.maximum(T_B, T_A) - T_B
 
 
+def _step_distribution(pose: Pose, r: NDArray[np.float64], u: NDArray[np.float64],
+                       fi: NDArray[np.int64], w: NDArray[np.float64],
+                       t_min: NDArray[np.float64] | float, t_max: NDArray[np.float64] | float,
+                       lo: NDArray[np.float64], hi: NDArray[np.float64],
+                       tension_reference: NDArray[np.float64] | float | None,
+                       sides: NDArray[np.int64] | None,
+                       straight: bool) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The tension distribution (t, its active set) of one fixed-point iteration at cable-end
+    directions u and margins lo, hi (``straight``: u are straight chords); raises the
+    diagnosed InfeasiblePoseError when there is none."""
+    W = np.vstack([u.T, cross(r, u).T])[fi]
+    try:
+        return _distribution(W, w, t_min + lo, t_max - hi, tension_reference, sides)
+    except SlackCableError:
+        # straight chords of heavy cables leave the platform at other angles than their
+        # catenaries, and their limits may not fit where the catenaries' do (theory.md
+        # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
+        # directions then meet the limits
+        if straight:
+            with contextlib.suppress(SlackCableError):
+                return _distribution(W, w, 1e-3 * t_min + lo, t_max - hi, tension_reference,
+                                     sides)
+        raise diagnose_limits(W, w, t_min, t_max, lo, hi,
+                              f"pose {pose.as_vector().tolist()}") from None
+
+
 def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np.float64],
                  r: NDArray[np.float64], fi: NDArray[np.int64], wg: NDArray[np.float64],
                  EA: NDArray[np.float64], w0: NDArray[np.float64], t_min: NDArray[np.float64],
                  t_max: NDArray[np.float64], tension_reference: NDArray[np.float64] | float | None,
                  u: NDArray[np.float64], lo: NDArray[np.float64], hi: NDArray[np.float64],
                  warm: tuple[NDArray[np.float64], ...] | None, straight: bool,
-                 max_iter: int) -> tuple[Any, ...]:
+                 max_iter: int, done: int = 0) -> tuple[Any, ...]:
     """The fixed point of cable directions and tension distribution of
     :func:`inverse_statics` from the directions u and margins lo, hi (``straight``: u are
-    straight chords): (t, H, V0, L0, residual, {cable: CatenaryState of the scalar
-    solver})."""
-    best, since_best, last = np.inf, 0, np.inf
+    straight chords), after ``done`` of the ``max_iter`` iterations:
+    (t, H, V0, L0, residual, {cable: CatenaryState of the scalar solver})."""
+    best, since_best, last, change = np.inf, 0, np.inf, np.inf
     sides = None                          # the last distribution's active set
-    for _ in range(max_iter):
-        W = np.vstack([u.T, cross(r, u).T])[fi]
-        try:
-            t, sides = _distribution(W, -wg[fi], t_min + lo, t_max - hi, tension_reference,
-                                     sides)
-        except SlackCableError:
-            # straight chords of heavy cables leave the platform at other angles than their
-            # catenaries, and their limits may not fit where the catenaries' do (theory.md
-            # §4): a first distribution above 1e-3 t_min only gives the catenaries, whose
-            # directions then meet the limits
-            relaxed = None
-            if straight:
-                with contextlib.suppress(SlackCableError):
-                    relaxed = _distribution(W, -wg[fi], 1e-3 * t_min + lo, t_max - hi,
-                                            tension_reference, sides)
-            if relaxed is None:
-                raise diagnose_limits(W, -wg[fi], t_min, t_max, lo, hi,
-                                      f"pose {pose.as_vector().tolist()}") from None
-            t, sides = relaxed
+    for _ in range(max(max_iter - done, 1)):
+        t, sides = _step_distribution(pose, r, u, fi, -wg[fi], t_min, t_max, lo, hi,
+                                      tension_reference, sides, straight)
         straight = False
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
@@ -346,7 +356,7 @@ def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np
     return t, H, V0, L0, res, scalar
 
 
-def _compiled_fixed_point(A: NDArray[np.float64], B: NDArray[np.float64],
+def _compiled_fixed_point(pose: Pose, A: NDArray[np.float64], B: NDArray[np.float64],
                           r: NDArray[np.float64], fi: NDArray[np.int64],
                           w: NDArray[np.float64], EA: NDArray[np.float64],
                           w0: NDArray[np.float64], t_min: NDArray[np.float64],
@@ -354,11 +364,24 @@ def _compiled_fixed_point(A: NDArray[np.float64], B: NDArray[np.float64],
                           tension_reference: NDArray[np.float64] | float | None,
                           u: NDArray[np.float64], lo: NDArray[np.float64],
                           hi: NDArray[np.float64], warm: tuple[NDArray[np.float64], ...] | None,
-                          max_iter: int) -> tuple[Any, ...] | None:
-    """:func:`_fixed_point` in one compiled call (:func:`dynstiff.compiled.statics.fixed_point`)
-    when numba is installed and the case is the regular one (every distribution from an
-    active set, every cable solved by the batched Newton); None otherwise, and the numpy
-    loop runs (it is the reference, and says what went wrong)."""
+                          max_iter: int) -> tuple[Any, Any] | None:
+    """:func:`_fixed_point` by the compiled loop (:func:`dynstiff.compiled.statics.fixed_point`)
+    when numba is installed: None without it (the numpy loop runs from the start).
+
+    The kernel takes the regular case (every distribution from an active set, every cable
+    solved by the batched Newton). Where a distribution needs the LP's feasible point, the
+    numpy loop's distribution finds the optimum's active set at the kernel's state (or
+    raises the diagnosed error where there is none) and the kernel goes on from there, once.
+    Whatever else happens (a singular configuration, a cable left to the scalar solver, no
+    convergence), the numpy loop goes on from the state of the failing iteration: it is the
+    reference, and says what went wrong.
+
+    Returns
+    -------
+    (result, None) or (None, start)
+        result as :func:`_fixed_point`'s; start (u, lo, hi, warm, iterations done) for the
+        numpy loop.
+    """
     kernels = compiled.load("statics")
     if kernels is None:
         return None
@@ -368,15 +391,27 @@ def _compiled_fixed_point(A: NDArray[np.float64], B: NDArray[np.float64],
            else np.zeros(n))
     H, V0, L0 = warm if warm is not None else (np.full(n, np.nan),) * 3
     f = np.ascontiguousarray
-    status, t, H, V0, L0, res = kernels.fixed_point(
-        f(A, dtype=float), f(B, dtype=float), f(r, dtype=float), f(fi, dtype=np.int64),
-        f(w, dtype=float), f(EA, dtype=float), f(w0, dtype=float),
-        f(np.broadcast_to(t_min, (n,)), dtype=float), f(np.broadcast_to(t_max, (n,)), dtype=float),
-        ref, has_ref, f(u, dtype=float), f(lo, dtype=float), f(hi, dtype=float),
-        f(H, dtype=float), f(V0, dtype=float), f(L0, dtype=float), warm is not None, max_iter)
-    if status != kernels.CONVERGED:
-        return None
-    return t, H, V0, L0, res, {}
+    fixed = (f(A, dtype=float), f(B, dtype=float), f(r, dtype=float), f(fi, dtype=np.int64),
+             f(w, dtype=float), f(EA, dtype=float), f(w0, dtype=float),
+             f(np.broadcast_to(t_min, (n,)), dtype=float),
+             f(np.broadcast_to(t_max, (n,)), dtype=float), ref, has_ref)
+    sides = np.zeros(n, dtype=np.int64)
+    is_warm, done = warm is not None, 0
+    for attempt in range(2):
+        status, it, t, H, V0, L0, res, u, lo, hi = kernels.fixed_point(
+            *fixed, f(u, dtype=float), f(lo, dtype=float), f(hi, dtype=float),
+            f(H, dtype=float), f(V0, dtype=float), f(L0, dtype=float), is_warm, sides,
+            max_iter - done)
+        done += it
+        is_warm = is_warm or it > 0
+        if status == kernels.CONVERGED:
+            return (t, H, V0, L0, res, {}), None
+        if status != kernels.NEEDS_LP or attempt or done >= max_iter:
+            break
+        # the numpy loop's distribution, which raises the diagnosed error where there is none
+        sides = _step_distribution(pose, r, u, fi, w, t_min, t_max, lo, hi, tension_reference,
+                                   None, not is_warm)[1].astype(np.int64)
+    return None, (u, lo, hi, (H, V0, L0) if is_warm else None, done)
 
 
 def inverse_statics(robot: Robot, pose: Pose,
@@ -440,11 +475,17 @@ def inverse_statics(robot: Robot, pose: Pose,
         # dT = w0 dz / (1 + T/EA), so a cable rising to B has about w0 h less tension at A
         lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
         hi = np.zeros(n)
-    fast = _compiled_fixed_point(A, B, r, fi, -wg[fi], EA, w0, t_min, t_max,
+    fast = _compiled_fixed_point(pose, A, B, r, fi, -wg[fi], EA, w0, t_min, t_max,
                                  tension_reference, u, lo, hi, warm, max_iter)
-    t, H, V0, L0, res, scalar = fast if fast is not None else _fixed_point(
-        robot, pose, A, B, r, fi, wg, EA, w0, t_min, t_max, tension_reference, u, lo, hi,
-        warm, start is None, max_iter)
+    if fast is not None and fast[0] is not None:
+        t, H, V0, L0, res, scalar = fast[0]
+    else:                    # the numpy loop, from the start or where the kernel stopped
+        done = 0
+        if fast is not None:
+            u, lo, hi, warm, done = fast[1]
+        t, H, V0, L0, res, scalar = _fixed_point(
+            robot, pose, A, B, r, fi, wg, EA, w0, t_min, t_max, tension_reference, u, lo, hi,
+            warm, start is None and done == 0, max_iter, done)
     states = [scalar[i] if i in scalar else
               CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
                             cable=robot.cables[i], g=robot.g, H=float(H[i]), V0=float(V0[i]),
