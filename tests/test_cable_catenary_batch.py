@@ -120,8 +120,9 @@ def test_vertical_weightless_and_unreachable_cables_go_to_the_scalar_solver():
 
 
 def test_sag_ratios_equal_the_profile_of_each_state():
-    """The batched sag equals CatenaryState.sag / chord (same 401 points) on every CoGiRo
-    cable at a central and an edge pose."""
+    """The batched sag (one point, where the cable runs parallel to the chord) equals
+    CatenaryState.sag / chord (a 401-point profile and that point) on every CoGiRo cable at
+    a central and an edge pose, and is at least the sampled profile's."""
     from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
     robot = ds.load_scene("cogiro").robot
     for p in ([0.0, 0.0, 1.0], [5.0, 3.0, 1.0]):
@@ -130,5 +131,31 @@ def test_sag_ratios_equal_the_profile_of_each_state():
         got = sag_ratios(robot.anchors, B, *catenary_arrays(eq.states),
                          *arrays(robot.cables))
         ref = np.array([s.sag / s.chord_length for s in eq.states])
-        np.testing.assert_allclose(got, ref, rtol=1e-9)
+        np.testing.assert_allclose(got, ref, rtol=1e-12)
         assert ref.max() > 1e-4
+        sampled = []
+        for state in eq.states:                  # the 401-point profile alone
+            q = state.profile(401) - state.anchor
+            e = state.chord / state.chord_length
+            sampled.append(np.max(np.linalg.norm(q - np.outer(q @ e, e), axis=1))
+                           / state.chord_length)
+        assert np.all(got >= np.array(sampled) * (1 - 1e-14))
+        np.testing.assert_allclose(got, sampled, rtol=1e-5)      # the sampling's O(1/n^2)
+
+
+def test_the_sag_of_a_shallow_cable_is_the_parabolas():
+    """Horizontal chords of 20 m, nearly inextensible cables: the sag ratio is the inextensible
+    catenary's (H / w0) (cosh(w0 L / (2 H)) - 1) / L, and the parabola's w0 L / (8 H) to its
+    relative O((w0 L / H)^2 / 48) (theory.md §1.2)."""
+    from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
+    # w0 = 1 N/m; the stretch moves the sag by about 1e-8 T / (EA (d/L)^2): EA = 1e15
+    cable = ds.Cable(mass_per_length=1.0 / G, EA=1e15)
+    A, B = np.zeros(3), np.array([20.0, 0.0, 0.0])
+    for T in (1e2, 1e3, 1e4):
+        state = ds.unstretched_length_for_tension(A, B, T, cable, g=G)
+        got = sag_ratios(A[None], B[None], *catenary_arrays([state]), np.array([1e15]),
+                         np.array([1.0]))[0]
+        H = state.H
+        assert got == pytest.approx(H * (np.cosh(20.0 / (2 * H)) - 1.0) / 20.0, rel=1e-9)
+        parabola = 20.0 / (8 * H)
+        assert abs(got / parabola - 1) <= (20.0 / H) ** 2 / 48 * 1.01

@@ -191,7 +191,12 @@ def test_a_slack_cable_in_a_u_is_not_reported_as_a_taut_string():
     p = taut.profile(401) - taut.anchor
     e = taut.chord / taut.chord_length
     line = np.max(np.linalg.norm(p - np.outer(p @ e, e), axis=1))
-    assert taut.sag == pytest.approx(line, rel=1e-12)
+    assert line <= taut.sag <= line * (1 + 1e-5)      # the profile's 401 points fall short
+    from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
+    exact = sag_ratios(np.array([taut.anchor]), np.array([taut.end]),
+                       *catenary_arrays([taut]), np.array([taut.cable.EA]),
+                       np.array([taut.cable.weight_per_length(taut.g)]))[0]
+    assert taut.sag == pytest.approx(exact * taut.chord_length, rel=1e-12)
 
 
 def test_a_heavy_vertical_cable_is_found_for_a_tension_below_its_weight():

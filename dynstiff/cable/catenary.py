@@ -284,10 +284,18 @@ class CatenaryState:
 
     @property
     def sag(self) -> float:
-        """Largest distance of the cable from its chord *segment* AB [m] (from a 401-point
-        profile; a point beyond an end of the segment counts its distance to that end, so a
-        slack cable hanging in a U below its lower end shows its true sag)."""
-        p = self.profile(401) - self.anchor
+        """Largest distance of the cable from its chord *segment* AB [m]: over a 401-point
+        profile and the point where the cable runs parallel to the chord, V(s) / H = h / l_h,
+        which holds the largest distance from the chord's line (theory.md §1.1; a point
+        beyond an end of the segment counts its distance to that end, so a slack cable
+        hanging in a U below its lower end shows its true sag)."""
+        s = np.linspace(0.0, self.unstretched_length, 401)
+        w0, lh = self.cable.weight_per_length(self.g), self.horizontal_span
+        if self.H > 0 and w0 > 0 and lh > 0:
+            s_star = (self.H * self.chord[2] / lh - self.V0) / w0
+            s = np.append(s, np.clip(s_star, 0.0, self.unstretched_length))
+        xz = self.profile_plane(s)
+        p = np.outer(xz[:, 0], self.horizontal_direction) + np.outer(xz[:, 1], _EZ)
         L = self.chord_length
         e = self.chord / L
         along = np.clip(p @ e, 0.0, L)

@@ -240,25 +240,37 @@ def states_for_tensions(anchors: NDArray[np.float64], ends: NDArray[np.float64],
 
 def sag_ratios(anchors: NDArray[np.float64], ends: NDArray[np.float64], H: NDArray[np.float64],
                V0: NDArray[np.float64], L0: NDArray[np.float64], EA: NDArray[np.float64],
-               w0: NDArray[np.float64], n_points: int = 401) -> NDArray[np.float64]:
+               w0: NDArray[np.float64]) -> NDArray[np.float64]:
     """Largest distance of each cable from its chord over the chord length [-], shape (n,).
 
-    The profile (docs/theory.md §1.1) at ``n_points`` points equally spaced in unstretched
-    arc length, as :attr:`dynstiff.cable.catenary.CatenaryState.sag` samples it, all cables and
-    points at once. A cable with H = 0 (vertical chord) is straight: 0.
+    Exact, at one point per cable (docs/theory.md §1.1): the signed distance from the chord,
+    g(s) = (x(s) h - z(s) l_h) / L, is zero at both ends and concave in the unstretched arc
+    length s (g' is proportional to H h - V(s) l_h, V(s) = V0 + w0 s increasing), so its
+    largest value is where the cable runs parallel to the chord, V(s*) / H = h / l_h, and s*
+    lies in [0, L0]. A cable with H = 0 (vertical chord) or without weight is straight: 0.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.1, EA=1e9)                  # 0.981 N/m
+    >>> st = ds.unstretched_length_for_tension([0, 0, 0], [10.0, 0, 0], 100.0, cable)
+    >>> r = sag_ratios(np.zeros((1, 3)), np.array([[10.0, 0, 0]]), *catenary_arrays([st]),
+    ...                np.array([1e9]), np.array([0.981]))
+    >>> print(f"{r[0]:.5f}, parabola {0.981 * 10 / (8 * st.H):.5f}")     # w0 L / (8 H)
+    0.01228, parabola 0.01228
     """
     d = ends - anchors
     lh = np.hypot(d[:, 0], d[:, 1])
     L = np.hypot(lh, d[:, 2])
-    s = L0[:, None] * np.linspace(0.0, 1.0, n_points)[None, 1:]          # (n, m)
-    Hc = np.where(H > 0, H, 1.0)[:, None]
-    a = np.broadcast_to((V0[:, None] / Hc), s.shape).ravel()
-    b = ((V0[:, None] + w0[:, None] * s) / Hc).ravel()
+    sloped = (H > 0) & (w0 > 0) & (lh > 0)
+    Hc = np.where(sloped, H, 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):
+        s = np.clip((Hc * d[:, 2] / np.where(sloped, lh, 1.0) - V0) / np.where(sloped, w0, 1.0),
+                    0.0, L0)
+        a, b = V0 / Hc, (V0 + w0 * s) / Hc
         d_asinh, _, _, d_sqrt = divided_differences(a, b, b - a)
-    d_asinh, d_sqrt = d_asinh.reshape(s.shape), d_sqrt.reshape(s.shape)
-    x = s * (Hc / EA[:, None] + d_asinh)
-    z = s * ((V0[:, None] + 0.5 * w0[:, None] * s) / EA[:, None] + d_sqrt)
-    dist = np.abs(x * d[:, 2:3] - z * lh[:, None]) / L[:, None]
-    out = np.nanmax(dist, axis=1, initial=0.0) / L
-    return np.where((H > 0) & (w0 > 0), out, 0.0)
+    x = s * (Hc / EA + d_asinh)
+    z = s * ((V0 + 0.5 * w0 * s) / EA + d_sqrt)
+    dist = np.abs(x * d[:, 2] - z * lh) / L
+    return np.where(sloped, dist / L, 0.0)
