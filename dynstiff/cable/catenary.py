@@ -27,6 +27,7 @@ almost weightless cable (W << H) and for an almost vertical one (H << |V|).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -150,32 +151,36 @@ class CatenaryState:
     V0: float
     residual: float
 
-    # ---- geometry of the cable plane
-    @property
+    # ---- geometry of the cable plane (computed once: the state is immutable; the arrays
+    # are read-only)
+    @cached_property
     def chord(self) -> NDArray[np.float64]:
-        """Chord vector B - A [m], shape (3,)."""
-        return self.end - self.anchor
+        """Chord vector B - A [m], shape (3,), read-only."""
+        d = np.asarray(self.end, dtype=float) - self.anchor
+        d.setflags(write=False)
+        return d
 
-    @property
+    @cached_property
     def chord_length(self) -> float:
         """Chord length L = |B - A| [m]."""
         return float(np.linalg.norm(self.chord))
 
-    @property
+    @cached_property
     def horizontal_span(self) -> float:
         """Horizontal distance l_h between A and B [m]."""
         return float(np.hypot(self.chord[0], self.chord[1]))
 
-    @property
+    @cached_property
     def horizontal_direction(self) -> NDArray[np.float64]:
-        """Unit horizontal vector from A towards B, shape (3,).
+        """Unit horizontal vector from A towards B, shape (3,), read-only.
 
         For an exactly vertical chord it is an arbitrary (fixed) horizontal axis, x.
         """
         lh = self.horizontal_span
-        if lh <= 1e-14 * self.chord_length:
-            return np.array([1.0, 0.0, 0.0])
-        return np.array([self.chord[0] / lh, self.chord[1] / lh, 0.0])
+        e = (np.array([1.0, 0.0, 0.0]) if lh <= 1e-14 * self.chord_length
+             else np.array([self.chord[0] / lh, self.chord[1] / lh, 0.0]))
+        e.setflags(write=False)
+        return e
 
     # ---- forces
     @property
@@ -227,7 +232,7 @@ class CatenaryState:
         """Largest tension along the cable [N], at the higher-tension end."""
         return max(self.tension_at_end, self.tension_at_anchor)
 
-    @property
+    @cached_property
     def mean_tension(self) -> float:
         """Tension averaged over the unstretched length [N]."""
         return float(_mean_tension(self.H, self.V0, self.unstretched_length,
