@@ -154,7 +154,7 @@ def modal_data(model: PlatformModel, fmax_hz: float, max_modes: int = 20000) -> 
 
 def receptance_amplification(model: PlatformModel, band_hz: tuple[float, float],
                              modes_hz: ArrayLike = (),
-                             n_points: int = 400) -> tuple[float, float, str]:
+                             n_points: int = 100) -> tuple[float, float, str]:
     """Largest ratio of a direct platform receptance in ``band_hz`` to its static value.
 
     |H_jj(f)| / |H_jj(0)| over the free DOFs j and the frequencies of
@@ -169,7 +169,10 @@ def receptance_amplification(model: PlatformModel, band_hz: tuple[float, float],
     modes_hz : array_like
         Natural frequencies in or near the band [Hz] (the grid is refined there).
     n_points : int
-        Points of the uniform part of the grid.
+        Points of the uniform part of the grid. The peaks are read at the points clustered
+        at the modes, so the uniform count does not set the result: on CoGiRo, in four
+        bands from 0-1.5 to 0.5-10 Hz, 50, 100 and 400 points give the same ratio, within
+        2e-4 of 4000 points' (theory.md §12.3).
 
     Returns
     -------
