@@ -745,6 +745,13 @@ EQUIVALENT.update({
     "dynstiff.analyses.platform_modes.xǁPlatformModesǁdescribe__mutmut_10":
         "np.nanmax(r, initial=None): r is a mode's row of six participations, never empty, "
         "so the initial value is never used",
+    "dynstiff.analyses.measured.x_read_measured_modes__mutmut_20":
+        "c.split(' [', 2)[0] instead of split(' [', 1)[0]: the first part is the same for "
+        "any maxsplit",
+    "dynstiff.analyses.measured.x_mac_matrix__mutmut_25":
+        "mask.astype(None) instead of astype(float): numpy's default dtype is float64",
+    "dynstiff.analyses.measured.x_massless_pairing__mutmut_27":
+        "einsum subscripts in upper case: einsum takes either case, the same contraction",
 })
 
 def _definitions():

@@ -177,3 +177,98 @@ def test_measured_modes_refuse_text_complex_and_misshapen_arrays_by_name(kw, nam
         ds.MeasuredModes(freq_hz=[1.0, 2.0], **kw)
     # one number for every mode is still taken as such
     assert ds.MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=[0.1]).sigma_hz.tolist() == [0.1, 0.1]
+
+
+def test_measured_modes_refuse_zero_and_negative_values_and_empty_shape_rows():
+    """A frequency of 0, a sigma of 0 or below, and a mode whose shape row is all NaN or all
+    zero are refused by name; a sigma of exactly 1 Hz is taken."""
+    with pytest.raises(ds.InvalidParameterError, match="freq_hz must be a non-empty list"):
+        MeasuredModes(freq_hz=[0.0, 2.0])
+    for bad in ([-0.1, 0.1], [0.0, 0.1]):
+        with pytest.raises(ds.InvalidParameterError, match="sigma_hz must be finite and > 0"):
+            MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=bad)
+    assert MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=[1.0, 1.0]).sigma_hz.tolist() == [1, 1]
+    row = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    for empty in ([np.nan] * 6, [0.0] * 6, [0.0, np.nan, 0.0, np.nan, 0.0, 0.0]):
+        with pytest.raises(ds.InvalidParameterError,
+                           match="shapes: every mode needs a nonzero measured DOF"):
+            MeasuredModes(freq_hz=[1.0, 2.0], shapes=[row, empty])
+
+
+def test_measured_modes_repr_and_table_name_what_they_hold(tmp_path):
+    with_shapes = MeasuredModes(freq_hz=[1.0, 2.0], shapes=np.eye(6)[:2],
+                                damping_ratio=[0.01, 0.02])
+    assert repr(with_shapes) == "MeasuredModes(2 modes 1-2 Hz, shapes yes)"
+    assert repr(MeasuredModes(freq_hz=[1.5])) == "MeasuredModes(1 modes 1.5-1.5 Hz, shapes no)"
+    df = with_shapes.to_frame()
+    assert list(df.columns) == ["freq [Hz]", "damping ratio [-]", "x", "y", "z", "rx", "ry",
+                                "rz"]
+    df.to_csv(tmp_path / "m.csv", index=False)
+    np.testing.assert_array_equal(read_measured_modes(tmp_path / "m.csv").damping_ratio,
+                                  [0.01, 0.02])
+
+
+def test_shapes_choose_mac_pairing_and_order_pairing_still_reports_their_mac(md):
+    """With shapes and no pairing named, the shapes decide (MAC), not the frequencies: two
+    global modes measured with their shapes but each other's frequencies pair by shape.
+    Paired by order, the same measurement reports the MAC of the pairs it made."""
+    g = np.flatnonzero(np.array(md.kind) == "global")[:2]
+    meas = MeasuredModes(md.freq_hz[g[::-1]], shapes=md.platform_shapes[g])
+    idx, mac = pair_modes(md, meas)
+    np.testing.assert_array_equal(idx, g)
+    np.testing.assert_allclose(mac, 1.0, rtol=1e-12)
+    idx, mac = pair_modes(md, meas, "order")
+    np.testing.assert_array_equal(idx, g[::-1])
+    full = mac_matrix(meas.shapes, md.platform_shapes)
+    np.testing.assert_allclose(mac, full[[0, 1], g[::-1]], rtol=1e-15)
+    assert np.all(mac < 0.5)
+
+
+def test_mac_pairing_with_fewer_model_modes_than_measured_says_so(md):
+    few = ds.modes(ds.build_model(ds.load_scene("cogiro").equilibrium(), "dsm"), n_modes=2)
+    meas = MeasuredModes(md.freq_hz[:3], shapes=md.platform_shapes[:3])
+    with pytest.raises(ds.InvalidParameterError,
+                       match="3 measured modes but only 2 model modes computed"):
+        pair_modes(few, meas)
+
+
+def test_massless_pairing_is_the_mass_weighted_mac_assignment(model):
+    """Against an independent assignment: for each massless mode x0, the mode maximising
+    (x0' M x)^2 / ((x0' M x0)(x' M x)) times its platform share, over a band holding many
+    cable modes (the six massless modes of CoGiRo among 60 modes)."""
+    from scipy.linalg import eigh
+    from scipy.optimize import linear_sum_assignment
+    many = ds.modes(model, n_modes=60)
+    M = model.platform_mass
+    _, X0 = eigh(model.massless_stiffness(), M)
+    X = np.asarray(many.platform_shapes)[:, model.free_index]
+    score = np.zeros((6, len(many)))
+    for i in range(6):
+        for k in range(len(many)):
+            a, b = X0[:, i], X[k]
+            score[i, k] = (a @ M @ b) ** 2 / ((a @ M @ a) * (b @ M @ b)) * (
+                1 - many.cable_energy_fraction[k])
+    ref = linear_sum_assignment(-score)[1]
+    np.testing.assert_array_equal(massless_pairing(many, model, 6), ref)
+    assert score[np.arange(6), ref].min() > 0.5
+    # the MAC does not depend on the shapes' scale: the other modes 100 times larger
+    from dataclasses import replace
+    scale = np.full(len(many), 100.0)
+    scale[ref] = 1.0
+    scaled = replace(many, platform_shapes=many.platform_shapes * scale[:, None])
+    np.testing.assert_array_equal(massless_pairing(scaled, model, 6), ref)
+
+
+def test_the_comparison_plot_shows_every_error_on_equal_axes(md):
+    g = np.flatnonzero(np.array(md.kind) == "global")[:3]
+    cmp = compare_modes(md, MeasuredModes(md.freq_hz[g] * np.array([1.02, 0.99, 1.0])))
+    fig = cmp.plot()
+    ax = fig.axes[0]
+    assert tuple(fig.get_size_inches()) == (4.5, 4.2)
+    assert ax.get_ylabel() == "model [Hz]"
+    assert ax.get_xlim() == ax.get_ylim()
+    lo = 0.9 * min(cmp.measured_hz.min(), cmp.model_hz.min())
+    assert ax.get_ylim()[0] == pytest.approx(lo, rel=1e-12)
+    texts = [t.get_text() for t in ax.texts]
+    assert texts == [f"{100 * e:+.1f} %" for e in cmp.error]
+    assert {t.get_anncoords() for t in ax.texts} == {"offset points"}
