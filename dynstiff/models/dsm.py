@@ -431,10 +431,12 @@ class FrequencyModel(PlatformModel):
         """``FrequencyModel(self.equilibrium, self.tension, self.chordwise_inertia,
         cable_loss_factor=..., platform_damping_ratio=..., guard_rtol=self.guard_rtol)``,
         sharing this model's cable parameters, assembly map and platform terms (read-only,
-        the same numbers a new build computes) instead of recomputing them; None unless
-        this model is an undamped build of the cables' own parameters. The build's static
-        guard is not repeated (this model ran it on the same cables); the band guard starts
-        afresh, as for a new build. A map's receptance check takes it (theory.md §13.7)."""
+        the same numbers a new build computes) instead of recomputing them, and its static
+        error where computed (from the real parts at omega = 0, which the damping leaves as
+        they are); None unless this model is an undamped build of the
+        cables' own parameters. The build's static guard is not repeated (this model ran it
+        on the same cables); the band guard starts afresh, as for a new build. A map's
+        receptance check takes it (theory.md §13.7)."""
         if type(self) is not FrequencyModel or self.damped or not self._own_params:
             return None
         new = object.__new__(FrequencyModel)
@@ -444,8 +446,11 @@ class FrequencyModel(PlatformModel):
                                                    allow_zero=True),
                  platform_damping_ratio=positive_scalar(
                      "platform_damping_ratio", platform_damping_ratio, allow_zero=True),
-                 _warned=set(), _guarded=[0.0], _memo={}, _K_platform_damping=None,
-                 _measured=dict(self._measured), _issued=[])
+                 _warned=set(), _guarded=[0.0], _K_platform_damping=None,
+                 _measured=dict(self._measured), _issued=[],
+                 # the static error is that of the real parts at omega = 0, which the
+                 # damping does not change
+                 _memo={k: self._memo[k] for k in ("static_error",) if k in self._memo})
         d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
         for k, v in d.items():
             object.__setattr__(new, k, v)
