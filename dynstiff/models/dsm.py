@@ -449,8 +449,9 @@ class FrequencyModel(PlatformModel):
                  _warned=set(), _guarded=[0.0], _K_platform_damping=None,
                  _measured=dict(self._measured), _issued=[],
                  # the static error is that of the real parts at omega = 0, which the
-                 # damping does not change
-                 _memo={k: self._memo[k] for k in ("static_error",) if k in self._memo})
+                 # damping does not change; the symmetric assembly map is geometry only
+                 _memo={k: self._memo[k] for k in ("static_error", "symmetric_assembly")
+                        if k in self._memo})
         d["damped"] = d["cable_loss_factor"] > 0 or d["platform_damping_ratio"] > 0
         for k, v in d.items():
             object.__setattr__(new, k, v)

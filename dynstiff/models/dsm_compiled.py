@@ -34,8 +34,7 @@ def compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...]:
         return np.ascontiguousarray(np.real(np.broadcast_to(x, p.L.shape)), dtype=float)
 
     args = (real(p.L), real(p.m), real(p.T), real(p.lambda_sq), real(p.alpha), real(p.K0),
-            bool(model.chordwise_inertia), PSI_SERIES,
-            symmetric_assembly(model.assembly_map, model.n_free),
+            bool(model.chordwise_inertia), PSI_SERIES, _symmetric_assembly_of(model),
             np.ascontiguousarray(model.K_geo_free, dtype=float),
             np.ascontiguousarray(model.platform_mass, dtype=float))
     if memo is not None:
@@ -62,7 +61,7 @@ def damped_compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...] | 
             arr(np.real(p.m), float), arr(np.real(p.T), float),
             arr(p.lambda_sq_complex, complex), arr(p.alpha, complex), arr(p.K0, complex),
             bool(model.chordwise_inertia), PSI_SERIES,
-            symmetric_assembly(model.assembly_map, model.n_free).astype(complex),
+            _symmetric_assembly_of(model).astype(complex),
             np.ascontiguousarray(K_static), np.ascontiguousarray(model.platform_mass, dtype=float))
 
 
@@ -83,6 +82,19 @@ def stiffness_and_count(model: FrequencyModel, omega: NDArray[np.float64],
     check_frequency_range(model.stacked_params, omega)
     model.guard_band(omega)
     return fast.dsm_stiffness(omega, *compiled_arguments(model))
+
+
+def _symmetric_assembly_of(model: FrequencyModel) -> NDArray[np.float64]:
+    """:func:`symmetric_assembly` of the model's assembly map, computed once per model (and
+    shared with its damped copies: the map is geometry only)."""
+    memo = getattr(model, "_memo", None)
+    if memo is not None and "symmetric_assembly" in memo:
+        return memo["symmetric_assembly"]
+    out = symmetric_assembly(model.assembly_map, model.n_free)
+    out.setflags(write=False)
+    if memo is not None:
+        memo["symmetric_assembly"] = out
+    return out
 
 
 def symmetric_assembly(assembly_map: NDArray[np.float64], n_free: int) -> NDArray[np.float64]:
