@@ -752,6 +752,12 @@ EQUIVALENT.update({
         "mask.astype(None) instead of astype(float): numpy's default dtype is float64",
     "dynstiff.analyses.measured.x_massless_pairing__mutmut_27":
         "einsum subscripts in upper case: einsum takes either case, the same contraction",
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_537":
+        "np.full(None, nan) for the standard errors of a singular J^T J: a 0-d NaN that "
+        "broadcasts to the same NaN intervals (the errors themselves are not kept)",
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_588":
+        "the start and estimate modes passed to the findings also without measured modes: "
+        "calibration_findings reads them only with measured modes",
 })
 
 def _definitions():

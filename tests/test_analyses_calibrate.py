@@ -317,3 +317,89 @@ def test_a_measured_frequency_beyond_the_cable_models_range_is_refused_naming_it
                        match=r"measured mode 2 at 6\.44347e\+06 Hz: the band up to .* is "
                              r"beyond the model: omega must be <="):
         calibrate(ds.load_scene("planar2"), [1.0, 6443468.0], parameters="EA")
+
+
+def test_one_cables_EA_is_scaled_alone_and_read_back():
+    """The parameter "EA_2" scales cable 2's EA only, and its value is cable 2's."""
+    from dynstiff.analyses.calibrate import _value, _with
+    robot = ds.load_scene("cogiro").robot
+    scaled = _with(robot, ("EA_2",), np.array([1.5]))
+    EA0 = np.array([c.EA for c in robot.cables])
+    np.testing.assert_array_equal([c.EA for c in scaled.cables],
+                                  np.where(np.arange(8) == 2, 1.5 * EA0, EA0))
+    assert _value(scaled, "EA_2") == 1.5 * EA0[2] and _value(scaled, "EA_3") == EA0[3]
+
+
+def test_max_modes_is_a_ceiling_the_band_may_reach():
+    """The pendulum has one mode below 1.3 times its first (22.5 Hz): max_modes = 1 is
+    enough; on planar2 the band of a 2.6 Hz measurement holds 4 modes: max_modes = 4 is
+    enough and 3 is refused by the count."""
+    pend = ds.load_scene("pendulum")
+    f1 = ds.eigenfrequencies(ds.FrequencyModel(pend.equilibrium()), n_modes=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.DynstiffWarning)
+        fit = calibrate(pend, 1.01 * f1, parameters="EA", max_modes=1)
+    assert fit.fitted_hz[0] == pytest.approx(1.01 * f1[0], rel=1e-4)
+    planar = ds.load_scene("planar2")
+    f = ds.eigenfrequencies(ds.FrequencyModel(planar.equilibrium()), n_modes=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.DynstiffWarning)
+        calibrate(planar, 1.01 * f, parameters="EA", max_modes=4)
+    with pytest.raises(ds.InvalidParameterError, match="the model has 4 modes below .* "
+                                                       "more than max_modes = 3"):
+        calibrate(planar, 1.01 * f, parameters="EA", max_modes=3)
+
+
+def test_requests_without_a_pose_or_with_an_impossible_jacobian_are_named(scene):
+    with pytest.raises(ds.InvalidParameterError,
+                       match="calibrate needs the pose of the measurement: give pose="):
+        calibrate(scene.robot, [2.2, 2.4], parameters="EA")
+    frf = ds.frf(ds.FrequencyModel(scene.equilibrium()), 2 * np.pi * np.linspace(0.5, 1.5, 5),
+                 inputs="fx", outputs="x")             # below the first mode: no warning
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"jacobian='analytic' needs frequency residuals only \(no FRF"):
+        calibrate(scene, None, parameters="EA", frf=frf, jacobian="analytic")
+
+
+def test_a_parameter_the_frequencies_do_not_fix_has_no_interval():
+    """planar2's platform is a point mass: its inertia factor moves no frequency, J^T J is
+    singular, and both intervals are NaN (not a number made up)."""
+    planar = ds.load_scene("planar2")
+    f = ds.eigenfrequencies(ds.FrequencyModel(planar.equilibrium()), n_modes=2)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.DynstiffWarning)
+        fit = calibrate(planar, 1.02 * f, parameters=["EA", "inertia"])
+    assert np.all(np.isnan(fit.ci_low)) and np.all(np.isnan(fit.ci_high))
+    assert np.all(np.isfinite(fit.estimate))
+
+
+def test_a_fit_stopped_by_max_nfev_is_an_error_and_a_start_value_is_the_start(scene):
+    f = platform_frequencies(with_E(scene.robot, E_TRUE), scene.pose, "dsm", 3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.DynstiffWarning)
+        with pytest.raises(ds.ConvergenceError, match="calibration did not converge"):
+            calibrate(scene, f, parameters="EA", jacobian="differences", max_nfev=1)
+        fit = calibrate(scene, f, parameters="EA", start={"EA": AREA * 50e9})
+    assert fit.initial[0] == pytest.approx(AREA * 50e9, rel=1e-15)
+    assert fit.estimate[0] == pytest.approx(AREA * E_TRUE, rel=1e-6)
+
+
+def test_forward_differences_reuse_the_residual_at_the_point(scene, monkeypatch):
+    """Each forward-difference Jacobian of n parameters costs n evaluations (the residual
+    at the point is the one just evaluated), so a fit costs at most 1 + nfev + n njev + 1
+    evaluations, plus 2 n for the central Jacobian at the estimate."""
+    import scipy.optimize
+    real, seen = scipy.optimize.least_squares, []
+
+    def spy(*a, **k):
+        sol = real(*a, **k)
+        seen.append(sol)
+        return sol
+    monkeypatch.setattr(scipy.optimize, "least_squares", spy)
+    f = platform_frequencies(with_E(scene.robot, 0.8 * E_TRUE), scene.pose, "dsm", 3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.DynstiffWarning)
+        fit = calibrate(scene, f, parameters=["EA", "mass"], jacobian="differences")
+    sol, n = seen[0], 2
+    assert sol.njev >= 2
+    assert fit.n_evaluations <= 1 + sol.nfev + n * sol.njev + 1 + 2 * n
