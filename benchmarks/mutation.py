@@ -261,21 +261,9 @@ EQUIVALENT.update({
     "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_5": _FLOAT,
     "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_62":
         "the floor of the symmetry test's absolute tolerance (2 instead of 1 kg m^2 x 1e-12)",
-    "dynstiff.robot.statics.x_forward_statics__mutmut_106":
-        "res_t <= res instead of <: differs only when two trial residuals are equal",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_136":
-        "change <= best instead of <: differs only at equal changes",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_126":
-        "the fixed point's stop test with the margin change times t.max instead of over it: "
-        "the iteration still ends at the same fixed point, bitwise on every scene and on a "
-        "0.2 kg CoGiRo with 0.7 N tensions (planted and checked)",
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_56":
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_56":
         "a step tried when |p| > 1e-12 / scale instead of 1e-12 scale: every entry below "
         "1e-12 scale gets no room limit, so the step is the full one, as without the test",
-    "dynstiff.robot.statics.x__kinematic_guess__mutmut_11":
-        "the start of the straight-chord fit moved by 1 m in y: the fit reaches the same "
-        "minimum (to 1e-9 m) and forward statics' Newton the same pose; no held coordinate "
-        "is taken from it (a held translation needs initial_pose)",
     "dynstiff.robot.statics.x__end_quantities__mutmut_41":
         "the y component of the horizontal direction of an exactly vertical chord: it is "
         "multiplied by H = 0",
@@ -287,9 +275,9 @@ _WARM = ("the warm start of the tension distribution (the guessed active set, it
          "start, its tolerance or whether it is tried): a start is used only when it is "
          "feasible, and the active-set method then ends at the unique minimiser of the "
          "strictly convex problem, as from the LP's start (tested bitwise on random problems)")
-EQUIVALENT.update({f"dynstiff.robot.statics.x__distribution__mutmut_{n}": _WARM
+EQUIVALENT.update({f"dynstiff.robot.distribution.x__distribution__mutmut_{n}": _WARM
                    for n in (45, 61, 76, 87, 89, 95, 97, 98, 103, 110)})
-EQUIVALENT.update({f"dynstiff.robot.statics.x__active_solution__mutmut_{n}": _WARM
+EQUIVALENT.update({f"dynstiff.robot.distribution.x__active_solution__mutmut_{n}": _WARM
                    for n in (2, 4, 28)})
 _EM = "dynstiff.models.exact.xǁExactModelǁ"
 EQUIVALENT.update({
@@ -327,9 +315,9 @@ EQUIVALENT.update({
         "of an empty MAC matrix is empty too",
     "dynstiff.analyses.sweep.x__assign__mutmut_26":
         "MAC > mac_min instead of >=: differs only at MAC exactly mac_min",
-    "dynstiff.robot.statics.x__limits__mutmut_8":
+    "dynstiff.robot.distribution.x__limits__mutmut_8":
         "t_min[1] instead of t_min[0] inside the branch where all t_min are equal",
-    "dynstiff.robot.statics.x__limits__mutmut_9":
+    "dynstiff.robot.distribution.x__limits__mutmut_9":
         "t_max[1] instead of t_max[0] inside the branch where all t_max are equal",
     "dynstiff.cable.catenary.xǁCatenaryStateǁtension__mutmut_3":
         "dtype=float dropped: T(s) = hypot(H, V0 + w s) is float for integer s too",
@@ -512,14 +500,6 @@ EQUIVALENT.update({
     "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_38":
         "2881 for 2880 in the theta^4 term of the small-angle series (theta <= 1e-3): below "
         "1e-18",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_144":
-        "the stall test's threshold 1e-9 -> 1.000000001: a contracting fixed point improves "
-        "every step, so it stops only when stalled, and a stall above 1e-9 fails the final "
-        "wrench residual check either way (ConvergenceError)",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_82": _STRAIGHT,
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_104":
-        "the residual slot of a cable solved by the scalar solver: unused, its state is "
-        "that solver's own (with its residual)",
     "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_128":
         "brentq's maxiter 201 instead of 200",
     "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_53":
@@ -556,39 +536,30 @@ EQUIVALENT.update({
         "(test_long_spans_converge_and_limits_are_exact)",
     "dynstiff.cable.catenary.x_divided_differences__mutmut_14":
         "a b >= 0 instead of > 0: where a or b is 0 both branches give the same quotient",
-    "dynstiff.robot.statics.x__distribution__mutmut_189": "method='highs' is linprog's default",
-    "dynstiff.robot.statics.x__distribution__mutmut_178": "1e300 written as 1e+300: the same float",
-    "dynstiff.robot.statics.x__distribution__mutmut_20":
+    "dynstiff.robot.distribution.x__distribution__mutmut_189":
+        "method='highs' is linprog's default",
+    "dynstiff.robot.distribution.x__distribution__mutmut_178":
+        "1e300 written as 1e+300: the same float",
+    "dynstiff.robot.distribution.x__distribution__mutmut_20":
         "dtype=float dropped on t_max: integer limits give the same float tensions",
-    "dynstiff.robot.statics.x__distribution__mutmut_99":
+    "dynstiff.robot.distribution.x__distribution__mutmut_99":
         "the warm active sets tried always (n = k, or warm=False): see mutmut_100; with "
         "warm=False the reference path then ends at the same unique minimiser",
-    "dynstiff.robot.statics.x__distribution__mutmut_101":
+    "dynstiff.robot.distribution.x__distribution__mutmut_101":
         "the warm active sets tried when n = k too: see mutmut_100",
-    "dynstiff.robot.statics.x__distribution__mutmut_109": _WARM,
-    "dynstiff.robot.statics.x__distribution__mutmut_111": _WARM,
-    "dynstiff.robot.statics.x__distribution__mutmut_118": _WARM,
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_171":
+    "dynstiff.robot.distribution.x__distribution__mutmut_109": _WARM,
+    "dynstiff.robot.distribution.x__distribution__mutmut_111": _WARM,
+    "dynstiff.robot.distribution.x__distribution__mutmut_118": _WARM,
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_171":
         "the returned active set's sides flipped: they only seed the next iteration's "
         "distribution, whose start is used only when feasible and which ends at the unique "
         "minimiser (see _WARM)",
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_22":
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_22":
         "the step limit of the active-set method 10 n - 10 instead of 10 n + 10 (n >= 2 "
         "cables here): the problems met settle in far fewer steps",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_133":
-        "the smallest change never recorded, so the stall exit is never taken: it is not "
-        "needed on 300 random CoGiRo poses, every scene and every test (each fixed point "
-        "reaches a change below 1e-15; planted and checked)",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_105": _STRAIGHT,
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_140": _BOUNDARY,
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_143": _BOUNDARY,
-    "dynstiff.robot.statics.x__kinematic_guess__mutmut_8":
-        "the start of the straight-chord fit at the mean of all anchor coordinates: the fit "
-        "reaches the same minimum and forward statics the same pose",
     "dynstiff.robot.statics.x__end_quantities__mutmut_11": _BOUNDARY,
     "dynstiff.robot.statics.x__end_quantities__mutmut_79":
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
-    "dynstiff.robot.statics.x_forward_statics__mutmut_61": _BOUNDARY,
     "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_19": _BOUNDARY,
     "dynstiff.cable.psi.x_check_frequency_range__mutmut_45": _BOUNDARY,
     "dynstiff.cable.catenary_solve.x__newton__mutmut_80": _BOUNDARY,
@@ -621,18 +592,15 @@ EQUIVALENT.update({
         "61 halvings of the line search instead of 60",
     "dynstiff.robot.platform.xǁPlatformǁ__post_init____mutmut_102":
         "the floor of the semi-definiteness test's tolerance (2 instead of 1 kg m^2 x 1e-12)",
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_15":
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_15":
         "the 1 N floor of the step threshold's scale: without it the threshold is 1e-12 of "
         "tensions below 1 N, still far above their rounding; the same unique minimiser",
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_173":
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_173":
         "-2 instead of -1 for a lower side: only the sign of a side is used",
-    "dynstiff.robot.statics.x__distribution__mutmut_9":
+    "dynstiff.robot.distribution.x__distribution__mutmut_9":
         "dtype=float dropped on t_min: integer limits give the same float tensions",
-    "dynstiff.robot.statics.x__distribution__mutmut_63":
+    "dynstiff.robot.distribution.x__distribution__mutmut_63":
         "the all-free active set as floats instead of integers: only tested with np.any",
-    "dynstiff.robot.statics.x_inverse_statics__mutmut_134":
-        "the stall counter reset at every step, so the stall exit is never taken: see "
-        "mutmut_133",
     "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_83":
         "closed_form_validity given the chord parameters: its tension argument is unused",
     "dynstiff.models.dsm.xǁFrequencyModelǁ_guard_static__mutmut_5":
@@ -652,7 +620,7 @@ EQUIVALENT.update({
     "dynstiff.cable.catenary_solve.x__validate_ends__mutmut_27": _BOUNDARY,
     "dynstiff.robot.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
     "dynstiff.robot.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
-    "dynstiff.robot.statics.x__distribution__mutmut_1": _WARM,
+    "dynstiff.robot.distribution.x__distribution__mutmut_1": _WARM,
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_77":
         "never reached: the start's Newton stops early only on a zero segment force or a "
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
@@ -707,12 +675,12 @@ EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_36": _REMEASURE,
     "dynstiff.models.dsm.xǁFrequencyModelǁguard_band__mutmut_57": _REMEASURE,
     "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_97": _BOUNDARY,
-    "dynstiff.robot.statics.x__closest_in_box__mutmut_98":
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_97": _BOUNDARY,
+    "dynstiff.robot.distribution.x__closest_in_box__mutmut_98":
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "
         "by such a rounding-level step is released by its multiplier, and the optimum of "
         "the strictly convex problem is unique",
-    "dynstiff.robot.statics.x__distribution__mutmut_100":
+    "dynstiff.robot.distribution.x__distribution__mutmut_100":
         "the warm active sets tried when n = k too: the free cables of an active set "
         "cannot balance the platform then (rank < k), so no start is found and the same "
         "error follows",

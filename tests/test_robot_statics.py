@@ -184,6 +184,43 @@ def test_warm_start_from_a_neighbouring_pose_reaches_the_same_equilibrium(cogiro
     assert warm.residual < 1e-10
 
 
+def test_a_start_that_fails_gives_the_cold_result_or_the_cold_diagnosis(cogiro, cogiro_eq,
+                                                                       monkeypatch):
+    """A start from which the iteration fails (planted: its distributions fail) gives the
+    equilibrium without a start; at an infeasible pose, the error and its diagnosis are
+    those without a start, and the start's own failure is not diagnosed (one diagnosis)."""
+    from dynstiff.robot import feasibility, statics
+    robot = cogiro.robot
+    pose = [0.4, -0.2, 1.3]
+    real = statics._step_distribution
+
+    def fails_warm(*a, **k):
+        if not a[12]:                      # the steps from the start (not diagnosed)
+            raise ds.SlackCableError("planted")
+        return real(*a, **k)
+    with monkeypatch.context() as m:
+        m.setattr(statics, "_step_distribution", fails_warm)
+        m.setattr(statics, "_compiled_fixed_point", lambda *a, **k: None)   # numpy loop
+        warm = robot.equilibrium(pose=pose, start=cogiro_eq)
+        cold = robot.equilibrium(pose=pose)
+    np.testing.assert_array_equal(warm.tensions, cold.tensions)
+    far = [7.4, 5.2, 0.5]
+    with pytest.raises(ds.InfeasiblePoseError) as without:
+        robot.equilibrium(pose=far)
+    diagnosed = []
+    real_diagnose = statics.diagnose_limits
+
+    def counted(*a, **k):
+        diagnosed.append(1)
+        return real_diagnose(*a, **k)
+    monkeypatch.setattr(statics, "diagnose_limits", counted)
+    with pytest.raises(ds.InfeasiblePoseError) as with_start:
+        robot.equilibrium(pose=far, start=cogiro_eq)
+    assert str(with_start.value) == str(without.value)
+    assert len(diagnosed) == 1
+    assert feasibility.diagnose_limits is real_diagnose
+
+
 def test_warm_start_must_be_an_equilibrium_of_the_same_robot(cogiro):
     other = ds.load_scene("sixcable").equilibrium()
     with pytest.raises(InvalidParameterError, match="start"):
@@ -422,7 +459,7 @@ def test_active_set_method_that_cannot_settle_says_so_with_its_residual():
     bound until its step limit: it raises ConvergenceError naming the balance residual of
     its last (feasible) iterate, not a wrong distribution."""
     from dynstiff.errors import ConvergenceError
-    from dynstiff.robot.statics import _closest_in_box
+    from dynstiff.robot.distribution import _closest_in_box
     W = np.array([[1.0, 1.0, 1.0]])
     lb, ub = np.array([2.0, 0.0, 0.0]), np.full(3, 5.0)
     t, bound = np.array([2.0, 0.5, 0.5]), np.array([2.0, np.nan, np.nan])
@@ -457,7 +494,7 @@ def test_a_vertical_cable_rising_from_a_floor_anchor_is_held_at_t_min_at_its_anc
 def test_active_set_method_from_inside_the_box_returns_the_free_solution():
     """From a feasible start whose minimum-distance solution is inside the box, no bound
     becomes active: that solution, with every side 0."""
-    from dynstiff.robot.statics import _closest_in_box
+    from dynstiff.robot.distribution import _closest_in_box
     W = np.array([[1.0, 1.0, 1.0]])
     t, sides = _closest_in_box(W, np.array([3.0]), np.zeros(3), np.full(3, 5.0),
                                np.array([0.5, 1.0, 1.5]), np.array([1.0, 1.0, 1.0]), 1e-9)
@@ -513,7 +550,7 @@ def test_active_set_method_from_any_feasible_start_is_the_brute_force_optimum(se
     box, or from one with a random set of tensions held at their bounds: it takes steps,
     adds and drops bounds, and ends at the brute-force optimum; the tensions it reports
     held (-1, +1) are exactly at their lower or upper bound."""
-    from dynstiff.robot.statics import _closest_in_box
+    from dynstiff.robot.distribution import _closest_in_box
     rng = np.random.default_rng(seed)
     k = 3
     W = rng.normal(size=(k, n))
@@ -540,7 +577,7 @@ def test_limits_equal_for_all_cables_are_written_once_also_when_unbounded():
     same, an unbounded t_max included (inf - inf is not 0), else the lists per cable."""
     import warnings
 
-    from dynstiff.robot.statics import _limits
+    from dynstiff.robot.distribution import _limits
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert _limits(np.array([1.0, 1.0]), np.array([np.inf, np.inf])) == "[1, inf]"

@@ -129,10 +129,11 @@ def evaluate_chunk(robot, poses, n_modes, options, rung, damping, model_options,
             try:
                 eq = tension_equilibrium(robot, pose, tensions, prev, rung, **model_options)
             except DynstiffError:
-                if prev is None:
+                # a far neighbour: start afresh (the default distribution's statics do so
+                # themselves)
+                if prev is None or tensions == "default":
                     raise
-                eq = tension_equilibrium(robot, pose, tensions, None, rung,
-                                         **model_options)   # a far neighbour: start afresh
+                eq = tension_equilibrium(robot, pose, tensions, None, rung, **model_options)
         except DynstiffError as exc:
             error = exc
         sag = None if eq is None else equilibrium_sag_ratios(robot, eq)

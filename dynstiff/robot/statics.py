@@ -1,4 +1,5 @@
-"""Robot statics with sagging cables: tension distribution, inverse and forward statics.
+"""Robot statics with sagging cables: inverse statics (the tension distribution is
+:mod:`dynstiff.robot.distribution`; forward statics :mod:`dynstiff.robot.forward_statics`).
 
 Inverse statics (pose given, redundant robot): the tensions t at the platform ends solve the
 wrench balance W t = -w_g on the free DOFs, W = [u_i; r_i x u_i] with u_i the unit force of
@@ -7,9 +8,6 @@ the distribution and the catenaries are iterated to a fixed point. Among the sol
 balance, the one closest (2-norm) to a reference tension within [t_min, t_max] is chosen; the
 limits hold along the whole cable (a cable running down to its anchor is least tensioned
 there, one whose lowest point lies between its ends has the tension H there).
-
-Forward statics (unstretched lengths given): Newton's method on the free-DOF wrench residual
-with the analytic 6x6 stiffness (theory.md §4).
 """
 
 from __future__ import annotations
@@ -24,7 +22,8 @@ from dynstiff._vec import cross
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
-from dynstiff.errors import ConvergenceError, InvalidParameterError, SlackCableError
+from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
+from dynstiff.robot.distribution import _distribution, tension_distribution
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
 from dynstiff.robot.pose import Pose
@@ -37,206 +36,6 @@ if TYPE_CHECKING:
     from dynstiff.robot.robot import Robot
 
 __all__ = ["tension_distribution", "inverse_statics"]
-
-
-def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: ArrayLike,
-                         t_max: ArrayLike,
-                         t_ref: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
-    """Tensions t [N] with W t = w closest to t_ref in the 2-norm, t_min <= t <= t_max.
-
-    Parameters
-    ----------
-    W : ndarray, shape (k, n)
-        Structure matrix (columns: unit wrenches of the cables), k <= n.
-    w : ndarray, shape (k,)
-        Wrench the cables must supply.
-    t_min, t_max : float or ndarray, shape (n,)
-        Tension limits [N] (per cable where arrays).
-    t_ref : float or ndarray, shape (n,), optional
-        Reference tensions (default t_min: the least tensions in the 2-norm sense).
-
-    Returns
-    -------
-    ndarray, shape (n,)
-
-    Raises
-    ------
-    SlackCableError
-        No admissible distribution exists (the message names the violated limit).
-    """
-    return _distribution(W, w, t_min, t_max, t_ref)[0]
-
-
-def _distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: NDArray[np.float64],
-                  t_max: NDArray[np.float64], t_ref: NDArray[np.float64] | None = None,
-                  sides: NDArray[np.int64] | None = None,
-                  warm: bool = True) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """:func:`tension_distribution` and the active set it ends with.
-
-    ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),
-    e.g. the previous fixed-point iteration's, then the limits that the minimum-distance
-    solution violates, are tried as starts of the active-set method when that solution
-    leaves the limits: if the tensions an active set gives (the held ones at their limits,
-    the free ones the minimum-distance solution of the balance) are within the limits, they
-    replace the LP's feasible point. The optimum is unique and the result a function of the
-    final active set alone, so the start does not change it. ``warm=False``: always the
-    LP's feasible point (the reference).
-
-    Returns
-    -------
-    t : ndarray, shape (n,)
-    sides : ndarray of int, shape (n,)
-        The final active set (all 0 when the minimum-distance solution is within limits).
-    """
-    k, n = W.shape
-    t_min = np.broadcast_to(np.asarray(t_min, dtype=float), (n,))
-    t_max = np.broadcast_to(np.asarray(t_max, dtype=float), (n,))
-    t_ref = t_min.copy() if t_ref is None else np.broadcast_to(
-        np.asarray(t_ref, dtype=float), (n,)).copy()
-    # minimum-distance solution of the equality (its SVD gives the rank, with
-    # np.linalg.matrix_rank's threshold: eps max(k, n) times the largest singular value);
-    # if it leaves the limits, a feasible point (the previous active set's solution, else an
-    # LP in the null space of W), then the exact closest one (active set)
-    dt, _, rank, _ = np.linalg.lstsq(W, w - W @ t_ref, rcond=None)
-    if rank < k:
-        raise SlackCableError(
-            f"the cable directions span only {rank} of the {k} free DOFs "
-            f"(singular configuration), no tension distribution balances the platform")
-    t = t_ref + dt
-    tol = 1e-9 * max(1.0, np.abs(t).max())
-    if np.all(t >= t_min - tol) and np.all(t <= t_max + tol):
-        return t, np.zeros(n, dtype=int)
-    ub = np.where(np.isfinite(t_max), t_max, np.inf)
-    # active sets to start from: the given one, then the limits the solution violates
-    guesses = [] if sides is None or not np.any(sides) else [sides]
-    guesses.append(np.where(t < t_min, -1, np.where(t > t_max, 1, 0)))
-    for guess in guesses if n > k and warm else ():
-        bound = np.where(guess < 0, t_min, np.where(guess > 0, ub, np.nan))
-        start = _active_solution(W, w, bound, t_ref)
-        if start is not None and np.all(start >= t_min) and np.all(start <= ub):
-            return _closest_in_box(W, w, t_min, ub, t_ref, start, tol, bound)
-    if n == k:
-        raise SlackCableError(
-            f"the unique tension distribution {np.round(t, 6).tolist()} N violates the "
-            f"limits {_limits(t_min, t_max)} N")
-    from scipy.linalg import null_space
-    from scipy.optimize import linprog
-    N = null_space(W)
-    # feasibility: find lambda with t_min <= t + N lambda <= t_max
-    A_ub = np.vstack([-N, N])
-    b_ub = np.concatenate([t - t_min, np.where(np.isfinite(t_max), t_max, 1e300) - t])
-    lp = linprog(np.zeros(N.shape[1]), A_ub=A_ub, b_ub=b_ub, bounds=[(None, None)] * N.shape[1],
-                 method="highs")
-    if lp.status != 0:
-        raise SlackCableError(
-            f"no tension distribution within {_limits(t_min, t_max)} N balances the platform "
-            f"(the pose is outside the wrench-feasible workspace)")
-    return _closest_in_box(W, w, t_min, ub, t_ref, lp.x @ N.T + t, tol)
-
-
-def _active_solution(W: NDArray[np.float64], w: NDArray[np.float64], bound: NDArray[np.float64],
-                     r: NDArray[np.float64]) -> NDArray[np.float64] | None:
-    """Tensions with the active ones at ``bound`` (NaN: free) and the free ones the
-    minimum-distance solution of the balance (the target of :func:`_closest_in_box`), or
-    None when the free cables cannot balance the rest."""
-    act = ~np.isnan(bound)
-    free = ~act
-    target = np.where(act, bound, 0.0)
-    b = w - W[:, act] @ bound[act]
-    Wf = W[:, free]
-    if not np.any(free):
-        return None
-    sol, _, rank, _ = np.linalg.lstsq(Wf, b - Wf @ r[free], rcond=None)
-    if rank < W.shape[0]:
-        return None
-    target[free] = r[free] + sol
-    return target
-
-
-def _closest_in_box(
-        W: NDArray[np.float64], w: NDArray[np.float64], lb: NDArray[np.float64],
-        ub: NDArray[np.float64], r: NDArray[np.float64], t: NDArray[np.float64], tol: float,
-        bound: NDArray[np.float64] | None = None,
-) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """min ||t - r||^2 subject to W t = w, lb <= t <= ub, by a primal active-set method
-    (Nocedal & Wright, Numerical Optimization, 2nd ed., Alg. 16.3) from the feasible t.
-
-    Each step holds the active tensions at their bounds exactly and gives the free ones the
-    minimum-distance solution of the balance; a step that would leave the box stops at the
-    first bound, which joins the active set; at the subproblem's optimum the bound with the
-    most negative multiplier leaves it. The optimum is unique (strictly convex objective),
-    so the result does not depend on the start: the inverse-statics fixed point it feeds is
-    well defined (a general NLP solver stopped at varying points and stalled that iteration).
-
-    Parameters
-    ----------
-    W : ndarray, shape (k, n); w : ndarray, shape (k,)
-    lb, ub : ndarray, shape (n,)
-        Bounds [N] (ub may be inf).
-    r : ndarray, shape (n,)
-        Reference tensions [N].
-    t : ndarray, shape (n,)
-        A feasible start [N].
-    tol : float
-        Feasibility and multiplier tolerance [N].
-    bound : ndarray, shape (n,), optional
-        Starting active set: the bound each active tension is held at (``t`` holds it
-        there), NaN for a free one; default none active.
-
-    Returns
-    -------
-    t : ndarray, shape (n,)
-    sides : ndarray of int, shape (n,)
-        -1 / +1 where the tension ends at its lower / upper bound (active), 0 free.
-    """
-    n = t.size
-    t = t.copy()
-    # the bound an active tension is held at, else nan
-    bound = np.full(n, np.nan) if bound is None else bound.copy()
-    scale = max(1.0, np.abs(t).max(), np.abs(r).max())
-    for _ in range(10 * n + 10):
-        act = ~np.isnan(bound)
-        free = ~act
-        target = np.where(act, bound, 0.0)
-        b = w - W[:, act] @ bound[act]
-        Wf = W[:, free]
-        if np.any(free):
-            target[free] = r[free] + np.linalg.lstsq(Wf, b - Wf @ r[free], rcond=None)[0]
-        p = target - t
-        if np.abs(p).max() > 1e-12 * scale:
-            # largest step in [0, 1] that keeps the free tensions in the box
-            with np.errstate(divide="ignore", invalid="ignore"):
-                room = np.where(p < 0, (t - lb) / -p, np.where(p > 0, (ub - t) / p, np.inf))
-            room = np.where(free & (np.abs(p) > 1e-12 * scale), room, np.inf)
-            j = int(np.argmin(room))
-            if room[j] < 1.0:
-                t += max(room[j], 0.0) * p
-                bound[j] = lb[j] if p[j] < 0 else ub[j]
-                t[j] = bound[j]
-                continue
-        t = target
-        if not np.any(act):
-            return t, np.zeros(n, dtype=int)
-        nu = (np.linalg.lstsq(Wf.T, -(t - r)[free], rcond=None)[0] if np.any(free)
-              else np.zeros(W.shape[0]))
-        g = (t - r) + W.T @ nu                # = mu_lower - mu_upper
-        mu = np.where(bound == lb, g, -g)
-        mu[free] = np.inf
-        i = int(np.argmin(mu))
-        if mu[i] >= -tol:
-            return t, np.where(act, np.where(bound == lb, -1, 1), 0)
-        bound[i] = np.nan
-    raise ConvergenceError(
-        f"tension distribution: the active-set method did not settle in {10 * n + 10} "
-        f"steps (balance residual {np.linalg.norm(W @ t - w):.3e} N)",
-        residual=float(np.linalg.norm(W @ t - w)))
-
-
-def _limits(t_min: NDArray[np.float64], t_max: NDArray[np.float64]) -> str:
-    """The limits as text: [lo, hi] when equal for all cables, else per cable."""
-    if np.all(t_min == t_min[0]) and np.all(t_max == t_max[0]):     # inf limits included
-        return f"[{t_min[0]:g}, {t_max[0]:g}]"
-    return f"[{np.round(t_min, 3).tolist()}, {np.round(t_max, 3).tolist()}]"
 
 
 def _carried(u: NDArray[np.float64], c_old: NDArray[np.float64],
@@ -283,11 +82,12 @@ def _step_distribution(pose: Pose, r: NDArray[np.float64], u: NDArray[np.float64
                        t_min: NDArray[np.float64] | float, t_max: NDArray[np.float64] | float,
                        lo: NDArray[np.float64], hi: NDArray[np.float64],
                        tension_reference: NDArray[np.float64] | float | None,
-                       sides: NDArray[np.int64] | None,
-                       straight: bool) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+                       sides: NDArray[np.int64] | None, straight: bool,
+                       diagnose: bool = True) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """The tension distribution (t, its active set) of one fixed-point iteration at cable-end
     directions u and margins lo, hi (``straight``: u are straight chords); raises the
-    diagnosed InfeasiblePoseError when there is none."""
+    diagnosed InfeasiblePoseError when there is none (a plain SlackCableError when not
+    ``diagnose``: a warm start, which a cold one follows)."""
     W = np.vstack([u.T, cross(r, u).T])[fi]
     try:
         return _distribution(W, w, t_min + lo, t_max - hi, tension_reference, sides)
@@ -300,8 +100,10 @@ def _step_distribution(pose: Pose, r: NDArray[np.float64], u: NDArray[np.float64
             with contextlib.suppress(SlackCableError):
                 return _distribution(W, w, 1e-3 * t_min + lo, t_max - hi, tension_reference,
                                      sides)
-        raise diagnose_limits(W, w, t_min, t_max, lo, hi,
-                              f"pose {pose.as_vector().tolist()}") from None
+        where = f"pose {pose.as_vector().tolist()}"
+        if not diagnose:
+            raise SlackCableError(f"{where}: no tension distribution from the start") from None
+        raise diagnose_limits(W, w, t_min, t_max, lo, hi, where) from None
 
 
 def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np.float64],
@@ -310,7 +112,7 @@ def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np
                  t_max: NDArray[np.float64], tension_reference: NDArray[np.float64] | float | None,
                  u: NDArray[np.float64], lo: NDArray[np.float64], hi: NDArray[np.float64],
                  warm: tuple[NDArray[np.float64], ...] | None, straight: bool,
-                 max_iter: int, done: int = 0) -> tuple[Any, ...]:
+                 max_iter: int, done: int = 0, diagnose: bool = True) -> tuple[Any, ...]:
     """The fixed point of cable directions and tension distribution of
     :func:`inverse_statics` from the directions u and margins lo, hi (``straight``: u are
     straight chords), after ``done`` of the ``max_iter`` iterations:
@@ -319,7 +121,7 @@ def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np
     sides = None                          # the last distribution's active set
     for _ in range(max(max_iter - done, 1)):
         t, sides = _step_distribution(pose, r, u, fi, -wg[fi], t_min, t_max, lo, hi,
-                                      tension_reference, sides, straight)
+                                      tension_reference, sides, straight, diagnose)
         straight = False
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
@@ -364,7 +166,7 @@ def _compiled_fixed_point(pose: Pose, A: NDArray[np.float64], B: NDArray[np.floa
                           tension_reference: NDArray[np.float64] | float | None,
                           u: NDArray[np.float64], lo: NDArray[np.float64],
                           hi: NDArray[np.float64], warm: tuple[NDArray[np.float64], ...] | None,
-                          max_iter: int) -> tuple[Any, Any] | None:
+                          max_iter: int, diagnose: bool = True) -> tuple[Any, Any] | None:
     """:func:`_fixed_point` by the compiled loop (:func:`dynstiff.compiled.statics.fixed_point`)
     when numba is installed: None without it (the numpy loop runs from the start).
 
@@ -410,7 +212,7 @@ def _compiled_fixed_point(pose: Pose, A: NDArray[np.float64], B: NDArray[np.floa
             break
         # the numpy loop's distribution, which raises the diagnosed error where there is none
         sides = _step_distribution(pose, r, u, fi, w, t_min, t_max, lo, hi, tension_reference,
-                                   None, not is_warm)[1].astype(np.int64)
+                                   None, not is_warm, diagnose)[1].astype(np.int64)
     return None, (u, lo, hi, (H, V0, L0) if is_warm else None, done)
 
 
@@ -438,12 +240,27 @@ def inverse_statics(robot: Robot, pose: Pose,
         Fixed-point iterations.
     start : Equilibrium, optional
         A neighbouring equilibrium of the same robot: its cable directions, tension margins
-        and catenaries start the iteration (the fixed point reached is the same).
+        and catenaries start the iteration (the fixed point reached is the same). Where the
+        iteration from it fails (a far neighbour), the pose is solved afresh: the result,
+        or the error and its diagnosis, are those without a start.
 
     Returns
     -------
     Equilibrium
     """
+    if start is not None:
+        try:
+            return _inverse_statics(robot, pose, tension_reference, tol, max_iter, start, False)
+        except DynstiffError:       # a far neighbour: afresh, where a failure is diagnosed
+            pass
+    return _inverse_statics(robot, pose, tension_reference, tol, max_iter, None, True)
+
+
+def _inverse_statics(robot: Robot, pose: Pose,
+                     tension_reference: NDArray[np.float64] | float | None, tol: float,
+                     max_iter: int, start: Any, diagnose: bool) -> Equilibrium:
+    """:func:`inverse_statics` from ``start`` (None: cold), its failures diagnosed when
+    ``diagnose``."""
     fi = robot.platform.free_index
     B, r = robot.attachment_points(pose)
     A = robot.anchors
@@ -476,7 +293,7 @@ def inverse_statics(robot: Robot, pose: Pose,
         lo = np.maximum(0.0, w0 * (B[:, 2] - A[:, 2]))
         hi = np.zeros(n)
     fast = _compiled_fixed_point(pose, A, B, r, fi, -wg[fi], EA, w0, t_min, t_max,
-                                 tension_reference, u, lo, hi, warm, max_iter)
+                                 tension_reference, u, lo, hi, warm, max_iter, diagnose)
     if fast is not None and fast[0] is not None:
         t, H, V0, L0, res, scalar = fast[0]
     else:                    # the numpy loop, from the start or where the kernel stopped
@@ -485,7 +302,7 @@ def inverse_statics(robot: Robot, pose: Pose,
             u, lo, hi, warm, done = fast[1]
         t, H, V0, L0, res, scalar = _fixed_point(
             robot, pose, A, B, r, fi, wg, EA, w0, t_min, t_max, tension_reference, u, lo, hi,
-            warm, start is None and done == 0, max_iter, done)
+            warm, start is None and done == 0, max_iter, done, diagnose)
     states = [scalar[i] if i in scalar else
               CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
                             cable=robot.cables[i], g=robot.g, H=float(H[i]), V0=float(V0[i]),
