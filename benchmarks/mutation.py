@@ -726,6 +726,18 @@ EQUIVALENT.update({
     "dynstiff.analyses.calibrate.x_calibrate__mutmut_588":
         "the start and estimate modes passed to the findings also without measured modes: "
         "calibration_findings reads them only with measured modes",
+    "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
+        "the reasons also among the plain arrays: the next line overwrites that entry with "
+        "the reasons as text",
+    "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_10":
+        "np.asarray(reasons, dtype=None): a list of str gives a text array anyway (a chunk "
+        "never has zero poses, where the dtype would differ)",
+    "dynstiff.maps.store.xǁCheckpointǁload__mutmut_3":
+        "run.json opened with the locale's encoding instead of utf-8: the same on UTF-8 "
+        "locales (Linux, macOS, the C locale under PEP 538); the file is ASCII JSON "
+        "(json.dumps escapes non-ASCII) in any case",
+    "dynstiff.maps.store.xǁCheckpointǁload__mutmut_31":
+        "allow_pickle=None: numpy tests it for truth, None refuses pickles as False does",
 })
 
 def _definitions():

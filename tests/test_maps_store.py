@@ -156,3 +156,69 @@ def test_a_folder_or_file_that_is_not_a_checkpoint_is_refused_and_kept(robot, tm
     (user / "notes.txt").write_text("mine")           # added by hand after the run began
     remove_folder(user)
     assert sorted(p.name for p in user.iterdir()) == ["notes.txt"]
+
+
+def test_a_chunk_that_a_checkpoint_does_not_write_is_refused_by_name(tmp_path):
+    """A chunk holding a pickled object (which loading would run) or lacking the reasons is
+    refused, naming the file; nothing is unpickled."""
+    cp = Checkpoint(tmp_path / "c", fingerprint="f", n_tasks=2)
+    cp.save(0, {"freq": np.array([1.0]), "reason": [""]})
+    np.savez(tmp_path / "c" / "chunk-000001.npz", freq=np.array([{"a": 1}], dtype=object),
+             reason=np.array([""]))
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"chunk-000001.npz is not a chunk a checkpoint writes"):
+        cp.load()
+    np.savez(tmp_path / "c" / "chunk-000001.npz", freq=np.array([1.0]))
+    with pytest.raises(ds.InvalidParameterError, match="chunk-000001.npz is not a chunk"):
+        cp.load()
+
+
+def test_the_refusal_names_the_first_foreign_file_and_says_when_there_are_more(tmp_path):
+    from dynstiff.maps.store import check_folder
+    folder = tmp_path / "parts"
+    folder.mkdir()
+    (folder / "b.txt").write_text("x")
+    with pytest.raises(ds.InvalidParameterError, match=r"\('b.txt'\): move them away"):
+        check_folder(folder)
+    (folder / "a.txt").write_text("x")
+    with pytest.raises(ds.InvalidParameterError, match=r"\('a.txt' \.\.\.\): move them away"):
+        check_folder(folder)
+
+
+def test_removing_a_checkpoint_skips_what_is_not_a_folder_and_what_it_cannot_remove(
+        tmp_path, monkeypatch):
+    """A missing path and a link to a folder are left alone (the linked folder's chunk
+    stays); a temporary folder that cannot be removed does not stop the removal of the
+    chunks."""
+    import shutil
+
+    from dynstiff.maps.store import remove_folder
+    remove_folder(tmp_path / "missing")
+    real = tmp_path / "real"
+    Checkpoint(real, fingerprint="f", n_tasks=1).save(0, {"f": [1.0], "reason": [""]})
+    (tmp_path / "link").symlink_to(real, target_is_directory=True)
+    remove_folder(tmp_path / "link")
+    assert (real / "chunk-000000.npz").is_file()
+    (real / ".chunk-000001.npz.tmp").mkdir()          # an interrupted write's folder
+
+    def stubborn(path, ignore_errors=False):
+        if not ignore_errors:
+            raise PermissionError(f"planted: {path}")
+    monkeypatch.setattr(shutil, "rmtree", stubborn)
+    remove_folder(real)
+    assert not (real / "chunk-000000.npz").exists() and not (real / "run.json").exists()
+
+
+def test_the_fingerprint_pins_the_pickle_protocol():
+    """A run's fingerprint is the SHA-256 of its tasks pickled with protocol 4, whatever the
+    Python's default protocol: a checkpoint saved by one Python resumes under another."""
+    import hashlib
+    import pickle
+
+    from dynstiff.maps.store import fingerprint
+    tasks = [(np.arange(3.0), {"n_modes": 4}), ("cogiro", 1.5)]
+    h = hashlib.sha256()
+    for t in tasks:
+        h.update(pickle.dumps(t, protocol=4))
+    assert fingerprint(tasks) == h.hexdigest()
+    assert pickle.dumps(tasks[0], protocol=4) != pickle.dumps(tasks[0], protocol=5)

@@ -164,9 +164,14 @@ class Checkpoint:
         out = {}
         for i in range(self.n_tasks):
             if os.path.isfile(self._chunk(i)):
-                with np.load(self._chunk(i), allow_pickle=False) as z:
-                    res = {k: z[k] for k in z.files}
-                res["reason"] = [str(r) for r in res["reason"]]
+                try:       # no pickled objects: a chunk holds plain arrays, nothing to run
+                    with np.load(self._chunk(i), allow_pickle=False) as z:
+                        res = {k: z[k] for k in z.files}
+                    res["reason"] = [str(r) for r in res["reason"]]
+                except (ValueError, OSError, KeyError) as exc:
+                    raise InvalidParameterError(
+                        f"checkpoint {self.path}: {os.path.basename(self._chunk(i))} is not a "
+                        f"chunk a checkpoint writes ({exc}): remove the folder") from None
                 out[i] = res
         return out
 
