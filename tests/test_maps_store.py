@@ -86,7 +86,8 @@ def test_an_interrupt_without_a_checkpoint_says_nothing_is_saved(robot, monkeypa
     _interrupt_after(monkeypatch, 1)
     with pytest.raises(Interrupted, match="0 of 12 poses not saved .*checkpoint="):
         wsmod.workspace(robot, **KW)
-    with pytest.raises(ds.InvalidParameterError, match="resume=True needs checkpoint="):
+    with pytest.raises(ds.InvalidParameterError, match=r"resume=True needs checkpoint= \(the "
+                                                       r"folder of the saved chunks\)"):
         wsmod.workspace(robot, resume=True, **KW)
 
 

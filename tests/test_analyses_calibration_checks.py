@@ -1,0 +1,71 @@
+"""What a calibration says about itself (dynstiff/analyses/calibration_checks.py): the
+ambiguous pairing among cable modes, the residual beyond the measurement's uncertainty and
+the estimate on its bound, each at its threshold, with hand-made modes and residuals."""
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from dynstiff.analyses.calibration_checks import (
+    DEFAULT_RELATIVE_UNCERTAINTY,
+    RESIDUAL_LIMIT,
+    calibration_findings,
+)
+from dynstiff.analyses.measured import MeasuredModes
+
+
+def modes(freq, kind):
+    return SimpleNamespace(freq_hz=np.array(freq), kind=tuple(kind))
+
+
+def findings(measured, fitted, pairing="massless", model_modes=(), u=(0.0,), bounds=(0.1, 10)):
+    return calibration_findings(measured, np.asarray(fitted, dtype=float), pairing,
+                                list(model_modes), ("EA",), np.array(u), bounds)
+
+
+def test_pairing_without_shapes_among_cable_modes_names_them_at_the_start_or_the_estimate():
+    measured = MeasuredModes([2.0, 3.0])
+    top = 1.05 * 3.0                                       # cable modes up to here count
+    clean = modes([2.0, 3.0, 5.0], ["global", "global", "local"])
+    start = modes([2.0, 2.5, 2.7, 3.0], ["global", "local", "local", "global"])
+    (cause, msg), = findings(measured, [2.0, 3.0], model_modes=[start, clean])
+    assert cause == "pairing"
+    assert "among 2 cable-dominated modes of the model at the start (from 2.5 Hz)" in msg
+    assert msg.endswith("or measure below 2.5 Hz")
+    at_top = modes([2.0, 3.0, top], ["global", "global", "local"])
+    (cause, msg), = findings(measured, [2.0, 3.0], model_modes=[clean, at_top])
+    assert f"among 1 cable-dominated modes of the model at the estimate (from {top:.4g} Hz)" \
+        in msg
+    assert findings(measured, [2.0, 3.0], model_modes=[clean, clean]) == []
+    assert findings(measured, [2.0, 3.0], "mac", model_modes=[start, start]) == []
+
+
+def test_a_residual_is_reported_beyond_three_uncertainties_not_at_three():
+    with_sigma = MeasuredModes([1.0, 2.0], sigma_hz=[0.25, 0.25])
+    assert RESIDUAL_LIMIT == 3.0
+    assert findings(with_sigma, [1.75, 2.0], "mac") == []            # exactly 3 sigma
+    (cause, msg), = findings(with_sigma, [1.0, 2.8], "mac")
+    assert cause == "residual"
+    assert msg.startswith("measured mode 2: fitted 2.8 Hz against 2 Hz measured, 3.2 times "
+                          "its sigma:")
+    # without sigma: 1 % of the frequency; the same fit is then far off
+    (cause, msg), = findings(MeasuredModes([1.0, 2.0]), [1.0, 2.1], "mac")
+    assert DEFAULT_RELATIVE_UNCERTAINTY == 0.01
+    assert "5 times the 1% assumed without sigma [Hz]:" in msg
+    # a sigma of its own decides, not the 1 %: 0.1 Hz off with sigma 0.25 Hz is fine
+    assert findings(MeasuredModes([1.0, 2.0], sigma_hz=0.25), [1.0, 2.1], "mac") == []
+
+
+def test_without_measured_modes_only_the_bounds_are_judged():
+    assert findings(None, [2.0], None) == []
+    (cause, msg), = findings(None, [], None, u=[np.log(10.0)])
+    assert cause == "bound"
+    assert msg.startswith("EA sits on its search bound (10 times its start)")
+
+
+@pytest.mark.parametrize("u", [np.log(0.1), np.log(10.0) * (1 - 1e-7)])
+def test_an_estimate_on_or_within_rounding_of_a_bound_is_reported(u):
+    (cause, _), = findings(None, [], None, u=[u])
+    assert cause == "bound"
+    assert findings(None, [], None, u=[u * 0.99]) == []
