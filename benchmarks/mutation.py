@@ -726,6 +726,11 @@ EQUIVALENT.update({
     "dynstiff.analyses.calibrate.x_calibrate__mutmut_588":
         "the start and estimate modes passed to the findings also without measured modes: "
         "calibration_findings reads them only with measured modes",
+    **{f"dynstiff.analyses.calibration_checks.x_fit_options__mutmut_{n}":
+       "the name given to positive_scalar for a bound: its error is caught and replaced by "
+       "fit_options' own, naming bounds" for n in (11, 15, 16)},
+    "dynstiff.analyses.calibration_checks.x_calibration_findings__mutmut_73":
+        "|u - ln bound| < instead of <= its tolerance: " + _BOUNDARY,
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",

@@ -69,3 +69,42 @@ def test_an_estimate_on_or_within_rounding_of_a_bound_is_reported(u):
     (cause, _), = findings(None, [], None, u=[u])
     assert cause == "bound"
     assert findings(None, [], None, u=[u * 0.99]) == []
+
+
+def test_the_bound_finding_names_the_bound_and_keeps_to_its_tolerance():
+    """Within 1e-6 max(1, |ln bound|) of ln(bound), and no further."""
+    (_, msg), = findings(None, [], None, u=[np.log(0.1)])
+    assert msg.startswith("EA sits on its search bound (0.1 times its start)")
+    edge = np.log(10.0)                                   # tolerance 1e-6 x 2.30
+    assert len(findings(None, [], None, u=[edge - 2.0e-6])) == 1
+    assert findings(None, [], None, u=[edge - 2.5e-6]) == []
+    small = np.log(2.0)                                   # |edge| < 1: tolerance 1e-6
+    assert len(findings(None, [], None, u=[small - 0.9e-6], bounds=(0.5, 2.0))) == 1
+    assert findings(None, [], None, u=[small - 1.5e-6], bounds=(0.5, 2.0)) == []
+    assert findings(None, [], None, u=[-small + 1.5e-6], bounds=(0.5, 2.0)) == []
+
+
+def test_fit_options_refuse_what_is_not_a_confidence_or_a_bracket_of_the_start():
+    from dynstiff.analyses.calibration_checks import fit_options
+    from dynstiff.errors import InvalidParameterError
+    assert fit_options(0.95, (0.5, 1.5)) == (0.5, 1.5)
+    for bad in (0.0, 1.0, 1.5, True, "x", None):
+        with pytest.raises(InvalidParameterError, match="confidence must be in \\(0, 1\\)"):
+            fit_options(bad, (0.5, 2.0))
+    for bad in ((1.0, 2.0), (0.5, 1.0), ("a", 2.0), (-1.0, 2.0), (0.5,)):
+        with pytest.raises(InvalidParameterError,
+                           match=r"bounds must be \(low, high\) factors of the start with "
+                                 r"0 < low < 1 < high, got"):
+            fit_options(0.95, bad)
+
+
+def test_strict_findings_raise_the_first_with_its_cause():
+    from dynstiff.analyses.calibration_checks import report_findings
+    from dynstiff.errors import CalibrationError, CalibrationWarning
+    found = [("residual", "mode 2 off"), ("bound", "EA on its bound")]
+    with pytest.raises(CalibrationError, match="calibration: mode 2 off") as err:
+        report_findings(found, strict=True)
+    assert err.value.cause == "residual"
+    with pytest.warns(CalibrationWarning) as caught:
+        report_findings(found)
+    assert [w.message.cause for w in caught] == ["residual", "bound"]

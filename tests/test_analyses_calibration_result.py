@@ -82,3 +82,15 @@ def test_the_figure_shows_the_errors_before_and_after_side_by_side():
     zero = [ln for ln in ax.get_lines() if list(ln.get_ydata()) == [0, 0]]
     assert len(zero) == 1 and zero[0].get_color() == "0.4"
     assert zero[0].get_linewidth() == pytest.approx(0.8)
+
+
+def test_the_table_has_one_row_per_mode_and_the_damping_when_fitted():
+    df = result().to_frame()
+    assert list(df.columns) == ["mode", "measured [Hz]", "initial [Hz]", "fitted [Hz]",
+                                "residual [-]", "MAC [-]", "cable energy fraction [-]"]
+    np.testing.assert_allclose(df["residual [-]"], [0.01, -0.01, 0.0], atol=1e-15)
+    np.testing.assert_array_equal(df["fitted [Hz]"], [2.02, 3.96, 5.0])
+    damped = result(measured_damping=np.array([0.01, 0.02, 0.03]),
+                    fitted_damping=np.array([0.011, 0.019, 0.03])).to_frame()
+    np.testing.assert_array_equal(damped["measured damping ratio [-]"], [0.01, 0.02, 0.03])
+    np.testing.assert_array_equal(damped["fitted damping ratio [-]"], [0.011, 0.019, 0.03])
