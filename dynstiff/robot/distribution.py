@@ -43,7 +43,8 @@ def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: 
     SlackCableError
         No admissible distribution exists (the message names the violated limit).
     """
-    return _distribution(W, w, t_min, t_max, t_ref)[0]
+    return _distribution(W, w, np.asarray(t_min, dtype=float), np.asarray(t_max, dtype=float),
+                         t_ref)[0]
 
 
 def _distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: NDArray[np.float64],
