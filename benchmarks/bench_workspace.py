@@ -2,10 +2,9 @@
 check in 20 s of wall time on 2 cores, i.e. 3.5 ms of CPU a pose; first targets per pose:
 inverse statics <= 5 ms CPU, statics + 20 modes <= 12 ms CPU).
 
-Measured (2 cores, the other one busy, least of 3, 125 grid poses): a pose with the
-forbidden band 14.6 ms -> 7.5 ms, without it 10.6 ms -> 5.4 ms over the compiled statics
-fixed point, W-W search, damped receptance and shares (theory.md §13.6, §14.2); the 3.5 ms
-goal is not reached (projection of 10,000 poses with the band: about 39 s).
+Measured (2 cores, the other one busy, least of 3, ``--per-pose --poses 343 --against
+51e2086``): a pose with the forbidden band 13.08 ms -> 5.19 ms, without it 9.59 ms -> 4.12
+ms (theory.md §13.7); the 3.5 ms goal is not reached.
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_workspace.py [--poses N] [--repeats R]
       [--no-dask]
