@@ -80,3 +80,47 @@ def test_estimate_line():
     assert estimate_text(1_000_000, 0.012, 2**31) == (
         "workspace: 1,000,000 poses, about 2 GiB, about 3.3 h (12 ms a pose in a sample)")
     assert "about 50 s on 4 workers" in estimate_text(1000, 0.2, 1, workers=4)
+
+
+def test_the_memory_estimate_is_a_maps_own_arrays_three_times():
+    """map_bytes per pose, less its 120 bytes of reason, is the bytes a pose takes in a real
+    map (every numeric and boolean variable, and the 6 floats of its pose vector), for two
+    sizes of cables, modes and checks; three copies of it."""
+    import dynstiff as ds
+    xr = pytest.importorskip("xarray")
+    for scene, n_modes in (("cogiro", 4), ("planar2", 3)):
+        robot = ds.load_scene(scene).robot
+        c = robot.anchors.mean(axis=0)
+        box = (c[0] - 1, c[0] + 1, c[1], c[1], c[2] - 8, c[2] - 8)
+        m = ds.workspace(robot, box=box, step=1.0, n_modes=n_modes)
+        assert isinstance(m, xr.Dataset)
+        n = int(m["feasible"].size)
+        arrays = sum(v.nbytes for v in m.data_vars.values() if v.dtype.kind in "fb")
+        per_pose = arrays / n + 6 * 8
+        assert map_bytes(n, robot.n_cables, n_modes, m.sizes["check"]) == \
+            3 * n * (per_pose + 120)
+
+
+def test_counts_start_at_one_and_fractions_are_numbers():
+    check_model_options("lumped", {"max_iter": 1, "segments": 1})
+    with pytest.raises(InvalidParameterError, match="max_iter must be an integer >= 1, got 0"):
+        check_model_options("lumped", {"max_iter": 0})
+    with pytest.raises(InvalidParameterError, match=r"must be a number in \[0, 1\), got '0.1'"):
+        check_model_options("dsm", {"platform_damping_ratio": "0.1"})
+
+
+def test_the_size_refusal_says_what_it_counted():
+    with pytest.raises(InvalidParameterError, match="^the map gives 11 poses, more than "
+                                                    "max_poses=10 .*: give fewer poses or "
+                                                    "parameter values, or raise max_poses="):
+        check_size(11, 8, 20, 7, max_poses=10)
+
+
+@pytest.mark.parametrize("seconds, span", [(119.0, "119 s"), (120.0, "2.0 min"),
+                                           (7199.0, "120.0 min"), (7200.0, "2.0 h")])
+def test_the_estimate_changes_unit_at_two_minutes_and_two_hours(seconds, span):
+    assert estimate_text(1000, seconds / 1000, 2**30) == (
+        f"workspace: 1,000 poses, about 1 GiB, about {span} ({seconds:.0f} ms a pose in a "
+        f"sample)")
+    assert "on 2 workers" in estimate_text(1000, seconds / 500, 1, workers=2)
+    assert " on " not in estimate_text(1000, seconds / 1000, 1, workers=1)

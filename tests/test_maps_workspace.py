@@ -151,6 +151,10 @@ def test_box_grid_axes():
     np.testing.assert_allclose(y, [-1.0, -0.5, 0.0, 0.5, 1.0])
     np.testing.assert_allclose(z, [2.0])
     np.testing.assert_allclose(box_grid((0.0, 1.0, 0, 0, 0, 0), 0.3)[0], [0.0, 0.3, 0.6, 0.9])
+    np.testing.assert_array_equal(box_grid(np.arange(6), 1.0)[2], [4.0, 5.0])   # integers
+    for bad in (["0", "1", "0", "1", "0", "1"], [True, True, 0, 1, 0, 1], [0, 1, 0, 1, 0, None]):
+        with pytest.raises(ds.InvalidParameterError, match="box must be 6 numbers"):
+            box_grid(bad, 0.5)
 
 
 @pytest.mark.parametrize("kw, match", [
@@ -193,7 +197,9 @@ def test_box_grid_axes():
     ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "n_samples": 0},
      "n_samples must be an integer >= 1"),
     ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "seed": True},
-     "seed must be an integer"),
+     "seed must be an integer >= 0, got True"),
+    ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "seed": -1},
+     "seed must be an integer >= 0, got -1"),
     ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"}, "confidence": 1.0},
      r"confidence must be a number in \(0, 1\)"),
     ({"poses": [[0, 0, 1]], "band_hz": BAND, "uncertain": {"EA": "10%"},

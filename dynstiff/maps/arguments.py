@@ -46,6 +46,9 @@ def box_grid(box: "np.typing.ArrayLike",
     ([-0.5, 0.0, 0.5], [0.0], [1.0])
     """
     try:
+        if np.asarray(box).dtype.kind not in "iuf" or any(     # text, booleans: no lengths
+                isinstance(v, (bool, np.bool_)) for v in np.asarray(box, dtype=object).ravel()):
+            raise TypeError
         b = np.asarray(box, dtype=float)
     except (TypeError, ValueError):
         raise InvalidParameterError(f"box must be 6 numbers x0 x1 y0 y1 z0 z1 [m], got "

@@ -106,9 +106,16 @@ def check_orientations(orientations):
 def map_bytes(n_poses, n_cables, n_modes, n_checks):
     """Memory a map of ``n_poses`` holds while it is computed and assembled [bytes]: the
     pose vectors, every variable of :data:`dynstiff.maps.dataset.VARIABLES` and a reason
-    string per pose, three times (chunk results, the joined arrays, the Dataset)."""
-    per_pose = 8 * (6 + 2 + 5 * n_cables + 2 * n_modes + 3) + n_modes + 2 * n_checks + 1
-    return 3 * n_poses * (per_pose + 120)
+    string per pose, three times (chunk results, the joined arrays, the Dataset).
+
+    Per pose: 6 floats of the pose; the residual, 5 per cable (tension, unstretched length,
+    least and largest tension, sag ratio), 2 per mode (frequency, platform share) and 5
+    scalars (first platform frequency, band margin, proximity gap, uncertain probability
+    and margin) as floats; as booleans feasible, dynamic, 1 per mode (is_platform) and 2
+    per check (passed, unknown); about 120 bytes of reason."""
+    floats = 6 + 1 + 5 * n_cables + 2 * n_modes + 5
+    booleans = 2 + n_modes + 2 * n_checks
+    return 3 * n_poses * (8 * floats + booleans + 120)
 
 
 def _physical_memory():
