@@ -892,6 +892,8 @@ def main(argv):
     ap.add_argument("--seed", type=int, default=20261202)
     ap.add_argument("--recheck", action="store_true",
                     help="run the surviving mutants again too (after tests were added)")
+    ap.add_argument("--children", type=int, default=1,
+                    help="mutmut's parallel children (default 1: the machine is shared)")
     args = ap.parse_args(argv)
     prefixes = [m[:-3].replace("/", ".").removesuffix(".__init__") + ".x"
                 for m in args.modules]
@@ -908,7 +910,8 @@ def main(argv):
         redo = ("unchecked", "survived") if args.recheck else ("unchecked",)
         todo = [n for n in names if _verdict(n, res[n]) in redo]
         for k in range(0, len(todo), 2000):         # one mutmut call per 2000 names
-            subprocess.run([sys.executable, "-c", _MUTMUT, "run", "--max-children", "1"]
+            subprocess.run([sys.executable, "-c", _MUTMUT, "run", "--max-children",
+                            str(args.children)]
                            + todo[k:k + 2000], check=False,
                            env=dict(os.environ, HYPOTHESIS_PROFILE="mutation"))
         res = _results()
