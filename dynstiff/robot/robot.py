@@ -249,7 +249,9 @@ class Robot:
 
         ``start`` (inverse statics): an :class:`Equilibrium` of this robot at a neighbouring
         pose; its cable directions and catenaries start the iteration (a sweep over poses
-        warm-starts each pose from the previous one). The equilibrium reached is the same.
+        warm-starts each pose from the previous one). The equilibrium reached is the same;
+        where the iteration from ``start`` fails, the pose is solved without it, and an
+        error is that of the pose without a start.
 
         Returns
         -------
