@@ -397,15 +397,17 @@ def end_stiffnesses(states: tuple[CatenaryState, ...]) -> NDArray[np.float64]:
     k11, k12, k22 = f22 / det, -f12 / det, f11 / det          # inverse of the flexibility
     vertical = lh <= 1e-14 * np.linalg.norm(d, axis=1)
     lh_s = np.where(vertical, 1.0, lh)
-    eh = np.stack([np.where(vertical, 1.0, d[:, 0] / lh_s),
-                   np.where(vertical, 0.0, d[:, 1] / lh_s), np.zeros(n)], axis=1)
-    ep = np.stack([-eh[:, 1], eh[:, 0], np.zeros(n)], axis=1)           # e_z x e_h
-    ez = np.broadcast_to(_EZ, (n, 3))
-    K = (k11[:, None, None] * eh[:, :, None] * eh[:, None, :]
-         + k12[:, None, None] * (eh[:, :, None] * ez[:, None, :] + ez[:, :, None] * eh[:, None, :])
-         + k22[:, None, None] * ez[:, :, None] * ez[:, None, :]
-         + (Hs / lh_s)[:, None, None] * ep[:, :, None] * ep[:, None, :])
-    K = 0.5 * (K + np.swapaxes(K, 1, 2))
+    ex = np.where(vertical, 1.0, d[:, 0] / lh_s)          # e_h = (ex, ey, 0)
+    ey = np.where(vertical, 0.0, d[:, 1] / lh_s)
+    kp = Hs / lh_s                                        # along e_p = e_z x e_h = (-ey, ex, 0)
+    # k11 e_h e_h' + k12 (e_h e_z' + e_z e_h') + k22 e_z e_z' + kp e_p e_p', entry by entry
+    K = np.empty((n, 3, 3))
+    K[:, 0, 0] = k11 * ex * ex + kp * ey * ey
+    K[:, 1, 1] = k11 * ey * ey + kp * ex * ex
+    K[:, 0, 1] = K[:, 1, 0] = (k11 - kp) * ex * ey
+    K[:, 0, 2] = K[:, 2, 0] = k12 * ex
+    K[:, 1, 2] = K[:, 2, 1] = k12 * ey
+    K[:, 2, 2] = k22
     for i in np.flatnonzero(~taut):
         K[i] = states[i].end_stiffness
     return K
