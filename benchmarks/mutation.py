@@ -731,6 +731,8 @@ EQUIVALENT.update({
        "fit_options' own, naming bounds" for n in (11, 15, 16)},
     "dynstiff.analyses.calibration_checks.x_calibration_findings__mutmut_73":
         "|u - ln bound| < instead of <= its tolerance: " + _BOUNDARY,
+    "dynstiff.analyses.calibration_result.xǁCalibrationResultǁ_repr_html___mutmut_66":
+        "range(1, n + 2) for the mode numbers: zip stops at the n measured modes",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",

@@ -352,7 +352,8 @@ def test_max_modes_is_a_ceiling_the_band_may_reach():
 
 def test_requests_without_a_pose_or_with_an_impossible_jacobian_are_named(scene):
     with pytest.raises(ds.InvalidParameterError,
-                       match="calibrate needs the pose of the measurement: give pose="):
+                       match="^calibrate needs the pose of the measurement: give pose= "
+                             "or a scene with a \\[pose\\]$"):
         calibrate(scene.robot, [2.2, 2.4], parameters="EA")
     frf = ds.frf(ds.FrequencyModel(scene.equilibrium()), 2 * np.pi * np.linspace(0.5, 1.5, 5),
                  inputs="fx", outputs="x")             # below the first mode: no warning
