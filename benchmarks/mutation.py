@@ -733,6 +733,38 @@ EQUIVALENT.update({
         "|u - ln bound| < instead of <= its tolerance: " + _BOUNDARY,
     "dynstiff.analyses.calibration_result.xǁCalibrationResultǁ_repr_html___mutmut_66":
         "range(1, n + 2) for the mode numbers: zip stops at the n measured modes",
+    "dynstiff.analyses.measured_frf.xǁFRFComparisonǁplot__mutmut_37":
+        "the model's '-' format dropped: semilogy draws a solid line by default",
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_46":
+        "None instead of '' for a record without id1: pyuff's reader gives every record "
+        "an id1 ('NONE' when the file has none)",
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_168":
+        "the product of two direction signs (+-1) written as their quotient: the same",
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_73":
+        "0 instead of None as the default of a missing function or data type: neither is "
+        "a type dynstiff reads, the record is refused either way",
+    "dynstiff.analyses.measured_frf.x__frf_from_csv__mutmut_42":
+        "NaN - 0j instead of NaN + 0j for a channel not measured: NaN either way",
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_100":
+        "dtype=None for the abscissa: pyuff gives it as float64",
+    "dynstiff.io.exchange.x_even_grid__mutmut_82":
+        "the upper clip of searchsorted at f.size + 1 instead of f.size - 1: the even grid "
+        "ends at f[-1] (its last point is set to it), so searchsorted never passes f.size - 1",
+    **{f"dynstiff.io.exchange.x_{fn}__mutmut_{n}":
+       "dtype=float dropped on the frequencies: an FRFResult's are float already, and ints "
+       "give the same numbers through the float arithmetic after"
+       for fn, n in (("even_grid", 5), ("uff58_records", 11), ("frf_to_control", 21))},
+    "dynstiff.io.exchange.x_write_uff58__mutmut_18":
+        "pyuff mode 'ADD' instead of 'add' (pyuff then overwrites): the records go to a new "
+        "temporary file, where adding and overwriting are the same",
+    **{f"dynstiff.io.table.x_read_table__mutmut_{n}":
+       "newline='' dropped: the text is split with splitlines(), which takes \\n, \\r\\n "
+       "and \\r alike" for n in (4, 7)},
+    **{f"dynstiff.io.table.x_read_table__mutmut_{n}":
+       "the locale's encoding instead of utf-8: the same on UTF-8 locales (Linux, macOS, "
+       "the C locale under PEP 538)" for n in (5, 8)},
+    "dynstiff.io.table.x_read_table__mutmut_11":
+        "encoding 'UTF-8' instead of 'utf-8': codec names are case-insensitive",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",

@@ -272,3 +272,63 @@ def test_the_comparison_plot_shows_every_error_on_equal_axes(md):
     texts = [t.get_text() for t in ax.texts]
     assert texts == [f"{100 * e:+.1f} %" for e in cmp.error]
     assert {t.get_anncoords() for t in ax.texts} == {"offset points"}
+
+
+def test_a_csv_with_the_five_columns_only_is_a_receptance(tmp_path, model):
+    res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 1.5, 4), inputs="fz", outputs="z")
+    df = res.to_frame()[["freq [Hz]", "input", "output", "real", "imag"]]
+    df.to_csv(tmp_path / "five.csv", index=False)
+    back = read_measured_frf(tmp_path / "five.csv")
+    assert back.kind == "receptance"
+    np.testing.assert_allclose(back.H, res.H, rtol=1e-14)
+
+
+def test_uff_records_of_two_kinds_are_refused_naming_them(tmp_path, model):
+    pyuff = pytest.importorskip("pyuff")
+    from dynstiff.io.exchange import uff58_records
+    w = 2 * np.pi * np.linspace(0.5, 1.5, 4)
+    recs = uff58_records(ds.frf(model, w, inputs="fz", outputs="z"), binary=True) + \
+        uff58_records(ds.frf(model, w, inputs="fx", outputs="z", kind="mobility"), binary=True)
+    pyuff.UFF(str(tmp_path / "mix.uff")).write_sets(recs, mode="add")
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"the records mix kinds \['mobility', 'receptance'\] or "
+                             r"frequency axes"):
+        read_measured_frf(tmp_path / "mix.uff")
+
+
+def test_compare_frf_takes_the_measured_kind_and_point(model):
+    f = np.linspace(0.5, 1.5, 5)
+    meas = ds.frf(model, 2 * np.pi * f, inputs="fz", outputs=["x", "z"], kind="mobility",
+                  point=[0.4, 0.0, 0.0])
+    cmp = compare_frf(model, meas, point=[0.4, 0.0, 0.0])
+    assert cmp.model.kind == "mobility"
+    np.testing.assert_allclose(cmp.model.H, meas.H, rtol=1e-12)
+    at_p = compare_frf(model, meas)
+    assert not np.allclose(at_p.model.H, meas.H, rtol=1e-6)
+    with pytest.raises(ds.InvalidParameterError, match="^measured must be an FRFResult, got "
+                                                       "list$"):
+        compare_frf(model, [1.0, 2.0])
+
+
+def test_the_frf_overlay_draws_each_channel_measured_and_model_in_one_colour(model):
+    f = np.linspace(0.5, 1.5, 6)
+    truth = ds.frf(model, 2 * np.pi * f, inputs=["fz", "mx"], outputs=["z", "rx"])
+    meas = ds.FRFResult(truth.freq_hz, truth.H * 1.1, truth.inputs, truth.outputs, truth.kind)
+    fig = compare_frf(model, meas).plot()
+    ax = fig.axes[0]
+    assert tuple(fig.get_size_inches()) == (7, 4)
+    assert ax.get_xlabel() == "frequency [Hz]" and ax.get_ylabel() == "|H| (receptance)"
+    lines = ax.get_lines()
+    assert [ln.get_label() for ln in lines] == [
+        f"{o}/{i} {w}" for o in ("z", "rx") for i in ("fz", "mx") for w in ("measured",
+                                                                               "model")]
+    for k, (m, d) in enumerate(zip(lines[::2], lines[1::2])):
+        o, i = divmod(k, 2)
+        assert m.get_color() == d.get_color() == f"C{k}"
+        assert m.get_linestyle() == "None" and m.get_marker() == "." and m.get_markersize() == 3
+        assert d.get_linestyle() == "-" and d.get_linewidth() == 1
+        np.testing.assert_array_equal(m.get_xdata(), f)
+        np.testing.assert_allclose(m.get_ydata(), np.abs(meas.H[:, o, i]), rtol=1e-15)
+        np.testing.assert_allclose(d.get_ydata(), np.abs(truth.H[:, o, i]), rtol=1e-12)
+    legend = ax.get_legend()
+    assert legend._ncols == 2 and legend.get_texts()[0].get_fontsize() == 7

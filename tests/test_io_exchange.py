@@ -191,3 +191,43 @@ def test_even_uff_at_a_step_interpolates_and_refuses_bad_steps(tmp_path, model):
         with pytest.raises(ds.InvalidParameterError, match="even"):
             res.to_uff(target, even=bad)
     assert target.read_text() == "old"
+
+
+def test_uff58_records_read_back_with_their_ids_and_axis_labels(tmp_path, model, omega):
+    res = ds.frf(model, omega, inputs=["fy", "mx"], outputs=["x", "rz"])
+    sets = pyuff.UFF(str(res.to_uff(tmp_path / "ids.uff"))).read_sets()
+    labels = [(s["id1"].strip(), s["id2"].strip(), s["id4"].strip(), s["id5"].strip(),
+               s["abscissa_axis_lab"].strip(), s["ordinate_axis_lab"].strip(),
+               s["orddenom_axis_lab"].strip()) for s in sets]
+    assert labels == [
+        ("dynstiff receptance x/fy", "m/N", "NONE", "NONE", "Frequency", "x", "fy"),
+        ("dynstiff receptance x/mx", "m/N m", "NONE", "NONE", "Frequency", "x", "mx"),
+        ("dynstiff receptance rz/fy", "rad/N", "NONE", "NONE", "Frequency", "rz", "fy"),
+        ("dynstiff receptance rz/mx", "rad/N m", "NONE", "NONE", "Frequency", "rz", "mx")]
+
+
+def test_zero_below_floor_is_relative_to_the_largest_channel_and_keeps_shapes():
+    from dynstiff.io.exchange import zero_below_floor
+    H = np.zeros((3, 2, 1))
+    H[:, 0, 0] = [1e3, 2e3, 0.5e3]                         # the largest channel: 2e3
+    H[:, 1, 0] = 1e-10                                     # 5e-14 of it: below 1e-12
+    out = zero_below_floor(H)
+    assert out.dtype == complex and np.all(out[:, 1, 0] == 0)
+    np.testing.assert_array_equal(out[:, 0, 0], H[:, 0, 0])
+    H[:, 1, 0] = 1e-8                                      # 5e-12 of it: kept
+    np.testing.assert_array_equal(zero_below_floor(H)[:, 1, 0], 1e-8)
+    assert zero_below_floor(np.zeros((0, 2, 3))).shape == (0, 2, 3)
+
+
+def test_even_grid_of_several_channels_scales_with_the_frequencies():
+    """The even step is found among the grid's spacings whatever their scale (mHz to MHz),
+    and every channel is resampled."""
+    from dynstiff.io.exchange import even_grid
+    f = np.array([0.0, 1.0, 2.0, 2.01, 2.1, 3.0, 4.0, 5.0])
+    H = (f[:, None, None] + 1j) * np.arange(1, 5).reshape(1, 2, 2)
+    for s in (1e-6, 1.0, 1e6):
+        fe, He, step = even_grid(s * f, H, True)
+        assert step == pytest.approx(s, rel=1e-12)
+        np.testing.assert_allclose(fe, s * np.arange(6.0), rtol=1e-12)
+        np.testing.assert_allclose(He, (fe[:, None, None] / s + 1j)
+                                   * np.arange(1, 5).reshape(1, 2, 2), rtol=1e-9)

@@ -46,3 +46,25 @@ def test_not_measured_shape_cells_and_metadata_lines(tmp_path):
     with pytest.raises(InvalidParameterError, match="not a text"):
         read_table(tmp_path / "b.csv") if (tmp_path / "b.csv").write_bytes(b"\xff\xfe\x00")\
             else None
+
+
+def test_short_rows_indented_comments_and_quoted_cells(tmp_path):
+    """A row with fewer cells than the header reads its missing cells as empty (a number
+    where an empty value is given, text ""); an indented '#' line is a comment; a quoted
+    cell after a space is one cell (a quoted decimal comma is named as such); the line of a
+    repeated header is the file's."""
+    t = read_table(_write(tmp_path, "a,b,c\n  # an indented note\n1,2\n3, 4,5\n"))
+    assert t.columns == ("a", "b", "c") and [r[0] for r in t.rows] == [3, 4]
+    np.testing.assert_array_equal(t.numbers("c", empty=-1.0), [-1.0, 5.0])
+    assert t.text("c") == ["", "5"] and t.text("b") == ["2", "4"]
+    with pytest.raises(InvalidParameterError, match=r"^\S+t.csv: line 3, column 'c': empty, "
+                                                    r"a number is needed$"):
+        t.numbers("c")
+    q = read_table(_write(tmp_path, 'a,b\n1, "2,5"\n', "q.csv"))
+    with pytest.raises(InvalidParameterError, match=r"line 2, column 'b': '2,5' is not a "
+                                                    r"number \(write the decimal point"):
+        q.numbers("b")
+    with pytest.raises(InvalidParameterError, match=r"'--1.5' is not a number$"):
+        read_table(_write(tmp_path, "a\n--1.5\n", "s.csv")).numbers("a")
+    with pytest.raises(InvalidParameterError, match=r"d.csv: line 2: a column name appears"):
+        read_table(_write(tmp_path, "# meta\na,a\n1,2\n", "d.csv"))

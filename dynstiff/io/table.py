@@ -67,9 +67,7 @@ class Table:
             try:
                 v = float(text)
             except ValueError:
-                hint = (" (write the decimal point as '.', not ',')"
-                        if "," in text or text.replace(",", "", 1).replace(".", "", 1)
-                        .lstrip("+-").isdigit() else "")
+                hint = " (write the decimal point as '.', not ',')" if "," in text else ""
                 raise InvalidParameterError(
                     f"{self.path}: line {line}, column {column!r}: {text!r} is not a "
                     f"number{hint}") from None
