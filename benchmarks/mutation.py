@@ -275,7 +275,7 @@ _WARM = ("the warm start of the tension distribution (the guessed active set, it
          "start, its tolerance or whether it is tried): a start is used only when it is "
          "feasible, and the active-set method then ends at the unique minimiser of the "
          "strictly convex problem, as from the LP's start (tested bitwise on random problems)")
-EQUIVALENT.update({f"dynstiff.robot.distribution.x__distribution__mutmut_{n}": _WARM
+EQUIVALENT.update({f"dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_{n}": _WARM
                    for n in (45, 61, 76, 87, 89, 95, 97, 98, 103, 110)})
 EQUIVALENT.update({f"dynstiff.robot.distribution.x__active_solution__mutmut_{n}": _WARM
                    for n in (2, 4, 28)})
@@ -536,20 +536,20 @@ EQUIVALENT.update({
         "(test_long_spans_converge_and_limits_are_exact)",
     "dynstiff.cable.catenary.x_divided_differences__mutmut_14":
         "a b >= 0 instead of > 0: where a or b is 0 both branches give the same quotient",
-    "dynstiff.robot.distribution.x__distribution__mutmut_189":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_189":
         "method='highs' is linprog's default",
-    "dynstiff.robot.distribution.x__distribution__mutmut_178":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_178":
         "1e300 written as 1e+300: the same float",
-    "dynstiff.robot.distribution.x__distribution__mutmut_20":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_20":
         "dtype=float dropped on t_max: integer limits give the same float tensions",
-    "dynstiff.robot.distribution.x__distribution__mutmut_99":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_99":
         "the warm active sets tried always (n = k, or warm=False): see mutmut_100; with "
         "warm=False the reference path then ends at the same unique minimiser",
-    "dynstiff.robot.distribution.x__distribution__mutmut_101":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_101":
         "the warm active sets tried when n = k too: see mutmut_100",
-    "dynstiff.robot.distribution.x__distribution__mutmut_109": _WARM,
-    "dynstiff.robot.distribution.x__distribution__mutmut_111": _WARM,
-    "dynstiff.robot.distribution.x__distribution__mutmut_118": _WARM,
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_109": _WARM,
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_111": _WARM,
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_118": _WARM,
     "dynstiff.robot.distribution.x__closest_in_box__mutmut_171":
         "the returned active set's sides flipped: they only seed the next iteration's "
         "distribution, whose start is used only when feasible and which ends at the unique "
@@ -597,9 +597,9 @@ EQUIVALENT.update({
         "tensions below 1 N, still far above their rounding; the same unique minimiser",
     "dynstiff.robot.distribution.x__closest_in_box__mutmut_173":
         "-2 instead of -1 for a lower side: only the sign of a side is used",
-    "dynstiff.robot.distribution.x__distribution__mutmut_9":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_9":
         "dtype=float dropped on t_min: integer limits give the same float tensions",
-    "dynstiff.robot.distribution.x__distribution__mutmut_63":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_63":
         "the all-free active set as floats instead of integers: only tested with np.any",
     "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_83":
         "closed_form_validity given the chord parameters: its tension argument is unused",
@@ -620,7 +620,7 @@ EQUIVALENT.update({
     "dynstiff.cable.catenary_solve.x__validate_ends__mutmut_27": _BOUNDARY,
     "dynstiff.robot.platform.x_lever_maps__mutmut_3": _ARMS_WRITTEN,
     "dynstiff.robot.platform.x_lever_maps__mutmut_5": _ARMS_WRITTEN,
-    "dynstiff.robot.distribution.x__distribution__mutmut_1": _WARM,
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_1": _WARM,
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_77":
         "never reached: the start's Newton stops early only on a zero segment force or a "
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
@@ -680,7 +680,7 @@ EQUIVALENT.update({
         "step room also computed for |p| between 1e-12 / scale and 1e-12 scale: a bound taken "
         "by such a rounding-level step is released by its multiplier, and the optimum of "
         "the strictly convex problem is unique",
-    "dynstiff.robot.distribution.x__distribution__mutmut_100":
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_100":
         "the warm active sets tried when n = k too: the free cables of an active set "
         "cannot balance the platform then (rank < k), so no start is found and the same "
         "error follows",

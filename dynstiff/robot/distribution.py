@@ -15,7 +15,7 @@ from dynstiff.errors import ConvergenceError, SlackCableError
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["tension_distribution"]
+__all__ = ["distribution_with_active_set", "tension_distribution"]
 
 
 def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: ArrayLike,
@@ -43,14 +43,15 @@ def tension_distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: 
     SlackCableError
         No admissible distribution exists (the message names the violated limit).
     """
-    return _distribution(W, w, np.asarray(t_min, dtype=float), np.asarray(t_max, dtype=float),
-                         t_ref)[0]
+    return distribution_with_active_set(W, w, np.asarray(t_min, dtype=float),
+                                        np.asarray(t_max, dtype=float), t_ref)[0]
 
 
-def _distribution(W: NDArray[np.float64], w: NDArray[np.float64], t_min: NDArray[np.float64],
-                  t_max: NDArray[np.float64], t_ref: NDArray[np.float64] | None = None,
-                  sides: NDArray[np.int64] | None = None,
-                  warm: bool = True) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+def distribution_with_active_set(
+        W: NDArray[np.float64], w: NDArray[np.float64], t_min: NDArray[np.float64],
+        t_max: NDArray[np.float64], t_ref: NDArray[np.float64] | None = None,
+        sides: NDArray[np.int64] | None = None,
+        warm: bool = True) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """:func:`tension_distribution` and the active set it ends with.
 
     ``sides`` (shape (n,), -1 / +1 for a tension held at its lower / upper limit, 0 free),

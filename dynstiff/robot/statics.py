@@ -23,7 +23,8 @@ from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
-from dynstiff.robot.distribution import _distribution, tension_distribution
+from dynstiff.robot.distribution import distribution_with_active_set as _distribution
+from dynstiff.robot.distribution import tension_distribution
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
 from dynstiff.robot.pose import Pose
