@@ -765,6 +765,14 @@ EQUIVALENT.update({
        "the C locale under PEP 538)" for n in (5, 8)},
     "dynstiff.io.table.x_read_table__mutmut_11":
         "encoding 'UTF-8' instead of 'utf-8': codec names are case-insensitive",
+    **{f"dynstiff.maps.store.x_fingerprint__mutmut_{n}":
+       "pickle's default protocol instead of protocol=4: the default is 4 on Python 3.8 to "
+       "3.13 (the pin keeps fingerprints when a later Python changes it)" for n in (4, 6)},
+    "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_5":
+        "the reasons also among the plain arrays ('REASON' never matches): overwritten on "
+        "the next line, as mutmut_4",
+    "dynstiff.maps.store.x_resumed__mutmut_10":
+        "the no-checkpoint save callback returns 0 instead of None: its value is not used",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",

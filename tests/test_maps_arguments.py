@@ -80,5 +80,7 @@ def test_the_size_is_counted_over_poses_orientations_and_values(robot):
     with pytest.raises(InvalidParameterError, match=r"^2 poses gives 2 poses, more than "
                                                     r"max_poses=1 "):
         call(robot, poses=[[0, 0, 1], [1, 0, 1]], max_poses=1)
+    with pytest.raises(InvalidParameterError, match=r"^1 poses x 2 values gives 2 poses"):
+        call(robot, poses=[[0, 0, 1]], parameter="EA", values=[1e5, 2e5], max_poses=1)
     call(robot, poses=[[0, 0, 1], [1, 0, 1]], parameter="EA", values=[1e5, 2e5, 3e5],
          max_poses=6)
