@@ -773,6 +773,24 @@ EQUIVALENT.update({
         "the next line, as mutmut_4",
     "dynstiff.maps.store.x_resumed__mutmut_10":
         "the no-checkpoint save callback returns 0 instead of None: its value is not used",
+    "dynstiff.maps.dataset.x_to_dataset__mutmut_14":
+        "the reasons joined by np.concatenate instead of np.array(dtype=str): lists of str "
+        "give the same text array",
+    "dynstiff.maps.dataset.x_to_dataset__mutmut_7":
+        "the version text of a package that is not installed: the tests run an installed "
+        "package, where version() answers",
+    "dynstiff.maps.dataset.x_to_dataset__mutmut_197":
+        "dtype=None for the check names: a list of str gives a text array anyway",
+    "dynstiff.maps.dataset.x_to_dataset__mutmut_328":
+        "dtype=None for the tension limits: a robot's limits are floats already",
+    **{f"dynstiff.maps.dataset.xǁWorkspaceAccessorǁto_frame__mutmut_{n}":
+       "the selected check kept as a scalar coordinate (drop not True): to_frame drops "
+       "every non-dimension coordinate before the table" for n in (50, 60, 63)},
+    **{f"dynstiff.maps.workspace.xǁ_Progressǁ__init____mutmut_{n}":
+       "tqdm's dynamic_ncols (the bar's width on a resized terminal): display only"
+       for n in (7, 13)},
+    "dynstiff.io.exchange.x_uff58_records__mutmut_90":
+        "id4 under another key: pyuff writes its default id4, 'NONE', the value given",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",
