@@ -135,3 +135,27 @@ def test_the_optimum_matches_a_brute_force_search(cogiro, position):
     assert np.linalg.norm(lam - cell) <= np.sqrt(2) * step or at_limit, (lam, cell)
     assert opt.gain > 1e-3
     assert opt.equilibrium.min_tensions.min() >= rob.tension_limits[0] - 1e-6
+
+
+def test_the_result_in_words_and_as_a_table(cogiro):
+    """The summary names the objective with its unit and what binds ("nothing" when
+    nothing does); the table gives each cable's default and optimal tensions; a max_iter
+    that is not an integer is refused by name."""
+    from dataclasses import replace
+    opt = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+    assert opt.binds == ("nothing: a smooth maximum (the objective's gradient vanishes)",)
+    text = repr(opt)
+    assert text.startswith(f"OptimalTensions(first_global_hz {opt.value:.5g} Hz, default "
+                           f"{opt.default_value:.5g} Hz, gain {opt.gain:+.3g} Hz; binds: "
+                           f"nothing: a smooth maximum")
+    assert repr(replace(opt, binds=())).endswith(f"binds: nothing; {opt.evaluations} "
+                                                 f"equilibria)")
+    df = opt.to_frame()
+    assert list(df.columns) == ["cable", "default tension [N]", "optimal tension [N]",
+                                "optimal least tension [N]", "optimal largest tension [N]"]
+    np.testing.assert_array_equal(df["optimal least tension [N]"],
+                                  opt.equilibrium.min_tensions)
+    np.testing.assert_array_equal(df["default tension [N]"], opt.default.tensions)
+    for bad in ("5", 0, True):
+        with pytest.raises(InvalidParameterError, match="^max_iter must be an integer >= 1"):
+            optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5], max_iter=bad)

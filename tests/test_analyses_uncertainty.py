@@ -92,3 +92,38 @@ def test_bad_requests_are_refused(cogiro):
         propagate_uncertainty(cogiro, uncertain={})
     with pytest.raises(InvalidParameterError, match="confidence"):
         design_checks(cogiro.robot, cogiro.pose, confidence=95)
+
+
+def test_a_stated_uncertainty_in_words():
+    assert Uncertain(0.1, "uniform", True).text() == "+-10 % (uniform)"
+    assert Uncertain(0.002, "normal", False).text() == "sigma 0.002 (normal)"
+    assert Uncertain(0.05).text() == "sigma 5 % (normal)"
+
+
+def test_refusals_in_their_own_words_and_counts_from_one(cogiro):
+    with pytest.raises(InvalidParameterError,
+                       match="^uncertain: a loss factor moves no undamped frequency$"):
+        propagate_uncertainty(cogiro, uncertain={"loss_factor": "10%"})
+    with pytest.raises(InvalidParameterError,
+                       match=r"^uncertain: give each parameter by its own name \(no "):
+        propagate_uncertainty(cogiro, uncertain={"EA_*": "10%"})
+    for name, bad in (("n_samples", 0), ("n_samples", "5"), ("chunk_size", 0),
+                      ("chunk_size", True)):
+        with pytest.raises(InvalidParameterError, match=f"^{name} must be an integer >= 1"):
+            propagate_uncertainty(cogiro, uncertain={"EA": "10%"}, **{name: bad})
+
+
+def test_the_uncertain_row_fields(cogiro):
+    """A row has the design checks' fields: unknown with its detail where the nominal pose
+    has no equilibrium, and the limit 1 - confidence."""
+    options = CheckOptions(forbidden_hz=(0.0, 1.5))
+    row, res = uncertain_row(cogiro.robot, [7.4, 5.2, 0.5, 0, 0, 0], options, {"EA": "10%"},
+                             n_samples=4, confidence=0.9)
+    assert res is None
+    assert row["verdict"] == "unknown" and row["passed"] is False
+    assert row["detail"].startswith("no nominal equilibrium or modes: ")
+    assert row["limit"] == pytest.approx(0.1) and row["check"] == UNCERTAIN_CHECK
+    row, res = uncertain_row(cogiro.robot, cogiro.pose, options, {"EA": "10%"}, n_samples=4)
+    assert set(row) == {"check", "value", "limit", "verdict", "passed", "detail"}
+    assert row["verdict"] == "pass" and row["passed"] is True
+    assert "first order 0.0%" in row["detail"] and "EA sigma 10 % (normal)" in row["detail"]

@@ -84,3 +84,17 @@ def test_the_size_is_counted_over_poses_orientations_and_values(robot):
         call(robot, poses=[[0, 0, 1]], parameter="EA", values=[1e5, 2e5], max_poses=1)
     call(robot, poses=[[0, 0, 1], [1, 0, 1]], parameter="EA", values=[1e5, 2e5, 3e5],
          max_poses=6)
+
+
+def test_limits_of_the_grid_and_of_the_modes(robot):
+    from dynstiff.maps.arguments import box_grid
+    assert len(box_grid((0, 9999, 0, 0, 0, 0), 1.0)[0]) == 10_000
+    with pytest.raises(InvalidParameterError, match=r"gives 10001 points along one axis of "
+                                                    r"box \[0.0, 10000.0, 0.0"):
+        box_grid((0, 10000, 0, 0, 0, 0), 1.0)
+    call(robot, poses=[[0, 0, 1]], n_modes=5, max_modes=5)
+    with pytest.raises(InvalidParameterError, match="^n_modes must be at most max_modes=5"):
+        call(robot, poses=[[0, 0, 1]], n_modes=6, max_modes=5)
+    with pytest.raises(InvalidParameterError, match=r"^give exactly one of poses= \(a list of "
+                                                    r"poses\) or box="):
+        call(robot)

@@ -124,3 +124,13 @@ def test_the_estimate_changes_unit_at_two_minutes_and_two_hours(seconds, span):
         f"sample)")
     assert "on 2 workers" in estimate_text(1000, seconds / 500, 1, workers=2)
     assert " on " not in estimate_text(1000, seconds / 1000, 1, workers=1)
+
+
+def test_memory_beyond_half_the_machine_is_refused(monkeypatch):
+    from dynstiff.maps import guards
+    per = map_bytes(1, 8, 20, 7)
+    monkeypatch.setattr(guards, "_physical_memory", lambda: 1000 * per)
+    assert check_size(500, 8, 20, 7, max_poses=None) == 500 * per
+    with pytest.raises(InvalidParameterError, match="501 poses, which need about"):
+        check_size(501, 8, 20, 7, max_poses=None)
+    assert estimate_text(10, 3600.0, 1).split("about ")[2].startswith("10.0 h")
