@@ -975,6 +975,9 @@ def main(argv):
                            + todo[k:k + 2000], check=False,
                            env=dict(os.environ, HYPOTHESIS_PROFILE="mutation"))
         res = _results()
+        # a module edited since the sample was drawn has new mutants: the names gone are
+        # left out (the next run samples the new ones)
+        names = [n for n in names if n in res]
     wall = time.perf_counter() - t0
     took = _durations()
     status = collections.defaultdict(collections.Counter)
