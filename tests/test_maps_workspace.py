@@ -125,6 +125,25 @@ def test_a_small_box_map_is_the_design_checks_at_every_pose(robot, band):
             assert np.isnan(float(p["band_margin"])) and np.isnan(margin)
         else:
             assert float(p["band_margin"]) == pytest.approx(margin, rel=1e-9, abs=1e-12)
+            # the definition (theory.md §13.2), written out: above f / f_hi - 1, below
+            # 1 - f / f_lo (none below a band from 0 Hz), the least over the held modes
+            md = res.platform.modes
+            f = md.freq_hz[md.platform_share >= 0.05]
+            lo, hi = band
+            below = 1 - f / lo if lo > 0 else np.full(f.size, -np.inf)
+            assert margin == pytest.approx(np.min(np.maximum(f / hi - 1, below)), rel=1e-12)
+        sag = p["sag_ratio"].values
+        assert np.all(np.isfinite(sag)) and np.all(sag > 0)
+        local = np.asarray(res.platform.modes.kind) == "local"
+        gap = float(p["proximity_gap"])       # stored within proximity_rtol, else NaN
+        if res.platform.complete and local.any():
+            f = res.platform.modes.freq_hz
+            fp = f[res.platform.index]
+            expect = np.min(np.abs(f[local][None] - fp[:, None]) / fp[:, None])
+            if expect <= 0.03:
+                assert gap == pytest.approx(expect, rel=1e-9)
+            else:
+                assert np.isnan(gap)
 
 
 def test_grid_with_a_cable_parameter_and_chunking_that_does_not_matter(robot):
@@ -320,3 +339,17 @@ def test_the_uncertain_row_of_a_map_is_the_design_checks_at_every_pose(robot):
     assert verdicts == [("fail", "pass"), ("pass", "pass"), ("fail", "pass")]
     frame = m.dynstiff.to_frame()
     assert {"uncertain_probability", f"check: {UNCERTAIN_CHECK}"} <= set(frame.columns)
+
+
+def test_the_maps_settings_are_its_attributes(robot):
+    m = workspace(robot, [[0.0, 0.0, 1.0]], n_modes=2, band_hz=BAND)
+    a = m.attrs
+    for key, value in (("n_modes", 2), ("max_sag_ratio", 0.02), ("participation", 0.05),
+                       ("frf_limit", 10.0), ("max_modes", 2000), ("rung", "dsm"),
+                       ("n_samples", 0), ("model_rtol", 0.01)):
+        assert a[key] == value, key
+    np.testing.assert_array_equal(a["band_hz"], BAND)
+    from dynstiff.analyses.verdicts import equilibrium_sag_ratios
+    eq = robot.equilibrium(pose=[0.0, 0.0, 1.0])
+    np.testing.assert_allclose(m["sag_ratio"].values[0], equilibrium_sag_ratios(robot, eq),
+                               rtol=1e-9)

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff.analyses.checks import check_options, damped_model, modal_model_options
-from dynstiff.analyses.optimal_tensions import TENSIONS, tension_equilibrium
+from dynstiff.analyses.optimal_tensions import TENSIONS, band_margin, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.uncertainty import UNCERTAIN_CHECK, uncertain_row
@@ -49,17 +49,11 @@ __all__ = ["CHECKS", "box_grid", "evaluate_chunk", "workspace"]
 def _band_margin(pm, options):
     """Smallest relative distance outside the forbidden band of the modes the margin check
     holds (platform share >= participation) [-], negative inside: f / f_hi - 1 above the
-    band, 1 - f / f_lo below it (docs/theory.md §13.2); NaN without a band or modes."""
-    if options.forbidden_hz is None or pm.modes is None:
+    band, 1 - f / f_lo below it (docs/theory.md §13.2), as
+    :func:`dynstiff.analyses.optimal_tensions.band_margin`; NaN without a band or modes."""
+    if options.forbidden_hz is None:
         return np.nan
-    m = pm.modes
-    f = np.asarray(m.freq_hz)[m.platform_share >= options.participation]
-    if not f.size:
-        return np.nan
-    lo, hi = options.forbidden_hz
-    above = f / hi - 1.0
-    below = 1.0 - f / lo if lo > 0 else np.full(f.shape, -np.inf)
-    return float(np.min(np.maximum(above, below)))
+    return band_margin(pm, options.forbidden_hz, options.participation)
 
 
 def _proximity_gap(pm):
