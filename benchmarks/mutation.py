@@ -789,6 +789,21 @@ EQUIVALENT.update({
     **{f"dynstiff.maps.workspace.xǁ_Progressǁ__init____mutmut_{n}":
        "tqdm's dynamic_ncols (the bar's width on a resized terminal): display only"
        for n in (7, 13)},
+    "dynstiff.maps.workspace.x_evaluate_chunk__mutmut_163":
+        "the sag ratios not handed to statics_rows, which then computes the same ones",
+    "dynstiff.maps.workspace.x_evaluate_chunk__mutmut_164":
+        "'' instead of None for the platform modes before the model: read only where the "
+        "model was built (which sets them)",
+    "dynstiff.maps.workspace.x_evaluate_chunk__mutmut_171":
+        "the robot-bound warning filtered by its message alone (category dropped): only "
+        "that ClosedFormWarning has the message",
+    "dynstiff.maps.workspace.x_evaluate_chunk__mutmut_203":
+        "no options for the rows of a failed model: statics_rows reads them only with an "
+        "equilibrium",
+    "dynstiff.maps.workspace.x_workspace__mutmut_203":
+        "the progress bar not shown: display only (stderr), the map is the same",
+    "dynstiff.maps.workspace.x_workspace__mutmut_208":
+        "the bar advanced by one instead of the saved poses on a resume: display only",
     "dynstiff.io.exchange.x_uff58_records__mutmut_90":
         "id4 under another key: pyuff writes its default id4, 'NONE', the value given",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":

@@ -60,6 +60,7 @@ def test_the_coordinates_say_what_they_are(wmap):
     the dynamic flag described; the title and provenance from the robot and the package."""
     from importlib.metadata import version
     c = wmap.coords
+    assert {"pose", "mode", "cable", "check", "component", "parameter"} <= set(wmap.indexes)
     assert c["pose"].dims == ("pose",) and c["pose"].values.tolist() == [0, 1, 2]
     assert c["position"].dims == c["rotation"].dims == ("pose", "component")
     assert c["position"].attrs == {"units": "m"}

@@ -84,8 +84,9 @@ def test_an_interrupted_run_resumes_to_the_uninterrupted_map(robot, whole, tmp_p
 
 def test_an_interrupt_without_a_checkpoint_says_nothing_is_saved(robot, monkeypatch):
     _interrupt_after(monkeypatch, 1)
-    with pytest.raises(Interrupted, match="0 of 12 poses not saved .*checkpoint="):
+    with pytest.raises(Interrupted, match="0 of 12 poses not saved .*checkpoint=") as stop:
         wsmod.workspace(robot, **KW)
+    assert (stop.value.saved, stop.value.total) == (0, 12)
     with pytest.raises(ds.InvalidParameterError, match=r"resume=True needs checkpoint= \(the "
                                                        r"folder of the saved chunks\)"):
         wsmod.workspace(robot, resume=True, **KW)

@@ -353,3 +353,10 @@ def test_the_maps_settings_are_its_attributes(robot):
     eq = robot.equilibrium(pose=[0.0, 0.0, 1.0])
     np.testing.assert_allclose(m["sag_ratio"].values[0], equilibrium_sag_ratios(robot, eq),
                                rtol=1e-9)
+
+
+def test_the_estimate_is_one_line_on_stderr(robot, capsys):
+    workspace(robot, [[0.0, 0.0, 1.0], [0.5, 0.0, 1.0]], n_modes=2, progress=True)
+    err = capsys.readouterr().err
+    line = err.split("\n")[0]
+    assert line.startswith("workspace: 2 poses, about ") and line.endswith("in a sample)")
