@@ -346,9 +346,11 @@ def test_the_maps_settings_are_its_attributes(robot):
     a = m.attrs
     for key, value in (("n_modes", 2), ("max_sag_ratio", 0.02), ("participation", 0.05),
                        ("frf_limit", 10.0), ("max_modes", 2000), ("rung", "dsm"),
-                       ("n_samples", 0), ("model_rtol", 0.01)):
+                       ("n_samples", 0), ("model_rtol", 0.01), ("margin", 0.05),
+                       ("proximity_rtol", 0.03), ("seed", 0)):
         assert a[key] == value, key
     np.testing.assert_array_equal(a["band_hz"], BAND)
+    np.testing.assert_array_equal(a["model_band_hz"], [0.0, 20.0])
     from dynstiff.analyses.verdicts import equilibrium_sag_ratios
     eq = robot.equilibrium(pose=[0.0, 0.0, 1.0])
     np.testing.assert_allclose(m["sag_ratio"].values[0], equilibrium_sag_ratios(robot, eq),
