@@ -37,29 +37,29 @@ spent up to half an hour on one hanging mutant), a timeout counting as a detecti
 Measured (2 cores shared, mutmut 3.8.1, 1 child per run, ``--sample 100``, seed 20261202;
 the last judgement of each sampled mutant, after the tests added for the survivors; a
 module edited since is resampled from its new mutants):
-=====================================  ======  ========  ==========  =========  ======================
-module (mutants in all)                killed  survived  equivalent  unchecked  score [95 % interval]
-=====================================  ======  ========  ==========  =========  ======================
-analyses.verdicts (442)                99      0         1           0          100 % [96.3, 100]
-analyses.platform_modes (297)          93      1         5           1          98.9 % [94.2, 99.8]
-analyses.checks (413)                  98      0         2           0          100 % [96.2, 100]
-io.files (53, all)                     52      0         1           0          100 % [93.1, 100]
-analyses.measured (pairing, 576)       97      0         3           0          100 % [96.2, 100]
-analyses.calibrate (836)               98      0         2           0          100 % [96.2, 100]
-analyses.calibration_checks (120)      96      0         4           0          100 % [96.2, 100]
-analyses.calibration_result (226)      99      0         1           0          100 % [96.3, 100]
-analyses.measured_frf (391)            94      0         6           0          100 % [96.1, 100]
-io.exchange (401)                      94      0         6           0          100 % [96.1, 100]
-io.table (124)                         95      0         5           0          100 % [96.1, 100]
-maps.store (137)                       92      0         8           0          100 % [96.0, 100]
-maps.dataset (532)                     91      2         7           0          97.8 % [92.5, 99.4]
-maps.guards (210)                      98      2         0           0          98.0 % [93.0, 99.4] *
-maps.arguments (362)                   95      5         0           0          95.0 % [88.8, 97.8] *
-maps.workspace (780)                   82      16        1           1          83.7 % [75.1, 89.7] *
-analyses.optimal_tensions (849)        76      24        0           0          76.0 % [66.8, 83.3] *
-analyses.uncertainty (689)             66      34        0           0          66.0 % [56.3, 74.5] *
-cli.options (382)                      42      58        0           0          42.0 % [32.8, 51.8] *
-=====================================  ======  ========  ==========  =========  ======================
+==============================  ======  ========  ==========  =========  ==================
+module (mutants in all)             killed  survived  equivalent  unchecked  score [95 % int.]
+==============================  ======  ========  ==========  =========  ==================
+analyses.verdicts (442)             99      0         1           0          100 % [96.3, 100]
+analyses.platform_modes (297)       93      1         5           1          98.9 % [94.2, 99.8]
+analyses.checks (413)               98      0         2           0          100 % [96.2, 100]
+io.files (53, all)                  52      0         1           0          100 % [93.1, 100]
+analyses.measured (pairing, 576)    97      0         3           0          100 % [96.2, 100]
+analyses.calibrate (836)            98      0         2           0          100 % [96.2, 100]
+analyses.calibration_checks (120)   96      0         4           0          100 % [96.2, 100]
+analyses.calibration_result (226)   99      0         1           0          100 % [96.3, 100]
+analyses.measured_frf (391)         94      0         6           0          100 % [96.1, 100]
+io.exchange (401)                   94      0         6           0          100 % [96.1, 100]
+io.table (124)                      95      0         5           0          100 % [96.1, 100]
+maps.store (137)                    92      0         8           0          100 % [96.0, 100]
+maps.dataset (532)                  91      2         7           0          97.8 % [92.5, 99.4]
+maps.guards (210)                   98      2         0           0          98.0 % [93.0, 99.4] *
+maps.arguments (362)                95      5         0           0          95.0 % [88.8, 97.8] *
+maps.workspace (780)                82      16        1           1          83.7 % [75.1, 89.7] *
+analyses.optimal_tensions (849)     76      24        0           0          76.0 % [66.8, 83.3] *
+analyses.uncertainty (689)          66      34        0           0          66.0 % [56.3, 74.5] *
+cli.options (382)                   42      58        0           0          42.0 % [32.8, 51.8] *
+==============================  ======  ========  ==========  =========  ==================
 
   * the last judgement came before tests were added for part of these survivors, and was
   not repeated: maps.guards and maps.arguments (their samples were redrawn after the
