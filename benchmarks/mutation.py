@@ -37,9 +37,9 @@ spent up to half an hour on one hanging mutant), a timeout counting as a detecti
 Measured (2 cores shared, mutmut 3.8.1, 1 child per run, ``--sample 100``, seed 20261202;
 the last judgement of each sampled mutant, after the tests added for the survivors; a
 module edited since is resampled from its new mutants):
-==============================  ======  ========  ==========  =========  ==================
+==================================  ======  ========  ==========  =========  ======================
 module (mutants in all)             killed  survived  equivalent  unchecked  score [95 % int.]
-==============================  ======  ========  ==========  =========  ==================
+==================================  ======  ========  ==========  =========  ======================
 analyses.verdicts (442)             99      0         1           0          100 % [96.3, 100]
 analyses.platform_modes (297)       93      1         5           1          98.9 % [94.2, 99.8]
 analyses.checks (413)               98      0         2           0          100 % [96.2, 100]
@@ -59,7 +59,7 @@ maps.workspace (780)                82      16        1           1          83.
 analyses.optimal_tensions (849)     76      24        0           0          76.0 % [66.8, 83.3] *
 analyses.uncertainty (689)          66      34        0           0          66.0 % [56.3, 74.5] *
 cli.options (382)                   42      58        0           0          42.0 % [32.8, 51.8] *
-==============================  ======  ========  ==========  =========  ==================
+==================================  ======  ========  ==========  =========  ======================
 
   * the last judgement came before tests were added for part of these survivors, and was
   not repeated: maps.guards and maps.arguments (their samples were redrawn after the
