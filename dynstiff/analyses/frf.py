@@ -179,11 +179,10 @@ def frf(model: PlatformModel, omega: ArrayLike, inputs: str | Sequence[str] | No
     # of it K has entries ~1e16 next to ~1e3 and its LU loses ~13 digits (1e-3 in H at a
     # CoGiRo cable pole): there H is the mean of its values at omega (1 -+ 1e-9), which
     # cancels the O(1/K) term antisymmetric about the pole (its error is O(1e-9)). Only
-    # frequencies where K is 1e6 times its regular size are examined (omega = 0, the static
-    # stiffness, is no cable's pole).
+    # frequencies where K is 1e6 times its regular size are examined (kmax > 1e6 regular
+    # implies kmax > 1e6 inertia; omega = 0, the static stiffness, is no cable's pole).
     inertia = omega**2 * np.abs(model.platform_mass).max()
-    cand = np.flatnonzero((kmax > 1e6 * inertia) & (omega != 0))  # (kmax > 1e6 regular
-    #                                                               implies the first)
+    cand = np.flatnonzero((kmax > 1e6 * inertia) & (omega != 0))
     if cand.size:
         regular = np.abs(model.massless_stiffness()).max() + inertia[cand]
         cand = cand[kmax[cand] > 1e6 * regular]

@@ -36,7 +36,6 @@ from dynstiff.analyses.sensitivity_rungs import exact_fields, forms
 from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
 from dynstiff.models.base import require_model
-from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.dsm_compiled import stiffness_and_count
 
 if TYPE_CHECKING:
@@ -337,13 +336,10 @@ def _null_vectors(
     X, moving = [], np.zeros(len(f), bool)
     ends = np.array([[g[0], g[-1]] for g in groups], dtype=int).reshape(-1, 2)
     w_ends = (w[ends] * np.array([1 - 1e-9, 1 + 1e-9])).ravel()
-    if type(m) is FrequencyModel and not m.damped:
-        # K at the roots and the cable counts beside them from one compiled call
-        K, J0 = stiffness_and_count(m, np.concatenate([w[[g[0] for g in groups]], w_ends]))
-        K, J0 = K[:len(groups)], J0[len(groups):].reshape(-1, 2)
-    else:
-        K = m.dynamic_stiffness(w[[g[0] for g in groups]]) if len(f) else np.zeros((0,))
-        J0 = m.cable_mode_count(w_ends).reshape(-1, 2)
+    # K at the roots and the cable counts beside them, from one call
+    K, J0 = (stiffness_and_count(m, np.concatenate([w[[g[0] for g in groups]], w_ends]))
+             if len(f) else (np.zeros((0,)), np.zeros((0,), dtype=int)))
+    K, J0 = K[:len(groups)], J0[len(groups):].reshape(-1, 2)
     for j, g in enumerate(groups):
         Kk = np.real(K[j])
         x = np.zeros((6, len(g)))

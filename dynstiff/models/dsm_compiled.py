@@ -67,17 +67,20 @@ def damped_compiled_arguments(model: FrequencyModel) -> tuple[ArrayLike, ...] | 
 
 def stiffness_and_count(model: FrequencyModel, omega: NDArray[np.float64],
                         ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """K(omega) and the cable count J0(omega) of an undamped closed-form model at real omega
-    [rad/s], as ``FrequencyModel.dynamic_stiffness_and_count`` (which it is without numba,
-    and for any other model): one call of the compiled kernel
+    """K(omega) and the cable count J0(omega) of an undamped model at real omega [rad/s]:
+    for the closed form one call of the compiled kernel
     :func:`dynstiff.compiled.dsm.dsm_stiffness`, whose entries agree with the numpy path's
-    to tens of eps of the largest."""
+    to tens of eps of the largest; without numba, or for another model, the model's
+    ``dynamic_stiffness_and_count`` where it has one, else ``dynamic_stiffness`` and
+    ``cable_mode_count``."""
     from dynstiff import compiled
     from dynstiff.cable.psi import check_frequency_range
     from dynstiff.models.dsm import FrequencyModel
     fast = compiled.load("dsm")
     if fast is None or type(model) is not FrequencyModel or model.damped:
-        return model.dynamic_stiffness_and_count(omega)
+        if hasattr(model, "dynamic_stiffness_and_count"):
+            return model.dynamic_stiffness_and_count(omega)
+        return model.dynamic_stiffness(omega), model.cable_mode_count(omega)
     omega = np.ascontiguousarray(omega, dtype=float)
     check_frequency_range(model.stacked_params, omega)
     model.guard_band(omega)
