@@ -314,6 +314,37 @@ def test_max_frequency_tensions_map_the_optimal_distribution(robot):
         workspace(robot, poses, tensions="optimal")
 
 
+def test_a_warm_start_that_fails_is_retried_cold_under_the_optimal_tensions(robot,
+                                                                             monkeypatch):
+    """Under the frequency-optimal tensions a pose whose warm start (the last feasible
+    pose's equilibrium) fails is solved again from no start, and the map equals the one
+    with every pose started cold (chunks of one pose); under the default tensions the
+    failure is the pose's (their statics retry cold themselves)."""
+    import dynstiff.maps.workspace as ws
+    from dynstiff.errors import ConvergenceError
+    real, starts = ws.tension_equilibrium, []
+
+    def warm_fails(robot, pose, tensions, start, *args, **kw):
+        starts.append(start is not None)
+        if start is not None:
+            raise ConvergenceError("planted: the warm start fails")
+        return real(robot, pose, tensions, start, *args, **kw)
+
+    poses = [[4.0, -2.5, 1.0], [3.8, -2.5, 1.0]]
+    cold = workspace(robot, poses, n_modes=4, tensions="max-frequency", chunk_size=1)
+    monkeypatch.setattr(ws, "tension_equilibrium", warm_fails)
+    opt = workspace(robot, poses, n_modes=4, tensions="max-frequency", chunk_size=2)
+    assert starts == [False, True, False]
+    assert opt["feasible"].values.all()
+    for k in ("tension", "freq", "first_platform_hz", "passed"):
+        np.testing.assert_array_equal(opt[k].values, cold[k].values, err_msg=k)
+    starts.clear()
+    base = workspace(robot, poses, n_modes=4, chunk_size=2)
+    assert starts == [False, True]
+    assert list(base["feasible"].values) == [True, False]
+    assert "planted: the warm start fails" in str(base["reason"].values[1])
+
+
 def test_the_uncertain_row_of_a_map_is_the_design_checks_at_every_pose(robot):
     """The platform mass known to 10 %: at each pose the map's probability, margin at 95 %
     and verdict are those of design_checks with the same uncertainties, sample and seed
