@@ -36,3 +36,20 @@ def test_moved_composes_rotations_in_the_base_frame():
     x axis to the base z axis."""
     p = ds.Pose([0, 0, 0], [0, 0, np.pi / 2]).moved(np.array([0, 0, 0, np.pi / 2, 0, 0]))
     np.testing.assert_allclose(p.matrix @ [1, 0, 0], [0, 0, 1], atol=1e-12)
+
+
+def test_a_pose_holds_copies_and_computes_its_rotation_once():
+    """The pose copies what it is given (the caller's arrays stay the caller's); its
+    rotation matrix is computed once and handed out as a new array each time, and is
+    computed again when the rotation vector is changed in place."""
+    from dynstiff.robot.platform import rotation_matrix
+    x, r = np.array([1.0, 2.0, 3.0]), np.array([0.1, -0.2, 0.3])
+    p = ds.Pose(x, r)
+    x[0] = r[0] = 9.0                                     # the caller's arrays
+    assert p.position[0] == 1.0 and p.rotation[0] == 0.1
+    R = p.matrix
+    np.testing.assert_array_equal(R, rotation_matrix(np.array([0.1, -0.2, 0.3])))
+    R[:] = 0.0                                            # the caller's copy
+    np.testing.assert_array_equal(p.matrix, rotation_matrix(np.array([0.1, -0.2, 0.3])))
+    p.rotation[2] = -0.4
+    np.testing.assert_array_equal(p.matrix, rotation_matrix(np.array([0.1, -0.2, -0.4])))

@@ -29,7 +29,8 @@ __all__ = ["Pose", "as_pose"]
 
 @dataclass(frozen=True, eq=False)
 class Pose:
-    """Platform pose: position [m] of P and rotation vector [rad], both (3,).
+    """Platform pose: position [m] of P and rotation vector [rad], both (3,), copies of
+    what is given.
 
     Examples
     --------
@@ -45,7 +46,7 @@ class Pose:
     def __post_init__(self) -> None:
         for name in ("position", "rotation"):
             try:
-                v = np.asarray(getattr(self, name), dtype=float)
+                v = np.array(getattr(self, name), dtype=float)
             except (TypeError, ValueError):
                 v = np.zeros(0)
             if v.shape != (3,) or not np.all(np.isfinite(v)) or \
@@ -71,8 +72,13 @@ class Pose:
 
     @property
     def matrix(self) -> NDArray[np.float64]:
-        """Rotation matrix R_p, shape (3, 3)."""
-        return rotation_matrix(self.rotation)
+        """Rotation matrix R_p, shape (3, 3) (a new array; computed again only when the
+        rotation vector has changed)."""
+        key = self.rotation.tobytes()
+        cached = self.__dict__.get("_matrix")
+        if cached is None or cached[0] != key:
+            cached = self.__dict__["_matrix"] = (key, rotation_matrix(self.rotation))
+        return cached[1].copy()
 
     def as_vector(self) -> NDArray[np.float64]:
         """(x, y, z, rx, ry, rz), shape (6,)."""
