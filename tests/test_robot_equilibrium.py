@@ -53,3 +53,23 @@ def test_rich_display_holds_the_pose_and_the_tensions(cogiro_eq):
     for t in (*cogiro_eq.tensions, *cogiro_eq.anchor_tensions):
         assert f"{t:.5g}" in text
     assert str(np.round(cogiro_eq.pose.position, 4).tolist()) in text
+
+
+def test_platform_stiffness_is_minus_the_wrench_derivative_off_equilibrium(cogiro_eq):
+    """At fixed unstretched lengths and a pose off equilibrium (turned, moved: K_geo is not
+    symmetric there), K = -dW/dx column by column, x = (dp, dtheta) with dtheta in the base
+    frame (theory.md §4), against central differences of the wrench (step 1e-6)."""
+    robot = cogiro_eq.robot
+    L0 = cogiro_eq.unstretched_lengths
+    pose = ds.Pose(cogiro_eq.pose.position + [0.02, -0.01, 0.01], [0.02, -0.03, 0.05])
+    K = robot.platform_stiffness(pose, robot.cable_states(pose, L0))
+    h = 1e-6
+    fd = np.empty((6, 6))
+    for k in range(6):
+        dx = np.zeros(6)
+        dx[k] = h
+        wp, wm = (robot.wrench(p, robot.cable_states(p, L0))
+                  for p in (pose.moved(dx), pose.moved(-dx)))
+        fd[:, k] = -(wp - wm) / (2 * h)
+    assert np.abs(K[3:, 3:] - K[3:, 3:].T).max() > 1.0          # off equilibrium
+    np.testing.assert_allclose(K, fd, rtol=0, atol=2e-5 * np.abs(K).max())

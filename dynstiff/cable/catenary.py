@@ -198,10 +198,12 @@ class CatenaryState:
         """Horizontal tension component H [N]."""
         return self.H
 
-    @property
+    @cached_property
     def force_on_end(self) -> NDArray[np.float64]:
-        """Force of the cable on the end B [N], shape (3,): -(H e_h + Vb e_z)."""
-        return -(self.H * self.horizontal_direction + self.Vb * _EZ)
+        """Force of the cable on the end B [N], shape (3,), read-only: -(H e_h + Vb e_z)."""
+        f = -(self.H * self.horizontal_direction + self.Vb * _EZ)
+        f.setflags(write=False)
+        return f
 
     @property
     def force_on_anchor(self) -> NDArray[np.float64]:

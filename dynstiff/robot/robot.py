@@ -28,7 +28,7 @@ from dynstiff.io.caspr import read_caspr
 from dynstiff.params import Cable
 from dynstiff.robot.equilibrium import Equilibrium
 from dynstiff.robot.forward_statics import forward_statics
-from dynstiff.robot.platform import Platform, lever_map, skew
+from dynstiff.robot.platform import Platform, lever_map
 from dynstiff.robot.pose import Pose, as_pose
 from dynstiff.robot.statics import inverse_statics
 
@@ -314,12 +314,11 @@ def _refuse_duplicate_cables(A: NDArray[np.float64], b: NDArray[np.float64]) -> 
 def geometric_stiffness(
         robot: Robot, pose: Pose, states: list[CatenaryState] | tuple[CatenaryState, ...],
 ) -> NDArray[np.float64]:
-    """Rotational block of K_geo [N m/rad], shape (3, 3): -sum [f_i]x [r_i]x - [m g]x [r_G]x."""
+    """Rotational block of K_geo [N m/rad], shape (3, 3): -sum [f_i]x [r_i]x - [m g]x [r_G]x,
+    each product written as [a]x [b]x = b a^T - (a . b) I, all cables at once."""
     pose = as_pose(pose)
     _, r = robot.attachment_points(pose)
-    Kg = np.zeros((3, 3))
-    for ri, s in zip(r, states):
-        Kg -= skew(s.force_on_end) @ skew(ri)
+    f = np.array([s.force_on_end for s in states]).reshape(-1, 3)
     rG = pose.matrix @ robot.platform.center_of_mass
-    Kg -= skew(robot.platform.mass * robot.gravity_vector) @ skew(rG)
-    return Kg
+    mg = robot.platform.mass * robot.gravity_vector
+    return (np.einsum("ij,ij", f, r) + mg @ rG) * np.eye(3) - r.T @ f - np.outer(rG, mg)
