@@ -328,3 +328,29 @@ def test_cable_kinetic_energy_is_the_integral_of_its_field(state300):
     assert cable_kinetic_energy(p, omega, d, False) == pytest.approx(ref, rel=1e-10)
     assert cable_kinetic_energy(p, omega, d, True) == pytest.approx(
         ref + p.m * p.L / 3 * d[0] ** 2, rel=1e-10)
+
+
+def test_static_block_coefficients_are_the_kernel_at_zero_frequency():
+    """Written out at psi = 0, the end-block coefficients equal the general kernel at
+    omega = 0 to the last bit, for one cable and a stack, undamped, hysteretic (complex EA)
+    and viscous, with and without the chordwise inertia; k_uu is Irvine's static chord
+    stiffness K0 / (1 + lambda^2 / 12) and k_vv = k_ww = T/L (theory.md §3.5); a planted
+    sign in lambda^2's term would move k_uu by 2 lambda^2 / 12 relative."""
+    from dynstiff.cable.chord import stack_parameters
+    from dynstiff.cable.dsm import end_block_coefficients, static_block_coefficients
+    for cab in (ds.Cable(0.064, 139486.7), ds.Cable(0.064, 139486.7, loss_factor=0.05),
+                ds.Cable(0.064, 139486.7, viscous_damping=0.3)):
+        ps = [chord_parameters(ds.solve_catenary((0, 0, 0), B, L0, cab))
+              for B, L0 in (((8.0, 3.0, -5.0), 9.9), ((4.0, -2.0, 6.0), 7.6))]
+        for p in (*ps, stack_parameters(ps)):
+            got = static_block_coefficients(p)
+            for chordwise in (True, False):
+                ref = end_block_coefficients(p, np.zeros(1), chordwise)[0]
+                assert got.shape == ref.shape
+                np.testing.assert_array_equal(got, ref)
+            np.testing.assert_allclose(got[..., 0], p.K0 / (1 + p.lambda_sq_complex / 12),
+                                       rtol=1e-14)
+            np.testing.assert_allclose(got[..., 3], p.T / p.L, rtol=1e-14)
+            np.testing.assert_array_equal(got[..., 4], p.T / p.L)
+            assert np.all(got[..., 1:3] == 0)
+    assert np.all(np.real(ps[0].lambda_sq_complex) > 0.1)    # lambda^2 matters here

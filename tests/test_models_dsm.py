@@ -148,8 +148,9 @@ def test_the_guard_warns_on_slack_static_and_local_errors_and_is_silent_on_cogir
 
 def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):
     """The guard's static check (all cables at once) against the sum written cable by
-    cable with each state's own end stiffness: error and cable equal on CoGiRo and on a
-    heavy sagging three-cable robot where it warns."""
+    cable with each state's own end stiffness and the general kernel at omega = 0: error
+    and cable equal on CoGiRo and on a heavy sagging three-cable robot where it warns, with
+    and without damping."""
     from scipy.linalg import eigh
 
     from dynstiff.robot.platform import lever_map
@@ -175,8 +176,9 @@ def test_static_error_equals_the_cable_by_cable_sum(cogiro_eq):
                    ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
     heavy = rob.equilibrium(pose=[0.3, -0.2, 1.0])
     slow = _three_cable_point_mass(g=0.3)          # global modes below 1 rad/s
-    for eq in (cogiro_eq, heavy, slow):
-        m = ds.FrequencyModel(eq, guard_rtol=None)
+    for eq, kw in ((cogiro_eq, {}), (heavy, {}), (slow, {}),
+                   (cogiro_eq, {"cable_loss_factor": 0.02}), (heavy, {"damping": False})):
+        m = ds.FrequencyModel(eq, guard_rtol=None, **kw)
         err, i = m.static_error()
         ref, i_ref = by_cable(m)
         assert i == i_ref

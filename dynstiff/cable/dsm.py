@@ -53,7 +53,7 @@ from dynstiff._validate import omega_array
 from dynstiff.cable.chord import ChordParameters, chord_parameters, stack_parameters
 from dynstiff.cable.exact import ExactCable
 from dynstiff.cable.guard import DEFAULT_GUARD_RTOL, guard_cable
-from dynstiff.cable.psi import check_frequency_range, mode_count_psi, psi_functions
+from dynstiff.cable.psi import PSI_SERIES, check_frequency_range, mode_count_psi, psi_functions
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -67,7 +67,8 @@ __all__ = [
     "ChordParameters", "chord_parameters", "stack_parameters", "local_entries",
     "end_block_coefficients", "cable_field", "cable_kinetic_energy", "local_end_stiffness",
     "local_two_end_stiffness", "cable_dynamic_stiffness", "DEFAULT_CHORDWISE_INERTIA",
-    "dyad_basis", "block_coefficients", "end_block_coefficients_and_count"
+    "dyad_basis", "block_coefficients", "end_block_coefficients_and_count",
+    "static_block_coefficients"
 ]
 
 #: Default of ``chordwise_inertia`` (see validation/chordwise_inertia.py for the evidence).
@@ -304,6 +305,46 @@ def end_block_coefficients(params: ChordParameters, omega: NDArray[Any],
     """
     om = omega if np.ndim(params.L) == 0 else omega[:, None]
     return _end_block(local_entries(params, om, chordwise_inertia), axis=-1)
+
+
+def static_block_coefficients(params: ChordParameters) -> NDArray[Any]:
+    """:func:`end_block_coefficients` at omega = 0, written out: psi = 0, where
+    :func:`psi_functions` give c = cos 2psi = s/psi = 1 and E, P~ their series' constant
+    terms (-1/3 and 1/3), so k_uu = 4 K0 / (4 - lambda^2 E(0)) (Irvine's static chord
+    stiffness, K0 / (1 + lambda^2 / 12)), k_uv = 0, k_vv = (T/L) (4 + lambda^2 P~(0)) /
+    (4 - lambda^2 E(0)) = T/L and the out-of-plane T/L (theory.md §3.5); the chordwise mass
+    is zero. The same operations as the general path at psi = 0, so the same numbers.
+
+    Parameters
+    ----------
+    params : ChordParameters
+        One cable, or several stacked by :func:`stack_parameters`.
+
+    Returns
+    -------
+    ndarray, shape (5,) or (n_cables, 5) [N/m]
+        (uu, uv, vu, vv, ww); complex where EA is.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> p = chord_parameters(ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0],
+    ...                                                       300.0, cable))
+    >>> bool(np.all(static_block_coefficients(p) == end_block_coefficients(p, np.zeros(1))[0]))
+    True
+    """
+    _, e_coef, p_coef = PSI_SERIES
+    # numpy's (complex, where psi is: viscous damping) divisions, as the general path's
+    lam2 = np.asarray(params.lambda_sq_complex,
+                      dtype=complex if np.any(params.c != 0) else None)
+    den = 4.0 - lam2 * e_coef[-1]
+    TL = np.asarray(params.T / params.L)
+    k_uu = 4.0 * np.asarray(params.K0) / den
+    k_vv = TL * (4.0 + lam2 * p_coef[-1]) / den
+    zero = 0.0 * k_uu
+    return np.stack([k_uu, zero, zero, k_vv, TL + zero], axis=-1)
 
 
 def end_block_coefficients_and_count(

@@ -31,6 +31,7 @@ from dynstiff.cable.dsm import (
     end_block_coefficients,
     end_block_coefficients_and_count,
     stack_parameters,
+    static_block_coefficients,
 )
 from dynstiff.cable.guard import (
     AXIAL_MARGIN,
@@ -245,7 +246,9 @@ class FrequencyModel(PlatformModel):
         J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
         Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
         K_ex = self._K_geo_free + Ke.sum(axis=0)
-        K0 = self.cable_coefficients(np.zeros(1)).real.reshape(n, 1, 5)
+        K0 = (self.cable_coefficients(np.zeros(1)) if self.cable_loss_factor > 0  # complex psi
+              else static_block_coefficients(self.stacked_params))  # the same, at psi = 0
+        K0 = np.real(K0).reshape(n, 1, 5)
         Kd = np.matmul(K0, self._assembly.reshape(n, 5, nf * nf)).reshape(n, nf, nf)
         dK = Kd - Ke
         from scipy.linalg import eigh
