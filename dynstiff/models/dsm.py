@@ -21,7 +21,6 @@ import numpy as np
 
 from dynstiff._validate import omega_array, positive_scalar
 from dynstiff._vec import cross
-from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
     DYAD_PAIRS,
@@ -42,8 +41,10 @@ from dynstiff.cable.guard import (
     closed_form_validity,
 )
 from dynstiff.cable.psi import check_frequency_range, mode_count_nondimensional
-from dynstiff.errors import ClosedFormWarning, InvalidParameterError, user_stacklevel
+from dynstiff.errors import ClosedFormWarning, InvalidParameterError
+from dynstiff.models import dsm_guard as guard
 from dynstiff.models.base import PlatformModel, require_equilibrium
+from dynstiff.models.dsm_guard import ROBOT_BOUND_MESSAGE
 from dynstiff.robot.platform import lever_maps, platform_mass_matrix
 
 if TYPE_CHECKING:
@@ -55,8 +56,6 @@ if TYPE_CHECKING:
 
 __all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE"]
 
-#: How the robot-level bound's warning begins (theory.md §11.6), for filters of it.
-ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
 
 
 class FrequencyModel(PlatformModel):
@@ -180,11 +179,11 @@ class FrequencyModel(PlatformModel):
         self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
         self._K_platform_damping = None
         if self.platform_damping_ratio > 0:
-            Ks = self._stiffness(np.zeros(1)).real[0]
+            Ks = self._static_stiffness()
             self._K_platform_damping = 2j * self.platform_damping_ratio * 0.5 * (Ks + Ks.T)
         self._freeze()
         if guard_rtol is not None:
-            self._guard_static()
+            guard.guard_static(self)
 
     def cable_coefficients(self, omega: NDArray[Any]) -> NDArray[Any]:
         """Dyad coefficients (uu, uv, vu, vv, ww) of every cable's end-B DSM, all cables in one
@@ -229,6 +228,24 @@ class FrequencyModel(PlatformModel):
         K = (self.cable_coefficients(omega) @ self._assembly).reshape(omega.size, nf, nf)
         return K + self._K_geo_free
 
+    def _zero_coefficients(self) -> NDArray[np.float64]:
+        """Re :meth:`cable_coefficients` at omega = 0, shape (n_cables, 5) [N/m], written out
+        at psi = 0 (:func:`static_block_coefficients`, times s = 1 + i eta as there; equal
+        to the kernel's to rounding); computed once per model."""
+        if "zero" not in self._memo:
+            C = static_block_coefficients(self.stacked_params)
+            if self.cable_loss_factor > 0:
+                C = (1.0 + 1j * self.cable_loss_factor) * C
+            self._memo["zero"] = np.real(C).reshape(len(self.params), 5)
+        return self._memo["zero"]
+
+    def _static_stiffness(self) -> NDArray[np.float64]:
+        """Re K(0) without the platform damping: the cables' static stiffness + K_geo on the
+        free DOFs, (n_free, n_free)."""
+        nf = self.n_free
+        return (self._zero_coefficients().reshape(1, -1) @ self._assembly).reshape(nf, nf) \
+            + self._K_geo_free
+
     def static_error(self) -> tuple[float, int]:
         """First-order relative frequency error of the massless-cable modes caused by the
         closed form's static stiffness, against the exact catenaries (theory.md §11.5).
@@ -238,42 +255,8 @@ class FrequencyModel(PlatformModel):
         it. All cables at once (:func:`dynstiff.cable.catenary.end_stiffnesses`); computed
         once per model (the guard at build, the cable-model check)."""
         if "static_error" not in self._memo:
-            self._memo["static_error"] = self._static_error()
+            self._memo["static_error"] = guard.static_error(self)
         return self._memo["static_error"]
-
-    def _static_error(self):
-        nf, n = self.n_free, len(self.params)
-        J = lever_maps(self.lever_arms, self.free_index)                       # (n, 3, nf)
-        Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(self.equilibrium.states), J)
-        K_ex = self._K_geo_free + Ke.sum(axis=0)
-        K0 = (self.cable_coefficients(np.zeros(1)) if self.cable_loss_factor > 0  # complex psi
-              else static_block_coefficients(self.stacked_params))  # the same, at psi = 0
-        K0 = np.real(K0).reshape(n, 1, 5)
-        Kd = np.matmul(K0, self._assembly.reshape(n, 5, nf * nf)).reshape(n, nf, nf)
-        dK = Kd - Ke
-        from scipy.linalg import eigh
-        lam, X = eigh(0.5 * (K_ex + K_ex.T), self.platform_mass)
-        ok = lam > 0
-        if not np.any(ok):
-            return 0.0, None
-        X, lam = X[:, ok], lam[ok]
-        per = np.einsum("ik,cij,jk->ck", X, dK, X) / (2 * lam)
-        total = np.abs(per.sum(axis=0))
-        k = int(np.argmax(total))
-        return float(total[k]), int(np.argmax(np.abs(per[:, k])))
-
-    def _guard_static(self) -> None:
-        """Warn for slack cables and for a static error above ``guard_rtol``."""
-        for i, v in enumerate(self._validity):
-            if v.causes["slack"] > 0:
-                self._warn_once(i, "slack", f"cable {i}: the closed form does not apply: "
-                                + "; ".join(v.reasons(self.guard_rtol)))
-        err, i = self.static_error()
-        if err > self.guard_rtol:
-            self._warn_once(i, "static", (
-                f"cable {i}: the closed form's static stiffness shifts a global mode by "
-                f"{err:.2g} (estimate, > guard_rtol {self.guard_rtol:g}; "
-                + "; ".join(self._validity[i].reasons(0.1 * self.guard_rtol)) + ")"))
 
     def guard_band(self, omega: NDArray[Any]) -> None:
         """The closed form's guard for a request up to max |omega| [rad/s] (theory.md §11.5):
@@ -281,35 +264,7 @@ class FrequencyModel(PlatformModel):
         modes, or its local modes while their error, measured against the exact cable,
         exceeds ``guard_rtol``. Called by every evaluation of K(omega), compiled ones
         included."""
-        if self.guard_rtol is None or not omega.size:
-            return
-        top = float(np.max(np.abs(omega)))
-        if top <= self._guarded[0]:                  # this band was checked already
-            return
-        self._guarded[0] = top
-        for i in np.flatnonzero(top >= self._axial_omega):
-            f_ax = self._validity[i].values["axial_hz"]
-            self._warn_once(int(i), "axial", (
-                f"cable {i}: its axial modes from {f_ax:.4g} Hz lie in the band asked (up to "
-                f"{top / 2 / np.pi:.4g} Hz); the closed form has none, so mode counts and "
-                f"frequencies above are wrong"))
-        for i in np.flatnonzero(top >= self._local_omega):
-            v = self._validity[i]
-            if (int(i), "local") in self._warned or not np.isfinite(v.error) \
-                    or v.error <= self.guard_rtol:
-                continue
-            # the envelope is conservative: measure against the exact cable before warning
-            err = closed_form_local_error(self.equilibrium.states[i],
-                                          min(top, self._axial_omega[i]), self.tension)
-            if err <= self.guard_rtol:
-                self._warned.add((int(i), "local"))        # checked, within tolerance
-                continue
-            self._warn_once(int(i), "local", (
-                f"cable {i}: its local modes (from {self._local_omega[i] / 2 / np.pi:.4g} Hz) "
-                f"are in the band asked and the closed form's are {err:.2g} off the exact "
-                f"model's (> guard_rtol {self.guard_rtol:g}; "
-                + "; ".join(v.reasons(0.1 * self.guard_rtol)) + ")"))
-        self._guard_robot(top)
+        guard.guard_band(self, omega)
 
     def cable_error(self, i: int, omega_max: float) -> float:
         """Cable i's own closed-form error up to omega_max [rad/s] (theory.md §11.6): its
@@ -345,26 +300,6 @@ class FrequencyModel(PlatformModel):
         own = [self.cable_error(i, float(omega_max)) for i in range(len(self.params))]
         i = int(np.argmax(own))
         return float(ROBOT_ERROR_FACTOR * (self.static_error()[0] + own[i])), i
-
-    def _guard_robot(self, top: float) -> None:
-        """Warn once when the robot-level bound up to top [rad/s] exceeds guard_rtol and no
-        cable's warning has pointed to the exact rung already."""
-        if (None, "robot") in self._warned or self._issued:
-            return
-        bound, i = self.robot_error(top)
-        if np.isfinite(bound) and bound > self.guard_rtol:
-            self._warn_once(None, "robot", (
-                f"{ROBOT_BOUND_MESSAGE} up to {top / 2 / np.pi:.4g} Hz "
-                f"may reach {bound:.2g} (bound {ROBOT_ERROR_FACTOR:g} x (static + cable "
-                f"{i}'s own error), > guard_rtol {self.guard_rtol:g})"))
-
-    def _warn_once(self, cable: int, cause: str, message: str) -> None:
-        if (cable, cause) in self._warned:
-            return
-        self._warned.add((cable, cause))
-        self._issued.append(cause)
-        warnings.warn(ClosedFormWarning(message + ": use the 'exact' rung", cable=cable,
-                                        cause=cause), stacklevel=user_stacklevel())
 
     def dynamic_stiffness_and_count(
             self, omega: NDArray[np.float64] | float,
@@ -410,7 +345,7 @@ class FrequencyModel(PlatformModel):
         """Static stiffness of the massless-cable model (K_B(0) of every cable) + K_geo,
         shape (n_free, n_free) [N/m, N, N m/rad]; computed once per model, a copy returned."""
         if "massless" not in self._memo:
-            self._memo["massless"] = self.dynamic_stiffness(0.0)[0].real
+            self._memo["massless"] = self._static_stiffness()
         return self._memo["massless"].copy()
 
     def undamped(self) -> FrequencyModel:
@@ -459,7 +394,7 @@ class FrequencyModel(PlatformModel):
         for k, v in d.items():
             object.__setattr__(new, k, v)
         if new.platform_damping_ratio > 0:
-            Ks = new._stiffness(np.zeros(1)).real[0]
+            Ks = new._static_stiffness()
             object.__setattr__(new, "_K_platform_damping",
                                2j * new.platform_damping_ratio * 0.5 * (Ks + Ks.T))
         new._freeze()
