@@ -159,3 +159,84 @@ def test_the_result_in_words_and_as_a_table(cogiro):
     for bad in ("5", 0, True):
         with pytest.raises(InvalidParameterError, match="^max_iter must be an integer >= 1"):
             optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5], max_iter=bad)
+
+
+def test_band_margin_with_modes_on_both_sides_of_the_band(cogiro):
+    """Band (2.2, 2.4) Hz at a pose whose platform modes straddle it (2.136 Hz below it,
+    inside it 2.316 Hz and more): the margin's gradient takes the mode below over -f_lo and
+    the mode above over f_hi. The optimum lifts the margin from -0.035 to above 0 (no
+    platform mode in the band), with the two sides' modes coincident at the minimum; no
+    distribution 5 N away along the null space does better, and the limits hold."""
+    from dynstiff.analyses.optimal_tensions import band_margin
+    rob, pose, band = cogiro.robot, [4.0, -2.5, 1.0], (2.2, 2.4)
+    opt = optimal_tensions(rob, pose, objective="band_margin", band_hz=band)
+    assert opt.default_value < -0.03 and opt.value > 0.01
+    assert any("coincident modes at the minimum" in b for b in opt.binds), opt.binds
+    assert opt.equilibrium.min_tensions.min() >= rob.tension_limits[0] - 1e-6
+    N = null_basis(opt)
+    for d in (N[:, 0], -N[:, 0], N[:, 1], -N[:, 1]):
+        eq = rob.equilibrium(pose=pose, tension_reference=opt.reference + 5.0 * d)
+        pm = find_platform_modes(ds.FrequencyModel(eq, guard_rtol=None), band[1] * 1.05)
+        assert band_margin(pm, band, 0.05) <= opt.value + 1e-6, d
+
+
+def test_the_map_equilibrium_passes_the_model_on(cogiro, monkeypatch):
+    """tension_equilibrium hands the rung and the model options to optimal_tensions (the
+    map's optimum is that of its own model); the closed form's search builds without its
+    guard (the map's own build warns), other rungs with their options only."""
+    import dynstiff.analyses.optimal_tensions as ot
+    seen = []
+    real = ot.build_model
+
+    def spy(eq, rung, **kw):
+        seen.append((rung, kw))
+        return real(eq, rung, **kw)
+
+    monkeypatch.setattr(ot, "build_model", spy)
+    pose = [2.0, 1.5, 1.5]
+    a = tension_equilibrium(cogiro.robot, pose, "max-frequency", rung="dsm",
+                            chordwise_inertia=False)
+    assert seen and all(s == ("dsm", {"chordwise_inertia": False, "guard_rtol": None})
+                        for s in seen)
+    b = optimal_tensions(cogiro.robot, pose, chordwise_inertia=False).equilibrium
+    np.testing.assert_array_equal(a.tensions, b.tensions)
+    seen.clear()
+    tension_equilibrium(cogiro.robot, pose, "max-frequency", rung="spring")
+    assert seen and all(s == ("spring", {}) for s in seen)
+
+
+@pytest.mark.parametrize("objective, band", [("band_margin", (2.2, 2.4)),
+                                             ("first_global_hz", None)])
+def test_the_search_gradients_are_the_derivatives(cogiro, objective, band):
+    """The linear programme's gradients at the default distribution against central
+    differences (step 0.05 N along each null-space direction; their error falls as the
+    step squared, 1e-5 relative here): of each candidate's
+    objective (a margin below the band over -f_lo, above it over f_hi; the frequency) and
+    of every cable's least and largest tension along its length."""
+    from dynstiff.analyses.optimal_tensions import _Search
+    from dynstiff.robot.pose import as_pose
+    pose = as_pose([4.0, -2.5, 1.0])
+    s = _Search(cogiro.robot, pose, objective, band, 0.05, "dsm", {})
+    r = s.N.shape[1]
+    ev = s.evaluate(np.zeros(r), None)
+    g, lo, dlo, hi, dhi = s.gradients(ev)
+    np.testing.assert_allclose(lo, ev["eq"].min_tensions, rtol=1e-9)
+    np.testing.assert_allclose(hi, ev["eq"].max_tensions, rtol=1e-9)
+    if band is not None:
+        f = np.asarray(ev["pm"].modes.freq_hz)[ev["k"]]
+        assert f.min() < band[0] and f.max() > band[1]         # both sides are candidates
+    h = 0.05
+    for j in range(r):
+        e = np.zeros(r)
+        e[j] = h
+        p, m = s.evaluate(e, ev["eq"]), s.evaluate(-e, ev["eq"])
+        np.testing.assert_array_equal(p["k"], ev["k"])
+        np.testing.assert_array_equal(m["k"], ev["k"])
+        np.testing.assert_allclose(g[:, j], (p["v"] - m["v"]) / (2 * h), rtol=1e-4,
+                                   atol=1e-9)
+        np.testing.assert_allclose(
+            dlo[:, j], (p["eq"].min_tensions - m["eq"].min_tensions) / (2 * h), rtol=1e-4,
+            atol=1e-6)
+        np.testing.assert_allclose(
+            dhi[:, j], (p["eq"].max_tensions - m["eq"].max_tensions) / (2 * h), rtol=1e-4,
+            atol=1e-6)

@@ -134,3 +134,5 @@ def test_memory_beyond_half_the_machine_is_refused(monkeypatch):
     with pytest.raises(InvalidParameterError, match="501 poses, which need about"):
         check_size(501, 8, 20, 7, max_poses=None)
     assert estimate_text(10, 3600.0, 1).split("about ")[2].startswith("10.0 h")
+    # hours of 3600 s: 1000 h would read 999.7 h with one second more to the hour
+    assert estimate_text(1000, 3600.0, 1).split("about ")[2].startswith("1000.0 h")

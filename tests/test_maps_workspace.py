@@ -393,3 +393,49 @@ def test_the_estimate_is_one_line_on_stderr(robot, capsys):
     err = capsys.readouterr().err
     line = err.split("\n")[0]
     assert line.startswith("workspace: 2 poses, about ") and line.endswith("in a sample)")
+
+
+def test_the_model_band_given_is_the_maps(robot):
+    """model_band_hz reaches the checks (the cable-model row's band) and the attributes."""
+    m = workspace(robot, [[0.0, 0.0, 1.0]], n_modes=2, model_band_hz=(0.0, 8.0))
+    np.testing.assert_array_equal(m.attrs["model_band_hz"], [0.0, 8.0])
+    res = design_checks(robot, [0.0, 0.0, 1.0], model_band_hz=(0.0, 8.0))
+    row = next(r for r in res.rows if r["check"] == "cable model")
+    assert "8 Hz" in row["detail"]
+
+
+def test_the_estimate_times_five_poses_and_the_bar_counts_every_pose(robot, monkeypatch):
+    """With progress: one pose warms up, five poses spread over the list (first, last and
+    evenly between) are timed for the estimate, then every chunk runs; the bar is a
+    'workspace' bar in poses whose count reaches the total."""
+    import tqdm
+
+    import dynstiff.maps.workspace as ws
+    calls, bars = [], []
+    real = ws.evaluate_chunk
+
+    def spy(robot, poses, *args, **kw):
+        calls.append(np.array(poses))
+        return real(robot, poses, *args, **kw)
+
+    class Bar:
+        def __init__(self, **kw):
+            self.kw, self.n, self.total, self.closed = kw, 0, kw["total"], False
+            bars.append(self)
+
+        def update(self, n):
+            self.n += n
+
+        def close(self):
+            self.closed = True
+
+    monkeypatch.setattr(ws, "evaluate_chunk", spy)
+    monkeypatch.setattr(tqdm, "tqdm", Bar)
+    poses = [[x, 0.0, 1.0] for x in np.linspace(-1.0, 1.0, 12)]
+    workspace(robot, poses, n_modes=2, chunk_size=5, progress=True)
+    X = np.array(poses)
+    assert [len(c) for c in calls] == [1, 5, 5, 5, 2]
+    np.testing.assert_array_equal(calls[1][:, :3], X[[0, 3, 6, 8, 11]])
+    (bar,) = bars
+    assert bar.kw["desc"] == "workspace" and bar.kw["unit"] == "pose"
+    assert bar.total == 12 and bar.n == 12 and bar.closed
