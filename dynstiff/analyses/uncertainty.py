@@ -340,7 +340,7 @@ def _margin_gradient(model: FrequencyModel, pm: PlatformModes, band: tuple[float
     the band) or -f_lo (below)."""
     m = pm.modes
     k = np.flatnonzero(m.platform_share >= participation)
-    if not k.size or not np.isfinite(band_margin(pm, band, participation)):
+    if not k.size:                       # no mode held to the band: the margin is NaN
         return np.full((1, len(params)), np.nan)
     f = np.asarray(m.freq_hz)[k]
     lo, hi = band
