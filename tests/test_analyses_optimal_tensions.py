@@ -240,3 +240,20 @@ def test_the_search_gradients_are_the_derivatives(cogiro, objective, band):
         np.testing.assert_allclose(
             dhi[:, j], (p["eq"].max_tensions - m["eq"].max_tensions) / (2 * h), rtol=1e-4,
             atol=1e-6)
+
+
+def test_a_search_stopped_by_max_iter_says_so(cogiro):
+    """One step of the search (max_iter=1) at the smooth-maximum pose: the distribution
+    after it is an equilibrium within the limits, better than the default but short of
+    the optimum, and what binds says the search stopped, not that a maximum was reached;
+    the full search converges well within its 40 steps and claims the maximum."""
+    rob, pose = cogiro.robot, [2.0, 1.5, 1.5]
+    full = optimal_tensions(rob, pose)
+    one = optimal_tensions(rob, pose, max_iter=1)
+    assert one.iterations == 1
+    assert one.default_value < one.value < full.value - 1e-4
+    assert one.equilibrium.min_tensions.min() >= rob.tension_limits[0] - 1e-6
+    assert one.binds == ("max_iter: the search stopped after 1 step(s) before it converged "
+                         "(the objective may rise further)",)
+    assert full.iterations < 20 and not any("max_iter" in b for b in full.binds)
+    assert full.binds == ("nothing: a smooth maximum (the objective's gradient vanishes)",)

@@ -76,7 +76,8 @@ class OptimalTensions:
         The objective at the optimum and at the default distribution ([Hz] for
         "first_global_hz": the first platform mode; [-] for "band_margin").
     binds : tuple of str
-        What limits the optimum: tension limits reached, coincident modes, or none.
+        What limits the optimum: tension limits reached, coincident modes, or none; and
+        "max_iter: ..." when the search stopped before it converged.
     iterations, evaluations : int
         Steps of the search and equilibria solved.
     platform : PlatformModes
@@ -391,12 +392,13 @@ class _Search:
             if cand is not None and cand["value"] > best["value"]:
                 best = cand
         rho = max(0.1 * float(np.mean(self.t0)), 4 * xtol)
-        steps, at = 0, None
+        steps, at, converged = 0, None, False
         while steps < max_iter:
             steps += 1
             d, pred, lin = self.step(best, rho)
             at, gain = best, pred - best["value"]
             if gain <= ftol * max(abs(best["value"]), 1e-3) or rho < xtol:
+                converged = True
                 break
             new = self.evaluate(best["lam"] + d, best["eq"])
             ratio = -1.0 if new is None else (new["value"] - best["value"]) / gain
@@ -427,11 +429,13 @@ class _Search:
         if at is not best:
             lin = self.step(best, rho)[2]
         _, lo, hi = lin
-        return self._result(first, best, self._binds(best, lo, hi), steps)
+        return self._result(first, best,
+                            self._binds(best, lo, hi, None if converged else steps), steps)
 
-    def _binds(self, ev: dict[str, Any], lo: NDArray[np.float64],
-               hi: NDArray[np.float64]) -> tuple[str, ...]:
-        """What limits the optimum: tension limits reached, coincident candidate modes."""
+    def _binds(self, ev: dict[str, Any], lo: NDArray[np.float64], hi: NDArray[np.float64],
+               stopped: int | None = None) -> tuple[str, ...]:
+        """What limits the optimum: tension limits reached, coincident candidate modes, the
+        search stopped by ``max_iter`` after ``stopped`` steps before it converged."""
         t_min, t_max = self.robot.tension_limits
         tol = max(self.xtol, 1e-3 * t_min)         # the search stops within xtol of a limit
         out = [f"cable {i} at t_min ({t_min:g} N)" for i in np.flatnonzero(lo - t_min <= tol)]
@@ -450,6 +454,9 @@ class _Search:
             out.append(f"the objective drops next to the optimum ({self.cliffs} step(s) fell "
                        f"over {_JUMP:g} times the predicted rise: another mode becomes the "
                        f"first platform mode by veering with a cable mode)")
+        if stopped is not None:
+            out.append(f"max_iter: the search stopped after {stopped} step(s) before it "
+                       f"converged (the objective may rise further)")
         if not out:
             out.append("nothing: a smooth maximum (the objective's gradient vanishes)")
         return tuple(out)
