@@ -62,6 +62,43 @@ def test_metadata_names_scene_pose_model_damping_version():
     assert list(md)[:5] == ["dynstiff", "scene", "pose", "model", "date"]
 
 
+def test_the_settings_in_words_in_the_header_and_in_the_checks():
+    """Every setting reaches the design checks' arguments, the printed lines and the
+    tables' header: the receptance limit, the lumped segments, the viscous damping, the
+    band; no forbidden band reads "none"; the undamped model has no damping at all."""
+    sc = ds.load_scene("cogiro")
+    st = analysis_settings(sc, rung="lumped", segments=5, frf_limit=4.0, band_hz=(0.2, 9.0),
+                           damping=[0.02, 0.03, 0.04])
+    assert st.check_options()["frf_limit"] == 4.0
+    band, model = st.lines()
+    assert band == ("band 0.2-9 Hz; forbidden band 0-1.5 Hz (margin 5%, modes with platform "
+                    "share >= 5%, receptance <= 4 x static)")
+    assert model.startswith("model lumped, 5 segments per cable, tolerance 0.01; ")
+    md = st.metadata()
+    assert md["band_hz"] == [0.2, 9.0] and md["segments"] == 5
+    assert md["damping"] == {"platform_ratio": 0.02, "cable_loss_factor": 0.03,
+                             "cable_viscous_damping [N s/m^2]": 0.04}
+    dsm = analysis_settings(ds.load_scene("sixcable"))
+    assert dsm.lines()[0] == "band 0.05-2 Hz; forbidden band none"
+    assert "segments" not in dsm.metadata() and "segments" not in dsm.lines()[1]
+    eq = sc.equilibrium()
+    undamped = analysis_settings(sc, damping=[0.02, 0.03, 0.04]).model(eq, damped=False)
+    assert not undamped.damped and undamped.cable_loss_factor == 0.0
+    assert undamped.platform_damping_ratio == 0.0
+    assert all(c.viscous_damping == 0.0 for c in undamped.robot.cables)
+
+
+def test_scene_model_at_the_lengths_given():
+    """scene_model at unstretched lengths: forward statics from those lengths, the same
+    model as at the pose they came from."""
+    sc = ds.load_scene("cogiro")
+    eq = sc.robot.equilibrium(pose=[1.0, 0.5, 1.2])
+    m = ds.scene_model(sc, lengths=eq.unstretched_lengths)
+    np.testing.assert_allclose(m.pose.position, [1.0, 0.5, 1.2], atol=1e-6)
+    with pytest.raises(InvalidParameterError, match="not both"):
+        ds.scene_model(sc, [1.0, 0.5, 1.2], lengths=eq.unstretched_lengths)
+
+
 @pytest.mark.integration
 def test_the_documented_python_model_gives_the_command_lines_frf(tmp_path):
     """One set of defaults: ds.frf of ds.scene_model(scene) (the scene's [damping]) on the

@@ -177,9 +177,8 @@ def write_table(df, path, kind, metadata=None):
     import json
     if metadata is not None:
         head = table_metadata(metadata.get("scene"), metadata.get("pose"),
-                              metadata.get("model"))
-        metadata = {**head, **{k: v for k, v in metadata.items() if k not in ("date",)}}
-        metadata["date"] = head["date"]
+                              metadata.get("model"))        # the pose as numbers, now's date
+        metadata = {**head, **{k: v for k, v in metadata.items() if k not in head}}
     if kind == "csv":
         text = df.to_csv(index=False)
         if metadata:
