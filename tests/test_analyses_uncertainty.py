@@ -239,3 +239,39 @@ def test_the_uncertain_row_passes_its_engine_and_seed_on(cogiro, monkeypatch):
     assert p_fo != p_mc
     assert f"first order {p_fo:.1%}" in row["detail"]
     assert f"= {p_mc:.1%} (Monte Carlo, 40 samples" in row["detail"]
+
+
+def test_an_incomplete_platform_search_gives_nan_rows(cogiro, monkeypatch):
+    """Where the nominal search for the platform modes is incomplete (planted), the first
+    platform mode and its gradient row are NaN (one row, a column per parameter) and so is
+    its first order; the frequencies keep theirs."""
+    from dataclasses import replace
+
+    import dynstiff.analyses.uncertainty as unc
+    real = unc.find_platform_modes
+    monkeypatch.setattr(unc, "find_platform_modes",
+                        lambda *a, **kw: replace(real(*a, **kw), complete=False,
+                                                 reason="planted"))
+    res = propagate_uncertainty(cogiro, uncertain={"EA": "1%", "mass": "1%"}, n_modes=2,
+                                n_samples=8, method="first-order")
+    i = res.quantities.index("first_platform_hz")
+    assert res.gradient.shape == (3, 2)
+    assert np.isnan(res.nominal[i]) and np.all(np.isnan(res.gradient[i]))
+    assert np.all(np.isnan(res.first_order[:, i]))
+    assert np.all(np.isfinite(res.gradient[:2])) and np.all(np.isfinite(res.first_order[:, :2]))
+
+
+def test_samples_without_equilibrium_are_counted_as_failing(cogiro):
+    """A platform mass of 91 kg +-200 kg (uniform) draws negative masses: those samples
+    have no equilibrium, are counted and named in the row's detail, and fail; the margin
+    at 95 % confidence lies among them: -inf (not numpy's NaN of -inf + inf), with no
+    warning."""
+    options = CheckOptions(forbidden_hz=(0.0, 1.5))
+    row, res = uncertain_row(cogiro.robot, cogiro.pose, options, {"mass": "200:uniform"},
+                             n_samples=8)
+    assert 0 < res.failed < 8
+    assert f"; {res.failed} samples without equilibrium, counted as failing)" in row["detail"]
+    assert row["value"] >= res.failed / 8
+    assert res.quantile("band_margin", 0.05) == -np.inf
+    assert "band margin at 95% confidence -inf" in row["detail"]
+    assert row["verdict"] == "fail"

@@ -324,22 +324,25 @@ def test_a_warm_start_that_fails_is_retried_cold_under_the_optimal_tensions(robo
     from dynstiff.errors import ConvergenceError
     real, starts = ws.tension_equilibrium, []
 
-    def warm_fails(robot, pose, tensions, start, *args, **kw):
+    def warm_fails(robot, pose, tensions, start, rung, **kw):
         starts.append(start is not None)
+        models.append((rung, kw))
         if start is not None:
             raise ConvergenceError("planted: the warm start fails")
-        return real(robot, pose, tensions, start, *args, **kw)
+        return real(robot, pose, tensions, start, rung, **kw)
 
-    poses = [[4.0, -2.5, 1.0], [3.8, -2.5, 1.0]]
-    cold = workspace(robot, poses, n_modes=4, tensions="max-frequency", chunk_size=1)
+    poses, models = [[4.0, -2.5, 1.0], [3.8, -2.5, 1.0]], []
+    opts = {"tensions": "max-frequency", "chordwise_inertia": False}
+    cold = workspace(robot, poses, n_modes=4, chunk_size=1, **opts)
     monkeypatch.setattr(ws, "tension_equilibrium", warm_fails)
-    opt = workspace(robot, poses, n_modes=4, tensions="max-frequency", chunk_size=2)
+    opt = workspace(robot, poses, n_modes=4, chunk_size=2, **opts)
     assert starts == [False, True, False]
+    assert models == [("dsm", {"chordwise_inertia": False})] * 3      # the map's own model
     assert opt["feasible"].values.all()
     for k in ("tension", "freq", "first_platform_hz", "passed"):
         np.testing.assert_array_equal(opt[k].values, cold[k].values, err_msg=k)
     starts.clear()
-    base = workspace(robot, poses, n_modes=4, chunk_size=2)
+    base = workspace(robot, poses, n_modes=4, chunk_size=2, chordwise_inertia=False)
     assert starts == [False, True]
     assert list(base["feasible"].values) == [True, False]
     assert "planted: the warm start fails" in str(base["reason"].values[1])
@@ -439,3 +442,24 @@ def test_the_estimate_times_five_poses_and_the_bar_counts_every_pose(robot, monk
     (bar,) = bars
     assert bar.kw["desc"] == "workspace" and bar.kw["unit"] == "pose"
     assert bar.total == 12 and bar.n == 12 and bar.closed
+
+
+def test_a_failure_of_the_modes_is_the_poses_reason(robot, monkeypatch):
+    """A model or mode search that fails at a pose (planted) leaves that pose out of the
+    dynamic workspace with the failure as its reason and its checks unknown; the other
+    poses keep their verdicts."""
+    import dynstiff.maps.workspace as ws
+    from dynstiff.errors import ConvergenceError
+    real = ws.build_model
+
+    def fails_high(eq, rung, **kw):
+        if eq.pose.position[2] > 1.2:
+            raise ConvergenceError("planted: no modes here")
+        return real(eq, rung, **kw)
+
+    monkeypatch.setattr(ws, "build_model", fails_high)
+    m = workspace(robot, [[0.0, 0.0, 1.0], [0.0, 0.0, 1.5]], n_modes=2, band_hz=BAND)
+    assert list(m["feasible"].values) == [True, False]
+    assert str(m["reason"].values[1]).endswith("planted: no modes here")
+    assert m["unknown"].values[1].any() and not m["passed"].values[1].any()
+    assert m["passed"].values[0].all()

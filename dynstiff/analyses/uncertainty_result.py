@@ -118,7 +118,10 @@ class UncertaintyResult:
         """
         x = np.where(np.isnan(self._column(quantity, method)), -np.inf,
                      self._column(quantity, method))
-        return float(np.quantile(x, q))
+        with np.errstate(invalid="ignore"):
+            r = float(np.quantile(x, q))
+        # numpy interpolates next to -inf as -inf + inf = NaN: the quantile is -inf there
+        return -np.inf if np.isnan(r) else r
 
     def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per quantity: nominal, first-order and Monte Carlo mean,
