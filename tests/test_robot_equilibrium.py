@@ -17,6 +17,10 @@ def test_tensions_are_those_of_the_catenaries(cogiro_eq):
     dz = np.array([s.anchor[2] - s.end[2] for s in eq.states])
     w = np.array([s.cable.mass_per_length * s.g for s in eq.states])
     np.testing.assert_allclose(eq.anchor_tensions - eq.tensions, w * dz, rtol=3e-3)
+    for name in ("tensions", "anchor_tensions", "min_tensions", "max_tensions"):
+        got = getattr(eq, name)                  # computed once, handed out as copies
+        got[:] = 0.0
+        assert np.all(getattr(eq, name) > 100.0), name
 
 
 def test_table_has_units_and_one_row_per_cable(cogiro_eq):

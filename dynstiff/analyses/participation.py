@@ -110,8 +110,8 @@ def platform_shares(
         scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
         keep = ~pole | (least <= 1e-6 * scale)
         fin, ev, V = fin[keep], ev[keep], V[keep]  # else local mode, platform at rest
-    x = np.array([v[:, j] / np.sqrt(v[:, j] @ Mp @ v[:, j])
-                  for v, j in zip(V, np.argmin(np.abs(ev), axis=1))]).reshape(-1, Mp.shape[0])
+    x = V[np.arange(len(V)), :, np.argmin(np.abs(ev), axis=1)].reshape(-1, Mp.shape[0])
+    x = x / np.sqrt(np.einsum("ki,ij,kj->k", x, Mp, x))[:, None]    # unit platform energy
     wk = w[fin]
     d1 = (Ks[0, fin] - Ks[1, fin]) / (wk**2 * ((1 + h) ** 2 - (1 - h) ** 2))[:, None, None]
     d2 = (Ks[2, fin] - Ks[3, fin]) / (wk**2 * ((1 + h / 2) ** 2 - (1 - h / 2) ** 2))[:, None,

@@ -52,6 +52,14 @@ class Equilibrium:
     states: tuple
     residual: float
 
+    def _per_cable(self, name: str) -> NDArray[np.float64]:
+        """Each state's ``name``, shape (n,): computed once (the states are immutable), a
+        copy returned."""
+        cache = self.__dict__.setdefault("_per_cable_cache", {})
+        if name not in cache:
+            cache[name] = np.array([getattr(s, name) for s in self.states])
+        return cache[name].copy()
+
     @property
     def tensions(self) -> NDArray[np.float64]:
         """Tension at the platform end B of each cable [N], shape (n,).
@@ -63,7 +71,7 @@ class Equilibrium:
         >>> print(f"{eq.tensions.min():.1f} .. {eq.tensions.max():.1f} N")
         270.3 .. 304.1 N
         """
-        return np.array([s.tension_at_end for s in self.states])
+        return self._per_cable("tension_at_end")
 
     @property
     def anchor_tensions(self) -> NDArray[np.float64]:
@@ -76,7 +84,7 @@ class Equilibrium:
         >>> print(f"{eq.anchor_tensions[0]:.2f} N at A, {eq.tensions[0]:.2f} N at B")
         295.18 N at A, 292.43 N at B
         """
-        return np.array([s.tension_at_anchor for s in self.states])
+        return self._per_cable("tension_at_anchor")
 
     @property
     def min_tensions(self) -> NDArray[np.float64]:
@@ -90,7 +98,7 @@ class Equilibrium:
         >>> print(f"{eq.min_tensions[0]:.2f} N")
         292.43 N
         """
-        return np.array([s.min_tension for s in self.states])
+        return self._per_cable("min_tension")
 
     @property
     def max_tensions(self) -> NDArray[np.float64]:
@@ -103,7 +111,7 @@ class Equilibrium:
         >>> print(f"{eq.max_tensions[0]:.2f} N")
         295.18 N
         """
-        return np.array([s.max_tension for s in self.states])
+        return self._per_cable("max_tension")
 
     @property
     def lever_arms(self) -> NDArray[np.float64]:
