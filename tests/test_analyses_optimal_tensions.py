@@ -206,6 +206,7 @@ def test_the_map_equilibrium_passes_the_model_on(cogiro, monkeypatch):
 
 
 @pytest.mark.parametrize("objective, band", [("band_margin", (2.2, 2.4)),
+                                             ("band_margin", (0.0, 2.0)),
                                              ("first_global_hz", None)])
 def test_the_search_gradients_are_the_derivatives(cogiro, objective, band):
     """The linear programme's gradients at the default distribution against central
@@ -222,9 +223,10 @@ def test_the_search_gradients_are_the_derivatives(cogiro, objective, band):
     g, lo, dlo, hi, dhi = s.gradients(ev)
     np.testing.assert_allclose(lo, ev["eq"].min_tensions, rtol=1e-9)
     np.testing.assert_allclose(hi, ev["eq"].max_tensions, rtol=1e-9)
-    if band is not None:
+    if band is not None and band[0] > 0:
         f = np.asarray(ev["pm"].modes.freq_hz)[ev["k"]]
         assert f.min() < band[0] and f.max() > band[1]         # both sides are candidates
+    assert np.all(np.abs(g).max(axis=1) > 0)
     h = 0.05
     for j in range(r):
         e = np.zeros(r)
@@ -257,3 +259,5 @@ def test_a_search_stopped_by_max_iter_says_so(cogiro):
                          "(the objective may rise further)",)
     assert full.iterations < 20 and not any("max_iter" in b for b in full.binds)
     assert full.binds == ("nothing: a smooth maximum (the objective's gradient vanishes)",)
+    two = optimal_tensions(rob, [4.0, -2.5, 1.0])
+    assert "; binds: cable 2 at t_min (100 N); cable 3 at t_min (100 N); " in repr(two)

@@ -100,6 +100,21 @@ def test_a_stated_uncertainty_in_words():
     assert Uncertain(0.05).text() == "sigma 5 % (normal)"
 
 
+def test_more_refusals_in_their_own_words(cogiro):
+    with pytest.raises(InvalidParameterError, match=r"^propagate_uncertainty needs a pose: "
+                       r"give pose= or a scene with a \[pose\]$"):
+        propagate_uncertainty(cogiro.robot, uncertain={"EA": "10%"})
+    with pytest.raises(InvalidParameterError, match="^n_modes must be an integer >= 1, got 0$"):
+        propagate_uncertainty(cogiro, uncertain={"EA": "10%"}, n_modes=0)
+    with pytest.raises(InvalidParameterError,
+                       match=r"^band_hz must be \(lo, hi\), 0 <= lo < hi \[Hz\], got "
+                             r"\(2\.0, 1\.0\)$"):
+        propagate_uncertainty(cogiro, uncertain={"EA": "10%"}, band_hz=(2.0, 1.0))
+    with pytest.raises(InvalidParameterError, match=r"\(no wildcards: each needs its "
+                                                    r"distribution\)$"):
+        propagate_uncertainty(cogiro, uncertain={"EA_*": "10%"})
+
+
 def test_refusals_in_their_own_words_and_counts_from_one(cogiro):
     with pytest.raises(InvalidParameterError,
                        match="^uncertain: a loss factor moves no undamped frequency$"):
@@ -191,8 +206,17 @@ def test_the_first_order_at_a_tension_reference_and_the_default_sample(cogiro):
     assert res.gradient[i, 0] > 1.3 * base.gradient[i, 0]
     np.testing.assert_allclose(res.first_order[:, i] - res.nominal[i],
                                res.monte_carlo[:, i] - res.nominal[i], rtol=1e-3)
-    assert propagate_uncertainty(cogiro, uncertain={"EA": "1%"}, n_modes=1,
-                                 method="first-order").samples.shape == (200, 1)
+    fo = propagate_uncertainty(cogiro, uncertain={"EA": "1%"}, n_modes=1,
+                               method="first-order")
+    assert fo.samples.shape == (200, 1) and fo.failed == 0 and fo.monte_carlo is None
+    ref = propagate_uncertainty(cogiro.robot, pose, uncertain={"t_ref_0": "1%"}, n_modes=1,
+                                tension_reference=np.full(8, 2000.0), method="first-order")
+    assert ref.nominal_values[0] == 2000.0           # the reference's own, not the robot's
+    band = propagate_uncertainty(cogiro.robot, pose, band_hz=(0.0, 2.0),
+                                 tension_reference=np.full(8, 2000.0), **kw)
+    j = band.quantities.index("band_margin")
+    np.testing.assert_allclose(band.first_order[:, j] - band.nominal[j],
+                               band.monte_carlo[:, j] - band.nominal[j], rtol=1e-3)
     with pytest.raises(InvalidParameterError, match="L0_0"):
         propagate_uncertainty(cogiro, uncertain={"L0_0": "1%"})
 
