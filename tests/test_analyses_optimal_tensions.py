@@ -261,3 +261,19 @@ def test_a_search_stopped_by_max_iter_says_so(cogiro):
     assert full.binds == ("nothing: a smooth maximum (the objective's gradient vanishes)",)
     two = optimal_tensions(rob, [4.0, -2.5, 1.0])
     assert "; binds: cable 2 at t_min (100 N); cable 3 at t_min (100 N); " in repr(two)
+
+
+def test_no_objective_where_the_platform_modes_are_not_all_found(cogiro, monkeypatch):
+    """An incomplete search for the platform modes (planted) leaves the first global mode
+    undefined: at the default distribution that is a ConvergenceError naming it."""
+    from dataclasses import replace
+
+    import dynstiff.analyses.optimal_tensions as ot
+    from dynstiff.errors import ConvergenceError
+    real = ot.find_platform_modes
+    monkeypatch.setattr(ot, "find_platform_modes",
+                        lambda *a, **kw: replace(real(*a, **kw), complete=False))
+    with pytest.raises(ConvergenceError, match="^optimal tensions: the platform modes were "
+                       r"not all found at the default distribution \(first_global_hz "
+                       r"undefined\)$"):
+        optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])

@@ -261,7 +261,7 @@ def test_the_uncertain_row_passes_its_engine_and_seed_on(cogiro, monkeypatch):
     p_fo = res.probability_below("band_margin", options.margin, "first-order")
     p_mc = res.probability_below("band_margin", options.margin)
     assert p_fo != p_mc
-    assert f"first order {p_fo:.1%}" in row["detail"]
+    assert f"first order {p_fo:.1%}); band margin at 95% confidence " in row["detail"]
     assert f"= {p_mc:.1%} (Monte Carlo, 40 samples" in row["detail"]
 
 
