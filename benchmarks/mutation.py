@@ -838,6 +838,27 @@ EQUIVALENT.update({
         "(json.dumps escapes non-ASCII) in any case",
     "dynstiff.maps.store.xǁCheckpointǁload__mutmut_31":
         "allow_pickle=None: numpy tests it for truth, None refuses pickles as False does",
+    "dynstiff.analyses.interaction.xǁProximityWarningǁ__hash____mutmut_1":
+        "a constant hash: sets and dicts of warnings keep their meaning (equality decides), "
+        "only slower",
+    **{f"dynstiff.analyses.interaction.x_to_frame__mutmut_{n}":
+       "the frequencies or gaps without dtype=float: floats (or an empty list) give a float "
+       "array anyway" for n in (23, 25, 36, 38)},
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁ_binds__mutmut_17": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁcontinues__mutmut_51": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_74": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_83": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_112": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_126": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_49":
+        "the linearised equilibrium not handed to sensitivities_at, which builds the same "
+        "one itself: the same gradients, computed twice",
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_99":
+        "the below-band factor for lo = 0 (1 instead of 0): with lo = 0 no candidate is "
+        "below the band (its margin there is -inf), so that branch is never taken",
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_101":
+        "the ratio of a step without equilibrium -2 instead of -1: it is compared with 3, "
+        "0.1 and -3 only, where both take the same branches",
 })
 
 def _definitions():

@@ -277,3 +277,20 @@ def test_no_objective_where_the_platform_modes_are_not_all_found(cogiro, monkeyp
                        r"not all found at the default distribution \(first_global_hz "
                        r"undefined\)$"):
         optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+
+
+def test_a_step_without_equilibrium_shortens_the_next(cogiro, monkeypatch):
+    """A trial distribution with no equilibrium (planted at the first step) is a rejected
+    step: the radius halves and the search goes on to the same optimum."""
+    from dynstiff.analyses.optimal_tensions import _Search
+    real, calls = _Search.evaluate, []
+
+    def first_step_fails(self, lam, prev):
+        calls.append(lam)
+        return None if len(calls) == 2 else real(self, lam, prev)
+
+    ref = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+    monkeypatch.setattr(_Search, "evaluate", first_step_fails)
+    opt = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+    assert np.abs(calls[2]).max() == pytest.approx(0.5 * np.abs(calls[1]).max(), rel=1e-6)
+    assert opt.value == pytest.approx(ref.value, rel=1e-5)
