@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -12,6 +13,9 @@ if TYPE_CHECKING:
     from typing import Any
 
     from numpy.typing import ArrayLike, NDArray
+
+#: The least normal float: below it a float has lost digits (subnormal).
+_TINY = float(np.finfo(float).tiny)
 
 
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
@@ -24,15 +28,15 @@ def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> 
     except (TypeError, ValueError):
         raise InvalidParameterError(
             f"{name} must be a real number, got {value!r}") from None
-    if not np.isfinite(x):
+    if not math.isfinite(x):
         raise InvalidParameterError(f"{name} must be finite, got {x!r}")
     if x < 0 or (x == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise InvalidParameterError(f"{name} must be {bound}, got {x!r}")
-    if 0 < x < np.finfo(float).tiny:
+    if 0 < x < _TINY:
         raise InvalidParameterError(
-            f"{name} must be 0 or at least {np.finfo(float).tiny:.3g} (a subnormal float has "
-            f"lost its digits), got {x!r}")
+            f"{name} must be 0 or at least {_TINY:.3g} (a subnormal float has lost its "
+            f"digits), got {x!r}")
     return x
 
 
