@@ -294,3 +294,29 @@ def test_a_step_without_equilibrium_shortens_the_next(cogiro, monkeypatch):
     opt = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
     assert np.abs(calls[2]).max() == pytest.approx(0.5 * np.abs(calls[1]).max(), rel=1e-6)
     assert opt.value == pytest.approx(ref.value, rel=1e-5)
+
+
+def test_an_overshooting_step_is_followed_by_the_parabolas_fraction(cogiro, monkeypatch):
+    """A trial step whose objective falls (planted: 0.01 Hz below the start) is cut back to
+    the parabola's best fraction alpha of it; where that is better it is taken and the
+    radius becomes alpha times the step, so the next step stays within it, and the search
+    still ends at the optimum."""
+    from dynstiff.analyses.optimal_tensions import _Search
+    real, calls = _Search.evaluate, []
+
+    def first_step_drops(self, lam, prev):
+        calls.append(np.array(lam))
+        ev = real(self, lam, prev)
+        if len(calls) == 2 and ev is not None:
+            ev = {**ev, "value": self.first_value - 0.01}
+        if len(calls) == 1:
+            self.first_value = ev["value"]
+        return ev
+
+    ref = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+    monkeypatch.setattr(_Search, "evaluate", first_step_drops)
+    opt = optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
+    step, cut = np.abs(calls[1]).max(), np.abs(calls[2]).max()
+    assert 0.05 * step - 1e-9 <= cut < 0.5 * step
+    assert len(calls) > 3 and np.abs(calls[3] - calls[2]).max() <= cut * (1 + 1e-9)
+    assert opt.value == pytest.approx(ref.value, rel=1e-5)

@@ -236,3 +236,10 @@ def test_the_table_the_relative_values_and_the_tornado(cogiro_dsm):
                                / s.freq_hz)
     fig = s.plot(modes=(0, 1))
     assert len(fig.axes) == 2
+
+
+def test_whole_clusters_extends_a_cut_to_the_end_of_its_cluster():
+    from dynstiff.analyses.sensitivity import whole_clusters
+    f = np.array([1.0, 2.0, 2.0 * (1 + 5e-9), 2.0 * (1 + 1e-8), 3.0])
+    assert [whole_clusters(f, t) for t in (0, 1, 2, 3, 4, 5, 9)] == [0, 1, 4, 4, 4, 5, 5]
+    assert whole_clusters(np.array([2.0, 2.0 * (1 + 2e-8)]), 1) == 1   # 2e-8 apart: two

@@ -299,3 +299,22 @@ def test_samples_without_equilibrium_are_counted_as_failing(cogiro):
     assert res.quantile("band_margin", 0.05) == -np.inf
     assert "band margin at 95% confidence -inf" in row["detail"]
     assert row["verdict"] == "fail"
+
+
+def test_a_cluster_cut_by_the_modes_asked_keeps_its_eigenvalue_derivatives():
+    """The octahedron's modes 2 and 3 coincide (C3v). With n_modes=2 the list of modes
+    whose gradients are taken would end inside that pair: it is extended to the whole
+    pair, so f2's gradient is the pair's eigenvalue derivative (as the sensitivities of
+    all six modes give it) and not that of some vector of its null space."""
+    from conftest import inverted_stewart
+
+    import dynstiff as ds
+    from dynstiff.analyses.sensitivity import frequency_sensitivities
+    rob, pose = inverted_stewart(), ds.Pose([0.0, 0.0, 1.5])
+    names = ["EA_0", "anchor_1_x"]
+    res = propagate_uncertainty(rob, pose, uncertain={"EA_0": "1%", "anchor_1_x": "0.01"},
+                                n_modes=2, method="first-order")
+    s = frequency_sensitivities(ds.build_model(rob.equilibrium(pose=pose), "dsm"), names,
+                                n_modes=6)
+    assert s.cluster.tolist()[:3] == [0, 1, 1]
+    np.testing.assert_allclose(res.gradient[:2], s.derivative[:2], rtol=1e-9, atol=1e-12)

@@ -29,7 +29,7 @@ import numpy as np
 
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
-from dynstiff.analyses.sensitivity import RUNGS, sensitivities_at
+from dynstiff.analyses.sensitivity import RUNGS, sensitivities_at, whole_clusters
 from dynstiff.analyses.sensitivity_kernels import CS_STEP
 from dynstiff.analyses.sensitivity_parameters import Parameter
 from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
@@ -341,8 +341,8 @@ class _Search:
                             {"t_ref": self.N[:, j]}) for j in range(r)]
         lin = LinearisedEquilibrium(ev["eq"], "pose", ev["t_ref"])
         f = np.asarray(ev["pm"].modes.freq_hz)
-        sens = sensitivities_at(ev["model"], f[:int(ev["k"].max()) + 1], params, "pose",
-                                ev["t_ref"], lin)
+        sens = sensitivities_at(ev["model"], f[:whole_clusters(f, int(ev["k"].max()) + 1)],
+                                params, "pose", ev["t_ref"], lin)
         g = sens.derivative[ev["k"]]
         if self.objective == "band_margin":
             lo, hi = self.band

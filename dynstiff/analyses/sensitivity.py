@@ -52,7 +52,8 @@ if TYPE_CHECKING:
     from dynstiff.robot.pose import Pose
     from dynstiff.robot.robot import Robot
 
-__all__ = ["SensitivityResult", "frequency_sensitivities", "sensitivities_at", "RUNGS"]
+__all__ = ["SensitivityResult", "frequency_sensitivities", "sensitivities_at", "RUNGS",
+           "whole_clusters"]
 
 #: The rungs with sensitivities.
 RUNGS = ("spring", "catenary", "dsm", "exact", "lumped")
@@ -313,6 +314,23 @@ def _parameters(parameters: list[str | Parameter], robot: Robot, pose: Pose, hol
             hasattr(p, "direction") for p in parameters):
         return list(parameters)
     return expand_parameters(parameters, robot, pose, hold, t_ref, L0)
+
+
+def whole_clusters(f: NDArray[np.float64], top: int) -> int:
+    """``top`` raised so that ``f[:top]`` ends with whole clusters of coincident roots
+    (within 1e-8, as :func:`sensitivities_at` groups them): the sensitivities of a cluster
+    cut by the list would come from part of its null space, not its eigenvalues.
+
+    Examples
+    --------
+    >>> whole_clusters(np.array([1.0, 2.0, 2.0, 3.0]), 2)
+    3
+    """
+    top = min(int(top), len(f))
+    while 0 < top < len(f) and \
+            f[top] - f[top - 1] <= _CLUSTER_RTOL * max(abs(f[top]), 1e-300):
+        top += 1
+    return top
 
 
 def _clusters(f: NDArray[np.float64]) -> list[list[int]]:

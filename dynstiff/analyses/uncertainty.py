@@ -27,7 +27,7 @@ import numpy as np
 from dynstiff.analyses.optimal_tensions import band_margin
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
-from dynstiff.analyses.sensitivity import sensitivities_at
+from dynstiff.analyses.sensitivity import sensitivities_at, whole_clusters
 from dynstiff.analyses.sensitivity_parameters import equilibrium_with, expand_parameters
 from dynstiff.analyses.uncertainty_result import UncertaintyResult
 from dynstiff.errors import DynstiffError, InvalidParameterError
@@ -289,7 +289,8 @@ def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
     pm = find_platform_modes(model, band_hz[1] * 1.05 if band_hz else 0.0)
     f = np.asarray(pm.modes.freq_hz)
     top = max(n_modes, int(pm.index[0]) + 1 if pm.index.size else 1)
-    sens = sensitivities_at(model, f[:top], params, "pose", tension_reference)
+    sens = sensitivities_at(model, f[:whole_clusters(f, top)], params, "pose",
+                            tension_reference)
     nominal, gradient = [f[:n_modes]], [sens.derivative[:n_modes]]
     quantities = [f"f{k + 1}" for k in range(n_modes)] + ["first_platform_hz"]
     nominal.append([pm.first_hz])
@@ -347,7 +348,8 @@ def _margin_gradient(model: FrequencyModel, pm: PlatformModes, band: tuple[float
     below = 1.0 - f / lo if lo > 0 else np.full(f.shape, -np.inf)
     marg = np.maximum(f / hi - 1.0, below)
     j = int(k[np.argmin(marg)])
-    d = sensitivities_at(model, np.asarray(m.freq_hz)[:j + 1], params, "pose",
+    fm = np.asarray(m.freq_hz)
+    d = sensitivities_at(model, fm[:whole_clusters(fm, j + 1)], params, "pose",
                          tension_reference).derivative[j]
     above = f[np.argmin(marg)] / hi - 1.0 >= below[np.argmin(marg)]
     return (d / hi if above else -d / lo)[None, :]
