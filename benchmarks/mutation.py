@@ -856,6 +856,9 @@ EQUIVALENT.update({
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_99":
         "the below-band factor for lo = 0 (1 instead of 0): with lo = 0 no candidate is "
         "below the band (its margin there is -inf), so that branch is never taken",
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_166":
+        "the parabola's fraction without its upper clip 0.9: on that branch (ratio <= 0.1) "
+        "it is 1 / (2 (1 - ratio)) <= 0.56, so the clip never binds",
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_101":
         "the ratio of a step without equilibrium -2 instead of -1: it is compared with 3, "
         "0.1 and -3 only, where both take the same branches",
