@@ -57,7 +57,6 @@ if TYPE_CHECKING:
 __all__ = ["FrequencyModel", "ROBOT_BOUND_MESSAGE"]
 
 
-
 class FrequencyModel(PlatformModel):
     """The "dsm" rung: closed-form dynamic stiffness of every cable, assembled (theory.md §4).
 
