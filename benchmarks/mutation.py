@@ -11,6 +11,9 @@ module (killed / (killed + survived), equivalent mutants listed in ``EQUIVALENT`
 the time the mutants' tests took per module, and every surviving mutant. ``module``
 arguments restrict the run, e.g. ``dynstiff/cable/chord.py``; ``--report-only`` prints the
 last run's results; ``--recheck`` runs the survivors again too, after tests were added;
+``--restat`` collects again which tests reach each function (mutmut collects that map once
+and adds only new tests to it: after code moved to another function or module, the moved
+code is reached by no older test in the map, and its mutants survive falsely);
 ``--sample N`` judges a seeded uniform sample of N mutants per module (nested: a larger
 sample contains a smaller one; each module has its own generator, so its sample does not
 depend on the other modules) and gives each score a 95 % Wilson interval.
@@ -1011,12 +1014,16 @@ def main(argv):
     ap.add_argument("--seed", type=int, default=20261202)
     ap.add_argument("--recheck", action="store_true",
                     help="run the surviving mutants again too (after tests were added)")
+    ap.add_argument("--restat", action="store_true",
+                    help="collect again which tests reach each function (after code moved)")
     ap.add_argument("--children", type=int, default=1,
                     help="mutmut's parallel children (default 1: the machine is shared)")
     args = ap.parse_args(argv)
     prefixes = [m[:-3].replace("/", ".").removesuffix(".__init__") + ".x"
                 for m in args.modules]
     t0 = time.perf_counter()
+    if args.restat and os.path.exists(os.path.join("mutants", "mutmut-stats.json")):
+        os.remove(os.path.join("mutants", "mutmut-stats.json"))
     res = _results()
     if not res:
         _generate()
