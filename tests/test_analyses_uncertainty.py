@@ -318,3 +318,22 @@ def test_a_cluster_cut_by_the_modes_asked_keeps_its_eigenvalue_derivatives():
                                 n_modes=6)
     assert s.cluster.tolist()[:3] == [0, 1, 1]
     np.testing.assert_allclose(res.gradient[:2], s.derivative[:2], rtol=1e-9, atol=1e-12)
+
+
+def test_more_modes_than_the_platform_search_finds(cogiro):
+    """n_modes beyond the modes the platform search needs (38 up to CoGiRo's last platform
+    mode): the list is continued by the mode search, so every f_k has its value, gradient
+    and samples, and the first platform mode keeps its row."""
+    import dynstiff as ds
+    from dynstiff.analyses.eigen import eigenfrequencies
+    from dynstiff.analyses.platform_modes import find_platform_modes
+    res = propagate_uncertainty(cogiro, uncertain={"EA": "0.01%:uniform"}, n_modes=45,
+                                n_samples=2)
+    assert len(res.quantities) == res.nominal.size == res.gradient.shape[0] == 46
+    model = ds.build_model(cogiro.robot.equilibrium(pose=cogiro.pose), "dsm")
+    pm = find_platform_modes(model)
+    assert len(pm.modes.freq_hz) < 45                  # the platform search stops earlier
+    np.testing.assert_allclose(res.nominal[:45], eigenfrequencies(model, n_modes=45),
+                               rtol=1e-10)
+    assert res.nominal[45] == pm.first_hz
+    assert np.all(np.isfinite(res.monte_carlo)) and np.all(np.isfinite(res.gradient))

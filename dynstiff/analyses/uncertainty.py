@@ -182,15 +182,26 @@ def evaluate_samples(robot: Robot, pose: Pose, names: list[str], values: NDArray
     for k, row in enumerate(values):
         try:
             eq = equilibrium_with(robot, pose, names, row, "pose", tension_reference)
-            pm = find_platform_modes(build_model(eq, rung, **model_options), cover)
+            model = build_model(eq, rung, **model_options)
+            pm = find_platform_modes(model, cover)
+            f = _first_modes(model, pm, n_modes)[:n_modes]
         except (DynstiffError, ArithmeticError, np.linalg.LinAlgError):
             continue
-        f = np.asarray(pm.modes.freq_hz)[:n_modes]
         out[k, :f.size] = f
         out[k, n_modes] = pm.first_hz
         if band is not None:
             out[k, n_modes + 1] = band_margin(pm, band, participation)
     return out
+
+
+def _first_modes(model: PlatformModel, pm: PlatformModes, n_modes: int) -> NDArray[np.float64]:
+    """The frequencies of ``pm`` [Hz], continued by the mode search to at least ``n_modes``
+    (the platform search stops once every free DOF's modes are found)."""
+    f = np.asarray(pm.modes.freq_hz)
+    if f.size >= n_modes:
+        return f
+    from dynstiff.analyses.eigen import eigenfrequencies
+    return np.concatenate([f, eigenfrequencies(model, n_modes=n_modes)[f.size:]])
 
 
 def _run(tasks: list[tuple[Any | None, ...]], workers: int | None,
@@ -287,7 +298,7 @@ def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
     eq = robot.equilibrium(pose=pose, tension_reference=tension_reference)
     model = build_model(eq, rung, **model_options).undamped()
     pm = find_platform_modes(model, band_hz[1] * 1.05 if band_hz else 0.0)
-    f = np.asarray(pm.modes.freq_hz)
+    f = _first_modes(model, pm, n_modes)
     top = max(n_modes, int(pm.index[0]) + 1 if pm.index.size else 1)
     sens = sensitivities_at(model, f[:whole_clusters(f, top)], params, "pose",
                             tension_reference)
