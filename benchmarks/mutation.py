@@ -859,6 +859,11 @@ EQUIVALENT.update({
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_99":
         "the below-band factor for lo = 0 (1 instead of 0): with lo = 0 no candidate is "
         "below the band (its margin there is -inf), so that branch is never taken",
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁ_binds__mutmut_12": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_41": _BOUNDARY,
+    "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_5":
+        "the null-space parameters' value None: a Parameter's value is only reported in "
+        "the sensitivities' result (its relative table), which the search does not read",
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_166":
         "the parabola's fraction without its upper clip 0.9: on that branch (ratio <= 0.1) "
         "it is 1 / (2 (1 - ratio)) <= 0.56, so the clip never binds",
