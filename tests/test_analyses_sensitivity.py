@@ -243,3 +243,57 @@ def test_whole_clusters_extends_a_cut_to_the_end_of_its_cluster():
     f = np.array([1.0, 2.0, 2.0 * (1 + 5e-9), 2.0 * (1 + 1e-8), 3.0])
     assert [whole_clusters(f, t) for t in (0, 1, 2, 3, 4, 5, 9)] == [0, 1, 4, 4, 4, 5, 5]
     assert whole_clusters(np.array([2.0, 2.0 * (1 + 2e-8)]), 1) == 1   # 2e-8 apart: two
+    assert whole_clusters(np.array([2.0, 2.0, 3.0]), 1) == 2          # a pair cut after one
+
+
+def test_the_table_and_tornado_name_what_they_show(cogiro_dsm):
+    """The table's columns carry their units; each tornado panel is titled with its mode
+    (counted from 1) and frequency, its axis says what the bars are, the zero line is
+    grey, and the figure is 4.2 in wide per mode."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    _, model = cogiro_dsm
+    s = frequency_sensitivities(model, ["EA", "mass"], n_modes=2)
+    df = s.to_frame()
+    assert list(df.columns) == ["mode", "freq [Hz]", "cluster", "platform share [-]",
+                                "parameter", "value", "unit", "df/dp [Hz/unit]",
+                                "df per 1 % [Hz]", "elasticity [-]", "dzeta/dp [1/unit]"]
+    np.testing.assert_array_equal(df["df/dp [Hz/unit]"], s.derivative.ravel())
+    fig = s.plot(modes=(0, 1))
+    assert tuple(fig.get_size_inches()) == (8.4, 3.6)
+    for k, ax in enumerate(fig.axes):
+        assert ax.get_title() == f"mode {k + 1}: {s.freq_hz[k]:.4g} Hz"
+        assert ax.get_xlabel() == "change per +1 % of the parameter [Hz]"
+        zero = [ln for ln in ax.get_lines() if list(ln.get_xdata()) == [0.0, 0.0]]
+        assert zero and matplotlib.colors.to_rgb(zero[0].get_color()) == (0.3, 0.3, 0.3)
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("rung, options", [("dsm", {}), ("lumped", {"segments": 4})])
+def test_the_platform_share_is_the_modes(cogiro, rung, options):
+    """The sensitivities' platform share of each mode is that of dynstiff.modes on the same
+    model; below the first mode the result is empty, of its rung, with NaN shares."""
+    eq = cogiro.robot.equilibrium(pose=cogiro.pose)
+    model = ds.build_model(eq, rung, **options)
+    s = frequency_sensitivities(model, ["EA"], n_modes=4)
+    modes = ds.modes(model, n_modes=4)
+    np.testing.assert_allclose(s.platform_share, 1.0 - modes.cable_energy_fraction,
+                               rtol=1e-6, atol=1e-9)
+    empty = frequency_sensitivities(model, ["EA"], fmax_hz=0.1)
+    assert empty.freq_hz.size == 0 and empty.rung == rung and empty.note == ""
+    assert empty.platform_share.dtype == float
+
+
+def test_a_lumped_model_of_another_distribution_is_refused_at_its_pose(cogiro):
+    """A lumped model built at a tension reference other than the one given: its lengths are
+    not the distribution's at its pose, and holding the pose is refused, naming the fix."""
+    eq = cogiro.robot.equilibrium(pose=cogiro.pose, tension_reference=np.full(8, 400.0))
+    model = ds.build_model(eq, "lumped", segments=4)
+    with pytest.raises(InvalidParameterError, match=r"not those of the tension distribution "
+                       r"at its pose \(closest to tension_reference\); give the reference "
+                       r"it was built with, or hold='lengths'$"):
+        frequency_sensitivities(model, ["EA"], n_modes=2)
+    s = frequency_sensitivities(model, ["EA"], n_modes=2,
+                                tension_reference=np.full(8, 400.0))
+    assert np.all(np.isfinite(s.derivative))

@@ -301,7 +301,11 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
             fa = exact_fields(m, wp, Xa)
             fields = (fa, fa if np.array_equal(Xa, Xb) else exact_fields(m, wp, Xb))
         Ap = np.imag(forms(m, lin, Y, P, wp, Xa, Xb, fields)) / CS_STEP      # (p, n_pairs)
-        _assemble(out, groups, pairs, Ap, Bp, w, params, moving)
+        fi, masses = m.free_index, np.full(len(f), np.nan)
+        for k, g in enumerate(groups):                 # x^T M_p x of each mode's vector
+            x = X[k][fi]
+            masses[g] = np.einsum("ia,ij,ja->a", x, m.platform_mass, x)
+        _assemble(out, groups, pairs, Ap, Bp, w, params, moving, masses)
     note = "" if all(moving[g[0]] for g in groups) else (
         "modes with the platform at rest on a cable pole (NaN): their sensitivities are "
         "those of the clamped cable")
@@ -391,9 +395,10 @@ def _empty(f: NDArray[np.float64], params: list[Parameter]) -> dict[str, NDArray
 def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
               pairs: list[tuple[int, int, int]], Ap: NDArray[np.float64], Bp: NDArray[np.float64],
               w: NDArray[np.float64], params: list[Parameter], moving: NDArray[np.bool_],
-              masses: NDArray[np.float64] | None = None) -> None:
+              masses: NDArray[np.float64]) -> None:
     """Per cluster: the eigenvalues of (A_j, B) for every parameter j, into d f/dp and
-    d zeta/dp (module notes)."""
+    d zeta/dp (module notes); the platform share x^T M_p x / x^T B x of each mode from
+    ``masses``, its vector's x^T M_p x."""
     import scipy.linalg
     damping = np.array([p.kind == "damping" for p in params])
     index = {}
@@ -415,10 +420,7 @@ def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
                 out["z"][g, j] = mu / (2.0 * lam)
             else:
                 out["d"][g, j] = mu / (2.0 * w[g[0]] * _TWO_PI)
-        if masses is not None:
-            out["share"][g] = masses[g]
-        else:
-            out["share"][g] = 1.0 / np.real(np.diag(B))
+        out["share"][g] = masses[g] / np.real(np.diag(B))
 
 
 def _result(out: dict[str, NDArray[np.float64]], f: NDArray[np.float64], params: list[Parameter],
