@@ -270,7 +270,8 @@ def test_the_table_and_tornado_name_what_they_show(cogiro_dsm):
     plt.close(fig)
 
 
-@pytest.mark.parametrize("rung, options", [("dsm", {}), ("lumped", {"segments": 4})])
+@pytest.mark.parametrize("rung, options", [("dsm", {}), ("exact", {}),
+                                           ("lumped", {"segments": 4})])
 def test_the_platform_share_is_the_modes(cogiro, rung, options):
     """The sensitivities' platform share of each mode is that of dynstiff.modes on the same
     model; below the first mode the result is empty, of its rung, with NaN shares."""
