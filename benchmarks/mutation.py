@@ -864,6 +864,13 @@ EQUIVALENT.update({
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_5":
         "the null-space parameters' value None: a Parameter's value is only reported in "
         "the sensitivities' result (its relative table), which the search does not read",
+    "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
+        "einsum's subscripts in capitals: the same contraction",
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_92":
+        "the fields '' instead of None off the exact rung: only the exact rung's forms read "
+        "them, and it sets them",
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_107":
+        "the second vector's fields computed even when it is the first: the same fields",
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_166":
         "the parabola's fraction without its upper clip 0.9: on that branch (ratio <= 0.1) "
         "it is 1 / (2 (1 - ratio)) <= 0.56, so the clip never binds",
