@@ -864,6 +864,14 @@ EQUIVALENT.update({
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁgradients__mutmut_5":
         "the null-space parameters' value None: a Parameter's value is only reported in "
         "the sensitivities' result (its relative table), which the search does not read",
+    "dynstiff.analyses.sensitivity.x__lumped__mutmut_73":
+        "the lumped rung's primitives without the tension reference: its linearisation reads "
+        "their lengths and loads, not the reference, which enters through the catenary "
+        "statics' length derivatives (taken with it; tested against central differences)",
+    "dynstiff.analyses.uncertainty.x_propagate_uncertainty__mutmut_110":
+        "without a band, the platform search covering 1 Hz instead of 0: it only lengthens "
+        "the list beyond the modes every free DOF needs; the first n_modes, the first "
+        "platform mode and its row are the same",
     "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
         "einsum's subscripts in capitals: the same contraction",
     "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_92":

@@ -299,3 +299,18 @@ def test_a_lumped_model_of_another_distribution_is_refused_at_its_pose(cogiro):
     s = frequency_sensitivities(model, ["EA"], n_modes=2,
                                 tension_reference=np.full(8, 400.0))
     assert np.all(np.isfinite(s.derivative))
+
+
+def test_the_lumped_rung_at_a_reference_distribution_matches_central_differences(cogiro):
+    """The lumped rung's sensitivities at a tension reference other than the robot's (its
+    equilibrium derivative takes that reference), against central differences of lumped
+    models built at the perturbed parameters and the same reference."""
+    rob = cogiro.robot
+    t_ref = np.linspace(300.0, 600.0, 8)
+    eq = rob.equilibrium(pose=cogiro.pose, tension_reference=t_ref, tol=1e-12)
+    model = ds.build_model(eq, "lumped", segments=4, tol=1e-13)
+    s = frequency_sensitivities(model, ["t_ref_2", "EA"], n_modes=4, tension_reference=t_ref)
+    for j, name in enumerate(s.parameters):
+        fd = central_difference(rob, eq.pose, name, "lumped", 4, rel=1e-3,
+                                tension_reference=t_ref, segments=4, tol=1e-13)
+        assert_matches(s, fd, j, rtol=1e-5)
