@@ -872,6 +872,11 @@ EQUIVALENT.update({
         "without a band, the platform search covering 1 Hz instead of 0: it only lengthens "
         "the list beyond the modes every free DOF needs; the first n_modes, the first "
         "platform mode and its row are the same",
+    "dynstiff.analyses.uncertainty.x__first_modes__mutmut_3":
+        "the list of exactly n_modes continued too: the continuation adds nothing",
+    "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_10":
+        "the 'moving' flags as floats: 1.0 and 0.0 test as True and False wherever they are "
+        "read (never as a mask)",
     "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
         "einsum's subscripts in capitals: the same contraction",
     "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_92":

@@ -264,6 +264,7 @@ def test_the_table_and_tornado_name_what_they_show(cogiro_dsm):
     fig = s.plot(modes=(0, 1))
     assert tuple(fig.get_size_inches()) == (8.4, 3.6)
     for k, ax in enumerate(fig.axes):
+        assert len(ax.patches) == 2                      # one bar per parameter
         assert ax.get_title() == f"mode {k + 1}: {s.freq_hz[k]:.4g} Hz"
         assert ax.get_xlabel() == "change per +1 % of the parameter [Hz]"
         zero = [ln for ln in ax.get_lines() if list(ln.get_xdata()) == [0.0, 0.0]]
@@ -282,8 +283,13 @@ def test_the_platform_share_is_the_modes(cogiro, rung, options):
     modes = ds.modes(model, n_modes=4)
     np.testing.assert_allclose(s.platform_share, 1.0 - modes.cable_energy_fraction,
                                rtol=1e-6, atol=1e-9)
+    assert s.note == "" and s.rung == rung and s.hold == "pose"
     empty = frequency_sensitivities(model, ["EA"], fmax_hz=0.1)
     assert empty.freq_hz.size == 0 and empty.rung == rung and empty.note == ""
+    assert frequency_sensitivities(model, ["EA"], n_modes=1, hold="lengths").hold == "lengths"
+    with pytest.raises(InvalidParameterError, match="^hold must be 'pose' or 'lengths', got "
+                                                    "'fixed'$"):
+        frequency_sensitivities(model, ["EA"], n_modes=1, hold="fixed")
     assert empty.platform_share.dtype == float
 
 

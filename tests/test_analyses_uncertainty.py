@@ -337,3 +337,30 @@ def test_more_modes_than_the_platform_search_finds(cogiro):
                                rtol=1e-10)
     assert res.nominal[45] == pm.first_hz
     assert np.all(np.isfinite(res.monte_carlo)) and np.all(np.isfinite(res.gradient))
+
+
+def test_stated_uncertainties_in_more_forms():
+    """Exponents in either case, a scale stored as a float, the items of a row joined."""
+    assert Uncertain.parse("1E-2") == Uncertain.parse("1e-2") == Uncertain(0.01, "normal",
+                                                                           False)
+    u = Uncertain(np.int64(2), "uniform", relative=False)
+    assert type(u.scale) is float and u.scale == 2.0
+
+
+def test_a_robot_with_one_platform_mode_and_the_rows_not_asked(cogiro):
+    """A one-cable robot (an inclined cable) with its platform free in z has one platform
+    mode: its row is taken from it. Without a forbidden band the uncertain row is "not
+    asked" and passes; with two stated uncertainties its detail names both, joined by
+    "; "."""
+    import dynstiff as ds
+    one = ds.Robot(np.array([[1.0, 0.0, 5.0]]), np.zeros((1, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(10.0, free_dofs=("z",)), tension_limits=(0.01, 1e6))
+    res = propagate_uncertainty(one, [0.0, 0.0, 1.0], uncertain={"EA": "1%"}, n_modes=1,
+                                method="first-order")
+    i = res.quantities.index("first_platform_hz")
+    assert np.isfinite(res.nominal[i]) and np.isfinite(res.gradient[i, 0])
+    row, _ = uncertain_row(cogiro.robot, cogiro.pose, CheckOptions(), {"EA": "10%"})
+    assert row["verdict"] == "not asked" and row["passed"] is True
+    row, _ = uncertain_row(cogiro.robot, cogiro.pose, CheckOptions(forbidden_hz=(0.0, 1.5)),
+                           {"EA": "10%", "mass": "2:uniform"}, n_samples=4)
+    assert row["detail"].endswith("; EA sigma 10 % (normal); mass +-2 (uniform)")
