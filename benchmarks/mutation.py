@@ -877,6 +877,15 @@ EQUIVALENT.update({
     "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_10":
         "the 'moving' flags as floats: 1.0 and 0.0 test as True and False wherever they are "
         "read (never as a mask)",
+    **{f"dynstiff.analyses.participation.x_receptance_amplification__mutmut_{n}":
+       "frf's inputs left to their default: the loads of the free DOFs, in the order of "
+       "the outputs, so the diagonal is the same" for n in (10, 35)},
+    "dynstiff.analyses.participation.x_platform_shares__mutmut_114":
+        "the platform mass matrix's columns instead of its rows: it is square",
+    "dynstiff.analyses.participation.x_modal_data__mutmut_3":
+        "'and' for 'or' between the rung and the class: every model of rung 'dsm' is a "
+        "FrequencyModel and every FrequencyModel has rung 'dsm' (the static rungs have "
+        "their own class)",
     "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
         "einsum's subscripts in capitals: the same contraction",
     "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_92":

@@ -69,6 +69,20 @@ def test_modal_data_of_the_closed_form_equals_the_modes(robot):
     np.testing.assert_allclose(fast.platform_shapes * sign, ref.platform_shapes, atol=1e-7)
     assert fast.kind == ref.kind
     np.testing.assert_allclose(fast.participation, ref.participation, atol=1e-7)
+    # the fast path gives no cable energies: NaN, floats
+    assert fast.cable_energy.dtype == float and np.all(np.isnan(fast.cable_energy))
+
+
+def test_modal_data_of_coincident_roots_takes_the_full_modes():
+    """The octahedron's degenerate pairs (C3v): their shapes need the null space of K, so
+    modal_data takes dynstiff.modes (with the cable energies) and equals it."""
+    from conftest import inverted_stewart
+    rob = inverted_stewart()
+    m = ds.build_model(rob.equilibrium(pose=[0.0, 0.0, 1.5], tol=1e-12), "dsm")
+    res, ref = modal_data(m, 45.0), ds.modes(m, fmax_hz=45.0)
+    assert res.freq_hz.size == 3 and res.freq_hz[2] - res.freq_hz[1] <= 1e-8 * res.freq_hz[2]
+    assert np.all(np.isfinite(res.cable_energy))
+    np.testing.assert_array_equal(res.platform_share, ref.platform_share)
 
 
 @pytest.mark.parametrize("position", [(0.0, 0.0, 1.0), (3.0, 2.0, 2.5), (5.0, 3.0, 1.0)])
