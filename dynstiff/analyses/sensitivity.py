@@ -331,10 +331,9 @@ def whole_clusters(f: NDArray[np.float64], top: int) -> int:
     3
     """
     top = min(int(top), len(f))
-    while 0 < top < len(f) and \
-            f[top] - f[top - 1] <= _CLUSTER_RTOL * max(abs(f[top]), 1e-300):
-        top += 1
-    return top
+    if top <= 0:
+        return top
+    return next(g[-1] + 1 for g in _clusters(f) if g[-1] + 1 >= top)
 
 
 def _clusters(f: NDArray[np.float64]) -> list[list[int]]:

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.optimal_tensions import band_margin
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
@@ -200,7 +201,6 @@ def _first_modes(model: PlatformModel, pm: PlatformModes, n_modes: int) -> NDArr
     f = np.asarray(pm.modes.freq_hz)
     if f.size >= n_modes:
         return f
-    from dynstiff.analyses.eigen import eigenfrequencies
     return np.concatenate([f, eigenfrequencies(model, n_modes=n_modes)[f.size:]])
 
 
