@@ -454,18 +454,21 @@ class DampedModes:
 
     @property
     def damping_ratio(self) -> NDArray[np.float64]:
-        """zeta = Im(omega) / |omega| [-]."""
-        return self.omega.imag / np.abs(self.omega)
+        """zeta = Im(omega) / |omega| [-]; NaN where undefined (omega NaN or 0)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return self.omega.imag / np.abs(self.omega)
 
     def __len__(self) -> int:
         return len(self.omega)
 
     def __repr__(self) -> str:
         ok = np.isfinite(self.omega)
+        if not ok.any():
+            return f"DampedModes({len(self)} modes, no damped root found)"
+        z = self.damping_ratio[np.isfinite(self.damping_ratio)]
+        span = f"{z.min():.3g}..{z.max():.3g}" if z.size else "undefined"
         return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
-                f"damping ratio {np.nanmin(self.damping_ratio, initial=np.nan):.3g}.."
-                f"{np.nanmax(self.damping_ratio, initial=np.nan):.3g})" if ok.any()
-                else f"DampedModes({len(self)} modes, no damped root found)")
+                f"damping ratio {span})")
 
     def plot(self, ax: Axes | None = None) -> Figure:
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.

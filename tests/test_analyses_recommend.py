@@ -4,6 +4,7 @@ study's headline numbers."""
 
 import importlib.util
 import warnings
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -171,3 +172,18 @@ def test_fourcable_needs_only_the_light_model():
     f_spring = ds.eigenfrequencies(ds.build_model(eq, "spring"), fmax_hz=20.0)
     f_dsm = ds.eigenfrequencies(ds.build_model(eq, "dsm"), fmax_hz=20.0)
     np.testing.assert_allclose(f_spring, f_dsm, rtol=1e-2)
+
+
+def test_segments_only_where_the_lumped_rung_is_named():
+    """The table gives the lumped rung's segment count on its own row only; the repr names
+    a segment count only for a lumped recommendation."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    rec = ds.recommend_model(eq, (0.1, 3.0), 1e-4)
+    df = rec.to_frame().set_index("rung")
+    n = rec.estimates["lumped_segments"]
+    assert n >= 4 and df.loc["lumped", "segments"] == n
+    assert df.drop(index="lumped")["segments"].isna().all()
+    assert repr(rec) == f"Recommendation('exact', predicted error {rec.predicted_error:.2e})"
+    lumped = replace(rec, rung="lumped", segments=n)
+    assert repr(lumped) == (f"Recommendation('lumped', {n} segments, predicted error "
+                            f"{rec.predicted_error:.2e})")

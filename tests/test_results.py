@@ -108,3 +108,87 @@ def test_rich_displays_hold_the_key_numbers(cogiro_model):
     a = np.abs(r.H[:, 0, 1])
     assert f"{a.max():.5g}" in text and f"{r.freq_hz[np.argmax(a)]:.5g}" in text
     assert "m/(N m)" in text and "receptance" in text
+
+
+def _frf(H, freq_hz=None):
+    H = np.asarray(H, dtype=complex).reshape(-1, 1, 1)
+    f = np.arange(1.0, len(H) + 1) if freq_hz is None else np.asarray(freq_hz, dtype=float)
+    return ds.FRFResult(freq_hz=f, H=H, inputs=("fx",), outputs=("x",), kind="receptance",
+                        damping="undamped")
+
+
+def test_empty_frf_displays_without_frequencies():
+    from conftest import assert_valid_html
+    r = _frf(np.zeros(0))
+    assert repr(r) == ("FRFResult(receptance, 0 frequencies none, outputs ('x',), "
+                       "inputs ('fx',), undamped)")
+    text = assert_valid_html(r._repr_html_())
+    assert "0 frequencies none" in text and "nan" in text
+
+
+def test_frf_display_names_the_largest_finite_value_and_its_columns():
+    """An exact pole (inf) is not the largest |H|: the largest finite value is, at its own
+    frequency."""
+    from conftest import assert_valid_html
+    html = _frf([np.inf, 1e-3, 2e-3, 5e-4], [1.0, 2.0, 3.0, 4.0])._repr_html_()
+    assert "<th>output</th><th>input</th><th>unit</th><th>largest |H|</th><th>at [Hz]</th>" \
+        in html
+    text = assert_valid_html(html)
+    assert "0.002" in text and "m/N" in text and "3" in text.split("0.002")[1]
+
+
+def test_modal_display_numbers_modes_from_one_and_names_its_class():
+    res = ds.ModalResult(freq_hz=np.array([1.0, 2.0]), platform_shapes=np.zeros((2, 6)),
+                         cable_energy_fraction=np.array([0.01, 0.97]),
+                         cable_energy=np.zeros((2, 1)))
+    assert repr(res) == "ModalResult(2 modes 1-2 Hz: 1 global, 0 mixed, 1 local)"
+    html = res._repr_html_()
+    assert ("<th>mode</th><th>freq [Hz]</th><th>kind</th><th>platform share [-]</th>"
+            "<th>dominant dof</th>") in html
+    assert "<tr><td>1</td><td>1</td><td>global</td>" in html
+    assert "<td>0</td>" not in html.split("</th></tr>")[1].split("</tr>")[0]
+
+
+def test_damped_modes_repr_with_a_root_at_zero_gives_no_warning():
+    """omega = 0 is a finite root with an undefined damping ratio (0/0): the repr reads nan
+    for it, with no RuntimeWarning (0/0, an all-NaN minimum), which this test turns into an
+    error."""
+    import warnings
+    d = ds.DampedModes(undamped_freq_hz=np.array([1.0, 2.0]), omega=np.array([0j, 6 + 0.3j]),
+                       residual=np.array([0.0, 0.0]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.isnan(d.damping_ratio[0])
+        assert repr(d) == "DampedModes(2 modes, 2 damped roots found, damping ratio 0.0499..0.0499)"
+        at_zero = ds.DampedModes(undamped_freq_hz=np.array([1.0]), omega=np.array([0j]),
+                                 residual=np.array([0.0]))
+        assert repr(at_zero) == \
+            "DampedModes(1 modes, 1 damped roots found, damping ratio undefined)"
+
+
+def test_result_plots_draw_into_the_axes_given(cogiro_model):
+    import matplotlib.pyplot as plt
+    omega = 2 * np.pi * np.array([0.5, 0.8])
+    r = ds.frf(cogiro_model, omega, inputs=["fx", "fz"], outputs=["x", "z"])
+    fig, ax = plt.subplots()
+    assert r.plot(ax=ax, pairs=[("z", "fz")]) is fig
+    assert len(ax.lines) == 1                       # the one pair asked, not the diagonal
+    plt.close(fig)
+    md = ds.modes(cogiro_model, 3)
+    fig, ax = plt.subplots()
+    assert md.plot(ax=ax) is fig and ax.has_data()
+    plt.close(fig)
+    d = ds.DampedModes(undamped_freq_hz=np.array([1.0]), omega=np.array([6.0 + 0.1j]),
+                       residual=np.array([0.0]))
+    fig, ax = plt.subplots()
+    assert d.plot(ax=ax) is fig and ax.has_data()
+    plt.close(fig)
+
+
+def test_frf_to_uff_is_ascii_unless_binary_is_asked(tmp_path):
+    r = _frf([1e-3, 2e-3])
+    text = r.to_uff(tmp_path / "a.uff").read_bytes()
+    text.decode("ascii")                            # ASCII records: no raw doubles
+    assert b"58b" not in text.splitlines()[1]
+    raw = r.to_uff(tmp_path / "b.uff", binary=True).read_bytes()
+    assert b"58b" in raw.splitlines()[1]
