@@ -906,6 +906,18 @@ EQUIVALENT.update({
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_101":
         "the ratio of a step without equilibrium -2 instead of -1: it is compared with 3, "
         "0.1 and -3 only, where both take the same branches",
+    "dynstiff.robot.distribution.x_tension_distribution__mutmut_14":
+        "t_min passed on without dtype=float: distribution_with_active_set converts it to "
+        "float again",
+    "dynstiff.robot.feasibility.x__lp__mutmut_17":
+        "method 'HIGHS' instead of 'highs': linprog lower-cases the method's name",
+    "dynstiff.robot.feasibility.x_limit_bounds__mutmut_17":
+        "an infinite upper bound passed as inf instead of None: linprog reads both as no "
+        "bound",
+    "dynstiff.robot.feasibility.x_diagnose_limits__mutmut_29":
+        "0 < best_min <= t_min instead of < t_min: differs only where the largest t_min "
+        "that works is t_min itself, a pose whose distribution exists and is never "
+        "diagnosed",
 })
 
 def _definitions():

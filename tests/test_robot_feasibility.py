@@ -115,3 +115,31 @@ def test_poses_no_limit_can_save_say_so(z, cause, words):
     with pytest.raises(InfeasiblePoseError, match=words) as err:
         rob.equilibrium(pose=[0.0, 0.0, z])
     assert err.value.cause == cause and err.value.remedies == {}
+
+
+@pytest.mark.parametrize("W, w, t_min, t_max, lo, hi, expect", [
+    # t1 + 2 t2 = 12 with t1 >= s + 1, t2 >= s and both <= 4: t2 = t1 = 4, so s = 3 (the
+    # upper bounds hold it below the unbounded 11/3); min s with t1 >= 3, t2 >= 2,
+    # t1, t2 <= s: t1 = t2 = 4
+    ([[1.0, 2.0]], [12.0], 2.0, 4.0, [1.0, 0.0], [0.0, 0.0], (3.0, 4.0)),
+    # t1 - t2 = 2 with both >= 3 and t1 + 1 <= s, t2 <= s: t2 = 3, t1 = 5, s = 6 (the lower
+    # bound binds: without it t2 = 0, t1 = 2, s = 3); s <= t2 with t1 <= 6 - 1: s = 3
+    ([[1.0, -1.0]], [2.0], 3.0, 6.0, [0.0, 0.0], [1.0, 0.0], (3.0, 6.0)),
+    # t1 + t2 = 10, both <= 3: no tensions balance whatever t_min (-inf); t1, t2 >= 6:
+    # none whatever t_max (inf)
+    ([[1.0, 1.0]], [10.0], 6.0, 3.0, [0.0, 0.0], [0.0, 0.0], (-np.inf, np.inf)),
+])
+def test_limit_bounds_solve_small_programs_by_hand(W, w, t_min, t_max, lo, hi, expect):
+    """limit_bounds' two linear programs on one-equation cases solved by hand: the tension
+    bounds are constraints of both programs, and an infeasible program gives -inf / inf."""
+    from dynstiff.robot.feasibility import limit_bounds
+    got = limit_bounds(np.array(W), np.array(w), t_min, t_max, np.array(lo), np.array(hi))
+    np.testing.assert_allclose(got, expect, rtol=1e-9)
+
+
+def test_a_t_min_below_one_newton_is_a_remedy_too():
+    """t1 + t2 = 1 N: the largest t_min that works is 0.5 N, named alone (not with a t_max)."""
+    from dynstiff.robot.feasibility import diagnose_limits
+    e = diagnose_limits(np.array([[1.0, 1.0]]), np.array([1.0]), 2.0, 10.0, np.zeros(2),
+                        np.zeros(2), "here")
+    assert e.cause == "tension limits" and e.remedies == pytest.approx({"t_min": 0.5})
