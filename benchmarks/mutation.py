@@ -918,6 +918,21 @@ EQUIVALENT.update({
         "0 < best_min <= t_min instead of < t_min: differs only where the largest t_min "
         "that works is t_min itself, a pose whose distribution exists and is never "
         "diagnosed",
+    "dynstiff.robot.feasibility.x_diagnose_unreachable__mutmut_36":
+        "0 < scale < 2 instead of < 1: scale = (T - lo) / (T* - lo) is below 1 whenever it "
+        "is computed (T < T*, T* > lo)",
+    "dynstiff.robot.feasibility.x_diagnose_unreachable__mutmut_22":
+        "the scale also computed when T* <= lo: with T < T* it is then >= 1 (or a division "
+        "by zero at T* = lo exactly), outside (0, 1) like the 0 it replaces",
+    "dynstiff.robot.feasibility.x_least_end_tension__mutmut_58":
+        "the bracket's top index size - 2 instead of size - 1: differs only when the least "
+        "grid tension is at the last point, 5 chords of cable, where the hanging weight "
+        "makes T_B larger than at the fold",
+    "dynstiff.robot.feasibility.x_least_end_tension__mutmut_62":
+        "method None instead of 'bounded': minimize_scalar picks 'bounded' when bounds are "
+        "given",
+    "dynstiff.robot.feasibility.x_least_end_tension__mutmut_78":
+        "<= instead of <: on a tie both are the least tension found",
 })
 
 def _definitions():

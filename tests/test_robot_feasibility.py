@@ -143,3 +143,92 @@ def test_a_t_min_below_one_newton_is_a_remedy_too():
     e = diagnose_limits(np.array([[1.0, 1.0]]), np.array([1.0]), 2.0, 10.0, np.zeros(2),
                         np.zeros(2), "here")
     assert e.cause == "tension limits" and e.remedies == pytest.approx({"t_min": 0.5})
+
+
+def test_least_end_tension_locates_the_fold_where_the_tension_stops_falling():
+    """The unstretched length returned is the root of dT_B/dL0 (central differences, h =
+    1e-4 m, then Brent to 1e-13 m) to 1e-7 m: a loose search tolerance (1e-5 m) leaves it
+    ~7e-7 m off while T_B itself barely moves (the minimum is flat)."""
+    from scipy.optimize import brentq
+    for A, B, m in [([3.0, 3.0, 0.0], [0.0, 0.0, 2.0], 0.2),
+                    ([3.0, 3.0, 0.0], [0.0, 1.0, 4.0], 0.5)]:
+        A, B, cable = np.array(A), np.array(B), ds.Cable(m, 1e6)
+        T_star, L_star = least_end_tension(A, B, cable, 9.81)
+
+        def slope(L0, h=1e-4):
+            return (ds.solve_catenary(A, B, L0 + h, cable, 9.81).tension_at_end
+                    - ds.solve_catenary(A, B, L0 - h, cable, 9.81).tension_at_end) / (2 * h)
+        L_ref = brentq(slope, L_star - 1e-2, L_star + 1e-2, xtol=1e-13)
+        assert abs(L_star - L_ref) < 1e-7
+        T_ref = ds.solve_catenary(A, B, L_ref, cable, 9.81).tension_at_end
+        assert T_star == pytest.approx(T_ref, rel=1e-12)
+
+
+def _limits(W, w, t_min, t_max, lo=(0.0, 0.0), hi=(0.0, 0.0)):
+    from dynstiff.robot.feasibility import diagnose_limits
+    return diagnose_limits(np.array(W), np.array(w), t_min, t_max, np.array(lo),
+                           np.array(hi), "here")
+
+
+def test_limits_wrong_together_name_both_remedies():
+    """t1 + t2 = 1 N within [2, 0.4] N: neither limit alone helps (best t_min -inf, best
+    t_max inf); half of the unbounded best t_min (0.5 N) and the t_max it then needs
+    (0.5 N) are named together, and they work."""
+    from dynstiff.robot.feasibility import limit_bounds
+    e = _limits([[1.0, 1.0]], [1.0], 2.0, 0.4)
+    assert e.cause == "tension limits"
+    assert e.remedies == pytest.approx({"t_min": 0.25, "t_max": 0.5})
+    assert str(e) == ("here: no tension distribution within [2, 0.4] N balances the "
+                      "platform: the tensions that hold the platform here do not fit in the "
+                      "limits; change the tension limits: feasible with t_min <= about 0.25 N "
+                      "and t_max >= about 0.5 N")
+    lo, hi = limit_bounds(np.array([[1.0, 1.0]]), np.array([1.0]), 0.25, 0.5, np.zeros(2),
+                          np.zeros(2))
+    assert lo >= 0.25 and hi <= 0.5 + 1e-12
+
+
+def test_no_positive_tension_is_no_limit_problem():
+    """t1 + t2 = 0: only zero tensions balance (the largest t_min that works is 0, not a
+    positive one): the wrench, not the limits."""
+    e = _limits([[1.0, 1.0]], [0.0], 1.0, 5.0)
+    assert e.cause == "wrench" and not e.remedies
+
+
+def test_weight_margins_message_names_the_weight_and_the_t_max():
+    """t1 + t2 = 10 N with margins of 2 N each side within [2, 6] N: weightless cables fit
+    (5 N each), the margins leave [4, 4] N; t_max = 5 + 2 = 7 N is named."""
+    e = _limits([[1.0, 1.0]], [10.0], 2.0, 6.0, lo=(2.0, 2.0), hi=(2.0, 2.0))
+    assert e.cause == "cable weight" and e.remedies == pytest.approx({"t_max": 7.0})
+    assert str(e) == ("here: no tension distribution within [2, 6] N balances the platform: "
+                      "the cables' weight (the tension varies along each cable by up to 2 N) "
+                      "leaves no room within the limits; use lighter cables, or change the "
+                      "tension limits: t_max >= about 7 N")
+
+
+@pytest.mark.parametrize("anchor, end, lo_i, words", [
+    ([3.0, 3.0, 0.0], [0.0, 0.0, 2.0], 1.0, "rising 2 m"),
+    ([3.0, 3.0, 4.0], [0.0, 0.0, 2.0], 1.0, "falling 2 m"),
+    ([3.0, 3.0, 0.0], [0.0, 0.0, 2.0], 6.0, "rising 2 m"),     # lo_i above the tension
+])
+def test_unreachable_tension_message_and_remedies(anchor, end, lo_i, words):
+    """The message's numbers from their definitions: the chord's weight m g |B - A|, the
+    least tension T* (least_end_tension), t_min + T* - T, and the lighter cable m (T -
+    lo_i) / (T* - lo_i), named only when that factor is in (0, 1)."""
+    from dynstiff.robot.feasibility import diagnose_unreachable
+    rob = point_mass(UPPER + [anchor], 0.2, limits=(1.5, np.inf))
+    A, B = np.array(anchor), np.array(end)
+    T_star, _ = least_end_tension(A, B, rob.cables[3], rob.g)
+    tension = T_star - 3.0
+    e = diagnose_unreachable(rob, 3, A, B, tension, lo_i, "here")
+    weight = 0.2 * rob.g * np.linalg.norm(B - A)
+    scale = (tension - lo_i) / (T_star - lo_i)
+    lighter = f" or use a cable lighter than about {scale * 0.2:.4g} kg/m" if scale > 0 else ""
+    assert str(e) == (f"here: cable 3 ({words} to the platform, chord weight {weight:.4g} N) "
+                      f"is asked {tension:.4g} N at the platform; not reachable: no catenary "
+                      f"between its ends has less than {T_star:.4g} N there (the cable is too "
+                      f"heavy for its tension); raise t_min to above about {4.5:.4g} N "
+                      f"(tension limits){lighter}")
+    assert e.cable == 3 and e.cause == "cable weight"
+    assert e.remedies["t_min"] == pytest.approx(4.5)
+    assert ("mass_per_length" in e.remedies) == (scale > 0)
+    assert diagnose_unreachable(rob, 3, A, B, T_star + 1.0, lo_i, "here") is None
