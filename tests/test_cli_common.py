@@ -114,3 +114,123 @@ def test_a_figure_is_saved_laid_out_and_closed(tmp_path):
     h, w = mpimg.imread(tmp_path / "f.png").shape[:2]
     assert (w, h) != (480, 360) and w > 480
     assert not plt.fignum_exists(fig.number)
+
+
+@pytest.mark.parametrize("opt, flag, least", [
+    ("points", "--points", 2), ("steps", "--steps", 2), ("segments", "--segments", 1),
+    ("n", "-n", 1), ("max_modes", "--max-modes", 1)])
+def test_counts_below_their_least_are_refused_by_name(opt, flag, least):
+    common.check_outputs(Namespace(**{opt: least}))
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(**{opt: least - 1}))
+    assert str(err.value) == f"{flag} must be >= {least}, got {least - 1}"
+
+
+@pytest.mark.parametrize("opt", ["fmax", "time", "dt", "speed", "rtol", "proximity", "max_sag",
+                                 "participation", "frf_limit"])
+@pytest.mark.parametrize("bad", [0.0, -1.0, float("inf"), float("nan")])
+def test_positive_options_are_finite_and_positive(opt, bad):
+    common.check_outputs(Namespace(**{opt: 1e-9}))
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(**{opt: bad}))
+    assert str(err.value) == f"--{opt.replace('_', '-')} must be finite and > 0, got {bad}"
+
+
+@pytest.mark.parametrize("opt", ["band", "forbidden_band"])
+@pytest.mark.parametrize("bad", [(-1.0, 2.0), (2.0, 2.0), (1.0, float("inf"))])
+def test_bands_are_ordered_and_finite(opt, bad):
+    common.check_outputs(Namespace(**{opt: (0.0, 2.0)}))
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(**{opt: bad}))
+    assert str(err.value) == (f"--{opt.replace('_', '-')} must be LO HI with 0 <= LO < HI "
+                              f"[Hz], got {bad[0]} {bad[1]}")
+
+
+def test_a_pose_has_three_or_six_numbers():
+    common.check_outputs(Namespace(pose=[0.0, 0.0, 1.0]))
+    common.check_outputs(Namespace(pose=[0.0] * 6))
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(pose=[0.0] * 4))
+    assert str(err.value) == ("--pose needs 3 numbers (x y z [m]) or 6 (and rx ry rz [rad]), "
+                              "got 4: [0.0, 0.0, 0.0, 0.0]")
+
+
+@pytest.mark.parametrize("opt", ["csv", "json", "plot", "uff"])
+def test_output_paths_folder_missing_folder_and_standard_output(opt, tmp_path):
+    name = str(tmp_path / "x.png")
+    common.check_outputs(Namespace(**{opt: name}))
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(**{opt: str(tmp_path)}))
+    assert str(err.value) == f"--{opt} {tmp_path}: is a folder; give a file name"
+    missing = tmp_path / "no" / "x.png"
+    with pytest.raises(ds.InvalidParameterError) as err:
+        common.check_outputs(Namespace(**{opt: str(missing)}))
+    assert str(err.value) == (f"--{opt} {missing}: folder {str(missing.parent)!r} does not "
+                              f"exist")
+    if opt in ("csv", "json"):                          # standard output
+        common.check_outputs(Namespace(**{opt: "-"}))
+    elif opt == "plot":                                 # no figure format named "-"
+        with pytest.raises(ds.InvalidParameterError, match=r"^--plot -: the file name must"):
+            common.check_outputs(Namespace(plot="-"))
+
+
+def test_file_arguments_name_inputs_and_outputs(tmp_path):
+    """Inputs named as the command line spells them (positional names bare, options with
+    dashes); a built-in scene name is no file; standard output is no file."""
+    scene = tmp_path / "s.toml"
+    scene.write_text("")
+    args = Namespace(scene=str(scene), bodies="b.xml", cables="c.xml", measured="m.csv",
+                     operational_spaces="o.xml", out="o.toml", csv="-", plot="p.png")
+    assert common.file_arguments(args) == (
+        [("scene", str(scene)), ("--measured", "m.csv"), ("bodies", "b.xml"),
+         ("cables", "c.xml"), ("--operational-spaces", "o.xml")],
+        [("--out", "o.toml"), ("--plot", "p.png")])
+    assert common.file_arguments(Namespace(scene="cogiro")) == ([], [])
+
+
+def test_an_output_on_an_input_is_refused_before_the_other_checks(tmp_path):
+    m = tmp_path / "m.csv"
+    m.write_text("")
+    from dynstiff.io.files import OutputPathError
+    with pytest.raises(OutputPathError, match="--csv .* is the same file as "
+                       "--measured"):
+        common.check_outputs(Namespace(measured=str(m), csv=str(m), points=0))
+
+
+def test_fmax_keeps_a_scenes_own_band_bottom(scene):
+    from dataclasses import replace
+    own = replace(scene, band_hz=(0.3, 5.0))
+    assert common.scene_settings(own, Namespace(fmax=12.0)).band_hz == (0.3, 12.0)
+
+
+def test_a_figure_is_saved_at_120_dpi(tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from PIL import Image
+    fig, ax = plt.subplots(figsize=(4, 3))
+    common.save_figure(fig, tmp_path / "f.png")
+    with Image.open(tmp_path / "f.png") as im:
+        # PNG stores whole pixels per metre: 120 dpi is 4724 px/m, read back 119.99 dpi
+        assert im.info["dpi"] == pytest.approx((120, 120), abs=0.1)
+
+
+def test_the_damping_option_reads_numbers():
+    import argparse
+    p = argparse.ArgumentParser()
+    common.damping_option(p)
+    assert p.parse_args(["--damping", "0.02", "0", "1.5"]).damping == [0.02, 0.0, 1.5]
+    assert "cable viscous damping [N s/m^2]" in " ".join(p.format_help().split())
+
+
+def test_tables_only_where_asked(tmp_path):
+    """write_tables with no --json attribute at all (a command without the option)."""
+    df = pd.DataFrame({"a [m]": [1.0]})
+    common.write_tables(Namespace(csv=str(tmp_path / "t.csv")), df, {"scene": "x"})
+    assert (tmp_path / "t.csv").exists() and not (tmp_path / "t.json").exists()
+
+
+def test_the_date_of_a_header_is_utc():
+    from datetime import datetime
+    stamp = common.table_metadata("x", None, None)["date"]
+    assert stamp.endswith("+00:00") and datetime.fromisoformat(stamp).utcoffset().seconds == 0
