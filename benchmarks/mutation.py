@@ -854,6 +854,10 @@ EQUIVALENT.update({
     "dynstiff.analyses.recommend.x__dsm_error__mutmut_55":
         "closed-form modes from f > lo instead of f >= lo: differs only for a mode exactly "
         "at the band's bottom",
+    "dynstiff.analyses.recommend.x__massless_errors__mutmut_66":
+        "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
+        "vectors, x^T M x = 1",
+    "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
     **{f"dynstiff.cli.common.x_check_outputs__mutmut_{n}":
        "float('INF') instead of float('inf'): float() reads either case" for n in (123, 152)},
 })

@@ -214,3 +214,71 @@ def test_closed_form_error_in_band_and_axial_cut():
     err_up, eps_up, causes_up = _dsm_error(eq, (lo, 1.01 * AXIAL_MARGIN * f_ax))
     assert np.isinf(err_up) and eps_up == eps
     assert sum("axial modes from" in c for c in causes_up) >= 1
+
+
+def test_cable_estimates_against_the_exact_clamped_cables():
+    """CoGiRo: the lowest taut-string frequency sqrt(T/m) / 2L of the estimates is the
+    lowest exact clamped out-of-plane frequency to 1 % (shallow taut cables), and the
+    highest harmonic in the band is the band top over it."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    hi = 6.0
+    errors, est, segments = ds.analyses.recommend.predicted_errors(eq, (0.1, hi), 1e-2)
+    exact = min(ds.cable_natural_frequencies(s, 2, model="exact").freq_hz.min()
+                for s in eq.states)
+    assert est["cable_f1_hz"] == pytest.approx(exact, rel=1e-2)
+    assert est["highest_harmonic"] == pytest.approx(hi / est["cable_f1_hz"], rel=1e-12)
+
+
+@pytest.mark.parametrize("rtol", [1e-2, 1e-3, 1e-4])
+def test_lumped_segments_from_the_discrete_string_error(rtol):
+    """The lumped rung's estimate: a chain of N masses gives harmonic n at sin(x)/x of the
+    string's, x = n pi / 2N, so 1 - sin(x)/x ~ (n pi / N)^2 / 24 (to x^4 / 120); the
+    segments are the fewest (at least 4) that keep it within rtol / 2."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    errors, est, N = ds.analyses.recommend.predicted_errors(eq, (0.1, 6.0), rtol)
+    n = max(1.0, est["highest_harmonic"])
+    x = n * np.pi / (2 * N)
+    assert abs(errors["lumped"] - (1 - np.sin(x) / x)) <= x**4 / 100
+    assert errors["lumped"] <= rtol / 2
+    assert N == 4 or (n * np.pi / (N - 1)) ** 2 / 24 > rtol / 2
+    assert est["lumped_segments"] == N
+
+
+def test_lumped_models_estimated_error_is_the_discrete_string_error():
+    """estimated_error of a lumped model: the highest harmonic 2 f L sqrt(m / T) over its
+    cables (chord, end tension) and its segment count, as the discrete string's error."""
+    from dynstiff.analyses.recommend import estimated_error
+    eq = ds.load_scene("cogiro").equilibrium()
+    model = ds.build_model(eq, "lumped", 12)
+    err, cause = estimated_error(model, (0.1, 4.0))
+    leq = model.equilibrium
+    harm = max(2 * 4.0 * np.linalg.norm(x[-1] - x[0]) * np.sqrt(c.mass_per_length / t)
+               for x, c, t in zip(leq.nodes, model.robot.cables, leq.end_tensions))
+    x = max(1.0, harm) * np.pi / (2 * 12)
+    assert abs(err - (1 - np.sin(x) / x)) <= x**4 / 100 and err > 0
+    assert cause == "12 segments per cable against the highest cable harmonic in the band"
+
+
+@pytest.mark.parametrize("fraction", [0.5, 0.9])
+def test_no_massless_mode_in_the_band_no_massless_error(fraction):
+    """A band ending below the first platform mode (half of it: no mode within 1.5 x the
+    top; 0.9 of it: the mode is within 1.5 x but its shift keeps it above the band): the
+    massless rungs miss nothing and shift nothing there."""
+    from dynstiff.analyses.recommend import _massless_errors
+    eq = three_cable(12, 8, 50, 17e9, 0.064)
+    f1 = ds.eigenfrequencies(ds.build_model(eq, "catenary"), n_modes=1)[0]
+    assert fraction * 2 * np.pi * f1 > 0
+    assert _massless_errors(eq, fraction * 2 * np.pi * f1, 0) == (0.0, 0.0)
+
+
+def test_the_text_names_the_segments_and_every_rungs_error():
+    eq = ds.load_scene("cogiro").equilibrium()
+    rec = ds.recommend_model(eq, (0.1, 3.0), 1e-4)
+    lumped = replace(rec, rung="lumped", segments=rec.estimates["lumped_segments"])
+    lines = lumped.text().splitlines()
+    assert lines[0] == (f"recommended model: lumped with N = {lumped.segments} segments per "
+                        f"cable (predicted error {rec.predicted_error:.2e})")
+    assert lines[3] == "  predicted errors: " + ", ".join(
+        f"{k} {v:.2e}" for k, v in rec.errors.items())
+    assert rec.text().splitlines()[0] == (f"recommended model: exact (predicted error "
+                                          f"{rec.predicted_error:.2e})")
