@@ -154,3 +154,24 @@ def test_proximity_records_compare_by_value_and_tabulate_with_their_types(modes1
         to_frame([warn[0], (1, 2)])
 
 
+
+
+@pytest.mark.parametrize("platform", [[0, 40], [-1, 3], [0.0, 2.0], [2.5], [True, False]])
+def test_platform_indices_outside_the_modes_or_not_integers_are_refused(modes120, platform):
+    """platform indexes the modes: an index past the end or negative, or a number that is
+    not an integer (2.5 would be truncated, True taken as 1), is an error naming it."""
+    assert len(modes120) == 40
+    with pytest.raises(InvalidParameterError) as err:
+        proximity_warnings(modes120, platform=platform)
+    assert str(err.value) == (f"platform must be integer indices of the 40 modes, got "
+                              f"{np.asarray(platform).tolist()}")
+
+
+def test_platform_indices_choose_the_modes_compared(modes120):
+    """Given indices (numpy ints, repeated) compare exactly those modes: every pair's global
+    mode is one of them, and the pairs are those of the default for the same modes."""
+    glob = np.flatnonzero(np.array(modes120.kind) == "global")[:3]
+    got = proximity_warnings(modes120, rtol=0.2, platform=np.r_[glob, glob[:1]])
+    ref = [w for w in proximity_warnings(modes120, rtol=0.2) if w.global_mode - 1 in glob]
+    assert got == ref and len(got) > 0
+    assert proximity_warnings(modes120, platform=[]) == []

@@ -154,7 +154,8 @@ def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = Fals
     Raises
     ------
     InvalidParameterError
-        ``rtol`` not finite and > 0, or ``modes`` not a modal result.
+        ``rtol`` not finite and > 0, ``modes`` not a modal result, or ``platform`` not
+        integer indices of its modes.
 
     Examples
     --------
@@ -173,10 +174,11 @@ def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = Fals
     if platform is None:
         ig = np.flatnonzero(kind == "global")
     else:
-        ig = np.unique(np.asarray(platform, dtype=int))
-        if ig.size and (ig.min() < 0 or ig.max() >= f.size):
+        ig = np.unique(np.asarray(platform))
+        if ig.size and (ig.dtype.kind not in "iu" or ig.min() < 0 or ig.max() >= f.size):
             raise InvalidParameterError(
-                f"platform must index the {f.size} modes, got {np.asarray(platform).tolist()}")
+                f"platform must be integer indices of the {f.size} modes, got "
+                f"{np.asarray(platform).tolist()}")
     il = np.flatnonzero(kind == "local")
     if ig.size == 0 or il.size == 0:
         return []
