@@ -858,6 +858,12 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    "dynstiff.analyses.participation.x_modal_data__mutmut_1":
+        "max_modes 20001 instead of 20000 by default: a cap no robot's band reaches",
+    **{f"dynstiff.analyses.participation.x_receptance_amplification__mutmut_{n}":
+       "the 0/0 and inf/inf of the ratio to the static receptance: a robot in equilibrium "
+       "has a positive definite K(0), so the static receptance is finite and non-zero and "
+       "the ratio is never NaN (an exact pole gives inf / finite = inf)" for n in (54, 65)},
     **{f"dynstiff.robot.distribution.x__active_solution__mutmut_{n}": _WARM
        + "; with a zero lower limit a start off the balance passes the box test, and the "
        "method still ends at the optimum: its iterates are the targets of their active "

@@ -198,3 +198,16 @@ def test_the_receptance_checks_uniform_count_does_not_set_its_ratio(band):
     assert receptance_amplification(dm, band, modes)[0] == pytest.approx(fine, rel=1e-3)
     if np.any((modes >= band[0]) & (modes <= band[1])) and band[0] > 0:
         assert receptance_amplification(dm, band, (), 100)[0] < 0.999 * fine
+
+
+def test_modal_data_of_a_first_coincident_pair_alone_takes_the_full_modes():
+    """The octahedron with ten times the inertia: its first two modes coincide (C3v). Below
+    20 Hz they are the only modes, and modal_data still takes dynstiff.modes for them
+    (cable energies computed), as it does for a longer list."""
+    from conftest import inverted_stewart
+    rob = inverted_stewart(inertia=(100.0, 100.0, 150.0))
+    m = ds.build_model(rob.equilibrium(pose=[0.0, 0.0, 1.5], tol=1e-12), "dsm")
+    res, ref = modal_data(m, 20.0), ds.modes(m, fmax_hz=20.0)
+    assert res.freq_hz.size == 2 and res.freq_hz[1] - res.freq_hz[0] <= 1e-8 * res.freq_hz[1]
+    assert np.all(np.isfinite(res.cable_energy))
+    np.testing.assert_array_equal(res.platform_share, ref.platform_share)
