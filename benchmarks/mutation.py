@@ -858,6 +858,9 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    "dynstiff.analyses.sensitivity.x__lumped__mutmut_192":
+        "the lumped rung's 'moving' flags as floats (ones): 1.0 tests as True wherever they "
+        "are read (never as a mask)",
     "dynstiff.analyses.participation.x_modal_data__mutmut_1":
         "max_modes 20001 instead of 20000 by default: a cap no robot's band reaches",
     **{f"dynstiff.analyses.participation.x_receptance_amplification__mutmut_{n}":

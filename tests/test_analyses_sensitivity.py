@@ -320,3 +320,22 @@ def test_the_lumped_rung_at_a_reference_distribution_matches_central_differences
         fd = central_difference(rob, eq.pose, name, "lumped", 4, rel=1e-3,
                                 tension_reference=t_ref, segments=4, tol=1e-13)
         assert_matches(s, fd, j, rtol=1e-5)
+
+
+def test_modes_with_the_platform_at_rest_on_a_cable_pole_are_said_and_left_nan():
+    """planar2: two equal cables, the platform at their common end. The out-of-plane
+    cable modes in opposition leave the platform at rest at the clamped cables' frequency,
+    a pole of K: those modes (a coincident pair per harmonic) have NaN sensitivities and
+    share, the note says why, and every other mode has finite ones."""
+    eq = ds.load_scene("planar2").equilibrium()
+    m = ds.FrequencyModel(eq)
+    s = ds.frequency_sensitivities(m, ["EA", "mass_per_length"], fmax_hz=6.0)
+    assert s.note == ("modes with the platform at rest on a cable pole (NaN): their "
+                      "sensitivities are those of the clamped cable")
+    f_pole = ds.cable_natural_frequencies(eq.states[0], 6, guard_rtol=None)
+    at_pole = np.isnan(s.platform_share)
+    assert at_pole.sum() == 4
+    poles = f_pole.freq_hz[(np.array(f_pole.family) == "out-of-plane") & (f_pole.freq_hz < 6)]
+    np.testing.assert_allclose(s.freq_hz[at_pole], np.repeat(poles, 2), rtol=1e-9)
+    assert np.all(np.isnan(s.derivative[at_pole]))
+    assert np.all(np.isfinite(s.derivative[~at_pole]))
