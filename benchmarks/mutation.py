@@ -858,6 +858,22 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    "dynstiff.models.dsm_guard.x_guard_robot__mutmut_9": _BOUNDARY,
+    "dynstiff.models.dsm_guard.x_guard_band__mutmut_13": _BOUNDARY,
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_25": _EINSUM,
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_87": _EINSUM,
+    **{f"dynstiff.models.dsm_guard.x_guard_band__mutmut_{n}":
+       "typing.cast's type given in another case: cast returns its value unchanged"
+       for n in (56, 57)},
+    **{f"dynstiff.models.dsm_guard.x_guard_band__mutmut_{n}":
+       "the memo of a cable already said or measured within tolerance missed: the cable is "
+       "measured again at the next wider band (cost only); warn_once still says it once"
+       for n in (37, 63)},
+    "dynstiff.models.dsm_guard.x_guard_robot__mutmut_3":
+        "the early return for a robot bound already said missed: the bound is computed "
+        "again (cost only) and warn_once does not say it twice",
+    "dynstiff.models.dsm_guard.x_warn_once__mutmut_3":
+        "None recorded as the cause issued: _issued is read only for being non-empty",
     "dynstiff.analyses.sensitivity.x__lumped__mutmut_192":
         "the lumped rung's 'moving' flags as floats (ones): 1.0 tests as True wherever they "
         "are read (never as a mask)",

@@ -1,0 +1,74 @@
+"""The closed form's guard (dynstiff/models/dsm_guard.py, theory.md §11.5-11.6): the robot
+-level bound's warning, and the causes said for cables whose closed form does not apply."""
+
+import dataclasses
+import warnings
+
+import numpy as np
+
+import dynstiff as ds
+from dynstiff.cable.guard import ROBOT_ERROR_FACTOR
+from dynstiff.errors import ClosedFormWarning
+from dynstiff.models.dsm import ROBOT_BOUND_MESSAGE
+
+
+def _said(fn):
+    with warnings.catch_warnings(record=True) as rec:
+        warnings.simplefilter("always")
+        fn()
+    return [w.message for w in rec if issubclass(w.category, ClosedFormWarning)]
+
+
+def test_the_robot_bound_is_said_once_with_its_numbers():
+    """CoGiRo at guard_rtol = 1e-4 up to 1 Hz: no cable's local modes are in the band and
+    its static error (4.6e-5) is within tolerance, but the robot-level bound, 2.5 x (static
+    + the largest cable error), exceeds it: one warning, cause 'robot', no cable, with the
+    bound and the band top as robot_error gives them; a wider band does not say it again."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    said = _said(lambda: ds.FrequencyModel(eq, guard_rtol=1e-4))
+    assert said == []
+    m = ds.FrequencyModel(eq, guard_rtol=1e-4)
+    top = 2 * np.pi * 1.0
+    said = _said(lambda: (m.dynamic_stiffness([top]), m.dynamic_stiffness([1.2 * top])))
+    bound, i = m.robot_error(top)
+    assert 1e-4 < bound < np.inf
+    assert [(w.cause, w.cable) for w in said] == [("robot", None)]
+    assert str(said[0]) == (
+        f"{ROBOT_BOUND_MESSAGE} up to 1 Hz may reach {bound:.2g} (bound "
+        f"{ROBOT_ERROR_FACTOR:g} x (static + cable {i}'s own error), > guard_rtol 0.0001): "
+        f"use the 'exact' rung")
+
+
+def test_cables_with_axial_modes_in_the_band_are_not_also_measured_for_local_error():
+    """planar2 with soft heavy cables up to 40 Hz: both cables' axial modes are in the band
+    (the closed form does not apply: error inf), and that is what is said of them, once
+    each; their local error is not measured and said as well, nor the robot bound."""
+    r = ds.load_scene("planar2").robot
+    eq = dataclasses.replace(r, cables=(ds.Cable(1.0, 2.0e4),) * 2).equilibrium(
+        ds.Pose([0, 0, -10]))
+    m = ds.FrequencyModel(eq)
+    said = _said(lambda: m.dynamic_stiffness(2 * np.pi * np.array([20.0, 40.0])))
+    assert sorted((w.cable, w.cause) for w in said) == [(0, "axial"), (1, "axial")]
+
+
+def test_a_slack_cable_is_said_slack_only_across_its_local_modes():
+    """A 1 kg point mass on three heavy cables and a fourth straight down, held at 0.01 N
+    (slack: t_min / t_max < 0.1, error inf). Up to 30 rad/s, past the local modes of every
+    cable: the slack cable is said once, as slack, and not measured for a local error too;
+    the three others are said for their local modes."""
+    ang = np.radians([90, 210, 330])
+    A = np.vstack([np.column_stack([8 * np.cos(ang), 8 * np.sin(ang), np.full(3, 6.0)]),
+                   [0.3, -0.2, -4.0]])
+    rob = ds.Robot(A, np.zeros((4, 3)), ds.Cable(0.064, 1.4e5),
+                   ds.Platform(1.0, free_dofs=("x", "y", "z")), tension_limits=(0.01, 1e6))
+    eq = rob.equilibrium(pose=[0.3, -0.2, 1.0])
+    m = None
+
+    def build():
+        nonlocal m
+        m = ds.FrequencyModel(eq, guard_rtol=1e-2)
+    built = _said(build)
+    assert [(w.cable, w.cause) for w in built if w.cable == 3] == [(3, "slack")]
+    said = _said(lambda: m.dynamic_stiffness([30.0]))
+    assert all(w.cable != 3 for w in said)
+    assert np.pi * np.sqrt(m.params[3].T / m.params[3].m) / m.params[3].L < 30.0
