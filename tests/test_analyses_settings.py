@@ -136,3 +136,41 @@ def test_an_undamped_frf_across_resonances_warns_and_says_undamped():
         warnings.simplefilter("error")
         ds.frf(m, 2 * np.pi * np.linspace(0.1, 2.0, 50), "fz", "z")
         ds.frf(ds.scene_model(sc), 2 * np.pi * np.linspace(2.0, 2.5, 50), "fz", "z")
+
+
+def test_the_scenes_own_analysis_values_are_taken():
+    """[analysis] model, segments, n_modes and model_rtol of a scene, each taken over the
+    defaults; the smallest count (1) is accepted."""
+    sc = dataclasses.replace(ds.load_scene("planar2"), model="lumped", segments=7, n_modes=1,
+                             model_rtol=0.003)
+    st = analysis_settings(sc)
+    assert (st.rung, st.segments, st.n_modes, st.model_rtol) == ("lumped", 7, 1, 0.003)
+    assert st.model_options() == {"segments": 7}
+
+
+@pytest.mark.parametrize("top, fmax", [(50.0, 80.0), (1.0, None)])
+def test_the_exact_rung_resolves_1_6_times_the_band_top(top, fmax):
+    """fmax_hz of the exact rung: 1.6 x the band's top, never below the exact model's own
+    default."""
+    from dynstiff.models.exact import DEFAULT_FMAX_HZ
+    st = analysis_settings(ds.load_scene("planar2"), band_hz=(0.1, top), rung="exact")
+    assert st.model_options() == {"fmax_hz": DEFAULT_FMAX_HZ if fmax is None else fmax}
+    assert fmax is None or fmax > DEFAULT_FMAX_HZ
+
+
+def test_a_damping_given_whole_is_taken_as_it_is():
+    d = ds.Damping(0.03, 0.0, 0.2)
+    assert analysis_settings(ds.load_scene("cogiro"), damping=d).damping is d
+
+
+@pytest.mark.parametrize("name", ["participation", "frf_limit", "model_rtol"])
+def test_zero_is_not_a_positive_setting(name):
+    with pytest.raises(InvalidParameterError) as err:
+        analysis_settings(ds.load_scene("planar2"), **{name: 0.0})
+    assert str(err.value) == f"{name} must be finite and > 0, got 0.0"
+
+
+def test_a_band_that_is_not_two_numbers_is_named():
+    with pytest.raises(InvalidParameterError) as err:
+        analysis_settings(ds.load_scene("planar2"), band_hz=("low", 2.0))
+    assert str(err.value) == "band_hz must be (low, high) [Hz], got ('low', 2.0)"
