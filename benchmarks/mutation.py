@@ -858,6 +858,8 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    "dynstiff.analyses.settings.x_analysis_settings__mutmut_47":
+        "getattr(scene, 'model') without its default None: every Scene has the field",
     "dynstiff.models.dsm_guard.x_guard_robot__mutmut_9": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_guard_band__mutmut_13": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_static_error__mutmut_25": _EINSUM,
