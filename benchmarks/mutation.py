@@ -858,6 +858,9 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_39":
+        "the null vectors of an empty list of modes computed instead of given as empty: "
+        "they are empty all the same",
     "dynstiff.analyses.settings.x_analysis_settings__mutmut_47":
         "getattr(scene, 'model') without its default None: every Scene has the field",
     "dynstiff.models.dsm_guard.x_guard_robot__mutmut_9": _BOUNDARY,

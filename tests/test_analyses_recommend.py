@@ -282,3 +282,30 @@ def test_the_text_names_the_segments_and_every_rungs_error():
         f"{k} {v:.2e}" for k, v in rec.errors.items())
     assert rec.text().splitlines()[0] == (f"recommended model: exact (predicted error "
                                           f"{rec.predicted_error:.2e})")
+
+
+def test_massless_and_closed_form_estimates_with_their_causes():
+    """estimated_error of the massless rungs is the recommendation's prediction for each
+    (catenary, spring), with the cause in words: the cables' inertia when no cable mode is
+    in the band, the count of missed cable modes otherwise; the closed form with axial
+    modes in the band is inf, naming them."""
+    from dynstiff.analyses.recommend import estimated_error, predicted_errors
+    from dynstiff.cable.guard import AXIAL_MARGIN, closed_form_validity
+    eq = three_cable(12, 8, 50, 17e9, 0.064)
+    band = (0.01, 0.8 * cable_f1(eq))
+    errors = predicted_errors(eq, band)[0]
+    for rung in ("catenary", "spring"):
+        err, cause = estimated_error(ds.build_model(eq, rung), band)
+        assert err == errors[rung] and cause == "the cables' inertia shifts the platform modes"
+    assert errors["spring"] > errors["catenary"] > 0
+    cogiro = ds.load_scene("cogiro").equilibrium()
+    err, cause = estimated_error(ds.build_model(cogiro, "catenary"), (0.1, 6.0))
+    n = predicted_errors(cogiro, (0.1, 6.0))[1]["cable_modes_in_band"]
+    assert np.isinf(err) and cause == f"{n} cable modes in the band, which the massless " \
+                                      f"cables miss" and n > 0
+    soft = three_cable(5, 5, 50, 2e8, 1.0)
+    f_ax = min(closed_form_validity(s, 0.0).values["axial_hz"] for s in soft.states)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        err, cause = estimated_error(ds.FrequencyModel(soft), (0.0, 1.01 * AXIAL_MARGIN * f_ax))
+    assert np.isinf(err) and "axial modes from" in cause and cause.startswith("cable ")

@@ -339,3 +339,14 @@ def test_modes_with_the_platform_at_rest_on_a_cable_pole_are_said_and_left_nan()
     np.testing.assert_allclose(s.freq_hz[at_pole], np.repeat(poles, 2), rtol=1e-9)
     assert np.all(np.isnan(s.derivative[at_pole]))
     assert np.all(np.isfinite(s.derivative[~at_pole]))
+
+
+def test_an_unstretched_length_is_reported_with_its_value():
+    """At fixed lengths, L0_i's value is the equilibrium's unstretched length [m], so its
+    per-1 % sensitivity is df/dL0 x L0 / 100; the clusters are integer labels."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    m = ds.FrequencyModel(eq)
+    s = ds.frequency_sensitivities(m, ["L0_0", "L0_3"], n_modes=3, hold="lengths")
+    np.testing.assert_array_equal(s.values, eq.unstretched_lengths[[0, 3]])
+    np.testing.assert_allclose(s.relative, s.derivative * s.values / 100, rtol=1e-12)
+    assert s.cluster.dtype.kind == "i" and s.to_frame()["cluster"].dtype.kind == "i"
