@@ -858,6 +858,16 @@ EQUIVALENT.update({
         "x^T M x multiplied instead of divided by: scipy's eigh(K, M) returns M-orthonormal "
         "vectors, x^T M x = 1",
     "dynstiff.analyses.recommend.x__massless_errors__mutmut_30": _BOUNDARY,
+    **{f"dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_{n}": _WARM
+       for n in (77, 134, 142)},
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_88":
+        "-2 instead of -1 for a lower side in the guessed active set: only its sign is read",
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_55": _BOUNDARY,
+    "dynstiff.robot.distribution.x_distribution_with_active_set__mutmut_30":
+        "dtype=float dropped on t_ref: the tensions t_ref + dt are float for integer "
+        "references too",
+    "dynstiff.results.x_mode_kinds__mutmut_5":
+        "dtype=float dropped on platform shares that are floats (NaN included) already",
     "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_39":
         "the null vectors of an empty list of modes computed instead of given as empty: "
         "they are empty all the same",

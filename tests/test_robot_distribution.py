@@ -74,3 +74,12 @@ def test_the_box_method_from_a_feasible_interior_point():
                                                                1, 0)))
         tried += np.any(sides != 0)
     assert tried >= 20
+
+
+def test_a_unique_distribution_outside_the_limits_is_named_to_six_decimals():
+    from dynstiff.robot.distribution import tension_distribution
+    W = np.eye(2)
+    with pytest.raises(SlackCableError) as err:
+        tension_distribution(W, np.array([0.12345678, 3.5]), 1.0, 500.0)
+    assert str(err.value) == ("the unique tension distribution [0.123457, 3.5] N violates "
+                              "the limits [1, 500] N")
