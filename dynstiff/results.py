@@ -460,10 +460,9 @@ class DampedModes:
         return len(self.omega)
 
     def __repr__(self) -> str:
-        ok = np.isfinite(self.omega)
+        ok, z = np.isfinite(self.omega), self.damping_ratio[np.isfinite(self.damping_ratio)]
         if not ok.any():
             return f"DampedModes({len(self)} modes, no damped root found)"
-        z = self.damping_ratio[np.isfinite(self.damping_ratio)]
         span = f"{z.min():.3g}..{z.max():.3g}" if z.size else "undefined"
         return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
                 f"damping ratio {span})")
