@@ -868,6 +868,9 @@ EQUIVALENT.update({
         "references too",
     "dynstiff.results.x_mode_kinds__mutmut_5":
         "dtype=float dropped on platform shares that are floats (NaN included) already",
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_25":
+        "kind not in 'XXiuXX' instead of 'iu': a dtype's kind is one letter, and X is no "
+        "kind",
     "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_39":
         "the null vectors of an empty list of modes computed instead of given as empty: "
         "they are empty all the same",
