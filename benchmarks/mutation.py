@@ -871,6 +871,18 @@ EQUIVALENT.update({
     "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_25":
         "kind not in 'XXiuXX' instead of 'iu': a dtype's kind is one letter, and X is no "
         "kind",
+    "dynstiff.results.xǁFRFResultǁ_repr_html___mutmut_22":
+        "-2 instead of -1 in place of a non-finite |H|: any negative is below every finite "
+        "|H| >= 0, and a channel with none finite reads index 0 either way",
+    "dynstiff.analyses.sweep.x_sweep__mutmut_265":
+        "the renumbering table one entry longer: it is read at the tracks found (0..n-1) "
+        "and at UNTRACKED = -1, the last entry, UNTRACKED in both",
+    **{f"dynstiff.analyses.sweep.x_sweep__mutmut_{n}":
+       "the one-element row arrays of an infeasible step without their dtype (kind as text "
+       "instead of object): every column is cast (astype float / int / str) when the "
+       "result is built" for n in (123, 124)},
+    "dynstiff.analyses.sweep.x_sweep__mutmut_231":
+        "reshape(None) of the 1-D kind array of length n leaves it as it is",
     "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_39":
         "the null vectors of an empty list of modes computed instead of given as empty: "
         "they are empty all the same",

@@ -199,3 +199,16 @@ def test_modal_table_carries_the_participations(cogiro_model):
     df = md.to_frame()
     cols = [f"participation {n} [-]" for n in ("x", "y", "z", "rx", "ry", "rz")]
     np.testing.assert_array_equal(df[cols].to_numpy(), md.participation)
+
+
+def test_frf_to_uff_names_the_platform_entity_unless_told(tmp_path):
+    r = _frf([1e-3, 2e-3])
+    assert b"platform" in r.to_uff(tmp_path / "a.uff").read_bytes()
+    other = r.to_uff(tmp_path / "b.uff", entity="cabin").read_bytes()
+    assert b"cabin" in other and b"platform" not in other
+
+
+def test_modal_display_is_titled_with_its_repr():
+    res = ds.ModalResult(freq_hz=np.array([1.0]), platform_shapes=np.zeros((1, 6)),
+                         cable_energy_fraction=np.array([0.01]), cable_energy=np.zeros((1, 1)))
+    assert res._repr_html_().startswith(f"<div><p><b>{repr(res)}</b></p>")
