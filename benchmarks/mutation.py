@@ -881,6 +881,9 @@ EQUIVALENT.update({
        "the one-element row arrays of an infeasible step without their dtype (kind as text "
        "instead of object): every column is cast (astype float / int / str) when the "
        "result is built" for n in (123, 124)},
+    "dynstiff.analyses.sweep.x__listed__mutmut_9":
+        "asked = (...) instead of asked &= (...) as the first condition: asked is all True "
+        "before it",
     "dynstiff.analyses.sweep.x_sweep__mutmut_231":
         "reshape(None) of the 1-D kind array of length n leaves it as it is",
     "dynstiff.analyses.sensitivity.x__null_vectors__mutmut_39":

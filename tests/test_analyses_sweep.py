@@ -318,3 +318,19 @@ def test_path_sweep_table(scene, path_sweep):
     assert not glob.duplicated(["step", "track"]).any()
 
 
+
+
+def test_tracks_are_numbered_by_frequency_at_their_first_step():
+    """Track ids 0, 1, ... in the order of the track's frequency at the first step it
+    appears in (ties by id): the renumbering the result promises, independent of the order
+    the tracks were found in."""
+    from dynstiff.analyses.sweep import UNTRACKED
+    rob = small_robot()
+    res = sweep(rob, poses=[[0, 0, 1.0], [0.1, 0, 1.0], [0.2, 0, 1.0]], n_modes=5)
+    tracked = res.track != UNTRACKED
+    ids = np.unique(res.track[tracked])
+    np.testing.assert_array_equal(ids, np.arange(ids.size))
+    first = [res.freq_hz[tracked & (res.track == t)][np.argmin(res.step[tracked
+                                                                        & (res.track == t)])]
+             for t in ids]
+    assert np.all(np.diff(first) >= 0) and ids.size >= 2
