@@ -881,6 +881,19 @@ EQUIVALENT.update({
        "the one-element row arrays of an infeasible step without their dtype (kind as text "
        "instead of object): every column is cast (astype float / int / str) when the "
        "result is built" for n in (123, 124)},
+    "dynstiff.analyses.frf.x_frf__mutmut_64": _BOUNDARY,
+    **{f"dynstiff.analyses.frf.x_frf__mutmut_{n}": _FRF_FILTER for n in (57, 59)},
+    **{f"dynstiff.analyses.frf.x__receptance__mutmut_{n}": _FRF_FAST for n in (68, 72)},
+    "dynstiff.analyses.frf.x__receptance__mutmut_53": _FLOAT,
+    "dynstiff.analyses.frf.x_frf__mutmut_77":
+        "count at 2 w instead of w: the pole test becomes always true, so H is averaged at "
+        "every pre-filtered frequency; 1e-9 from a pole this changes H by O(1e-9)",
+    "dynstiff.analyses.frf.x_frf__mutmut_109":
+        "the response factor applied to a receptance too: its factor is (i omega)^0 = 1",
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_48": _BOUNDARY,
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_75":
+        "stacklevel=3 of the ProximityWarning: under mutation the trampoline adds a frame, so "
+        "the test of the caller's file cannot tell 2 from 3 (stacklevel 1 is killed)",
     "dynstiff.analyses.sweep.x__listed__mutmut_9":
         "asked = (...) instead of asked &= (...) as the first condition: asked is all True "
         "before it",

@@ -204,3 +204,19 @@ def test_numpy_path_isolates_an_exactly_singular_frequency(cogiro_eq, monkeypatc
     i_out, i_in = [1, 2, 3], [0, 5]
     np.testing.assert_allclose(H[[0, 1, 3]], full[[0, 1, 3]][:, i_out][:, :, i_in],
                                rtol=1e-10, atol=1e-14 * np.abs(full).max())
+
+
+@pytest.mark.parametrize("n_points", [2, 40])
+def test_an_undamped_frf_says_how_many_modes_it_crosses(n_points):
+    """CoGiRo undamped from 2.5 to 3.5 Hz (above its first modes, so the count at the low
+    end is not zero): the warning counts the natural frequencies strictly between the ends
+    (eigenfrequencies) and names the ends in Hz; two frequencies are a range too."""
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    f_all = ds.eigenfrequencies(m, fmax_hz=3.5)
+    n = int(np.sum((f_all > 2.5) & (f_all < 3.5)))
+    assert n > 0 and np.sum(f_all <= 2.5) > 0
+    with pytest.warns(ds.ResonanceWarning) as rec:
+        ds.frf(m, 2 * np.pi * np.linspace(2.5, 3.5, n_points), inputs=["fx"], outputs=["x"])
+    said = [str(w.message) for w in rec if issubclass(w.category, ds.ResonanceWarning)]
+    assert said[0].startswith(f"the FRF of this undamped model crosses {n} natural "
+                              f"frequencies between 2.5 and 3.5 Hz: its peaks are")
