@@ -881,6 +881,14 @@ EQUIVALENT.update({
        "the one-element row arrays of an infeasible step without their dtype (kind as text "
        "instead of object): every column is cast (astype float / int / str) when the "
        "result is built" for n in (123, 124)},
+    **{f"dynstiff.models.dsm.xǁFrequencyModelǁ{name}":
+       "a memo's key misspelt where it is looked up or handed to the damped copy: the value "
+       "is computed again from the same cables (cost only), the same numbers"
+       for name in ("static_error__mutmut_2", "_zero_coefficients__mutmut_1",
+                    "massless_stiffness__mutmut_2", "_with_model_damping__mutmut_48",
+                    "_with_model_damping__mutmut_49")},
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_120": _FLOAT,
+    "dynstiff.models.dsm.xǁFrequencyModelǁcable_error__mutmut_6": _BOUNDARY,
     "dynstiff.analyses.frf.x_frf__mutmut_64": _BOUNDARY,
     **{f"dynstiff.analyses.frf.x_frf__mutmut_{n}": _FRF_FILTER for n in (57, 59)},
     **{f"dynstiff.analyses.frf.x__receptance__mutmut_{n}": _FRF_FAST for n in (68, 72)},

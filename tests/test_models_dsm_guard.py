@@ -72,3 +72,21 @@ def test_a_slack_cable_is_said_slack_only_across_its_local_modes():
     said = _said(lambda: m.dynamic_stiffness([30.0]))
     assert all(w.cable != 3 for w in said)
     assert np.pi * np.sqrt(m.params[3].T / m.params[3].m) / m.params[3].L < 30.0
+
+
+def test_a_damped_copy_guards_its_band_afresh_like_a_new_build():
+    """The damped copy a map's receptance check takes (_with_model_damping) shares the
+    cables but not the band guard: after the undamped model said its robot bound (CoGiRo,
+    guard_rtol 1e-4, 1 Hz), the copy says it too, as a model built with that damping
+    does."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    top = [2 * np.pi * 1.0]
+    m = ds.FrequencyModel(eq, guard_rtol=1e-4)
+    first = _said(lambda: m.dynamic_stiffness(top))
+    copy = m._with_model_damping(0.01, 0.02)
+    again = _said(lambda: copy.dynamic_stiffness(top))
+    new = ds.FrequencyModel(eq, guard_rtol=1e-4, cable_loss_factor=0.01,
+                            platform_damping_ratio=0.02)
+    fresh = _said(lambda: new.dynamic_stiffness(top))
+    assert [(w.cause, w.cable) for w in first] == [("robot", None)]
+    assert [str(w) for w in again] == [str(w) for w in fresh] != []
