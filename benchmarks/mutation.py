@@ -1263,6 +1263,7 @@ def main(argv):
         names = [n for n in names if n in res]
     wall = time.perf_counter() - t0
     took = _durations()
+    _SOURCES.clear()                    # the run may have written a module's mutants again
     stale = _stale_equivalents(names, _load_stamps())
     status = collections.defaultdict(collections.Counter)
     seconds = collections.Counter()
