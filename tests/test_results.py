@@ -214,3 +214,14 @@ def test_modal_display_is_titled_with_its_repr():
     res = ds.ModalResult(freq_hz=np.array([1.0]), platform_shapes=np.zeros((1, 6)),
                          cable_energy_fraction=np.array([0.01]), cable_energy=np.zeros((1, 1)))
     assert res._repr_html_().startswith(f"<div><p><b>{repr(res)}</b></p>")
+
+
+def test_frf_plot_draws_magnitude_only_unless_phase_is_asked():
+    import matplotlib.pyplot as plt
+    r = _frf([1e-3, 2e-3, 1.5e-3])
+    fig = r.plot()
+    assert len(fig.axes) == 1
+    plt.close(fig)
+    fig = r.plot(phase=True)
+    assert len(fig.axes) == 2
+    plt.close(fig)
