@@ -1097,8 +1097,7 @@ def _write_stamps():
         rel = pathlib.Path(*module.split(".")).with_suffix(".py")
         if not (root / rel).exists():
             rel = pathlib.Path(*module.split("."), "__init__.py")
-        here = pathlib.Path("dynstiff").parent / rel
-        if not here.exists() or here.read_bytes() != (root / rel).read_bytes():
+        if not rel.exists() or rel.read_bytes() != (root / rel).read_bytes():  # this tree's
             skipped.append(name)
             continue
         st = _stamp(name)

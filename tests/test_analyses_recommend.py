@@ -267,7 +267,10 @@ def test_no_massless_mode_in_the_band_no_massless_error(fraction):
     from dynstiff.analyses.recommend import _massless_errors
     eq = three_cable(12, 8, 50, 17e9, 0.064)
     f1 = ds.eigenfrequencies(ds.build_model(eq, "catenary"), n_modes=1)[0]
-    assert fraction * 2 * np.pi * f1 > 0
+    with warnings.catch_warnings():       # the closed form's guard may speak
+        warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
+        f_dsm = ds.eigenfrequencies(ds.FrequencyModel(eq), n_modes=1)[0]
+    assert f_dsm > fraction * f1         # the heavy cables' first mode is above the band
     assert _massless_errors(eq, fraction * 2 * np.pi * f1, 0) == (0.0, 0.0)
 
 
