@@ -29,6 +29,26 @@ def test_cable_natural_frequencies_count_must_be_an_integer(state300, n):
         ds.cable_natural_frequencies(state300, n)
 
 
+@pytest.mark.parametrize("n, limit, message", [
+    (10**9, 20000, "^n_modes = 1000000000 is more than max_modes = 20000; raise max_modes"),
+    (5, 4, "^n_modes = 5 is more than max_modes = 4;"),
+    (3, 0, r"^max_modes must be an integer >= 1, got 0$"),
+    (3, True, r"^max_modes must be an integer >= 1, got True$"),
+    (3, 2.0, r"^max_modes must be an integer >= 1, got 2\.0$")])
+def test_a_count_beyond_max_modes_is_refused_before_any_work(state300, n, limit, message):
+    """A billion modes would take the memory of the machine (a fuzzed count once did):
+    refused, naming the count and the limit; the limit itself is checked like a count."""
+    with pytest.raises(InvalidParameterError, match=message):
+        ds.cable_natural_frequencies(state300, n, max_modes=limit)
+
+
+def test_the_limit_admits_its_own_count_and_defaults_to_twenty_thousand(state300):
+    assert len(ds.cable_natural_frequencies(state300, 4, max_modes=4)) == 4
+    with pytest.raises(InvalidParameterError,
+                       match="^n_modes = 20001 is more than max_modes = 20000;"):
+        ds.cable_natural_frequencies(state300, 20001)
+
+
 def test_ten_thousand_labelled_cable_modes(state300):
     """The high symmetric roots no longer fail in the root finder: 10000 modes come back
     ascending, each family in its order, the out-of-plane ones at n pi exactly."""

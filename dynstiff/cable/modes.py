@@ -133,7 +133,8 @@ def _exact_modes(state: CatenaryState, n: int) -> tuple[NDArray[np.float64], tup
 
 def cable_natural_frequencies(state: CatenaryState, n_modes: int,
                               tension: str = "mean", model: str = "closed-form",
-                              guard_rtol: float | None = DEFAULT_GUARD_RTOL) -> CableModes:
+                              guard_rtol: float | None = DEFAULT_GUARD_RTOL,
+                              max_modes: int = 20000) -> CableModes:
     """First ``n_modes`` clamped-clamped natural frequencies of the cable, labelled.
 
     "closed-form": out-of-plane Omega = n pi, in-plane antisymmetric Omega = 2 n pi, in-plane
@@ -152,6 +153,9 @@ def cable_natural_frequencies(state: CatenaryState, n_modes: int,
     model : {"closed-form", "exact"}
     guard_rtol : float or None
         As :func:`cable_dynamic_stiffness` (closed form only).
+    max_modes : int
+        Largest ``n_modes`` accepted; a larger one is refused before any work (the arrays of
+        a count far beyond any physical use would exhaust the memory).
 
     Returns
     -------
@@ -168,6 +172,11 @@ def cable_natural_frequencies(state: CatenaryState, n_modes: int,
     """
     if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
         raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
+    if isinstance(max_modes, bool) or not isinstance(max_modes, Integral) or max_modes < 1:
+        raise InvalidParameterError(f"max_modes must be an integer >= 1, got {max_modes!r}")
+    if n_modes > max_modes:
+        raise InvalidParameterError(f"n_modes = {n_modes} is more than max_modes = {max_modes}; "
+                                    "raise max_modes to ask for more")
     n = int(n_modes)
     p = chord_parameters(state, tension)
     to_hz = np.sqrt(p.T / p.m) / (2 * np.pi * p.L)
