@@ -235,6 +235,25 @@ def test_damping_ratios_of_the_platform_z_mode(cogiro_eq):
         ds.build_model(cogiro_eq, "dsm", platform_damping_ratio=np.nan)
 
 
+def test_the_platform_damping_stands_on_the_lossy_cables_static_stiffness(cogiro_eq):
+    """The platform term 2 i zeta_p sym(K_s) (theory.md §12.3) takes K_s = Re K(0) of the
+    cables as the model has them: their own loss factor (a complex EA) times the model's
+    s = 1 + i eta, whose product has a real part eta Im(EA) away from Re(EA), 1 % of the axial
+    stiffness here. Checked against the same model without zeta_p at omega -> 0."""
+    rob = cogiro_eq.robot
+    lossy = ds.Robot(rob.anchors, rob.attachments,
+                     [ds.Cable(cb.mass_per_length, cb.EA, loss_factor=0.02) for cb in rob.cables],
+                     rob.platform, tension_limits=rob.tension_limits).equilibrium(
+                         pose=cogiro_eq.pose)
+    w = np.array([1e-6])                                    # omega^2 M_p ~ 1e-9 N/m
+    bare = ds.FrequencyModel(lossy, cable_loss_factor=0.5).dynamic_stiffness(w)[0]
+    damped = ds.FrequencyModel(lossy, cable_loss_factor=0.5,
+                               platform_damping_ratio=0.05).dynamic_stiffness(w)[0]
+    Ks = bare.real
+    np.testing.assert_allclose(damped - bare, 2j * 0.05 * 0.5 * (Ks + Ks.T), rtol=0,
+                               atol=1e-9 * np.abs(Ks).max())
+
+
 def test_with_damping_keeps_the_options_and_the_fused_kernel_equals_two_calls(cogiro_eq):
     """``with_damping`` is the same model (tension, chordwise inertia) with the model-level
     damping, its defaults undamped; ``dynamic_stiffness_and_count`` equals K(omega) of the

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, cast
 import numpy as np
 
 from dynstiff.cable.catenary import end_stiffnesses
+from dynstiff.cable.dsm import static_block_coefficients
 from dynstiff.cable.guard import ROBOT_ERROR_FACTOR, closed_form_local_error
 from dynstiff.errors import ClosedFormWarning, user_stacklevel
 from dynstiff.robot.platform import lever_maps
@@ -33,13 +34,16 @@ ROBOT_BOUND_MESSAGE = "the closed form's error of the coupled modes"
 def static_error(model: FrequencyModel) -> tuple[float, int | None]:
     """:meth:`FrequencyModel.static_error`, computed: the modes x of (K_exact(0), M_p) and
     every cable's share of x^T dK x / (2 x^T K x), dK = K_dsm(0) - K_exact(0) (theory.md
-    §11.5); (0, None) when no massless mode has a positive stiffness."""
+    §11.5), K_dsm(0) the real part before the model's loss factor eta (both rungs multiply
+    by the same s = 1 + i eta, §12.2, whose product with a cable's own complex EA shifts
+    the real parts alike: no error of the closed form); (0, None) when no massless mode has
+    a positive stiffness."""
     nf, n = model.n_free, len(model.params)
     J = lever_maps(model.lever_arms, model.free_index)                      # (n, 3, nf)
     states = cast("Equilibrium", model.equilibrium).states
     Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(states), J)
     K_ex = model._K_geo_free + Ke.sum(axis=0)
-    K0 = model._zero_coefficients().reshape(n, 1, 5)
+    K0 = np.real(static_block_coefficients(model.stacked_params)).reshape(n, 1, 5)
     Kd = np.matmul(K0, model._assembly.reshape(n, 5, nf * nf)).reshape(n, nf, nf)
     dK = Kd - Ke
     from scipy.linalg import eigh
