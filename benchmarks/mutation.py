@@ -917,6 +917,10 @@ EQUIVALENT.update({
        for name in ("static_error__mutmut_2", "_zero_coefficients__mutmut_1",
                     "massless_stiffness__mutmut_2", "_with_model_damping__mutmut_48",
                     "_with_model_damping__mutmut_49")},
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_with_model_damping__mutmut_25":
+        "the damped copy shares the undamped model's memo of measured cable errors instead of "
+        "a copy of it: an entry depends on the cable, the band and the tension, the same in "
+        "both models (the damping is not in it), so either model's entry is the other's",
     "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_120": _FLOAT,
     "dynstiff.models.dsm.xǁFrequencyModelǁcable_error__mutmut_6": _BOUNDARY,
     "dynstiff.analyses.frf.x_frf__mutmut_64": _BOUNDARY,

@@ -373,6 +373,30 @@ def test_the_guard_checks_bands_below_one_radian_per_second():
                                          f"in the band asked and the closed form's are ")
 
 
+def test_a_cable_error_below_one_radian_per_second_is_measured():
+    """The three heavy cables' envelope (0.34-0.47) is above 1e-2, so their error is measured
+    against the exact cable, also for a band below 1 rad/s (0.5 rad/s here): the number of
+    closed_form_local_error, kept with its band of 8 times the first local frequency."""
+    from dynstiff.cable.guard import closed_form_local_error
+    eq = _three_cable_point_mass(g=0.3)
+    m = ds.FrequencyModel(eq, guard_rtol=None)
+    for i, state in enumerate(eq.states):
+        assert m._validity[i].error > 0.3
+        err = closed_form_local_error(state, 0.5, m.tension)
+        assert m.cable_error(i, 0.5) == err > 0.01
+        assert m._measured[i] == (8 * m._local_omega[i], err)
+
+
+def test_the_damped_copy_checks_its_damping_naming_it(cogiro_eq):
+    m = ds.FrequencyModel(cogiro_eq)
+    with pytest.raises(InvalidParameterError, match="^platform_damping_ratio"):
+        m._with_model_damping(0.01, -0.1)
+    with pytest.raises(InvalidParameterError, match="^cable_loss_factor"):
+        m._with_model_damping(np.nan, 0.01)
+    assert ds.FrequencyModel(cogiro_eq, cable_loss_factor=0.01)._with_model_damping(
+        0.01, 0.0) is None                                   # a damped model has no copy
+
+
 @pytest.mark.parametrize("damping", [{"loss_factor": 0.02}, {"viscous_damping": 0.5}])
 def test_the_undamped_copy_keeps_the_guard_and_drops_the_damping(cogiro_eq, damping):
     """undamped() of a model whose cables have a loss factor or viscous damping: real K
