@@ -917,6 +917,14 @@ EQUIVALENT.update({
        for name in ("static_error__mutmut_2", "_zero_coefficients__mutmut_1",
                     "massless_stiffness__mutmut_2", "_with_model_damping__mutmut_48",
                     "_with_model_damping__mutmut_49")},
+    **{f"dynstiff.analyses.modes.x__energy_basis__mutmut_{n}":
+       "the polarisation loop over more pairs (b from 0, or from a - 1, which is the last "
+       "index for a = 0): each extra entry is written with its own value again (Q symmetric, "
+       "x_a + x_b summed exactly either way), a diagonal one as (E(2 x) - 2 E(x)) / 2 = E(x) "
+       "to rounding" for n in (29, 31)},
+    "dynstiff.analyses.modes.x_modes__mutmut_21":
+        "getattr without the default 0: every model on the matrix path has n_dof "
+        "(eigen_matrix reads model.n_dof), so the default is never taken",
     "dynstiff.models.dsm.xǁFrequencyModelǁ_with_model_damping__mutmut_25":
         "the damped copy shares the undamped model's memo of measured cable errors instead of "
         "a copy of it: an entry depends on the cable, the band and the tension, the same in "

@@ -1,0 +1,47 @@
+"""Mode shapes and energies (dynstiff/analyses/modes.py, theory.md §6): the basis of a
+cluster of coincident modes, and the mode-count limit on both paths."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+from dynstiff.analyses.modes import _energy_basis
+from dynstiff.errors import InvalidParameterError
+
+
+@pytest.mark.parametrize("c", [2, 3])
+def test_the_basis_of_a_cluster_is_mass_orthonormal_and_diagonal_in_cable_energy(c):
+    """Any span of c platform motions (random here, at a frequency between CoGiRo's modes)
+    comes back as a basis of the same span, M_p-orthonormal, whose cable kinetic energies
+    do not couple: E(x_a + x_b) = E(x_a) + E(x_b), the polarisation written out here."""
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    fi, Mf = m.free_index, m.platform_mass
+    omega = 2 * np.pi * 2.5
+    V = np.random.default_rng(c).standard_normal((len(fi), c))
+    X = _energy_basis(m, omega, V, Mf, fi)
+    np.testing.assert_allclose(X.T @ Mf @ X, np.eye(c), atol=1e-12)
+    coef = np.linalg.lstsq(V, X, rcond=None)[0]
+    np.testing.assert_allclose(V @ coef, X, atol=1e-12 * np.abs(X).max())   # same span
+    full = np.zeros((c, 6))
+    full[:, fi] = X.T
+    E = [m.cable_kinetic_energies(omega, x).sum() for x in full]
+    assert max(E) > 1.5 * min(E)                        # distinct: the basis is unique
+    for a in range(c):
+        for b in range(a + 1, c):
+            cross = m.cable_kinetic_energies(omega, full[a] + full[b]).sum() - E[a] - E[b]
+            assert abs(cross) < 1e-10 * (E[a] + E[b])
+
+
+def test_the_mode_count_limit_holds_on_both_paths():
+    """20000 modes by default: 20001 asked of the closed form is refused naming the limit;
+    a discrete rung with more DOFs than max_modes is refused when the band holds more
+    modes than that (the spring model's 2 modes against max_modes = 1)."""
+    eq = ds.load_scene("planar2").equilibrium()
+    with pytest.raises(InvalidParameterError,
+                       match="^n_modes = 20001 is more than max_modes = 20000;"):
+        ds.modes(ds.build_model(eq, "dsm"), n_modes=20001)
+    spring = ds.build_model(eq, "spring")
+    assert spring.n_dof == 2 and len(ds.modes(spring, fmax_hz=1e4).freq_hz) == 2
+    with pytest.raises(InvalidParameterError,
+                       match=r"^fmax_hz = 10000 Hz holds 2 modes, more than max_modes = 1;"):
+        ds.modes(spring, fmax_hz=1e4, max_modes=1)
