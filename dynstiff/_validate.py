@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import reprlib
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -16,6 +17,32 @@ if TYPE_CHECKING:
 
 #: The least normal float: below it a float has lost digits (subnormal).
 _TINY = float(np.finfo(float).tiny)
+
+
+def holds_bool(value: object) -> bool:
+    """True when ``value`` is a bool or an array or (nested) sequence holding one."""
+    if isinstance(value, (bool, np.bool_)):
+        return True
+    if isinstance(value, np.ndarray):
+        return value.dtype == np.bool_ or (value.dtype == object and
+                                           any(holds_bool(v) for v in value.flat))
+    if isinstance(value, (list, tuple)):
+        return any(holds_bool(v) for v in value)
+    return False
+
+
+def refuse_bools(name: str, value: object) -> None:
+    """Raise naming ``name`` when ``value`` is or holds a bool: ``True`` is not the number 1
+    (numpy would read it so), in an array no more than alone.
+
+    >>> refuse_bools("end", [0, True])
+    Traceback (most recent call last):
+    ...
+    dynstiff.errors.InvalidParameterError: end must be real numbers, not booleans, got [0, True]
+    """
+    if holds_bool(value):
+        raise InvalidParameterError(
+            f"{name} must be real numbers, not booleans, got {reprlib.repr(value)}")
 
 
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
@@ -42,6 +69,7 @@ def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> 
 
 def point(name: str, value: ArrayLike, dim: int = 3) -> NDArray[np.float64]:
     """Return ``value`` as a finite float array of shape ``(dim,)``, or raise naming ``name``."""
+    refuse_bools(name, value)
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -66,6 +94,7 @@ def omega_array(value: ArrayLike, name: str = "omega", complex_ok: bool = False)
     finite value: the damped roots lie off the real axis); otherwise the array is float and
     must be >= 0.
     """
+    refuse_bools(name, value)
     dtype = complex if complex_ok and np.iscomplexobj(value) else float
     if dtype is float and np.iscomplexobj(value):        # never drop an imaginary part
         raise InvalidParameterError(
@@ -93,6 +122,7 @@ def omega_array(value: ArrayLike, name: str = "omega", complex_ok: bool = False)
 def unstretched_lengths(value: ArrayLike | str, n: int) -> NDArray[np.float64]:
     """Return ``n`` unstretched cable lengths [m] as a float array of shape (n,), or raise
     naming ``unstretched_lengths`` if they are not n finite positive numbers."""
+    refuse_bools("unstretched_lengths", value)
     try:
         L0 = np.asarray(value, dtype=float)
     except (TypeError, ValueError):

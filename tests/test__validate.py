@@ -60,3 +60,44 @@ def test_subnormal_scalars_are_refused():
     assert positive_scalar("EA", 2.3e-308) == 2.3e-308
     with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
         unstretched_lengths([1.0, 2.2e-311], 2)
+
+
+def _cogiro():
+    import dynstiff as ds
+    return ds, ds.load_scene("cogiro")
+
+
+@pytest.mark.parametrize("name, call", [
+    ("anchors", lambda ds, sc: ds.Robot(np.ones((8, 3), bool), sc.robot.attachments,
+                                        sc.robot.cables, sc.robot.platform)),
+    ("attachments", lambda ds, sc: ds.Robot(sc.robot.anchors, sc.robot.attachments.tolist()[:7]
+                                            + [[0.0, True, 0.0]], sc.robot.cables,
+                                            sc.robot.platform)),
+    ("tension_limits", lambda ds, sc: ds.Robot(sc.robot.anchors, sc.robot.attachments,
+                                               sc.robot.cables, sc.robot.platform,
+                                               tension_limits=(True, 100.0))),
+    ("pose", lambda ds, sc: sc.robot.equilibrium(pose=[True, False, True])),
+    ("pose", lambda ds, sc: sc.robot.equilibrium(pose=[0, 0, 1, 0, 0, True])),
+    ("pose rotation", lambda ds, sc: ds.Pose([0, 0, 1], [0, 0, np.bool_(True)])),
+    ("center_of_mass", lambda ds, sc: ds.Platform(10.0, center_of_mass=[0, 0, True])),
+    ("inertia", lambda ds, sc: ds.Platform(10.0, inertia=True)),
+    ("end", lambda ds, sc: ds.solve_catenary([0, 0, 0], [True, 0, 1], 2.0, ds.Cable(0.1, 1e5))),
+    ("unstretched_lengths", lambda ds, sc: sc.robot.equilibrium(unstretched_lengths=[True] * 8)),
+    ("omega", lambda ds, sc: ds.FrequencyModel(sc.equilibrium()).dynamic_stiffness([True])),
+    ("omega", lambda ds, sc: ds.FrequencyModel(sc.equilibrium()).dynamic_stiffness(
+        np.array([1.0, 2.0]) > 1.5)),
+])
+def test_booleans_are_not_numbers_in_arrays_either(name, call):
+    """numpy reads True as 1.0 in an array: a position [True, False, True] was a pose at
+    (1, 0, 1) m, a tension limit True one of 1 N. Each is refused naming the argument."""
+    ds, sc = _cogiro()
+    with pytest.raises(InvalidParameterError,
+                       match=f"^{name} must be real numbers, not booleans, got "):
+        call(ds, sc)
+
+
+def test_numbers_next_to_booleans_are_still_numbers():
+    np.testing.assert_array_equal(point("end", np.array([1, 0, 2])), [1.0, 0.0, 2.0])
+    np.testing.assert_array_equal(omega_array(np.arange(3)), [0.0, 1.0, 2.0])
+    assert unstretched_lengths([np.float32(2.5), 3], 2).dtype == np.float64
+    assert unstretched_lengths([5, 6, 7], 3).dtype == np.float64

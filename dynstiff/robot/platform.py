@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import positive_scalar, refuse_bools
 from dynstiff._vec import cross
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
@@ -153,6 +153,8 @@ class Platform:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", positive_scalar("mass", self.mass))
+        refuse_bools("center_of_mass", self.center_of_mass)
+        refuse_bools("inertia", self.inertia)
         c = np.asarray(self.center_of_mass, dtype=float)
         if c.shape != (3,) or not np.all(np.isfinite(c)):
             raise InvalidParameterError(

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import refuse_bools
 from dynstiff.constants import MAX_COORDINATE
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.platform import (
@@ -45,6 +46,7 @@ class Pose:
 
     def __post_init__(self) -> None:
         for name in ("position", "rotation"):
+            refuse_bools(f"pose {name}", getattr(self, name))
             try:
                 v = np.array(getattr(self, name), dtype=float)
             except (TypeError, ValueError):
@@ -97,6 +99,7 @@ def as_pose(pose: list[float] | Pose) -> Pose:
         return pose
     if isinstance(pose, (tuple, list)) and len(pose) == 2:
         return Pose(*pose)
+    refuse_bools("pose", pose)
     try:
         v = np.asarray(pose, dtype=float)
     except (TypeError, ValueError):

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import _validate
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import positive_scalar, refuse_bools
 from dynstiff._vec import cross
 from dynstiff.cable.catenary_solve import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
@@ -83,6 +83,8 @@ class Robot:
     name: str = ""
 
     def __post_init__(self) -> None:
+        for name in ("anchors", "attachments", "tension_limits"):
+            refuse_bools(name, getattr(self, name))
         A = np.asarray(self.anchors, dtype=float)
         b = np.asarray(self.attachments, dtype=float)
         if A.ndim != 2 or A.shape[1] != 3 or not np.all(np.isfinite(A)):
