@@ -101,3 +101,7 @@ def test_numbers_next_to_booleans_are_still_numbers():
     np.testing.assert_array_equal(omega_array(np.arange(3)), [0.0, 1.0, 2.0])
     assert unstretched_lengths([np.float32(2.5), 3], 2).dtype == np.float64
     assert unstretched_lengths([5, 6, 7], 3).dtype == np.float64
+    tiny = np.finfo(float).tiny                  # the least normal float is still a length
+    assert unstretched_lengths([tiny, 1.0], 2)[0] == tiny
+    with pytest.raises(InvalidParameterError, match="unstretched_lengths must be 2 finite"):
+        unstretched_lengths([tiny / 2, 1.0], 2)
