@@ -45,6 +45,17 @@ def refuse_bools(name: str, value: object) -> None:
             f"{name} must be real numbers, not booleans, got {reprlib.repr(value)}")
 
 
+def real_array(name: str, value: object, what: str = "real numbers") -> NDArray[np.float64]:
+    """``value`` as a float array of its own shape, or raise naming ``name`` (and ``what``
+    it must be) when it holds a bool or anything that is not a number; shape and range are
+    the caller's to check."""
+    refuse_bools(name, value)
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be {what}, got {reprlib.repr(value)}") from None
+
+
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0
     (a bool is not a number: ``True`` is refused, never read as 1)."""

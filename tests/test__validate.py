@@ -105,3 +105,34 @@ def test_numbers_next_to_booleans_are_still_numbers():
     assert unstretched_lengths([tiny, 1.0], 2)[0] == tiny
     with pytest.raises(InvalidParameterError, match="unstretched_lengths must be 2 finite"):
         unstretched_lengths([tiny / 2, 1.0], 2)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(tension_limits=("a", 5)),
+     r"tension_limits must be \(t_min, t_max\) \[N\], got \('a', 5\)"),
+    (dict(tension_limits=5), r"tension_limits must be \(t_min, t_max\) \[N\], got 5$"),
+    (dict(tension_limits=(1, 2, 3)), r"tension_limits must be \(t_min, t_max\) \[N\], got"),
+    (dict(tension_limits=None), r"tension_limits must be \(t_min, t_max\) \[N\], got None"),
+    (dict(anchors="abc"), r"anchors must be a finite \(n, 3\) array \[m\], got 'abc'"),
+    (dict(anchors=[[1, 2, 3], [1, 2]]), r"anchors must be a finite \(n, 3\) array \[m\], got"),
+    (dict(attachments="abc"), r"attachments must be a finite \(n, 3\) array \[m\], got 'abc'"),
+])
+def test_a_robot_of_text_or_ragged_arrays_is_refused_naming_the_argument(kw, message):
+    """Before, numpy's own ValueError or TypeError came out ("could not convert string to
+    float: 'a'", "'int' object is not iterable"), naming nothing."""
+    ds, sc = _cogiro()
+    args = dict(anchors=sc.robot.anchors, attachments=sc.robot.attachments,
+                cables=sc.robot.cables, platform=sc.robot.platform) | kw
+    with pytest.raises(InvalidParameterError, match="^" + message):
+        ds.Robot(**args)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(center_of_mass="abc"), r"center_of_mass must be 3 finite numbers \[m\], got 'abc'"),
+    (dict(inertia=["a"]), r"inertia must be a finite 3x3 tensor \[kg m\^2\], got \['a'\]"),
+    (dict(free_dofs="xyz"), "free_dofs must be a sequence of names from .*, not one string"),
+])
+def test_a_platform_of_text_is_refused_naming_the_argument(kw, message):
+    import dynstiff as ds
+    with pytest.raises(InvalidParameterError, match="^" + message):
+        ds.Platform(10.0, **kw)

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar, refuse_bools
+from dynstiff._validate import positive_scalar, real_array
 from dynstiff._vec import cross
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
@@ -153,13 +153,11 @@ class Platform:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", positive_scalar("mass", self.mass))
-        refuse_bools("center_of_mass", self.center_of_mass)
-        refuse_bools("inertia", self.inertia)
-        c = np.asarray(self.center_of_mass, dtype=float)
+        c = real_array("center_of_mass", self.center_of_mass, "3 finite numbers [m]")
         if c.shape != (3,) or not np.all(np.isfinite(c)):
             raise InvalidParameterError(
                 f"center_of_mass must be 3 finite numbers [m], got {self.center_of_mass!r}")
-        I = np.asarray(self.inertia, dtype=float)
+        I = real_array("inertia", self.inertia, "a finite 3x3 tensor [kg m^2]")
         if I.shape == ():
             I = np.eye(3) * float(I)
         if I.shape != (3, 3) or not np.all(np.isfinite(I)):
@@ -167,6 +165,10 @@ class Platform:
                 f"inertia must be a finite 3x3 tensor [kg m^2], got shape {I.shape}")
         if not np.allclose(I, I.T, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(I).max())):
             raise InvalidParameterError(f"inertia must be symmetric, got {I.tolist()}")
+        if isinstance(self.free_dofs, str):
+            raise InvalidParameterError(
+                f"free_dofs must be a sequence of names from {DOF_NAMES}, not one string, got "
+                f"{self.free_dofs!r}")
         dofs = tuple(self.free_dofs)
         unknown = [d for d in dofs if d not in DOF_NAMES]
         if unknown or len(set(dofs)) != len(dofs) or not dofs:

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import _validate
-from dynstiff._validate import positive_scalar, refuse_bools
+from dynstiff._validate import positive_scalar, real_array
 from dynstiff._vec import cross
 from dynstiff.cable.catenary_solve import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
@@ -83,10 +83,8 @@ class Robot:
     name: str = ""
 
     def __post_init__(self) -> None:
-        for name in ("anchors", "attachments", "tension_limits"):
-            refuse_bools(name, getattr(self, name))
-        A = np.asarray(self.anchors, dtype=float)
-        b = np.asarray(self.attachments, dtype=float)
+        A = real_array("anchors", self.anchors, "a finite (n, 3) array [m]")
+        b = real_array("attachments", self.attachments, "a finite (n, 3) array [m]")
         if A.ndim != 2 or A.shape[1] != 3 or not np.all(np.isfinite(A)):
             raise InvalidParameterError(
                 f"anchors must be a finite (n, 3) array [m], got shape {A.shape}")
@@ -117,7 +115,11 @@ class Robot:
                 f"{self.platform.free_dofs}; at least {n_free} are needed")
         _refuse_duplicate_cables(A, b)
         g = positive_scalar("g", self.g, allow_zero=True)
-        t_min, t_max = (float(t) for t in self.tension_limits)
+        limits = real_array("tension_limits", self.tension_limits, "(t_min, t_max) [N]")
+        if limits.shape != (2,):
+            raise InvalidParameterError(
+                f"tension_limits must be (t_min, t_max) [N], got {self.tension_limits!r}")
+        t_min, t_max = (float(t) for t in limits)
         if not (0 <= t_min < t_max):
             raise InvalidParameterError(
                 f"tension_limits must satisfy 0 <= t_min < t_max [N], got {self.tension_limits!r}")
