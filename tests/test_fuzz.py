@@ -5,7 +5,7 @@ TypeError, OverflowError, LinAlgError, a NaN in a result, a traceback from the c
 is a failure.
 
 Each fuzzer runs a few dozen examples in the default tier and thousands in the slow tier
-(``-m slow``: 22,000 examples in all). The workspace options, the calibration, the readers
+(``-m slow``: 24,500 examples in all). The workspace options, the calibration, the readers
 and writers of files and the output paths of the command line add one more rule: on an
 error, no file is changed.
 """
@@ -153,6 +153,29 @@ def _statics_fuzzer(n):
 
 test_statics_and_checks = _statics_fuzzer(FAST)
 test_statics_and_checks_long = pytest.mark.slow(_statics_fuzzer(LONG))
+
+
+def _robot_fuzzer(n):
+    three = st.lists(weird_vectors, min_size=3, max_size=3)
+    @_settings(n)
+    @given(anchors=st.one_of(weird_vectors, three), attachments=st.one_of(weird_vectors, three),
+           limits=weird_vectors, mass=weird_scalars, com=weird_vectors,
+           inertia=st.one_of(weird_vectors, st.lists(weird_vectors, min_size=3, max_size=3)),
+           dofs=st.one_of(st.text(max_size=3), st.lists(
+               st.sampled_from(["x", "y", "z", "rx", "q", ""]), max_size=4)))
+    def check(anchors, attachments, limits, mass, com, inertia, dofs):
+        platform = obey_the_rule(
+            lambda: ds.Platform(mass, center_of_mass=com, inertia=inertia, free_dofs=dofs),
+            ("mass", "center_of_mass", "inertia", "free_dofs"))
+        platform = platform or ds.Platform(10.0, free_dofs=("x", "y", "z"))
+        obey_the_rule(lambda: ds.Robot(anchors, attachments, ds.Cable(0.1, 1e5), platform,
+                                       tension_limits=limits) and None,
+                      ("anchors", "attachments", "tension_limits", "cables"))
+    return check
+
+
+test_robot_and_platform = _robot_fuzzer(FAST)
+test_robot_and_platform_long = pytest.mark.slow(_robot_fuzzer(LONG))
 
 
 # ---------------------------------------------------------------------- scene files
