@@ -922,6 +922,13 @@ EQUIVALENT.update({
        "index for a = 0): each extra entry is written with its own value again (Q symmetric, "
        "x_a + x_b summed exactly either way), a diagonal one as (E(2 x) - 2 E(x)) / 2 = E(x) "
        "to rounding" for n in (29, 31)},
+    "dynstiff.analyses.modes.x_modes__mutmut_62":
+        "the root search without method='wittrick-williams' takes 'auto': this branch is "
+        "reached only by a model with cable_kinetic_energies (dsm, exact), continuous rungs "
+        "for which 'auto' is Wittrick-Williams",
+    **{f"dynstiff.analyses.modes.x_modes__mutmut_{n}":
+       "K and the cable-mode counts computed also when no root was found: both return "
+       "empty arrays for an empty omega, as the shortcut does" for n in (78, 92)},
     "dynstiff.analyses.modes.x_modes__mutmut_21":
         "getattr without the default 0: every model on the matrix path has n_dof "
         "(eigen_matrix reads model.n_dof), so the default is never taken",

@@ -45,3 +45,49 @@ def test_the_mode_count_limit_holds_on_both_paths():
     with pytest.raises(InvalidParameterError,
                        match=r"^fmax_hz = 10000 Hz holds 2 modes, more than max_modes = 1;"):
         ds.modes(spring, fmax_hz=1e4, max_modes=1)
+
+
+def test_each_cables_energy_is_its_share_of_the_modes_kinetic_energy():
+    """cable_energy[k, c] = E_c / (1 + sum E_c), E_c the cable's kinetic energy for the
+    M_p-normalised platform shape (platform energy 1), written out here from the model's
+    cable_kinetic_energies; its sum is the cable energy fraction."""
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    r = ds.modes(m, n_modes=12)
+    for k in range(12):
+        x = r.platform_shapes[k]
+        assert x @ r.platform_mass @ x == pytest.approx(1.0, rel=1e-12)
+        E = m.cable_kinetic_energies(2 * np.pi * r.freq_hz[k], x)
+        np.testing.assert_allclose(r.cable_energy[k], E / (1 + E.sum()), rtol=1e-12)
+    np.testing.assert_allclose(r.cable_energy.sum(axis=1), r.cable_energy_fraction, rtol=1e-12)
+    assert r.cable_energy_fraction.max() > 0.1                 # CoGiRo's cables do move
+
+
+class _ExactlyOnAPole:
+    """The closed-form planar2 model, except that K is not finite at one root, as exactly on
+    a cable pole (float rarely lands there: cot(n pi) is 1e16, not inf)."""
+
+    def __init__(self, model, root_hz):
+        self._m, self._w = model, 2 * np.pi * root_hz
+
+    def __getattr__(self, name):
+        return getattr(self._m, name)
+
+    def undamped(self):
+        return self
+
+    def dynamic_stiffness(self, omega):
+        K = self._m.dynamic_stiffness(omega)
+        K[np.abs(np.asarray(omega) - self._w) < 1e-9 * self._w] = np.inf
+        return K
+
+
+def test_a_root_where_k_is_not_finite_is_all_cable_and_the_next_modes_are_still_shaped():
+    m = ds.FrequencyModel(ds.load_scene("planar2").equilibrium())
+    ref = ds.modes(m, n_modes=8)
+    local = int(np.flatnonzero(np.abs(ref.platform_shapes).max(axis=1) == 0)[0])
+    poisoned = ds.modes(_ExactlyOnAPole(m, ref.freq_hz[local]), n_modes=8)
+    np.testing.assert_allclose(poisoned.freq_hz, ref.freq_hz, rtol=1e-11)
+    np.testing.assert_allclose(np.abs(poisoned.platform_shapes), np.abs(ref.platform_shapes),
+                               atol=1e-8)
+    assert poisoned.cable_energy_fraction[local] == 1.0
+    assert np.abs(ref.platform_shapes[local + 1:]).max() > 0      # modes after it move
