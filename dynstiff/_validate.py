@@ -56,6 +56,29 @@ def real_array(name: str, value: object, what: str = "real numbers") -> NDArray[
         raise InvalidParameterError(f"{name} must be {what}, got {reprlib.repr(value)}") from None
 
 
+def band(value: object, name: str = "band_hz") -> tuple[float, float]:
+    """A frequency band (low, high) [Hz] as two floats, 0 <= low < high, both finite, or
+    raise naming ``name``."""
+    refuse_bools(name, value)
+    try:
+        lo, hi = (float(b) for b in value)  # type: ignore[attr-defined]
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be (low, high) [Hz], got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi):
+        raise InvalidParameterError(
+            f"{name} must be (low, high) with 0 <= low < high [Hz], got {value!r}")
+    return lo, hi
+
+
+def index(name: str, value: object, n: int) -> int:
+    """``value`` as an index into ``n`` items, 0 <= value < n, or raise naming ``name``
+    (a bool or a float is not an index)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or \
+            not 0 <= value < n:
+        raise InvalidParameterError(f"{name} must be an integer in [0, {n}), got {value!r}")
+    return int(value)
+
+
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0
     (a bool is not a number: ``True`` is refused, never read as 1)."""

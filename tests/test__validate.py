@@ -136,3 +136,17 @@ def test_a_platform_of_text_is_refused_naming_the_argument(kw, message):
     import dynstiff as ds
     with pytest.raises(InvalidParameterError, match="^" + message):
         ds.Platform(10.0, **kw)
+
+
+def test_band_and_index():
+    from dynstiff._validate import band, index
+    assert band([0, 2]) == (0.0, 2.0) and type(band((np.float32(1), 3))[0]) is float
+    for bad, msg in [((1.0, 1.0), "with 0 <= low < high"), ((-1, 2), "with 0 <= low < high"),
+                     ((0, np.nan), "with 0 <= low < high"), (None, r"\(low, high\) \[Hz\], got"),
+                     ((0, 1, 2), r"\(low, high\) \[Hz\], got"), ((0, True), "not booleans")]:
+        with pytest.raises(InvalidParameterError, match="^band_hz must be .*" + msg):
+            band(bad)
+    assert index("k", np.int32(2), 3) == 2
+    for bad in (3, -1, True, 1.0, "1", None):
+        with pytest.raises(InvalidParameterError, match=r"^k must be an integer in \[0, 3\)"):
+            index("k", bad, 3)

@@ -91,3 +91,21 @@ def test_a_root_where_k_is_not_finite_is_all_cable_and_the_next_modes_are_still_
                                atol=1e-8)
     assert poisoned.cable_energy_fraction[local] == 1.0
     assert np.abs(ref.platform_shapes[local + 1:]).max() > 0      # modes after it move
+
+
+@pytest.mark.parametrize("k, n_points, message", [
+    (True, 5, r"^k must be an integer in \[0, 3\), got True$"),
+    (2.0, 5, r"^k must be an integer in \[0, 3\), got 2\.0$"),
+    (3, 5, r"^k must be an integer in \[0, 3\), got 3$"),
+    (-1, 5, r"^k must be an integer in \[0, 3\), got -1$"),
+    (0, True, r"^n_points must be an integer >= 2, got True$"),
+    (0, 1, r"^n_points must be an integer >= 2, got 1$"),
+    (0, 4.0, r"^n_points must be an integer >= 2, got 4\.0$")])
+def test_cable_fields_refuse_a_mode_or_a_point_count_that_is_not_one(k, n_points, message):
+    """Before, numpy's broadcasting or index errors came out, or mode -1 (the last) was
+    drawn for a mode that does not exist."""
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    with pytest.raises(InvalidParameterError, match=message):
+        ds.cable_fields(m, ds.modes(m, n_modes=3), k, n_points=n_points)
+    assert ds.cable_fields(m, ds.modes(m, n_modes=3), np.int64(2), n_points=2)[0].shape == \
+        (8, 2, 3)

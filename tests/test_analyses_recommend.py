@@ -312,3 +312,12 @@ def test_massless_and_closed_form_estimates_with_their_causes():
         warnings.simplefilter("ignore", ds.errors.ClosedFormWarning)
         err, cause = estimated_error(ds.FrequencyModel(soft), (0.0, 1.01 * AXIAL_MARGIN * f_ax))
     assert np.isinf(err) and "axial modes from" in cause and cause.startswith("cable ")
+
+
+@pytest.mark.parametrize("band", [(0.0, True), (False, 2.0), "ab", (0.0, "x"), (2.0, 1.0),
+                                  (0.0, np.inf), 5.0])
+def test_a_band_that_is_not_one_is_refused_naming_band_hz(band):
+    """(0, True) was the band up to 1 Hz, and text came out as numpy's ValueError."""
+    eq = ds.load_scene("planar2").equilibrium()
+    with pytest.raises(ds.InvalidParameterError, match="^band_hz must be "):
+        ds.recommend_model(eq, band_hz=band)

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import band, positive_scalar
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -49,14 +49,7 @@ def refined_grid(band_hz: str | tuple[float, float], n_points: int, modes_hz: Ar
     ndarray, shape (n,)
         Sorted, unique frequencies [Hz] inside the band (both ends included).
     """
-    try:
-        lo, hi = (float(b) for b in band_hz)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(f"band_hz must be (low, high) [Hz], got {band_hz!r}") \
-            from None
-    if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo < hi):
-        raise InvalidParameterError(
-            f"band_hz must be (low, high) with 0 <= low < high [Hz], got {band_hz!r}")
+    lo, hi = band(band_hz)
     if int(n_points) != n_points or n_points < 2:
         raise InvalidParameterError(f"n_points must be an integer >= 2, got {n_points!r}")
     rel_width = positive_scalar("rel_width", rel_width)

@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import band
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.cable.dsm import chord_parameters
 from dynstiff.cable.guard import ROBOT_ERROR_FACTOR, closed_form_validity
@@ -286,10 +287,7 @@ def predicted_errors(
     segments : int
         Segments per cable for the lumped rung.
     """
-    lo, hi = (float(b) for b in band_hz)
-    if not (0 <= lo < hi and np.isfinite(hi)):
-        raise InvalidParameterError(f"band_hz must be (low, high) with 0 <= low < high [Hz], "
-                                    f"got {band_hz!r}")
+    lo, hi = band(band_hz)
     if not (np.isfinite(rtol) and rtol > 0):
         raise InvalidParameterError(f"rtol must be finite and > 0, got {rtol!r}")
     states = equilibrium.states
