@@ -45,15 +45,34 @@ def refuse_bools(name: str, value: object) -> None:
             f"{name} must be real numbers, not booleans, got {reprlib.repr(value)}")
 
 
-def real_array(name: str, value: object, what: str = "real numbers") -> NDArray[np.float64]:
+def real_array(name: str, value: Any, what: str = "real numbers") -> NDArray[np.float64]:
     """``value`` as a float array of its own shape, or raise naming ``name`` (and ``what``
     it must be) when it holds a bool or anything that is not a number; shape and range are
     the caller's to check."""
     refuse_bools(name, value)
     try:
-        return np.asarray(value, dtype=float)
+        if not np.iscomplexobj(value):               # never drop an imaginary part
+            return np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InvalidParameterError(f"{name} must be {what}, got {reprlib.repr(value)}") from None
+        pass
+    raise InvalidParameterError(f"{name} must be {what}, got {reprlib.repr(value)}")
+
+
+def flag(name: str, value: object) -> bool:
+    """``value`` if it is a bool, else raise naming ``name``: a string such as "no" is not
+    False (Python would take it as True)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def count(name: str, value: object, least: int = 1) -> int:
+    """``value`` as an int >= ``least``, or raise naming ``name`` (a bool or a float is not
+    a count)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or \
+            value < least:
+        raise InvalidParameterError(f"{name} must be an integer >= {least}, got {value!r}")
+    return int(value)
 
 
 def band(value: object, name: str = "band_hz") -> tuple[float, float]:
@@ -103,12 +122,7 @@ def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> 
 
 def point(name: str, value: ArrayLike, dim: int = 3) -> NDArray[np.float64]:
     """Return ``value`` as a finite float array of shape ``(dim,)``, or raise naming ``name``."""
-    refuse_bools(name, value)
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"{name} must be a sequence of {dim} real numbers, got {value!r}") from None
+    arr = real_array(name, value, f"a sequence of {dim} real numbers")
     if arr.shape != (dim,):
         raise InvalidParameterError(
             f"{name} must have shape ({dim},), got shape {arr.shape}")
@@ -158,8 +172,8 @@ def unstretched_lengths(value: ArrayLike | str, n: int) -> NDArray[np.float64]:
     naming ``unstretched_lengths`` if they are not n finite positive numbers."""
     refuse_bools("unstretched_lengths", value)
     try:
-        L0 = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+        L0 = real_array("unstretched_lengths", value)
+    except InvalidParameterError:
         L0 = None
     if L0 is None or L0.shape != (n,) or not np.all(np.isfinite(L0)) or \
             np.any(L0 < np.finfo(float).tiny):

@@ -68,3 +68,16 @@ def test_viscous_damping_gives_decaying_modes(scene):
     assert np.all(d.damping_ratio[ok] > 0)
     assert np.all(d.residual[ok] < 1e-8)
     np.testing.assert_allclose(d.freq_hz[ok], d.undamped_freq_hz[ok], rtol=5e-3)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(tol=True), "^tol must be a real number, got True$"),
+    (dict(tol="a"), "^tol must be a real number, got 'a'$"),
+    (dict(tol=-1.0), r"^tol must be > 0, got -1\.0$"),
+    (dict(max_iter=True), "^max_iter must be an integer >= 1, got True$"),
+    (dict(max_iter=2.0), r"^max_iter must be an integer >= 1, got 2\.0$")])
+def test_the_secant_options_are_checked_naming_them(scene, kw, message):
+    """max_iter=True was one secant step, and tol text a TypeError in the loop."""
+    m = ds.FrequencyModel(scene.equilibrium(), platform_damping_ratio=0.02)
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        ds.damped_modes(m, n_modes=1, **kw)

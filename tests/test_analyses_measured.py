@@ -332,3 +332,17 @@ def test_the_frf_overlay_draws_each_channel_measured_and_model_in_one_colour(mod
         np.testing.assert_allclose(d.get_ydata(), np.abs(truth.H[:, o, i]), rtol=1e-12)
     legend = ax.get_legend()
     assert legend._ncols == 2 and legend.get_texts()[0].get_fontsize() == 7
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(freq_hz=[True, 2.0]), "^freq_hz must be a non-empty list of finite frequencies"),
+    (dict(freq_hz=[1 + 1j, 2.0]), "^freq_hz must be a non-empty list of finite frequencies"),
+    (dict(freq_hz=[1.0, 2.0], sigma_hz=[True, 0.1]), "^sigma_hz must be real numbers, not "
+                                                      "booleans"),
+    (dict(freq_hz=[1.0, 2.0], shapes=np.ones((2, 6), bool)), "^shapes must be real numbers, "
+                                                             "not booleans"),
+    (dict(freq_hz=[1.0, 2.0], sigma_hz=[0.1j, 0.1]), "^sigma_hz must be real numbers, got")])
+def test_measured_modes_of_booleans_or_complex_numbers_are_refused(kw, message):
+    """[True, 2.0] Hz was a mode at 1 Hz; a boolean shape a motion of 1 m in every DOF."""
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        MeasuredModes(**kw)

@@ -363,3 +363,13 @@ def test_the_trial_equilibria_start_from_the_current_one(cogiro, monkeypatch):
     optimal_tensions(cogiro.robot, [2.0, 1.5, 1.5])
     assert starts[0] is None and len(starts) > 3
     assert all(s is not None for s in starts[2:])
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(start=[True] * 8), "^start must be real numbers, not booleans"),
+    (dict(start="abc"), "^start must be 8 tensions \\[N\\], got 'abc'"),
+    (dict(xtol=True), "^xtol must be finite and > 0 \\[N\\], got True"),
+    (dict(xtol="1"), "^xtol must be finite and > 0 \\[N\\], got '1'")])
+def test_a_boolean_start_or_tolerance_is_refused(cogiro, kw, message):
+    with pytest.raises(InvalidParameterError, match=message):
+        optimal_tensions(cogiro.robot, cogiro.pose, **kw)

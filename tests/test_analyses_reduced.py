@@ -142,3 +142,25 @@ def test_statespace_is_named_floored_and_bode_plots():
     cp = control.bode_plot(sys, 2 * np.pi * np.linspace(0.05, 3.0, 50))
     assert "dynstiff modal model" in cp.figure._suptitle.get_text()
     plt.close(cp.figure)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(damping=[True, 0.1, 0.1]), "^damping must be real numbers, not booleans"),
+    (dict(damping="a"), "^damping must be one ratio >= 0 or one per kept mode, got 'a'"),
+    (dict(damping=-0.1), "^damping must be one ratio >= 0 or one per kept mode, got -0.1"),
+    (dict(cluster_rtol=True), "^cluster_rtol must be a real number, got True"),
+    (dict(null_rtol=np.nan), "^null_rtol must be finite, got nan"),
+    (dict(residual="no"), "^residual must be True or False, got 'no'")])
+def test_modal_model_options_are_checked_before_the_modes_are_computed(dsm, kw, message,
+                                                                       monkeypatch):
+    """A worded flag ("no" is true in Python) or a boolean ratio is refused naming it, before
+    any root is searched (the search is made to fail here)."""
+    import dynstiff.analyses.reduced as red
+    monkeypatch.setattr(red, "eigenfrequencies", lambda *a, **k: 1 / 0)
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        modal_model(dsm, n_modes=3, **kw)
+
+
+def test_to_statespace_refuses_a_worded_residual_flag_of_a_modal_model(mm):
+    with pytest.raises(ds.InvalidParameterError, match="^residual must be True or False"):
+        to_statespace(mm, residual="no")

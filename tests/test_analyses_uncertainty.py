@@ -364,3 +364,16 @@ def test_a_robot_with_one_platform_mode_and_the_rows_not_asked(cogiro):
     row, _ = uncertain_row(cogiro.robot, cogiro.pose, CheckOptions(forbidden_hz=(0.0, 1.5)),
                            {"EA": "10%", "mass": "2:uniform"}, n_samples=4)
     assert row["detail"].endswith("; EA sigma 10 % (normal); mass +-2 (uniform)")
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(scale=True), "^scale must be a real number, got True$"),
+    (dict(scale="a"), "^scale must be a real number, got 'a'$"),
+    (dict(scale=0.1, relative="no"), "^relative must be True or False, got 'no'$"),
+    (dict(scale=0.1, relative=0), "^relative must be True or False, got 0$")])
+def test_an_uncertainty_of_a_boolean_scale_or_a_worded_flag_is_refused(kw, message):
+    """Uncertain(True) was a scale of 1 (100 %), and relative="no" was relative (a
+    non-empty string is true in Python)."""
+    with pytest.raises(InvalidParameterError, match=message):
+        Uncertain(**kw)
+    assert Uncertain(0.1, relative=np.False_).relative is False

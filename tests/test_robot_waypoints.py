@@ -101,3 +101,15 @@ def test_bad_waypoints_are_named(kw, match):
     args.update(kw)
     with pytest.raises(InvalidParameterError, match=match):
         WaypointPath(**args)
+
+
+@pytest.mark.parametrize("times, positions, message", [
+    ([False, True], [[0, 0, 1], [0, 0, 1.1]], "^times must be real numbers, not booleans"),
+    ([0, 1.0], [[0, 0, True], [0, 0, 1.1]], "^positions must be real numbers, not booleans"),
+    ([0, 1.0], "abc", r"^positions must be finite, shape \(2, 3\) \(one row per waypoint\), "
+                      "got 'abc'"),
+    (["a", "b"], [[0, 0, 1], [0, 0, 1.1]], r"^times must be strictly increasing from 0 \[s\]")])
+def test_waypoints_of_booleans_or_text_are_refused_naming_the_argument(times, positions,
+                                                                        message):
+    with pytest.raises(InvalidParameterError, match=message):
+        WaypointPath(times, positions, np.zeros((2, 3)))

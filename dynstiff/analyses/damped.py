@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import count, positive_scalar
 from dynstiff.analyses.modes import modes
 from dynstiff.results import DampedModes
 
@@ -89,6 +90,8 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     >>> print(f"{d.freq_hz[0]:.3f} Hz, zeta = {d.damping_ratio[0]:.4f}")
     2.207 Hz, zeta = 0.0200
     """
+    tol = positive_scalar("tol", tol)
+    max_iter = count("max_iter", max_iter)
     und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
     est = _perturbation_estimates(model, und)
     out = np.full(len(und), np.nan + 1j * np.nan)

@@ -20,12 +20,12 @@ Pairing a measured mode with a model mode (:func:`pair_modes`):
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.analyses.measured_frf import FRFComparison, compare_frf, read_measured_frf
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
@@ -81,9 +81,9 @@ class MeasuredModes:
 
     def __post_init__(self) -> None:
         try:
-            f = np.atleast_1d(np.asarray(self.freq_hz, dtype=float))
-        except (TypeError, ValueError):
-            f = np.empty(0)                     # text, complex or ragged: refused below
+            f = np.atleast_1d(real_array("freq_hz", self.freq_hz))
+        except InvalidParameterError:
+            f = np.empty(0)                     # text, complex, booleans, ragged: refused below
         if f.ndim != 1 or f.size == 0 or not np.all(np.isfinite(f)) or np.any(f <= 0):
             raise InvalidParameterError(
                 f"freq_hz must be a non-empty list of finite frequencies > 0 [Hz], got "
@@ -150,12 +150,7 @@ class MeasuredModes:
 def _floats(name: str, value: object) -> np.ndarray:
     """``value`` as a float array, or InvalidParameterError naming ``name`` (text, complex
     or ragged input)."""
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("error", np.exceptions.ComplexWarning)
-            return np.asarray(value, dtype=float)
-    except (TypeError, ValueError, np.exceptions.ComplexWarning):
-        raise InvalidParameterError(f"{name} must be real numbers, got {value!r}") from None
+    return real_array(name, value)
 
 
 def read_measured_modes(path: str | Path) -> MeasuredModes:

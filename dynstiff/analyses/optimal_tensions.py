@@ -22,11 +22,12 @@ down to ``xtol``. At the end the constraints within tolerance are what binds.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from numbers import Integral
+from numbers import Integral, Real
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import find_platform_modes
 from dynstiff.analyses.sensitivity import RUNGS, sensitivities_at, whole_clusters
@@ -260,13 +261,14 @@ def optimal_tensions(robot: Robot, pose: ArrayLike | Pose, objective: str = "fir
         raise InvalidParameterError(f"rung must be one of {RUNGS}, got {rung!r}")
     if isinstance(max_iter, bool) or not isinstance(max_iter, Integral) or max_iter < 1:
         raise InvalidParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
-    if not (np.isfinite(xtol) and xtol > 0):
+    if isinstance(xtol, (bool, np.bool_)) or not isinstance(xtol, Real) or \
+            not (np.isfinite(xtol) and xtol > 0):
         raise InvalidParameterError(f"xtol must be finite and > 0 [N], got {xtol!r}")
     pose = as_pose(pose)
     t_start = None
     if start is not None:
-        t_start = np.asarray(getattr(getattr(start, "equilibrium", start), "tensions", start),
-                             dtype=float)
+        t_start = real_array("start", getattr(getattr(start, "equilibrium", start), "tensions",
+                                              start), f"{robot.n_cables} tensions [N]")
         if t_start.shape != (robot.n_cables,):
             raise InvalidParameterError(
                 f"start must be an Equilibrium, OptimalTensions or {robot.n_cables} tensions "

@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import flag, positive_scalar, real_array
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.frf import channel_maps
 from dynstiff.errors import InvalidParameterError
@@ -175,6 +176,13 @@ def modal_model(model: PlatformModel, n_modes: int | None = None, fmax_hz: float
     (1, 6, 6)
     """
     m = require_model(model).undamped()
+    residual = flag("residual", residual)
+    cluster_rtol = positive_scalar("cluster_rtol", cluster_rtol)
+    null_rtol = positive_scalar("null_rtol", null_rtol)
+    zeta_in = real_array("damping", damping, "one ratio >= 0 or one per kept mode")
+    if not np.all(np.isfinite(zeta_in)) or np.any(zeta_in < 0) or zeta_in.ndim > 1:
+        raise InvalidParameterError(
+            f"damping must be one ratio >= 0 or one per kept mode, got {damping!r}")
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
     w_all = _TWO_PI * f
     if np.any(w_all <= 0):
@@ -212,9 +220,9 @@ def modal_model(model: PlatformModel, n_modes: int | None = None, fmax_hz: float
             masses.append(mu[i] / (x @ Mp @ x))
     omega = np.array(omega)
     shapes = np.array(shapes).reshape(len(omega), m.n_free)
-    zeta = np.broadcast_to(np.asarray(damping, dtype=float), omega.shape).copy() \
-        if np.ndim(damping) == 0 or np.size(damping) == len(omega) else None
-    if zeta is None or not np.all(np.isfinite(zeta)) or np.any(zeta < 0):
+    zeta = np.broadcast_to(zeta_in, omega.shape).copy() \
+        if zeta_in.ndim == 0 or zeta_in.size == len(omega) else None
+    if zeta is None:
         raise InvalidParameterError(
             f"damping must be one ratio >= 0 or one per kept mode ({len(omega)}), got "
             f"{damping!r}")
@@ -269,6 +277,7 @@ def to_statespace(model: PlatformModel | ModalModel, n_modes: int | None = None,
     (12, 1, 1)
     """
     ct = require("control")
+    residual = flag("residual", residual)
     mm = model if isinstance(model, ModalModel) else modal_model(
         model, n_modes=n_modes, fmax_hz=fmax_hz, damping=damping, residual=residual)
     free_index = np.array([("x", "y", "z", "rx", "ry", "rz").index(d) for d in mm.free_dofs])

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import flag, positive_scalar
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.optimal_tensions import band_margin
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
@@ -83,10 +84,8 @@ class Uncertain:
         if self.distribution not in _DISTRIBUTIONS:
             raise InvalidParameterError(f"distribution must be one of {_DISTRIBUTIONS}, got "
                                         f"{self.distribution!r}")
-        s = float(self.scale)
-        if not (np.isfinite(s) and s > 0):
-            raise InvalidParameterError(f"scale must be finite and > 0, got {self.scale!r}")
-        object.__setattr__(self, "scale", s)
+        object.__setattr__(self, "scale", positive_scalar("scale", self.scale))
+        object.__setattr__(self, "relative", flag("relative", self.relative))
 
     @classmethod
     def parse(cls, text: str) -> Uncertain:

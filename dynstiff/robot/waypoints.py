@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -85,7 +86,7 @@ def _rows(name: str, value: ArrayLike | None, k: int, required: bool = True) -> 
         if required:
             raise InvalidParameterError(f"{name} is required")
         return np.zeros((k, 3))
-    a = np.asarray(value, dtype=float)
+    a = real_array(name, value, f"finite, shape ({k}, 3) (one row per waypoint)")
     if a.shape != (k, 3) or not np.all(np.isfinite(a)):
         raise InvalidParameterError(
             f"{name} must be finite, shape ({k}, 3) (one row per waypoint), got shape "
@@ -138,7 +139,7 @@ class WaypointPath:
     name: str = ""
 
     def __post_init__(self) -> None:
-        t = np.asarray(self.times, dtype=float)
+        t = real_array("times", self.times, "strictly increasing from 0 [s]")
         if t.ndim != 1 or t.size < 2 or t[0] != 0 or not np.all(np.isfinite(t)) \
                 or np.any(np.diff(t) <= 0):
             raise InvalidParameterError(
@@ -162,7 +163,7 @@ class WaypointPath:
             if self.blend_times is None:
                 raise InvalidParameterError("law 'parabolic_blend' needs blend_times [s], "
                                             "one per segment")
-            tb = np.asarray(self.blend_times, dtype=float)
+            tb = real_array("blend_times", self.blend_times, f"{k - 1} values > 0 [s]")
             if tb.shape != (k - 1,) or not np.all(tb > 0) or np.any(2 * tb >= np.diff(t)):
                 raise InvalidParameterError(
                     f"blend_times must be {k - 1} values > 0 [s], each less than half its "
