@@ -583,3 +583,13 @@ def test_robot_error_is_the_factor_times_static_plus_largest_cable_error(cogiro_
     bound, i = m.robot_error(w)
     assert bound == pytest.approx(ROBOT_ERROR_FACTOR * (m.static_error()[0] + max(own)))
     assert own[i] == max(own)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(chordwise_inertia="no"), "chordwise_inertia"),
+                                      (dict(damping="no"), "damping"),
+                                      (dict(damping=0), "damping")])
+def test_worded_or_numeric_flags_are_refused(cogiro_eq, kw, name):
+    """chordwise_inertia="no" was True (a non-empty string), damping=0 was False: neither
+    is a flag."""
+    with pytest.raises(InvalidParameterError, match=f"^{name} must be True or False, got "):
+        ds.FrequencyModel(cogiro_eq, **kw)

@@ -311,3 +311,10 @@ def test_platform_damping_is_hysteretic_and_proportional_to_the_static_stiffness
     np.testing.assert_allclose(damped.dynamic_stiffness(w),
                                base.dynamic_stiffness(w) + 0.04j * 0.5 * (K0 + K0.T),
                                rtol=1e-12, atol=1e-12 * np.abs(K0).max())
+
+
+def test_a_worded_damping_flag_is_refused():
+    from dynstiff.models.exact import ExactModel
+    eq = ds.load_scene("planar2").equilibrium()
+    with pytest.raises(InvalidParameterError, match="^damping must be True or False, got 'no'"):
+        ExactModel(eq, damping="no")

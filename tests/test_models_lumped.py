@@ -166,3 +166,9 @@ def test_damped_frf_at_resonance_matches_closed_form(cogiro):
     np.testing.assert_allclose(H, Hc, rtol=1e-2)
     assert abs(H[0] / Hc[0] - 1) < 1e-4                          # measured 3.4e-5
     assert abs(H[1].imag) > 10 * abs(H[1].real)
+
+
+def test_a_worded_damping_flag_is_refused():
+    lm = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped", segments=3)
+    with pytest.raises(ds.InvalidParameterError, match="^damping must be True or False, got 'no'"):
+        ds.LumpedLinearModel(lm.mass_model, lm.equilibrium, damping="no")

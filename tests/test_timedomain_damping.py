@@ -42,3 +42,13 @@ def test_explicit_limit_is_the_axial_wave_transit_time_of_a_segment(cogiro, cogi
     c = 0.1 * l0 * np.sqrt(cab.EA * cab.mass_per_length)      # zeta = 0.1 on the top mode
     damped = explicit_step_limit(mm, damping=TimeDamping(axial=c))
     assert damped == pytest.approx(dt0 * (np.sqrt(1.01) - 0.1), rel=1e-12)
+
+
+@pytest.mark.parametrize("axial, message", [
+    (True, "^axial must be real numbers, not booleans, got True"),
+    ([0.5, True], "^axial must be real numbers, not booleans"),
+    ("a", r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got 'a'"),
+    (1j, r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got 1j")])
+def test_an_axial_dashpot_of_booleans_text_or_complex_numbers_is_refused(axial, message):
+    with pytest.raises(InvalidParameterError, match=message):
+        TimeDamping(axial=axial)

@@ -424,3 +424,10 @@ def test_absurd_starts_and_run_lengths_are_refused_before_any_step():
         simulate(m, 1e9, 1e-3)
     r = simulate(m, 1.0, 1e-3, record_every=10, max_records=101)
     assert r.times.size == 101
+
+
+def test_a_worded_record_nodes_flag_is_refused():
+    """record_nodes="no" recorded every node (a non-empty string is true)."""
+    lm = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped", segments=3)
+    with pytest.raises(InvalidParameterError, match="^record_nodes must be True or False"):
+        simulate(lm, 0.01, 1e-3, record_nodes="no")

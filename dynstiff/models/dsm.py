@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import omega_array, positive_scalar
+from dynstiff._validate import flag, omega_array, positive_scalar
 from dynstiff._vec import cross
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
@@ -136,7 +136,8 @@ class FrequencyModel(PlatformModel):
         self.guard_rtol = guard_rtol
         self._init_platform(robot, equilibrium, pose)
         self.tension = tension
-        self.chordwise_inertia = bool(chordwise_inertia)
+        self.chordwise_inertia = flag("chordwise_inertia", chordwise_inertia)
+        damping = flag("damping", damping)
         self.cable_loss_factor = positive_scalar("cable_loss_factor", cable_loss_factor,
                                                  allow_zero=True)
         self.platform_damping_ratio = positive_scalar(

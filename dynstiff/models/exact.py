@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import omega_array, positive_scalar
+from dynstiff._validate import flag, omega_array, positive_scalar
 from dynstiff.cable.exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel, require_equilibrium
@@ -82,6 +82,7 @@ class ExactModel(PlatformModel):
                  damping: bool = True, cable_loss_factor: float = 0.0,
                  platform_damping_ratio: float = 0.0) -> None:
         robot, pose = require_equilibrium(equilibrium).robot, equilibrium.pose
+        damping = flag("damping", damping)
         try:
             f = float(fmax_hz)
         except (TypeError, ValueError):

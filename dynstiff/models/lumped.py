@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import omega_array
+from dynstiff._validate import flag, omega_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel
 from dynstiff.models.lumped_robot import LumpedMassModel
@@ -87,6 +87,7 @@ class LumpedLinearModel(PlatformModel):
             raise InvalidParameterError(
                 f"state must be a LumpedEquilibrium (from mass_model.equilibrium()), got "
                 f"{type(state).__name__}")
+        damping = flag("damping", damping)
         rob = mass_model.robot
         self._init_platform(rob, state, state.pose)
         self.mass_model = mass_model

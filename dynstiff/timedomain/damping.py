@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import positive_scalar, real_array
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -45,7 +45,8 @@ class TimeDamping:
     def __post_init__(self) -> None:
         object.__setattr__(self, "alpha", positive_scalar("alpha", self.alpha, True))
         object.__setattr__(self, "beta", positive_scalar("beta", self.beta, True))
-        c = np.atleast_1d(np.asarray(self.axial, dtype=float))
+        c = np.atleast_1d(real_array("axial", self.axial, "a finite dashpot c_ax >= 0 [N s] or "
+                                                          "one per cable"))
         if c.ndim != 1 or not np.all(np.isfinite(c)) or np.any(c < 0):
             raise InvalidParameterError(
                 f"axial must be a finite dashpot c_ax >= 0 [N s] or one per cable, got "

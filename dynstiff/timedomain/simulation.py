@@ -104,7 +104,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import compiled
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import flag, positive_scalar
 from dynstiff.cable.lumped_chain import chain_equilibrium
 from dynstiff.errors import (
     ConvergenceError,
@@ -280,6 +280,7 @@ def simulate(
         raise InvalidParameterError(f"dt must be <= t_end = {t_end:g} s, got {dt:g} s")
     if scheme not in _SCHEMES:
         raise InvalidParameterError(f"scheme must be one of {_SCHEMES}, got {scheme!r}")
+    record_nodes = flag("record_nodes", record_nodes)
     for name, val in (("record_every", record_every), ("max_iter", max_iter)):
         if isinstance(val, bool) or not isinstance(val, Integral) or val < 1:
             raise InvalidParameterError(f"{name} must be an integer >= 1, got {val!r}")
