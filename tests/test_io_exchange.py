@@ -231,3 +231,31 @@ def test_even_grid_of_several_channels_scales_with_the_frequencies():
         np.testing.assert_allclose(fe, s * np.arange(6.0), rtol=1e-12)
         np.testing.assert_allclose(He, (fe[:, None, None] / s + 1j)
                                    * np.arange(1, 5).reshape(1, 2, 2), rtol=1e-9)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(node=True), "^node must be an integer >= 1, got True$"),
+    (dict(node=1.5), r"^node must be an integer >= 1, got 1\.5$"),
+    (dict(node=0), "^node must be an integer >= 1, got 0$"),
+    (dict(point_node=True), "^point_node must be an integer >= 1, got True$"),
+    (dict(binary="no"), "^binary must be True or False, got 'no'$"),
+    (dict(entity=5), "^entity must be a name of at most 10 characters"),
+    (dict(entity="platform_top"), "^entity must be a name of at most 10 characters .*"
+                                  "got 'platform_top'$")])
+def test_uff_options_are_checked_and_no_file_is_written(tmp_path, model, omega, kw, message):
+    """binary="no" wrote binary records, node 1.5 was node 1, True node 1, and an entity
+    name of 12 characters was cut to 10 without a word."""
+    r = ds.frf(model, omega, inputs="fz", outputs="z")
+    path = tmp_path / "frf.uff"
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        r.to_uff(path, **kw)
+    assert not path.exists()
+    r.to_uff(path, node=np.int64(3), point_node=2, entity="p" * 10)
+    rec = uff58_records(r, node=np.int64(3), point_node=2, entity="p" * 10)[0]
+    assert (rec["ref_node"], rec["rsp_node"], rec["ref_ent_name"]) == (3, 2, "p" * 10)
+    assert type(rec["ref_node"]) is int
+
+
+def test_a_control_system_name_is_text(model, omega):
+    with pytest.raises(ds.InvalidParameterError, match="^name must be a str or None, got 5$"):
+        ds.frf(model, omega, inputs="fz", outputs="z").to_control(name=5)

@@ -139,3 +139,17 @@ def test_frf_curves_mode_lines_twins_and_legend_stay_apart(cogiro_model, cogiro_
     lo, hi = mag.get_ylim()
     for ln in curves.values():
         assert lo <= np.min(ln.get_ydata()) and np.max(ln.get_ydata()) <= hi
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(phase="no"), "^phase must be True or False, got 'no'$"),
+    (dict(phase=1), "^phase must be True or False, got 1$"),
+    (dict(pairs=True), r"^pairs must be a list of \(output, input\), got True$"),
+    (dict(ax=5), "^ax must be a matplotlib Axes, got int$")])
+def test_plot_options_that_are_not_what_they_say_are_refused(kw, message):
+    """phase="no" drew the phase (a non-empty string is true); pairs=True and ax=5 came out
+    as numpy's TypeError and matplotlib's AttributeError."""
+    m = ds.FrequencyModel(ds.load_scene("planar2").equilibrium())
+    r = ds.frf(m, [1.0, 2.0], inputs="fz", outputs="z")
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        r.plot(**kw)

@@ -19,6 +19,7 @@ and ``kind`` (:class:`dynstiff.FRFResult`); the libraries are imported only here
 
 import numpy as np
 
+from dynstiff._validate import count, flag
 from dynstiff.constants import DOF_NAMES, LOAD_NAMES
 from dynstiff.errors import DynstiffError, InvalidParameterError
 
@@ -117,7 +118,8 @@ def uff58_records(result, node=1, entity="platform", point_node=None, binary=Fal
     node : int
         Node number of the reference (the load point P).
     entity : str
-        Entity name written for response and reference (at most 10 characters).
+        Entity name written for response and reference (at most 10 characters, the field's
+        width; a longer one is refused, not cut).
     point_node : int, optional
         Node number of the response point (default ``node``).
     binary : bool
@@ -134,6 +136,12 @@ def uff58_records(result, node=1, entity="platform", point_node=None, binary=Fal
     if result.kind not in UFF_DATA_TYPES:
         raise InvalidParameterError(f"kind must be one of {tuple(UFF_DATA_TYPES)}, got "
                                     f"{result.kind!r}")
+    node = count("node", node)
+    point_node = node if point_node is None else count("point_node", point_node)
+    binary = flag("binary", binary)
+    if not isinstance(entity, str) or len(entity) > 10:
+        raise InvalidParameterError(f"entity must be a name of at most 10 characters (the "
+                                    f"format's field), got {entity!r}")
     f = np.asarray(result.freq_hz, dtype=float)
     H = np.asarray(result.H)
     if not np.all(np.isfinite(H)):
@@ -142,7 +150,6 @@ def uff58_records(result, node=1, entity="platform", point_node=None, binary=Fal
     if f.size < 2:
         raise InvalidParameterError(f"a UFF 58 record needs at least 2 frequencies, got "
                                     f"{f.size}")
-    point_node = node if point_node is None else point_node
     id3 = "NONE"
     if even is not False:
         f, H, step = even_grid(f, H, even)
@@ -155,12 +162,12 @@ def uff58_records(result, node=1, entity="platform", point_node=None, binary=Fal
             num = ("rad" if rot_out else "m") + _TIME[result.kind]
             den = "N m" if moment else "N"
             records.append({
-                "type": 58, "binary": int(bool(binary)), "func_type": _UFF_FRF,
+                "type": 58, "binary": int(binary), "func_type": _UFF_FRF,
                 "id1": f"dynstiff {result.kind} {out}/{inp}", "id2": f"{num}/{den}",
                 "id3": id3, "id4": "NONE", "id5": "NONE",
-                "rsp_ent_name": entity[:10], "rsp_node": int(point_node),
+                "rsp_ent_name": entity, "rsp_node": point_node,
                 "rsp_dir": DOF_NAMES.index(out) + 1,
-                "ref_ent_name": entity[:10], "ref_node": int(node),
+                "ref_ent_name": entity, "ref_node": node,
                 "ref_dir": LOAD_NAMES.index(inp) + 1,
                 "abscissa_spacing": int(even is not False),
                 "abscissa_spec_data_type": _UFF_FREQUENCY,
@@ -232,6 +239,8 @@ def frf_to_control(result, name=None):
     >>> sys.name, sys.input_labels, complex(sys.frdata[0, 1, 0])
     ('dynstiff receptance', ['fx', 'fz'], 0j)
     """
+    if name is not None and not isinstance(name, str):
+        raise InvalidParameterError(f"name must be a str or None, got {name!r}")
     ct = require("control")
     H = np.moveaxis(zero_below_floor(result.H), 0, -1)
     omega = 2 * np.pi * np.asarray(result.freq_hz, dtype=float)

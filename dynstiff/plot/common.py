@@ -26,6 +26,9 @@ def figure_axes(ax=None, figsize=(8, 4.5)):
     if ax is None:
         import matplotlib.pyplot as plt
         return plt.subplots(figsize=figsize)
+    from matplotlib.axes import Axes
+    if not isinstance(ax, Axes):
+        raise InvalidParameterError(f"ax must be a matplotlib Axes, got {type(ax).__name__}")
     return ax.figure, ax
 
 

@@ -4,6 +4,7 @@ and named by class.
 
 import numpy as np
 
+from dynstiff._validate import flag
 from dynstiff.constants import DOF_NAMES, LOAD_NAMES
 from dynstiff.errors import InvalidParameterError
 from dynstiff.plot.common import CATEGORY_LABELS, COLORS, figure_axes, mode_categories, require
@@ -58,8 +59,11 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     require(result, "result", ("freq_hz", "H", "inputs", "outputs", "kind"), "FRFResult")
     if modes is not None:
         require(modes, "modes", ("freq_hz", "kind"), "ModalResult")
+    phase = flag("phase", phase)
     if pairs is None:
         pairs = list(zip(result.outputs, result.inputs))
+    if isinstance(pairs, (str, bytes)) or not hasattr(pairs, "__iter__"):
+        raise InvalidParameterError(f"pairs must be a list of (output, input), got {pairs!r}")
     idx = []
     for pair in pairs:
         try:
