@@ -150,3 +150,21 @@ def test_band_and_index():
     for bad in (3, -1, True, 1.0, "1", None):
         with pytest.raises(InvalidParameterError, match=r"^k must be an integer in \[0, 3\)"):
             index("k", bad, 3)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda ds, sc: ds.proximity_warnings(ds.modes(ds.FrequencyModel(sc.equilibrium()),
+                                                   n_modes=4), warn="no"), "warn"),
+    (lambda ds, sc: ds.calibrate(sc, [2.2], strict="no"), "strict"),
+    (lambda ds, sc: ds.workspace(sc.robot, [sc.pose.position], n_modes=3, progress="no"),
+     "progress"),
+    (lambda ds, sc: ds.workspace(sc.robot, [sc.pose.position], n_modes=3, resume="no"),
+     "resume"),
+    (lambda ds, sc: sc.robot.platform_stiffness(sc.pose, sc.equilibrium().states,
+                                                symmetric_part="no"), "symmetric_part")])
+def test_worded_flags_are_refused_before_any_work(call, name):
+    """A non-empty string is true in Python: strict="no" made the calibration strict,
+    progress="no" printed the progress, resume="no" asked for a checkpoint to resume."""
+    ds, sc = _cogiro()
+    with pytest.raises(InvalidParameterError, match=f"^{name} must be True or False, got 'no'"):
+        call(ds, sc)

@@ -104,3 +104,8 @@ def test_a_decade_of_a_positive_parameter_is_drawn_on_a_log_axis(values, scale):
     assert lo < min(values) and max(values) < hi
     (track,) = by_gid(ax, "track-")
     np.testing.assert_array_equal(track.get_xdata(), values)
+
+
+def test_a_worded_show_local_flag_is_refused(small_sweep):
+    with pytest.raises(InvalidParameterError, match="^show_local must be True or False"):
+        plot_veering(small_sweep, show_local="no")

@@ -56,6 +56,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import flag
 from dynstiff.analyses.calibration_checks import calibration_findings, fit_options, report_findings
 from dynstiff.analyses.calibration_result import CalibrationResult
 from dynstiff.analyses.damped import damped_modes
@@ -279,6 +280,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
     names = _expand(parameters, robot.n_cables)
     if jacobian not in JACOBIANS:
         raise InvalidParameterError(f"jacobian must be one of {JACOBIANS}, got {jacobian!r}")
+    strict = flag("strict", strict)
     analytic = (measured is not None and frf is None and rung in SENSITIVITY_RUNGS
                 and not any(nm in _DAMPING for nm in names))
     if jacobian == "analytic" and not analytic:

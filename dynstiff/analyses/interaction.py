@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import flag, positive_scalar
 from dynstiff.errors import DynstiffWarning, InvalidParameterError
 
 if TYPE_CHECKING:
@@ -170,6 +170,7 @@ def proximity_warnings(modes: ModalResult, rtol: float = 0.05, warn: bool = Fals
     local mode 7 (3.35055 Hz) is within 12 % of global mode 3 (2.99072 Hz)
     """
     rtol = positive_scalar("rtol", rtol)
+    warn = flag("warn", warn)
     f, kind = _check_modes(modes)
     if platform is None:
         ig = np.flatnonzero(kind == "global")

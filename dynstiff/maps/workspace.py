@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import flag
 from dynstiff.analyses.checks import check_options, damped_model, modal_model_options
 from dynstiff.analyses.optimal_tensions import TENSIONS, band_margin, tension_equilibrium
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
@@ -356,6 +357,7 @@ damping, model_band_hz, max_modes
                                    options.max_modes, max_poses)
     if tensions not in TENSIONS:
         raise InvalidParameterError(f"tensions must be one of {TENSIONS}, got {tensions!r}")
+    progress, resume = flag("progress", progress), flag("resume", resume)
     check_model_options(rung, model_options)
     from dynstiff.maps.dataset import to_dataset
     checks = tuple(c for c in CHECKS if options.forbidden_hz is not None

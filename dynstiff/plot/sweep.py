@@ -4,6 +4,7 @@ over a parameter.
 
 import numpy as np
 
+from dynstiff._validate import flag
 from dynstiff.plot.common import figure_axes, require
 
 __all__ = ["LOG_SPAN", "plot_veering"]
@@ -59,6 +60,7 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     require(sweep_result, "sweep_result",
              ("parameter", "values", "veering_table", "value", "freq_hz", "kind", "n_tracks"),
              "SweepResult")
+    show_local = flag("show_local", show_local)
     fig, ax = figure_axes(ax)
     x = np.asarray(sweep_result.values, dtype=float)
     table = sweep_result.veering_table()

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import _validate
-from dynstiff._validate import positive_scalar, real_array
+from dynstiff._validate import flag, positive_scalar, real_array
 from dynstiff._vec import cross
 from dynstiff.cable.catenary_solve import solve_catenary
 from dynstiff.constants import MAX_COORDINATE, STANDARD_GRAVITY
@@ -219,6 +219,7 @@ class Robot:
         equilibrium, where K_geo becomes symmetric).
         """
         pose = as_pose(pose)
+        symmetric_part = flag("symmetric_part", symmetric_part)
         _, r = self.attachment_points(pose)
         K = np.zeros((6, 6))
         for ri, s in zip(r, states):
