@@ -964,7 +964,7 @@ EQUIVALENT.update({
     "dynstiff.models.dsm_guard.x_guard_robot__mutmut_9": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_guard_band__mutmut_13": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_static_error__mutmut_25": _EINSUM,
-    "dynstiff.models.dsm_guard.x_static_error__mutmut_87": _EINSUM,
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_89": _EINSUM,
     **{f"dynstiff.models.dsm_guard.x_guard_band__mutmut_{n}":
        "typing.cast's type given in another case: cast returns its value unchanged"
        for n in (56, 57)},

@@ -367,8 +367,8 @@ def test_a_robot_with_one_platform_mode_and_the_rows_not_asked(cogiro):
 
 
 @pytest.mark.parametrize("kw, message", [
-    (dict(scale=True), "^scale must be a real number, got True$"),
-    (dict(scale="a"), "^scale must be a real number, got 'a'$"),
+    (dict(scale=True), "^scale must be finite and > 0, got True$"),
+    (dict(scale="a"), "^scale must be finite and > 0, got 'a'$"),
     (dict(scale=0.1, relative="no"), "^relative must be True or False, got 'no'$"),
     (dict(scale=0.1, relative=0), "^relative must be True or False, got 0$")])
 def test_an_uncertainty_of_a_boolean_scale_or_a_worded_flag_is_refused(kw, message):

@@ -84,7 +84,12 @@ class Uncertain:
         if self.distribution not in _DISTRIBUTIONS:
             raise InvalidParameterError(f"distribution must be one of {_DISTRIBUTIONS}, got "
                                         f"{self.distribution!r}")
-        object.__setattr__(self, "scale", positive_scalar("scale", self.scale))
+        try:
+            s = positive_scalar("scale", self.scale)
+        except InvalidParameterError:
+            raise InvalidParameterError(
+                f"scale must be finite and > 0, got {self.scale!r}") from None
+        object.__setattr__(self, "scale", s)
         object.__setattr__(self, "relative", flag("relative", self.relative))
 
     @classmethod
