@@ -174,3 +174,10 @@ def test_a_band_that_is_not_two_numbers_is_named():
     with pytest.raises(InvalidParameterError) as err:
         analysis_settings(ds.load_scene("planar2"), band_hz=("low", 2.0))
     assert str(err.value) == "band_hz must be (low, high) [Hz], got ('low', 2.0)"
+
+
+def test_scene_model_names_a_setting_it_does_not_have():
+    """A misspelt setting came out as Python's TypeError of analysis_settings."""
+    with pytest.raises(InvalidParameterError, match=r"^settings \['band'\] are not settings of "
+                                                    r"an analysis \(they are \['band_hz', "):
+        ds.scene_model(ds.load_scene("planar2"), band=(0, 3))

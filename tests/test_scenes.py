@@ -203,3 +203,10 @@ def test_bad_trajectories_and_boxes_name_key_and_line(tmp_path, edit, match):
                  + TRAJECTORY.replace(*edit))
     with pytest.raises(ds.SceneError, match=match):
         ds.load_scene(p)
+
+
+@pytest.mark.parametrize("name", [5, None, ["cogiro"]])
+def test_a_scene_name_that_is_no_name_is_refused(name):
+    with pytest.raises(ds.InvalidParameterError,
+                       match="^name must be a built-in scene's name or a path to a TOML file"):
+        ds.load_scene(name)

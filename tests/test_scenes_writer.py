@@ -59,3 +59,27 @@ def test_names_with_quotes_backslashes_and_newlines_read_back_exactly(tmp_path):
     path = write_scene(tmp_path / "s.toml", sc.robot, sc.pose, name=text, description=text)
     back = ds.load_scene(path)
     assert back.name == text and back.description == text
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(name=5), "^name must be a str, got 5$"),
+    (dict(description=["a"]), r"^description must be a str, got \['a'\]$"),
+    (dict(comments="abc"), r"^comments must be a sequence of str \(lines\), got 'abc'$"),
+    (dict(cable_names=["a"]), r"^cable_names must be 2 names \(one per cable\), got \['a'\]$"),
+    (dict(pose=[True, 0, 1]), "^pose must be real numbers, not booleans")])
+def test_scene_text_arguments_are_checked_and_no_file_is_written(tmp_path, kw, message):
+    """cable_names too short was an IndexError, a pose given as numbers an AttributeError,
+    a name 5 the text "5"."""
+    from dynstiff.scenes import write_scene
+    sc = ds.load_scene("planar2")
+    path = tmp_path / "s.toml"
+    with pytest.raises(ds.InvalidParameterError, match=message):
+        write_scene(path, sc.robot, **({"pose": sc.pose} | kw))
+    assert not path.exists()
+
+
+def test_a_pose_given_as_numbers_is_written_and_read_back(tmp_path):
+    from dynstiff.scenes import write_scene
+    sc = ds.load_scene("planar2")
+    back = ds.load_scene(write_scene(tmp_path / "s.toml", sc.robot, [0.1, 0.0, -10.0]))
+    np.testing.assert_array_equal(back.pose.position, [0.1, 0.0, -10.0])

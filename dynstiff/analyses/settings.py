@@ -298,5 +298,11 @@ def scene_model(scene: Scene, pose: ArrayLike | Pose | None = None, *,
     >>> model.rung, model.damping_text()
     ('dsm', 'damped: platform modal ratio 0.01, cable loss factor 0.01')
     """
+    import inspect
+    known = set(inspect.signature(analysis_settings).parameters) - {"scene", "rung", "damping"}
+    unknown = sorted(set(settings) - known)
+    if unknown:
+        raise InvalidParameterError(f"settings {unknown} are not settings of an analysis (they "
+                                    f"are {sorted(known)})")
     st = analysis_settings(scene, rung=rung, damping=damping, **settings)
     return st.model(scene_equilibrium(scene, pose, lengths))

@@ -1,5 +1,6 @@
 """TOML scene reader with schema checks that name the key and its line."""
 
+import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -403,6 +404,9 @@ def load_scene(name: str | Path) -> Scene:
     >>> scene.name, scene.robot.n_cables
     ('cogiro', 8)
     """
+    if not isinstance(name, (str, os.PathLike)):
+        raise InvalidParameterError(
+            f"name must be a built-in scene's name or a path to a TOML file, got {name!r}")
     p = Path(name)
     if p.suffix == ".toml" or p.exists():
         return read_scene(p)

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
+from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
 from dynstiff.robot.waypoints import WaypointPath
 
@@ -92,6 +93,17 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     """
     if not isinstance(robot, Robot):
         raise InvalidParameterError(f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
+    for label, text in (("name", name), ("description", description)):
+        if text is not None and not isinstance(text, str):
+            raise InvalidParameterError(f"{label} must be a str, got {text!r}")
+    if isinstance(comments, str) or not all(isinstance(c, str) for c in comments):
+        raise InvalidParameterError(f"comments must be a sequence of str (lines), got "
+                                    f"{comments!r}")
+    if cable_names is not None and (isinstance(cable_names, str)
+                                    or len(cable_names) != robot.n_cables):
+        raise InvalidParameterError(f"cable_names must be {robot.n_cables} names (one per "
+                                    f"cable), got {cable_names!r}")
+    pose = None if pose is None else as_pose(pose)
     trajectories = tuple(trajectories)
     if not all(isinstance(t, WaypointPath) for t in trajectories):
         raise InvalidParameterError("trajectories must be dynstiff.WaypointPath objects")
