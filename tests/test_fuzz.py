@@ -5,12 +5,13 @@ TypeError, OverflowError, LinAlgError, a NaN in a result, a traceback from the c
 is a failure.
 
 Each fuzzer runs a few dozen examples in the default tier and thousands in the slow tier
-(``-m slow``: 24,500 examples in all). The workspace options, the calibration, the readers
+(``-m slow``: 25,500 examples in all). The workspace options, the calibration, the readers
 and writers of files and the output paths of the command line add one more rule: on an
 error, no file is changed.
 """
 
 import contextlib
+import functools
 import io
 import warnings
 
@@ -176,6 +177,51 @@ def _robot_fuzzer(n):
 
 test_robot_and_platform = _robot_fuzzer(FAST)
 test_robot_and_platform_long = pytest.mark.slow(_robot_fuzzer(LONG))
+
+
+@pytest.fixture(scope="module")
+def cogiro_model():
+    return ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+
+
+def _options_fuzzer(n):
+    from dynstiff.io.exchange import uff58_records
+    from dynstiff.lumped import TimeDamping
+    calls = {
+        "relative": lambda m, v: ds.Uncertain(0.1, relative=v),
+        "scale": lambda m, v: ds.Uncertain(v),
+        "axial": lambda m, v: TimeDamping(axial=v),
+        "sigma_hz": lambda m, v: ds.MeasuredModes([1.0, 2.0], sigma_hz=v),
+        "chordwise_inertia": lambda m, v: ds.FrequencyModel(m.equilibrium,
+                                                            chordwise_inertia=v),
+        "binary": lambda m, v: uff58_records(_FRF(m), binary=v),
+        "node": lambda m, v: uff58_records(_FRF(m), node=v),
+        "entity": lambda m, v: uff58_records(_FRF(m), entity=v),
+        "residual": lambda m, v: ds.modal_model(m, n_modes=2, residual=v),
+        "tol": lambda m, v: ds.damped_modes(m, n_modes=1, tol=v),
+        "k": lambda m, v: ds.cable_fields(m, _MODES(m), v),
+        "band_hz": lambda m, v: ds.recommend_model(m.equilibrium, band_hz=v),
+    }
+
+    @_settings(n)
+    @given(which=st.sampled_from(sorted(calls)), value=st.one_of(weird_scalars, weird_vectors))
+    def check(cogiro_model, which, value):
+        obey_the_rule(lambda: calls[which](cogiro_model, value), (which,))
+    return check
+
+
+@functools.cache
+def _FRF(m):
+    return ds.frf(m, [1.0, 2.0], inputs="fz", outputs="z")
+
+
+@functools.cache
+def _MODES(m):
+    return ds.modes(m, n_modes=3)
+
+
+test_options_of_the_analyses = _options_fuzzer(FAST)
+test_options_of_the_analyses_long = pytest.mark.slow(_options_fuzzer(1000))
 
 
 # ---------------------------------------------------------------------- scene files

@@ -48,7 +48,8 @@ def test_explicit_limit_is_the_axial_wave_transit_time_of_a_segment(cogiro, cogi
     (True, "^axial must be real numbers, not booleans, got True"),
     ([0.5, True], "^axial must be real numbers, not booleans"),
     ("a", r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got 'a'"),
-    (1j, r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got 1j")])
+    (1j, r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got 1j"),
+    ([], r"^axial must be a finite dashpot c_ax >= 0 \[N s\] or one per cable, got \[\]")])
 def test_an_axial_dashpot_of_booleans_text_or_complex_numbers_is_refused(axial, message):
     with pytest.raises(InvalidParameterError, match=message):
         TimeDamping(axial=axial)

@@ -47,7 +47,7 @@ class TimeDamping:
         object.__setattr__(self, "beta", positive_scalar("beta", self.beta, True))
         c = np.atleast_1d(real_array("axial", self.axial, "a finite dashpot c_ax >= 0 [N s] or "
                                                           "one per cable"))
-        if c.ndim != 1 or not np.all(np.isfinite(c)) or np.any(c < 0):
+        if c.ndim != 1 or c.size == 0 or not np.all(np.isfinite(c)) or np.any(c < 0):
             raise InvalidParameterError(
                 f"axial must be a finite dashpot c_ax >= 0 [N s] or one per cable, got "
                 f"{self.axial!r}")
