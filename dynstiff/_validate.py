@@ -98,6 +98,20 @@ def index(name: str, value: object, n: int) -> int:
     return int(value)
 
 
+def finite_scalar(name: str, value: object) -> float:
+    """``value`` as a finite float of any sign, or raise naming ``name`` (a bool is not a
+    number)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
+    try:
+        x = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise InvalidParameterError(f"{name} must be finite, got {x!r}")
+    return x
+
+
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0
     (a bool is not a number: ``True`` is refused, never read as 1)."""

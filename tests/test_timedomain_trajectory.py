@@ -54,3 +54,17 @@ def test_following_a_waypoint_path_samples_it_and_every_waypoint():
     np.testing.assert_array_equal(tr.at([0.3, 1.7])[0], path.at([0.3, 1.7])[0])
     with pytest.raises(InvalidParameterError, match="waypoints must be a dynstiff"):
         following("w")
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: line([np.nan, 0, 0], [1, 0, 1], 0.5), r"^start must be finite, got \[nan"),
+    (lambda: line([0, 0, 1], [True, 0, 1], 0.5), "^end must be real numbers, not booleans"),
+    (lambda: circle([np.nan, 0, 1], 1.0, 0.5), r"^center must be finite, got \[nan"),
+    (lambda: circle([0, 0, 1], 1.0, 0.5, start_angle=np.nan), "^start_angle must be finite"),
+    (lambda: circle([0, 0, 1], 1.0, 0.5, start_angle="a"),
+     "^start_angle must be a real number, got 'a'")])
+def test_a_path_names_the_argument_that_is_not_a_number(call, message):
+    """A NaN start was said as "length must be finite", a NaN start angle as "positions
+    must be finite": arguments the user did not give."""
+    with pytest.raises(InvalidParameterError, match=message):
+        call()

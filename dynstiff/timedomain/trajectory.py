@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import finite_scalar, point, positive_scalar
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
@@ -146,8 +146,8 @@ def line(start: list[float], end: list[float], speed: float,
     -------
     Trajectory
     """
-    a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-    if a.shape != (3,) or b.shape != (3,) or np.allclose(a, b):
+    a, b = point("start", start), point("end", end)
+    if np.allclose(a, b):
         raise InvalidParameterError(
             f"start and end must be two different points (3,) [m], got {start!r}, {end!r}")
     length = np.linalg.norm(b - a)
@@ -171,9 +171,8 @@ def circle(center, radius, speed, turns: float = 1.0, start_angle: float = 0.0,
     -------
     Trajectory
     """
-    c = np.asarray(center, dtype=float)
-    if c.shape != (3,):
-        raise InvalidParameterError(f"center must be a point (3,) [m], got {center!r}")
+    c = point("center", center)
+    start_angle = finite_scalar("start_angle", start_angle)
     radius = positive_scalar("radius", radius)
     turns = positive_scalar("turns", turns)
     duration, s = _arc_length(2 * np.pi * radius * turns, speed, ramp)
