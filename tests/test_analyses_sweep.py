@@ -334,3 +334,11 @@ def test_tracks_are_numbered_by_frequency_at_their_first_step():
                                                                         & (res.track == t)])]
              for t in ids]
     assert np.all(np.diff(first) >= 0) and ids.size >= 2
+
+
+def test_swept_values_of_booleans_are_refused():
+    sc = ds.load_scene("cogiro")
+    with pytest.raises(ds.InvalidParameterError, match="^values must be real numbers, not "
+                                                       "booleans"):
+        ds.sweep(sc.robot, parameter="EA", values=[True, 2e6], poses=[sc.pose, sc.pose],
+                 n_modes=2)

@@ -644,3 +644,24 @@ def test_a_neighbours_cable_directions_turn_with_their_chords():
     np.testing.assert_allclose(v[~near], u[~near], atol=1e-15)
     np.testing.assert_allclose(np.linalg.norm(v, axis=1), 1.0, atol=1e-15)
     np.testing.assert_allclose(_carried(u, c_old, 2.0 * c_old), u, atol=1e-15)
+
+
+@pytest.mark.parametrize("ref, message", [
+    ([True] * 8, "^tension_reference must be real numbers, not booleans"),
+    ("a", r"^tension_reference must be one tension or 8 \[N\], got 'a'$"),
+    ([np.nan] * 8, r"^tension_reference must be one tension or 8 tensions, finite and >= 0"),
+    ([1.0, 2.0, 3.0], r"^tension_reference must be one tension or 8 tensions, finite and >= 0"),
+    (-5.0, r"^tension_reference must be one tension or 8 tensions, finite and >= 0")])
+def test_a_tension_reference_that_is_not_one_is_refused(ref, message):
+    """A NaN reference came out as scipy's LinAlgError, text as numpy's ValueError, and
+    booleans were a reference of 1 N."""
+    sc = ds.load_scene("cogiro")
+    with pytest.raises(InvalidParameterError, match=message):
+        sc.robot.equilibrium(pose=sc.pose, tension_reference=ref)
+
+
+def test_one_reference_tension_is_the_same_for_every_cable():
+    sc = ds.load_scene("cogiro")
+    one = sc.robot.equilibrium(pose=sc.pose, tension_reference=500.0).tensions
+    each = sc.robot.equilibrium(pose=sc.pose, tension_reference=[500.0] * 8).tensions
+    np.testing.assert_array_equal(one, each)

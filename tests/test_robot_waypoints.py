@@ -113,3 +113,12 @@ def test_waypoints_of_booleans_or_text_are_refused_naming_the_argument(times, po
                                                                         message):
     with pytest.raises(InvalidParameterError, match=message):
         WaypointPath(times, positions, np.zeros((2, 3)))
+
+
+@pytest.mark.parametrize("t, message", [(True, "^t must be real numbers, not booleans"),
+                                        (np.nan, r"^t must be finite times \[s\]"),
+                                        ("a", r"^t must be times \[s\], got 'a'")])
+def test_a_path_is_read_at_times_only(t, message):
+    path = WaypointPath([0, 1.0], [[0, 0, 1], [0, 0, 1.1]], np.zeros((2, 3)))
+    with pytest.raises(InvalidParameterError, match=message):
+        path.at(t)

@@ -431,3 +431,13 @@ def test_a_worded_record_nodes_flag_is_refused():
     lm = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped", segments=3)
     with pytest.raises(InvalidParameterError, match="^record_nodes must be True or False"):
         simulate(lm, 0.01, 1e-3, record_nodes="no")
+
+
+@pytest.mark.parametrize("kw, name", [
+    (dict(excitation=([0, 1], [[True, 0, 0, 0, 0, 0], [0] * 6])), "excitation"),
+    (dict(lengths=([0, 1], [[True, 5.0], [5.0, 5.0]])), "lengths")])
+def test_tables_of_booleans_are_refused_naming_them(kw, name):
+    """A load of True was 1 N; a length of True was 1 m, said as a strain of 4."""
+    lm = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped", segments=3)
+    with pytest.raises(InvalidParameterError, match=f"^{name} must be a callable"):
+        simulate(lm, 0.01, 1e-3, **kw)

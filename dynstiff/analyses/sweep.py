@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import positive_scalar, real_array
 from dynstiff.analyses.modes import modes
 from dynstiff.analyses.platform_modes import find_platform_modes
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError
@@ -250,11 +250,7 @@ def _check_sweep_args(
     if parameter is not None and not isinstance(parameter, str):
         raise InvalidParameterError(f"parameter must be a str (name [unit]), got {parameter!r}")
     if values is not None:
-        try:
-            values = np.asarray(values, dtype=float)
-        except (TypeError, ValueError):
-            raise InvalidParameterError(
-                f"values must be real numbers, got {values!r}") from None
+        values = real_array("values", values)
         if values.ndim != 1 or values.size == 0:
             raise InvalidParameterError(
                 f"values must be a non-empty 1-D sequence, got shape {values.shape}")

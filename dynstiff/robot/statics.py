@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import compiled
+from dynstiff._validate import real_array
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import CatenaryState
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
@@ -249,6 +250,14 @@ def inverse_statics(robot: Robot, pose: Pose,
     -------
     Equilibrium
     """
+    if tension_reference is not None:
+        n = robot.n_cables
+        ref = real_array("tension_reference", tension_reference, f"one tension or {n} [N]")
+        if ref.shape not in ((), (n,)) or not np.all(np.isfinite(ref)) or np.any(ref < 0):
+            raise InvalidParameterError(f"tension_reference must be one tension or {n} "
+                                        f"tensions, finite and >= 0 [N], got "
+                                        f"{tension_reference!r}")
+        tension_reference = ref
     if start is not None:
         try:
             return _inverse_statics(robot, pose, tension_reference, tol, max_iter, start, False)

@@ -183,7 +183,10 @@ class WaypointPath:
         """Positions [m] and rotation vectors [rad] at times ``t`` [s], shapes (m, 3); held
         before 0 and after the end."""
         from scipy.spatial.transform import Rotation
-        t = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, self.duration)
+        t = np.atleast_1d(real_array("t", t, "times [s]"))
+        if not np.all(np.isfinite(t)):
+            raise InvalidParameterError(f"t must be finite times [s], got {t!r}")
+        t = np.clip(t, 0.0, self.duration)
         seg = np.clip(np.searchsorted(self.times, t, side="right") - 1, 0, self.times.size - 2)
         P, R = np.empty((t.size, 3)), np.empty((t.size, 3))
         for j in np.unique(seg):

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.constants import DOF_NAMES as OUTPUT_NAMES
 from dynstiff.errors import InvalidParameterError
 
@@ -33,8 +34,8 @@ def lengths_function(lengths: Callable[..., Any] | None, n: int) -> Callable[...
     else:
         try:
             times, table = lengths
-            times = np.asarray(times, dtype=float)
-            table = np.asarray(table, dtype=float)
+            times = real_array("lengths", times)
+            table = real_array("lengths", table)
         except (TypeError, ValueError):
             raise InvalidParameterError(
                 "lengths must be a callable t -> (n_cables,) unstretched lengths [m] or a "
@@ -59,8 +60,8 @@ def excitation_function(
         return excitation, None
     try:
         times, loads = excitation
-        times = np.asarray(times, dtype=float)
-        loads = np.asarray(loads, dtype=float)
+        times = real_array("excitation", times)
+        loads = real_array("excitation", loads)
     except (TypeError, ValueError):
         raise InvalidParameterError(
             f"excitation must be a callable t -> (6,) load, a table (times (k,) [s], loads "
