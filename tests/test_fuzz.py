@@ -187,6 +187,7 @@ def cogiro_model():
 def _options_fuzzer(n):
     from dynstiff.io.exchange import uff58_records
     from dynstiff.lumped import TimeDamping
+    from dynstiff.timedomain.trajectory import circle
     calls = {
         "relative": lambda m, v: ds.Uncertain(0.1, relative=v),
         "scale": lambda m, v: ds.Uncertain(v),
@@ -201,6 +202,9 @@ def _options_fuzzer(n):
         "tol": lambda m, v: ds.damped_modes(m, n_modes=1, tol=v),
         "k": lambda m, v: ds.cable_fields(m, _MODES(m), v),
         "band_hz": lambda m, v: ds.recommend_model(m.equilibrium, band_hz=v),
+        "t": lambda m, v: ds.WaypointPath([0, 1.0], [[0, 0, 1], [0, 0, 1.1]],
+                                          np.zeros((2, 3))).at(v),
+        "start_angle": lambda m, v: circle([0, 0, 1], 1.0, 0.5, start_angle=v),
     }
 
     @_settings(n)

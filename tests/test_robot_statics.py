@@ -649,9 +649,8 @@ def test_a_neighbours_cable_directions_turn_with_their_chords():
 @pytest.mark.parametrize("ref, message", [
     ([True] * 8, "^tension_reference must be real numbers, not booleans"),
     ("a", r"^tension_reference must be one tension or 8 \[N\], got 'a'$"),
-    ([np.nan] * 8, r"^tension_reference must be one tension or 8 tensions, finite and >= 0"),
-    ([1.0, 2.0, 3.0], r"^tension_reference must be one tension or 8 tensions, finite and >= 0"),
-    (-5.0, r"^tension_reference must be one tension or 8 tensions, finite and >= 0")])
+    ([np.nan] * 8, r"^tension_reference must be one tension or 8 finite tensions \[N\]"),
+    ([1.0, 2.0, 3.0], r"^tension_reference must be one tension or 8 finite tensions \[N\]")])
 def test_a_tension_reference_that_is_not_one_is_refused(ref, message):
     """A NaN reference came out as scipy's LinAlgError, text as numpy's ValueError, and
     booleans were a reference of 1 N."""

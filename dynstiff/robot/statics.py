@@ -253,10 +253,9 @@ def inverse_statics(robot: Robot, pose: Pose,
     if tension_reference is not None:
         n = robot.n_cables
         ref = real_array("tension_reference", tension_reference, f"one tension or {n} [N]")
-        if ref.shape not in ((), (n,)) or not np.all(np.isfinite(ref)) or np.any(ref < 0):
+        if ref.shape not in ((), (n,)) or not np.all(np.isfinite(ref)):
             raise InvalidParameterError(f"tension_reference must be one tension or {n} "
-                                        f"tensions, finite and >= 0 [N], got "
-                                        f"{tension_reference!r}")
+                                        f"finite tensions [N], got {tension_reference!r}")
         tension_reference = ref
     if start is not None:
         try:
