@@ -21,3 +21,13 @@ def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
     n_band = ds.eigenfrequencies(model, fmax_hz=12.0).size
     assert n_band > 40
     assert len(seen["modes"].freq_hz) == n_band
+
+
+def test_a_worded_html_flag_is_refused_and_nothing_is_written(tmp_path):
+    import pytest
+
+    import dynstiff as ds
+    from dynstiff.report.robot import robot_report
+    with pytest.raises(ds.InvalidParameterError, match="^html must be True or False, got 'no'"):
+        robot_report(ds.load_scene("planar2"), tmp_path / "out", html="no")
+    assert not (tmp_path / "out").exists()

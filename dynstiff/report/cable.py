@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff._validate import count, flag, positive_scalar
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.cable.dsm import DEFAULT_CHORDWISE_INERTIA, cable_dynamic_stiffness, chord_parameters
 from dynstiff.cable.modes import cable_natural_frequencies
@@ -134,13 +135,16 @@ def cable_report(anchor=None, end=None, cable=None, tension=None, fmax_hz=12.0, 
     -------
     CableReport
     """
+    fmax_hz = positive_scalar("fmax_hz", fmax_hz)
+    n_points = count("n_points", n_points, least=2)
+    chordwise_inertia = flag("chordwise_inertia", chordwise_inertia)
     d = demo_cable()
     anchor = d[0] if anchor is None else anchor
     end = d[1] if end is None else end
     cable = d[2] if cable is None else cable
     tension = d[3] if tension is None else tension
     state = unstretched_length_for_tension(anchor, end, tension, cable, g)
-    freq = np.linspace(0.0, float(fmax_hz), int(n_points))
+    freq = np.linspace(0.0, fmax_hz, n_points)
     p = chord_parameters(state)
     R = p.rotation
     K = R.T @ cable_dynamic_stiffness(state, 2 * np.pi * freq,

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff._validate import flag
 from dynstiff.constants import PLATFORM_SHARE_THRESHOLD
 from dynstiff.io.files import atomic_path, write_text
 
@@ -67,6 +68,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     from dynstiff.report.html import figure_png
     from dynstiff.report.robot3d import plot_robot
 
+    html = flag("html", html)
     st = settings or analysis_settings(scene)
     eq = scene.equilibrium()              # statics first: an infeasible scene writes nothing
     model = st.model(eq)
