@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import plot_modes  # noqa: E402
+from dynstiff.plot import plot_model_errors, plot_modes, plot_tensions  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
@@ -89,3 +89,18 @@ def test_recommendation_plot_marks_rungs_that_miss_modes(cogiro_eq):
     assert by_gid(ax, "limit-rtol")[0].get_ydata()[0] == 1e-3
 
 
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda eq, rec: plot_tensions(eq, limits=True), "^limits must be real numbers, not "
+                                                     "booleans"),
+    (lambda eq, rec: plot_tensions(eq, limits="ab"), r"^limits must be \(t_min, t_max\) \[N\]"),
+    (lambda eq, rec: plot_tensions(eq, limits=(1.0, 2.0, 3.0)), r"^limits must be \(t_min, "),
+    (lambda eq, rec: plot_model_errors(rec, rtol=True), "^rtol must be a real number, got True"),
+    (lambda eq, rec: plot_model_errors(rec, rtol="a"), "^rtol must be a real number, got 'a'")])
+def test_limits_and_tolerances_of_the_plots_are_numbers(call, message):
+    """limits=True and text came out as TypeErrors; rtol=True drew a line at 1."""
+    eq = ds.load_scene("planar2").equilibrium()
+    rec = ds.recommend_model(eq, band_hz=(0.0, 2.0))
+    with pytest.raises(InvalidParameterError, match=message):
+        call(eq, rec)

@@ -237,3 +237,13 @@ def test_small_platform_gets_a_close_up_that_holds_it_and_its_motion():
     # a robot whose platform is large beside it gets none
     big = plot_robot(ds.load_scene("planar2").equilibrium())
     assert not [a for a in big.axes if a.get_gid() == "platform-inset"]
+
+
+def test_a_boolean_scale_is_refused():
+    import dynstiff as ds
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.report.robot3d import plot_robot
+    eq = ds.load_scene("planar2").equilibrium()
+    r = ds.modes(ds.FrequencyModel(eq), n_modes=2)
+    with pytest.raises(InvalidParameterError, match="^scale must be a real number, got True"):
+        plot_robot(eq, r, mode=0, scale=True)

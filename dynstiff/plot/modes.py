@@ -5,6 +5,7 @@ error of every cable model.
 
 import numpy as np
 
+from dynstiff._validate import positive_scalar, real_array
 from dynstiff.constants import GLOBAL_SHARE, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
 from dynstiff.plot.common import COLORS, figure_axes, require
@@ -147,6 +148,11 @@ def plot_tensions(equilibrium, ax=None, limits=None):
     tA = np.asarray(equilibrium.anchor_tensions, dtype=float)
     if limits is None and hasattr(equilibrium, "robot"):
         limits = equilibrium.robot.tension_limits
+    if limits is not None:
+        lim = real_array("limits", limits, "(t_min, t_max) [N]")
+        if lim.shape != (2,) or np.isnan(lim).any():
+            raise InvalidParameterError(f"limits must be (t_min, t_max) [N], got {limits!r}")
+        limits = lim
     fig, ax = figure_axes(ax)
     k = np.arange(tB.size)
     ax.bar(k - 0.2, tB, 0.4, label="at B (platform)", gid="tension-B", color="tab:red")
@@ -190,6 +196,7 @@ def plot_model_errors(recommendation, ax=None, rtol=None):
         top with the label "misses modes"; the recommended rung is outlined.
     """
     require(recommendation, "recommendation", ("errors", "rung"), "Recommendation")
+    rtol = None if rtol is None else positive_scalar("rtol", rtol)
     names = list(recommendation.errors)
     err = np.array([float(recommendation.errors[r]) for r in names])
     finite = np.isfinite(err) & (err > 0)

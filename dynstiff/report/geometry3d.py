@@ -157,6 +157,8 @@ def positive_int(name, value, least):
 
 
 def nonnegative(name, value):
+    if isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
     try:
         x = float(value)
     except (TypeError, ValueError):
