@@ -965,6 +965,8 @@ EQUIVALENT.update({
     "dynstiff.models.dsm_guard.x_guard_band__mutmut_13": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_static_error__mutmut_25": _EINSUM,
     "dynstiff.models.dsm_guard.x_static_error__mutmut_89": _EINSUM,
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_14":
+        "the type named in typing.cast: cast returns its value unchanged at run time",
     **{f"dynstiff.models.dsm_guard.x_guard_band__mutmut_{n}":
        "typing.cast's type given in another case: cast returns its value unchanged"
        for n in (56, 57)},
