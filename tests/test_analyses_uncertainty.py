@@ -377,3 +377,26 @@ def test_an_uncertainty_of_a_boolean_scale_or_a_worded_flag_is_refused(kw, messa
     with pytest.raises(InvalidParameterError, match=message):
         Uncertain(**kw)
     assert Uncertain(0.1, relative=np.False_).relative is False
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(seed=True), "^seed must be an integer >= 0, got True$"),
+    (dict(seed=1.5), r"^seed must be an integer >= 0, got 1\.5$"),
+    (dict(workers=True), "^workers must be an integer >= 1, got True$"),
+    (dict(participation=True), "^participation must be a real number, got True$"),
+    (dict(participation=1.5), r"^participation must be in \(0, 1\] \(a platform share\)")])
+def test_the_sampling_options_are_checked_naming_them(cogiro, kw, message):
+    """seed=1.5 came out as numpy's ValueError, seed=True and workers=True were 1."""
+    with pytest.raises(InvalidParameterError, match=message):
+        propagate_uncertainty(cogiro, uncertain={"EA": "10%"}, n_samples=4, **kw)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(uncertain={"EAX": "10%"}), "^parameters: 'EAX' is not a parameter"),
+    (dict(uncertain={"EA": "10%"}, n_samples=4.0), r"^n_samples must be an integer >= 1, got 4\.0"),
+    (dict(uncertain={"EA": "10%"}, seed=True), "^seed must be an integer >= 0, got True")])
+def test_a_bad_uncertainty_argument_of_the_checks_is_an_error_not_a_verdict(cogiro, kw, message):
+    """The uncertainty row turned the argument's error into the verdict "unknown" ("no nominal
+    equilibrium or modes: ..."): the caller's mistake read as the robot's."""
+    with pytest.raises(InvalidParameterError, match=message):
+        design_checks(cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5), **kw)

@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 from numbers import Integral
 from typing import TYPE_CHECKING
 
-from dynstiff._validate import positive_scalar
+from dynstiff._validate import count, positive_scalar
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
 from dynstiff.analyses.uncertainty import uncertain_row
@@ -299,6 +299,8 @@ def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
     if not (isinstance(confidence, float) and 0 < confidence < 1):
         raise InvalidParameterError(f"confidence must be a number in (0, 1), got "
                                     f"{confidence!r}")
+    if uncertain:
+        n_samples, seed = count("n_samples", n_samples), count("seed", seed, least=0)
     options_of = modal_model_options(rung, options, model_options)
     built = []
 

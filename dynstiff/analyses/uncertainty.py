@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import flag, positive_scalar
+from dynstiff._validate import count, flag, positive_scalar
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.optimal_tensions import band_margin
 from dynstiff.analyses.participation import PLATFORM_SHARE_THRESHOLD
@@ -221,7 +221,7 @@ def _run(tasks: list[tuple[Any | None, ...]], workers: int | None,
 
 def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
                           pose: ArrayLike | Pose | None = None,
-                          uncertain: dict[str, Uncertain | str | float] | None = None,
+                          uncertain: dict[str, Uncertain | str] | None = None,
                           n_modes: int = 6,
                           band_hz: tuple[float, float] | None = None,
                           participation: float = PLATFORM_SHARE_THRESHOLD, n_samples: int = 200,
@@ -289,6 +289,13 @@ def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
                     ("chunk_size", chunk_size)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
             raise InvalidParameterError(f"{name} must be an integer >= 1, got {v!r}")
+    seed = count("seed", seed, least=0)
+    if workers is not None:
+        workers = count("workers", workers)
+    participation = positive_scalar("participation", participation)
+    if not participation <= 1:
+        raise InvalidParameterError(
+            f"participation must be in (0, 1] (a platform share), got {participation!r}")
     if method not in ("both", "first-order"):
         raise InvalidParameterError(f"method must be 'both' or 'first-order', got "
                                     f"{method!r}")
@@ -412,6 +419,8 @@ def uncertain_row(
                                     participation=options.participation, n_samples=n_samples,
                                     seed=seed, rung=rung, workers=workers,
                                     **(model_options or {}))
+    except InvalidParameterError:
+        raise                          # a bad argument is the caller's error, not a verdict
     except DynstiffError as exc:
         return {**base, "verdict": "unknown", "passed": False,
                 "detail": f"no nominal equilibrium or modes: {exc}"}, None
