@@ -348,3 +348,17 @@ def test_the_receptance_check_uses_the_models_options_with_viscous_damping(cogir
     assert rob.name == eq.robot.name and rob.tension_limits == eq.robot.tension_limits
     assert [c.viscous_damping for c in rob.cables] == [c.viscous_damping + 0.5
                                                        for c in eq.robot.cables]
+
+
+@pytest.mark.parametrize("robot, pose, message", [
+    ("cogiro", [np.nan, 0.0, 1.0], "^pose position must be 3 finite numbers"),
+    ("cogiro", [True, 0, 1], "^pose must be real numbers, not booleans"),
+    ("cogiro", [0.0, 0.0, 1.0, 0.0, 0.0], "^pose must be a Pose, .*, 3 or 6 numbers"),
+    (None, [0.0, 0.0, 1.0], "^robot must be a dynstiff.Robot, got NoneType")])
+def test_a_pose_or_robot_that_is_not_one_is_an_error_not_a_fail_verdict(robot, pose, message):
+    """design_checks(robot, [nan, 0, 1]) gave the verdict "fail" (statics) and "unknown"
+    (the rest), the message of the bad pose in the row's detail: the caller's mistake
+    signed as the robot's failure. The command line and the map refused it already."""
+    sc = ds.load_scene("cogiro")
+    with pytest.raises(InvalidParameterError, match=message):
+        design_checks(sc.robot if robot == "cogiro" else robot, pose)

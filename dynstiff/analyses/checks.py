@@ -17,6 +17,8 @@ from dynstiff.analyses.verdicts import CheckOptions, pose_rows
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
 from dynstiff.params import DEFAULT_DAMPING, Damping
+from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 if TYPE_CHECKING:
     import numpy as np
@@ -292,6 +294,9 @@ def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
     """
     options = check_options(band_hz, margin, proximity_rtol, max_sag_ratio, model_rtol,
                             participation, frf_limit, model_band_hz, max_modes)
+    if not isinstance(robot, Robot):
+        raise InvalidParameterError(f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
+    pose = as_pose(pose)       # the caller's pose is checked, never read as the robot's failure
     if not isinstance(damping, Damping):
         raise InvalidParameterError(f"damping must be a dynstiff.Damping, got {damping!r}")
     if rung not in RUNGS:
