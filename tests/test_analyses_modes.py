@@ -109,3 +109,8 @@ def test_cable_fields_refuse_a_mode_or_a_point_count_that_is_not_one(k, n_points
         ds.cable_fields(m, ds.modes(m, n_modes=3), k, n_points=n_points)
     assert ds.cable_fields(m, ds.modes(m, n_modes=3), np.int64(2), n_points=2)[0].shape == \
         (8, 2, 3)
+
+
+def test_cable_fields_of_no_model_is_refused():
+    with pytest.raises(InvalidParameterError, match="^model must be a model of the ladder"):
+        ds.cable_fields(None, None, 0)

@@ -373,3 +373,9 @@ def test_the_trial_equilibria_start_from_the_current_one(cogiro, monkeypatch):
 def test_a_boolean_start_or_tolerance_is_refused(cogiro, kw, message):
     with pytest.raises(InvalidParameterError, match=message):
         optimal_tensions(cogiro.robot, cogiro.pose, **kw)
+
+
+def test_a_robot_that_is_not_one_is_refused():
+    with pytest.raises(InvalidParameterError, match="^robot must be a dynstiff.Robot, got "
+                                                    "NoneType$"):
+        optimal_tensions(None, [0.0, 0.0, 1.0])

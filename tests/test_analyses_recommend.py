@@ -321,3 +321,8 @@ def test_a_band_that_is_not_one_is_refused_naming_band_hz(band):
     eq = ds.load_scene("planar2").equilibrium()
     with pytest.raises(ds.InvalidParameterError, match="^band_hz must be "):
         ds.recommend_model(eq, band_hz=band)
+
+
+def test_an_equilibrium_that_is_not_one_is_refused():
+    with pytest.raises(ds.InvalidParameterError, match="^equilibrium must be an Equilibrium"):
+        ds.recommend_model(None, band_hz=(0.0, 2.0))

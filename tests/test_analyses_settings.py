@@ -181,3 +181,8 @@ def test_scene_model_names_a_setting_it_does_not_have():
     with pytest.raises(InvalidParameterError, match=r"^settings \['band'\] are not settings of "
                                                     r"an analysis \(they are \['band_hz', "):
         ds.scene_model(ds.load_scene("planar2"), band=(0, 3))
+
+
+def test_a_scene_that_is_not_one_is_refused():
+    with pytest.raises(InvalidParameterError, match="^scene must be a dynstiff Scene"):
+        ds.scene_model(None)

@@ -400,3 +400,9 @@ def test_a_bad_uncertainty_argument_of_the_checks_is_an_error_not_a_verdict(cogi
     equilibrium or modes: ..."): the caller's mistake read as the robot's."""
     with pytest.raises(InvalidParameterError, match=message):
         design_checks(cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5), **kw)
+
+
+def test_a_scene_robot_or_model_that_is_none_of_them_is_refused():
+    with pytest.raises(InvalidParameterError, match="^scene_or_model must be a Scene, a Robot "
+                                                    "or a model, got NoneType$"):
+        propagate_uncertainty(None, [0.0, 0.0, 1.0], uncertain={"EA": "10%"}, n_samples=4)

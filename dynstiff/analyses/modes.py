@@ -16,6 +16,7 @@ from dynstiff._validate import index
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import checked_method, eigenfrequencies, validated_request
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
+from dynstiff.models.base import require_model
 from dynstiff.results import ModalResult
 
 if TYPE_CHECKING:
@@ -69,6 +70,7 @@ def cable_fields(model: PlatformModel, modes: ModalResult, k: int,
     >>> points.shape, u.shape
     ((8, 5, 3), (8, 5, 3))
     """
+    require_model(model)
     if not hasattr(model, "cable_displacements"):
         raise UnsupportedAnalysisError(
             f"cable_fields needs closed-form cable fields (rung 'dsm'); the {model.rung!r} "

@@ -37,6 +37,7 @@ from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 if TYPE_CHECKING:
     from typing import Any
@@ -47,7 +48,6 @@ if TYPE_CHECKING:
     from dynstiff.analyses.platform_modes import PlatformModes
     from dynstiff.robot.equilibrium import Equilibrium
     from dynstiff.robot.pose import Pose
-    from dynstiff.robot.robot import Robot
 
 __all__ = ["OBJECTIVES", "TENSIONS", "OptimalTensions", "band_margin", "optimal_tensions",
            "tension_equilibrium"]
@@ -246,6 +246,8 @@ def optimal_tensions(robot: Robot, pose: ArrayLike | Pose, objective: str = "fir
     >>> round(opt.default_value, 3), round(opt.value, 3), opt.binds  # first platform mode [Hz]
     (2.136, 2.22, ('cable 2 at t_min (100 N)', 'cable 3 at t_min (100 N)'))
     """
+    if not isinstance(robot, Robot):
+        raise InvalidParameterError(f"robot must be a dynstiff.Robot, got {type(robot).__name__}")
     if objective not in OBJECTIVES:
         raise InvalidParameterError(f"objective must be one of {OBJECTIVES}, got "
                                     f"{objective!r}")

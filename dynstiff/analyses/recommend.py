@@ -34,6 +34,7 @@ from dynstiff.cable.dsm import chord_parameters
 from dynstiff.cable.guard import ROBOT_ERROR_FACTOR, closed_form_validity
 from dynstiff.cable.psi import cable_mode_count
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
+from dynstiff.models.base import require_equilibrium
 from dynstiff.models.dsm import FrequencyModel
 from dynstiff.models.ladder import RUNGS
 from dynstiff.models.static import StaticCableModel
@@ -287,6 +288,7 @@ def predicted_errors(
     segments : int
         Segments per cable for the lumped rung.
     """
+    require_equilibrium(equilibrium)
     lo, hi = band(band_hz)
     if not (np.isfinite(rtol) and rtol > 0):
         raise InvalidParameterError(f"rtol must be finite and > 0, got {rtol!r}")

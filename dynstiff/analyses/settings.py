@@ -185,6 +185,11 @@ def analysis_settings(
     InvalidParameterError
         A value out of range, naming it.
     """
+    missing = [a for a in ("robot", "pose", "band_hz", "damping") if not hasattr(scene, a)]
+    if missing:
+        raise InvalidParameterError(f"scene must be a dynstiff Scene (load_scene), got "
+                                    f"{type(scene).__name__} without {missing[0]!r}")
+
     def pick(given: ArrayLike | str | None, scene_value: ArrayLike | None,
              default: ArrayLike | str | None) -> float | str | tuple[float, float]:
         return given if given is not None else (

@@ -35,6 +35,7 @@ from dynstiff.analyses.uncertainty_result import UncertaintyResult
 from dynstiff.errors import DynstiffError, InvalidParameterError
 from dynstiff.models.ladder import build_model
 from dynstiff.robot.pose import as_pose
+from dynstiff.robot.robot import Robot
 
 if TYPE_CHECKING:
     from typing import Any
@@ -47,7 +48,6 @@ if TYPE_CHECKING:
     from dynstiff.models.base import PlatformModel
     from dynstiff.models.dsm import FrequencyModel
     from dynstiff.robot.pose import Pose
-    from dynstiff.robot.robot import Robot
     from dynstiff.scenes.loader import Scene
 
 __all__ = ["UNCERTAIN_CHECK", "Uncertain", "UncertaintyResult", "propagate_uncertainty",
@@ -275,6 +275,9 @@ def propagate_uncertainty(scene_or_model: Scene | Robot | PlatformModel,
     0.0108
     """
     robot = getattr(scene_or_model, "robot", scene_or_model)
+    if not isinstance(robot, Robot):
+        raise InvalidParameterError(f"scene_or_model must be a Scene, a Robot or a model, got "
+                                    f"{type(scene_or_model).__name__}")
     if hasattr(scene_or_model, "dynamic_stiffness"):
         pose, rung = scene_or_model.pose, scene_or_model.rung
         model_options = {**_own_options(scene_or_model), **model_options}
