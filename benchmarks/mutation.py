@@ -778,8 +778,13 @@ EQUIVALENT.update({
         "the progress bar not shown: display only (stderr), the map is the same",
     "dynstiff.maps.workspace.x_workspace__mutmut_208":
         "the bar advanced by one instead of the saved poses on a resume: display only",
-    "dynstiff.io.exchange.x_uff58_records__mutmut_90":
-        "id4 under another key: pyuff writes its default id4, 'NONE', the value given",
+    **{f"dynstiff.io.exchange.x_uff58_records__mutmut_{n}":
+       "id4 or id5 under another key: pyuff writes its default, 'NONE', the value given"
+       for n in (114, 119)},
+    "dynstiff.io.exchange.x_even_grid__mutmut_95":
+        "an even point exactly midway between two grid points snapped to the lower one "
+        "instead of the upper: it is snapped only when both lie within 1e-9 of the band of "
+        "it, i.e. are the same point to rounding",
     "dynstiff.maps.store.xǁCheckpointǁsave__mutmut_4":
         "the reasons also among the plain arrays: the next line overwrites that entry with "
         "the reasons as text",

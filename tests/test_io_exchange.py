@@ -75,8 +75,14 @@ def test_uff_refuses_an_frf_with_a_pole_and_an_unknown_kind(model):
     res = ds.frf(model, [1.0, 2.0], inputs="fz", outputs="z")
     bad = ds.FRFResult(res.freq_hz, np.full_like(res.H, np.inf), res.inputs, res.outputs,
                        res.kind)
-    with pytest.raises(ds.InvalidParameterError, match="inf or NaN"):
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"^the FRF holds inf or NaN \(an exact pole\): UFF 58 holds finite "
+                             "numbers only; evaluate beside the pole$"):
         uff58_records(bad)
+    one = ds.FRFResult(res.freq_hz[:1], res.H[:1], res.inputs, res.outputs, res.kind)
+    with pytest.raises(ds.InvalidParameterError,
+                       match="^a UFF 58 record needs at least 2 frequencies, got 1$"):
+        uff58_records(one)
     bad = ds.FRFResult(res.freq_hz, res.H, res.inputs, res.outputs, "compliance")
     with pytest.raises(ds.InvalidParameterError, match="kind must be one of"):
         uff58_records(bad)
@@ -185,6 +191,8 @@ def test_even_uff_at_a_step_interpolates_and_refuses_bad_steps(tmp_path, model):
     s = pyuff.UFF(str(res.to_uff(tmp_path / "a.uff", binary=True, even=0.03))).read_sets()
     np.testing.assert_allclose(s["x"], 1.0 + 0.03 * np.arange(34), rtol=1e-12)
     np.testing.assert_allclose(s["data"], (2.0 + 3.0j) * s["x"] - 1j, rtol=1e-12)
+    whole = uff58_records(res, even=1.0)[0]              # a step of the whole band: its ends
+    np.testing.assert_array_equal(whole["x"], [1.0, 2.0])
     target = tmp_path / "keep.uff"
     target.write_text("old")
     for bad in (0.0, -0.1, 2.0, np.nan, "0.1", np.True_):
@@ -199,6 +207,7 @@ def test_uff58_records_read_back_with_their_ids_and_axis_labels(tmp_path, model,
     labels = [(s["id1"].strip(), s["id2"].strip(), s["id4"].strip(), s["id5"].strip(),
                s["abscissa_axis_lab"].strip(), s["ordinate_axis_lab"].strip(),
                s["orddenom_axis_lab"].strip()) for s in sets]
+    assert [s["id3"].strip() for s in sets] == ["NONE"] * 4        # the result's own grid
     assert labels == [
         ("dynstiff receptance x/fy", "m/N", "NONE", "NONE", "Frequency", "x", "fy"),
         ("dynstiff receptance x/mx", "m/N m", "NONE", "NONE", "Frequency", "x", "mx"),
@@ -259,3 +268,12 @@ def test_uff_options_are_checked_and_no_file_is_written(tmp_path, model, omega, 
 def test_a_control_system_name_is_text(model, omega):
     with pytest.raises(ds.InvalidParameterError, match="^name must be a str or None, got 5$"):
         ds.frf(model, omega, inputs="fz", outputs="z").to_control(name=5)
+
+
+def test_uff_data_are_complex_even_for_a_real_frf():
+    """A real H (an undamped receptance away from its poles) is written as complex data, the
+    data type the records declare; as float, pyuff would write another record type."""
+    res = ds.FRFResult(np.array([1.0, 2.0]), np.ones((2, 1, 1)), ("fz",), ("z",),
+                       "receptance")
+    rec = uff58_records(res)[0]
+    assert rec["data"].dtype == complex and rec["data"].flags["C_CONTIGUOUS"]
