@@ -574,6 +574,26 @@ EQUIVALENT.update({
         "there, the same roots in more steps",
     "dynstiff.analyses.eigen.x__seed_grid__mutmut_7": _SEEDS,
     "dynstiff.analyses.eigen.x__seed_grid__mutmut_31": _SEEDS,
+    **{f"dynstiff.analyses.eigen.x__seed_grid__mutmut_{n}": _SEEDS for n in (20, 35)},
+    "dynstiff.analyses.eigen.x__seed_grid__mutmut_16":
+        "every massless-cable eigenvalue a seed instead of those in (0, w_hi^2): the seeds "
+        "outside (0, w_hi) are filtered out two lines below (a negative one, of an unstable "
+        "platform only, gives a NaN that the filter drops too); the counts certify the "
+        "brackets, the same roots",
+    "dynstiff.analyses.eigen.x__illinois__mutmut_16":
+        "the stall counter as float zeros instead of int: it counts small integers, exact "
+        "in float, compared with 3",
+    "dynstiff.analyses.eigen.x__illinois__mutmut_73": _BOUNDARY,
+    "dynstiff.analyses.eigen.x__illinois__mutmut_241":
+        "the low end's value dropped (NaN) where the pair brackets the root: that bracket is "
+        "then 0.45 rtol wide, closed, and never iterated again; the root is its midpoint",
+    "dynstiff.analyses.eigen.x__illinois__mutmut_78":
+        "the closing pair 1.45 rtol apart instead of 0.45: it still brackets the root, which "
+        "closes one step later at most (cost only; the cost tests' bounds hold)",
+    **{f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}":
+       "divide='ignore' dropped from the secant step's errstate: FH - FL never vanishes "
+       "(f_lo >= 0 > f_hi, scaled by positive factors), only invalid (inf / inf at a pole) "
+       "can occur" for n in (28, 30)},
     "dynstiff.models.exact.xǁExactModelǁdynamic_stiffness__mutmut_36":
         "the frequency blocks overlapping (step 1): every frequency written with the same "
         "value again (memory and time only)",

@@ -439,3 +439,36 @@ def test_a_band_beyond_every_frequency_names_fmax_hz(cogiro_eq, rung, fmax_hz):
         ds.eigenfrequencies(m, fmax_hz=fmax_hz)
     with pytest.raises(InvalidParameterError, match=r"^fmax_hz must be <= "):
         ds.modes(m, fmax_hz=fmax_hz)
+
+
+@pytest.mark.parametrize("f, lo, hi, root, most", [
+    (lambda x: np.exp(-8 * x) - np.exp(-8 * 1.3), 0.05, 3.0, 1.3, 16),   # strongly convex
+    (lambda x: (1.7 - x)**3 + 0.01 * (1.7 - x), 0.1, 4.0, 1.7, 26),      # flat at its root
+    (lambda x: np.tan(1.5 - 0.5 * x), 0.2, 5.5, 3.0, 13)])
+def test_the_regula_falsi_closes_its_bracket_in_few_evaluations(f, lo, hi, root, most):
+    """The root to rtol = 1e-12 in 11-23 batched evaluations (measured: 14, 23, 11; each
+    iterate with its second point), where bisection needs 41: the Illinois steps, the
+    Anderson-Bjorck scaling and the closing pair each count (theory.md §14.2). A step rule
+    that falls back to bisection, or a pair that no longer closes the bracket, passes the
+    bound; the root stays exact."""
+    roots, calls = _run_illinois([f], [lo], [hi])
+    assert roots[0] == pytest.approx(root, rel=1e-12)
+    assert len(calls) <= most
+
+
+def test_the_compiled_search_that_cannot_finish_names_its_root_and_width():
+    """The compiled search of the closed form, stopped after one step: the first root's
+    bracket is still wide, and the error says which root, the tolerance and the steps."""
+    from dynstiff import compiled
+    from dynstiff.analyses.eigen import _counter
+    from dynstiff.errors import ConvergenceError
+    if compiled.load("dsm") is None:
+        pytest.skip("numba is not installed: no compiled search")
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    count = _counter(m)
+    grid = np.linspace(0.0, 2 * np.pi * 3.0, 9)
+    J, ev, J0 = count(grid)
+    with pytest.raises(ConvergenceError, match=r"^the regula falsi left the bracket of root 1 "
+                                               r"wider than rtol = 1e-12 after 1 steps") as err:
+        count.search(grid, J, ev, J0, int(J[-1]), 1e-12, max_iter=1)
+    assert err.value.residual > 1e-12

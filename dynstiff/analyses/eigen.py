@@ -152,8 +152,7 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
             check_frequency_range(m.stacked_params, omega)
             m.guard_band(omega)
             ev, J0 = fast.dsm_count(omega, *args)
-            with np.errstate(invalid="ignore"):
-                return J0 + np.sum(ev < 0, axis=1), ev, J0
+            return J0 + np.sum(ev < 0, axis=1), ev, J0
 
         def search(grid: NDArray[np.float64], J: NDArray[np.int64], ev: NDArray[np.float64],
                    J0: NDArray[np.int64], N: int, rtol: float,
