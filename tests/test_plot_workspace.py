@@ -89,3 +89,15 @@ def test_every_height_gets_its_panels_and_the_title_fits():
     plt.close(fig)
     with pytest.raises(InvalidParameterError, match="n_slices"):
         plot_workspace_slices(ds, n_slices=0)
+
+
+def test_a_figure_or_axes_that_is_not_one_is_refused():
+    """fig=5 and ax=5 came out as AttributeErrors; a 2-D Axes for the 3-D view too."""
+    ds = synthetic_map()
+    with pytest.raises(InvalidParameterError, match="^fig must be a matplotlib Figure, got int"):
+        plot_workspace_slices(ds, fig=5)
+    flat = plt.subplots()[1]
+    for ax in (5, flat):
+        with pytest.raises(InvalidParameterError, match=r"^ax must be a matplotlib 3-D Axes"):
+            plot_workspace_3d(ds, ax=ax)
+    plt.close("all")

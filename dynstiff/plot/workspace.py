@@ -81,7 +81,10 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
+    from matplotlib.figure import Figure
 
+    if fig is not None and not isinstance(fig, Figure):
+        raise InvalidParameterError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
     f1, mg, dyn, feas = worst_case(ds)
     x, y, z = (ds[c].values for c in ("x", "y", "z"))
     ks = slice_levels(z.size, n_slices)
@@ -145,7 +148,11 @@ def plot_workspace_3d(ds, ax=None):
     matplotlib.figure.Figure
     """
     import matplotlib.pyplot as plt
+    from matplotlib.axes import Axes
 
+    if ax is not None and not (isinstance(ax, Axes) and ax.name == "3d"):
+        raise InvalidParameterError(f"ax must be a matplotlib 3-D Axes (projection='3d'), got "
+                                    f"{type(ax).__name__}")
     f1, _, dyn, feas = worst_case(ds)
     X, Y, Z = np.meshgrid(ds["x"].values, ds["y"].values, ds["z"].values, indexing="ij")
     if ax is None:
