@@ -91,3 +91,17 @@ def test_write_text_encodes_as_asked(tmp_path):
     assert target.read_bytes() == b"\xc3\xa9"
     write_text(target, "\u00e9", encoding="latin-1")
     assert target.read_bytes() == b"\xe9"
+
+
+@pytest.mark.parametrize("reader", ["read_measured_modes", "read_measured_frf"])
+def test_readers_say_what_is_wrong_with_the_path_before_reading(tmp_path, reader):
+    """None was read as a file named 'None'; a folder or a missing file given to the UFF
+    reader came out as pyuff's bare Exception, which the command line does not catch."""
+    import dynstiff as ds
+    read = getattr(ds, reader)
+    with pytest.raises(ds.InvalidParameterError, match="^path must be a path"):
+        read(None)
+    with pytest.raises(IsADirectoryError):
+        read(tmp_path)
+    with pytest.raises(FileNotFoundError):
+        read(tmp_path / "missing.uff")

@@ -53,7 +53,9 @@ def read_measured_frf(path: str | Path) -> FRFResult:
     (('fz',), ('z',), True)
     """
     from pathlib import Path
-    path = Path(path)
+
+    from dynstiff.io.files import input_file
+    path = Path(input_file(path))
     if path.suffix.lower() == ".csv":
         return _frf_from_csv(path)
     from dynstiff.io.exchange import UFF_DATA_TYPES, require

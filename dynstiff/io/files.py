@@ -39,6 +39,29 @@ class OutputPathError(InvalidParameterError):
     both arguments and the file."""
 
 
+def input_file(path, name="path"):
+    """``path`` as a str, checked to be an existing file before anything reads it: a value
+    that is not a path is an InvalidParameterError naming ``name``, a missing file a
+    FileNotFoundError and a folder an IsADirectoryError (an OSError each, as ``open`` gives,
+    whatever the reader behind it, pyuff included).
+
+    >>> input_file(5)
+    Traceback (most recent call last):
+    ...
+    dynstiff.errors.InvalidParameterError: path must be a path (str or os.PathLike), got 5
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise InvalidParameterError(f"{name} must be a path (str or os.PathLike), got {path!r}")
+    path = os.fspath(path)
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if os.path.isdir(path):
+        raise IsADirectoryError(21, "Is a directory", path)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(2, "No such file", path)
+    return path
+
+
 def _identity(path):
     """(real path, (device, inode) or None) of ``path``."""
     real = os.path.realpath(os.fspath(path))

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dynstiff.errors import InvalidParameterError
+from dynstiff.io.files import input_file
 
 __all__ = ["Table", "read_table"]
 
@@ -100,7 +101,7 @@ def read_table(path):
         An empty file, a header without data rows, a row with more cells than the header,
         or a file that is not text (each naming the file and, for a row, its line).
     """
-    path = str(path)
+    path = input_file(path)
     try:
         with open(path, newline="", encoding="utf-8") as fh:
             lines = fh.read().splitlines()
