@@ -940,8 +940,18 @@ EQUIVALENT.update({
        "a memo's key misspelt where it is looked up or handed to the damped copy: the value "
        "is computed again from the same cables (cost only), the same numbers"
        for name in ("static_error__mutmut_2", "_zero_coefficients__mutmut_1",
+                    "_zero_coefficients__mutmut_2", "massless_stiffness__mutmut_1",
                     "massless_stiffness__mutmut_2", "_with_model_damping__mutmut_48",
-                    "_with_model_damping__mutmut_49")},
+                    "_with_model_damping__mutmut_49", "_with_model_damping__mutmut_50")},
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_97":
+        "tension=None to closed_form_validity, which reads it only to compute the chord "
+        "parameters when none are given; they are given",
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_static_stiffness__mutmut_9":
+        "the zero-frequency coefficients as a 1-D row instead of a (1, 5 n) matrix: the same "
+        "product with the assembly map, reshaped to (n_free, n_free) alike",
+    "dynstiff.models.dsm.xǁFrequencyModelǁ_with_model_damping__mutmut_24":
+        "the damped copy's platform-damping term not reset to None before it is computed: "
+        "the copy is made only of an undamped model, whose own term is None already",
     **{f"dynstiff.analyses.modes.x__energy_basis__mutmut_{n}":
        "the polarisation loop over more pairs (b from 0, or from a - 1, which is the last "
        "index for a = 0): each extra entry is written with its own value again (Q symmetric, "
