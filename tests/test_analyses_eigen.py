@@ -255,6 +255,9 @@ def test_cable_energy_fraction_is_the_frequency_derivative_of_the_dynamic_stiffn
     ({"fmax_hz": 1e9}, r"fmax_hz = 1e\+09 Hz is out of the 'dsm' model's range"),
     ({"fmax_hz": 3000.0, "max_modes": 100}, "holds .* modes, more than max_modes = 100"),
     ({"n_modes": 101, "max_modes": 100}, "more than max_modes"),
+    ({"n_modes": 2, "max_modes": 2.5}, r"^max_modes must be an integer >= 1, got 2\.5$"),
+    ({"n_modes": 2, "max_modes": True}, "^max_modes must be an integer >= 1, got True$"),
+    ({"n_modes": 2, "max_modes": 0}, "^max_modes must be an integer >= 1, got 0$"),
 ])
 def test_bad_mode_requests_name_the_argument(cogiro_eq, kw, match):
     m = ds.FrequencyModel(cogiro_eq, guard_rtol=None)       # the request's errors alone
