@@ -406,3 +406,13 @@ def test_a_scene_robot_or_model_that_is_none_of_them_is_refused():
     with pytest.raises(InvalidParameterError, match="^scene_or_model must be a Scene, a Robot "
                                                     "or a model, got NoneType$"):
         propagate_uncertainty(None, [0.0, 0.0, 1.0], uncertain={"EA": "10%"}, n_samples=4)
+
+
+def test_a_pose_without_equilibrium_leaves_the_uncertain_row_unknown(cogiro):
+    """The arguments are checked before any pose; what the pose itself makes impossible
+    (here no equilibrium, 20 m off the frame's centre) stays the verdict "unknown", as in
+    the map, never an error."""
+    res = design_checks(cogiro.robot, [20.0, 0.0, 1.0], band_hz=(0.0, 1.5),
+                        uncertain={"EA": "10%"}, n_samples=4)
+    assert res.verdicts["workspace (tension-feasible pose)"] == "fail"
+    assert res.verdicts[UNCERTAIN_CHECK] == "unknown"

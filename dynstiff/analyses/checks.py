@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from dynstiff._validate import count, positive_scalar
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.analyses.platform_modes import MAX_PLATFORM_MODES
-from dynstiff.analyses.uncertainty import uncertain_row
+from dynstiff.analyses.uncertainty import uncertain_items, uncertain_parameters, uncertain_row
 from dynstiff.analyses.verdicts import CheckOptions, pose_rows
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.ladder import RUNGS, build_model
@@ -304,8 +304,9 @@ def design_checks(robot: "Robot", pose: "Pose | np.typing.ArrayLike",
     if not (isinstance(confidence, float) and 0 < confidence < 1):
         raise InvalidParameterError(f"confidence must be a number in (0, 1), got "
                                     f"{confidence!r}")
-    if uncertain:
+    if uncertain:            # checked before any pose, as the map does: never a verdict
         n_samples, seed = count("n_samples", n_samples), count("seed", seed, least=0)
+        uncertain_parameters(list(uncertain_items(uncertain)), robot, pose)
     options_of = modal_model_options(rung, options, model_options)
     built = []
 

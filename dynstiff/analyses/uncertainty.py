@@ -422,9 +422,7 @@ def uncertain_row(
                                     participation=options.participation, n_samples=n_samples,
                                     seed=seed, rung=rung, workers=workers,
                                     **(model_options or {}))
-    except InvalidParameterError:
-        raise                          # a bad argument is the caller's error, not a verdict
-    except DynstiffError as exc:
+    except DynstiffError as exc:       # the arguments were checked before any pose
         return {**base, "verdict": "unknown", "passed": False,
                 "detail": f"no nominal equilibrium or modes: {exc}"}, None
     p_mc = res.probability_below("band_margin", options.margin)
