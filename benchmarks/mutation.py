@@ -87,10 +87,12 @@ analyses.modes (326)                92      2*        6           0          97.
   named equivalent; the module was edited since, and this row is its new sample, judged
   in full. analyses.modes: judged on its source before cable_fields' checks were added
   (modes() and the cluster basis unchanged since); its new tests killed 10 of its first 18
-  survivors, 6 are named equivalent. analyses.eigen (807): its sample of the last source
-  but one judged in full (76 killed, 5 of its 10 survivors killed by new tests with the
-  mutant planted, 5 named equivalent, 8 left unchecked); its last edit (a dead errstate
-  removed) resampled it, and that sample is not run yet.
+  survivors, 6 are named equivalent. analyses.eigen (807): 99 mutants of its current
+  source, drawn as the sample of its source before its last edit (a dead errstate removed,
+  which renumbered it), judged: 76 killed, 10 survived (9 named equivalent, 1 killed by a
+  new test with the mutant planted), 5 equivalent, 8 unchecked; its first run's four
+  step-rule survivors are killed by the regula falsi's cost test. The uniform sample of
+  its current source is not run yet.
 
   First passes, before any new test: measured 79.0 %, calibrate 88.0 %, calibration_checks
   67.0 %, calibration_result 45.0 %, measured_frf 77.0 %, exchange 81.0 %, table 71.0 %,
