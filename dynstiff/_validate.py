@@ -115,15 +115,7 @@ def finite_scalar(name: str, value: object) -> float:
 def positive_scalar(name: str, value: float | str, allow_zero: bool = False) -> float:
     """Return ``value`` as a float, or raise naming ``name`` if it is not finite and > 0
     (a bool is not a number: ``True`` is refused, never read as 1)."""
-    if isinstance(value, (bool, np.bool_)):
-        raise InvalidParameterError(f"{name} must be a real number, got {value!r}")
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(
-            f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise InvalidParameterError(f"{name} must be finite, got {x!r}")
+    x = finite_scalar(name, value)
     if x < 0 or (x == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise InvalidParameterError(f"{name} must be {bound}, got {x!r}")

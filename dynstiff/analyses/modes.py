@@ -7,15 +7,14 @@ a mode.
 from __future__ import annotations
 
 from dataclasses import replace
-from numbers import Integral
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._validate import index
+from dynstiff._validate import count, index
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import checked_method, eigenfrequencies, validated_request
-from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
+from dynstiff.errors import UnsupportedAnalysisError
 from dynstiff.models.base import require_model
 from dynstiff.results import ModalResult
 
@@ -77,10 +76,8 @@ def cable_fields(model: PlatformModel, modes: ModalResult, k: int,
             f"model has none" + (": its node motions are modes(model, ...).node_shapes"
                                  if model.rung == "lumped" else " (massless cables)"))
     k = index("k", k, len(modes.freq_hz))
-    if isinstance(n_points, bool) or not isinstance(n_points, Integral) or n_points < 2:
-        raise InvalidParameterError(f"n_points must be an integer >= 2, got {n_points!r}")
     return model.cable_displacements(_TWO_PI * modes.freq_hz[k], modes.platform_shapes[k],
-                                     int(n_points))
+                                     count("n_points", n_points, least=2))
 
 
 def modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | None = None,

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import band as checked_band
 from dynstiff.analyses.checks import damped_model
 from dynstiff.analyses.participation import FRF_AMPLIFICATION_LIMIT, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
@@ -45,17 +46,6 @@ DEFAULT_MARGIN = 0.05
 DEFAULT_N_MODES = 20
 #: Segments per cable of the lumped rung.
 DEFAULT_SEGMENTS = 30
-
-
-def _band(name: str, value: tuple[float, float]) -> tuple[float, float]:
-    try:
-        lo, hi = (float(v) for v in value)
-    except (TypeError, ValueError):
-        raise InvalidParameterError(f"{name} must be (low, high) [Hz], got {value!r}") from None
-    if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo < hi):
-        raise InvalidParameterError(
-            f"{name} must be (low, high) with 0 <= low < high [Hz], got {value!r}")
-    return lo, hi
 
 
 @dataclass(frozen=True)
@@ -195,9 +185,9 @@ def analysis_settings(
         return given if given is not None else (
             scene_value if scene_value is not None else default)
 
-    band = _band("band_hz", pick(band_hz, scene.band_hz, DEFAULT_BAND_HZ))
+    band = checked_band(pick(band_hz, scene.band_hz, DEFAULT_BAND_HZ), "band_hz")
     fb = pick(forbidden_hz, scene.forbidden_band_hz, None)
-    fb = None if fb is None else _band("forbidden_hz", fb)
+    fb = None if fb is None else checked_band(fb, "forbidden_hz")
     rung = pick(rung, getattr(scene, "model", None), "dsm")
     if rung not in RUNGS:
         raise InvalidParameterError(f"model must be one of {RUNGS}, got {rung!r}")

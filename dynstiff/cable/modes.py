@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import count
 from dynstiff.cable.chord import chord_parameters
 from dynstiff.cable.dsm import checked_cable_model, lowest_string_omega
 from dynstiff.cable.exact import ExactCable
@@ -172,9 +173,7 @@ def cable_natural_frequencies(state: CatenaryState, n_modes: int,
     """
     if isinstance(n_modes, bool) or not isinstance(n_modes, Integral) or n_modes < 1:
         raise InvalidParameterError(f"n_modes must be an integer >= 1, got {n_modes!r}")
-    if isinstance(max_modes, bool) or not isinstance(max_modes, Integral) or max_modes < 1:
-        raise InvalidParameterError(f"max_modes must be an integer >= 1, got {max_modes!r}")
-    if n_modes > max_modes:
+    if n_modes > count("max_modes", max_modes):
         raise InvalidParameterError(f"n_modes = {n_modes} is more than max_modes = {max_modes}; "
                                     "raise max_modes to ask for more")
     n = int(n_modes)
