@@ -186,3 +186,10 @@ def test_scene_model_names_a_setting_it_does_not_have():
 def test_a_scene_that_is_not_one_is_refused():
     with pytest.raises(InvalidParameterError, match="^scene must be a dynstiff Scene"):
         ds.scene_model(None)
+
+
+def test_a_band_of_booleans_is_refused():
+    """(0, True) was the band up to 1 Hz; the settings check bands as every analysis does."""
+    with pytest.raises(InvalidParameterError, match="^band_hz must be real numbers, not "
+                                                    "booleans"):
+        analysis_settings(ds.load_scene("planar2"), band_hz=(0.0, True))
