@@ -119,7 +119,8 @@ class PlatformModel:
         self.free_dofs = tuple(robot.platform.free_dofs)
         self.free_index = fi
         self.n_free = len(fi)
-        self.platform_mass = platform_mass_matrix(robot.platform, pose.matrix)[np.ix_(fi, fi)]
+        self._platform_mass_all = platform_mass_matrix(robot.platform, pose.matrix)
+        self.platform_mass = self._platform_mass_all[np.ix_(fi, fi)]
         self.damped = any(c.is_damped for c in robot.cables)
 
     def _init_geometric(self, robot: Robot, pose: Pose, states: tuple[CatenaryState, ...]) -> None:

@@ -45,7 +45,7 @@ from dynstiff.errors import ClosedFormWarning, InvalidParameterError
 from dynstiff.models import dsm_guard as guard
 from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.models.dsm_guard import ROBOT_BOUND_MESSAGE
-from dynstiff.robot.platform import lever_maps, platform_mass_matrix
+from dynstiff.robot.platform import lever_maps
 
 if TYPE_CHECKING:
     from typing import Any
@@ -168,7 +168,8 @@ class FrequencyModel(PlatformModel):
         fi = self.free_index
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix:
         # J^T (e_a e_b^T) J = (J^T e_a)(J^T e_b)^T for the dyads (a, b) of DYAD_PAIRS
-        G = np.einsum("cai,cam->cim", lever_maps(self.lever_arms, fi),
+        self._lever_maps = lever_maps(self.lever_arms, fi)                 # (n, 3, nf)
+        G = np.einsum("cai,cam->cim", self._lever_maps,
                       np.array([p.rotation for p in self.params]))   # (n, nf, 3)
         a, b = np.array(DYAD_PAIRS).T
         self._assembly = np.einsum("cik,cjk->ckij", G[:, :, a], G[:, :, b]).reshape(
@@ -176,7 +177,7 @@ class FrequencyModel(PlatformModel):
         self.assembly_map = self._assembly
         self._init_geometric(robot, pose, equilibrium.states)
         self.K_geo_free = self._K_geo_free
-        self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
+        self.M_p = self._platform_mass_all
         self._K_platform_damping = None
         if self.platform_damping_ratio > 0:
             Ks = self._static_stiffness()

@@ -15,7 +15,6 @@ from dynstiff.cable.catenary import end_stiffnesses
 from dynstiff.cable.dsm import static_block_coefficients
 from dynstiff.cable.guard import ROBOT_ERROR_FACTOR, closed_form_local_error
 from dynstiff.errors import ClosedFormWarning, user_stacklevel
-from dynstiff.robot.platform import lever_maps
 
 if TYPE_CHECKING:
     from typing import Any
@@ -39,9 +38,9 @@ def static_error(model: FrequencyModel) -> tuple[float, int | None]:
     the real parts alike: no error of the closed form); (0, None) when no massless mode has
     a positive stiffness."""
     nf, n = model.n_free, len(model.params)
-    J = lever_maps(model.lever_arms, model.free_index)                      # (n, 3, nf)
+    J = model._lever_maps                                                   # (n, 3, nf)
     states = cast("Equilibrium", model.equilibrium).states
-    Ke = np.einsum("cai,cab,cbj->cij", J, end_stiffnesses(states), J)
+    Ke = np.swapaxes(J, 1, 2) @ end_stiffnesses(states) @ J
     K_ex = model._K_geo_free + Ke.sum(axis=0)
     K0 = np.real(static_block_coefficients(model.stacked_params)).reshape(n, 1, 5)
     Kd = np.matmul(K0, model._assembly.reshape(n, 5, nf * nf)).reshape(n, nf, nf)

@@ -18,7 +18,7 @@ from dynstiff._validate import flag, omega_array, positive_scalar
 from dynstiff.cable.exact import DEFAULT_ORDER, HALF_WAVES_PER_ELEMENT, ExactCable
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel, require_equilibrium
-from dynstiff.robot.platform import lever_map, platform_mass_matrix
+from dynstiff.robot.platform import lever_map
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
@@ -103,7 +103,7 @@ class ExactModel(PlatformModel):
                        or self.platform_damping_ratio > 0)
         self.lever_arms = np.array(equilibrium.lever_arms, dtype=float)
         self._init_geometric(robot, pose, equilibrium.states)
-        self.M_p = platform_mass_matrix(robot.platform, pose.matrix)
+        self.M_p = self._platform_mass_all
         fi = self.free_index
         nf = self.n_free
         # map of each cable's local end-B 3x3 block (flattened) to the free-DOF matrix

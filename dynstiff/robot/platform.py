@@ -61,13 +61,12 @@ def lever_maps(r: NDArray[np.float64],
     """:func:`lever_map` of many lever arms at once: r of shape (n, 3) -> (n, 3, 6), or
     (n, 3, n_free) restricted to ``free_index`` [-, m]."""
     r = np.asarray(r, dtype=float)
-    n = r.shape[0]
-    J = np.zeros((n, 3, 6))
-    J[:, [0, 1, 2], [0, 1, 2]] = 1.0
-    z = np.zeros(n)
-    J[:, :, 3:] = -np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1),
-                             np.stack([r[:, 2], z, -r[:, 0]], 1),
-                             np.stack([-r[:, 1], r[:, 0], z], 1)], 1)
+    J = np.zeros((r.shape[0], 3, 6))
+    J[:, 0, 0] = J[:, 1, 1] = J[:, 2, 2] = 1.0
+    # -[r]x entry by entry (a third of the cost of stacking it)
+    J[:, 0, 4], J[:, 0, 5] = r[:, 2], -r[:, 1]
+    J[:, 1, 3], J[:, 1, 5] = -r[:, 2], r[:, 0]
+    J[:, 2, 3], J[:, 2, 4] = r[:, 1], -r[:, 0]
     return J if free_index is None else J[:, :, free_index]
 
 
