@@ -1075,6 +1075,7 @@ EQUIVALENT.update({
         "None instead of nan freeing a bound: numpy stores None in a float array as nan",
     **{f"dynstiff.cli.common.x_check_outputs__mutmut_{n}":
        "float('INF') instead of float('inf'): float() reads either case" for n in (123, 152)},
+    "dynstiff.cable.psi.x_irvine_symmetric_roots__mutmut_49": _BOUNDARY,
 })
 
 def _definitions():

@@ -58,3 +58,13 @@ def test_the_grid_holds_every_mode_of_the_band_and_clusters_at_it():
         assert np.min(np.abs(g[g != f] / f - 1)) == pytest.approx(1e-6, rel=1e-6)
     assert not np.isin([0.5, 11.0], g).any() and g.min() == 1.0 and g.max() == 10.0
     assert g.size == base.size + 2 * 21 - np.isin([2.0, 3.7], base).sum()
+
+
+def test_the_default_neighbourhood_is_3_percent_of_the_mode_from_1e_6():
+    """The defaults (theory.md §12.3): 40 points a side, geometric from 1e-6 to 3e-2 of the
+    mode, the outermost at exactly f (1 -+ 0.03)."""
+    g = refined_grid((1.0, 10.0), 2, [5.0])
+    d = np.sort(np.abs(g[(g != 5.0) & (g != 1.0) & (g != 10.0)] / 5.0 - 1.0))
+    assert g.size == 2 + 81
+    assert d.max() == pytest.approx(0.03, rel=1e-12)
+    assert d.min() == pytest.approx(1e-6, rel=1e-9)

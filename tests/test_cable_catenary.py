@@ -224,3 +224,25 @@ def test_profiles_of_two_points_and_of_a_vertical_cable():
         ds.solve_catenary((0, 0, 0), (8.0, 0, 3.0), 8.7, cab, max_iter=1)
 
 
+
+
+@pytest.mark.parametrize("mass, end, tension", [
+    (0.5, (0.0, 0.0, 3.0), 20.0),     # rising: V0 = 5.3 N below half the weight, 7.4 N
+    (0.01, (0.0, 0.0, -3.0), 0.5),    # hanging below its anchor, light: V0 = -0.79 N
+    (0.5, (0.0, 0.0, -3.0), 20.0),    # hanging, heavy
+])
+def test_a_vertical_cable_profile_ends_at_its_end(mass, end, tension):
+    """A vertical cable's profile: every point on the chord, the last one the end B, the
+    heights (V0 s + w s^2 / 2) / EA +- s (theory.md §1.1), the sign that of the mean axial
+    force over [0, s], V0 + w s / 2. The cases put V0 in (0, w L0 / 2) and, for a light
+    cable, in (-L0 / (2 w), -w L0 / 2): a wrong weight of w in that sign turns it."""
+    cab = ds.Cable(mass, 1e5)
+    st = ds.unstretched_length_for_tension((0.0, 0.0, 0.0), end, tension, cab)
+    assert st.H == 0.0
+    p = st.profile(7)
+    np.testing.assert_allclose(p[-1], end, rtol=0, atol=1e-9)
+    s = np.linspace(0.0, st.unstretched_length, 7)
+    w0 = cab.weight_per_length(st.g)
+    direction = np.sign(end[2])
+    np.testing.assert_allclose(p[:, 2], (st.V0 * s + 0.5 * w0 * s * s) / cab.EA
+                               + direction * s, rtol=0, atol=1e-9)

@@ -53,6 +53,20 @@ def test_mode_count_steps_at_each_natural_frequency(state300):
     assert max(multiplicity) == 2
 
 
+def test_mode_count_follows_the_tension_asked(state300):
+    """With tension="chord" (H / cos theta, not the mean tension) the count steps at the
+    chord tension's frequencies, which differ from the mean tension's on this inclined
+    cable by about 1e-5 (1e4 times the steps of 1e-9 about each frequency)."""
+    f = {t: ds.cable_natural_frequencies(state300, 6, tension=t, guard_rtol=None).freq_hz
+         for t in ("mean", "chord")}
+    assert np.min(np.abs(f["chord"] / f["mean"] - 1)) > 1e-6
+    for t in ("mean", "chord"):
+        w = TWO_PI * f[t]
+        below = ds.cable_mode_count(state300, w * (1 - 1e-9), tension=t)
+        above = ds.cable_mode_count(state300, w * (1 + 1e-9), tension=t)
+        assert np.all(above > below)
+
+
 @settings(max_examples=60, deadline=None)
 @given(lam2=st.floats(1e-6, 1e4), ratio=st.one_of(st.floats(0.0, 40.0), st.integers(0, 40)))
 def test_count_equals_number_of_roots_below(lam2, ratio):
@@ -150,3 +164,41 @@ def test_a_complex_frequency_beyond_the_range_is_named_as_given(state300):
         check_frequency_range(p, np.array([3.0, 1e9]), name="w")
 
 
+
+
+def test_series_coefficients_are_the_first_n_terms_exactly():
+    """The series' coefficients are the first _N_TERMS Taylor coefficients (in psi^2) of E,
+    P~ and Q~, computed here in exact rationals from the sine and cosine series by
+    polynomial products (an independent derivation): none missing, none extra."""
+    from fractions import Fraction
+    from math import factorial
+
+    from dynstiff.cable.psi import _N_TERMS, _series_coefficients
+    D = 2 * _N_TERMS + 6                                   # degree kept in psi
+
+    def poly(f):
+        return [f(k) for k in range(D)]
+
+    def mul(p, q):
+        out = [Fraction(0)] * D
+        for i, a in enumerate(p):
+            for j, b in enumerate(q[:D - i]):
+                out[i + j] += a * b
+        return out
+
+    sin = poly(lambda k: Fraction((-1) ** (k // 2), factorial(k)) if k % 2 else Fraction(0))
+    cos = poly(lambda k: Fraction(0) if k % 2 else Fraction((-1) ** (k // 2), factorial(k)))
+    x = poly(lambda k: Fraction(k == 1))                   # psi
+    one = poly(lambda k: Fraction(k == 0))
+    sc = mul(sin, cos)
+    x2 = mul(x, x)
+    numerators = (                                         # each over psi^3
+        [a - b for a, b in zip(mul(x, cos), sin)],
+        [a - b for a, b in zip(mul([u + v for u, v in zip(one, x2)], sc), x)],
+        [a + b for a, b in zip(mul(x, [c - s for c, s in zip(mul(cos, cos), mul(sin, sin))]),
+                               mul([v - u for u, v in zip(one, x2)], sc))])
+    for coef, num in zip(_series_coefficients(), numerators):
+        assert num[:3] == [0, 0, 0] and all(c == 0 for c in num[4::2])  # even in psi
+        exact = [float(num[3 + 2 * k]) for k in range(_N_TERMS)]
+        assert len(coef) == _N_TERMS
+        np.testing.assert_allclose(coef[::-1], exact, rtol=1e-15, atol=0)

@@ -16,7 +16,8 @@ def test_poses_compare_and_hash_by_value():
     assert a != c and c == ds.Pose([1, 2, 3], [0, 0, 0])
     assert len({a, b, c}) == 2
     assert a != (1.0, 2.0, 3.0)                    # another type is never equal
-    assert "position=[1, 2, 3] m" in repr(a)
+    assert hash(a) != hash(c)              # by value: poses spread over a dict's slots
+    assert repr(a) == "Pose(position=[1, 2, 3] m, rotation=[0, 0.1, 0] rad)"
 
 
 def test_as_pose_accepts_the_documented_forms_and_names_the_rest():
