@@ -37,7 +37,9 @@ def test_grid_is_sorted_unique_inside_the_band():
 @pytest.mark.parametrize("kw, name", [(dict(band_hz=(2.0, 1.0)), "band_hz"),
                                       (dict(band_hz="x"), "band_hz"),
                                       (dict(n_points=1), "n_points"),
-                                      (dict(rel_width=1e-7), "rel_min")])
+                                      (dict(rel_width=1e-7), "rel_min"),
+                                      (dict(rel_width=-0.1), "^rel_width"),
+                                      (dict(rel_min=0.0), "^rel_min")])
 def test_bad_input_is_named(kw, name):
     args = dict(band_hz=(0.0, 1.0), n_points=10, **{})
     args.update(kw)
