@@ -39,7 +39,8 @@ def test_grid_is_sorted_unique_inside_the_band():
                                       (dict(n_points=1), "n_points"),
                                       (dict(rel_width=1e-7), "rel_min"),
                                       (dict(rel_width=-0.1), "^rel_width"),
-                                      (dict(rel_min=0.0), "^rel_min")])
+                                      (dict(rel_min=0.0), "^rel_min"),
+                                      (dict(rel_min=1e-3, rel_width=1e-3), "^rel_min")])
 def test_bad_input_is_named(kw, name):
     args = dict(band_hz=(0.0, 1.0), n_points=10, **{})
     args.update(kw)
@@ -70,3 +71,16 @@ def test_the_default_neighbourhood_is_3_percent_of_the_mode_from_1e_6():
     assert g.size == 2 + 81
     assert d.max() == pytest.approx(0.03, rel=1e-12)
     assert d.min() == pytest.approx(1e-6, rel=1e-9)
+
+
+def test_modes_on_the_band_edges_count_and_those_just_outside_do_not():
+    """A mode exactly at either end of the band is in it (its cluster's inner half is
+    added); a mode 1 % outside is ignored even though its 3 % neighbourhood reaches in."""
+    base = refined_grid((1.0, 10.0), 10)
+    edges = refined_grid((1.0, 10.0), 10, [1.0, 10.0], per_side=5)
+    assert edges.size == base.size + 2 * 5
+    new = np.setdiff1d(edges, base)
+    assert np.sum((new > 1.0) & (new <= 1.03 * (1 + 1e-12))) == 5
+    assert np.sum((new < 10.0) & (new >= 9.7 * (1 - 1e-12))) == 5
+    outside = refined_grid((1.0, 10.0), 10, [0.99, 10.1, np.nan, np.inf], per_side=5)
+    np.testing.assert_array_equal(outside, base)
