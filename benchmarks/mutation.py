@@ -1090,6 +1090,9 @@ EQUIVALENT.update({
     "dynstiff.analyses.freqgrid.x_refined_grid__mutmut_56":
         "f (1 - d) instead of f (1 + d): d holds every offset with both signs, so the same "
         "set of points",
+    "dynstiff.robot.waypoints.x__blend__mutmut_14":
+        "t <= tb instead of t < tb: at t = tb the cruise branch gives 0.5 acc tb^2 + "
+        "acc tb 0.0, bit for bit the blend's",
 })
 
 def _definitions():

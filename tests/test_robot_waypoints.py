@@ -77,6 +77,40 @@ def test_parabolic_blend_speed_is_continuous_and_constant_between_blends():
     assert x[0] == 0.0 and abs(x[-1] - 2.0) < 1e-12
 
 
+def blend_fraction(t, T, tb):
+    """Fraction of a segment covered at time t [s] by a parabolic blend: cruise speed
+    1 / (T - tb), reached in tb with constant acceleration and lost the same way at the end."""
+    vc = 1.0 / (T - tb)
+    if t <= tb:
+        return vc * t**2 / (2 * tb)
+    if t >= T - tb:
+        return 1.0 - vc * (T - t)**2 / (2 * tb)
+    return vc * (t - tb / 2)
+
+
+def test_parabolic_blend_positions_equal_the_blend_formula_on_each_segment():
+    """Parabolic blend positions on two segments (blends of 0.5 s and 0.25 s) equal
+    P_a + s(t) (P_b - P_a) with s from constant acceleration, cruise, deceleration."""
+    times, tbs = [0.0, 2.0, 3.0], [0.5, 0.25]
+    P = np.array([[0.0, 1.0, -1.0], [1.0, 3.0, 0.0], [-0.5, 2.0, 2.0]])
+    path = WaypointPath(times, P, np.zeros((3, 3)), "parabolic_blend", blend_times=tbs)
+    t = np.array([0.25, 0.5, 0.8, 1.0, 1.7, 2.0, 2.1, 2.25, 2.5, 2.8, 3.0])
+    got = path.at(t)[0]
+    for ti, g in zip(t, got):
+        j = 0 if ti < 2.0 else 1
+        s = blend_fraction(ti - times[j], times[j + 1] - times[j], tbs[j])
+        np.testing.assert_allclose(g, P[j] + s * (P[j + 1] - P[j]), rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("law, kw", [("linear", {}), ("cubic", {}), ("quintic", {}),
+                                     ("parabolic_blend", dict(blend_times=[0.2, 0.3]))])
+def test_a_time_at_a_waypoint_starts_its_segment_at_the_waypoint_exactly(law, kw):
+    """At t = 0 and at an inner waypoint's time the position is that waypoint's, exactly."""
+    P = np.array([[0.3, 1.1, 0.7], [-0.9, 0.3, 0.1], [0.4, 0.0, 1.0]])
+    path = WaypointPath([0.0, 1.0, 2.5], P, np.zeros((3, 3)), law, **kw)
+    np.testing.assert_array_equal(path.at([0.0, 1.0])[0], P[:2])
+
+
 def test_poses_are_equally_spaced_in_time_and_hold_outside():
     path = WaypointPath([0.0, 1.0, 3.0], [[0, 0, 1.0], [1, 0, 1.0], [1, 1, 1.0]],
                         np.zeros((3, 3)), "linear")
@@ -86,17 +120,44 @@ def test_poses_are_equally_spaced_in_time_and_hold_outside():
     np.testing.assert_allclose(path.at([-1.0, 9.0])[0], [[0, 0, 1.0], [1, 1, 1.0]])
 
 
+@pytest.mark.parametrize("n", [1, 0, 2.0, True])
+def test_poses_need_an_integer_count_of_at_least_two(n):
+    """poses(n) refuses a count below 2, a float or a bool, naming n and its value."""
+    path = WaypointPath([0.0, 1.0], np.zeros((2, 3)), np.zeros((2, 3)), "linear")
+    with pytest.raises(InvalidParameterError, match=rf"^n must be an integer >= 2, got {n!r}$"):
+        path.poses(n)
+
+
 @pytest.mark.parametrize("kw, match", [
     (dict(times=[0.0, 0.0]), "times must be strictly increasing"),
     (dict(times=[1.0, 2.0]), "from 0"),
     (dict(law="spline"), "law must be one of"),
     (dict(positions=[[0, 0, 0]]), r"positions must be finite, shape \(2, 3\)"),
+    (dict(rotations=[[0, 0, 0]]), r"^rotations must be finite, shape \(2, 3\)"),
     (dict(law="linear", velocities=[[1, 0, 0], [0, 0, 0]]), "velocities and accel"),
-    (dict(law="parabolic_blend"), "needs blend_times"),
-    (dict(law="parabolic_blend", blend_times=[0.6]), "less than half"),
+    (dict(law="linear", accelerations=[[0, 0, 0], [0, 0, 1]]),
+     "^velocities and accelerations go with law 'cubic' or 'quintic', not 'linear'$"),
+    (dict(law="parabolic_blend", blend_times=[0.2], accelerations=[[1, 0, 0], [0, 0, 0]]),
+     "^velocities and accelerations go with law 'cubic' or 'quintic', not 'parabolic_blend'$"),
+    (dict(law="cubic", accelerations=[[0, 0, 0], [0, 1, 0]]),
+     "^accelerations go with law 'quintic', not 'cubic'$"),
+    (dict(law="parabolic_blend"),
+     r"^law 'parabolic_blend' needs blend_times \[s\], one per segment$"),
+    (dict(law="parabolic_blend", blend_times=[0.6]),
+     r"^blend_times must be 1 values > 0 \[s\], each less than half its segment \[1\.0\], "
+     r"got array\(\[0\.6\]\)$"),
+    (dict(law="parabolic_blend", blend_times=[0.5]), "^blend_times .* less than half"),
+    (dict(law="parabolic_blend", blend_times=[0.0]), "^blend_times must be 1 values > 0"),
+    (dict(law="parabolic_blend", blend_times=[-0.1]), "^blend_times must be 1 values > 0"),
+    (dict(law="parabolic_blend", blend_times=[0.1, 0.1]), "^blend_times must be 1 values > 0"),
+    (dict(law="parabolic_blend", blend_times=[True]),
+     "^blend_times must be real numbers, not booleans"),
+    (dict(law="parabolic_blend", blend_times="abc"),
+     r"^blend_times must be 1 values > 0 \[s\], got 'abc'$"),
     (dict(blend_times=[0.1]), "blend_times go with"),
 ])
 def test_bad_waypoints_are_named(kw, match):
+    """Each bad argument of a two-waypoint path is refused with a message naming it."""
     args = dict(times=[0.0, 1.0], positions=np.zeros((2, 3)), rotations=np.zeros((2, 3)))
     args.update(kw)
     with pytest.raises(InvalidParameterError, match=match):
