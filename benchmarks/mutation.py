@@ -1093,6 +1093,9 @@ EQUIVALENT.update({
     "dynstiff.robot.waypoints.x__blend__mutmut_14":
         "t <= tb instead of t < tb: at t = tb the cruise branch gives 0.5 acc tb^2 + "
         "acc tb 0.0, bit for bit the blend's",
+    "dynstiff.cable.psi.x_check_frequency_range__mutmut_14": _BOUNDARY,
+    "dynstiff.cable.psi.x_mode_count_psi__mutmut_22":
+        "the even branches' sign +2 instead of +1: only the sign of the product is tested",
 })
 
 def _definitions():
