@@ -206,3 +206,28 @@ def test_series_coefficients_are_the_first_n_terms_exactly():
         exact = [float(num[3 + 2 * k]) for k in range(_N_TERMS)]
         assert len(coef) == _N_TERMS
         np.testing.assert_allclose(coef[::-1], exact, rtol=1e-15, atol=0)
+
+
+def test_heavy_viscous_damping_at_a_real_frequency_is_refused_not_nan():
+    """With viscous damping c, psi is complex at a real omega too: Im psi tends to
+    L c / (4 sqrt(m T)) as omega grows (theory.md §12.2), and above 350 sin and cos
+    overflow. A real omega there is an error naming omega, never a NaN matrix; below, the
+    same cable's stiffness is finite."""
+    import warnings
+
+    from dynstiff.errors import ClosedFormWarning
+    cable = ds.Cable(mass_per_length=0.064, EA=1.64e6, viscous_damping=5000.0)
+    st = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    p = chord_parameters(st)
+    assert p.L * p.c / (4 * np.sqrt(p.m * p.T)) > ds.cable.psi.MAX_IMAG_PSI
+    w = 3000.0
+    im_psi = abs(np.imag(0.5 * p.L * np.sqrt((w**2 * p.m - 1j * w * p.c) / p.T)))
+    assert im_psi > ds.cable.psi.MAX_IMAG_PSI
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ClosedFormWarning)      # far outside its range
+        with pytest.raises(InvalidParameterError, match=re.escape(
+                f"omega is too large for the closed form with the cables' viscous damping "
+                f"(|Im psi| = {im_psi:.4g} > 350: sin and cos overflow), got |omega| up to "
+                f"3000 rad/s")):
+            ds.cable_dynamic_stiffness(st, [10.0, w])
+        assert np.all(np.isfinite(ds.cable_dynamic_stiffness(st, [10.0, 1000.0])))

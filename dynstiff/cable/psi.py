@@ -54,13 +54,18 @@ def check_frequency_range(params: ChordParameters, omega: NDArray[Any],
             f"{name} must be <= {MAX_OMEGA_ND / scale:.6g} rad/s for this cable model "
             f"(omega L sqrt(m/T) <= {MAX_OMEGA_ND:g}, beyond which the closed form loses its "
             f"digits), got {bad:.6g}")
-    if np.iscomplexobj(omega) and w.size:
+    # psi is complex for a complex omega, and for a real one on a cable with viscous
+    # damping (c != 0), whose Im psi tends to L c / (4 sqrt(m T)) as omega grows
+    if w.size and (np.iscomplexobj(omega) or np.any(np.asarray(params.c) != 0)):
         psi = np.abs(np.imag(params.psi(np.asarray(omega).reshape(-1, 1)
                                         if np.ndim(params.L) else np.asarray(omega))))
         if psi.max() > MAX_IMAG_PSI:
+            what = ("has an imaginary part too large for the closed form"
+                    if np.iscomplexobj(omega) else
+                    "is too large for the closed form with the cables' viscous damping")
             raise InvalidParameterError(
-                f"{name} has an imaginary part too large for the closed form (|Im psi| = "
-                f"{psi.max():.4g} > {MAX_IMAG_PSI:g}: sin and cos overflow)")
+                f"{name} {what} (|Im psi| = {psi.max():.4g} > {MAX_IMAG_PSI:g}: sin and cos "
+                f"overflow), got |{name}| up to {w.max():.6g} rad/s")
 
 
 # --------------------------------------------------------------------------- psi kernels
