@@ -1096,6 +1096,8 @@ EQUIVALENT.update({
     "dynstiff.cable.psi.x_check_frequency_range__mutmut_14": _BOUNDARY,
     "dynstiff.cable.psi.x_mode_count_psi__mutmut_22":
         "the even branches' sign +2 instead of +1: only the sign of the product is tested",
+    "dynstiff.cable.guard.x_closed_form_local_error__mutmut_28": _BOUNDARY,
+    "dynstiff.cable.guard.x_closed_form_validity__mutmut_66": _BOUNDARY,
 })
 
 def _definitions():

@@ -71,10 +71,31 @@ def test_validity_and_exact_modes_use_the_tension_asked(state300, tension):
     v = closed_form_validity(s, tension=tension)
     assert v.values["weight_ratio"] == pytest.approx(
         s.total_weight * abs(s.chord[2]) / s.chord_length / p.T, rel=1e-14)
+    # the envelope's terms (theory.md §11.5): 15 delta^2, 2 delta eps (1 + 40 eps), 0.4 v^2
+    delta, eps = p.sag / p.L, v.values["weight_ratio"]
+    var = (s.max_tension - s.min_tension) / s.mean_tension
+    assert v.causes["sag"] == pytest.approx(15 * delta**2, rel=1e-14)
+    assert v.causes["chordwise weight"] == pytest.approx(2 * delta * eps * (1 + 40 * eps),
+                                                         rel=1e-14)
+    assert v.causes["tension variation"] == pytest.approx(0.4 * var**2, rel=1e-14)
+    assert v.error == pytest.approx(sum(v.causes[k] for k in ("sag", "chordwise weight",
+                                                              "tension variation")), rel=1e-14)
     for model in ("closed-form", "exact"):
         cm = ds.cable_natural_frequencies(s, 4, tension=tension, model=model)
         np.testing.assert_allclose(cm.Omega, 2 * np.pi * cm.freq_hz * p.L * np.sqrt(p.m / p.T),
                                    rtol=1e-13)
+
+
+def test_the_default_band_is_the_static_one():
+    """Without omega_max the validity judges no band (omega_max = 0): no axial cause even
+    for a cable whose axial modes start at 0.05 Hz (EA 1 N, 1 kg/m, 9 m), which any band
+    reaching 0.9 of it (here 0.31 rad/s, so 1 rad/s) puts in."""
+    from dynstiff.cable.guard import closed_form_validity
+    s = ds.solve_catenary([0, 0, 0], [10.0, 0, 0.0], 9.0, ds.Cable(1.0, 1.0))
+    f_ax = np.sqrt(1.0 / 1.0) / (2 * 9.0)
+    assert closed_form_validity(s).values["axial_hz"] == pytest.approx(f_ax, rel=1e-14)
+    assert closed_form_validity(s).causes["axial"] == 0.0
+    assert np.isinf(closed_form_validity(s, 1.0).causes["axial"])
 
 
 def test_the_measured_local_error_uses_the_tension_asked_for_its_band():
