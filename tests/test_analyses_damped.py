@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 import scipy.linalg
+from conftest import inverted_stewart
 
 import dynstiff as ds
-from dynstiff.analyses.damped import damped_modes
+from dynstiff.analyses.damped import _perturbation_estimates, damped_modes
 
 
 @pytest.fixture(scope="module")
@@ -49,6 +50,19 @@ def test_massless_hysteretic_matches_complex_eigenproblem(scene):
     assert np.all(d.damping_ratio > 0) and np.all(d.damping_ratio < eta / 2 + 1e-6)
 
 
+@pytest.mark.parametrize("zeta", [0.02, 0.25])
+def test_platform_damping_on_massless_cables_is_classical(scene, zeta):
+    """Massless cables, platform ratio zeta: roots w_r sqrt(1+2i zeta), estimates w_r (1+i zeta)."""
+    # K = K_s (1 + 2i zeta) - omega^2 M_p; at zeta = 0.25 the estimates are 4.5 % off, all found
+    rob = robot_with(scene, mass_per_length=1e-7)
+    m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose), platform_damping_ratio=zeta)
+    w_r = np.sqrt(scipy.linalg.eigvalsh(m.massless_stiffness(), m.platform_mass))
+    d = damped_modes(m, 6)
+    np.testing.assert_allclose(d.omega, w_r * np.sqrt(1 + 2j * zeta), rtol=1e-7)
+    est = _perturbation_estimates(m, ds.modes(m, 6))
+    np.testing.assert_allclose(est, w_r * (1 + 1j * zeta), rtol=1e-7)
+
+
 def test_damping_ratio_is_linear_in_loss_factor(scene):
     z = []
     for eta in (1e-3, 2e-3):
@@ -68,6 +82,44 @@ def test_viscous_damping_gives_decaying_modes(scene):
     assert np.all(d.damping_ratio[ok] > 0)
     assert np.all(d.residual[ok] < 1e-8)
     np.testing.assert_allclose(d.freq_hz[ok], d.undamped_freq_hz[ok], rtol=5e-3)
+
+
+def test_purely_local_modes_are_nan_and_the_modes_above_them_are_found():
+    """Platform-at-rest modes: NaN root and residual; the global modes above them are found."""
+    eq = inverted_stewart(mass_per_length=0.1, EA=1e5).equilibrium(pose=ds.Pose([0, 0, 1.5]))
+    m = ds.FrequencyModel(eq, platform_damping_ratio=0.02)      # symmetric: purely local modes
+    u = ds.modes(m, fmax_hz=14.0)
+    d = damped_modes(m, fmax_hz=14.0)
+    at_rest = ~np.any(u.platform_shapes, axis=1)
+    assert at_rest.any()
+    assert np.all(np.isnan(d.omega[at_rest])) and np.all(np.isnan(d.residual[at_rest]))
+    above = (np.arange(len(u)) > np.flatnonzero(at_rest)[0]) & (np.array(u.kind) == "global")
+    assert above.any() and np.all(d.residual[above] < 1e-8)
+    np.testing.assert_allclose(d.freq_hz[above], u.freq_hz[above], rtol=1e-3)
+    assert np.all(d.damping_ratio[above] > 0)
+
+
+@pytest.mark.parametrize("kw", [dict(tol=0.5), dict(max_iter=1)])
+def test_a_root_stopped_after_one_secant_step_is_nan_with_its_residual(scene, kw):
+    """Stopped after one secant step (tol=0.5 or max_iter=1): NaN, with that step's residual."""
+    m = ds.FrequencyModel(scene.equilibrium(), platform_damping_ratio=0.05)
+    u = ds.modes(m, 1)
+    x, w = u.platform_shapes[0][m.free_index], 2 * np.pi * u.freq_hz[0]
+    mu, h = m.undamped(), 1e-6 * w
+    dK = (mu.dynamic_stiffness(w + h)[0] - mu.dynamic_stiffness(w - h)[0]) / (2 * h)
+    est = w - x @ (m.dynamic_stiffness(w)[0] - mu.dynamic_stiffness(w)[0]) @ x / (x @ dK @ x)
+
+    def det(z):
+        return np.linalg.det(m.dynamic_stiffness(z)[0])
+    e = 1e-7 * abs(est)
+    K = m.dynamic_stiffness(est - det(est) * 2 * e / (det(est + e) - det(est - e)))[0]
+    # |lambda_min(K)| / ||K||_2 after a Newton step from the estimate (= the secant's to 1e-3)
+    residual = np.abs(np.linalg.eigvals(K)).min() / np.linalg.svd(K, compute_uv=False)[0]
+    assert residual > 1e-6                        # far from converged
+    d = damped_modes(m, 1, **kw)
+    assert np.isnan(d.omega[0])
+    np.testing.assert_allclose(d.residual[0], residual, rtol=1e-2)
+    assert damped_modes(m, 1).residual[0] < 1e-8  # the default tol converges
 
 
 @pytest.mark.parametrize("kw, message", [

@@ -111,7 +111,12 @@ def test_repeated_roots_keep_both_shapes():
     np.testing.assert_allclose(mm.freq_hz[:2], f, rtol=1e-9)
     G = mm.shapes @ m.platform_mass @ mm.shapes.T * mm.modal_mass[:, None]
     np.testing.assert_allclose(G, np.eye(3), atol=1e-9)
-    assert isinstance(mm, ModalModel) and "ModalModel(3 modes" in repr(mm)
+    fz = ds.eigenfrequencies(m, n_modes=3)
+    span = f"{fz.min():.4g}-{fz.max():.4g} Hz"
+    assert isinstance(mm, ModalModel)
+    assert repr(mm) == f"ModalModel(3 modes {span}, free ('x', 'y', 'z'), residual on)"
+    assert repr(modal_model(m, n_modes=3, residual=False)) == \
+        f"ModalModel(3 modes {span}, free ('x', 'y', 'z'), residual off)"
 
 
 def test_truncation_error_grows_as_omega_squared(dsm, mm):
@@ -164,3 +169,88 @@ def test_modal_model_options_are_checked_before_the_modes_are_computed(dsm, kw, 
 def test_to_statespace_refuses_a_worded_residual_flag_of_a_modal_model(mm):
     with pytest.raises(ds.InvalidParameterError, match="^residual must be True or False"):
         to_statespace(mm, residual="no")
+
+
+def test_null_rtol_is_the_threshold_on_the_eigenvalues_at_the_root(dsm):
+    """A root is kept iff |eig K(omega_r)| < null_rtol max|eig K(0)|; none kept: H = K(0)^-1."""
+    w = 2 * np.pi * ds.eigenfrequencies(dsm, n_modes=1)[0]
+    K = dsm.dynamic_stiffness([w])[0]
+    K0 = dsm.massless_stiffness()
+    e0 = np.abs(np.linalg.eigvalsh(0.5 * (K + K.T))).min()
+    scale = np.abs(np.linalg.eigvalsh(0.5 * (K0 + K0.T))).max()
+    kept = modal_model(dsm, n_modes=1, null_rtol=2.0 * e0 / scale)
+    assert len(kept) == 1 and kept.omega[0] == w
+    none = modal_model(dsm, n_modes=1, null_rtol=0.5 * e0 / scale)
+    assert len(none) == 0 and none.shapes.shape == (0, 6)
+    assert repr(none) == ("ModalModel(0 modes none, free ('x', 'y', 'z', 'rx', 'ry', 'rz'), "
+                          "residual on)")
+    np.testing.assert_allclose(none.receptance([0.0, w])[1], np.linalg.inv(K0), rtol=1e-12,
+                               atol=1e-12 * np.abs(np.linalg.inv(K0)).max())
+
+
+def test_non_positive_modal_mass_is_refused_naming_it_and_its_frequency(monkeypatch):
+    """mu_r = -x^T M_p x (dK/d omega^2 negated here) is refused naming its value and Hz."""
+    import re
+
+    import dynstiff.analyses.reduced as red
+    m = ds.build_model(ds.load_scene("cogiro").equilibrium(), "spring")
+    f1 = ds.eigenfrequencies(m, n_modes=1)[0]
+    K = m.dynamic_stiffness([2 * np.pi * f1])[0]
+    x = np.linalg.eigh(0.5 * (K + K.T))[1][:, 0]           # unit shape of the root
+    mu = -(x @ m.platform_mass @ x)
+    dK = red._dK_domega2
+    monkeypatch.setattr(red, "_dK_domega2", lambda model, w: -dK(model, w))
+    with pytest.raises(ds.InvalidParameterError,
+                       match=f"^{re.escape(f'non-positive modal mass {mu:.3g} at {f1:.6g} Hz')}$"):
+        modal_model(m, n_modes=1)
+
+
+def _two_modes(pose, residual):
+    """A ModalModel written by hand: modes at 2 and 5 rad/s on the free DOFs (x, y, z)."""
+    return ModalModel(omega=np.array([2.0, 5.0]),
+                      shapes=np.array([[1.0, 1e-12, -1e-12], [-0.5, 1.5e-12, 0.25]]),
+                      modal_mass=np.ones(2), damping=np.array([0.1, 0.0]), residual=residual,
+                      free_dofs=("x", "y", "z"), pose=pose)
+
+
+def test_receptance_is_the_modal_sum_also_for_integer_frequencies(dsm):
+    """H = sum phi phi^T / (w_r^2 - w^2 + 2i zeta_r w_r w) + R, also at int32 w (46341^2 > 2^31)"""
+    R = np.diag([4e-3, 1e-3, 2e-3])
+    mm = _two_modes(dsm.pose, R)
+    w = np.array([0.0, 3.0, 46341.0])
+    den = mm.omega**2 - w[:, None]**2 + 2j * mm.damping * mm.omega * w[:, None]
+    Hm = sum(np.multiply.outer(1 / den[:, r], np.outer(mm.shapes[r], mm.shapes[r]))
+             for r in range(2))
+    tol = dict(rtol=1e-14, atol=1e-14 * np.abs(Hm).max())
+    np.testing.assert_allclose(mm.receptance(w), Hm + R, **tol)
+    np.testing.assert_allclose(mm.receptance(w.astype(np.int32)), Hm + R, **tol)
+    np.testing.assert_allclose(_two_modes(dsm.pose, None).receptance(w), Hm, **tol)
+
+
+@pytest.mark.parametrize("with_residual, residual_flag", [(True, True), (True, False),
+                                                          (False, True)])
+def test_statespace_of_a_modal_model_is_its_realisation(dsm, with_residual, residual_flag):
+    """A ModalModel's own A, B, C (floored at <= 1e-12 of their largest), D, names and FRF."""
+    control = pytest.importorskip("control")
+    R = np.array([[4e-3, 1e-4, 0.0], [1e-4, 1e-3, 2e-4], [0.0, 2e-4, 2e-3]])
+    mm = _two_modes(dsm.pose, R if with_residual else None)
+    # n_modes and damping are ignored for a ModalModel: its own modes and ratios are realised
+    sys = to_statespace(mm, n_modes=1, damping=0.3, inputs=["fx", "fy"], outputs=["x", "z"],
+                        residual=residual_flag)
+    assert isinstance(sys, control.StateSpace) and sys.name == "dynstiff modal model"
+    assert sys.state_labels == ["q1", "q2", "dq1", "dq2"]
+    assert sys.input_labels == ["fx", "fy"] and sys.output_labels == ["x", "z"]
+    A = np.zeros((4, 4))
+    A[:2, 2:] = np.eye(2)
+    A[2:, :2] = -np.diag([2.0, 5.0])**2
+    A[2:, 2:] = -2.0 * np.diag([0.1 * 2.0, 0.0])
+    np.testing.assert_array_equal(sys.A, A)
+    # modal forces of fx, fy: phi_r[x], phi_r[y]; 1e-12 = ZERO_FLOOR x 1.0 is zeroed
+    np.testing.assert_array_equal(sys.B, [[0, 0], [0, 0], [1.0, 0.0], [-0.5, 1.5e-12]])
+    np.testing.assert_array_equal(sys.C, [[1.0, -0.5, 0, 0], [0.0, 0.25, 0, 0]])
+    D = R[np.ix_([0, 2], [0, 1])] if with_residual and residual_flag else np.zeros((2, 2))
+    np.testing.assert_array_equal(sys.D, D)
+    w = np.array([1.0, 3.0, 7.0])
+    Hss = np.moveaxis(sys.frequency_response(w).complex, -1, 0)
+    H = _two_modes(dsm.pose, None).receptance(w)[:, [0, 2]][:, :, [0, 1]] + D
+    np.testing.assert_allclose(Hss, H, rtol=1e-9, atol=1e-9 * np.abs(H).max())
