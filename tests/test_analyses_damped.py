@@ -50,10 +50,12 @@ def test_massless_hysteretic_matches_complex_eigenproblem(scene):
     assert np.all(d.damping_ratio > 0) and np.all(d.damping_ratio < eta / 2 + 1e-6)
 
 
-@pytest.mark.parametrize("zeta", [0.02, 0.25])
+@pytest.mark.parametrize("zeta", [0.02, 0.25, 0.4])
 def test_platform_damping_on_massless_cables_is_classical(scene, zeta):
     """Massless cables, platform ratio zeta: roots w_r sqrt(1+2i zeta), estimates w_r (1+i zeta)."""
-    # K = K_s (1 + 2i zeta) - omega^2 M_p; at zeta = 0.25 the estimates are 4.5 % off, all found
+    # K = K_s (1 + 2i zeta) - omega^2 M_p; at zeta = 0.25 the estimates are 4.5 % off, all
+    # found; at 0.4 mode 0's root is nearer mode 1's estimate than its own, and only its
+    # shape tells whose it is (it was given to mode 1, and mode 0 left NaN)
     rob = robot_with(scene, mass_per_length=1e-7)
     m = ds.FrequencyModel(rob.equilibrium(pose=scene.pose), platform_damping_ratio=zeta)
     w_r = np.sqrt(scipy.linalg.eigvalsh(m.massless_stiffness(), m.platform_mass))

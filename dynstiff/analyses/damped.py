@@ -35,6 +35,28 @@ def _nearest_zero_eigenvalue(model: FrequencyModel, w: complex) -> tuple[complex
     return mu[np.argmin(np.abs(mu))], np.linalg.norm(K, 2)
 
 
+def _shape_owner(model: PlatformModel, w: complex, shapes: NDArray[np.float64],
+                 candidates: NDArray[np.bool_]) -> int | None:
+    """The undamped mode whose platform shape the root's null vector matches without
+    ambiguity, or None: the mass-weighted MAC_j = |x_j^T M_p v|^2 / (x_j^T M_p x_j v^H M_p v)
+    of the null vector v of K(w) (its least singular vector) is above 0.9 for that mode and
+    below 0.5 for every other candidate (theory.md §5.4). ``shapes`` (n, n_free), real."""
+    with np.errstate(all="ignore"):
+        K = model.dynamic_stiffness(w)[0]
+    if not np.all(np.isfinite(K)):
+        return None
+    v = np.linalg.svd(K)[2][-1].conj()
+    M = model.platform_mass
+    den = np.einsum("ki,ij,kj->k", shapes, M, shapes) * np.real(v.conj() @ M @ v)
+    with np.errstate(all="ignore"):
+        mac = np.where(candidates, np.abs(shapes @ M @ v) ** 2 / den, 0.0)
+    mac = np.nan_to_num(mac)
+    j = int(np.argmax(mac))
+    if mac[j] > 0.9 and np.all(np.delete(mac, j) < 0.5):
+        return j
+    return None
+
+
 def _perturbation_estimates(model: PlatformModel, und: ModalResult) -> NDArray[np.complex128]:
     """First-order damped roots omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T K_u' x
     (x: undamped platform mode, K_u' = dK_u/domega by central differences)."""
@@ -61,11 +83,14 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T dK_u/domega x (perturbation of the
     real root by the damping part of K). From there a secant iteration in the complex plane
     on det K(omega), deflated by the roots already found, converges to the damped root
-    (theory.md §5.4). The root is accepted only if the eigenvalue of K nearest zero is below
-    1e-8 ||K|| and the root is closer to its own estimate than to any other mode's (so a
-    root is never attributed to the wrong mode in a cluster of close local modes); otherwise,
-    and for purely local modes (platform at rest, not zeros of det K), it is NaN with its
-    ``residual`` recorded.
+    (theory.md §5.4). A root is accepted only if the eigenvalue of K nearest zero is below
+    1e-8 ||K||, and given to the undamped mode whose platform shape its null vector matches
+    without ambiguity (mass-weighted MAC above 0.9 with it, below 0.5 with every other),
+    else to the mode whose estimate it is closest to (clusters of close modes of similar
+    shapes); never to a mode that has a root already, so a root is never attributed to the
+    wrong mode, and heavy damping, where first-order estimates pass a neighbour's root,
+    gives NaN rather than that root. Otherwise, and for purely local modes (platform at
+    rest, not zeros of det K), it is NaN with its ``residual`` recorded.
 
     Parameters
     ----------
@@ -94,6 +119,7 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     max_iter = count("max_iter", max_iter)
     und = modes(model, n_modes=n_modes, fmax_hz=fmax_hz)
     est = _perturbation_estimates(model, und)
+    shapes = np.asarray(und.platform_shapes)[:, model.free_index]
     out = np.full(len(und), np.nan + 1j * np.nan)
     resid = np.full(len(und), np.nan)
     found = []
@@ -125,11 +151,18 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
             continue
         mu, nK = _nearest_zero_eigenvalue(model, w1)
         resid[k] = abs(mu) / nK
-        others = np.delete(est, k)
-        others = others[np.isfinite(others)]
-        own = abs(w1 - est[k]) < np.min(np.abs(w1 - others), initial=np.inf)
-        distinct = all(abs(w1 - wj) > 1e-8 * abs(w1) for wj in found)
-        if resid[k] < 1e-8 and own and distinct:
-            out[k] = w1
+        if not resid[k] < 1e-8 or any(abs(w1 - wj) <= 1e-8 * abs(w1) for wj in found):
+            continue
+        # whose root: the mode its shape matches without ambiguity, else the nearest
+        # estimate (close modes of similar shapes); a root is never given to a mode that
+        # has one, so a wrong attribution leaves NaN, not another mode's root
+        owner = _shape_owner(model, w1, shapes, np.isfinite(est))
+        if owner is None:
+            others = np.delete(est, k)
+            others = others[np.isfinite(others)]
+            owner = k if abs(w1 - est[k]) < np.min(np.abs(w1 - others), initial=np.inf) \
+                else None
+        if owner is not None and np.isnan(out[owner]):
+            out[owner], resid[owner] = w1, resid[k]
             found.append(w1)
     return DampedModes(undamped_freq_hz=und.freq_hz, omega=out, residual=resid)
