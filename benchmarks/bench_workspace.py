@@ -4,7 +4,13 @@ inverse statics <= 5 ms CPU, statics + 20 modes <= 12 ms CPU).
 
 Measured (2 cores, the other one busy, least of 3, ``--per-pose --poses 343 --against
 51e2086``): a pose with the forbidden band 13.08 ms -> 5.19 ms, without it 9.59 ms -> 4.12
-ms (theory.md §13.7); the 3.5 ms goal is not reached.
+ms (theory.md §13.7); the 3.5 ms goal is not reached. Later (``--against 9ad3ef2``, the
+same run, 2 mutation runs on the machine): the model's build 0.85 -> 0.72 ms (lever maps
+written entry by entry, the static error's J^T K J by matmul on the build's own lever maps,
+the platform mass computed once), a pose 4.73 -> 4.64 ms with the band, 3.86 -> 3.67 ms
+without, maps identical to the bit. Where the rest goes is spread thin: a cProfile of the
+map shows no Python function above 0.12 ms a pose (profiled); the compiled kernels (search,
+count, receptance, stiffness, statics' fixed point) take about 1.5 ms of it.
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_workspace.py [--poses N] [--repeats R]
       [--no-dask]
