@@ -135,3 +135,16 @@ def test_the_secant_options_are_checked_naming_them(scene, kw, message):
     m = ds.FrequencyModel(scene.equilibrium(), platform_damping_ratio=0.02)
     with pytest.raises(ds.InvalidParameterError, match=message):
         ds.damped_modes(m, n_modes=1, **kw)
+
+
+def test_both_copies_of_a_double_mode_have_the_root():
+    """A symmetric robot's double modes (equal undamped frequencies): the damped root is a
+    double zero of det K, the root of both copies, w_r sqrt(1 + 2i zeta) for massless cables
+    and platform damping zeta (the second copy was NaN, its root taken by the first)."""
+    eq = inverted_stewart(mass_per_length=1e-7).equilibrium(pose=ds.Pose([0, 0, 1.5]))
+    m = ds.FrequencyModel(eq, platform_damping_ratio=0.02)
+    w_r = np.sqrt(scipy.linalg.eigvalsh(m.massless_stiffness(), m.platform_mass))
+    assert np.sum(np.isclose(np.diff(w_r), 0.0, atol=1e-9 * w_r.max())) == 2   # two doubles
+    d = damped_modes(m, 6)
+    np.testing.assert_allclose(d.omega, w_r * np.sqrt(1 + 0.04j), rtol=1e-7)
+    assert np.all(d.residual < 1e-8)

@@ -89,8 +89,9 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     else to the mode whose estimate it is closest to (clusters of close modes of similar
     shapes); never to a mode that has a root already, so a root is never attributed to the
     wrong mode, and heavy damping, where first-order estimates pass a neighbour's root,
-    gives NaN rather than that root. Otherwise, and for purely local modes (platform at
-    rest, not zeros of det K), it is NaN with its ``residual`` recorded.
+    gives NaN rather than that root. A multiple root (the double modes of a symmetric robot)
+    is the root of every copy. Otherwise, and for purely local modes (platform at rest, not
+    zeros of det K), it is NaN with its ``residual`` recorded.
 
     Parameters
     ----------
@@ -122,7 +123,7 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     shapes = np.asarray(und.platform_shapes)[:, model.free_index]
     out = np.full(len(und), np.nan + 1j * np.nan)
     resid = np.full(len(und), np.nan)
-    found = []
+    found, owners = [], []                   # accepted roots and their modes
     for k in np.flatnonzero(np.isfinite(est)):
         def g(w: complex) -> complex:
             if not np.isfinite(w) or abs(w - est[k]) > 0.2 * abs(est[k]):   # left: give up
@@ -151,7 +152,22 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
             continue
         mu, nK = _nearest_zero_eigenvalue(model, w1)
         resid[k] = abs(mu) / nK
-        if not resid[k] < 1e-8 or any(abs(w1 - wj) <= 1e-8 * abs(w1) for wj in found):
+        if not resid[k] < 1e-8:
+            continue
+        same = [j for j, wj in enumerate(found) if abs(w1 - wj) <= 1e-8 * abs(w1)]
+        if same:
+            # found already, yet a zero of the deflated det K: a multiple root (symmetric
+            # robots), the root of every copy of the multiple undamped mode, deflated as
+            # many times
+            f = und.freq_hz
+            j = owners[same[0]]
+            copies = [c for c in np.flatnonzero(np.isnan(out) & np.isfinite(est))
+                      if abs(f[c] - f[j]) <= 1e-9 * f[j]]
+            if copies:
+                c = k if k in copies else copies[0]
+                out[c], resid[c] = w1, resid[k]
+                found.append(w1)
+                owners.append(c)
             continue
         # whose root: the mode its shape matches without ambiguity, else the nearest
         # estimate (close modes of similar shapes); a root is never given to a mode that
@@ -165,4 +181,5 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
         if owner is not None and np.isnan(out[owner]):
             out[owner], resid[owner] = w1, resid[k]
             found.append(w1)
+            owners.append(owner)
     return DampedModes(undamped_freq_hz=und.freq_hz, omega=out, residual=resid)
