@@ -83,3 +83,85 @@ def test_a_pose_given_as_numbers_is_written_and_read_back(tmp_path):
     sc = ds.load_scene("planar2")
     back = ds.load_scene(write_scene(tmp_path / "s.toml", sc.robot, [0.1, 0.0, -10.0]))
     np.testing.assert_array_equal(back.pose.position, [0.1, 0.0, -10.0])
+
+
+def test_header_comments_are_written_line_by_line_empty_lines_as_a_bare_hash():
+    """Each comment line becomes "# line" at the top, an empty one "#", then [scene]."""
+    from dynstiff.scenes import scene_text
+    r = ds.load_scene("planar2").robot
+    text = scene_text(r, comments=["source: CASPR", "", "units: SI"])
+    assert text.splitlines()[:5] == ["# source: CASPR", "#", "# units: SI", "", "[scene]"]
+
+
+def test_values_are_written_as_repr_with_their_unit_comment_on_the_same_line():
+    """g, mass and tension limits are written as the float repr, unit comment on that line."""
+    import re
+
+    from dynstiff.scenes import scene_text
+    r = replace(ds.load_scene("pendulum").robot, g=9.80665, tension_limits=(0.1, 1 / 3))
+    r = replace(r, platform=replace(r.platform, mass=2 / 3))
+    lines = scene_text(r).splitlines()
+    for key, value, unit in (("g", 9.80665, "[m/s^2]"), ("mass", 2 / 3, "[kg]"),
+                             ("min", 0.1, "[N]"), ("max", 1 / 3, "[N]")):
+        pattern = rf"^{key} = {re.escape(repr(value))} +# {re.escape(unit)}$"
+        assert sum(bool(re.match(pattern, ln)) for ln in lines) == 1, (key, lines)
+
+
+def test_single_cable_robot_without_name_or_description_reads_back(tmp_path):
+    """One damped cable ([cable] table), no name ("scene") and no description ("") read back."""
+    r = ds.load_scene("pendulum").robot
+    cable = replace(r.cables[0], viscous_damping=0.25, loss_factor=0.02)
+    r1 = replace(r, anchors=r.anchors[:1], attachments=r.attachments[:1], cables=[cable],
+                 name="")
+    back = ds.load_scene(write_scene(tmp_path / "s.toml", r1))
+    assert_same_robot(back.robot, r1)
+    assert back.robot.cables[0].viscous_damping == 0.25
+    assert back.name == "scene" and back.robot.name == "scene" and back.description == ""
+
+
+def test_trajectories_with_notes_and_workspace_box_read_back(tmp_path):
+    """Trajectories (velocities, accelerations, blend times), notes and box read back."""
+    sc = ds.load_scene("cogiro")
+    quintic = ds.WaypointPath([0.0, 1.5, 3.0], [[0, 0, 1.0], [0.2, 0.1, 1.1], [0.4, 0, 1.0]],
+                              [[0, 0, 0], [0, 0, 0.1], [0, 0, 0.2]], law="quintic",
+                              velocities=[[0, 0, 0], [0.1, 0.05, 0], [0, 0, 0]],
+                              accelerations=[[0, 0, 0], [0.02, 0, -0.01], [0, 0, 0]],
+                              name="pick")
+    blend = ds.WaypointPath([0.0, 2.0], [[0, 0, 1.0], [0.1, 0, 1.0]], [[0, 0, 0]] * 2,
+                            law="parabolic_blend", blend_times=[0.5], name="slow")
+    box = (-1.0, 1.0, -0.5, 0.5, 0.25, 2.0)
+    path = write_scene(tmp_path / "s.toml", sc.robot, sc.pose, trajectories=[quintic, blend],
+                       workspace_box=box, trajectory_notes={"pick": "pick and place along X"})
+    lines = path.read_text(encoding="utf-8").splitlines()
+    heads = [ln for ln in lines if ln.startswith("[[trajectories]]")]
+    assert len(heads) == 2
+    assert heads[0].split(None, 1)[1] == "# pick and place along X"
+    assert heads[1] == "[[trajectories]]"
+    back = ds.load_scene(path)
+    assert back.workspace_box == box
+    assert list(back.trajectories) == ["pick", "slow"]
+    for want in (quintic, blend):
+        got = back.trajectories[want.name]
+        assert got.law == want.law
+        for f in ("times", "positions", "rotations", "velocities", "accelerations"):
+            np.testing.assert_array_equal(getattr(got, f), getattr(want, f))
+    np.testing.assert_array_equal(back.trajectories["slow"].blend_times, [0.5])
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(robot={"anchors": []}), "robot must be a dynstiff.Robot, got dict"),
+    (dict(trajectories=[1.0]), "trajectories must be dynstiff.WaypointPath objects"),
+    (dict(workspace_box=[0, 1, 0, 1]), "workspace_box must be 6 finite numbers x0 x1 y0 y1 "
+     "z0 z1 [m] with x0 <= x1 ..., got [0, 1, 0, 1]"),
+    (dict(workspace_box=[0, np.nan, 0, 1, 0, 1]), "workspace_box must be 6 finite numbers "
+     "x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 ..., got [0, nan, 0, 1, 0, 1]"),
+])
+def test_bad_robot_trajectory_or_box_gives_the_exact_message_and_no_file(tmp_path, kw,
+                                                                         message):
+    """A non-Robot, a non-WaypointPath or a box of 4 or non-finite numbers: exact message."""
+    import re
+    path = tmp_path / "s.toml"
+    kw = {"robot": ds.load_scene("planar2").robot} | kw
+    with pytest.raises(ds.InvalidParameterError, match=f"^{re.escape(message)}$"):
+        write_scene(path, **kw)
+    assert not path.exists()
