@@ -1104,19 +1104,11 @@ EQUIVALENT.update({
     "dynstiff.analyses.reduced.x__floor__mutmut_10":
         "the largest entry of an empty matrix 1 instead of 0: no entry is compared with it",
     "dynstiff.analyses.reduced.x__floor__mutmut_5": _FLOAT,
-    **{f"dynstiff.analyses.damped.x_{f}__mutmut_{n}":
-       "the NaN fill written with another sign or factor: still NaN + NaN j, overwritten or "
-       "tested with isfinite only" for f, n in (("_perturbation_estimates", 8),
-                                                 ("damped_modes", 34), ("damped_modes", 35),
-                                                 ("damped_modes", 36))},
-    "dynstiff.analyses.damped.x_damped_modes__mutmut_2":
-        "max_iter 81 instead of 80: converging roots take at most 45 secant steps",
-    "dynstiff.analyses.damped.x_damped_modes__mutmut_54":
-        "errstate(all=None) around K(omega): no model's K raises a floating-point warning "
-        "where the secant evaluates it (checked with np.seterr(all='raise') on every rung)",
-    **{f"dynstiff.analyses.damped.x_damped_modes__mutmut_{n}":
-       "the second secant start mirrored (1 - 1e-6 (1 + i) or 1 + 1e-6 (1 - i)): an "
-       "arbitrary offset of 1e-6 |omega|; the converged roots agree to 1e-14" for n in (71, 75)},
+    "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_8":
+        "the NaN fill written as NaN - 0j: still NaN, overwritten or tested with isfinite only",
+    "dynstiff.scenes.writer.x__value__mutmut_7":
+        "more characters stripped from a value's text: it ends in a digit, inf, nan or a "
+        "quote, none of them stripped",
 })
 
 def _definitions():
