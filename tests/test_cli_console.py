@@ -1,8 +1,11 @@
 """The console of the command line (dynstiff/cli/console.py): progress bars (tqdm) on a
-terminal, silenced by --quiet and off where standard error is not a terminal."""
+terminal, silenced by --quiet and off where standard error is not a terminal; the first-run
+notice of compiling the kernels and where it looks for their cache."""
 
 import io
 import sys
+
+import pytest
 
 from dynstiff.cli import main
 from dynstiff.cli.console import ProgressBar, elapsed
@@ -62,3 +65,46 @@ def test_elapsed_shows_the_label_and_the_time(monkeypatch):
     with elapsed("report planar2"):
         pass
     assert "report planar2: 00:00" in tty.getvalue()      # drawn, then cleared (leave=False)
+
+
+@pytest.fixture
+def cache_places(monkeypatch, tmp_path):
+    """numba on; the package's own __pycache__ and NUMBA_CACHE_DIR pointed at empty folders
+    of tmp_path (returned), so what the test writes there decides."""
+    from pathlib import Path
+
+    from dynstiff import compiled
+    from dynstiff.cli import console
+    if compiled.load("dsm") is None:
+        pytest.skip("numba is not installed")
+    pkg = tmp_path / "pkg"
+    (pkg / "__pycache__").mkdir(parents=True)
+    monkeypatch.setattr(compiled, "__file__", str(pkg / "__init__.py"))
+    env = tmp_path / "numba-cache"
+    env.mkdir()
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(env))
+    assert not console._kernels_cached()
+    return Path(pkg / "__pycache__"), env
+
+
+@pytest.mark.parametrize("where", ["__pycache__", "NUMBA_CACHE_DIR"])
+def test_kernels_count_as_cached_where_numba_keeps_them(cache_places, where):
+    """The notice of a first compilation looks for the closed form's index file dsm.*.nbi in
+    the package's __pycache__ and in NUMBA_CACHE_DIR (any depth), and nowhere else."""
+    from dynstiff.cli import console
+    folder = cache_places[0] if where == "__pycache__" else cache_places[1] / "a" / "b"
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "statics.fixed_point-1.py311.nbi").write_text("")   # another kernel's
+    (folder / "DSM.x.NBI").write_text("")
+    assert not console._kernels_cached()
+    (folder / "dsm.dsm_count-200.py311.nbi").write_text("")
+    assert console._kernels_cached()
+
+
+def test_without_numba_nothing_is_to_compile(monkeypatch):
+    """numba absent or switched off: the kernels count as cached (no notice)."""
+    from dynstiff import compiled
+    from dynstiff.cli import console
+    monkeypatch.setattr(compiled, "load", lambda name: None)
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    assert console._kernels_cached()
