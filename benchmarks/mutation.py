@@ -1106,6 +1106,12 @@ EQUIVALENT.update({
     "dynstiff.analyses.reduced.x__floor__mutmut_5": _FLOAT,
     "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_8":
         "the NaN fill written as NaN - 0j: still NaN, overwritten or tested with isfinite only",
+    **{f"dynstiff.analyses.eigen_matrix.x_modes__mutmut_{n}":
+       "the local-mode floor 1e-24 of the platform energy against phi^T M phi, which is 1 "
+       "to 1e-15 for mass-normalised modes (>= for >, / for *)" for n in (36, 37)},
+    **{f"dynstiff.plot.common.x_mode_frequencies__mutmut_{n}":
+       "reshape(-2) for reshape(-1): numpy reads any negative size as the one unknown"
+       for n in (16, 39)},
     "dynstiff.scenes.writer.x__value__mutmut_7":
         "more characters stripped from a value's text: it ends in a digit, inf, nan or a "
         "quote, none of them stripped",

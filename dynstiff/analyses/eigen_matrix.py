@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff.errors import InvalidParameterError
+from dynstiff.errors import ConvergenceError, InvalidParameterError
 from dynstiff.results import LumpedModalResult, ModalResult
 
 if TYPE_CHECKING:
@@ -27,6 +27,9 @@ __all__ = ["eig", "eigenfrequencies", "modes", "count_below", "massless_pairing"
 _TWO_PI = 2.0 * np.pi
 #: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
 DENSE_LIMIT = 400
+#: Up to this many DOFs an unstable equilibrium (negative eigenvalues, which the sparse
+#: shift-invert solve misses) is solved densely; above, it is an error.
+UNSTABLE_DENSE_LIMIT = 4000
 
 
 def _dense(A: Any) -> NDArray[np.float64]:
@@ -53,7 +56,21 @@ def eig(model: PlatformModel, n_modes: int) -> tuple[NDArray[np.float64], NDArra
             f"{model.rung!r} model), got {n_modes!r}")
     K, M = model.matrices()
     K = 0.5 * (K + K.T)
-    if model.n_dof <= DENSE_LIMIT or n_modes >= model.n_dof // 2:
+    dense = model.n_dof <= DENSE_LIMIT or n_modes >= model.n_dof // 2
+    if not dense:
+        # an unstable equilibrium has negative eigenvalues, below the shift: the shift-invert
+        # solve would miss them (the inertia of K says how many, M being positive)
+        negative = _negative_count(K)
+        if negative != 0:
+            if model.n_dof > UNSTABLE_DENSE_LIMIT:
+                raise ConvergenceError(
+                    f"the {model.rung!r} model's stiffness has negative eigenvalues (an "
+                    f"unstable equilibrium: {negative} counted, None where its inertia could "
+                    f"not be read): the sparse solver would miss them, and {model.n_dof} DOFs "
+                    f"are more than the dense solver's {UNSTABLE_DENSE_LIMIT}; use fewer "
+                    f"segments")
+            dense = True
+    if dense:
         return scipy.linalg.eigh(_dense(K), _dense(M), subset_by_index=[0, n_modes - 1])
     # shift-invert about sigma < 0, below every eigenvalue of a stable equilibrium: the
     # eigenvalues nearest sigma are then the lowest ones. min K_kk / M_kk bounds the lowest
@@ -65,6 +82,25 @@ def eig(model: PlatformModel, n_modes: int) -> tuple[NDArray[np.float64], NDArra
     order = np.argsort(lam)
     lam, V = lam[order], V[:, order]
     return lam, V / np.sqrt(np.einsum("ij,ij->j", V, M @ V))
+
+
+def _negative_count(K: Any) -> int | None:
+    """Number of negative eigenvalues of the symmetric sparse K (Sylvester's law of inertia:
+    the signs of the pivots of P K P^T = L D L^T, a sparse LU with diagonal pivots and a
+    symmetric ordering), None where the factorisation is singular or pivots off the
+    diagonal (then the caller solves densely)."""
+    import scipy.sparse
+    import scipy.sparse.linalg
+    try:
+        lu = scipy.sparse.linalg.splu(scipy.sparse.csc_matrix(K), permc_spec="MMD_AT_PLUS_A",
+                                      diag_pivot_thresh=0.0,
+                                      options={"SymmetricMode": True})
+    except RuntimeError:                       # exactly singular
+        return None
+    if not np.array_equal(lu.perm_r, lu.perm_c):
+        return None
+    d = lu.U.diagonal()
+    return int(np.sum(d < 0)) if np.all(np.isfinite(d)) and np.all(d != 0) else None
 
 
 def _to_hz(lam: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
