@@ -80,7 +80,7 @@ def compare_modes(closed_form_modes: ModalResult,
     rest_b = np.setdiff1d(np.arange(len(b)), [p[1] for p in pairs])
     if rest_a.size and rest_b.size:
         with np.errstate(divide="ignore", invalid="ignore"):
-            cost = np.log(b.freq_hz[rest_b][None, :] / a.freq_hz[rest_a][:, None]) ** 2
+            cost = np.abs(np.log(b.freq_hz[rest_b][None, :] / a.freq_hz[rest_a][:, None]))
         cost = np.nan_to_num(cost, nan=1e300, posinf=1e300)
         ri, ci = linear_sum_assignment(cost)
         for p, q in zip(ri, ci):
@@ -99,6 +99,8 @@ def compare_modes(closed_form_modes: ModalResult,
     pairs.sort(key=lambda p: (p[0] is None, p[0] if p[0] is not None else p[1]))
     fa = np.array([a.freq_hz[i] if i is not None else np.nan for i, *_ in pairs])
     fb = np.array([b.freq_hz[j] if j is not None else np.nan for _, j, *_ in pairs])
+    with np.errstate(divide="ignore", invalid="ignore"):     # a 0 Hz mode: inf or NaN
+        relative = fb / fa - 1.0
     return pd.DataFrame({
         "closed-form mode": pd.array([i + 1 if i is not None else None
                                       for i, *_ in pairs], dtype="Int64"),
@@ -108,7 +110,7 @@ def compare_modes(closed_form_modes: ModalResult,
         "kind (lumped)": [b.kind[j] if j is not None else None for _, j, *_ in pairs],
         "closed-form freq [Hz]": fa,
         "lumped freq [Hz]": fb,
-        "relative difference [-]": fb / fa - 1.0,
+        "relative difference [-]": relative,
         "MAC [-]": [mac[i, j] if i is not None and j is not None else np.nan
                     for i, j, *_ in pairs],
         "matched by": [p[2] for p in pairs],
