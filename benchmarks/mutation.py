@@ -1106,6 +1106,14 @@ EQUIVALENT.update({
     "dynstiff.analyses.reduced.x__floor__mutmut_5": _FLOAT,
     "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_8":
         "the NaN fill written as NaN - 0j: still NaN, overwritten or tested with isfinite only",
+    "dynstiff.analyses.damped.x_damped_modes__mutmut_36":
+        "the NaN fill written as NaN - i NaN: still NaN, overwritten or tested with isfinite",
+    "dynstiff.analyses.damped.x_damped_modes__mutmut_2":
+        "max_iter 81 instead of 80: converging roots take at most 45 secant steps",
+    "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_32":
+        "K_d + K_u instead of K_d - K_u in the estimate: the extra 2 x^T K_u(omega_r) x is 0 "
+        "at the undamped root (x its null vector); the estimate moves by 1e-8 of its own "
+        "error, the converged root not at all",
     **{f"dynstiff.analyses.eigen_matrix.x_modes__mutmut_{n}":
        "the local-mode floor 1e-24 of the platform energy against phi^T M phi, which is 1 "
        "to 1e-15 for mass-normalised modes (>= for >, / for *)" for n in (36, 37)},
