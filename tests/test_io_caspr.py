@@ -150,13 +150,29 @@ def write(tmp_path, jtype="SPATIAL_EULER_XYZ", q="1 2 3 0.1 0.2 0.3", extra="", 
      3),
     ("S_EULER_XYZ", "0.1 0.2 0.3", [0.5, 0, 0], Rotation.from_euler("XYZ", [0.1, 0.2, 0.3]),
      3),
+    ("SPATIAL_QUATERNION", "1 2 3 0.9238795 0 0.3826834 0", [1.5, 2, 3],
+     Rotation.from_rotvec([0, np.pi / 4, 0]), 6),
+    ("SPHERICAL", "0.9238795 0 0.3826834 0", [0.5, 0, 0],
+     Rotation.from_rotvec([0, np.pi / 4, 0]), 3),
 ])
 def test_joint_types_give_pose_and_free_dofs(tmp_path, jtype, q, position, R, free):
     m = read_caspr(*write(tmp_path, jtype, q))
+    assert m.name == "box" and m.joint_type == jtype
     np.testing.assert_allclose(m.position, position, atol=1e-12)
     np.testing.assert_allclose(Rotation.from_rotvec(m.rotation).as_matrix(), R.as_matrix(),
                                atol=1e-6)
     assert len(m.free_dofs) == free
+
+
+@pytest.mark.parametrize("jtype", ["SPATIAL_EULER_XYZ", "SPATIAL", "SPATIAL_QUATERNION",
+                                   "T_XYZ", "S_EULER_XYZ", "S_FIXED_XYZ", "SPHERICAL"])
+def test_joint_without_q_initial_sits_at_its_parent_location_unrotated(tmp_path, jtype):
+    """No q_initial: P at the parent location (0.5 0 0), identity orientation (unit quaternion)."""
+    b, c = write(tmp_path, jtype)
+    b.write_text(b.read_text().replace(' q_initial="1 2 3 0.1 0.2 0.3"', ""))
+    m = read_caspr(b, c)
+    np.testing.assert_array_equal(m.position, [0.5, 0.0, 0.0])
+    np.testing.assert_array_equal(m.rotation, [0.0, 0.0, 0.0])
 
 
 def test_euler_xyz_is_rx_ry_rz():
@@ -200,6 +216,97 @@ def test_unsupported_and_malformed_files_fail_with_one_clear_error(tmp_path, kin
         read_caspr(b, c)
     assert "\n" not in str(exc.value) and str(b) in str(exc.value)
     assert isinstance(exc.value, ds.DynstiffError)
+
+
+@pytest.mark.parametrize("file, old, new, message", [
+    ("b", "<Ixx>1</Ixx>", "<Ixx>1 2</Ixx>", "<inertia><Ixx> must be 1 finite number, got '1 2'"),
+    ("b", "<location>0.5 0 0</location>", "<location>0.5 0</location>",
+     "<parent><location> must be 3 finite numbers, got '0.5 0'"),
+    ("b", "physical>", "physics>", "link 'box' has no <physical>"),
+    ("b", 'q_initial="1 2 3 0.1 0.2 0.3"', 'q_initial="1 2 3 0.1 0.2 0.3" q_min="0 0 0" '
+     'q_max="1 1 1 1 1 1"', "q_min of the SPATIAL_EULER_XYZ joint must be 6 finite numbers, "
+     "got '0 0 0'"),
+    ("b", 'q_initial="1 2 3 0.1 0.2 0.3"', 'q_initial="1 2 3 0.1 0.2 0.3" q_min="0 0 0 0 0 0" '
+     'q_max="1 -1 1 1 1 1"', "q_min [0.0, 0.0, 0.0, 0.0, 0.0, 0.0] exceeds q_max "
+     "[1.0, -1.0, 1.0, 1.0, 1.0, 1.0] of the SPATIAL_EULER_XYZ joint"),
+    ("c", "<force_min>5</force_min>", "", "missing cable 'c1' <force_min>"),
+    ("c", "<link>1</link>", "<link>0</link>", "cable 'c1' runs through links ['0', '0']; "
+     "dynstiff needs one attachment on the base (link 0) and one on the platform (link 1)"),
+])
+def test_malformed_element_is_refused_naming_file_element_and_value(tmp_path, file, old, new,
+                                                                    message):
+    """A malformed element raises one CasprError: '<file>: <element> ... <value>'."""
+    b, c = write(tmp_path)
+    target = b if file == "b" else c
+    assert old in target.read_text()
+    target.write_text(target.read_text().replace(old, new))
+    with pytest.raises(CasprError) as exc:
+        read_caspr(b, c)
+    assert str(exc.value) == f"{target}: {message}"
+
+
+TWO_SETS = """<cables{default}><cable_set id="s">
+  <cable_ideal name="c1"><properties><force_min>5</force_min><force_max>50</force_max>
+  </properties><attachments><attachment><link>0</link><location>1 2 3</location></attachment>
+  <attachment><link>1</link><location>0.1 0.2 0.3</location></attachment></attachments>
+  </cable_ideal>
+  <cable_ideal><properties><force_min>6</force_min><force_max>60</force_max></properties>
+  <attachments><attachment><link>0</link><location>-1 -2 3</location></attachment>
+  <attachment><link>1</link><location>-0.1 -0.2 0.3</location></attachment></attachments>
+  </cable_ideal></cable_set>{other}</cables>"""
+OTHER_SET = """<cable_set id="t"><cable_ideal name="t1"><properties><force_min>1</force_min>
+  <force_max>2</force_max></properties><attachments>
+  <attachment><link>0</link><location>4 5 6</location></attachment>
+  <attachment><link>1</link><location>0 0 0</location></attachment></attachments>
+  </cable_ideal></cable_set>"""
+
+
+def test_cable_set_without_default_is_the_only_set_or_must_be_named(tmp_path):
+    """No default_cable_set: a lone set is read; with two, cable_set must name one."""
+    b, c = write(tmp_path)
+    c.write_text(TWO_SETS.format(default="", other=""))
+    m = read_caspr(b, c)
+    assert m.cable_set == "s"
+    np.testing.assert_array_equal(m.anchors, [[1, 2, 3], [-1, -2, 3]])
+    np.testing.assert_array_equal(m.attachments, [[0.1, 0.2, 0.3], [-0.1, -0.2, 0.3]])
+    np.testing.assert_array_equal(m.force_min, [5, 6])
+    np.testing.assert_array_equal(m.force_max, [50, 60])
+    c.write_text(TWO_SETS.format(default="", other=OTHER_SET))
+    with pytest.raises(CasprError) as exc:
+        read_caspr(b, c)
+    assert str(exc.value) == f"{c}: no default_cable_set; give cable_set, one of ['s', 't']"
+    m = read_caspr(b, c, cable_set="t")
+    assert m.cable_set == "t" and m.cable_names == ("t1",)
+    np.testing.assert_array_equal(m.anchors, [[4, 5, 6]])
+
+
+def test_cable_names_are_read_and_an_unnamed_cable_is_numbered(tmp_path):
+    """cable_names: each cable's name attribute, else 'cable k' (k: its 0-based index)."""
+    b, c = write(tmp_path)
+    c.write_text(TWO_SETS.format(default=' default_cable_set="s"', other=""))
+    assert read_caspr(b, c).cable_names == ("c1", "cable 1")
+
+
+def test_off_diagonal_inertia_sign_follows_the_convention_and_warns(tmp_path):
+    """Printed Ixy, Ixz, Iyz: tensor entries -value ('products') or +value ('tensor'), warned."""
+    b, c = write(tmp_path)
+    b.write_text(b.read_text().replace("<Ixy>0</Ixy>", "<Ixy>0.5</Ixy>")
+                 .replace("<Ixz>0</Ixz>", "<Ixz>-0.25</Ixz>")
+                 .replace("<Iyz>0</Iyz>", "<Iyz>0.125</Iyz>"))
+    tensor = np.array([[1.0, 0.5, -0.25], [0.5, 2.0, 0.125], [-0.25, 0.125, 3.0]])
+    off = ~np.eye(3, dtype=bool)
+    for convention, sign, what in (
+            ("products", -1.0, "products of inertia (tensor entry = -printed value)"),
+            ("tensor", 1.0, "tensor entries (CASPR's code; products of inertia would change "
+                            "sign)")):
+        with pytest.warns(InertiaConventionWarning) as rec:
+            m = read_caspr(b, c, inertia_convention=convention)
+        assert [str(w.message) for w in rec] == [
+            f"{b}: Ixy, Ixz, Iyz read as {what}: inertia_convention='{convention}'"]
+        assert rec[0].filename == __file__                  # the caller's line
+        np.testing.assert_array_equal(m.inertia[off], sign * tensor[off])
+        np.testing.assert_array_equal(np.diag(m.inertia), [1.0, 2.0, 3.0])
+        assert m.convention == convention
 
 
 def test_unknown_convention_is_named(tmp_path):
@@ -286,3 +393,15 @@ def test_pulley_attachments_are_refused_with_the_sets_to_choose(tmp_path):
     c.write_text(text)
     with pytest.raises(CasprError, match=r"plain <attachment>s, one of \['plain'\]"):
         read_caspr(b, c)
+
+
+def test_the_inertia_warning_points_at_the_callers_line():
+    """Robot.from_caspr and import_caspr warn at the line that called them, as read_caspr."""
+    from dynstiff.scenes.caspr import import_caspr
+    cable = ds.load_scene("cogiro").robot.cables[0]         # CoGiRo's file has products
+    with pytest.warns(InertiaConventionWarning) as rec:
+        ds.Robot.from_caspr(*COG, cable)
+    assert rec[0].filename == __file__
+    with pytest.warns(InertiaConventionWarning) as rec:
+        import_caspr(*COG, cable)
+    assert rec[0].filename == __file__

@@ -288,7 +288,7 @@ def _read_body(path, inertia_convention, stacklevel):
                 "tensor entries (CASPR's code; products of inertia would change sign)")
         warnings.warn(f"{path}: Ixy, Ixz, Iyz read as {what}: inertia_convention="
                       f"{inertia_convention!r}", InertiaConventionWarning,
-                      stacklevel=stacklevel + 1)
+                      stacklevel=stacklevel)
     parent = link.find("parent")
     origin = np.zeros(3)
     if parent is not None:
