@@ -28,7 +28,9 @@ def compare_modes(closed_form_modes: ModalResult,
     Global modes (kind "global" in both results) are paired by the MAC of their platform
     shapes, MAC = (a^T W b)^2 / ((a^T W a)(b^T W b)), with an optimal one-to-one assignment
     (Hungarian algorithm, largest total MAC). The remaining modes (local cable modes, and
-    global modes left unpaired) are paired by frequency, minimising the sum of |ln(f_b/f_a)|;
+    global modes left unpaired) are paired by frequency, minimising the sum of ln^2(f_b/f_a)
+    (squares: the sum of |ln| ties between crossed and uncrossed pairs of close modes, and
+    the order-preserving pairing of a family of local modes is then left to chance);
     modes left over in either result get a row with the other side empty.
 
     Parameters
@@ -49,7 +51,7 @@ def compare_modes(closed_form_modes: ModalResult,
         "lumped freq [Hz]", "relative difference [-]" (f_lumped / f_closed - 1), "MAC [-]"
         (NaN where a platform shape is zero), "matched by" ("MAC" or "frequency"), and
         "match quality [-]": the MAC for MAC pairs; for frequency pairs
-        1 - |ln(f_b/f_a)| / |ln(f_b'/f_a)|, f_b' the nearest other unpaired lumped frequency
+        1 - ln^2(f_b/f_a) / ln^2(f_b'/f_a), f_b' the nearest other unpaired lumped frequency
         (1: unambiguous, 0: another mode is as close).
     """
     import pandas as pd
@@ -80,7 +82,7 @@ def compare_modes(closed_form_modes: ModalResult,
     rest_b = np.setdiff1d(np.arange(len(b)), [p[1] for p in pairs])
     if rest_a.size and rest_b.size:
         with np.errstate(divide="ignore", invalid="ignore"):
-            cost = np.abs(np.log(b.freq_hz[rest_b][None, :] / a.freq_hz[rest_a][:, None]))
+            cost = np.log(b.freq_hz[rest_b][None, :] / a.freq_hz[rest_a][:, None]) ** 2
         cost = np.nan_to_num(cost, nan=1e300, posinf=1e300)
         ri, ci = linear_sum_assignment(cost)
         for p, q in zip(ri, ci):
