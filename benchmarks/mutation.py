@@ -133,7 +133,8 @@ timedomain.inputs               19      10 / 9 / 0          19 / 0 / 0 (P)      
   about 4 on 2 cores) are not rechecked. Not judged yet: _vec (54), the rest of the
   samples of catenary, chord, pose, psi's new source, damped, inputs and eigen_matrix.
   Sources changed after their rows: compare_lumped (its documentation, and the relative
-  difference's errstate) and io.caspr (the warning's stacklevel); their equivalents are
+  difference's errstate), io.caspr (the warning's stacklevel) and damped (K at a root
+  evaluated once for its residual and its shape, not twice); their equivalents are
   named on the sources judged and stamped where the code is unchanged.
 
   * results: judged on its last source (DampedModes' repr edited last); its two

@@ -18,7 +18,6 @@ if TYPE_CHECKING:
     from numpy.typing import NDArray
 
     from dynstiff.models.base import PlatformModel
-    from dynstiff.models.dsm import FrequencyModel
     from dynstiff.results import ModalResult
 
 __all__ = ["damped_modes", "DampedModes"]
@@ -26,27 +25,22 @@ __all__ = ["damped_modes", "DampedModes"]
 _TWO_PI = 2.0 * np.pi
 
 
-def _nearest_zero_eigenvalue(model: FrequencyModel, w: complex) -> tuple[complex, float]:
-    with np.errstate(all="ignore"):
-        K = model.dynamic_stiffness(w)[0]
+def _nearest_zero_eigenvalue(K: NDArray[np.complex128]) -> tuple[complex, float]:
+    """The eigenvalue of K nearest zero and ||K||_2 ((inf, 1) where K is not finite)."""
     if not np.all(np.isfinite(K)):
         return np.inf, 1.0
     mu = np.linalg.eigvals(K)
     return mu[np.argmin(np.abs(mu))], np.linalg.norm(K, 2)
 
 
-def _shape_owner(model: PlatformModel, w: complex, shapes: NDArray[np.float64],
-                 candidates: NDArray[np.bool_]) -> int | None:
+def _shape_owner(K: NDArray[np.complex128], M: NDArray[np.float64],
+                 shapes: NDArray[np.float64], candidates: NDArray[np.bool_]) -> int | None:
     """The undamped mode whose platform shape the root's null vector matches without
-    ambiguity, or None: the mass-weighted MAC_j = |x_j^T M_p v|^2 / (x_j^T M_p x_j v^H M_p v)
-    of the null vector v of K(w) (its least singular vector) is above 0.9 for that mode and
-    below 0.5 for every other candidate (theory.md §5.4). ``shapes`` (n, n_free), real."""
-    with np.errstate(all="ignore"):
-        K = model.dynamic_stiffness(w)[0]
-    if not np.all(np.isfinite(K)):
-        return None
+    ambiguity, or None: the mass-weighted MAC_j = |x_j^T M v|^2 / (x_j^T M x_j v^H M v) of
+    the null vector v of K (finite, at the root; its least singular vector), M the platform
+    mass, is above 0.9 for that mode and below 0.5 for every other candidate (theory.md
+    §5.4). ``shapes`` (n, n_free), real."""
     v = np.linalg.svd(K)[2][-1].conj()
-    M = model.platform_mass
     den = np.einsum("ki,ij,kj->k", shapes, M, shapes) * np.real(v.conj() @ M @ v)
     with np.errstate(all="ignore"):
         mac = np.where(candidates, np.abs(shapes @ M @ v) ** 2 / den, 0.0)
@@ -150,7 +144,9 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
                 break
         if not np.isfinite(g1):
             continue
-        mu, nK = _nearest_zero_eigenvalue(model, w1)
+        with np.errstate(all="ignore"):
+            K = model.dynamic_stiffness(w1)[0]
+        mu, nK = _nearest_zero_eigenvalue(K)
         resid[k] = abs(mu) / nK
         if not resid[k] < 1e-8:
             continue
@@ -172,7 +168,7 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
         # whose root: the mode its shape matches without ambiguity, else the nearest
         # estimate (close modes of similar shapes); a root is never given to a mode that
         # has one, so a wrong attribution leaves NaN, not another mode's root
-        owner = _shape_owner(model, w1, shapes, np.isfinite(est))
+        owner = _shape_owner(K, model.platform_mass, shapes, np.isfinite(est))
         if owner is None:
             others = np.delete(est, k)
             others = others[np.isfinite(others)]
