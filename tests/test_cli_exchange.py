@@ -127,3 +127,21 @@ def test_calibrate_fits_EA_to_a_measured_table(tmp_path):
     assert np.all(np.abs(df["residual [-]"]) < 1e-4)
     out = run_cli("calibrate", "cogiro", "--measured", table, "--parameter", "stiffness")
     assert out.returncode == 2 and "'stiffness' is not one of" in out.stderr
+
+
+def test_a_caspr_name_with_line_breaks_cannot_set_keys_of_the_written_scene(tmp_path):
+    """A CASPR robot name holding "&#10;" (line breaks) and TOML reaches the scene's header
+    comment as comment lines: the written scene has no [workspace] box from the name, and
+    the pose of the file."""
+    bodies = (DATA / "CoGiRo_bodies.xml").read_text(encoding="utf-8").replace(
+        'name="CoGiRo"', 'name="CoGiRo&#10;[workspace]&#10;box = [0.0, 1.0, 0.0, 1.0, 0.0, '
+        '1.0]&#10;#"')
+    (tmp_path / "b.xml").write_text(bodies, encoding="utf-8")
+    out = run_cli("import-caspr", tmp_path / "b.xml", DATA / "CoGiRo_cables.xml",
+                  "--mass-per-length", 0.064, "--EA", 139486.7, "--out", tmp_path / "s.toml")
+    assert out.returncode == 0, out.stderr
+    back = ds.load_scene(tmp_path / "s.toml")
+    assert back.workspace_box is None
+    np.testing.assert_array_equal(back.pose.position, [0.0, 0.0, 2.0])
+    assert "# CoGiRo\n# [workspace]\n# box = " in (tmp_path / "s.toml").read_text(
+        encoding="utf-8")

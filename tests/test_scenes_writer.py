@@ -165,3 +165,33 @@ def test_bad_robot_trajectory_or_box_gives_the_exact_message_and_no_file(tmp_pat
     with pytest.raises(ds.InvalidParameterError, match=f"^{re.escape(message)}$"):
         write_scene(path, **kw)
     assert not path.exists()
+
+
+def test_comment_text_cannot_end_its_comment_and_be_read_as_toml(tmp_path):
+    """Line breaks and control characters in the header comments, the cable names and the
+    trajectory notes (a CASPR file's names reach all three) are written as escapes: the
+    scene reads back to the same robot, with no key set by the text; a note ending in "#"
+    keeps it."""
+    from dynstiff.scenes import scene_text
+    sc = ds.load_scene("cogiro")
+    inject = "x\n[workspace]\nbox = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0]\r\nEA = 1.0\x1b\x00#"
+    names = [f"c{k}" for k in range(8)]
+    names[3] = "a\nEA = 1.0\n#"
+    path_ = ds.WaypointPath([0.0, 1.0], [[0, 0, 1.0], [0.1, 0, 1.0]], [[0, 0, 0]] * 2,
+                            name="p")
+    text = scene_text(sc.robot, sc.pose, comments=[inject, "two\nlines"], cable_names=names,
+                      trajectories=[path_], trajectory_notes={"p": inject})
+    (tmp_path / "s.toml").write_text(text, encoding="utf-8")
+    back = ds.load_scene(tmp_path / "s.toml")
+    assert_same_robot(back.robot, sc.robot)
+    assert back.workspace_box is None
+    lines = text.splitlines()
+    escaped = r"x\n[workspace]\nbox = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0]\r\nEA = 1.0\x1b\x00#"
+    assert lines[:5] == ["# x", "# [workspace]", "# box = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0]",
+                         r"# EA = 1.0\x1b\x00#", "# two"]
+    assert sum(ln.endswith(r"# cable 3 (a\nEA = 1.0\n#)") for ln in lines) == 1
+    head = [ln for ln in lines if ln.startswith("[[trajectories]]")]
+    assert head == [f"{'[[trajectories]]':<44}# {escaped}"]
+    tab = scene_text(sc.robot, comments=["a\tb"]).splitlines()[0]
+    assert tab == "# a\tb"
+

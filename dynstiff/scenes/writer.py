@@ -5,6 +5,7 @@ that reads back to the same float), so ``read_scene(write_scene(...))`` gives th
 bit for bit; the layout and the comments (units, conventions) are the writer's.
 """
 
+import unicodedata
 from pathlib import Path
 
 import numpy as np
@@ -35,6 +36,15 @@ def _toml_str(s):
     return _value(str(s))
 
 
+def _comment(text):
+    """``text`` made safe for a TOML comment: a line break would end the comment and let the
+    rest be read as TOML (a cable name ``"a\\nEA = 1"`` would set that cable's EA), and TOML
+    forbids the other control characters in a comment, so all of them but the tab are
+    written as their escapes (``\\n``, ``\\x1b``)."""
+    return "".join(ch if ch == "\t" or unicodedata.category(ch) != "Cc"
+                   else ch.encode("unicode_escape").decode("ascii") for ch in str(text))
+
+
 def _cable_lines(c):
     lines = [f"mass_per_length = {_num(c.mass_per_length)}", f"EA = {_num(c.EA)}"]
     if c.viscous_damping:
@@ -49,7 +59,8 @@ def _rows(a):
 
 
 def _trajectory_lines(path, note):
-    out = ["", f"[[trajectories]]                            # {note}".rstrip(" #"),
+    head = "[[trajectories]]"
+    out = ["", f"{head:<44}# {_comment(note)}" if note else head,
            f"name = {_toml_str(path.name)}",
            f"law = {_toml_str(path.law)}                          # between the waypoints",
            f"times = {_vec(path.times)}   # [s]",
@@ -75,7 +86,10 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
         Written as ``[pose]`` (position [m], rotation vector [rad]).
     name, description : str
     comments : sequence of str
-        Lines for the header comment (source, conventions ...).
+        Lines for the header comment (source, conventions ...); one holding line breaks
+        gives a comment line for each of its lines. In every comment (these, the cable
+        names, the trajectory notes) control characters are written as escapes, so no
+        text can end a comment and be read as TOML.
     cable_names : sequence of str, optional
         Names in the comment above each ``[[cables]]``, after its 0-based number
         (``# cable 0 (NAME)``).
@@ -117,7 +131,7 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
                 f"workspace_box must be 6 finite numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 "
                 f"..., got {workspace_box!r}")
     name = name or robot.name or "scene"
-    out = [f"# {c}" if c else "#" for c in comments]
+    out = [f"# {_comment(line)}".rstrip() for c in comments for line in c.splitlines() or [""]]
     out += ["", "[scene]", f"name = {_toml_str(name)}",
             f"description = {_toml_str(description)}",
             f"g = {_num(robot.g)}                                  # [m/s^2]", ""]
@@ -142,7 +156,8 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     out += ["", "# anchor a_j [m, base frame]; attachment b_j [m, platform frame]; cables are",
             "# numbered from 0 in the order below, as in every output of dynstiff"]
     for k in range(robot.n_cables):
-        label = f"cable {k}" + (f" ({cable_names[k]})" if cable_names is not None else "")
+        label = f"cable {k}" + (f" ({_comment(cable_names[k])})" if cable_names is not None
+                                else "")
         out += [f"[[cables]]                                  # {label}",
                 f"anchor = {_vec(robot.anchors[k])}",
                 f"attachment = {_vec(robot.attachments[k])}"]
