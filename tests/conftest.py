@@ -172,10 +172,48 @@ def beaded_string(n_segments, cable=BEAD):
     return state, tension
 
 
-def run_cli(*args):
-    """``python -m dynstiff ARGS`` in a subprocess (text output captured)."""
-    return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
-                          text=True)
+def run_cli(*args, cwd=None, in_subprocess=False):
+    """The command line ``dynstiff ARGS`` with its output captured, as
+    ``subprocess.CompletedProcess`` (returncode, stdout, stderr), run in folder ``cwd``.
+
+    In this process by default: ``dynstiff.cli.main(ARGS)`` with stdout and stderr
+    redirected and the interpreter's warning filters (what the tests of a command reach is
+    then seen by coverage and mutation testing, and no interpreter starts); an exception
+    leaving ``main`` is written to stderr as Python would, exit code 1, and fails the test
+    unless ``--debug`` was given (a command fails with one line). ``in_subprocess=True``
+    runs ``python -m dynstiff ARGS`` instead (the entry point itself, interrupts)."""
+    import contextlib
+    import io
+    import traceback
+    import warnings
+    args = [str(a) for a in args]
+    if in_subprocess:
+        return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
+                              text=True, cwd=cwd)
+    from dynstiff.cli import main
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.ExitStack() as stack:
+        if cwd is not None:
+            stack.enter_context(contextlib.chdir(cwd))
+        stack.enter_context(contextlib.redirect_stdout(out))
+        stack.enter_context(contextlib.redirect_stderr(err))
+        stack.enter_context(warnings.catch_warnings())
+        warnings.resetwarnings()                    # the interpreter's filters, not the suite's
+        warnings.simplefilter("default")            # "error" for dynstiff's warnings
+        for category in (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
+                         ResourceWarning):
+            warnings.simplefilter("ignore", category)
+        try:
+            code = main(args)
+        except SystemExit as exc:                   # argparse's -h and --version
+            code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+        except Exception:                           # as the interpreter: traceback, exit 1
+            traceback.print_exc(file=err)
+            code = 1
+    assert "Traceback" not in err.getvalue() or "--debug" in args, err.getvalue()[-2000:]
+    return subprocess.CompletedProcess(["dynstiff", *args], code, out.getvalue(),
+                                       err.getvalue())
+
 
 @pytest.fixture
 def no_traceback(monkeypatch):

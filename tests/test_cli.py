@@ -1,11 +1,10 @@
-"""The command line (dynstiff/cli/__init__.py, `python -m dynstiff`), run in subprocesses: demo,
-modes, frf, sweep, simulate and check; their tables and figures are read back and compared
+"""The command line (dynstiff/cli/__init__.py, `python -m dynstiff`), run in this process
+(conftest.run_cli; the entry point in a subprocess): demo, modes, frf, sweep, simulate and
+check; their tables and figures are read back and compared
 with the library, and bad arguments exit with status 2 and a message naming them."""
 
 import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
@@ -16,12 +15,9 @@ import dynstiff as ds
 pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
 
 
-
-
 # ---------------------------------------------------------- modes, frf, sweep, simulate
 def test_cli_rejects_unknown_option():
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--bogus"],
-                         capture_output=True, text=True)
+    out = run_cli("demo", "--bogus")
     assert out.returncode == 2
     assert "--bogus" in out.stderr
 
@@ -54,11 +50,9 @@ def test_cli_malformed_toml_and_unknown_options(tmp_path):
 
 def test_cli_version_and_metadata_in_json(tmp_path):
     import json
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "--version"], capture_output=True,
-                         text=True)
+    out = run_cli("--version", in_subprocess=True)         # the entry point itself
     assert out.returncode == 0 and out.stdout.strip() == f"dynstiff {ds.__version__}"
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "modes", "planar2", "-n", "4",
-                          "--json", str(tmp_path / "m.json")], capture_output=True, text=True)
+    out = run_cli("modes", "planar2", "-n", "4", "--json", tmp_path / "m.json")
     assert out.returncode == 0, out.stderr
     d = json.loads((tmp_path / "m.json").read_text())
     meta = d["metadata"]

@@ -1,9 +1,7 @@
-"""The `dynstiff` command line, run in subprocesses: `scenes`, `modes`, `frf` and `check`
-(dynstiff/cli/analysis.py)."""
+"""The `dynstiff` command line, run in this process (conftest.run_cli): `scenes`, `modes`,
+`frf` and `check` (dynstiff/cli/analysis.py)."""
 
 import re
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -90,8 +88,8 @@ def test_frf_of_a_held_dof_is_refused_not_zero():
 
 # -------------------------------------------------------------------------------- check
 def test_cli_check_exit_codes():
-    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
-                                    capture_output=True, text=True)
+    def run(*a):
+        return run_cli("check", *a)
     assert run("cogiro", "--forbidden-band", "1", "2").returncode == 0
     out = run("cogiro", "--forbidden-band", "4", "5")
     assert out.returncode == 1 and "FAIL    platform modes outside band" in out.stdout
@@ -105,16 +103,14 @@ def test_cli_check_fails_a_mixed_platform_mode_in_band(tmp_path):
     from dynstiff.scenes.loader import SCENE_DIR
     text = (SCENE_DIR / "cogiro.toml").read_text().replace("mass = 91.058", "mass = 50.0")
     (tmp_path / "m50.toml").write_text(text)
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
-                          "--forbidden-band", "2.0", "2.3"], capture_output=True, text=True)
+    out = run_cli("check", tmp_path / "m50.toml", "--forbidden-band", "2.0", "2.3")
     assert out.returncode == 1, out.stdout + out.stderr
     line = [ln for ln in out.stdout.splitlines() if "platform modes outside band" in ln][0]
     assert line.startswith("FAIL") and "2.216 Hz" in line and "platform share 42 %" in line
     assert "FAIL    platform receptance in band" in out.stdout
     # --participation above the share and --frf-limit above the amplification: passes
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "check", str(tmp_path / "m50.toml"),
-                          "--forbidden-band", "2.0", "2.3", "--participation", "0.45",
-                          "--frf-limit", "100"], capture_output=True, text=True)
+    out = run_cli("check", tmp_path / "m50.toml", "--forbidden-band", "2.0", "2.3",
+                  "--participation", "0.45", "--frf-limit", "100")
     assert "PASS    platform modes outside band" in out.stdout
     assert "PASS    platform receptance in band" in out.stdout
 
@@ -124,8 +120,7 @@ def test_cli_frf_peak_does_not_depend_on_points():
     points differ by < 1 % (the grid is refined at every mode); --damping 0 0 0 gives the
     undamped model, whose peak is far higher."""
     def peak(*a):
-        out = subprocess.run([sys.executable, "-m", "dynstiff", "frf", "cogiro", "--band",
-                              "0.5", "6", *a], capture_output=True, text=True)
+        out = run_cli("frf", "cogiro", "--band", "0.5", "6", *a)
         assert out.returncode == 0, out.stderr
         assert "damping: platform modal ratio" in out.stdout
         return float(re.search(r"largest \|H\| = ([0-9.e+-]+)", out.stdout).group(1))
@@ -136,8 +131,8 @@ def test_cli_frf_peak_does_not_depend_on_points():
 
 
 def test_cli_check_defaults_to_the_scenes_forbidden_band():
-    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
-                                    capture_output=True, text=True)
+    def run(*a):
+        return run_cli("check", *a)
     out = run("cogiro")                                    # forbidden_band_hz = [0, 1.5]
     assert out.returncode == 0 and "[0, 1.5] Hz" in out.stdout, out.stdout + out.stderr
     out = run("sixcable")                                  # no forbidden band in the scene
@@ -204,8 +199,8 @@ def test_check_writes_its_table_on_every_built_in_scene(tmp_path, scene, capsys)
 def test_cli_check_with_uncertain_parameters():
     """``--uncertain EA=10%``: the uncertain row (EA's sigma 10 %: about 16 % of the robots
     put a platform mode within 5 % of a 0-2 Hz band) and the exit code of a failing row."""
-    run = lambda *a: subprocess.run([sys.executable, "-m", "dynstiff", "check", *a],
-                                    capture_output=True, text=True)
+    def run(*a):
+        return run_cli("check", *a)
     out = run("cogiro", "--forbidden-band", "0", "2", "--uncertain", "EA=10%")
     assert out.returncode == 1
     assert re.search(r"FAIL    platform modes outside band, uncertain P\(.*\) = 1\d\.\d%",

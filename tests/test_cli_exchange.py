@@ -1,24 +1,17 @@
-"""The subcommands of dynstiff/cli/exchange.py run in subprocesses: import-caspr writes a
-scene that loads and equals the built-in CoGiRo; bad files fail in one line."""
+"""The subcommands of dynstiff/cli/exchange.py, run in this process (conftest.run_cli):
+import-caspr writes a scene that loads and equals the built-in CoGiRo; bad files fail in one
+line."""
 
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 import dynstiff as ds
 
 pytestmark = pytest.mark.integration
 DATA = Path(__file__).parent / "data" / "caspr"
-
-
-def run_cli(*args):
-    out = subprocess.run([sys.executable, "-m", "dynstiff", *map(str, args)],
-                         capture_output=True, text=True)
-    assert "Traceback" not in out.stderr, out.stderr[-2000:]
-    return out
 
 
 def test_import_caspr_writes_a_loadable_commented_scene(tmp_path):

@@ -1,23 +1,19 @@
-"""The `dynstiff` command line, run in subprocesses: the main job `demo` and `report`
-(dynstiff/cli/report.py)."""
+"""The `dynstiff` command line, run in this process (conftest.run_cli): the main job `demo`
+and `report` (dynstiff/cli/report.py)."""
 
 import re
-import subprocess
-import sys
 
 import pytest
+from conftest import run_cli
 
 import dynstiff as ds
 
 pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
 
 
-
-
 # --------------------------------------------------------------------------------- demo
 def test_demo_main_job_on_cogiro(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--out", str(tmp_path),
-                          "--points", "400"], capture_output=True, text=True)
+    out = run_cli("demo", "--out", tmp_path, "--points", "400")
     assert out.returncode == 0, out.stderr
     import pandas as pd
 
@@ -69,8 +65,7 @@ def test_demo_and_report_write_one_self_contained_html(tmp_path):
             self.text.append(data)
     for argv in (["demo", "fourcable"], ["report", "fourcable"]):
         out_dir = tmp_path / argv[0]
-        out = subprocess.run([sys.executable, "-m", "dynstiff", *argv, "--out", str(out_dir),
-                              "--points", "200"], capture_output=True, text=True)
+        out = run_cli(*argv, "--out", out_dir, "--points", "200")
         assert out.returncode == 0, out.stderr
         p = Collect()
         p.feed((out_dir / "report.html").read_text())
@@ -99,11 +94,8 @@ def test_demo_and_check_agree_on_every_scene(tmp_path):
                        text)
         return {(r, n or k) for r, n, k in m}
     for name in ds.list_scenes():
-        demo = subprocess.run([sys.executable, "-m", "dynstiff", "demo", name,
-                               "--out", str(tmp_path / name), "--points", "100"],
-                              capture_output=True, text=True)
-        check = subprocess.run([sys.executable, "-m", "dynstiff", "check", name],
-                               capture_output=True, text=True)
+        demo = run_cli("demo", name, "--out", tmp_path / name, "--points", "100")
+        check = run_cli("check", name)
         assert demo.returncode == 0 and check.returncode in (0, 1), demo.stderr + check.stderr
         assert verdicts(demo.stdout) == verdicts(check.stdout) != [], name
         rd, rc = recommendation(demo.stdout), recommendation(check.stdout)
@@ -112,8 +104,7 @@ def test_demo_and_check_agree_on_every_scene(tmp_path):
 
 
 def test_demo_cable_report(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "dynstiff", "demo", "--cable", "--out",
-                          str(tmp_path), "--points", "400"], capture_output=True, text=True)
+    out = run_cli("demo", "--cable", "--out", tmp_path, "--points", "400")
     assert out.returncode == 0, out.stderr
     assert "in-plane symmetric 1" in out.stdout
     for name in ["report.txt", "statics.csv", "modes.csv", "dynamic_stiffness.png"]:
@@ -129,8 +120,7 @@ def test_demo_cable_report(tmp_path):
                                   ["demo", "--damping", "-0.1"],
                                   ["report", "cogiro", "--damping", "0.01", "2"]])
 def test_demo_validates_every_input_before_writing(tmp_path, argv):
-    out = subprocess.run([sys.executable, "-m", "dynstiff", *argv, "--out",
-                          str(tmp_path / "o")], capture_output=True, text=True)
+    out = run_cli(*argv, "--out", tmp_path / "o")
     assert out.returncode == 2 and "error" in out.stderr
     assert not (tmp_path / "o").exists()
 

@@ -1,4 +1,4 @@
-"""The `dynstiff` command line, run in subprocesses: the simulate commands
+"""The `dynstiff` command line, run in this process (conftest.run_cli): the simulate commands
 (dynstiff/cli/simulate.py)."""
 
 import re
@@ -9,9 +9,6 @@ from conftest import inverted_stewart_scene, run_cli
 import dynstiff as ds
 
 pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
-
-
-
 
 
 def test_cli_simulate_free_vibration_and_line(tmp_path):

@@ -1,4 +1,5 @@
-"""The `dynstiff` command line, run in subprocesses: the sweep commands (dynstiff/cli/sweep.py)."""
+"""The `dynstiff` command line, run in this process (conftest.run_cli): the sweep commands
+(dynstiff/cli/sweep.py)."""
 
 import numpy as np
 import pytest
@@ -7,9 +8,6 @@ from conftest import inverted_stewart_scene, run_cli
 import dynstiff as ds
 
 pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
-
-
-
 
 
 def test_cli_sweep_line_and_parameter(tmp_path):

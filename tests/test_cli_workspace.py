@@ -1,19 +1,16 @@
 """The ``dynstiff workspace`` command (dynstiff/cli/workspace.py): a small CoGiRo map
-written to netCDF with its figure and table, in a subprocess; argument errors on one line."""
-
-import subprocess
-import sys
+written to netCDF with its figure and table (run in this process: conftest.run_cli); argument
+errors on one line."""
 
 import numpy as np
 import pytest
-from conftest import inverted_stewart_scene
+from conftest import inverted_stewart_scene, run_cli
 
 pytest.importorskip("xarray")
 
 
 def run(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "dynstiff", "workspace", *args], check=False,
-                          cwd=cwd, capture_output=True, text=True, timeout=600)
+    return run_cli("workspace", *args, cwd=cwd)
 
 
 @pytest.mark.integration
