@@ -133,7 +133,10 @@ def _read_one(path, el, joint_type):
         raise CasprError(f"{path}: {where}: time_definition {definition!r} (expected "
                          f"'relative' or 'absolute')")
     step = el.get("time_step")
-    time_step = read_numbers(path, step, f"{where} time_step", 1)[0] if step else np.nan
+    time_step = np.nan if step is None else \
+        read_numbers(path, step, f"{where} time_step", 1)[0]
+    if not (step is None or time_step > 0):
+        raise CasprError(f"{path}: {where}: time_step {step!r} (a sampling step > 0 [s])")
     points = el.findall("points/point")
     if len(points) < 2:
         raise CasprError(f"{path}: {where} has {len(points)} point(s); a trajectory needs 2")
@@ -243,7 +246,7 @@ def read_caspr_operational_spaces(path):
     ------
     CasprError
         Malformed XML, an unknown marker, a marker on a link other than the platform (1), a
-        bad offset or axes.
+        bad offset or axes (letters of ``xyzabg``, each once), two sets with one id.
     """
     path, root = parse_root(path, ("operational_spaces",))
     default = root.get("default_operational_set", "")
@@ -261,14 +264,16 @@ def read_caspr_operational_spaces(path):
                                  f"markers are on its platform, link 1")
             axes = m.find("axes")
             active = "" if axes is None else axes.get("active_axes", "")
-            if not active or set(active) - set("xyzabg"):
-                raise CasprError(f"{path}: {where}: active_axes {active!r} (letters of "
-                                 f"'xyzabg')")
+            if not active or set(active) - set("xyzabg") or len(set(active)) < len(active):
+                raise CasprError(f"{path}: {where}: active_axes {active!r} (distinct letters "
+                                 f"of 'xyzabg')")
             markers.append(CasprMarker(kind=m.tag, marker_id=m.get("marker_id", ""),
                                        name=m.get("name", ""), link=1,
                                        offset=read_numbers(path, m.find("offset"),
                                                        f"{where} <offset>", 3),
                                        axes=active))
+        if sid in sets:
+            raise CasprError(f"{path}: two operational sets with id {sid!r}")
         sets[sid] = tuple(markers)
     if default and default not in sets:
         raise CasprError(f"{path}: default_operational_set {default!r} not found; sets: "
