@@ -9,7 +9,7 @@ from conftest import run_cli
 
 import dynstiff as ds
 
-pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
+pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
 

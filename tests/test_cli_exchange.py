@@ -10,7 +10,6 @@ from conftest import run_cli
 
 import dynstiff as ds
 
-pytestmark = pytest.mark.integration
 DATA = Path(__file__).parent / "data" / "caspr"
 
 

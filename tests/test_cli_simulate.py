@@ -8,7 +8,7 @@ from conftest import inverted_stewart_scene, run_cli
 
 import dynstiff as ds
 
-pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
+pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
 def test_cli_simulate_free_vibration_and_line(tmp_path):

@@ -7,7 +7,7 @@ from conftest import inverted_stewart_scene, run_cli
 
 import dynstiff as ds
 
-pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
+pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
 def test_cli_sweep_line_and_parameter(tmp_path):

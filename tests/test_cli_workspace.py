@@ -13,7 +13,6 @@ def run(*args, cwd):
     return run_cli("workspace", *args, cwd=cwd)
 
 
-@pytest.mark.integration
 def test_workspace_command_writes_map_figure_and_table(tmp_path):
     from dynstiff.maps.dataset import open_workspace
     (tmp_path / "rot.txt").write_text("# rx ry rz\n0 0 0\n0 0 0.1\n")
@@ -36,7 +35,6 @@ def test_workspace_command_writes_map_figure_and_table(tmp_path):
                                                      "# model", "# date"]
 
 
-@pytest.mark.integration
 def test_workspace_command_maps_the_frequency_optimal_tensions(tmp_path):
     from dynstiff.maps.dataset import open_workspace
     r = run("cogiro", "--box", "4", "4", "-2.5", "-2.5", "1", "1", "--step", "1", "-n", "3",
@@ -47,7 +45,6 @@ def test_workspace_command_maps_the_frequency_optimal_tensions(tmp_path):
     assert float(m["first_platform_hz"].max()) == pytest.approx(2.2204, abs=2e-4)
 
 
-@pytest.mark.integration
 @pytest.mark.parametrize("args, match", [
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.txt"], "--out"),
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",
@@ -68,7 +65,6 @@ def test_bad_workspace_arguments_fail_on_one_line(tmp_path, args, match):
     assert r.returncode == 2 and match in r.stderr and len(r.stderr.splitlines()) == 1
 
 
-@pytest.mark.integration
 def test_workspace_box_defaults_to_the_scenes(tmp_path):
     """A scene imported from CASPR carries its joint's q_min / q_max as [workspace] box
     (x, y in [-1, 1], z in [0.5, 2.5] m): with a 2 m step, the map's 8 corners."""
