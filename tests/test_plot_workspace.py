@@ -101,3 +101,388 @@ def test_a_figure_or_axes_that_is_not_one_is_refused():
         with pytest.raises(InvalidParameterError, match=r"^ax must be a matplotlib 3-D Axes"):
             plot_workspace_3d(ds, ax=ax)
     plt.close("all")
+
+
+# --- what the figures mean: cells, colour scales, colour bars, titles, layout --------------
+
+from matplotlib.collections import QuadMesh  # noqa: E402
+from matplotlib.colors import to_rgba  # noqa: E402
+from matplotlib.contour import ContourSet  # noqa: E402
+
+
+@pytest.fixture
+def close_figures():
+    yield
+    plt.close("all")
+
+
+def grid_map(x, y, z, f1, feasible=None, **attrs):
+    """A map on the grid x, y, z with first platform frequency f1 (array over x, y, z), band
+    margin f1 / 1.5 - 1 (band 0-1.5 Hz), dynamic where the margin reaches attrs' margin."""
+    f1 = np.asarray(f1, float)
+    feasible = np.ones(f1.shape, bool) if feasible is None else np.asarray(feasible, bool)
+    f1 = np.where(feasible, f1, np.nan)
+    mg = f1 / 1.5 - 1.0
+    dims = ("x", "y", "z")
+    attrs = {"robot": "grid", "margin": 0.05, "band_hz": [0.0, 1.5], **attrs}
+    return xr.Dataset({"first_platform_hz": (dims, f1), "band_margin": (dims, mg),
+                       "dynamic": (dims, feasible & (mg >= attrs["margin"])),
+                       "feasible": (dims, feasible)},
+                      coords={"x": np.asarray(x, float), "y": np.asarray(y, float),
+                              "z": np.asarray(z, float)}, attrs=attrs)
+
+
+def panels(fig):
+    """The panels of a slices figure, 3 rows (frequency, margin, state) x one column per
+    height (fig.subplots makes them row by row)."""
+    return np.array([a for a in fig.axes if a.get_label() != "<colorbar>"]).reshape(3, -1)
+
+
+def colour_bars(fig):
+    """The colour bars of a figure, in the order drawn."""
+    return [a for a in fig.axes if a.get_label() == "<colorbar>"]
+
+
+def bar_colours(bar):
+    """The mesh of colours drawn in a colour bar (its cmap and norm map values to colours)."""
+    (m,) = [c for c in bar.collections if isinstance(c, QuadMesh)]
+    return m
+
+
+def mesh(ax):
+    """The (single) pcolormesh of a panel."""
+    (m,) = [c for c in ax.collections if not isinstance(c, ContourSet)]
+    return m
+
+
+def cell_edges(centres):
+    """Edges of cells centred on evenly spaced centres (spacing 1 for a single centre)."""
+    h = np.diff(centres)[0] if centres.size > 1 else 1.0
+    return np.append(centres - h / 2, centres[-1] + h / 2)
+
+
+def test_worst_case_keeps_a_nan_at_any_parameter_value():
+    """A NaN (modes not all found) at one parameter value makes the worst case NaN, even
+    where the other value is finite; the band margin alike."""
+    ds = synthetic_map()
+    ds["first_platform_hz"][0, 0, 0, 1] = np.nan
+    ds["band_margin"][0, 0, 0, 1] = np.nan
+    f1, mg, _dyn, _feas = worst_case(ds)
+    assert np.isfinite(ds["first_platform_hz"][0, 0, 0, 0])
+    assert np.isnan(f1[0, 0, 0]) and np.isnan(mg[0, 0, 0])
+    # elsewhere the least value over the parameter values
+    np.testing.assert_array_equal(f1.values[1:], ds["first_platform_hz"].values[1:].min(-1))
+
+
+def test_every_position_is_a_cell_centred_on_it(close_figures):
+    """The cells of every panel have their edges halfway between grid positions, and the end
+    cells as wide as the inner ones, so each cell is centred on its (x, y)."""
+    ds = synthetic_map()
+    fig = plot_workspace_slices(ds)
+    for ax in panels(fig).ravel():
+        xy = mesh(ax).get_coordinates()
+        np.testing.assert_allclose(xy[0, :, 0], cell_edges(ds["x"].values))
+        np.testing.assert_allclose(xy[:, 0, 1], cell_edges(ds["y"].values))
+
+
+def test_a_single_x_gets_a_unit_wide_cell_and_no_contour(close_figures):
+    """A map one position wide in x: its cells are 1 m wide about that x, and no margin
+    contour is attempted (a contour needs a 2 x 2 grid) though four margins are finite."""
+    x, y, z = np.array([0.5]), np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0])
+    ds = grid_map(x, y, z, 1.0 + np.arange(4.0).reshape(1, 4, 1))
+    fig = plot_workspace_slices(ds)
+    top, middle, _bottom = panels(fig)[:, 0]
+    np.testing.assert_allclose(mesh(top).get_coordinates()[0, :, 0], [0.0, 1.0])
+    np.testing.assert_allclose(mesh(top).get_coordinates()[:, 0, 1], cell_edges(y))
+    assert not [c for c in middle.collections if isinstance(c, ContourSet)]
+
+
+def test_frequency_panels_share_one_colour_scale(close_figures):
+    """Every frequency panel maps colours from the least to the greatest worst-case frequency
+    of the whole map, not of its own height, so colours compare across heights."""
+    ds = synthetic_map()
+    f1 = ds["first_platform_hz"].min("parameter").values
+    fig = plot_workspace_slices(ds)
+    lims = [mesh(a).get_clim() for a in panels(fig)[0]]
+    assert len(lims) == ds["z"].size
+    assert lims == [(np.nanmin(f1), np.nanmax(f1))] * ds["z"].size
+    # the upper height alone starts higher than the map's least frequency
+    assert np.nanmin(f1[:, :, 1]) > np.nanmin(f1)
+
+
+def test_margin_panels_are_red_below_zero_blue_above_on_a_symmetric_scale(close_figures):
+    """The margin colour scale runs from -m to +m (m the largest absolute margin of the map)
+    with 0 in the middle; cells with a negative margin are red, positive ones blue."""
+    ds = five_level_map()
+    mg = ds["band_margin"].values
+    assert (mg < 0).any() and (mg > 0).any()
+    lim = np.abs(mg).max()
+    fig = plot_workspace_slices(ds)
+    for ax in panels(fig)[1]:
+        m = mesh(ax)
+        assert m.get_clim() == pytest.approx((-lim, lim), rel=1e-12)
+        assert m.norm(0.0) == pytest.approx(0.5)
+        assert m.get_cmap().name == "RdBu"
+        v = np.ravel(m.get_array())
+        rgba = m.to_rgba(v)
+        assert np.all(rgba[v < 0, 0] > rgba[v < 0, 2])
+        assert np.all(rgba[v > 0, 2] > rgba[v > 0, 0])
+
+
+def test_without_finite_margins_the_margin_scale_runs_from_minus_one_to_one(close_figures):
+    """A map without a single finite margin (no band) gets the margin scale -1 to 1, and no
+    contour; the title says there is no band."""
+    ds = grid_map([0.0, 1.0], [0.0, 1.0], [1.0], np.full((2, 2, 1), 2.0))
+    ds["band_margin"][:] = np.nan
+    del ds.attrs["band_hz"]
+    fig = plot_workspace_slices(ds)
+    middle = panels(fig)[1, 0]
+    assert mesh(middle).get_clim() == (-1.0, 1.0)
+    assert not [c for c in middle.collections if isinstance(c, ContourSet)]
+    assert fig.get_suptitle().replace("\n", " ").endswith(
+        "dynamic workspace no band; grey: infeasible, or platform modes not all found")
+
+
+def test_margin_contours_mark_zero_and_the_required_margin(close_figures):
+    """Each margin panel has black 0.8 pt contours at 0 and at the map's required margin."""
+    ds = five_level_map()
+    fig = plot_workspace_slices(ds)
+    for ax in panels(fig)[1]:
+        (cs,) = [c for c in ax.collections if isinstance(c, ContourSet)]
+        np.testing.assert_array_equal(cs.levels, [0.0, ds.attrs["margin"]])
+        np.testing.assert_array_equal(cs.get_linewidths(), [0.8, 0.8])
+        assert [to_rgba(c) for c in cs.get_edgecolor()] == [to_rgba("k")] * 2
+
+
+def test_no_contour_with_three_finite_margins_on_a_2x2_height(close_figures):
+    """A 2 x 2 height with one infeasible position (3 finite margins) gets no contour; the
+    same height with all four finite does."""
+    f1 = np.array([[1.0, 2.0], [1.4, 1.8]])[:, :, None]
+    feasible = np.array([[True, True], [True, False]])[:, :, None]
+    for feas, n_contours in ((feasible, 0), (None, 1)):
+        fig = plot_workspace_slices(grid_map([0.0, 1.0], [0.0, 1.0], [1.0], f1, feas))
+        middle = panels(fig)[1, 0]
+        assert len([c for c in middle.collections if isinstance(c, ContourSet)]) == n_contours
+        plt.close(fig)
+
+
+def state_colours(ds):
+    """Expected colour of each position (x, y, z): grey 0.75 infeasible (at some parameter
+    value), green when every check passes at every value, orange otherwise."""
+    feas = ds["feasible"].all("parameter").values
+    dyn = ds["dynamic"].all("parameter").values
+    out = np.empty(feas.shape + (4,))
+    out[:] = to_rgba("tab:orange")
+    out[dyn] = to_rgba("tab:green")
+    out[~feas] = to_rgba("0.75")
+    return out
+
+
+def test_dynamic_workspace_panels_colour_each_position_by_its_verdict(close_figures):
+    """Bottom panels: green where every check passes, orange where one fails, grey where
+    infeasible; the map has all three."""
+    ds = synthetic_map()
+    expected = state_colours(ds)
+    fig = plot_workspace_slices(ds)
+    fig.canvas.draw()
+    for k, ax in enumerate(panels(fig)[2]):
+        got = mesh(ax).get_facecolor()                       # cells row by row: y, then x
+        want = expected[:, :, k].transpose(1, 0, 2).reshape(-1, 4)
+        np.testing.assert_array_equal(got, want)
+    assert {tuple(c) for c in expected.reshape(-1, 4)} == {
+        to_rgba("0.75"), to_rgba("tab:orange"), to_rgba("tab:green")}
+
+
+def test_state_colour_bar_names_the_three_colours(close_figures):
+    """The dynamic workspace's colour bar has ticks 0, 1, 2 labelled infeasible / check
+    fails / all pass, each in the colour the panels give that verdict."""
+    fig = plot_workspace_slices(synthetic_map())
+    fig.canvas.draw()
+    bar = colour_bars(fig)[2]
+    np.testing.assert_array_equal(bar.get_yticks(), [0, 1, 2])
+    assert [t.get_text() for t in bar.get_yticklabels()] == [
+        "infeasible", "check fails", "all pass"]
+    solids = bar_colours(bar)
+    np.testing.assert_array_equal(solids.to_rgba(np.array([0.0, 1.0, 2.0])), [
+        to_rgba("0.75"), to_rgba("tab:orange"), to_rgba("tab:green")])
+
+
+@pytest.mark.parametrize("n_slices", [None, 3])
+def test_each_colour_bar_stands_beside_its_row(close_figures, n_slices):
+    """The three colour bars (frequency, margin, verdict) stand in one column right of every
+    panel, each centred on its row and 0.9 of the row's height; the panels of a column line
+    up. Positions in figure fractions: 1e-9 allows for rounding in the layout arithmetic."""
+    ds = synthetic_map() if n_slices is None else five_level_map()
+    fig = plot_workspace_slices(ds, n_slices=n_slices)
+    fig.canvas.draw()
+    axs = panels(fig)
+    bars = colour_bars(fig)
+    assert [b.get_ylabel() for b in bars] == [
+        "first platform frequency [Hz]", "band margin [-]", ""]
+    for row, bar in zip(axs, bars, strict=True):                 # each bar its row's colours
+        v = np.ravel(mesh(row[0]).get_array())
+        np.testing.assert_array_equal(bar_colours(bar).to_rgba(v), mesh(row[0]).to_rgba(v))
+    for col in axs.T:
+        x0 = [a.get_position().x0 for a in col]
+        assert x0 == pytest.approx([x0[0]] * 3, abs=1e-9)
+    right = max(a.get_position().x1 for a in axs.ravel())
+    assert bars[0].get_position().x0 > right
+    for row, bar in zip(axs, bars, strict=True):
+        box = row[0].get_position(original=True)            # the row's layout box
+        pos = bar.get_position()
+        assert bar.get_position().x0 == pytest.approx(bars[0].get_position().x0, abs=1e-9)
+        assert (pos.y0 + pos.y1) / 2 == pytest.approx((box.y0 + box.y1) / 2, abs=1e-9)
+        assert pos.height == pytest.approx(0.9 * box.height, abs=1e-9)
+
+
+@pytest.mark.parametrize(("make", "n_slices", "n_drawn"),
+                         [(synthetic_map, None, 2), (five_level_map, 3, 3)])
+def test_slices_figure_size(close_figures, make, n_slices, n_drawn):
+    """The figure is 9 in tall and max(3.4 n + 1.2, 8) in wide for n heights drawn."""
+    fig = plot_workspace_slices(make(), n_slices=n_slices)
+    assert panels(fig).shape == (3, n_drawn)
+    np.testing.assert_allclose(fig.get_size_inches(), [max(3.4 * n_drawn + 1.2, 8.0), 9.0])
+
+
+def test_slices_are_laid_out_without_overlaps_or_blank_margins(close_figures):
+    """No panel or colour bar overlaps another, the figure title lies above every panel's
+    title, and the panels and bars fill the figure: less than 3 % of its width is left blank
+    on either side and of its height below (constrained layout; a fixed subplot layout of
+    the same figure leaves 7 % left, 13 % right and 6 % below)."""
+    fig = plot_workspace_slices(five_level_map(), n_slices=3)
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    boxes = [a.get_tightbbox(r) for a in fig.axes]
+    for i, b in enumerate(boxes):
+        for c in boxes[i + 1:]:
+            assert not b.overlaps(c)
+    top = fig._suptitle.get_window_extent(r)
+    assert all(top.y0 >= a.title.get_window_extent(r).y1 for a in panels(fig)[0])
+    w, h = fig.bbox.width, fig.bbox.height
+    assert min(b.x0 for b in boxes) < 0.03 * w
+    assert max(b.x1 for b in boxes) > 0.97 * w
+    assert min(b.y0 for b in boxes) < 0.03 * h
+
+
+def test_all_panels_share_their_x_and_y_axes(close_figures):
+    """Zooming one panel zooms every panel alike, in x and in y."""
+    fig = plot_workspace_slices(five_level_map(), n_slices=3)
+    axs = panels(fig).ravel()
+    axs[4].set_xlim(0.2, 0.7)
+    axs[8].set_ylim(0.1, 0.6)
+    assert {a.get_xlim() for a in axs} == {(0.2, 0.7)}
+    assert {a.get_ylim() for a in axs} == {(0.1, 0.6)}
+
+
+def test_slices_title_names_robot_worst_case_count_and_band(close_figures):
+    """The figure title: robot, the dimension reduced to its worst case, the positions in the
+    dynamic workspace (all-pass over the parameter values), the band and the margin."""
+    ds = synthetic_map()
+    n_dyn = int(ds["dynamic"].all("parameter").sum())
+    fig = plot_workspace_slices(ds)
+    assert fig.get_suptitle().replace("\n", " ") == (
+        f"test workspace map (worst case over parameter): {n_dyn} of 12 positions in the "
+        "dynamic workspace forbidden band [0.0, 1.5] Hz, margin 5%; grey: infeasible, or "
+        "platform modes not all found")
+
+
+def test_slices_title_without_reduced_dimensions_says_no_worst_case(close_figures):
+    """A map without orientation or parameter dimensions has no "worst case" in its title."""
+    ds = five_level_map()
+    fig = plot_workspace_slices(ds)
+    text = fig.get_suptitle().replace("\n", " ")
+    assert text.startswith(f"{ds.attrs['robot']} workspace map: {int(ds['dynamic'].sum())} of "
+                           f"{ds['dynamic'].size} positions")
+    assert "worst case" not in text
+
+
+def markers_3d(ax):
+    """The four scatters of the 3-D view, by their legend labels."""
+    handles, labels = ax.get_legend_handles_labels()
+    return dict(zip(labels, handles, strict=True))
+
+
+def test_3d_view_puts_each_position_in_its_group(close_figures):
+    """Filled markers at the positions passing every check (at every parameter value),
+    hollow ones at the feasible rest and grey dots at the infeasible positions, at their
+    (x, y, z); the legend names the groups in that order (the fourth, empty here: positions
+    whose modes were not all found)."""
+    ds = synthetic_map()
+    f1 = ds["first_platform_hz"].min("parameter").values
+    dyn = ds["dynamic"].all("parameter").values
+    feas = ds["feasible"].all("parameter").values
+    X, Y, Z = np.meshgrid(ds["x"], ds["y"], ds["z"], indexing="ij")
+    fig = plot_workspace_3d(ds)
+    ax = fig.axes[0]
+    groups = markers_3d(ax)
+    assert list(groups) == ["dynamic workspace", "a check fails", "infeasible",
+                            "modes not all found"]
+    for label, where in (("dynamic workspace", dyn & feas), ("a check fails", feas & ~dyn),
+                         ("infeasible", ~feas)):
+        assert where.any()
+        got = np.column_stack([np.ravel(v) for v in groups[label]._offsets3d])
+        np.testing.assert_array_equal(got, np.column_stack([X[where], Y[where], Z[where]]))
+    np.testing.assert_array_equal(groups["dynamic workspace"].get_array(), f1[dyn & feas])
+
+
+def rows(colours):
+    """Colours as a sorted list of RGBA tuples (a 3-D scatter draws in depth order)."""
+    return sorted(map(tuple, np.asarray(colours)))
+
+
+def test_3d_markers_take_the_colour_bars_colour_of_their_frequency(close_figures):
+    """Filled markers' faces and hollow markers' edges are the colour bar's colour of their
+    position's frequency, without depth shading (alpha 1) -- also when the user's default
+    colormap is another one."""
+    ds = synthetic_map()
+    f1 = ds["first_platform_hz"].min("parameter").values
+    dyn = ds["dynamic"].all("parameter").values
+    feas = ds["feasible"].all("parameter").values
+    with matplotlib.rc_context({"image.cmap": "plasma"}):
+        fig = plot_workspace_3d(ds)
+        fig.canvas.draw()
+    ax = fig.axes[0]
+    groups = markers_3d(ax)
+    (bar,) = colour_bars(fig)
+    scale = bar_colours(bar)
+    assert scale.get_clim() == (np.nanmin(f1), np.nanmax(f1))
+    filled, hollow = groups["dynamic workspace"], groups["a check fails"]
+    np.testing.assert_array_equal(rows(filled.get_facecolor()),
+                                  rows(scale.to_rgba(f1[dyn & feas])))
+    np.testing.assert_allclose(rows(hollow.get_edgecolor()),
+                               rows(scale.to_rgba(f1[feas & ~dyn])), atol=1e-12)
+    assert np.all(np.asarray(hollow.get_facecolor())[:, 3] == 0)      # hollow
+
+
+def test_3d_view_labels_title_legend_and_size(close_figures):
+    """Axis labels in m, the colour bar labelled with the frequency, the title with the robot
+    and the count passing every check, the legend in the upper left, a 7.5 x 6 in figure."""
+    ds = synthetic_map()
+    n_dyn = int(ds["dynamic"].all("parameter").sum())
+    fig = plot_workspace_3d(ds)
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("x [m]", "y [m]", "z [m]")
+    assert [b.get_ylabel() for b in colour_bars(fig)] == ["first platform frequency [Hz]"]
+    assert ax.get_title() == f"test: {n_dyn} of 12 positions pass every check"
+    np.testing.assert_allclose(fig.get_size_inches(), [7.5, 6.0])
+    r = fig.canvas.get_renderer()
+    leg, box = ax.get_legend().get_window_extent(r), ax.get_window_extent(r)
+    pad = 2 * fig.dpi * 10 / 72          # within 2 font sizes (10 pt) of the corner
+    assert leg.x0 - box.x0 < pad and box.y1 - leg.y1 < pad
+    assert leg.x1 < (box.x0 + box.x1) / 2                # left half, not the centre/right
+
+
+def test_3d_view_draws_a_feasible_position_whose_modes_were_not_all_found(close_figures):
+    """A feasible position with a NaN first platform frequency (its platform modes not all
+    found) was drawn in no group while the title counted it: it is a black cross, and the
+    four groups hold every position once."""
+    f1 = np.array([[[2.0], [3.0]], [[np.nan], [4.0]]])
+    ds = grid_map([0.0, 1.0], [0.0, 1.0], [1.0], f1)
+    ds["first_platform_hz"][1, 0, 0] = np.nan
+    fig = plot_workspace_3d(ds)
+    groups = markers_3d(fig.axes[0])
+    lost = np.column_stack([np.ravel(v) for v in groups["modes not all found"]._offsets3d])
+    np.testing.assert_array_equal(lost, [[1.0, 0.0, 1.0]])
+    assert sum(len(np.ravel(g._offsets3d[0])) for g in groups.values()) == 4
+    assert groups["modes not all found"].get_facecolor()[0].tolist() == [0.0, 0.0, 0.0, 1.0]

@@ -19,7 +19,8 @@ _REDUCED = ("orientation", "parameter")
 
 def worst_case(ds):
     """(first platform frequency [Hz], band margin [-], dynamic, feasible) over x, y, z: the
-    least value and the all-pass verdict over the orientations and parameter values."""
+    least value and the all-pass verdict over the orientations and parameter values. A NaN
+    (platform modes not all found) at any orientation or value makes the least value NaN."""
     if not all(d in ds.dims for d in ("x", "y", "z")):
         raise InvalidParameterError(
             "the workspace figures need a grid map (dimensions x, y, z): give box= to "
@@ -64,6 +65,17 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     margin [-] (middle, 0 and the required margin as contours) and the dynamic workspace
     (bottom: every check passes / a check fails / infeasible).
 
+    Each position is a cell centred on it (1 m wide along an axis with a single value); all
+    panels share their x and y axes. The frequency panels share one colour scale, from the
+    least to the greatest frequency of the map. The margin scale is red below 0 and blue
+    above, symmetric about 0 (to the largest absolute margin, or 1 when none is finite); its
+    contours are 0.8 pt black lines, drawn where the grid is at least 2 x 2 and the height
+    has more than three finite margins. The dynamic workspace is green where every check
+    passes, orange where one fails and grey (0.75) where infeasible. Each row's colour bar
+    stands beside it, 0.9 of its height. The figure is 9 in tall and max(3.4 n + 1.2, 8) in
+    wide for n heights drawn, laid out without overlaps or blank margins (constrained
+    layout).
+
     Parameters
     ----------
     ds : xarray.Dataset
@@ -77,7 +89,9 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     Returns
     -------
     matplotlib.figure.Figure
-        One column of three panels per height drawn, each titled ``z = ... m``.
+        One column of three panels per height drawn, each titled ``z = ... m``. The figure's
+        title gives the robot, the dimensions reduced to their worst case, how many positions
+        are in the dynamic workspace, and the forbidden band [Hz] and margin (or "no band").
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
@@ -141,7 +155,17 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
 def plot_workspace_3d(ds, ax=None):
     """3-D view: feasible positions coloured by their first platform frequency [Hz], the
     dynamic workspace as filled markers, the rest hollow; infeasible positions as grey
-    dots.
+    dots; feasible positions whose platform modes were not all found (frequency NaN) as
+    black crosses, so every position is drawn. Filled and hollow markers take the colour
+    bar's colour of their frequency, without depth shading; the legend is in the upper
+    left. The title gives the robot and how many positions pass every check. A new figure
+    is 7.5 x 6 in.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A grid map of :func:`dynstiff.workspace`.
+    ax : matplotlib 3-D Axes, optional
 
     Returns
     -------
@@ -169,6 +193,9 @@ def plot_workspace_3d(ds, ax=None):
         label="a check fails")
     ax.scatter(X[~feas.values], Y[~feas.values], Z[~feas.values], c="0.6", s=4,
                label="infeasible")
+    lost = feas.values & ~np.isfinite(f)        # feasible, platform modes not all found
+    ax.scatter(X[lost], Y[lost], Z[lost], c="k", marker="x", s=22, depthshade=False,
+               label="modes not all found")
     fig.colorbar(sc, ax=ax, shrink=0.7, label="first platform frequency [Hz]")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
