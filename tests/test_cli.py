@@ -5,6 +5,7 @@ with the library, and bad arguments exit with status 2 and a message naming them
 
 import os
 import re
+import sys
 from pathlib import Path
 
 import pytest
@@ -12,7 +13,7 @@ from conftest import run_cli
 
 import dynstiff as ds
 
-pytestmark = [pytest.mark.integration, pytest.mark.usefixtures("no_traceback")]
+pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
 # ---------------------------------------------------------- modes, frf, sweep, simulate
@@ -48,6 +49,7 @@ def test_cli_malformed_toml_and_unknown_options(tmp_path):
         assert out.returncode == 2 and "--no-such-option" in out.stderr, cmd
 
 
+@pytest.mark.integration
 def test_cli_version_and_metadata_in_json(tmp_path):
     import json
     out = run_cli("--version", in_subprocess=True)         # the entry point itself
@@ -273,3 +275,92 @@ def test_check_of_the_pendulum_judges_its_own_band(capsys):
     assert cap.err == ""
     line = next(ln for ln in cap.out.splitlines() if ln.startswith("PASS    cable model"))
     assert "up to 200 Hz" in line
+
+
+# ------------------------------------------------------------- main: what it reads, returns
+def test_main_reads_sys_argv_after_the_program_name(monkeypatch, capsys):
+    """main() without arguments takes the command line from sys.argv[1:]."""
+    from dynstiff.cli import main
+    monkeypatch.setattr(sys, "argv", ["dynstiff", "scenes"])
+    assert main() == 0
+    assert capsys.readouterr().out.split()[0] in ds.list_scenes()
+
+
+def test_usage_errors_are_one_exact_line_with_the_hint_where_a_flag_was_renamed(capsys):
+    """argparse's refusal is one line: the program, its message, the renamed flag's hint
+    only where there is one, and where to find help."""
+    from dynstiff.cli import main
+    assert main(["demo", "--bogus"]) == 2
+    assert capsys.readouterr().err == ("dynstiff: error: dynstiff: unrecognized arguments: "
+                                       "--bogus (dynstiff -h, or dynstiff COMMAND -h)\n")
+    assert main(["frf", "planar2", "--from", "fx"]) == 2
+    assert capsys.readouterr().err == (
+        "dynstiff: error: dynstiff: unrecognized arguments: --from fx; --from was renamed: "
+        "use --load (dynstiff -h, or dynstiff COMMAND -h)\n")
+
+
+def test_the_compile_notice_is_asked_for_every_command_but_scenes(monkeypatch, capsys,
+                                                                  tmp_path):
+    """Every command that computes may compile the kernels first and asks for the notice,
+    quiet with --quiet (not quiet for a command without it); `scenes` computes nothing and
+    does not ask."""
+    import dynstiff.cli
+    seen = []
+    monkeypatch.setattr(dynstiff.cli, "compile_notice", seen.append)
+    assert dynstiff.cli.main(["scenes"]) == 0
+    assert seen == []
+    assert dynstiff.cli.main(["modes", "planar2", "-n", "1"]) == 0
+    assert dynstiff.cli.main(["sweep", "planar2", "--line", "0", "0", "1", "0", "0", "1.1",
+                              "--steps", "2", "-n", "1", "--quiet"]) == 0
+    data = Path(__file__).parent / "data" / "caspr"
+    assert dynstiff.cli.main(["import-caspr", str(data / "CoGiRo_bodies.xml"),
+                              str(data / "CoGiRo_cables.xml"), "--mass-per-length", "0.064",
+                              "--EA", "139486.7", "--out", str(tmp_path / "c.toml")]) == 0
+    assert seen == [False, True, False]          # import-caspr has no --quiet: not quiet
+    capsys.readouterr()
+
+
+def _failing_scenes(monkeypatch, exc):
+    """`dynstiff scenes` made to raise ``exc``."""
+    import dynstiff.cli.analysis
+
+    def fail(args):
+        raise exc
+    monkeypatch.setattr(dynstiff.cli.analysis, "_cmd_scenes", fail)
+
+
+@pytest.mark.parametrize("exc, line, code", [
+    (KeyboardInterrupt(), "\ndynstiff: interrupted\n", 130),
+    (KeyboardInterrupt("3 poses saved"), "\ndynstiff: 3 poses saved\n", 130),
+    (MemoryError("932 GiB"), "dynstiff: error: MemoryError: 932 GiB\n", 2),
+    (UnicodeDecodeError("utf-8", b"\xff", 0, 1, "invalid start byte"),
+     "dynstiff: error: UnicodeDecodeError: 'utf-8' codec can't decode byte 0xff in position "
+     "0: invalid start byte\n", 2),
+    (ds.InvalidParameterError("n_modes must be > 0"), "dynstiff: error: n_modes must be > 0\n",
+     2),
+    (FileNotFoundError(2, "No such file or directory", "x.toml"),
+     "dynstiff: error: [Errno 2] No such file or directory: 'x.toml'\n", 2),
+])
+def test_errors_and_interrupts_are_one_line_with_their_exit_code(monkeypatch, capsys, exc,
+                                                                  line, code):
+    """Ctrl-C: exit 130 and what was saved (or "interrupted"); MemoryError and
+    UnicodeDecodeError name their type (their messages alone do not say what happened); a
+    dynstiff or OS error is its message alone; all exit 2."""
+    from dynstiff.cli import main
+    _failing_scenes(monkeypatch, exc)
+    assert main(["scenes"]) == code
+    assert capsys.readouterr().err == line
+
+
+def test_a_closed_pipe_ends_quietly_with_its_output_to_devnull(monkeypatch, tmp_path):
+    """Output piped into a reader that stops (BrokenPipeError): exit 0, nothing on stderr,
+    and standard output's descriptor now leads to the null device (what Python flushes at
+    exit is dropped, not a second error)."""
+    from dynstiff.cli import main
+    _failing_scenes(monkeypatch, BrokenPipeError())
+    with open(tmp_path / "out", "w") as out, open(tmp_path / "err", "w") as err:
+        monkeypatch.setattr(sys, "stdout", out)
+        monkeypatch.setattr(sys, "stderr", err)
+        assert main(["scenes"]) == 0
+        os.write(out.fileno(), b"after")
+    assert (tmp_path / "out").read_bytes() == b"" and (tmp_path / "err").read_bytes() == b""

@@ -59,7 +59,7 @@ def main(argv=None):
     except KeyboardInterrupt as exc:    # Ctrl-C: what is saved (dynstiff.errors.Interrupted)
         if args.debug:
             raise
-        sys.stderr.write(f"\ndynstiff: {exc or 'interrupted'}\n")
+        sys.stderr.write(f"\ndynstiff: {str(exc) or 'interrupted'}\n")
         return 130
     except (DynstiffError, OSError, UnicodeDecodeError, MemoryError) as exc:
         if args.debug:
