@@ -36,6 +36,13 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     the gap (gid ``gap-<id>``); the other modes are small dots, grey for local and purple
     for mixed ones (gid ``local-modes``, ``mixed-modes``).
 
+    Tracks are 1.4 pt lines with 3.5 pt circles, in the ``tab10`` colours for up to 10
+    tracks, else spread evenly over ``turbo`` from its first colour to its last; bridges
+    are 1 pt dotted lines. The other modes are those with ``track`` -1 (all of them when the
+    result has no ``track``): dots of area 6 pt², ``"0.55"`` grey and ``"tab:purple"``, at
+    zorder 1, beneath the tracks. With at most 12 tracks a legend names each track and dot
+    class, its top left corner at (1.01, 1.0) in axes coordinates. The grid has alpha 0.3.
+
     Parameters
     ----------
     sweep_result : SweepResult
@@ -50,7 +57,10 @@ def plot_veering(sweep_result, ax=None, show_local=True):
     matplotlib Figure
         x label ``sweep_result.parameter``, y label ``"frequency [Hz]"``; the x axis is
         logarithmic when the values are positive and span :data:`LOG_SPAN` (a decade) or
-        more, and its limits hold every value.
+        more, and its limits hold every value, with a margin of 2 % of their span (of
+        their log span on a log axis) either side; a single value keeps matplotlib's
+        automatic limits. The title gives the number of tracks, adds ``", grey dots local
+        modes"`` when they are drawn, and a line on the dotted bridges when there is one.
 
     Raises
     ------
