@@ -1,16 +1,26 @@
 """Figures of modes and statics (dynstiff/plot/modes.py): natural frequencies by class, damped
 roots, cable modes by family, tensions and model errors."""
 
+import warnings
+from types import SimpleNamespace
+
 import matplotlib
 import numpy as np
 import pytest
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.colors import to_rgba  # noqa: E402
 
 import dynstiff as ds  # noqa: E402
 from dynstiff.errors import InvalidParameterError  # noqa: E402
-from dynstiff.plot import plot_model_errors, plot_modes, plot_tensions  # noqa: E402
+from dynstiff.plot import (  # noqa: E402
+    plot_cable_modes,
+    plot_damped_modes,
+    plot_model_errors,
+    plot_modes,
+    plot_tensions,
+)
 
 
 @pytest.fixture(autouse=True)
@@ -104,3 +114,185 @@ def test_limits_and_tolerances_of_the_plots_are_numbers(call, message):
     rec = ds.recommend_model(eq, band_hz=(0.0, 2.0))
     with pytest.raises(InvalidParameterError, match=message):
         call(eq, rec)
+
+
+# ------------------------------------------------------------------ synthetic inputs
+def legend_loc(ax):
+    """The location the legend was asked for (matplotlib has no public getter)."""
+    from matplotlib.legend import Legend
+    return {code: name for name, code in Legend.codes.items()}[ax.get_legend()._loc]
+
+
+def modal(freq_hz, cable_energy_fraction, kind):
+    return SimpleNamespace(freq_hz=freq_hz, cable_energy_fraction=cable_energy_fraction,
+                           kind=kind)
+
+
+def test_mode_stems_rise_from_zero_in_the_documented_colours():
+    """Each stem runs from share 0 up to 1 - cable energy fraction, red / purple / blue for
+    global / mixed / local, and the share axis runs from 0 to 1.05 with the y label naming
+    the platform share of kinetic energy."""
+    frac = np.array([0.1, 0.7, 0.99])
+    ax = plot_modes(modal([1.0, 2.0, 3.0], frac, ["global", "mixed", "local"])).axes[0]
+    want = {"global": "tab:red", "mixed": "tab:purple", "local": "tab:blue"}
+    for i, (k, colour) in enumerate(want.items()):
+        (stems,) = by_gid(ax, f"modes-{k}")
+        (seg,) = stems.get_segments()
+        np.testing.assert_array_equal(seg, [[i + 1.0, 0.0], [i + 1.0, 1.0 - frac[i]]])
+        assert [to_rgba(c) for c in stems.get_colors()] == [to_rgba(colour)]
+    assert ax.get_ylim() == (0.0, 1.05)
+    assert ax.get_ylabel() == "platform share of kinetic energy [-]"
+
+
+def test_mode_share_is_computed_in_double_precision():
+    """Single-precision cable energy fractions give stems at 1 - fraction evaluated in
+    double precision (a float32 subtraction would round the share to ~1e-8)."""
+    frac = np.array([0.1, 0.3], dtype=np.float32)
+    ax = plot_modes(modal([1.0, 2.0], frac, ["global", "global"])).axes[0]
+    tops = [s[1, 1] for s in by_gid(ax, "modes-global")[0].get_segments()]
+    np.testing.assert_array_equal(tops, 1.0 - frac.astype(float))
+
+
+def test_mode_thresholds_are_thin_dashed_lines():
+    """The two kind thresholds (0.5, 0.05) are dashed lines 0.8 pt wide."""
+    ax = plot_modes(modal([1.0], [0.2], ["global"])).axes[0]
+    lines = [ln for ln in ax.get_lines() if ln.get_linestyle() == "--"]
+    assert sorted(ln.get_ydata()[0] for ln in lines) == [0.05, 0.5]
+    assert [ln.get_linewidth() for ln in lines] == [0.8, 0.8]
+
+
+def damped(freq_hz, damping_ratio):
+    return SimpleNamespace(freq_hz=np.asarray(freq_hz), damping_ratio=np.asarray(damping_ratio))
+
+
+def test_damped_roots_are_red_circles_over_a_light_grid():
+    """The roots are drawn as red circles, not joined by a line, over a grid of alpha 0.3;
+    drawing it raises no warning (matplotlib warns when told both grid off and grid style)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = plot_damped_modes(damped([1.0, 2.0], [0.01, 0.02]))
+    ax = fig.axes[0]
+    (pts,) = by_gid(ax, "damped-modes")
+    assert pts.get_marker() == "o" and pts.get_linestyle() == "None"
+    assert to_rgba(pts.get_color()) == to_rgba("tab:red")
+    fig.canvas.draw()
+    grid = ax.xaxis.get_gridlines() + ax.yaxis.get_gridlines()
+    assert grid and all(g.get_visible() and g.get_alpha() == 0.3 for g in grid)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: plot_damped_modes(np.array([1.0])), "^damped must be a DampedModes, got ndarray"),
+    (lambda: plot_cable_modes(np.array([1.0])),
+     "^cable_modes must be a CableModes, got ndarray"),
+    (lambda: plot_model_errors(np.array([1.0])),
+     "^recommendation must be a Recommendation, got ndarray"),
+    (lambda: plot_tensions(SimpleNamespace(anchor_tensions=[1.0])),
+     "^equilibrium must be an Equilibrium, got SimpleNamespace$")])
+def test_wrong_objects_are_named_in_the_error(call, message):
+    """An object of the wrong type is refused with a message naming the expected type."""
+    with pytest.raises(InvalidParameterError, match=message):
+        call()
+
+
+def cable_modes():
+    return SimpleNamespace(freq_hz=np.array([1.0, 2.0, 3.0]), order=np.array([1, 1, 2]),
+                           family=("out-of-plane", "in-plane symmetric", "out-of-plane"))
+
+
+def test_cable_mode_families_are_named_with_dashes_for_spaces():
+    """A family name with spaces gives the gid with dashes; each family's stems take the
+    next colour of the cycle and are 1.5 pt wide, labelled by order in 7 pt text."""
+    ax = plot_cable_modes(cable_modes()).axes[0]
+    assert [c.get_gid() for c in by_gid(ax, "cable-")] == ["cable-out-of-plane",
+                                                           "cable-in-plane-symmetric"]
+    for row, c in enumerate(by_gid(ax, "cable-")):
+        assert [to_rgba(x) for x in c.get_colors()] == [to_rgba(f"C{row}")]
+        assert list(c.get_linewidths()) == [1.5]
+    assert sorted(t.get_text() for t in ax.texts) == ["1", "1", "2"]
+    assert all(t.get_fontsize() == 7 for t in ax.texts)
+
+
+def test_cable_modes_figure_title_and_legend():
+    """The new figure is 8 x 4 in, titled as the clamped-clamped modes; the legend (8 pt)
+    sits at the upper center, one column per family."""
+    fig = plot_cable_modes(cable_modes())
+    ax = fig.axes[0]
+    assert tuple(fig.get_size_inches()) == (8.0, 4.0)
+    assert ax.get_title() == "clamped-clamped cable modes (the poles of its dynamic stiffness)"
+    leg = ax.get_legend()
+    assert legend_loc(ax) == "upper center" and leg._ncols == 2
+    assert [t.get_fontsize() for t in leg.get_texts()] == [8, 8]
+    assert [t.get_text() for t in leg.get_texts()] == ["out-of-plane", "in-plane symmetric"]
+
+
+def equilibrium(tB, tA):
+    return SimpleNamespace(tensions=np.asarray(tB), anchor_tensions=np.asarray(tA))
+
+
+def test_tension_bars_sit_side_by_side_in_their_colours():
+    """For cable k the bar at B spans [k - 0.4, k] in red and the bar at A [k, k + 0.4] in
+    blue, so the two never overlap; legend entries name both ends, at the upper right."""
+    tB, tA = [300.0, 310.0, 320.0], [290.0, 305.0, 330.0]
+    ax = plot_tensions(equilibrium(tB, tA)).axes[0]
+    for gid, offset, colour, t in (("tension-B", -0.4, "tab:red", tB),
+                                   ("tension-A", 0.0, "tab:blue", tA)):
+        bars = by_gid(ax, gid)
+        # edges are k -/+ 0.2 -/+ 0.4 / 2, rounded in floating point
+        np.testing.assert_allclose([b.get_x() for b in bars], np.arange(3) + offset,
+                                   atol=1e-15)
+        np.testing.assert_allclose([b.get_width() for b in bars], 0.4, rtol=1e-15)
+        assert [b.get_height() for b in bars] == t
+        assert all(b.get_facecolor() == to_rgba(colour) for b in bars)
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["at B (platform)",
+                                                                  "at A (anchor)"]
+    assert legend_loc(ax) == "upper right"
+    assert ax.get_xlabel() == "cable" and ax.get_ylabel() == "tension [N]"
+    assert ax.get_title() == "static cable tensions (dashed: admissible limits)"
+
+
+def test_tension_limits_are_named_by_their_role():
+    """A drawn t_min is a 0.8 pt line with gid limit-t_min; one off scale is named t_min in
+    the title."""
+    eq = equilibrium([300.0, 310.0], [290.0, 305.0])
+    ax = plot_tensions(eq, limits=(100.0, 400.0)).axes[0]
+    assert [ln.get_gid() for ln in by_gid(ax, "limit-")] == ["limit-t_min", "limit-t_max"]
+    assert [ln.get_linewidth() for ln in by_gid(ax, "limit-")] == [0.8, 0.8]
+    ax = plot_tensions(eq, limits=(1000.0, 5000.0)).axes[0]
+    assert by_gid(ax, "limit-") == []
+    assert ax.get_title() == ("static cable tensions (dashed: admissible limits)\n"
+                              "off scale: t_min = 1000 N, t_max = 5000 N")
+
+
+def recommendation(errors, rung):
+    return SimpleNamespace(errors=errors, rung=rung)
+
+
+def test_rung_that_misses_modes_is_grey_above_the_largest_error():
+    """With finite errors below 1, a rung missing modes is a grey bar ten times the largest
+    finite error, labelled "misses modes" (8 pt) just above its top; the others are blue,
+    and the recommended rung is outlined in black."""
+    errors = {"chord": 0.2, "dsm": 0.01, "lumped": np.inf, "exact": 0.0}
+    fig = plot_model_errors(recommendation(errors, "dsm"), rtol=1e-2)
+    ax = fig.axes[0]
+    bars = by_gid(ax, "rung-errors")
+    top = 10 * 0.2
+    assert bars[2].get_height() == top
+    assert [b.get_facecolor() for b in bars] == [to_rgba("tab:blue")] * 2 + [
+        to_rgba("0.7"), to_rgba("tab:blue")]
+    assert bars[1].get_edgecolor() == to_rgba("k") and bars[1].get_linewidth() == 2.0
+    (label,) = ax.texts
+    assert label.get_text() == "misses modes" and label.get_fontsize() == 8
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    bar_top = bars[2].get_window_extent(r).y1
+    # the label's box starts at the bar's top (display pixels; 0.5 px for rounding)
+    assert abs(label.get_window_extent(r).y0 - bar_top) < 0.5
+    assert label.get_va() == "bottom"
+    assert to_rgba(by_gid(ax, "limit-rtol")[0].get_color()) == to_rgba("tab:red")
+    assert ax.get_ylabel() == "predicted relative frequency error [-]"
+
+
+def test_rungs_without_finite_error_are_drawn_at_one():
+    """When no rung has a finite positive error, the ones missing modes are drawn at 1."""
+    ax = plot_model_errors(recommendation({"chord": np.inf, "dsm": np.inf}, "dsm")).axes[0]
+    assert [b.get_height() for b in by_gid(ax, "rung-errors")] == [1.0, 1.0]

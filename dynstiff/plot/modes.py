@@ -29,8 +29,9 @@ def plot_modes(modes, ax=None):
     -------
     matplotlib Figure
         One stem per mode up to its platform share, coloured by kind: red (gid
-        ``modes-global``), purple (``modes-mixed``), blue (``modes-local``); dashed lines
-        at the kinds' thresholds 0.5 and 0.05 (docs/theory.md §12.1).
+        ``modes-global``), purple (``modes-mixed``), blue (``modes-local``); dashed 0.8 pt
+        lines at the kinds' thresholds 0.5 and 0.05 (docs/theory.md §12.1). The share axis
+        runs from 0 to 1.05.
     """
     require(modes, "modes", ("freq_hz", "cable_energy_fraction", "kind"), "ModalResult")
     fig, ax = figure_axes(ax)
@@ -67,7 +68,7 @@ def plot_damped_modes(damped, ax=None):
     Returns
     -------
     matplotlib Figure
-        Scatter with gid ``damped-modes``.
+        Scatter of red circles with gid ``damped-modes``, over a light grid (alpha 0.3).
     """
     require(damped, "damped", ("freq_hz", "damping_ratio"), "DampedModes")
     fig, ax = figure_axes(ax)
@@ -95,6 +96,8 @@ def plot_cable_modes(cable_modes, ax=None):
     -------
     matplotlib Figure
         Stems per family (gid ``cable-<family>``, spaces as dashes), labelled by order.
+        The figure is 8 x 4 in; stems are 1.5 pt wide, their order labels 7 pt; the legend
+        (8 pt) sits at the upper center.
     """
     require(cable_modes, "cable_modes", ("freq_hz", "family", "order"), "CableModes")
     fig, ax = figure_axes(ax, figsize=(8, 4))
@@ -135,7 +138,8 @@ def plot_tensions(equilibrium, ax=None, limits=None):
     -------
     matplotlib Figure
         Grouped bars (gids ``tension-B``, ``tension-A``), limits ``limit-t_min``,
-        ``limit-t_max``.
+        ``limit-t_max``. The bars are 0.4 wide, red at B left of the cable's tick and blue
+        at A right of it; the limits are 0.8 pt lines; the legend sits at the upper right.
     """
     tB = getattr(equilibrium, "end_tensions", None)
     if tB is None:
@@ -193,7 +197,10 @@ def plot_model_errors(recommendation, ax=None, rtol=None):
     -------
     matplotlib Figure
         Bars (gid ``rung-errors``) on a log scale; a rung that misses modes is drawn at the
-        top with the label "misses modes"; the recommended rung is outlined.
+        top with the label "misses modes"; the recommended rung is outlined. The bars are
+        blue; one that misses modes is grey, ten times as high as the largest finite positive
+        error (1 if there is none), with its 8 pt label just above it; the outline is black,
+        2 pt; ``rtol`` is a red line.
     """
     require(recommendation, "recommendation", ("errors", "rung"), "Recommendation")
     rtol = None if rtol is None else positive_scalar("rtol", rtol)
