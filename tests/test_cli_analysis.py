@@ -12,7 +12,427 @@ import dynstiff as ds
 pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
+# ------------------------------------------------------------------------ helpers
+def _help_text(monkeypatch, capsys, *argv):
+    """What `dynstiff ARGV -h` prints (exit 0), its whitespace collapsed to single blanks."""
+    from dynstiff.cli import main
+    monkeypatch.setenv("COLUMNS", "500")               # no wrapping inside a phrase
+    with pytest.raises(SystemExit) as exc:
+        main([*argv, "-h"])
+    assert exc.value.code == 0
+    return " ".join(capsys.readouterr().out.split())
 
+
+def _metadata(path):
+    """The ``# key: value`` header of a CSV table written by the command line, decoded."""
+    import json
+    return {k: json.loads(v) for k, v in (line[2:].split(": ", 1) for line in
+                                          path.read_text().splitlines()
+                                          if line.startswith("# "))}
+
+
+def _spy(monkeypatch, module, name, calls, limit=None):
+    """Replace ``module.name`` by a wrapper that records (args, kwargs) of each call in
+    ``calls`` and calls the real function (more than ``limit`` calls: an error, not a hang)."""
+    real = getattr(module, name)
+
+    def spy(*a, **kw):
+        calls.append((a, kw))
+        if limit is not None and len(calls) > limit:
+            raise AssertionError(f"{name} called more than {limit} times")
+        return real(*a, **kw)
+    monkeypatch.setattr(module, name, spy)
+    return real
+
+
+def _scene_with_free_dofs(tmp_path, base, dofs, **replace):
+    """A copy of the built-in scene ``base`` whose platform has only the DOFs ``dofs`` free."""
+    from dynstiff.scenes.loader import SCENE_DIR
+    text = (SCENE_DIR / f"{base}.toml").read_text()
+    text, n = re.subn(r"(?m)^free_dofs = \[.*\]$", "free_dofs = " + str(list(dofs))
+                      .replace("'", '"'), text)
+    assert n == 1
+    for old, new in replace.items():
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / f"{base}_{'_'.join(dofs)}.toml"
+    path.write_text(text)
+    return path
+
+
+# ------------------------------------------------------------------------ help, scenes
+def test_help_of_the_analysis_commands_names_each_option(monkeypatch, capsys):
+    """`dynstiff -h` says what `scenes`, `modes` and `frf` do; `modes -h`, `frf -h` and
+    `check -h` show each option with its metavar and its help, as written for the user."""
+    top = _help_text(monkeypatch, capsys)
+    assert "scenes list the built-in scenes" in top
+    assert ("modes eigenfrequencies with global/local labels and energy fractions "
+            "(Wittrick-Williams: none missed)") in top
+    assert "frf frequency response functions of the platform" in top
+    mo = _help_text(monkeypatch, capsys, "modes")
+    assert ("--band LO HI band of interest LO HI [Hz]: every mode in it (default: the first "
+            "--n-modes)") in mo
+    assert ("-n N, --n-modes N number of modes: the lowest N (default: the scene's n_modes; "
+            "with --band or --fmax, all in the band)") in mo
+    assert ("--json FILE write the table as JSON: the full modes table ('-': standard "
+            "output)") in mo
+    fr = _help_text(monkeypatch, capsys, "frf")
+    assert ("load channel(s), the FRF's input (default: fz, else the force or moment of the "
+            "first free DOF)") in fr
+    assert "response channel(s), the FRF's output (default: z, else the first free DOF)" in fr
+    assert "--point X Y Z platform point whose translation is output [m, platform frame]" in fr
+    assert "--csv FILE write the table as CSV: the tidy FRF table ('-': standard output)" in fr
+    assert "--uff FILE write the FRFs as UFF 58 records (needs dynstiff[exchange])" in fr
+    ck = _help_text(monkeypatch, capsys, "check")
+    assert ("--participation PARTICIPATION platform share of a mode's kinetic energy from "
+            "which it is held to the margin (default 0.05)") in ck
+    assert ("--frf-limit FRF_LIMIT largest admissible receptance / static value in the "
+            "forbidden band (default 10)") in ck
+
+
+def test_cli_scenes_lists_every_built_in_scene_with_its_description():
+    """`dynstiff scenes`: one line per built-in scene, its name padded to 12 characters and
+    its description, exit 0, nothing on standard error."""
+    out = run_cli("scenes")
+    assert out.returncode == 0 and out.stderr == ""
+    assert out.stdout == "".join(f"{n:<12s} {ds.load_scene(n).description}\n"
+                                 for n in ds.list_scenes())
+
+
+# ------------------------------------------------------------------------ modes
+def test_cli_modes_passes_n_fmax_and_max_modes_to_the_analysis(monkeypatch, capsys):
+    """`modes -n N` asks the analysis for the lowest N modes with no top frequency; `--fmax F`
+    for every mode below F and no count; `--max-modes` reaches it in both."""
+    import dynstiff.analyses.modes
+    from dynstiff.cli import main
+    calls = []
+    _spy(monkeypatch, dynstiff.analyses.modes, "modes", calls)
+    assert main(["modes", "planar2", "-n", "3", "--max-modes", "50"]) == 0
+    assert main(["modes", "planar2", "--fmax", "4", "--max-modes", "60"]) == 0
+    assert [c[1] for c in calls] == [dict(n_modes=3, fmax_hz=None, max_modes=50),
+                                     dict(n_modes=None, fmax_hz=4.0, max_modes=60)]
+    capsys.readouterr()
+
+
+def test_cli_modes_refuses_more_modes_than_max_modes():
+    """`-n 5 --max-modes 3`: exit 2 with the one-line error naming both, nothing computed or
+    printed on standard output."""
+    out = run_cli("modes", "planar2", "-n", "5", "--max-modes", "3")
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr == ("dynstiff: error: -n 5 is more than --max-modes 3; raise --max-modes "
+                          "to compute them\n")
+
+
+def test_cli_modes_report_table_and_header(tmp_path):
+    """`modes planar2 -n 4 --csv FILE`: the first line names the model and the scene's
+    damping; the printed table is the CSV's columns of the summary, without an index, each
+    float to 6 digits; the CSV header carries the units of the modes table."""
+    import pandas as pd
+    path = tmp_path / "m.csv"
+    out = run_cli("modes", "planar2", "-n", "4", "--csv", path)
+    assert out.returncode == 0, out.stderr
+    damping = ds.load_scene("planar2").damping.text()
+    lines = out.stdout.splitlines()
+    assert lines[0] == f"dsm model (undamped natural frequencies; {damping}):"
+    df = pd.read_csv(path, comment="#")
+    cols = ["mode", "freq [Hz]", "kind", "platform share [-]", "dominant dof",
+            "massless freq [Hz]", "shift from massless [-]"]
+    table = df[cols].to_string(index=False, float_format=lambda x: f"{x:.6g}")
+    assert "\n".join(lines[1:]) == table + f"\nwrote {path}"
+    assert _metadata(path)["units"] == ("Hz; shapes normalised to unit platform kinetic "
+                                        "energy")
+
+
+def test_cli_modes_lumped_takes_the_segments_given(tmp_path):
+    """`--model lumped --segments 4`: the model is built with 4 segments per cable (its modes
+    are those of that model), the report and the table's header say so."""
+    import pandas as pd
+    path = tmp_path / "l.csv"
+    out = run_cli("modes", "pendulum", "--model", "lumped", "--segments", "4", "-n", "3",
+                  "--csv", path)
+    assert out.returncode == 0, out.stderr
+    scene = ds.load_scene("pendulum")
+    assert out.stdout.splitlines()[0] == (f"lumped model, 4 segments per cable (undamped "
+                                          f"natural frequencies; {scene.damping.text()}):")
+    expected = ds.modes(ds.build_model(scene.equilibrium(), "lumped", segments=4),
+                        n_modes=3).freq_hz
+    got = pd.read_csv(path, comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+    assert _metadata(path)["segments"] == 4
+
+
+def test_cli_modes_of_a_model_with_fewer_modes_than_asked(monkeypatch, capsys):
+    """The massless spring model of the pendulum has one mode per free DOF: `-n 5` lists
+    those it has, asks the analysis for exactly that many and says so in the first line."""
+    import dynstiff.analyses.modes
+    from dynstiff.cli import main
+    scene = ds.load_scene("pendulum")
+    n_dof = ds.build_model(scene.equilibrium(), "spring").n_dof
+    assert n_dof < 5
+    calls = []
+    _spy(monkeypatch, dynstiff.analyses.modes, "modes", calls)
+    assert main(["modes", "pendulum", "--model", "spring", "-n", "5"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == (f"spring model (it has {n_dof} modes; 5 asked) (undamped natural "
+                        f"frequencies; {scene.damping.text()}):")
+    assert [c[1]["n_modes"] for c in calls] == [n_dof]
+    assert len(lines) == 2 + n_dof                     # the line, the header, the modes
+
+
+def test_cli_modes_exact_model_up_to_fmax(monkeypatch, tmp_path):
+    """`--model exact --fmax 3`: the exact rung of the scene's equilibrium, resolved to
+    1.05 x 3 Hz; the modes listed are every one of its modes below 3 Hz."""
+    import pandas as pd
+
+    import dynstiff.models.ladder
+    calls = []
+    _spy(monkeypatch, dynstiff.models.ladder, "build_model", calls)
+    path = tmp_path / "e.csv"
+    out = run_cli("modes", "planar2", "--model", "exact", "--fmax", "3", "--csv", path)
+    assert out.returncode == 0, out.stderr
+    eq = ds.load_scene("planar2").equilibrium()
+    exact = [c for c in calls if c[0][1:2] == ("exact",)]
+    assert len(exact) == 1 and exact[0][1] == {"fmax_hz": 1.05 * 3.0}
+    np.testing.assert_allclose(exact[0][0][0].pose.position, eq.pose.position, atol=1e-12)
+    model = ds.build_model(eq, "exact", fmax_hz=1.05 * 3.0)
+    got = pd.read_csv(path, comment="#")["freq [Hz]"].to_numpy()
+    np.testing.assert_allclose(got, ds.modes(model, fmax_hz=3.0).freq_hz, rtol=1e-9)
+
+
+def test_cli_modes_exact_model_band_doubles_until_it_holds_n_modes(monkeypatch, capsys):
+    """`--model exact -n 2` on the pendulum (one mode below 25 Hz): the exact rung is built
+    for a band doubled from 25 Hz until it holds 2 modes, and its 2 lowest are listed."""
+    import dynstiff.models.ladder
+    from dynstiff.cli import main
+    calls = []
+    _spy(monkeypatch, dynstiff.models.ladder, "build_model", calls, limit=30)
+    assert main(["modes", "pendulum", "--model", "exact", "-n", "2", "--quiet"]) == 0
+    capsys.readouterr()
+    bands = [c[1]["fmax_hz"] for c in calls]
+    assert all(c[0][1] == "exact" for c in calls)
+    assert len(bands) > 1 and bands == [25.0 * 2 ** k for k in range(len(bands))]
+    eq = ds.load_scene("pendulum").equilibrium()
+    for band in bands[-2:]:
+        held = ds.analyses.eigen.mode_count(ds.build_model(eq, "exact", fmax_hz=band),
+                                            2 * np.pi * band)[0]
+        assert (held >= 2) == (band == bands[-1])
+
+
+def test_cli_modes_exact_model_gives_up_at_10_khz(monkeypatch):
+    """When no band up to 10 kHz holds the modes asked, `--model exact -n N` stops with the
+    one-line error after doubling the band from 25 Hz to its last value below 10 kHz."""
+    import dynstiff.analyses.eigen
+    import dynstiff.models.ladder
+    bands = []
+
+    def build(eq, rung, **kw):
+        bands.append(kw["fmax_hz"])
+        if len(bands) > 30:
+            raise AssertionError("the band does not grow")
+        return object()
+    monkeypatch.setattr(dynstiff.models.ladder, "build_model", build)
+    monkeypatch.setattr(dynstiff.analyses.eigen, "mode_count", lambda m, w: np.array([0]))
+    out = run_cli("modes", "planar2", "--model", "exact", "-n", "7")
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr == ("dynstiff: error: -n 7: more modes than the exact model holds below "
+                          "10 kHz\n")
+    expected, band = [], 25.0
+    while band <= 1e4:
+        expected.append(band)
+        band *= 2.0
+    assert bands == expected
+
+
+def test_cli_modes_and_check_show_their_progress_label_on_a_terminal(monkeypatch):
+    """On a terminal, `modes` and `check` show a bar labelled with the command and the
+    scene while they compute."""
+    import io
+    import sys
+
+    from dynstiff.cli import main
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+    for argv, label in ((["modes", "planar2", "-n", "2"], "modes planar2: "),
+                        (["check", "planar2"], "check planar2: ")):
+        err = Terminal()
+        monkeypatch.setattr(sys, "stderr", err)
+        monkeypatch.setattr(sys, "stdout", io.StringIO())
+        assert main(argv) == 0
+        assert label in err.getvalue()
+
+
+# ------------------------------------------------------------------------ frf
+@pytest.mark.parametrize(("base", "dof", "load"), [("fourcable", "x", "fx"),
+                                                    ("cogiro", "rz", "mz")])
+def test_cli_frf_default_channels_of_the_first_free_dof(tmp_path, base, dof, load):
+    """A scene whose only free DOF is x (rz): `frf` without --load/--response gives the FRF
+    of that DOF's force (moment) to its motion."""
+    scene = _scene_with_free_dofs(tmp_path, base, [dof])
+    out = run_cli("frf", scene, "--points", "50", "--band", "1", "3")
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.startswith(f"receptance {dof}/{load}: ")
+
+
+def test_cli_frf_takes_every_load_and_response_channel(tmp_path):
+    """`--load fx fy fz mx my mz --response x y z rx ry rz` on CoGiRo (all six DOFs free):
+    the table holds all 36 channels."""
+    import pandas as pd
+    loads, responses = ["fx", "fy", "fz", "mx", "my", "mz"], ["x", "y", "z", "rx", "ry", "rz"]
+    path = tmp_path / "f.csv"
+    out = run_cli("frf", "cogiro", "--load", *loads, "--response", *responses, "--band",
+                  "1", "1.5", "--points", "20", "--csv", path)
+    assert out.returncode == 0, out.stderr
+    df = pd.read_csv(path, comment="#")
+    assert sorted(set(zip(df["output"], df["input"]))) == sorted(
+        (o, i) for o in responses for i in loads)
+    assert out.stdout.startswith("receptance x/fx: ")
+
+
+def test_cli_frf_passes_kind_point_and_channels_to_the_analysis(monkeypatch, capsys):
+    """`--kind mobility --point X Y Z --load fx --response x z`: the FRF is computed with
+    those, and the report names the kind and the first channel."""
+    import dynstiff.analyses.frf
+    from dynstiff.cli import main
+    calls = []
+    _spy(monkeypatch, dynstiff.analyses.frf, "frf", calls)
+    assert main(["frf", "planar2", "--kind", "mobility", "--point", "0.5", "0", "-0.25",
+                 "--load", "fx", "--response", "x", "z", "--points", "30"]) == 0
+    (args, kw), = calls
+    assert kw == dict(inputs=["fx"], outputs=["x", "z"], point=[0.5, 0.0, -0.25],
+                      kind="mobility")
+    assert capsys.readouterr().out.startswith("mobility x/fx: ")
+
+
+def test_cli_frf_report_of_a_damped_and_of_an_undamped_model(tmp_path):
+    """The report's lines: channel, grid and largest |H| (read back from the table), the
+    model and its damping; an undamped model adds that its largest |H| is the grid's, a
+    damped one does not. The CSV header says where the units are, `wrote` names the file."""
+    import pandas as pd
+
+    from dynstiff.params import Damping
+    scene = ds.load_scene("pendulum")
+    lo, hi = scene.band_hz
+    for damping, extra in (([], []), (["--damping", "0", "0", "0"],
+                                      ["undamped model: |H| is unbounded at every mode, the "
+                                       "largest value is the grid's, not a peak"])):
+        csv = tmp_path / "p.csv"
+        out = run_cli("frf", "pendulum", "--points", "40", *damping, "--csv", csv)
+        assert out.returncode == 0, out.stderr
+        df = pd.read_csv(csv, comment="#")
+        values = [float(v) for v in damping[1:]] or None
+        model = ds.scene_model(scene, damping=values)
+        marks = ds.modes(model, fmax_hz=hi)
+        k = df["magnitude"].idxmax()
+        assert out.stdout.splitlines() == [
+            f"receptance ry/my: {len(df)} frequencies {lo:g}-{hi:g} Hz (40 uniform, refined "
+            f"at {len(marks)} modes), largest |H| = {df['magnitude'][k]:.4g} at "
+            f"{df['freq [Hz]'][k]:.5g} Hz",
+            f"dsm model; {(Damping(*values) if values else scene.damping).text()}",
+            *extra, f"wrote {csv}"]
+        assert _metadata(csv)["units"] == "in the unit column"
+
+
+def test_cli_frf_writes_uff_after_the_tables(tmp_path):
+    """`--uff FILE` writes the FRF as UFF 58 records (one per channel), and the report says
+    `wrote` for the table, then for the UFF file."""
+    pyuff = pytest.importorskip("pyuff")
+    csv, uff = tmp_path / "f.csv", tmp_path / "f.uff"
+    out = run_cli("frf", "planar2", "--points", "30", "--response", "x", "z", "--csv", csv,
+                  "--uff", uff)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.splitlines()[-2:] == [f"wrote {csv}", f"wrote {uff}"]
+    assert len(pyuff.UFF(str(uff)).read_sets()) == 2
+
+
+def test_cli_frf_figure_marks_the_modes_of_the_band(monkeypatch, tmp_path):
+    """`frf --plot`: the figure is drawn with the modes of the model up to the band's top
+    (the dashed lines at the natural frequencies)."""
+    import dynstiff.plot
+    from dynstiff.cli import main
+    calls = []
+    _spy(monkeypatch, dynstiff.plot, "plot_frf", calls)
+    assert main(["frf", "planar2", "--points", "50", "--quiet", "--plot",
+                 str(tmp_path / "f.png")]) == 0
+    (args, kw), = calls
+    scene = ds.load_scene("planar2")
+    expected = ds.modes(ds.scene_model(scene), fmax_hz=scene.band_hz[1]).freq_hz
+    assert args[1] is not None
+    np.testing.assert_allclose(args[1].freq_hz, expected, rtol=1e-12)
+    assert kw == dict(pairs=[("z", "fz")], phase=True)
+
+
+# ------------------------------------------------------------------------ check
+def test_cli_check_passes_the_options_to_the_design_checks(monkeypatch, capsys):
+    """Every option of `check` reaches the design checks: the forbidden band, margin,
+    tolerance, participation, FRF limit, model, damping, proximity, sag limit, max modes and
+    the uncertain parameters, with the scene's band of interest."""
+    import dynstiff.analyses.checks
+    from dynstiff.analyses.uncertainty import Uncertain
+    from dynstiff.cli import main
+    from dynstiff.params import Damping
+    calls = []
+    _spy(monkeypatch, dynstiff.analyses.checks, "design_checks", calls)
+    code = main(["check", "planar2", "--forbidden-band", "0.5", "1.5", "--margin", "0.2",
+                 "--rtol", "0.004", "--participation", "0.3", "--frf-limit", "7",
+                 "--model", "catenary", "--damping", "0.02", "0.03", "--proximity", "0.07",
+                 "--max-sag", "0.015", "--max-modes", "300", "--uncertain", "EA=10%"])
+    assert code in (0, 1)
+    capsys.readouterr()
+    (args, kw), = calls
+    scene = ds.load_scene("planar2")
+    np.testing.assert_allclose(args[0].anchors, scene.robot.anchors)
+    np.testing.assert_allclose(args[1].position, scene.pose.position)
+    assert kw == dict(proximity_rtol=0.07, max_sag_ratio=0.015,
+                      uncertain={"EA": Uncertain.parse("10%")}, max_modes=300,
+                      band_hz=(0.5, 1.5), margin=0.2, model_rtol=0.004, rung="catenary",
+                      participation=0.3, frf_limit=7.0,
+                      damping=Damping(0.02, 0.03, scene.damping.cable_viscous_damping),
+                      model_band_hz=scene.band_hz)
+
+
+def test_cli_check_advice_when_the_bound_fails_the_recommended_model(tmp_path):
+    """planar2 at --rtol 1e-4: the cable-model row fails (its bound) though the recommended
+    model is the one checked: the advice line follows the recommendation; with --csv - both go
+    to standard error and standard output holds the table alone."""
+    from dynstiff.analyses.settings import analysis_settings
+    scene = ds.load_scene("planar2")
+    rec = ds.recommend_model(scene.equilibrium(), scene.band_hz, 1e-4)
+    assert rec.rung == analysis_settings(scene).rung
+    out = run_cli("check", "planar2", "--rtol", "1e-4", "--csv", "-")
+    assert out.returncode == 1
+    assert "FAIL    cable model" in out.stderr
+    lines = out.stderr.splitlines()
+    i = lines.index(rec.text().splitlines()[0] + f" (over {scene.band_hz[0]:g}-"
+                    f"{scene.band_hz[1]:g} Hz, the closed form measured against the exact "
+                    f"rung)")
+    assert lines[i + 1:] == [
+        "  (advice, not a verdict: the measured error is within the tolerance, the "
+        "cable-model row holds the model to its bound, computed without the exact rung "
+        "(theory.md §11.6); --model exact passes the row)"]
+    assert "advice" not in out.stdout and "recommended" not in out.stdout
+    assert out.stdout.startswith("# dynstiff: ")
+
+
+def test_cli_check_recommends_a_model_for_the_tolerance_given():
+    """The recommendation under the verdicts is the cheapest model for --rtol: on the
+    pendulum 1e-4 asks for another model than the default 1e-2."""
+    scene = ds.load_scene("pendulum")
+    eq = scene.equilibrium()
+    rec = ds.recommend_model(eq, scene.band_hz, 1e-4)
+    assert rec.rung != ds.recommend_model(eq, scene.band_hz).rung
+    out = run_cli("check", "pendulum", "--rtol", "1e-4")
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert (rec.text().splitlines()[0] + f" (over {scene.band_hz[0]:g}-{scene.band_hz[1]:g} "
+            f"Hz, the closed form measured against the exact rung)") in out.stdout.splitlines()
+
+
+def test_cli_check_has_no_lengths_option():
+    """`check` takes a pose, not unstretched lengths: --lengths is refused, exit 2."""
+    out = run_cli("check", "planar2", "--lengths", "20", "20")
+    assert out.returncode == 2 and out.stdout == ""
+    assert "unrecognized arguments: --lengths 20 20" in out.stderr
 
 
 def test_cli_modes_table_and_csv(tmp_path):
