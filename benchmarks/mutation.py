@@ -162,7 +162,7 @@ cli.simulate (184)              100     18 / 39 / 0, 43 u.  99 / 0 / 1 (P)      
 plot.modes (220)                100     54 / 46 / 0         98 / 2 / 0 (P)             98.0 %
 cli.report (80)                 100     38 / 62 / 0         98 / 0 / 2 (P)             100 %
 cli.sweep (186)                 100     15 / 48 / 0, 37 u.  97 / 1 / 2 (P)             99.0 %
-cli.analysis (284)              100     23 / 41 / 0, 36 u.  not finished               --
+cli.analysis (284)              100     23 / 41 / 0, 36 u.  100 / 0 / 0 (P)            100 %
 cli.workspace (182)             100     28 / 25 / 0, 47 u.  not handled                --
 plot.frf (141)                  100     75 / 25 / 0         not handled                --
 report.robot (213)              100     54 / 46 / 0         not handled                --
