@@ -2,6 +2,7 @@
 models built once per module, and the test cables of the lumped chain tests (theory.md
 §1.1, §7.2, §9.2)."""
 
+import io
 import os
 import subprocess
 import sys
@@ -172,7 +173,18 @@ def beaded_string(n_segments, cable=BEAD):
     return state, tension
 
 
-def run_cli(*args, cwd=None, in_subprocess=False):
+class _Stderr(io.StringIO):
+    """A captured standard error that is a terminal or not (progress bars draw on one)."""
+
+    def __init__(self, terminal):
+        super().__init__()
+        self.terminal = terminal
+
+    def isatty(self):
+        return self.terminal
+
+
+def run_cli(*args, cwd=None, in_subprocess=False, terminal=False):
     """The command line ``dynstiff ARGS`` with its output captured, as
     ``subprocess.CompletedProcess`` (returncode, stdout, stderr), run in folder ``cwd``.
 
@@ -181,9 +193,9 @@ def run_cli(*args, cwd=None, in_subprocess=False):
     then seen by coverage and mutation testing, and no interpreter starts); an exception
     leaving ``main`` is written to stderr as Python would, exit code 1, and fails the test
     unless ``--debug`` was given (a command fails with one line). ``in_subprocess=True``
-    runs ``python -m dynstiff ARGS`` instead (the entry point itself, interrupts)."""
+    runs ``python -m dynstiff ARGS`` instead (the entry point itself, interrupts);
+    ``terminal=True`` makes the captured stderr a terminal (the progress bars are drawn)."""
     import contextlib
-    import io
     import traceback
     import warnings
     args = [str(a) for a in args]
@@ -191,7 +203,7 @@ def run_cli(*args, cwd=None, in_subprocess=False):
         return subprocess.run([sys.executable, "-m", "dynstiff", *args], capture_output=True,
                               text=True, cwd=cwd)
     from dynstiff.cli import main
-    out, err = io.StringIO(), io.StringIO()
+    out, err = io.StringIO(), _Stderr(terminal)
     with contextlib.ExitStack() as stack:
         if cwd is not None:
             stack.enter_context(contextlib.chdir(cwd))
@@ -213,6 +225,15 @@ def run_cli(*args, cwd=None, in_subprocess=False):
     assert "Traceback" not in err.getvalue() or "--debug" in args, err.getvalue()[-2000:]
     return subprocess.CompletedProcess(["dynstiff", *args], code, out.getvalue(),
                                        err.getvalue())
+
+
+def cli_help(monkeypatch, *args):
+    """What ``dynstiff ARGS -h`` prints (exit 0), on one line: its whitespace collapsed to
+    single blanks, the terminal wide enough that argparse wraps no phrase."""
+    monkeypatch.setenv("COLUMNS", "2000")
+    out = run_cli(*args, "-h")
+    assert out.returncode == 0, out.stderr
+    return " ".join(out.stdout.split())
 
 
 @pytest.fixture

@@ -5,7 +5,7 @@ import re
 
 import numpy as np
 import pytest
-from conftest import run_cli
+from conftest import cli_help, run_cli
 
 import dynstiff as ds
 
@@ -13,16 +13,6 @@ pytestmark = pytest.mark.usefixtures("no_traceback")
 
 
 # ------------------------------------------------------------------------ helpers
-def _help_text(monkeypatch, capsys, *argv):
-    """What `dynstiff ARGV -h` prints (exit 0), its whitespace collapsed to single blanks."""
-    from dynstiff.cli import main
-    monkeypatch.setenv("COLUMNS", "500")               # no wrapping inside a phrase
-    with pytest.raises(SystemExit) as exc:
-        main([*argv, "-h"])
-    assert exc.value.code == 0
-    return " ".join(capsys.readouterr().out.split())
-
-
 def _metadata(path):
     """The ``# key: value`` header of a CSV table written by the command line, decoded."""
     import json
@@ -61,29 +51,29 @@ def _scene_with_free_dofs(tmp_path, base, dofs, **replace):
 
 
 # ------------------------------------------------------------------------ help, scenes
-def test_help_of_the_analysis_commands_names_each_option(monkeypatch, capsys):
+def test_help_of_the_analysis_commands_names_each_option(monkeypatch):
     """`dynstiff -h` says what `scenes`, `modes` and `frf` do; `modes -h`, `frf -h` and
     `check -h` show each option with its metavar and its help, as written for the user."""
-    top = _help_text(monkeypatch, capsys)
+    top = cli_help(monkeypatch)
     assert "scenes list the built-in scenes" in top
     assert ("modes eigenfrequencies with global/local labels and energy fractions "
             "(Wittrick-Williams: none missed)") in top
     assert "frf frequency response functions of the platform" in top
-    mo = _help_text(monkeypatch, capsys, "modes")
+    mo = cli_help(monkeypatch, "modes")
     assert ("--band LO HI band of interest LO HI [Hz]: every mode in it (default: the first "
             "--n-modes)") in mo
     assert ("-n N, --n-modes N number of modes: the lowest N (default: the scene's n_modes; "
             "with --band or --fmax, all in the band)") in mo
     assert ("--json FILE write the table as JSON: the full modes table ('-': standard "
             "output)") in mo
-    fr = _help_text(monkeypatch, capsys, "frf")
+    fr = cli_help(monkeypatch, "frf")
     assert ("load channel(s), the FRF's input (default: fz, else the force or moment of the "
             "first free DOF)") in fr
     assert "response channel(s), the FRF's output (default: z, else the first free DOF)" in fr
     assert "--point X Y Z platform point whose translation is output [m, platform frame]" in fr
     assert "--csv FILE write the table as CSV: the tidy FRF table ('-': standard output)" in fr
     assert "--uff FILE write the FRFs as UFF 58 records (needs dynstiff[exchange])" in fr
-    ck = _help_text(monkeypatch, capsys, "check")
+    ck = cli_help(monkeypatch, "check")
     assert ("--participation PARTICIPATION platform share of a mode's kinetic energy from "
             "which it is held to the margin (default 0.05)") in ck
     assert ("--frf-limit FRF_LIMIT largest admissible receptance / static value in the "
@@ -243,24 +233,13 @@ def test_cli_modes_exact_model_gives_up_at_10_khz(monkeypatch):
     assert bands == expected
 
 
-def test_cli_modes_and_check_show_their_progress_label_on_a_terminal(monkeypatch):
+def test_cli_modes_and_check_show_their_progress_label_on_a_terminal():
     """On a terminal, `modes` and `check` show a bar labelled with the command and the
     scene while they compute."""
-    import io
-    import sys
-
-    from dynstiff.cli import main
-
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
     for argv, label in ((["modes", "planar2", "-n", "2"], "modes planar2: "),
                         (["check", "planar2"], "check planar2: ")):
-        err = Terminal()
-        monkeypatch.setattr(sys, "stderr", err)
-        monkeypatch.setattr(sys, "stdout", io.StringIO())
-        assert main(argv) == 0
-        assert label in err.getvalue()
+        run = run_cli(*argv, terminal=True)
+        assert run.returncode == 0 and label in run.stderr
 
 
 # ------------------------------------------------------------------------ frf

@@ -1,13 +1,11 @@
 """The `dynstiff` command line, run in this process (conftest.run_cli): the main job `demo`
 and `report` (dynstiff/cli/report.py)."""
 
-import contextlib
-import io
 import re
 from pathlib import Path
 
 import pytest
-from conftest import run_cli
+from conftest import cli_help, run_cli
 
 import dynstiff as ds
 
@@ -16,21 +14,6 @@ pytestmark = pytest.mark.usefixtures("no_traceback")
 
 # ------------------------------------- what demo/report pass to the library, print, document
 # (fast: the report functions are replaced by spies that write nothing)
-class _Terminal(io.StringIO):
-    """Standard error as a terminal: the progress bars draw on it unless --quiet."""
-
-    def isatty(self):
-        return True
-
-
-def _run_on_terminal(*argv):
-    """``main(argv)`` with standard error a terminal; (exit code, stdout, stderr)."""
-    from dynstiff.cli import main
-    out, err = io.StringIO(), _Terminal()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main([str(a) for a in argv])
-    return code, out.getvalue(), err.getvalue()
-
 
 @pytest.fixture
 def robot_spy(monkeypatch):
@@ -181,32 +164,26 @@ def test_demo_cable_passes_band_top_and_points(tmp_path, cable_spy, robot_spy, o
 def test_elapsed_bar_label_and_quiet(tmp_path, cable_spy, robot_spy, argv, label):
     """On a terminal the command shows a bar labelled with the job (the cable demo, or the
     command and the scene's name) and the time elapsed; --quiet: nothing on stderr."""
-    code, _, err = _run_on_terminal(*argv, "--out", tmp_path / "o")
+    run = run_cli(*argv, "--out", tmp_path / "o", terminal=True)
+    code, err = run.returncode, run.stderr
     assert code == 0
     assert re.search(rf"\r{re.escape(label)}: \d\d:\d\d\r", err), err
-    code, _, err = _run_on_terminal(*argv, "--out", tmp_path / "o", "--quiet")
+    run = run_cli(*argv, "--out", tmp_path / "o", "--quiet", terminal=True)
+    code, err = run.returncode, run.stderr
     assert code == 0 and err == ""
-
-
-def _help(monkeypatch, *argv):
-    """The help text of ``dynstiff ARGV -h``, on one line (no wrapping)."""
-    monkeypatch.setenv("COLUMNS", "1000")
-    out = run_cli(*argv, "-h")
-    assert out.returncode == 0, out.stderr
-    return " ".join(out.stdout.split())
 
 
 def test_help_of_demo_and_report(monkeypatch):
     """`dynstiff -h` describes demo and report; `demo -h` / `report -h` document the
     optional scene (demo), --cable, --pose, -n, --points and --out with their defaults."""
     from dynstiff.cli.options import MEANINGS
-    top = _help(monkeypatch)
+    top = cli_help(monkeypatch)
     assert ("demo main job on a scene (default: CoGiRo): statics, modes, model choice, "
             "design checks, FRF and mode-shape figures, CSV tables report the demo's "
             "analysis of one scene: tables, figures and a self-contained report.html "
             "scenes ") in top
     for cmd, folder in (("demo", "dynstiff-demo"), ("report", "dynstiff-report")):
-        h = _help(monkeypatch, cmd)
+        h = cli_help(monkeypatch, cmd)
         assert "--lengths" not in h
         for text in (
                 f"--pose X [X ...] {MEANINGS['--pose']}: default: the scene's pose --band",
@@ -217,7 +194,7 @@ def test_help_of_demo_and_report(monkeypatch):
                 f"--out FOLDER write the main result to: the output folder, created (default "
                 f"{folder}) --quiet"):
             assert text in h, (cmd, text)
-    demo = _help(monkeypatch, "demo")
+    demo = cli_help(monkeypatch, "demo")
     assert demo.startswith("usage: dynstiff demo [-h] [--cable] ")
     assert "[--quiet] [scene] " in demo
     assert f"scene {MEANINGS['scene']}: default cogiro options:" in demo

@@ -1,8 +1,6 @@
 """The `dynstiff` command line, run in this process (conftest.run_cli): the simulate commands
 (dynstiff/cli/simulate.py)."""
 
-import contextlib
-import io
 import json
 import re
 import warnings
@@ -11,7 +9,7 @@ from types import SimpleNamespace
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import inverted_stewart_scene, run_cli
+from conftest import cli_help, inverted_stewart_scene, run_cli
 
 import dynstiff as ds
 
@@ -86,21 +84,6 @@ def test_cli_simulate_follows_a_trajectory_of_the_scene(tmp_path):
 # The commands' own work (the options they pass on, what they print and write) is checked
 # against fakes of the expensive library calls: a simulation, its spectrum and the
 # linearised frequencies (free vibration), or the tracking of a path.
-
-class _Terminal(io.StringIO):
-    """Standard error that claims to be a terminal (progress bars drawn)."""
-
-    def isatty(self):
-        return True
-
-
-def _run_on_terminal(*argv):
-    """``main(argv)`` with standard error a terminal; (exit code, stdout, stderr)."""
-    from dynstiff.cli import main
-    out, err = io.StringIO(), _Terminal()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main([str(a) for a in argv])
-    return code, out.getvalue(), err.getvalue()
 
 
 class _FakeSpectrum:
@@ -288,10 +271,12 @@ def test_free_vibration_shows_the_time_elapsed_on_a_terminal(free_spy):
     elapsed; --quiet: nothing on standard error."""
     free_spy.modes = [1.0]
     free_spy.peaks = [1.1]
-    code, _, err = _run_on_terminal("simulate", "fourcable", "--segments", "1")
+    run = run_cli("simulate", "fourcable", "--segments", "1", terminal=True)
+    code, err = run.returncode, run.stderr
     assert code == 0
     assert re.search(r"\rsimulate fourcable: \d\d:\d\d\r", err), err
-    code, _, err = _run_on_terminal("simulate", "fourcable", "--segments", "1", "--quiet")
+    run = run_cli("simulate", "fourcable", "--segments", "1", "--quiet", terminal=True)
+    code, err = run.returncode, run.stderr
     assert code == 0 and err == ""
 
 
@@ -408,7 +393,8 @@ def test_line_table_on_stdout_keeps_the_report_on_stderr(track_spy, tmp_path):
 def test_line_progress_on_a_terminal(track_spy):
     """On a terminal: a bar 'quasi-static lengths' counting poses, then, once they are
     done, the time elapsed while 'time stepping'."""
-    code, _, err = _run_on_terminal("simulate", "planar2", "--target", "1", "0", "-10")
+    run = run_cli("simulate", "planar2", "--target", "1", "0", "-10", terminal=True)
+    code, err = run.returncode, run.stderr
     assert code == 0
     m = re.search(r"quasi-static lengths: 100%.*3/3 \[[^\]]*(pose/s|s/pose)\]", err)
     assert m, err
@@ -453,10 +439,7 @@ def test_simulate_help(monkeypatch):
     """`dynstiff simulate -h`: the usage line and every option with its metavar, choices,
     default and help."""
     from dynstiff.cli.options import MEANINGS
-    monkeypatch.setenv("COLUMNS", "1000")
-    out = run_cli("simulate", "-h")
-    assert out.returncode == 0, out.stderr
-    h = " ".join(out.stdout.split())
+    h = cli_help(monkeypatch, "simulate")
     assert h == " ".join((
         "usage: dynstiff simulate [-h] [--pose X [X ...] | --lengths L0 [L0 ...]] "
         "[--time TIME] [--dt DT] [--segments SEGMENTS] [--offset D [D ...]] [--band LO HI] "
