@@ -637,6 +637,32 @@ def test_cli_frf_figure_has_a_phase_panel(tmp_path, monkeypatch):
     assert (tmp_path / "f.png").stat().st_size > 10_000
 
 
+def test_modes_band_with_n_lists_the_lowest_n_in_the_band(tmp_path, capsys):
+    """`modes --band 3 6 -n N` lists the lowest N modes in [3, 6] Hz, not the lowest N from
+    0 Hz cut to the band (which left none); when the band holds fewer than N the first line
+    says how many it holds."""
+    import pandas as pd
+
+    from dynstiff.cli import main
+    eq = ds.load_scene("planar2").equilibrium()
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=6.0)
+    inband = f[f >= 3.0]
+    assert np.sum(f < 3.0) >= 2 and inband.size >= 3         # -n 2 from 0 Hz misses the band
+    for n in (1, 2):
+        path = tmp_path / f"n{n}.csv"
+        assert main(["modes", "planar2", "--band", "3", "6", "-n", str(n), "--csv",
+                     str(path)]) == 0
+        got = pd.read_csv(path, comment="#")
+        np.testing.assert_allclose(got["freq [Hz]"], inband[:n], rtol=1e-9)
+        assert got["mode"].tolist() == [int(np.sum(f < 3.0)) + 1 + k for k in range(n)]
+    capsys.readouterr()
+    many = inband.size + 5
+    assert main(["modes", "planar2", "--band", "3", "6", "-n", str(many)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith(f"dsm model ({inband.size} in the band; {many} asked) (")
+    assert len(lines) == 2 + inband.size
+
+
 def test_modes_band_lists_every_mode_in_it_and_frf_defaults_to_a_free_dof(tmp_path, capsys):
     """--band LO HI is the band of interest in every command: `modes --band 3 6` lists the
     eigenfrequencies in [3, 6] Hz (Wittrick-Williams, none missed), `--fmax 6` all below;

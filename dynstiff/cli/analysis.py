@@ -70,6 +70,9 @@ def _cmd_modes(args):
                                     f"--max-modes to compute them")
     args.model = st.rung
     args.segments = st.segments
+    take = None
+    if args.band is not None and n is not None:   # the lowest n in the band, not from 0 Hz
+        take, n = n, None
     if st.rung == "exact":
         model = _exact_model(eq, n, fmax)
     else:
@@ -83,6 +86,10 @@ def _cmd_modes(args):
     df = res.to_frame()
     if args.band is not None:
         df = df[df["freq [Hz]"] >= args.band[0]].reset_index(drop=True)
+    if take is not None:
+        if len(df) < take:
+            note += f" ({len(df)} in the band; {take} asked)"
+        df = df.head(take)
     if len(df) == 0:
         raise InvalidParameterError(f"no {args.model}-model mode in the band "
                                     f"{st.band_hz[0]:g}-{st.band_hz[1]:g} Hz")
