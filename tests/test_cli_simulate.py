@@ -221,6 +221,29 @@ def test_free_vibration_band_defaults_to_the_model_frequencies(free_spy, monkeyp
     assert "(3): 1, 2, 4\n" in out.stdout
 
 
+def test_free_vibration_without_band_nor_mode_is_refused_with_one_line(free_spy, monkeypatch,
+                                                                        tmp_path):
+    """A scene without band_hz and a lumped model with no mode below half the spectrum's
+    top: one line naming --band and --dt, exit 2, and no table written."""
+    import dataclasses
+
+    import dynstiff.scenes
+    load = dynstiff.scenes.load_scene
+    monkeypatch.setattr("dynstiff.scenes.load_scene",
+                        lambda name: dataclasses.replace(load(name), band_hz=None))
+    free_spy.modes = []
+    free_spy.peaks = [2.1]
+    csv = tmp_path / "t.csv"
+    out = run_cli("simulate", "fourcable", "--time", "1", "--dt", "0.004", "--csv", csv)
+    assert out.returncode == 2 and out.stdout == ""
+    assert out.stderr == ("dynstiff: error: no band: the scene has no band_hz and the lumped model "
+                          "has no mode below 62.5 Hz (half the spectrum's top at --dt 0.004 "
+                          "s); give --band LO HI or a smaller --dt\n")
+    assert not csv.exists()
+    free_spy.modes = [70.0]                                   # one mode: the band 0-105 Hz
+    assert run_cli("simulate", "fourcable", "--time", "1", "--dt", "0.004").returncode == 0
+
+
 def test_free_vibration_options_reach_the_run_and_the_plot(free_spy, tmp_path):
     """--offset, --channel, --band and the defaults --time 5, --dt 0.002, --segments 10
     reach the model, the simulation and the spectrum; --plot draws the spectrum with the

@@ -84,8 +84,15 @@ def _cmd_simulate(args):
         f_model = eigenfrequencies(model, fmax_hz=sp.freq_hz[-1] * 0.5)
         if args.band is not None:
             band = tuple(args.band)
+        elif scene.band_hz is not None:
+            band = scene.band_hz
+        elif f_model.size:
+            band = (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
         else:
-            band = scene.band_hz or (0.0, 1.5 * float(f_model[min(7, f_model.size - 1)]))
+            raise InvalidParameterError(
+                f"no band: the scene has no band_hz and the lumped model has no mode below "
+                f"{sp.freq_hz[-1] * 0.5:.4g} Hz (half the spectrum's top at --dt "
+                f"{args.dt:g} s); give --band LO HI or a smaller --dt")
         info(args).write(
             f"free vibration from offset {offset.tolist()}, {args.time:g} s, dt = "
             f"{args.dt:g} s, {args.segments} segments per cable (damping: the cables' own, "
