@@ -102,6 +102,36 @@ def test_count_kernel_equals_numpy_eigenvalues_and_cable_count(cogiro_eq):
     assert np.all(np.abs(ev - ev_ref) <= 50 * np.finfo(float).eps * scale)
 
 
+def test_sign_counts_equal_the_eigenvalue_counts(cogiro_eq, monkeypatch):
+    """The seed grid's counts from the pivots' signs (dsm_counts) equal J0 + #(ev < 0) of
+    the eigenvalue kernel, on the pole-crossing grid above (within 1e-9 of poles, where K
+    is not finite: J = J0 there) and at CoGiRo's first 40 roots -+ 1e-9, where K is
+    nearly singular and a pivot may be unsure (the eigenvalues decide then)."""
+    m = ds.FrequencyModel(cogiro_eq, damping=False)
+    p = m.params[0]
+    poles = np.pi * np.sqrt(p.T / p.m) / p.L * np.arange(1, 6)
+    roots = 2 * np.pi * ds.eigenfrequencies(m, n_modes=40)
+    omega = np.sort(np.concatenate([np.linspace(0.0, 150.0, 4001), poles * (1 - 1e-9),
+                                    poles * (1 + 1e-9), poles, roots * (1 - 1e-9),
+                                    roots * (1 + 1e-9)]))
+    args = compiled_arguments(m)
+    ev, J0_ref = cf.dsm_count(omega, *args)
+    J, J0 = cs.dsm_counts(omega, *args)
+    np.testing.assert_array_equal(J0, J0_ref)
+    np.testing.assert_array_equal(J, J0_ref + np.sum(ev < 0, axis=1))
+    assert J.dtype == J0.dtype == np.int64 and J.max() > 30
+    k = np.searchsorted(omega, roots * (1 + 1e-9))
+    np.testing.assert_array_equal(J[k], np.arange(1, 41))
+    # a pivot planted unsure everywhere: the eigenvalues give the same counts
+    import numba
+
+    @numba.njit
+    def unsure(K, work, last_free):
+        return 0, np.nan, False
+    monkeypatch.setattr(cs, "_pivots", unsure)
+    assert cs.dsm_counts.py_func(omega[:50], *args)[0].tolist() == J[:50].tolist()
+
+
 def test_one_loader_gives_every_kernel_or_none(monkeypatch):
     """dynstiff.compiled.load returns the kernel module, None when switched off by the
     environment, and refuses an unknown name."""

@@ -167,7 +167,15 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
                     f"the regula falsi left the bracket of root {failed + 1} wider than rtol = "
                     f"{rtol:g} after {max_iter} steps", residual=width)
             return roots
+
+        def counts(omega: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+            # (J, J0) without the eigenvalues (the search needs none): the pivots' signs
+            omega = omega_array(omega)
+            check_frequency_range(m.stacked_params, omega)
+            m.guard_band(omega)
+            return compiled.load("dsm_search").dsm_counts(omega, *args)
         count.search = search                       # type: ignore[attr-defined]
+        count.counts = counts                       # type: ignore[attr-defined]
         return count
 
     def count(
@@ -243,11 +251,20 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
         return f
     m = model.undamped()
     count = _counter(m)
+    search = getattr(count, "search", None)         # the compiled search ("dsm" rung)
+    counts = getattr(count, "counts", None)          # its counts, without the eigenvalues
+
+    def at(omega: NDArray[np.float64] | float) -> tuple[Any, ...]:
+        """(J, ev, J0) at omega; ev None where the compiled search needs none."""
+        if counts is None:
+            return count(omega)
+        J, J0 = counts(omega)
+        return J, None, J0
     if fmax_hz is not None:
         w_hi = _TWO_PI * fmax_hz
         try:
             grid = _seed_grid(m, w_hi)
-            J, ev, J0 = count(grid)
+            J, ev, J0 = at(grid)
         except InvalidParameterError as exc:
             raise InvalidParameterError(
                 f"fmax_hz = {fmax_hz:g} Hz is out of the {m.rung!r} model's range: {exc}"
@@ -263,21 +280,20 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
         N = n_modes
         w_top = getattr(m, "max_omega", np.inf)           # a model's band (exact rung)
         w_hi = min(_TWO_PI, w_top)
-        while count(w_hi)[0][0] < N:
+        while at(w_hi)[0][0] < N:
             if w_hi >= w_top:
                 raise InvalidParameterError(
                     f"n_modes = {N} asks for more than the {m.rung!r} model's band holds "
-                    f"({int(count(w_top)[0][0])} modes below {w_top / _TWO_PI:g} Hz); "
+                    f"({int(at(w_top)[0][0])} modes below {w_top / _TWO_PI:g} Hz); "
                     f"build it with a larger fmax_hz")
             w_hi = min(2.0 * w_hi, w_top)
             if w_hi > 1e8:
                 raise ConvergenceError(f"fewer than {N} modes below {w_hi:.3g} rad/s")
         grid = _seed_grid(m, w_hi)
-        J, ev, J0 = count(grid)
+        J, ev, J0 = at(grid)
     if N == 0:
         return np.zeros(0)
-    search = getattr(count, "search", None)
-    if search is not None:                          # the compiled search ("dsm" rung)
+    if search is not None:
         return search(grid, J, ev, J0, N, rtol) / _TWO_PI
     return _search(count, N, grid, J, ev, J0, rtol) / _TWO_PI
 
@@ -286,10 +302,9 @@ def _seed_grid(m: PlatformModel, w_hi: float, n_uniform: int = 64) -> NDArray[np
     """Frequencies [rad/s] at which the count is first evaluated, ascending from 0 to w_hi:
     a uniform grid and the massless-cable frequencies (near which the global modes lie),
     each with a neighbour 1e-3 above (theory.md §14.2)."""
-    K0 = _real_symmetric(m.massless_stiffness()[None])[0]
     try:
-        lam = np.linalg.eigvals(np.linalg.solve(m.platform_mass, K0)).real
-    except np.linalg.LinAlgError:
+        lam = eigen_matrix.massless_modes(m)[0]
+    except (np.linalg.LinAlgError, ValueError):
         lam = np.zeros(0)
     w0 = np.sqrt(lam[(lam > 0) & (lam < w_hi**2)])
     pts = np.concatenate([np.linspace(0.0, w_hi, n_uniform + 1)[1:], w0, w0 * (1 + 1e-3)])

@@ -22,7 +22,8 @@ if TYPE_CHECKING:
 
     from dynstiff.models.base import PlatformModel
 
-__all__ = ["eig", "eigenfrequencies", "modes", "count_below", "massless_pairing"]
+__all__ = ["eig", "eigenfrequencies", "modes", "count_below", "massless_modes",
+           "massless_pairing"]
 
 _TWO_PI = 2.0 * np.pi
 #: Above this many DOFs the eigenproblem is solved by sparse shift-invert Lanczos.
@@ -199,8 +200,39 @@ def modes(model: PlatformModel, n_modes: int | None = None,
     return LumpedModalResult(**fields, node_shapes=node_shapes)
 
 
+def massless_modes(model: PlatformModel) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The modes of the massless-cable model on the free DOFs: (lam, X) of the generalized
+    problem (K0, M_p) (:func:`scipy.linalg.eigh`, K0 = ``model.massless_stiffness()``
+    symmetrised, M_p = ``model.platform_mass``), eigenvalues lam = omega^2 [1/s^2] ascending
+    and M_p-orthonormal shapes X (n_free, n_free), read-only. Computed once per model where
+    the model keeps a memo (the closed form), since the platform-mode search, its seed grid
+    and the massless pairing all ask for them.
+
+    Examples
+    --------
+    >>> import dynstiff as ds
+    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    >>> lam, X = massless_modes(m)
+    >>> print(f"{lam[0] ** 0.5 / (2 * 3.141592653589793):.4f} Hz", X.shape)
+    2.2172 Hz (6, 6)
+    """
+    import scipy.linalg
+    memo = getattr(model, "_memo", None)
+    if memo is not None and "massless_modes" in memo:
+        return memo["massless_modes"]
+    K0 = model.massless_stiffness()
+    lam, X = scipy.linalg.eigh(0.5 * (K0 + K0.T), model.platform_mass)
+    lam.setflags(write=False)
+    X.setflags(write=False)
+    if memo is not None:
+        memo["massless_modes"] = (lam, X)
+    return lam, X
+
+
 def massless_pairing(modes: ModalResult, K0: NDArray[np.float64], Mp: NDArray[np.float64],
-                     free_index: NDArray[np.int64]) -> NDArray[np.float64]:
+                     free_index: NDArray[np.int64],
+                     massless: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+                     ) -> NDArray[np.float64]:
     """The frequency [Hz] of the massless-cable mode each mode of ``modes`` continues, NaN
     for the modes that continue none: a one-to-one assignment (Hungarian) that maximises the
     summed participation of the pairs, the participation of mode k in massless mode j being
@@ -215,13 +247,16 @@ def massless_pairing(modes: ModalResult, K0: NDArray[np.float64], Mp: NDArray[np
     Mp : ndarray, shape (nf, nf)
         The platform mass on the free DOFs.
     free_index : ndarray of int
+    massless : (lam, X), optional
+        The massless modes of (K0, Mp) where already computed (:func:`massless_modes`).
     """
     import scipy.linalg
     from scipy.optimize import linear_sum_assignment
     out = np.full(len(modes), np.nan)
     if not len(modes):
         return out
-    lam0, X0 = scipy.linalg.eigh(0.5 * (K0 + K0.T), Mp)
+    lam0, X0 = (scipy.linalg.eigh(0.5 * (K0 + K0.T), Mp) if massless is None
+                else massless)
     X = np.asarray(modes.platform_shapes)[:, free_index]
     score = (X @ Mp @ X0) ** 2 * np.asarray(modes.platform_share)[:, None]
     rows, cols = linear_sum_assignment(-score)

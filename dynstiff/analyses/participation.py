@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff.analyses.eigen import eigenfrequencies
-from dynstiff.analyses.eigen_matrix import massless_pairing
+from dynstiff.analyses.eigen_matrix import massless_modes, massless_pairing
 from dynstiff.analyses.freqgrid import refined_grid
 from dynstiff.analyses.frf import frf
 from dynstiff.analyses.modes import modes as modal
@@ -149,7 +149,8 @@ def modal_data(model: PlatformModel, fmax_hz: float, max_modes: int = 20000) -> 
                       cable_energy=np.full((f.size, m.robot.n_cables), np.nan),
                       platform_mass=Mp)
     return replace(res, massless_freq_hz=massless_pairing(res, m.massless_stiffness(),
-                                                          m.platform_mass, m.free_index))
+                                                          m.platform_mass, m.free_index,
+                                                          massless_modes(m)))
 
 
 def receptance_amplification(model: PlatformModel, band_hz: tuple[float, float],

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from dynstiff.analyses.eigen_matrix import massless_modes
 from dynstiff.analyses.participation import modal_data
 from dynstiff.constants import DOF_NAMES
 from dynstiff.errors import InvalidParameterError
@@ -171,10 +172,8 @@ def find_platform_modes(model, cover_hz=0.0, neighbours_rtol=0.0,
     if not (np.isfinite(neighbours_rtol) and neighbours_rtol >= 0):
         raise InvalidParameterError(
             f"neighbours_rtol must be finite and >= 0, got {neighbours_rtol!r}")
-    import scipy.linalg
     fi = np.asarray(model.free_index)
-    K0 = model.massless_stiffness()
-    lam = scipy.linalg.eigh(0.5 * (K0 + K0.T), model.platform_mass, eigvals_only=True)
+    lam = massless_modes(model)[0]
     f0 = np.sqrt(lam[lam > 0]) / (2 * np.pi)
     base = float(f0.max()) if f0.size else 1.0
     top = max(_START * base, cover_hz)

@@ -15,13 +15,13 @@ cable at real omega (same formulas, same series branch for |psi| < 1); the assem
 import numba
 import numpy as np
 
-__all__ = ["JIT", "assembled_block", "dsm_count", "dsm_receptance", "dsm_receptance_damped",
-           "dsm_stiffness", "real_receptance", "unpack_symmetric"]
+__all__ = ["BLOCK", "JIT", "assembled_block", "dsm_count", "dsm_receptance",
+           "dsm_receptance_damped", "dsm_stiffness", "real_receptance", "unpack_symmetric"]
 
 #: Options of every kernel here (cached on disk, numpy errors, no GIL).
 JIT = {"cache": True, "error_model": "numpy", "nogil": True}
 #: Frequencies per block of the fused kernel (its coefficients stay in cache).
-_BLOCK = 256
+BLOCK = 256
 
 
 @numba.njit(**JIT)
@@ -183,9 +183,9 @@ def dsm_receptance(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
     singular = np.zeros(n, dtype=np.bool_)
     Kk = np.empty((nf, nf))
     work = np.empty((nf, B.shape[1]))
-    J0 = np.empty(_BLOCK, dtype=np.int64)
-    for start in range(0, n, _BLOCK):
-        w = omega[start:start + _BLOCK]
+    J0 = np.empty(BLOCK, dtype=np.int64)
+    for start in range(0, n, BLOCK):
+        w = omega[start:start + BLOCK]
         Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, J0,
                               False)
         _solve_block(Kb, w, start, K_static, M, B, C, c_identity, H, kmax, singular, Kk, Hk,
@@ -211,10 +211,10 @@ def dsm_count(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_st
     ev = np.empty((n, nf))
     J0 = np.empty(n, dtype=np.int64)
     Kk = np.empty((nf, nf))
-    for start in range(0, n, _BLOCK):
-        w = omega[start:start + _BLOCK]
+    for start in range(0, n, BLOCK):
+        w = omega[start:start + BLOCK]
         Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                              J0[start:start + _BLOCK], True)
+                              J0[start:start + BLOCK], True)
         for b in range(w.size):
             if np.isfinite(unpack_symmetric(Kb[b], K_static, M, w[b], Kk)):
                 ev[start + b] = np.linalg.eigvalsh(Kk)
@@ -384,8 +384,8 @@ def dsm_receptance_damped(omega, scale, L, m, T, lam2, alpha, K0, chordwise, ser
     singular = np.zeros(n, dtype=np.bool_)
     Kk = np.empty((nf, nf), dtype=np.complex128)
     work = np.empty((nf, B.shape[1]), dtype=np.complex128)
-    for start in range(0, n, _BLOCK):
-        w = omega[start:start + _BLOCK]
+    for start in range(0, n, BLOCK):
+        w = omega[start:start + BLOCK]
         Kb = _assembled_block_damped(w, scale, L, m, T, lam2, alpha, K0, chordwise, series,
                                      assembly)
         _solve_block(Kb, w, start, K_static, M, Bc, Cc, c_identity, H, kmax, singular, Kk, Hk,
@@ -408,10 +408,10 @@ def dsm_stiffness(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, 
     n, nf = omega.size, K_static.shape[0]
     K = np.empty((n, nf, nf))
     J0 = np.empty(n, dtype=np.int64)
-    for start in range(0, n, _BLOCK):
-        w = omega[start:start + _BLOCK]
+    for start in range(0, n, BLOCK):
+        w = omega[start:start + BLOCK]
         Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                             J0[start:start + _BLOCK], True)
+                             J0[start:start + BLOCK], True)
         for b in range(w.size):
             unpack_symmetric(Kb[b], K_static, M, w[b], K[start + b])
     return K, J0

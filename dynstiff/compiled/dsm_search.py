@@ -11,9 +11,9 @@ an isolated bracket the regula falsi runs on (-1)^s det K. The numpy search of
 import numba
 import numpy as np
 
-from dynstiff.compiled.dsm import JIT, assembled_block, unpack_symmetric
+from dynstiff.compiled.dsm import BLOCK, JIT, assembled_block, unpack_symmetric
 
-__all__ = ["dsm_search"]
+__all__ = ["dsm_counts", "dsm_search"]
 
 #: The search's Illinois step adds a second point 0.45 rtol hi beyond its iterate (to close
 #: the bracket at once) when the iterate moved less than this many rtol hi since the last.
@@ -83,6 +83,41 @@ def _count_one(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_stati
             if v < 0.0:
                 neg += 1
     return J0 + neg, J0
+
+
+@numba.njit(**JIT)
+def dsm_counts(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M):
+    """The Wittrick-Williams count J(omega) and the cable count J0(omega) at every frequency
+    of ``omega`` (n,) [rad/s], in blocks as :func:`dynstiff.compiled.dsm.dsm_count` but with
+    the negative eigenvalues of K counted from its pivots (:func:`_count_one`'s rule, the
+    eigenvalues only where a pivot is unsure): the counts of the search's seed grid, which
+    needs no eigenvalue. Where K is not finite J = J0, as there.
+
+    Returns
+    -------
+    J, J0 : ndarray of int, shape (n,)
+    """
+    n, nf = omega.size, K_static.shape[0]
+    J = np.empty(n, dtype=np.int64)
+    J0 = np.empty(n, dtype=np.int64)
+    Kk = np.empty((nf, nf))
+    work = np.empty((nf, nf))
+    for start in range(0, n, BLOCK):
+        w = omega[start:start + BLOCK]
+        Kb = assembled_block(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
+                             J0[start:start + BLOCK], True)
+        for b in range(w.size):
+            J[start + b] = J0[start + b]
+            if not np.isfinite(unpack_symmetric(Kb[b], K_static, M, w[b], Kk)):
+                continue
+            neg, _, ok = _pivots(Kk, work, False)
+            if not ok:
+                neg = 0
+                for v in np.linalg.eigvalsh(Kk):
+                    if v < 0.0:
+                        neg += 1
+            J[start + b] += neg
+    return J, J0
 
 
 @numba.njit(**JIT)
