@@ -11,6 +11,7 @@ P), outputs ``DOF_NAMES`` (translations [m] of a platform point, rotations [rad]
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -294,23 +295,25 @@ class ModalResult:
         """Platform kinetic energy / total kinetic energy of each mode [-], shape (n,)."""
         return np.clip(1.0 - np.asarray(self.cable_energy_fraction, dtype=float), 0.0, 1.0)
 
-    @property
+    @cached_property
     def participation(self) -> NDArray[np.float64]:
         """Effective-mass fraction of each free platform DOF in each mode [-], shape (n, 6):
         p_kj = (M x_k)_j^2 s_k / M_jj with x_k the shape at unit platform kinetic energy,
         s_k its platform share and M ``platform_mass`` (theory.md §12.1). Over all the modes
         of the robot each column sums to 1; held DOFs are 0 (NaN without
-        ``platform_mass``).
+        ``platform_mass``). Computed once (the result is immutable), read-only.
         """
         n = len(self.freq_hz)
         if self.platform_mass is None:
-            return np.full((n, 6), np.nan)
-        M = np.asarray(self.platform_mass, dtype=float)
-        d = np.diag(M)
-        g = np.asarray(self.platform_shapes, dtype=float) @ M
-        with np.errstate(invalid="ignore", divide="ignore"):
-            p = np.where(d > 0, g**2 * self.platform_share[:, None] / np.where(d > 0, d, 1.0),
-                         0.0)
+            p = np.full((n, 6), np.nan)
+        else:
+            M = np.asarray(self.platform_mass, dtype=float)
+            d = np.diag(M)
+            g = np.asarray(self.platform_shapes, dtype=float) @ M
+            with np.errstate(invalid="ignore", divide="ignore"):
+                p = np.where(d > 0, g**2 * self.platform_share[:, None]
+                             / np.where(d > 0, d, 1.0), 0.0)
+        p.setflags(write=False)
         return p
 
     @property

@@ -11,6 +11,7 @@ the uniform count (theory.md §12.3).
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -59,8 +60,18 @@ def refined_grid(band_hz: str | tuple[float, float], n_points: int, modes_hz: Ar
             f"rel_min must be < rel_width, got {rel_min!r} and {rel_width!r}")
     f = np.asarray(modes_hz, dtype=float).ravel()
     f = f[np.isfinite(f) & (f >= lo) & (f <= hi)]
-    d = np.geomspace(rel_min, rel_width, int(per_side))
-    d = np.concatenate([-d[::-1], [0.0], d])
+    d = _offsets(rel_min, rel_width, int(per_side))
     extra = (f[:, None] * (1.0 + d[None, :])).ravel()
     grid = np.concatenate([np.linspace(lo, hi, int(n_points)), extra])
     return np.unique(grid[(grid >= lo) & (grid <= hi)])
+
+
+@lru_cache(maxsize=16)
+def _offsets(rel_min: float, rel_width: float, per_side: int) -> NDArray[np.float64]:
+    """Relative offsets of the points at a mode: -d[::-1], 0, d with d geometric from
+    rel_min to rel_width, shape (2 per_side + 1,), read-only (the same for every mode and
+    every call with these settings: computed once)."""
+    d = np.geomspace(rel_min, rel_width, per_side)
+    d = np.concatenate([-d[::-1], [0.0], d])
+    d.setflags(write=False)
+    return d

@@ -100,9 +100,8 @@ def channel_maps(
                                            (outputs, OUTPUT_NAMES, C, 1, "outputs")):
         if names is None:
             continue
-        dead = [allowed[k] for k, col in zip(ii if axis == 0 else oo,
-                                             np.moveaxis(mat, axis, -1))
-                if not np.any(col)]
+        alive = np.any(mat != 0, axis=axis)           # per input column / output row
+        dead = [allowed[k] for k, a in zip(ii if axis == 0 else oo, alive) if not a]
         if dead:
             raise InvalidParameterError(
                 f"{arg} {dead} {'act on' if arg == 'inputs' else 'move with'} held DOFs only "

@@ -125,18 +125,21 @@ def select_platform_modes(modes, free_index, upto_hz):
     return np.union1d(glob, list(carriers.values())).astype(int), carriers
 
 
-def _found_frequency(modes, free_index):
-    """Frequency [Hz] at which every free DOF's cumulative participation reaches
-    PLATFORM_FOUND, or None; and the cumulative participation of each free DOF."""
-    p = np.nan_to_num(modes.participation)[:, free_index]
-    cum = np.cumsum(p, axis=0)
-    if not len(modes):
+def _found_frequency(modes, free_index, top=np.inf):
+    """Frequency [Hz] at which every free DOF's cumulative participation over the modes at
+    or below ``top`` [Hz] reaches PLATFORM_FOUND, or None; and the cumulative participation
+    of each free DOF."""
+    f = np.asarray(modes.freq_hz)
+    keep = f <= top
+    if not np.any(keep):
         return None, np.zeros(len(free_index))
+    p = np.nan_to_num(modes.participation[keep][:, free_index])
+    cum = np.cumsum(p, axis=0)
     reached = cum >= PLATFORM_FOUND
     if not np.all(reached[-1]):
         return None, cum[-1]
     first = np.argmax(reached, axis=0)             # first mode at which each DOF is found
-    return float(modes.freq_hz[int(first.max())]), cum[-1]
+    return float(f[keep][int(first.max())]), cum[-1]
 
 
 def find_platform_modes(model, cover_hz=0.0, neighbours_rtol=0.0,
@@ -191,7 +194,7 @@ def find_platform_modes(model, cover_hz=0.0, neighbours_rtol=0.0,
             return _incomplete(last, f"more than {max_modes} modes below "
                                      f"{top * (1 + neighbours_rtol):.4g} Hz, the ceiling of the "
                                      f"search for the platform modes")
-        found, cum = _found_frequency(_below(res, top), fi)
+        found, cum = _found_frequency(res, fi, top)
         if found is not None and top >= cover_hz:
             index, carriers = select_platform_modes(res, fi, found)
             return PlatformModes(modes=res, index=index, carriers=carriers, complete=True,
@@ -203,15 +206,6 @@ def find_platform_modes(model, cover_hz=0.0, neighbours_rtol=0.0,
                                      f"platform's participation found only in part ({spread}); "
                                      f"build it with a larger fmax_hz")
         top = min(_GROWTH * top, ceiling_hz)
-
-
-def _below(res, top):
-    from dataclasses import replace
-    keep = np.asarray(res.freq_hz) <= top
-    return replace(res, freq_hz=res.freq_hz[keep], platform_shapes=res.platform_shapes[keep],
-                   cable_energy_fraction=res.cable_energy_fraction[keep],
-                   cable_energy=res.cable_energy[keep], kind=None,
-                   massless_freq_hz=res.massless_freq_hz[keep])
 
 
 def _incomplete(last, reason):
