@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     import pandas as pd
     from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["CatenaryState", "divided_differences", "end_stiffnesses"]
+__all__ = ["CatenaryState", "catenary_states", "divided_differences", "end_stiffnesses"]
 
 _EZ = np.array([0.0, 0.0, 1.0])
 
@@ -415,3 +415,52 @@ def end_stiffnesses(states: tuple[CatenaryState, ...]) -> NDArray[np.float64]:
     return K
 
 
+def catenary_states(anchors: NDArray[np.float64], ends: NDArray[np.float64],
+                    unstretched_lengths: NDArray[np.float64], cables: list[Cable], g: float,
+                    H: NDArray[np.float64], V0: NDArray[np.float64],
+                    residuals: NDArray[np.float64]) -> list[CatenaryState]:
+    """The states of many cables from their arrays (shapes (n, 3) and (n,)), with the chord
+    and, for every cable not within rounding of vertical, the horizontal direction and the
+    force on B computed for all at once: the same operations, element by element, as the
+    properties of one state, so the same numbers (the batched statics builds its
+    equilibria so, and the model reads those properties of every cable).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import dynstiff as ds
+    >>> cable = ds.Cable(mass_per_length=0.064, EA=1.64e6)
+    >>> s = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0, cable)
+    >>> (t,) = catenary_states(np.array([s.anchor]), np.array([s.end]),
+    ...                        np.array([s.unstretched_length]), [cable], s.g,
+    ...                        np.array([s.H]), np.array([s.V0]), np.array([s.residual]))
+    >>> bool(np.array_equal(t.force_on_end, s.force_on_end))
+    True
+    """
+    A = np.asarray(anchors, dtype=float)
+    B = np.asarray(ends, dtype=float)
+    C = B - A
+    C.setflags(write=False)
+    lh = np.hypot(C[:, 0], C[:, 1])
+    # the vertical test of one state compares lh with 1e-14 |C|: here only cables well
+    # clear of it (whatever the rounding of |C|) are primed, the others compute their own
+    clear = lh > 1e-13 * np.linalg.norm(C, axis=1)
+    safe = np.where(clear, lh, 1.0)
+    E = np.stack([C[:, 0] / safe, C[:, 1] / safe, np.zeros(len(C))], axis=1)
+    W = np.array([c.mass_per_length for c in cables]) * g * np.asarray(unstretched_lengths)
+    Vb = np.asarray(V0, dtype=float) + W
+    F = -(np.asarray(H, dtype=float)[:, None] * E + Vb[:, None] * _EZ)
+    E.setflags(write=False)
+    F.setflags(write=False)
+    out = []
+    for i, cable in enumerate(cables):
+        s = CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(unstretched_lengths[i]),
+                          cable=cable, g=g, H=float(H[i]), V0=float(V0[i]),
+                          residual=float(residuals[i]))
+        object.__setattr__(s, "chord", C[i])                 # the cached properties
+        object.__setattr__(s, "horizontal_span", float(lh[i]))
+        if clear[i]:
+            object.__setattr__(s, "horizontal_direction", E[i])
+            object.__setattr__(s, "force_on_end", F[i])
+        out.append(s)
+    return out

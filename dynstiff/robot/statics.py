@@ -20,7 +20,7 @@ import numpy as np
 from dynstiff import compiled
 from dynstiff._validate import real_array
 from dynstiff._vec import cross
-from dynstiff.cable.catenary import CatenaryState
+from dynstiff.cable.catenary import catenary_states
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
 from dynstiff.cable.catenary_solve import unstretched_length_for_tension
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
@@ -312,11 +312,9 @@ def _inverse_statics(robot: Robot, pose: Pose,
         t, H, V0, L0, res, scalar = _fixed_point(
             robot, pose, A, B, r, fi, wg, EA, w0, t_min, t_max, tension_reference, u, lo, hi,
             warm, start is None and done == 0, max_iter, done, diagnose)
-    states = [scalar[i] if i in scalar else
-              CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
-                            cable=robot.cables[i], g=robot.g, H=float(H[i]), V0=float(V0[i]),
-                            residual=float(res[i]))
-              for i in range(n)]
+    states = catenary_states(A, B, L0, robot.cables, robot.g, H, V0, res)
+    for i, s in scalar.items():
+        states[i] = s
     # final balance with these exact catenaries
     resid = robot.wrench(pose, states)[fi]
     scale = robot.platform.mass * max(robot.g, 1.0)
