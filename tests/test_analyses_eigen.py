@@ -470,8 +470,8 @@ def test_the_compiled_search_that_cannot_finish_names_its_root_and_width():
     m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
     count = _counter(m)
     grid = np.linspace(0.0, 2 * np.pi * 3.0, 9)
-    J, ev, J0 = count(grid)
+    J, J0, det = count.counts(grid)
     with pytest.raises(ConvergenceError, match=r"^the regula falsi left the bracket of root 1 "
                                                r"wider than rtol = 1e-12 after 1 steps") as err:
-        count.search(grid, J, ev, J0, int(J[-1]), 1e-12, max_iter=1)
+        count.search(grid, J, det, J0, int(J[-1]), 1e-12, max_iter=1)
     assert err.value.residual > 1e-12

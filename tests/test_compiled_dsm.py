@@ -116,20 +116,47 @@ def test_sign_counts_equal_the_eigenvalue_counts(cogiro_eq, monkeypatch):
                                     roots * (1 + 1e-9)]))
     args = compiled_arguments(m)
     ev, J0_ref = cf.dsm_count(omega, *args)
-    J, J0 = cs.dsm_counts(omega, *args)
+    J, J0, det = cs.dsm_counts(omega, *args)
     np.testing.assert_array_equal(J0, J0_ref)
     np.testing.assert_array_equal(J, J0_ref + np.sum(ev < 0, axis=1))
     assert J.dtype == J0.dtype == np.int64 and J.max() > 30
     k = np.searchsorted(omega, roots * (1 + 1e-9))
     np.testing.assert_array_equal(J[k], np.arange(1, 41))
-    # a pivot planted unsure everywhere: the eigenvalues give the same counts
+    # det K where the pivots are sure: what the regula falsi's own evaluation gives, to the
+    # bit; NaN where K is not finite (at the poles)
+    known = np.isfinite(det)
+    assert known.mean() > 0.95 and not np.any(known & np.isnan(ev[:, 0]))
+    nf = m.n_free
+    Kk, work = np.empty((nf, nf)), np.empty((nf, nf))
+    for i in np.flatnonzero(known)[::40]:
+        assert det[i] == cs._det_one(omega[i], *args, Kk, work)
+    # a pivot planted unsure everywhere: the eigenvalues give the same counts, det unknown
     import numba
 
     @numba.njit
     def unsure(K, work, last_free):
         return 0, np.nan, False
     monkeypatch.setattr(cs, "_pivots", unsure)
-    assert cs.dsm_counts.py_func(omega[:50], *args)[0].tolist() == J[:50].tolist()
+    J2, _, det2 = cs.dsm_counts.py_func(omega[:50], *args)
+    assert J2.tolist() == J[:50].tolist() and np.all(np.isnan(det2))
+
+
+def test_search_from_the_counts_det_gives_the_same_roots_to_the_bit(cogiro_eq):
+    """The search reads a bracket's end values of det K from the counts where they knew
+    them (the same elimination as its own evaluation): its roots are those of the search
+    that computes every end value itself (det_grid all NaN), to the bit."""
+    from dynstiff.analyses.eigen import _seed_grid
+    m = ds.FrequencyModel(cogiro_eq, damping=False)
+    args = compiled_arguments(m)
+    grid = _seed_grid(m, 2 * np.pi * 15.0)
+    J, J0, det = cs.dsm_counts(grid, *args)
+    J[0] = J0[0] = 0
+    N = int(J[-1])
+    assert N > 60 and np.isfinite(det).sum() > 0.9 * grid.size
+    fast = cs.dsm_search(grid, J, J0, det, N, 1e-12, 200, *args)
+    slow = cs.dsm_search(grid, J, J0, np.full(grid.size, np.nan), N, 1e-12, 200, *args)
+    assert fast[1] == slow[1] == -1
+    np.testing.assert_array_equal(fast[0], slow[0])
 
 
 def test_one_loader_gives_every_kernel_or_none(monkeypatch):

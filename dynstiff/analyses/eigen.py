@@ -154,22 +154,23 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
             ev, J0 = fast.dsm_count(omega, *args)
             return J0 + np.sum(ev < 0, axis=1), ev, J0
 
-        def search(grid: NDArray[np.float64], J: NDArray[np.int64], ev: NDArray[np.float64],
+        def search(grid: NDArray[np.float64], J: NDArray[np.int64], det: NDArray[np.float64],
                    J0: NDArray[np.int64], N: int, rtol: float,
                    max_iter: int = 200) -> NDArray[np.float64]:
-            # every frequency of the search lies in [0, grid[-1]], checked by count(grid)
+            # every frequency of the search lies in [0, grid[-1]], checked by count(grid);
+            # det: det K on the grid where :func:`counts` knew it (NaN elsewhere)
             J, J0 = J.copy(), J0.copy()
             J[0] = J0[0] = 0
             roots, failed, width = compiled.load("dsm_search").dsm_search(
-                grid, J, J0, N, rtol, max_iter, *args)
+                grid, J, J0, np.asarray(det, dtype=float), N, rtol, max_iter, *args)
             if failed >= 0:
                 raise ConvergenceError(
                     f"the regula falsi left the bracket of root {failed + 1} wider than rtol = "
                     f"{rtol:g} after {max_iter} steps", residual=width)
             return roots
 
-        def counts(omega: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-            # (J, J0) without the eigenvalues (the search needs none): the pivots' signs
+        def counts(omega: NDArray[np.float64]) -> tuple[NDArray[Any], ...]:
+            # (J, J0, det K) without the eigenvalues (the search needs none): the pivots
             omega = omega_array(omega)
             check_frequency_range(m.stacked_params, omega)
             m.guard_band(omega)
@@ -255,11 +256,12 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
     counts = getattr(count, "counts", None)          # its counts, without the eigenvalues
 
     def at(omega: NDArray[np.float64] | float) -> tuple[Any, ...]:
-        """(J, ev, J0) at omega; ev None where the compiled search needs none."""
+        """(J, ev, J0) at omega; for the compiled search det K in place of ev (it needs no
+        eigenvalue, and starts its regula falsi from det K where the counts knew it)."""
         if counts is None:
             return count(omega)
-        J, J0 = counts(omega)
-        return J, None, J0
+        J, J0, det = counts(omega)
+        return J, det, J0
     if fmax_hz is not None:
         w_hi = _TWO_PI * fmax_hz
         try:

@@ -68,21 +68,22 @@ def _assembled_one(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_s
 @numba.njit(**JIT)
 def _count_one(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M, Kk,
                work):
-    """(J, J0) of the Wittrick-Williams count at one frequency w [rad/s]: the negative
+    """(J, J0, det) of the Wittrick-Williams count at one frequency w [rad/s]: the negative
     eigenvalues of K(w) from the signs of its pivots (:func:`_pivots`), from its eigenvalues
     where the pivots are not sure; none where K is not finite (as :func:`dsm_count` with
-    ``numpy.sum(ev < 0)``)."""
+    ``numpy.sum(ev < 0)``). det is the product of the pivots where they are sure (what
+    :func:`_det_one` returns there: the same elimination), NaN elsewhere."""
     J0, finite = _assembled_one(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
                                 K_static, M, Kk)
     if not finite:
-        return J0, J0
-    neg, _, ok = _pivots(Kk, work, False)
+        return J0, J0, np.nan
+    neg, det, ok = _pivots(Kk, work, False)
     if not ok:
         neg = 0
         for v in np.linalg.eigvalsh(Kk):
             if v < 0.0:
                 neg += 1
-    return J0 + neg, J0
+    return J0 + neg, J0, det
 
 
 @numba.njit(**JIT)
@@ -96,10 +97,14 @@ def dsm_counts(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_s
     Returns
     -------
     J, J0 : ndarray of int, shape (n,)
+    det : ndarray, shape (n,)
+        det K(omega) where the pivots are sure (as :func:`_count_one`), else NaN: the
+        search's regula falsi starts from it instead of computing it again.
     """
     n, nf = omega.size, K_static.shape[0]
     J = np.empty(n, dtype=np.int64)
     J0 = np.empty(n, dtype=np.int64)
+    det = np.full(n, np.nan)
     Kk = np.empty((nf, nf))
     work = np.empty((nf, nf))
     for start in range(0, n, BLOCK):
@@ -110,14 +115,16 @@ def dsm_counts(omega, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_s
             J[start + b] = J0[start + b]
             if not np.isfinite(unpack_symmetric(Kb[b], K_static, M, w[b], Kk)):
                 continue
-            neg, _, ok = _pivots(Kk, work, False)
-            if not ok:
+            neg, d, ok = _pivots(Kk, work, False)
+            if ok:
+                det[start + b] = d
+            else:
                 neg = 0
                 for v in np.linalg.eigvalsh(Kk):
                     if v < 0.0:
                         neg += 1
             J[start + b] += neg
-    return J, J0
+    return J, J0, det
 
 
 @numba.njit(**JIT)
@@ -135,8 +142,8 @@ def _det_one(w, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static,
 
 
 @numba.njit(**JIT)
-def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, alpha, K0,
-               chordwise, series, assembly, K_static, M):
+def dsm_search(grid, J_grid, J0_grid, det_grid, n_roots, rtol, max_iter, L, m, T, lam2,
+               alpha, K0, chordwise, series, assembly, K_static, M):
     """The ``n_roots`` lowest natural frequencies [rad/s] of the "dsm" rung with undamped
     cables from its counts on ``grid``, in one compiled call (theory.md §5, §14.2).
 
@@ -157,6 +164,9 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
         Ascending frequencies [rad/s], grid[0] = 0, with J(grid[-1]) >= n_roots.
     J_grid, J0_grid : ndarray of int, shape (n,)
         The counts there (J_grid[0] = J0_grid[0] = 0).
+    det_grid : ndarray, shape (n,)
+        det K there where known (:func:`dsm_counts`), NaN elsewhere: a bracket's end
+        values are read from it (or from the bisection's counts) before they are computed.
     n_roots : int
     rtol : float
         Relative width of the final brackets.
@@ -180,6 +190,7 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
     lo, hi = np.empty(n_roots), np.empty(n_roots)
     J_lo, J_hi = np.empty(n_roots, np.int64), np.empty(n_roots, np.int64)
     J0_lo, J0_hi = np.empty(n_roots, np.int64), np.empty(n_roots, np.int64)
+    d_lo, d_hi = np.empty(n_roots), np.empty(n_roots)
     i = 1
     for r in range(n_roots):                       # the first grid point with J >= r + 1
         while J_grid[i] < r + 1:
@@ -187,6 +198,7 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
         lo[r], hi[r] = grid[i - 1], grid[i]
         J_lo[r], J_hi[r] = J_grid[i - 1], J_grid[i]
         J0_lo[r], J0_hi[r] = J0_grid[i - 1], J0_grid[i]
+        d_lo[r], d_hi[r] = det_grid[i - 1], det_grid[i]
     roots = np.empty(n_roots)
     for r in range(n_roots):
         while True:
@@ -194,25 +206,26 @@ def dsm_search(grid, J_grid, J0_grid, n_roots, rtol, max_iter, L, m, T, lam2, al
             if isolated or hi[r] - lo[r] <= rtol * hi[r]:
                 break
             mid = 0.5 * (lo[r] + hi[r])
-            J, J0 = _count_one(mid, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                               K_static, M, Kk, work)
+            J, J0, d = _count_one(mid, L, m, T, lam2, alpha, K0, chordwise, series,
+                                  assembly, K_static, M, Kk, work)
             for s in range(r, n_roots):
                 if lo[s] >= mid:                  # the brackets above lie above mid
                     break
                 if mid < hi[s]:
                     if J >= s + 1:
-                        hi[s], J_hi[s], J0_hi[s] = mid, J, J0
+                        hi[s], J_hi[s], J0_hi[s], d_hi[s] = mid, J, J0, d
                     else:
-                        lo[s], J_lo[s], J0_lo[s] = mid, J, J0
+                        lo[s], J_lo[s], J0_lo[s], d_lo[s] = mid, J, J0, d
         if not isolated:
             roots[r] = 0.5 * (lo[r] + hi[r])
             continue
         sign = 1.0 if (J_lo[r] - J0_lo[r]) % 2 == 0 else -1.0
         a_, b_ = lo[r], hi[r]
-        fl = sign * _det_one(a_, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                             K_static, M, Kk, work)
-        fh = sign * _det_one(b_, L, m, T, lam2, alpha, K0, chordwise, series, assembly,
-                             K_static, M, Kk, work)
+        # the end values where the counts gave them (the same elimination), else computed
+        fl = sign * (d_lo[r] if np.isfinite(d_lo[r]) else _det_one(
+            a_, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M, Kk, work))
+        fh = sign * (d_hi[r] if np.isfinite(d_hi[r]) else _det_one(
+            b_, L, m, T, lam2, alpha, K0, chordwise, series, assembly, K_static, M, Kk, work))
         side, stall = 0, 0
         last = np.inf
         for _ in range(max_iter):
