@@ -10,7 +10,12 @@ written entry by entry, the static error's J^T K J by matmul on the build's own 
 the platform mass computed once), a pose 4.73 -> 4.64 ms with the band, 3.86 -> 3.67 ms
 without, maps identical to the bit. Where the rest goes is spread thin: a cProfile of the
 map shows no Python function above 0.12 ms a pose (profiled); the compiled kernels (search,
-count, receptance, stiffness, statics' fixed point) take about 1.5 ms of it.
+count, receptance, stiffness, statics' fixed point) take about 1.5 ms of it. Then (theory.md
+§13.7, "Then"): 4.23 -> 3.77 ms with the band, 3.41 -> 3.03 ms without; and measured, not
+projected (``--ten-thousand --against f54db41``, 2 local processes, one run, idle machine):
+10,648 poses in 19.0 s of wall, 17.8 s per 10,000 poses (3.53 ms of CPU a pose, workers and
+parent), against 73.5 s (69.0 s per 10,000) at f54db41. The projection below scales the
+pool's extra CPU of a small map (mostly the workers' start) to 10,000 poses: 23 s.
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_workspace.py [--poses N] [--repeats R]
       [--no-dask]
@@ -31,6 +36,10 @@ load average of the machine next to each figure, since the machine may be shared
   serial CPU time, its efficiency serial CPU / (2 x wall);
 - the projected wall time of 10,000 poses on 2 idle cores: (serial CPU + the 2-process
   pool's overhead) per pose x 10,000 / 2.
+
+``--ten-thousand`` measures instead of projecting: the wall time of a map of ``--poses``
+(default 10,000) grid poses on 2 local processes, with ``--against REV`` side by side (each
+in a fresh interpreter, alternated), the least of ``--repeats``.
 
 ``--per-pose`` prints only the cost of a map per pose (``dynstiff.workspace``, serial, 20
 modes and every check; the grid of ``--poses``), with the forbidden band (0, 1.5) Hz and
@@ -363,20 +372,75 @@ def per_pose(n_poses, repeats, against):
     return runs
 
 
+def ten_thousand_child(n_poses):
+    """In a fresh interpreter: wall and CPU time (this process and its workers) of a CoGiRo
+    map of about ``n_poses`` grid poses on 2 local processes, 20 modes, every check and the
+    forbidden band, the default chunks. Prints JSON."""
+    robot = ds.load_scene("cogiro").robot
+    X = grid_of_poses(n_poses)
+    kw = {"n_modes": N_MODES, "band_hz": BAND}
+    ds.workspace(robot, X[:2], **kw)                # kernels and modules loaded first
+    t, c, cc = time.perf_counter(), time.process_time(), children_cpu()
+    m = ds.workspace(robot, X, workers=2, **kw)
+    print(json.dumps({"poses": len(X), "wall": time.perf_counter() - t,
+                      "cpu": time.process_time() - c + children_cpu() - cc,
+                      "feasible": int(m["feasible"].sum()), "load": load()}))
+
+
+def ten_thousand(n_poses, repeats, against):
+    """The 10,000-pose goal measured, not projected: the wall time of a map of about
+    ``n_poses`` poses on 2 local processes, this tree and (optionally) revision ``against``
+    alternated in fresh interpreters, the least of ``repeats``, scaled to 10,000 poses."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trees = [("this tree", ROOT)]
+        if against:
+            trees.append((against, _export(against, os.path.join(tmp, "rev"))))
+        runs = {name: [] for name, _ in trees}
+        for r in range(repeats):
+            for name, path in (trees if r % 2 == 0 else trees[::-1]):
+                env = {**os.environ, "PYTHONPATH": path, "OPENBLAS_NUM_THREADS": "1"}
+                out = subprocess.run(
+                    [sys.executable, os.path.abspath(__file__), "--ten-thousand-child",
+                     "--poses", str(n_poses)], env=env, check=True, capture_output=True,
+                    text=True).stdout
+                runs[name].append(json.loads(out.strip().splitlines()[-1]))
+        print(f"CoGiRo map on 2 local processes (20 modes, every check, band {BAND} Hz), "
+              f"least wall of {repeats}:")
+        for name, rs in runs.items():
+            b = min(rs, key=lambda x: x["wall"])
+            print(f"  {name:<12s} {b['poses']} poses ({b['feasible']} feasible): wall "
+                  f"{b['wall']:.1f} s, {1e4 * b['wall'] / b['poses']:.1f} s per 10,000 poses; "
+                  f"CPU {b['cpu']:.1f} s ({1e3 * b['cpu'] / b['poses']:.2f} ms a pose, "
+                  f"workers and parent); load {max(x['load'] for x in rs):.1f}")
+    return runs
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--poses", type=int, default=300, help="grid size of the map")
+    ap.add_argument("--poses", type=int, default=None,
+                    help="grid size of the map (default 300; 10,000 with --ten-thousand)")
     ap.add_argument("--repeats", type=int, default=3, help="repeats of the CPU rows")
     ap.add_argument("--no-dask", action="store_true", help="skip the Dask cluster")
     ap.add_argument("--per-pose", action="store_true",
                     help="only the per-pose cost with and without the band, by stage")
     ap.add_argument("--against", metavar="REV",
-                    help="with --per-pose: a git revision measured side by side")
+                    help="with --per-pose or --ten-thousand: a git revision measured side "
+                         "by side")
+    ap.add_argument("--ten-thousand", action="store_true",
+                    help="measure the wall time of a map of --poses poses (default here "
+                         "10,000) on 2 local processes, with --against side by side")
+    ap.add_argument("--ten-thousand-child", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--chunk", type=int, default=25, help=argparse.SUPPRESS)
     ap.add_argument("--profile", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--dump", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.poses is None:
+        args.poses = 10_000 if args.ten_thousand else 300
+    if args.ten_thousand_child:
+        return ten_thousand_child(args.poses)
+    if args.ten_thousand:
+        return ten_thousand(args.poses, args.repeats, args.against)
     if args.child:
         return per_pose_child(args.poses, args.chunk, args.profile, args.dump)
     if args.per_pose:
