@@ -1312,6 +1312,10 @@ def _relocated(equivalent):
     return out
 
 
+EQUIVALENT.update({f"dynstiff.scenes.writer.x_scene_text__mutmut_{n}":
+                   "a trajectory without a note gets None instead of '' (or no default): "
+                   "_trajectory_lines writes a note only when it is truthy, the same for both"
+                   for n in (177, 179)})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -3,12 +3,13 @@ the same file by name, through a symbolic link and through a hard link is refuse
 both arguments; a writer that fails leaves the old file byte for byte."""
 
 import os
+import re
 
 import numpy as np
 import pytest
 
 from dynstiff.errors import InvalidParameterError
-from dynstiff.io.files import OutputPathError, atomic_path, check_paths, write_text
+from dynstiff.io.files import OutputPathError, atomic_path, check_paths, input_file, write_text
 
 
 @pytest.fixture
@@ -105,3 +106,34 @@ def test_readers_say_what_is_wrong_with_the_path_before_reading(tmp_path, reader
         read(tmp_path)
     with pytest.raises(FileNotFoundError):
         read(tmp_path / "missing.uff")
+
+
+def test_input_file_returns_the_path_as_str_or_says_why_not(tmp_path):
+    """input_file: a str, a PathLike or a PathLike that gives bytes, of an existing file,
+    comes back as its str; what is not a path (bytes itself included) is refused naming
+    the argument and the value, a folder is an
+    IsADirectoryError (errno 21) and a missing file a FileNotFoundError (errno 2), each
+    naming the path."""
+    f = tmp_path / "m.csv"
+    f.write_text("x")
+    class BytesPath:
+        def __fspath__(self):
+            return os.fsencode(str(f))
+    for given in (str(f), f, BytesPath()):
+        got = input_file(given)
+        assert got == str(f) and type(got) is str
+    for bad in (None, 5, 1.5, ["a"], os.fsencode(str(f))):
+        with pytest.raises(InvalidParameterError,
+                           match=rf"^measured must be a path \(str or os.PathLike\), got "
+                                 rf"{re.escape(repr(bad))}$"):
+            input_file(bad, "measured")
+    with pytest.raises(InvalidParameterError, match="^path must be a path"):
+        input_file(None)
+    with pytest.raises(IsADirectoryError) as err:
+        input_file(tmp_path)
+    assert (err.value.errno, err.value.strerror, err.value.filename) == (
+        21, "Is a directory", str(tmp_path))
+    with pytest.raises(FileNotFoundError) as err:
+        input_file(tmp_path / "missing.csv")
+    assert (err.value.errno, err.value.strerror, err.value.filename) == (
+        2, "No such file", str(tmp_path / "missing.csv"))

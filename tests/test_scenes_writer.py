@@ -155,10 +155,15 @@ def test_trajectories_with_notes_and_workspace_box_read_back(tmp_path):
      "z0 z1 [m] with x0 <= x1 ..., got [0, 1, 0, 1]"),
     (dict(workspace_box=[0, np.nan, 0, 1, 0, 1]), "workspace_box must be 6 finite numbers "
      "x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 ..., got [0, nan, 0, 1, 0, 1]"),
+    (dict(workspace_box=[False, True, 0, 1, 0, 1]), "workspace_box must be real numbers, "
+     "not booleans, got [False, True, 0, 1, 0, 1]"),
+    (dict(workspace_box=["0", "1", "a", "1", "0", "1"]), "workspace_box must be 6 finite "
+     "numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 ..., got ['0', '1', 'a', '1', '0', '1']"),
 ])
 def test_bad_robot_trajectory_or_box_gives_the_exact_message_and_no_file(tmp_path, kw,
                                                                          message):
-    """A non-Robot, a non-WaypointPath or a box of 4 or non-finite numbers: exact message."""
+    """A non-Robot, a non-WaypointPath or a box of 4, non-finite, boolean or non-numeric
+    values: exact message."""
     import re
     path = tmp_path / "s.toml"
     kw = {"robot": ds.load_scene("planar2").robot} | kw
@@ -195,3 +200,14 @@ def test_comment_text_cannot_end_its_comment_and_be_read_as_toml(tmp_path):
     tab = scene_text(sc.robot, comments=["a\tb"]).splitlines()[0]
     assert tab == "# a\tb"
 
+
+
+def test_platform_inertia_is_written_under_its_comment_and_an_integer_box_as_floats():
+    """The [platform] table's inertia comes under the comment that says its frame and which
+    entries are products of inertia; a box of integers is written as the floats it means."""
+    from dynstiff.scenes import scene_text
+    text = scene_text(ds.load_scene("cogiro").robot, workspace_box=[-5, 5, -3, 3, 1, 2])
+    lines = text.splitlines()
+    k = lines.index("# inertia tensor about G [kg m^2], platform axes; off-diagonal entries are")
+    assert lines[k + 1].startswith("# ") and lines[k + 2].startswith("inertia = ")
+    assert "box = [-5.0, 5.0, -3.0, 3.0, 1.0, 2.0]   # [m], x0 x1 y0 y1 z0 z1 of P" in lines

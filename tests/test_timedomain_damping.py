@@ -19,6 +19,21 @@ def test_rayleigh_gives_its_ratio_at_both_frequencies():
     assert d.alpha / (2 * w) + d.beta * w / 2 < 0.02
 
 
+def test_rayleigh_checks_its_arguments_by_name_and_takes_zeta_zero():
+    """zeta may be 0 (no damping: alpha = beta = 0), not negative; each frequency must be
+    > 0; every refusal names its argument and the value."""
+    d = TimeDamping.rayleigh(0.0, 1.0, 2.0)
+    assert (d.alpha, d.beta) == (0.0, 0.0)
+    for args, name, value in (((-0.1, 1.0, 2.0), "zeta", "-0.1"),
+                              ((np.nan, 1.0, 2.0), "zeta", "nan"),
+                              ((0.01, 0.0, 2.0), "freq1_hz", "0.0"),
+                              ((0.01, -1.0, 2.0), "freq1_hz", "-1.0"),
+                              ((0.01, 1.0, 0.0), "freq2_hz", "0.0"),
+                              ((0.01, 1.0, np.inf), "freq2_hz", "inf")):
+        with pytest.raises(InvalidParameterError, match=rf"^{name} must be .*{value}"):
+            TimeDamping.rayleigh(*args)
+
+
 def test_axial_dashpots_per_cable_and_bad_values():
     assert np.array_equal(TimeDamping(axial=2.0).axial_per_cable(3), [2.0, 2.0, 2.0])
     assert np.array_equal(TimeDamping(axial=[1, 2, 3]).axial_per_cable(3), [1, 2, 3])

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.pose import as_pose
 from dynstiff.robot.robot import Robot
@@ -125,11 +126,10 @@ def scene_text(robot, pose=None, name=None, description="", comments=(), cable_n
     if len(set(names)) != len(names) or not all(names):
         raise InvalidParameterError(f"trajectories need distinct, non-empty names, got {names}")
     if workspace_box is not None:
-        box = np.asarray(workspace_box, dtype=float)
+        what = "6 finite numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 ..."
+        box = real_array("workspace_box", workspace_box, what)      # no bools, no text
         if box.shape != (6,) or not np.all(np.isfinite(box)) or np.any(box[1::2] < box[::2]):
-            raise InvalidParameterError(
-                f"workspace_box must be 6 finite numbers x0 x1 y0 y1 z0 z1 [m] with x0 <= x1 "
-                f"..., got {workspace_box!r}")
+            raise InvalidParameterError(f"workspace_box must be {what}, got {workspace_box!r}")
     name = name or robot.name or "scene"
     out = [f"# {_comment(line)}".rstrip() for c in comments for line in c.splitlines() or [""]]
     out += ["", "[scene]", f"name = {_toml_str(name)}",
