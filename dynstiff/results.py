@@ -303,13 +303,10 @@ class ModalResult:
         of the robot each column sums to 1; held DOFs are 0 (NaN without
         ``platform_mass``). Computed once (the result is immutable), read-only.
         """
-        n = len(self.freq_hz)
-        if self.platform_mass is None:
-            p = np.full((n, 6), np.nan)
-        else:
+        p = np.full((len(self.freq_hz), 6), np.nan)
+        if self.platform_mass is not None:
             M = np.asarray(self.platform_mass, dtype=float)
-            d = np.diag(M)
-            g = np.asarray(self.platform_shapes, dtype=float) @ M
+            d, g = np.diag(M), np.asarray(self.platform_shapes, dtype=float) @ M
             with np.errstate(invalid="ignore", divide="ignore"):
                 p = np.where(d > 0, g**2 * self.platform_share[:, None]
                              / np.where(d > 0, d, 1.0), 0.0)

@@ -6,7 +6,7 @@ largest participation among the modes below ``found_hz``, the frequency by which
 DOF has at least ``PLATFORM_FOUND`` (half) of its participation; the *platform modes* are
 the carriers and every global mode below ``found_hz``. Both depend on the robot alone, not
 on how many modes a user asked for: :func:`find_platform_modes` computes modes until every
-DOF is half found (from 1.25 times the highest massless-cable platform frequency, growing by
+DOF is half found (from 1.1 times the highest massless-cable platform frequency, growing by
 1.5), up to a ceiling of modes; at the ceiling the search is *incomplete* and every verdict
 that needs the platform modes is "unknown".
 
@@ -33,7 +33,7 @@ PLATFORM_FOUND = 0.5
 #: Most modes a search for the platform modes computes: beyond it the search is incomplete.
 MAX_PLATFORM_MODES = 2000
 _GROWTH = 1.5
-_START = 1.25
+_START = 1.1
 
 
 @dataclass(frozen=True)
