@@ -458,6 +458,38 @@ def test_target_and_trajectory_refused_with_one_line(tmp_path):
     assert not csv.exists()
 
 
+@pytest.mark.parametrize("given, message", [
+    (("--trajectory", "t", "--pose", "0", "0", "1"),
+     "--pose does not apply with --trajectory (the trajectory sets the start and the motion)"),
+    (("--trajectory", "t", "--lengths", "1", "2", "--offset", "0.001", "0", "0", "0", "0", "0",
+      "--speed", "1", "--ramp", "2"),
+     "--lengths, --offset, --speed, --ramp do not apply with --trajectory (the trajectory sets "
+     "the start and the motion)"),
+    (("--trajectory", "t", "--band", "1", "2", "--channel", "z"),
+     "--band, --channel do not apply with --trajectory (the trajectory sets the start and the "
+     "motion)"),
+    (("--target", "0", "0", "1", "--offset", "0", "0", "0.001", "0", "0", "0"),
+     "--offset does not apply with --target (options of the free vibration)"),
+    (("--target", "0", "0", "1", "--band", "1", "2", "--channel", "z"),
+     "--band, --channel do not apply with --target (options of the free vibration)"),
+    (("--speed", "0.2",), "--speed does not apply without --target (options of the line)"),
+    (("--ramp", "0", "--speed", "1"),
+     "--speed, --ramp do not apply without --target (options of the line)"),
+])
+def test_options_that_do_not_apply_are_refused_before_any_work(given, message, tmp_path,
+                                                               monkeypatch):
+    """An option the chosen run would ignore is refused with one line naming it (exit 2),
+    before the scene is read and before any table is written."""
+    import dynstiff.scenes
+    monkeypatch.setattr(dynstiff.scenes, "load_scene",
+                        lambda name: pytest.fail("the scene was read"))
+    csv = tmp_path / "t.csv"
+    out = run_cli("simulate", "fourcable", *given, "--csv", csv)
+    assert (out.returncode, out.stdout) == (2, "")
+    assert out.stderr == f"dynstiff: error: {message}\n"
+    assert not csv.exists()
+
+
 def test_simulate_help(monkeypatch):
     """`dynstiff simulate -h`: the usage line and every option with its metavar, choices,
     default and help."""

@@ -28,9 +28,20 @@ def _cmd_simulate(args):
     from dynstiff.lumped import SlackSegmentWarning, simulate
     from dynstiff.models.ladder import build_model
     from dynstiff.scenes import load_scene
-    scene = load_scene(args.scene)
     if args.trajectory is not None and args.target is not None:
         raise InvalidParameterError("give --target or --trajectory, not both")
+    if args.trajectory is not None:
+        _refuse_unused(args, ("--pose", "--lengths", "--offset", "--band", "--channel",
+                              "--speed", "--ramp"),
+                       "with --trajectory (the trajectory sets the start and the motion)")
+    elif args.target is not None:
+        _refuse_unused(args, ("--offset", "--band", "--channel"),
+                       "with --target (options of the free vibration)")
+    else:
+        _refuse_unused(args, ("--speed", "--ramp"), "without --target (options of the line)")
+    speed = 0.5 if args.speed is None else args.speed
+    ramp = 1.0 if args.ramp is None else args.ramp
+    scene = load_scene(args.scene)
     path = None if args.trajectory is None else scene_trajectory(scene, args.trajectory)
     eq = equilibrium(scene, args) if path is None else None
     start = None if eq is None else (eq.pose.position, eq.pose.rotation)
@@ -41,10 +52,10 @@ def _cmd_simulate(args):
             what = (f"trajectory {args.trajectory!r} ({traj.duration:g} s, "
                     f"{path.times.size} waypoints)")
         else:
-            traj = line(eq.pose.position, args.target, args.speed, rotation=eq.pose.rotation,
-                        ramp=args.ramp)
+            traj = line(eq.pose.position, args.target, speed, rotation=eq.pose.rotation,
+                        ramp=ramp)
             what = (f"line {np.round(traj.positions[0], 4).tolist()} -> {list(args.target)} m at "
-                    f"{args.speed:g} m/s (ramp {args.ramp:g} s)")
+                    f"{speed:g} m/s (ramp {ramp:g} s)")
         bar = _Stages(ProgressBar("quasi-static lengths", args.quiet, unit="pose"),
                       elapsed("time stepping", args.quiet))
         with warnings.catch_warnings(), bar:
@@ -155,6 +166,16 @@ class _Stages:
         return False
 
 
+def _refuse_unused(args, options, why):
+    """One line naming the options given (not left at None) that ``why`` leaves unused:
+    an option given is never silently ignored."""
+    from dynstiff.errors import InvalidParameterError
+    given = [o for o in options if getattr(args, o[2:]) is not None]
+    if given:
+        raise InvalidParameterError(f"{', '.join(given)} {'does' if len(given) == 1 else 'do'}"
+                                    f" not apply {why}")
+
+
 def add_parsers(sub):
     """Add the ``simulate`` subcommands to the subparsers ``sub``."""
     si = sub.add_parser("simulate", help="time domain (lumped-mass cables): free vibration "
@@ -181,10 +202,10 @@ def add_parsers(sub):
     si.add_argument("--trajectory", metavar="NAME",
                     help="the scene's trajectory NAME: follow it ([[trajectories]], e.g. from "
                          "dynstiff import-caspr) through quasi-static cable lengths instead")
-    si.add_argument("--speed", type=float, default=0.5,
-                    help="path speed of --target [m/s] (default %(default)s)")
-    si.add_argument("--ramp", type=float, default=1.0,
-                    help="speed ramp duration of --target [s] (default %(default)s)")
+    si.add_argument("--speed", type=float,
+                    help="path speed of --target [m/s] (default 0.5)")
+    si.add_argument("--ramp", type=float,
+                    help="speed ramp duration of --target [s] (default 1.0)")
     add_outputs(si, csv="the time history", json="the time history",
                 plot="the spectrum with the model's frequencies, or the path followed")
     add_quiet(si)
