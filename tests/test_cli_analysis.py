@@ -637,6 +637,20 @@ def test_cli_frf_figure_has_a_phase_panel(tmp_path, monkeypatch):
     assert (tmp_path / "f.png").stat().st_size > 10_000
 
 
+@pytest.mark.parametrize("model", [None, "dsm", "exact", "spring"])
+def test_cli_modes_segments_without_the_lumped_model_is_refused(model, tmp_path):
+    """--segments sets the lumped model's cables: with any other model (the scene's dsm by
+    default) it would be ignored, so it is refused with one line naming the model, exit 2,
+    and no table written."""
+    csv = tmp_path / "m.csv"
+    extra = () if model is None else ("--model", model)
+    out = run_cli("modes", "planar2", "--segments", "5", *extra, "--csv", csv)
+    assert (out.returncode, out.stdout) == (2, "")
+    assert out.stderr == (f"dynstiff: error: --segments applies to the lumped model only "
+                          f"(--model lumped), not to the {model or 'dsm'!r} model\n")
+    assert not csv.exists()
+
+
 def test_modes_band_with_n_lists_the_lowest_n_in_the_band(tmp_path, capsys):
     """`modes --band 3 6 -n N` lists the lowest N modes in [3, 6] Hz, not the lowest N from
     0 Hz cut to the band (which left none); when the band holds fewer than N the first line

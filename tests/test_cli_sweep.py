@@ -344,6 +344,46 @@ def test_cli_sweep_steps_default(monkeypatch):
     np.testing.assert_allclose([p[0] for p in poses], np.linspace(0, 1, 11))
 
 
+@pytest.mark.parametrize("given, message", [
+    (("--line", "0", "0", "-10", "1", "0", "-10", "--pose", "0", "0", "-10"),
+     "--pose does not apply without --parameter (the poses are the path's)"),
+    (("--trajectory", "t", "--values", "1", "2"),
+     "--values does not apply without --parameter (the poses are the path's)"),
+    (("--path", "p.csv", "--pose", "0", "0", "-10", "--values", "1"),
+     "--pose, --values do not apply without --parameter (the poses are the path's)"),
+    (("--path", "p.csv", "--steps", "4"), "--steps does not apply without --line or "
+                                           "--trajectory"),
+    (("--parameter", "EA", "--values", "1e6", "2e6", "--steps", "4"),
+     "--steps does not apply without --line or --trajectory"),
+    (("--line", "0", "0", "-10", "1", "0", "-10", "--segments", "4"),
+     "--segments applies to the lumped model only (--model lumped), not to the 'dsm' model"),
+])
+def test_cli_sweep_options_that_do_not_apply_are_refused(given, message, tmp_path,
+                                                         monkeypatch):
+    """An option the sweep asked for would ignore is refused with one line naming it, exit
+    2, before any step is computed and before any file is written."""
+    calls = _spy_sweep(monkeypatch)
+    csv = tmp_path / "s.csv"
+    out = run_cli("sweep", "planar2", *given, "--csv", csv, cwd=tmp_path)
+    assert (out.returncode, out.stdout, out.stderr) == (2, "", f"dynstiff: error: {message}\n")
+    assert calls == [] and not csv.exists()
+
+
+def test_cli_sweep_lumped_model_takes_the_segments_given(monkeypatch):
+    """--model lumped --segments 4: the sweep's lumped models have 4 segments per cable
+    (the scene's count without --segments)."""
+    calls = _spy_sweep(monkeypatch)
+    line = ("--line", "0", "0", "-10", "1", "0", "-10", "--steps", "2", "-n", "2", "--quiet")
+    assert run_cli("sweep", "planar2", *line, "--model", "lumped", "--segments", "4"
+                   ).returncode == 0
+    assert run_cli("sweep", "planar2", *line, "--model", "lumped").returncode == 0
+    (_, kw4, _), (_, kw, _) = calls
+    assert (kw4["rung"], kw4["segments"]) == ("lumped", 4)
+    from dynstiff.analyses.settings import analysis_settings
+    assert kw["segments"] == analysis_settings(ds.load_scene("planar2"),
+                                               rung="lumped").segments != 4
+
+
 def test_cli_sweep_help(monkeypatch):
     """`dynstiff -h` lists sweep with its help, `dynstiff sweep -h` shows each option with
     its metavars and help; the sweep takes --pose but no --lengths."""

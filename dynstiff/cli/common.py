@@ -8,7 +8,7 @@ from dynstiff.cli.console import ProgressBar
 
 __all__ = ["FIGURE_SUFFIXES", "INPUT_ARGS", "OUTPUT_ARGS", "ProgressBar", "check_outputs",
            "damping_option", "equilibrium", "file_arguments", "info", "pose_metadata",
-           "save_figure", "scene_settings", "scene_trajectory", "table_metadata",
+           "refuse_unused", "save_figure", "scene_settings", "scene_trajectory", "table_metadata",
            "write_table", "write_tables"]
 
 
@@ -38,7 +38,22 @@ def scene_settings(scene, args):
     for name in ("segments", "n"):
         if getattr(args, name, None) is not None:
             kw["n_modes" if name == "n" else name] = getattr(args, name)
-    return analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
+    st = analysis_settings(scene, damping=getattr(args, "damping", None), **kw)
+    if getattr(args, "segments", None) is not None and st.rung != "lumped":
+        from dynstiff.errors import InvalidParameterError
+        raise InvalidParameterError(f"--segments applies to the lumped model only (--model "
+                                    f"lumped), not to the {st.rung!r} model")
+    return st
+
+
+def refuse_unused(args, options, why):
+    """One line naming the options given (not left at None) that ``why`` leaves unused:
+    an option given is never silently ignored."""
+    from dynstiff.errors import InvalidParameterError
+    given = [o for o in options if getattr(args, o[2:].replace("-", "_"), None) is not None]
+    if given:
+        raise InvalidParameterError(f"{', '.join(given)} {'does' if len(given) == 1 else 'do'}"
+                                    f" not apply {why}")
 
 
 def equilibrium(scene, args):

@@ -6,6 +6,7 @@ from dynstiff.cli.common import (
     ProgressBar,
     equilibrium,
     info,
+    refuse_unused,
     save_figure,
     scene_trajectory,
     table_metadata,
@@ -31,14 +32,14 @@ def _cmd_simulate(args):
     if args.trajectory is not None and args.target is not None:
         raise InvalidParameterError("give --target or --trajectory, not both")
     if args.trajectory is not None:
-        _refuse_unused(args, ("--pose", "--lengths", "--offset", "--band", "--channel",
+        refuse_unused(args, ("--pose", "--lengths", "--offset", "--band", "--channel",
                               "--speed", "--ramp"),
                        "with --trajectory (the trajectory sets the start and the motion)")
     elif args.target is not None:
-        _refuse_unused(args, ("--offset", "--band", "--channel"),
+        refuse_unused(args, ("--offset", "--band", "--channel"),
                        "with --target (options of the free vibration)")
     else:
-        _refuse_unused(args, ("--speed", "--ramp"), "without --target (options of the line)")
+        refuse_unused(args, ("--speed", "--ramp"), "without --target (options of the line)")
     speed = 0.5 if args.speed is None else args.speed
     ramp = 1.0 if args.ramp is None else args.ramp
     scene = load_scene(args.scene)
@@ -164,16 +165,6 @@ class _Stages:
         if self.started:
             self.stepping.__exit__(*exc)
         return False
-
-
-def _refuse_unused(args, options, why):
-    """One line naming the options given (not left at None) that ``why`` leaves unused:
-    an option given is never silently ignored."""
-    from dynstiff.errors import InvalidParameterError
-    given = [o for o in options if getattr(args, o[2:]) is not None]
-    if given:
-        raise InvalidParameterError(f"{', '.join(given)} {'does' if len(given) == 1 else 'do'}"
-                                    f" not apply {why}")
 
 
 def add_parsers(sub):

@@ -4,6 +4,7 @@ a parameter, the platform modes tracked, the veering diagram."""
 from dynstiff.cli.common import (
     ProgressBar,
     info,
+    refuse_unused,
     save_figure,
     scene_settings,
     scene_trajectory,
@@ -81,6 +82,12 @@ def _cmd_sweep(args):
     from dynstiff.analyses.sweep import sweep
     from dynstiff.errors import InvalidParameterError
     from dynstiff.scenes import load_scene
+    if args.parameter is None:
+        refuse_unused(args, ("--pose", "--values"), "without --parameter (the poses are the "
+                                                     "path's)")
+    if args.line is None and args.trajectory is None:
+        refuse_unused(args, ("--steps",), "without --line or --trajectory")
+    steps = 11 if args.steps is None else args.steps
     scene = load_scene(args.scene)
     st = scene_settings(scene, args)
     robot = scene.robot
@@ -96,15 +103,15 @@ def _cmd_sweep(args):
         raise InvalidParameterError(
             f"give exactly one of --line, --path, --trajectory or --parameter, got "
             f"{given or 'none'}")
-    if args.steps < 2:
-        raise InvalidParameterError(f"--steps must be >= 2, got {args.steps}")
+    if steps < 2:
+        raise InvalidParameterError(f"--steps must be >= 2, got {steps}")
     rot = scene.pose.rotation if scene.pose is not None else np.zeros(3)
     if args.trajectory is not None:
-        poses, times = scene_trajectory(scene, args.trajectory).poses(args.steps)
+        poses, times = scene_trajectory(scene, args.trajectory).poses(steps)
         res = sweep(robot, poses=poses, values=times,
                     parameter=f"time along trajectory {args.trajectory} [s]", **opts)
     elif args.line is not None:
-        pts = np.linspace(args.line[:3], args.line[3:], args.steps)
+        pts = np.linspace(args.line[:3], args.line[3:], steps)
         res = sweep(robot, poses=[np.concatenate([p, rot]) for p in pts], **opts)
     elif args.path is not None:
         res = sweep(robot, poses=_read_path(args.path, rot), **opts)
@@ -163,8 +170,8 @@ def add_parsers(sub):
     add_scene(sw)
     sw.add_argument("--line", type=float, nargs=6, metavar=("X0", "Y0", "Z0", "X1", "Y1", "Z1"),
                     help="path of P from (X0, Y0, Z0) to (X1, Y1, Z1) [m], the scene's rotation")
-    sw.add_argument("--steps", type=int, default=11,
-                    help="poses along --line or --trajectory (default %(default)s)")
+    sw.add_argument("--steps", type=int,
+                    help="poses along --line or --trajectory (default 11)")
     sw.add_argument("--path", metavar="FILE",
                     help="poses from a text/CSV file, one a line: x y z [m] (the scene's "
                          "rotation) or x y z rx ry rz [m, rad]; '#' comments, a header line")
@@ -180,6 +187,9 @@ def add_parsers(sub):
                     "the band)")
     add_band(sw, "every mode up to its top at every step (default: the first --n-modes)")
     add_model(sw)
+    sw.add_argument("--segments", type=int,
+                    help="segments per cable of the lumped model (default: the scene's, "
+                         "else 30)")
     add_outputs(sw, csv="one row per mode and step", json="one row per mode and step",
                 plot="the veering diagram")
     add_quiet(sw)
