@@ -157,6 +157,26 @@ def test_demo_cable_passes_band_top_and_points(tmp_path, cable_spy, robot_spy, o
     assert robot_spy == []
 
 
+@pytest.mark.parametrize("given, message", [
+    (("planar2",), "demo --cable reports CoGiRo's cable 0, not a scene's: drop 'planar2' "
+                   "(or --cable)"),
+    (("--pose", "0", "0", "1"), "--pose does not apply with --cable (the single-cable "
+                                "report of CoGiRo's cable 0)"),
+    (("-n", "3", "--model", "exact", "--damping", "0"),
+     "-n, --model, --damping do not apply with --cable (the single-cable report of "
+     "CoGiRo's cable 0)"),
+])
+def test_demo_cable_refuses_what_it_would_ignore(tmp_path, cable_spy, robot_spy, given,
+                                                 message):
+    """`demo --cable` reports CoGiRo's cable 0: a scene, a pose, a mode count, a model or a
+    damping would be ignored, so each is refused with one line, exit 2, no report made and
+    no folder created."""
+    out = run_cli("demo", "--cable", *given, "--out", tmp_path / "c")
+    assert (out.returncode, out.stdout, out.stderr) == (2, "", f"dynstiff: error: {message}\n")
+    assert cable_spy["cable_report"] == [] and robot_spy == []
+    assert not (tmp_path / "c").exists()
+
+
 @pytest.mark.parametrize("argv, label", [
     (["demo", "--cable"], "demo --cable"),
     (["report", "planar2"], "report " + ds.load_scene("planar2").name),

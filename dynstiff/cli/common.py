@@ -50,7 +50,8 @@ def refuse_unused(args, options, why):
     """One line naming the options given (not left at None) that ``why`` leaves unused:
     an option given is never silently ignored."""
     from dynstiff.errors import InvalidParameterError
-    given = [o for o in options if getattr(args, o[2:].replace("-", "_"), None) is not None]
+    given = [o for o in options if getattr(args, o.lstrip("-").replace("-", "_"), None)
+             is not None]
     if given:
         raise InvalidParameterError(f"{', '.join(given)} {'does' if len(given) == 1 else 'do'}"
                                     f" not apply {why}")

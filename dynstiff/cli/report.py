@@ -1,7 +1,7 @@
 """The main job: ``demo`` (a built-in scene, or one cable) and ``report`` (any scene):
 tables, figures and a self-contained HTML page."""
 
-from dynstiff.cli.common import damping_option, info, scene_settings
+from dynstiff.cli.common import damping_option, info, refuse_unused, scene_settings
 from dynstiff.cli.console import elapsed
 from dynstiff.cli.options import add_band, add_model, add_n_modes, add_pose, add_quiet, add_scene
 
@@ -36,6 +36,12 @@ def _cmd_report(args):
 def _cmd_demo(args):
     if not args.cable:
         return _cmd_report(args)
+    from dynstiff.errors import InvalidParameterError
+    if args.scene != "cogiro":
+        raise InvalidParameterError(f"demo --cable reports CoGiRo's cable 0, not a scene's: "
+                                    f"drop {args.scene!r} (or --cable)")
+    refuse_unused(args, ("--pose", "-n", "--model", "--damping"),
+                  "with --cable (the single-cable report of CoGiRo's cable 0)")
     from dynstiff.report.cable import cable_report, write_report
     band = args.band[1] if args.band else args.fmax
     with elapsed("demo --cable", args.quiet):
