@@ -386,6 +386,16 @@ def test_slices_title_names_robot_worst_case_count_and_band(close_figures):
         "platform modes not all found")
 
 
+@pytest.mark.parametrize("margin, text", [(0.004, "margin 0.4%"), (0.125, "margin 12.5%"),
+                                          (0.0, "margin 0%")])
+def test_slices_title_gives_a_small_margin_as_it_is(close_figures, margin, text):
+    """A margin below half a percent is written as it is, not rounded to 0 %."""
+    ds = synthetic_map()
+    ds.attrs["margin"] = margin
+    title = plot_workspace_slices(ds).get_suptitle().replace("\n", " ")
+    assert f"Hz, {text}; grey" in title
+
+
 def test_slices_title_without_reduced_dimensions_says_no_worst_case(close_figures):
     """A map without orientation or parameter dimensions has no "worst case" in its title."""
     ds = five_level_map()

@@ -144,16 +144,16 @@ def test_poses_need_an_integer_count_of_at_least_two(n):
     (dict(law="parabolic_blend"),
      r"^law 'parabolic_blend' needs blend_times \[s\], one per segment$"),
     (dict(law="parabolic_blend", blend_times=[0.6]),
-     r"^blend_times must be 1 values > 0 \[s\], each less than half its segment \[1\.0\], "
+     r"^blend_times must be 1 value > 0 \[s\], each less than half its segment \[1\.0\], "
      r"got array\(\[0\.6\]\)$"),
     (dict(law="parabolic_blend", blend_times=[0.5]), "^blend_times .* less than half"),
-    (dict(law="parabolic_blend", blend_times=[0.0]), "^blend_times must be 1 values > 0"),
-    (dict(law="parabolic_blend", blend_times=[-0.1]), "^blend_times must be 1 values > 0"),
-    (dict(law="parabolic_blend", blend_times=[0.1, 0.1]), "^blend_times must be 1 values > 0"),
+    (dict(law="parabolic_blend", blend_times=[0.0]), "^blend_times must be 1 value > 0"),
+    (dict(law="parabolic_blend", blend_times=[-0.1]), "^blend_times must be 1 value > 0"),
+    (dict(law="parabolic_blend", blend_times=[0.1, 0.1]), "^blend_times must be 1 value > 0"),
     (dict(law="parabolic_blend", blend_times=[True]),
      "^blend_times must be real numbers, not booleans"),
     (dict(law="parabolic_blend", blend_times="abc"),
-     r"^blend_times must be 1 values > 0 \[s\], got 'abc'$"),
+     r"^blend_times must be 1 value > 0 \[s\], got 'abc'$"),
     (dict(blend_times=[0.1]), "blend_times go with"),
 ])
 def test_bad_waypoints_are_named(kw, match):

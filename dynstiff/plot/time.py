@@ -7,7 +7,7 @@ import numpy as np
 from dynstiff.errors import InvalidParameterError
 from dynstiff.plot.common import COLORS, figure_axes, mode_frequencies, require
 
-__all__ = ["plot_spectrum"]
+__all__ = ["plot_spectrum", "plot_tracking"]
 
 
 # -------------------------------------------------------------------------- spectrum

@@ -137,7 +137,8 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     cb.ax.set_yticklabels(["infeasible", "check fails", "all pass"])
     band = ds.attrs.get("band_hz", None)
     band = (f"forbidden band {np.round(np.asarray(band, float), 3).tolist()} Hz, margin "
-            f"{need:.0%}" if not isinstance(band, str) and band is not None else "no band")
+            f"{100 * need:.3g}%" if not isinstance(band, str) and band is not None
+            else "no band")
     worst = " (worst case over " + ", ".join(d for d in _REDUCED if d in ds.dims) + ")" \
         if any(d in ds.dims for d in _REDUCED) else ""
     shown = ("" if ks.size == z.size else

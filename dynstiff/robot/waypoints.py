@@ -163,10 +163,11 @@ class WaypointPath:
             if self.blend_times is None:
                 raise InvalidParameterError("law 'parabolic_blend' needs blend_times [s], "
                                             "one per segment")
-            tb = real_array("blend_times", self.blend_times, f"{k - 1} values > 0 [s]")
+            what = f"{k - 1} value{'s' if k > 2 else ''} > 0 [s]"
+            tb = real_array("blend_times", self.blend_times, what)
             if tb.shape != (k - 1,) or not np.all(tb > 0) or np.any(2 * tb >= np.diff(t)):
                 raise InvalidParameterError(
-                    f"blend_times must be {k - 1} values > 0 [s], each less than half its "
+                    f"blend_times must be {what}, each less than half its "
                     f"segment {np.diff(t).tolist()}, got {np.asarray(self.blend_times)!r}")
         elif self.blend_times is not None:
             raise InvalidParameterError("blend_times go with law 'parabolic_blend'")
