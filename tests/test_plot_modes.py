@@ -1,6 +1,7 @@
 """Figures of modes and statics (dynstiff/plot/modes.py): natural frequencies by class, damped
 roots, cable modes by family, tensions and model errors."""
 
+import re
 import warnings
 from types import SimpleNamespace
 
@@ -261,6 +262,19 @@ def test_tension_limits_are_named_by_their_role():
     assert by_gid(ax, "limit-") == []
     assert ax.get_title() == ("static cable tensions (dashed: admissible limits)\n"
                               "off scale: t_min = 1000 N, t_max = 5000 N")
+
+
+@pytest.mark.parametrize("tB, tA", [([300.0, np.nan], [290.0, 305.0]),
+                                     ([300.0, 310.0], [np.inf, 305.0])])
+def test_tensions_that_are_not_finite_are_refused(tB, tA):
+    """A NaN or infinite tension would scale the axis to nothing: refused with both rows."""
+    import matplotlib.pyplot as plt
+    n = len(plt.get_fignums())
+    with pytest.raises(InvalidParameterError,
+                       match=rf"^equilibrium tensions must be finite \[N\], got "
+                             rf"{re.escape(str(tB))} at B and {re.escape(str(tA))} at A$"):
+        plot_tensions(equilibrium(tB, tA))
+    assert len(plt.get_fignums()) == n                        # no figure left open
 
 
 def recommendation(errors, rung):

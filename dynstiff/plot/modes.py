@@ -150,6 +150,10 @@ def plot_tensions(equilibrium, ax=None, limits=None):
             f"equilibrium must be an Equilibrium, got {type(equilibrium).__name__}")
     tB = np.asarray(tB, dtype=float)
     tA = np.asarray(equilibrium.anchor_tensions, dtype=float)
+    if not (np.all(np.isfinite(tB)) and np.all(np.isfinite(tA))):
+        raise InvalidParameterError(
+            f"equilibrium tensions must be finite [N], got {tB.tolist()} at B and "
+            f"{tA.tolist()} at A")
     if limits is None and hasattr(equilibrium, "robot"):
         limits = equilibrium.robot.tension_limits
     if limits is not None:
