@@ -12,9 +12,9 @@ without, maps identical to the bit. Where the rest goes is spread thin: a cProfi
 map shows no Python function above 0.12 ms a pose (profiled); the compiled kernels (search,
 count, receptance, stiffness, statics' fixed point) take about 1.5 ms of it. Then (theory.md
 §13.7, "Then"): 4.23 -> 3.70 ms with the band, 3.41 -> 2.96 ms without; and measured, not
-projected (``--ten-thousand --against f54db41``, 2 local processes): 10,648 poses in 19.0 s
-of wall against 73.5 s at f54db41 in one run, then 18.4 s after the last step (17.3 s per
-10,000 poses, 3.42 ms of CPU a pose, workers and parent). The projection below scales the
+projected (``--ten-thousand --against f54db41``, 2 local processes, one run): 10,648 poses
+in 18.4 s of wall (17.2 s per 10,000 poses, 3.41 ms of CPU a pose, workers and parent)
+against 73.3 s (68.8 s per 10,000, 13.66 ms a pose) at f54db41. The projection below scales the
 pool's extra CPU of a small map (mostly the workers' start) to 10,000 poses: 23 s.
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_workspace.py [--poses N] [--repeats R]
