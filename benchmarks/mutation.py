@@ -1195,9 +1195,7 @@ EQUIVALENT.update({
     **{f"dynstiff.analyses.freqgrid.x_refined_grid__mutmut_{n}":
        "dtype=float dropped on the modes: numeric modes (ints too) give the same grid, the "
        "product with the float offsets being float" for n in (31, 33)},
-    "dynstiff.analyses.freqgrid.x_refined_grid__mutmut_51":
-        "the lower offsets in the other order: the same set of points, sorted by np.unique",
-    "dynstiff.analyses.freqgrid.x_refined_grid__mutmut_56":
+    "dynstiff.analyses.freqgrid.x_refined_grid__mutmut_50":
         "f (1 - d) instead of f (1 + d): d holds every offset with both signs, so the same "
         "set of points",
     "dynstiff.robot.waypoints.x__blend__mutmut_14":

@@ -59,6 +59,30 @@ def test_explicit_limit_is_the_axial_wave_transit_time_of_a_segment(cogiro, cogi
     assert damped == pytest.approx(dt0 * (np.sqrt(1.01) - 0.1), rel=1e-12)
 
 
+def test_explicit_limit_takes_rayleigh_terms_and_the_lengths_given(cogiro, cogiro_eq):
+    """Each Rayleigh term adds its share to zeta on the highest mode, alpha / (2 omega_max)
+    and beta omega_max / 2 with omega_max = 2 / dt0; lengths given instead of the model's
+    scale the limit with the shortest segment; lengths that are not one positive length
+    per cable are refused by name."""
+    N = 10
+    mm = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=N)
+    cab = cogiro.robot.cables[0]
+    dt0 = (cogiro_eq.unstretched_lengths / N).min() / np.sqrt(cab.EA / cab.mass_per_length)
+    w_max = 2.0 / dt0
+    for alpha, beta in ((0.2 * w_max, 0.0), (0.0, 0.2 / w_max), (0.1 * w_max, 0.1 / w_max)):
+        zeta = 0.5 * alpha / w_max + 0.5 * beta * w_max
+        got = explicit_step_limit(mm, damping=TimeDamping(alpha=alpha, beta=beta))
+        assert zeta == pytest.approx(0.1, rel=1e-12)
+        assert got == pytest.approx(dt0 * (np.sqrt(1.01) - 0.1), rel=1e-12)
+    L0 = 2 * cogiro_eq.unstretched_lengths
+    assert explicit_step_limit(mm, L0.tolist()) == pytest.approx(2 * dt0, rel=1e-14)
+    assert explicit_step_limit(mm, [int(x) + 1 for x in L0]) > 2 * dt0
+    for bad in (L0[:3], np.full(8, -1.0), ["a"] * 8):
+        with pytest.raises(InvalidParameterError, match="^unstretched_lengths must be 8 finite "
+                                                        "positive lengths"):
+            explicit_step_limit(mm, bad)
+
+
 @pytest.mark.parametrize("axial, message", [
     (True, "^axial must be real numbers, not booleans, got True"),
     ([0.5, True], "^axial must be real numbers, not booleans"),

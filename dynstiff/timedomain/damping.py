@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff._validate import positive_scalar, real_array
+from dynstiff._validate import unstretched_lengths as checked_lengths
 from dynstiff.errors import InvalidParameterError
 
 if TYPE_CHECKING:
@@ -96,9 +97,9 @@ def explicit_step_limit(model: LumpedMassModel, unstretched_lengths=None,
     float
         min over the cables [s].
     """
-    L0 = model.unstretched_lengths if unstretched_lengths is None else \
-        np.asarray(unstretched_lengths, dtype=float)
     cables = model.robot.cables
+    L0 = model.unstretched_lengths if unstretched_lengths is None else \
+        checked_lengths(unstretched_lengths, len(cables))
     EA = np.array([cb.EA for cb in cables])
     mass = np.array([cb.mass_per_length for cb in cables])
     l0 = L0 / model.segments
