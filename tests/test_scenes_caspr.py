@@ -75,6 +75,30 @@ def test_nonzero_orientation_rates_are_refused_as_caspr_does(tmp_path):
         import_caspr(*INV, CABLE, trajectories_xml=p)
 
 
+def test_an_averaged_orientation_rate_is_refused_saying_where_it_comes_from(tmp_path):
+    """An average-velocity spline whose orientation changes at an inner waypoint: the rate
+    refused there is the mean of the two segments' rates, which the file did not give; the
+    message says so and names the waypoint. One whose orientation stays put is read."""
+    def spline(rz):
+        return ('<cubic_spline_average_velocity_trajectory id="avg" time_definition='
+                '"relative"><points>'
+                '<point><q>0 0 1.5 0 0 0</q><q_dot>0 0 0 0 0 0</q_dot></point>'
+                f'<point time="1.0"><q>0.1 0 1.5 0 0 {rz}</q></point>'
+                '<point time="2.0"><q>0.2 0 1.5 0 0 0</q><q_dot>0 0 0 0 0 0</q_dot></point>'
+                '</points></cubic_spline_average_velocity_trajectory>')
+    t = _trajectories(tmp_path, spline("0.2"))
+    with pytest.raises(CasprError) as exc:
+        import_caspr(*INV, CABLE, trajectories_xml=t)
+    assert str(exc.value) == (
+        f"{t}: trajectory 'avg': nonzero orientation velocity at waypoint 1 (the mean of "
+        f"its two segments' rates, which an average-velocity spline takes there: the "
+        f"orientation changes at that waypoint); {REFUSAL}")
+    scene = import_caspr(*INV, CABLE, trajectories_xml=_trajectories(tmp_path, spline("0")))
+    # relative times: the segments last 1 s and 2 s, their x rates 0.1 and 0.05 m/s
+    np.testing.assert_allclose(scene.trajectories["avg"].velocities[1], [0.075, 0.0, 0.0],
+                               rtol=1e-14)
+
+
 def test_written_scene_reads_back_the_trajectories_and_box(tmp_path, scene):
     path = write_scene(tmp_path / "s.toml", scene.robot, scene.pose,
                        trajectories=scene.trajectories.values(),
@@ -235,8 +259,8 @@ def test_each_nonzero_orientation_rate_is_refused_by_name(tmp_path, joint, n_tra
                                          " ".join(rates["q_ddot"]), "turn"))
     with pytest.raises(CasprError) as exc:
         import_caspr(b, INV[1], CABLE, trajectories_xml=t)
-    assert str(exc.value) == (f"{t}: trajectory 'turn': nonzero orientation {what} at a "
-                              f"waypoint; {REFUSAL}")
+    assert str(exc.value) == (f"{t}: trajectory 'turn': nonzero orientation {what} at "
+                              f"waypoint 1; {REFUSAL}")
 
 
 def test_comments_of_the_inverted_stewart_scene_line_by_line(scene):

@@ -34,11 +34,17 @@ def _rates(path, traj, joint_type, values, what):
         return None
     trans = [k for k, d in enumerate(free) if d in ("x", "y", "z")]
     rot = [k for k, d in enumerate(free) if d in ("rx", "ry", "rz")]
-    if np.any(values[:, rot]):
+    bad = np.flatnonzero(np.any(values[:, rot] != 0, axis=1))
+    if bad.size:
+        k = int(bad[0])
+        averaged = (traj.kind == "cubic_spline_average_velocity_trajectory"
+                    and 0 < k < values.shape[0] - 1)
+        source = (" (the mean of its two segments' rates, which an average-velocity spline "
+                  "takes there: the orientation changes at that waypoint)" if averaged else "")
         raise CasprError(
-            f"{path}: trajectory {traj.name!r}: nonzero orientation {what} at a waypoint; "
-            f"CASPR interpolates orientations with zero rates at the waypoints and refuses "
-            f"these too")
+            f"{path}: trajectory {traj.name!r}: nonzero orientation {what} at waypoint "
+            f"{k}{source}; CASPR interpolates orientations with zero rates at the waypoints "
+            f"and refuses these too")
     out = np.zeros((values.shape[0], 3))
     out[:, :len(trans)] = values[:, trans]
     return out
