@@ -1,5 +1,7 @@
 """The speed-accuracy chart (dynstiff/plot/accuracy.py)."""
 
+import re
+
 import matplotlib
 import numpy as np
 import pandas as pd
@@ -95,6 +97,15 @@ def one_row_table(models, error="err first 20", cost="40 modes [s]"):
     """One case per model: {name: (error, cost)}, build time 0 (so the cost is the total)."""
     return pd.DataFrame([{"model": m, error: e, cost: c, "build [s]": 0.0}
                          for m, (e, c) in models.items()])
+
+
+def test_models_alike_as_text_are_refused():
+    """Model keys 1 and "1" are two groups but one label and one gid: refused, both named."""
+    df = one_row_table({1: (0.1, 1.0), "1": (0.2, 2.0), "dsm": (0.01, 3.0)})
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "df: models [1, '1', 'dsm'] are not distinct as text (['1'] twice): their labels "
+            "and gids would be one")):
+        plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]")
 
 
 def worst_and_total(df, error="err first 20", cost="40 modes [s]"):

@@ -82,8 +82,8 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
     ------
     InvalidParameterError
         A column is missing, there are no rows, an error is NaN or below 0 (a case whose
-        error is NaN would drop out of the worst over the cases), or a cost is not finite
-        and > 0.
+        error is NaN would drop out of the worst over the cases), a cost is not finite
+        and > 0, or two models have the same text (1 and "1").
     """
     require(df, "df", ("groupby", "columns"), "pandas DataFrame")
     for col in ("model", error, cost, "build [s]"):
@@ -100,6 +100,10 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
     g = df.groupby("model", sort=False).agg({error: "max", cost: "median",
                                               "build [s]": "median"})
     names = [str(n) for n in g.index]
+    if len(set(names)) < len(names):
+        twice = sorted({n for n in names if names.count(n) > 1})
+        raise InvalidParameterError(f"df: models {list(g.index)} are not distinct as text "
+                                    f"({twice} twice): their labels and gids would be one")
     err = g[error].to_numpy(dtype=float)
     total = (g[cost] + g["build [s]"]).to_numpy(dtype=float)
     if not np.all(np.isfinite(total) & (total > 0)):
