@@ -207,6 +207,8 @@ def test_other_modes_are_the_untracked_ones_grey_local_purple_mixed():
         assert all(dots.get_zorder() < ln.get_zorder() for ln in tracks)
     labels = [t.get_text() for t in ax.get_legend().get_texts()]
     assert labels == ["track 0", "track 1", "local modes", "mixed modes"]
+    assert ax.get_title() == ("Modes along the sweep: 2 platform-mode tracks, grey dots "
+                              "local modes, purple dots mixed modes")
 
 
 def test_without_a_track_attribute_every_local_mode_is_a_dot():

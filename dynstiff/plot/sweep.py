@@ -60,7 +60,8 @@ def plot_veering(sweep_result, ax=None, show_local=True):
         more, and its limits hold every value, with a margin of 2 % of their span (of
         their log span on a log axis) either side; a single value keeps matplotlib's
         automatic limits. The title gives the number of tracks, adds ``", grey dots local
-        modes"`` when they are drawn, and a line on the dotted bridges when there is one.
+        modes"`` when they are drawn (and ``", purple dots mixed modes"`` when there are
+        any), and a line on the dotted bridges when there is one.
 
     Raises
     ------
@@ -87,6 +88,7 @@ def plot_veering(sweep_result, ax=None, show_local=True):
         if gx.size:
             any_gap = True
             ax.plot(gx, gy, ":", lw=1.0, color=color, gid=f"gap-{t}")
+    dots = ""
     if show_local:
         kinds = np.asarray(sweep_result.kind)
         untracked = np.asarray(getattr(sweep_result, "track", np.full(kinds.shape, -1))) < 0
@@ -96,10 +98,11 @@ def plot_veering(sweep_result, ax=None, show_local=True):
                 ax.scatter(np.asarray(sweep_result.value)[sel],
                            np.asarray(sweep_result.freq_hz)[sel], s=6, color=color,
                            zorder=1, gid=f"{kind}-modes", label=f"{kind} modes")
+                dots += (", grey dots local modes" if kind == "local"
+                         else ", purple dots mixed modes")
     ax.set_xlabel(sweep_result.parameter)
     ax.set_ylabel("frequency [Hz]")
-    ax.set_title(f"Modes along the sweep: {n} platform-mode tracks"
-                 + (", grey dots local modes" if show_local else "")
+    ax.set_title(f"Modes along the sweep: {n} platform-mode tracks" + dots
                  + ("\ndotted: a track through cable modes (its mode labelled local there)"
                     if any_gap else ""))
     if n <= 12:
