@@ -1314,6 +1314,9 @@ EQUIVALENT.update({f"dynstiff.scenes.writer.x_scene_text__mutmut_{n}":
                    "a trajectory without a note gets None instead of '' (or no default): "
                    "_trajectory_lines writes a note only when it is truthy, the same for both"
                    for n in (177, 179)})
+EQUIVALENT.update({f"dynstiff.timedomain.damping.xǁTimeDampingǁaxial_per_cable__mutmut_{n}":
+                   "dtype=float dropped on a tuple of Python floats (__post_init__ stores "
+                   "several dashpots so): float64 anyway" for n in (14, 16)})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -54,3 +54,16 @@ def test_a_pose_holds_copies_and_computes_its_rotation_once():
     np.testing.assert_array_equal(p.matrix, rotation_matrix(np.array([0.1, -0.2, 0.3])))
     p.rotation[2] = -0.4
     np.testing.assert_array_equal(p.matrix, rotation_matrix(np.array([0.1, -0.2, -0.4])))
+
+
+def test_a_pose_given_integers_holds_floats():
+    """Coordinates given as integers are held as float arrays, so a pose's position [m] and
+    rotation [rad] take a fraction written in place (an integer array would cut it off)."""
+    p = ds.Pose([1, 2, 3], [0, 0, 0])
+    assert p.position.dtype == np.float64 and p.rotation.dtype == np.float64
+    p.position[0] = 1.5
+    p.rotation[2] = 0.25
+    assert p.position.tolist() == [1.5, 2.0, 3.0]
+    np.testing.assert_allclose(p.matrix, [[np.cos(0.25), -np.sin(0.25), 0.0],
+                                          [np.sin(0.25), np.cos(0.25), 0.0],
+                                          [0.0, 0.0, 1.0]], rtol=0, atol=1e-15)

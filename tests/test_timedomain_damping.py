@@ -45,6 +45,41 @@ def test_axial_dashpots_per_cable_and_bad_values():
         TimeDamping(beta=np.nan)
 
 
+def test_a_wrong_number_of_axial_dashpots_is_refused_with_both_counts():
+    """axial_per_cable(n) refuses a sequence of another length than n, naming damping.axial,
+    the n expected and the count given."""
+    for axial, n, got in (([1.0, 2.0], 3, 2), ([1.0, 2.0, 3.0, 4.0], 8, 4)):
+        with pytest.raises(InvalidParameterError,
+                           match=rf"^damping\.axial must be one value or {n} values "
+                                 rf"\(one per cable\), got {got}$"):
+            TimeDamping(axial=axial).axial_per_cable(n)
+
+
+@pytest.mark.parametrize("name, value, shown", [
+    ("alpha", -1.0, "-1.0"), ("alpha", np.inf, "inf"), ("beta", -0.5, "-0.5"),
+    ("beta", np.nan, "nan")])
+def test_a_negative_or_infinite_rayleigh_coefficient_is_refused_by_name(name, value, shown):
+    """alpha and beta must be finite and >= 0; the refusal names the coefficient and the
+    value given."""
+    with pytest.raises(InvalidParameterError, match=rf"^{name} must be .*{shown}"):
+        TimeDamping(**{name: value})
+
+
+def test_the_damping_holds_plain_floats_whatever_real_numbers_are_given():
+    """alpha and beta are held as floats and axial as a float or a tuple of floats (one per
+    cable), whatever real numbers they were given as (numpy scalars, ints, an array): a
+    TimeDamping then equals, hashes and prints as the one built from those floats."""
+    d = TimeDamping(alpha=np.float32(0.25), beta=np.int64(2), axial=np.array([1, 2]))
+    ref = TimeDamping(alpha=0.25, beta=2.0, axial=(1.0, 2.0))
+    assert type(d.alpha) is float and type(d.beta) is float
+    assert d.axial == (1.0, 2.0) and all(type(c) is float for c in d.axial)
+    assert d == ref and hash(d) == hash(ref)
+    assert repr(d) == "TimeDamping(alpha=0.25, beta=2.0, axial=(1.0, 2.0))"
+    one = TimeDamping(axial=[3])
+    assert type(one.axial) is float and one.axial == 3.0
+    assert TimeDamping(axial=[1, 2, 3]) == TimeDamping(axial=(1.0, 2.0, 3.0))
+
+
 def test_explicit_limit_is_the_axial_wave_transit_time_of_a_segment(cogiro, cogiro_eq):
     """Undamped: dt < l0 / sqrt(EA / m) (theory.md §7.3); damping lowers it by
     sqrt(1 + zeta^2) - zeta."""
