@@ -67,3 +67,21 @@ def test_a_pose_given_integers_holds_floats():
     np.testing.assert_allclose(p.matrix, [[np.cos(0.25), -np.sin(0.25), 0.0],
                                           [np.sin(0.25), np.cos(0.25), 0.0],
                                           [0.0, 0.0, 1.0]], rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("position, rotation, name, shown", [
+    (["a", "b", "c"], None, "position", "['a', 'b', 'c']"),
+    ([1.0, 2.0, 3.0], [0.0, "x", 0.0], "rotation", "[0.0, 'x', 0.0]"),
+    ([[1.0, 2.0], [3.0]], None, "position", "[[1.0, 2.0], [3.0]]"),
+    ([1.0, 2.0, 3.0], [0.0, 0.0, 1j], "rotation", "[0.0, 0.0, 1j]"),
+])
+def test_text_ragged_or_complex_coordinates_are_refused_by_name(position, rotation, name,
+                                                                shown):
+    """Coordinates that are not numbers (text, a ragged list, a complex number) are refused
+    with the one-line message naming the pose's field and the value given, as a wrong
+    count is, never with numpy's own error."""
+    kw = {} if rotation is None else {"rotation": rotation}
+    with pytest.raises(InvalidParameterError) as err:
+        ds.Pose(position, **kw)
+    assert str(err.value) == (f"pose {name} must be 3 finite numbers within 1e+100, got "
+                              f"{shown}")
