@@ -1317,6 +1317,14 @@ EQUIVALENT.update({f"dynstiff.scenes.writer.x_scene_text__mutmut_{n}":
 EQUIVALENT.update({f"dynstiff.timedomain.damping.xǁTimeDampingǁaxial_per_cable__mutmut_{n}":
                    "dtype=float dropped on a tuple of Python floats (__post_init__ stores "
                    "several dashpots so): float64 anyway" for n in (14, 16)})
+EQUIVALENT.update({
+    "dynstiff.plot.frf.x_plot_frf__mutmut_178":
+        "np.errstate(invalid=None) around np.degrees(np.angle(h)), which raises no invalid "
+        "warning for any complex input (nan and inf included, checked under all='raise')",
+    "dynstiff.plot.frf.x_plot_frf__mutmut_193":
+        "break for continue on a None axes: ax is never None after the figure is made, so "
+        "the branch runs only for ax_ph, the last item of the loop",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

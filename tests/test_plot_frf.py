@@ -153,3 +153,110 @@ def test_plot_options_that_are_not_what_they_say_are_refused(kw, message):
     r = ds.frf(m, [1.0, 2.0], inputs="fz", outputs="z")
     with pytest.raises(ds.InvalidParameterError, match=message):
         r.plot(**kw)
+
+
+def _toy_frf(**kw):
+    """A 2 x 2 receptance on 20 frequencies (1-3 Hz) and three modes in the band, one of
+    each class: no model to build."""
+    from types import SimpleNamespace
+
+    from dynstiff.results import FRFResult
+    f = np.linspace(1.0, 3.0, 20)
+    H = (1.0 + np.arange(4.0).reshape(1, 2, 2)) * np.exp(1j * f)[:, None, None]
+    res = FRFResult(f, H, ("fx", "fz"), ("x", "z"), "receptance", **kw)
+    modes = SimpleNamespace(freq_hz=np.array([1.5, 2.0, 2.5]), kind=("global", "mixed", "local"))
+    return res, modes
+
+
+def test_frf_phase_figure_size_and_axes_heights():
+    """With the phase, a new figure is 10 x 6 in, the magnitude axes twice as tall as the
+    phase axes."""
+    res, modes = _toy_frf()
+    fig = plot_frf(res, modes, phase=True)
+    assert tuple(fig.get_size_inches()) == (10.0, 6.0)
+    mag, ph = fig.axes
+    assert mag.get_position().height == pytest.approx(2 * ph.get_position().height)
+
+
+def test_frf_twin_dash_pattern_and_widths():
+    """Curves are solid and 1.0 wide; the reciprocal twin drawn second (z / fx after
+    x / fz) is dashed 4 on, 3 off (in line widths) and 2.0 wide, on both axes."""
+    res, _ = _toy_frf()
+    fig = plot_frf(res, pairs=[("x", "fz"), ("z", "fx")], phase=True)
+    for ax in fig.axes:
+        first, twin = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("frf-")]
+        assert first.get_linestyle() == "-" and first.get_linewidth() == 1.0
+        assert twin.get_linewidth() == 2.0
+        # matplotlib has no public getter of a dash sequence: its unscaled pattern
+        assert twin._unscaled_dash_pattern == (0, (4, 3))
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert labels == ["x / fz", "z / fx (= x / fz, reciprocity)"]
+
+
+def test_frf_legend_font_place_and_handles():
+    """The legend (8 pt) stands right of the axes, its top left corner at (1.01, 1.0); it
+    shows each curve by its own line and each mode class by a dashed line 0.8 wide in the
+    class's colour, after the curves."""
+    from matplotlib.colors import to_rgba
+
+    from dynstiff.plot.common import CATEGORY_LABELS, COLORS
+    res, modes = _toy_frf()
+    fig = plot_frf(res, modes)
+    ax = fig.axes[0]
+    leg = ax.get_legend()
+    assert [t.get_fontsize() for t in leg.get_texts()] == [8.0] * 5
+    fig.canvas.draw()
+    box = leg.get_window_extent()                                     # its top left corner
+    corner = ax.transAxes.inverted().transform((box.x0, box.y1))
+    np.testing.assert_allclose(corner, [1.01, 1.0], atol=1e-9)
+    assert [t.get_text() for t in leg.get_texts()] == [
+        "x / fx", "z / fz", CATEGORY_LABELS["global"], CATEGORY_LABELS["mixed"],
+        CATEGORY_LABELS["local"]]
+    curves = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("frf-")]
+    hs = leg.legend_handles
+    assert [to_rgba(h.get_color()) for h in hs[:2]] == [to_rgba(c.get_color()) for c in curves]
+    assert [h.get_linestyle() for h in hs[:2]] == ["-", "-"]
+    for h, cat in zip(hs[2:], ("global", "mixed", "local")):
+        assert to_rgba(h.get_color()) == to_rgba(COLORS[cat])
+        assert h.get_linewidth() == 0.8 and h.get_linestyle() == "--"
+
+
+def test_frf_title_states_the_damping():
+    """The title (10 pt, whatever the default font size) reads "FRF (kind), natural
+    frequencies dashed" and, below, the result's damping; only an "undamped" result adds
+    the note on its peaks."""
+    head = "FRF (receptance), natural frequencies dashed\n"
+    res, _ = _toy_frf(damping="undamped")
+    with plt.rc_context({"font.size": 12.0}):
+        ax = plot_frf(res).axes[0]
+    assert ax.get_title() == head + "undamped; each peak is the grid's value next to a pole"
+    assert ax.title.get_fontsize() == 10.0
+    res, _ = _toy_frf(damping="loss factor 0.002")
+    assert plot_frf(res).axes[0].get_title() == head + "loss factor 0.002"
+
+
+def test_frf_result_without_damping_or_unit():
+    """A result with no ``damping`` says "not stated" in the title; with no ``unit`` the
+    y label is "|kind|" alone."""
+    from types import SimpleNamespace
+    res, _ = _toy_frf()
+    bare = SimpleNamespace(freq_hz=res.freq_hz, H=res.H, inputs=res.inputs,
+                           outputs=res.outputs, kind="mobility")
+    ax = plot_frf(bare).axes[0]
+    assert ax.get_title() == "FRF (mobility), natural frequencies dashed\nnot stated"
+    assert ax.get_ylabel() == "|mobility|"
+
+
+def test_frf_layout_new_figure_tight_given_ax_kept():
+    """A new figure is laid out tight, its legend (right of the axes) inside it; a given
+    ``ax`` keeps its place (its figure is not laid out again)."""
+    res, modes = _toy_frf()
+    for phase in (False, True):
+        fig = plot_frf(res, modes, phase=phase)
+        fig.canvas.draw()
+        leg = fig.axes[0].get_legend().get_window_extent()
+        assert 0 <= leg.x0 and leg.x1 <= fig.bbox.x1 and leg.y1 <= fig.bbox.y1
+    fig0, ax = plt.subplots(figsize=(8, 4.5))
+    before = ax.get_position().bounds
+    fig = plot_frf(res, modes, ax=ax)
+    assert fig is ax.figure and ax.get_position().bounds == before

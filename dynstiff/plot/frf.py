@@ -33,22 +33,32 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     modes : ModalResult, optional
         Marks each mode inside the band by a dashed vertical line coloured by its platform
         share (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
-        blue (``mode-local``); the legend names the three. The curves take other colours
-        (:data:`CHANNEL_COLORS`); a channel drawn after its reciprocal twin (``z / fx``
-        after ``x / fz``, equal by reciprocity) is dashed and wider so both stay visible.
-        The legend stands right of the axes, clear of the peaks.
+        blue (``mode-local``); the legend names the three, each by a dashed line 0.8 wide
+        in its class's colour. The curves take other colours (:data:`CHANNEL_COLORS`) and
+        are solid, 1.0 wide; a channel drawn after its reciprocal twin (``z / fx`` after
+        ``x / fz``, equal by reciprocity) is dashed (4 on, 3 off, in line widths) and
+        2.0 wide so both stay visible. The legend (8 pt) stands right of the axes, its top
+        left corner at (1.01, 1.0), clear of the peaks.
     pairs : list of (output, input), optional
         Channels to draw, e.g. ``[("z", "fz")]`` (default: the pairs ``(outputs[k],
         inputs[k])`` present in ``result``).
     ax : matplotlib Axes, optional
-        Axes for the magnitude. When given, only the magnitude is drawn (``phase`` ignored).
+        Axes for the magnitude. When given, only the magnitude is drawn (``phase`` ignored)
+        and its figure is not laid out again: ``ax`` keeps its place. A new figure is laid
+        out tight, the legend inside it.
     phase : bool
-        With ``ax`` None, add a second axes below for the phase [deg] (default False).
+        With ``ax`` None, add a second axes below for the phase [deg] (default False); the
+        new figure is then 10 x 6 in, the magnitude axes twice as tall as the phase axes.
 
     Returns
     -------
     matplotlib Figure
-        Its first axes holds the magnitude, on a log scale, in the units of ``result.kind``.
+        Its first axes holds the magnitude, on a log scale, in the units of ``result.kind``:
+        the y label is ``|kind|`` and the unit when all curves share one, "[units in the
+        legend]" when they differ, no unit when ``result`` has no ``unit`` method. The title
+        (10 pt) reads "FRF (kind), natural frequencies dashed" and, on a second line,
+        ``result.damping`` ("not stated" when ``result`` has none), followed for an
+        "undamped" result by "; each peak is the grid's value next to a pole".
 
     Raises
     ------
