@@ -1,5 +1,7 @@
 """FRF figures (dynstiff/plot/frf.py): curves, mode lines by class, legend and phase."""
 
+import warnings
+
 import matplotlib
 import numpy as np
 import pytest
@@ -260,3 +262,21 @@ def test_frf_layout_new_figure_tight_given_ax_kept():
     before = ax.get_position().bounds
     fig = plot_frf(res, modes, ax=ax)
     assert fig is ax.figure and ax.get_position().bounds == before
+
+
+def test_frf_axes_span_the_frequencies_and_the_phase_axes_its_half_turns():
+    """Both axes span exactly the result's frequencies; the frequency label is under the
+    lowest axes (the magnitude's without the phase); the phase axes span -190 to 190 deg
+    with ticks every 90 deg from -180 and a grid; all drawn without a warning."""
+    res, modes = _toy_frf()
+    f = res.freq_hz
+    ax = plot_frf(res, modes).axes[0]
+    assert ax.get_xlim() == (f[0], f[-1]) and ax.get_xlabel() == "frequency [Hz]"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                 # drawn without any warning
+        mag, ph = plot_frf(res, modes, phase=True).axes
+    assert mag.get_xlim() == ph.get_xlim() == (f[0], f[-1])
+    assert mag.get_xlabel() == "" and ph.get_xlabel() == "frequency [Hz]"
+    assert ph.get_ylabel() == "phase [deg]" and ph.get_ylim() == (-190.0, 190.0)
+    assert list(ph.get_yticks()) == [-180, -90, 0, 90, 180]
+    assert all(line.get_visible() for line in ph.get_ygridlines())

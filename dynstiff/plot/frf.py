@@ -49,6 +49,9 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     phase : bool
         With ``ax`` None, add a second axes below for the phase [deg] (default False); the
         new figure is then 10 x 6 in, the magnitude axes twice as tall as the phase axes.
+        The phase axes span -190 to 190 deg, ticks every 90 deg from -180, with a light
+        grid; the frequency label goes under the lowest axes. Both span exactly the
+        frequencies of ``result``.
 
     Returns
     -------
