@@ -1313,7 +1313,14 @@ def _relocated(equivalent):
 EQUIVALENT.update({f"dynstiff.scenes.writer.x_scene_text__mutmut_{n}":
                    "a trajectory without a note gets None instead of '' (or no default): "
                    "_trajectory_lines writes a note only when it is truthy, the same for both"
-                   for n in (177, 179)})
+                   for n in (184, 186)})
+EQUIVALENT.update({
+    "dynstiff.scenes.writer.x__value__mutmut_1":
+        "rstrip() instead of rstrip('\\n'): a value's text ends in a digit, inf, nan, a "
+        "bracket or a quote, never in other whitespace",
+    "dynstiff.scenes.writer.x__value__mutmut_5":
+        "the dumped key 'V' instead of 'v': one character either way, cut off by [4:]",
+})
 EQUIVALENT.update({f"dynstiff.timedomain.damping.xǁTimeDampingǁaxial_per_cable__mutmut_{n}":
                    "dtype=float dropped on a tuple of Python floats (__post_init__ stores "
                    "several dashpots so): float64 anyway" for n in (14, 16)})

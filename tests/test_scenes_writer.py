@@ -211,3 +211,35 @@ def test_platform_inertia_is_written_under_its_comment_and_an_integer_box_as_flo
     k = lines.index("# inertia tensor about G [kg m^2], platform axes; off-diagonal entries are")
     assert lines[k + 1].startswith("# ") and lines[k + 2].startswith("inertia = ")
     assert "box = [-5.0, 5.0, -3.0, 3.0, 1.0, 2.0]   # [m], x0 x1 y0 y1 z0 z1 of P" in lines
+
+
+def test_identical_cables_share_one_cable_table_and_its_unit_line():
+    """Cables all alike are written once, in a [cable] table followed by the comment of its
+    units; each [[cables]] entry then holds its anchor and attachment only. Cables that
+    differ have no [cable] table and give their own properties."""
+    from dynstiff.scenes import scene_text
+    r = ds.load_scene("cogiro").robot
+    lines = scene_text(r).splitlines()
+    k = lines.index("[cable]                                     # every cable")
+    assert lines[k + 1].startswith("mass_per_length = ")
+    assert "# mass_per_length [kg/m], EA [N]" in lines[k + 1:k + 8]
+    entries = [i for i, ln in enumerate(lines) if ln.startswith("[[cables]]")]
+    assert len(entries) == r.n_cables
+    for i in entries:
+        assert [ln.split(" = ")[0] for ln in lines[i + 1:i + 4]][:2] == ["anchor",
+                                                                       "attachment"]
+        assert not any(ln.startswith("mass_per_length") for ln in lines[i + 1:i + 4])
+    cables = [replace(c, EA=c.EA * (1 + k / 10)) for k, c in enumerate(r.cables)]
+    text = scene_text(replace(r, cables=cables))
+    assert "[cable] " not in text and text.count("mass_per_length = ") == r.n_cables
+
+
+def test_a_flat_box_is_written():
+    """A box with a dimension of zero length (x0 = x1: a map in a plane) is a box: written
+    as given; a box whose upper bound is below its lower one is refused."""
+    from dynstiff.scenes import scene_text
+    r = ds.load_scene("planar2").robot
+    text = scene_text(r, workspace_box=[-1.0, 1.0, 0.0, 0.0, -12.0, -8.0])
+    assert "box = [-1.0, 1.0, 0.0, 0.0, -12.0, -8.0]   # [m], x0 x1 y0 y1 z0 z1 of P" in text
+    with pytest.raises(ds.InvalidParameterError, match="^workspace_box must be 6 finite"):
+        scene_text(r, workspace_box=[-1.0, 1.0, 0.1, 0.0, -12.0, -8.0])
