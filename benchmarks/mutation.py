@@ -1332,6 +1332,9 @@ EQUIVALENT.update({
         "break for continue on a None axes: ax is never None after the figure is made, so "
         "the branch runs only for ax_ph, the last item of the loop",
 })
+EQUIVALENT.update({f"dynstiff.cli.console.x__tqdm__mutmut_{n}":
+                   "tqdm's file left to its default, which is sys.stderr when the bar is made"
+                   for n in (1, 4)})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -34,6 +34,16 @@ def test_progress_bar_counts_to_the_end_on_a_terminal(monkeypatch):
     assert bar.bar.n == 4
 
 
+def test_progress_bar_follows_the_terminal_width(monkeypatch):
+    """On a terminal the bar takes the terminal's width as it changes (tqdm's dynamic_ncols:
+    a function reading the width), not the width it had when the bar started."""
+    _tty(monkeypatch)
+    bar = ProgressBar("poses")
+    bar(1, 3)
+    assert callable(bar.bar.dynamic_ncols)
+    bar(3, 3)
+
+
 def test_progress_is_off_when_quiet_or_not_a_terminal(monkeypatch):
     tty = _tty(monkeypatch)
     ProgressBar("poses", quiet=True)(2, 2)
