@@ -118,3 +118,24 @@ def test_without_numba_nothing_is_to_compile(monkeypatch):
     monkeypatch.setattr(compiled, "load", lambda name: None)
     monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
     assert console._kernels_cached()
+
+
+def test_compile_notice_only_on_a_terminal_with_nothing_cached(cache_places, monkeypatch):
+    """With no kernel cached, the notice of a first compilation is written on a terminal
+    (by default, and not with quiet), never into a pipe or a file."""
+    from dynstiff.cli.console import compile_notice
+    tty = _tty(monkeypatch)
+    compile_notice()
+    assert tty.getvalue() == ("dynstiff: first run: compiling the numerical kernels (once, "
+                              "about 20 s; then cached on disk)\n")
+    tty = _tty(monkeypatch)
+    compile_notice(quiet=True)
+    assert tty.getvalue() == ""
+    pipe = io.StringIO()
+    monkeypatch.setattr(sys, "stderr", pipe)
+    compile_notice()
+    assert pipe.getvalue() == ""
+    (cache_places[0] / "dsm.dsm_count-200.py311.nbi").write_text("")     # now cached
+    tty = _tty(monkeypatch)
+    compile_notice()
+    assert tty.getvalue() == ""
