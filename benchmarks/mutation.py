@@ -1335,6 +1335,13 @@ EQUIVALENT.update({
 EQUIVALENT.update({f"dynstiff.cli.console.x__tqdm__mutmut_{n}":
                    "tqdm's file left to its default, which is sys.stderr when the bar is made"
                    for n in (1, 4)})
+EQUIVALENT.update({
+    **{f"dynstiff.report.cable.x_write_report__mutmut_{n}":
+       "to_csv(index=None) instead of index=False: pandas writes no index either way"
+       for n in (36, 43)},
+    "dynstiff.report.cable.x_write_report__mutmut_3":
+        "matplotlib.use('agg') instead of 'Agg': backend names are not case-sensitive",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

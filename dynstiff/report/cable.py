@@ -55,7 +55,16 @@ class CableReport:
     K: np.ndarray
 
     def statics_frame(self):
-        """pandas DataFrame of the static quantities, one row per quantity, with units."""
+        """pandas DataFrame of the static quantities, one row per quantity, with units.
+
+        Columns "quantity", "value", "unit"; the rows, in this order (unit in brackets):
+        "chord length" [m], "unstretched length" [m], "tension at end B" [N],
+        "tension at anchor A" [N], "mean tension" [N], "horizontal tension H" [N],
+        "sag (max distance to chord)" [m], "chord inclination" [deg] (to the horizontal),
+        "Irvine parameter lambda^2" [-], "chord stiffness K0/(1+lambda^2/12)" [N/m],
+        "transverse stiffness T/L" [N/m], then "force on end B, x", "..., y", "..., z" [N]
+        (the force of the cable on B, global frame).
+        """
         import pandas as pd
         s = self.state
         p = chord_parameters(s)
@@ -78,7 +87,13 @@ class CableReport:
         return df
 
     def text(self):
-        """Plain-text report."""
+        """Plain-text report.
+
+        Its first line is "dynstiff single-cable report"; then a blank line, the heading
+        "Statics (exact elastic catenary)" and one line per row of :meth:`statics_frame`
+        (quantity, value, unit); then a blank line, the heading "Clamped-clamped natural
+        frequencies (poles of the dynamic stiffness)" and one line per mode ("<f> Hz   <label>").
+        """
         lines = ["dynstiff single-cable report", "", "Statics (exact elastic catenary)"]
         for _, r in self.statics_frame().iterrows():
             lines.append(f"  {r['quantity']:<38s} {r['value']:>14.6g} {r['unit']}")
@@ -89,6 +104,13 @@ class CableReport:
 
     def plot(self, ax=None):
         """Plot |K_uu|, |K_vv|, |K_ww| [N/m] against frequency with the poles marked.
+
+        A new figure is 8 x 4.5 inches. The three curves (log y axis, line width 1.2 pt) are
+        labelled "K_uu (chord)", "K_vv (in-plane)" and "K_ww (out-of-plane)" in a legend at
+        the lower left; each natural frequency up to the end of the band is a dotted grey
+        ("0.6") vertical line of width 0.6 pt. Axis labels "frequency [Hz]" and
+        "|dynamic stiffness| [N/m]"; title "End-B dynamic stiffness of one sagging cable
+        (dotted: fixed-end modes)".
 
         Parameters
         ----------
@@ -127,7 +149,7 @@ def cable_report(anchor=None, end=None, cable=None, tension=None, fmax_hz=12.0, 
     fmax_hz : float
         Upper end of the frequency band [Hz].
     n_points : int
-        Number of frequencies.
+        Number of frequencies, evenly spaced from 0 to ``fmax_hz``.
     n_modes : int
         Number of fixed-end natural frequencies listed.
 
@@ -155,6 +177,9 @@ def cable_report(anchor=None, end=None, cable=None, tension=None, fmax_hz=12.0, 
 
 def write_report(report, out_dir):
     """Write ``report.txt``, ``statics.csv``, ``modes.csv`` and ``dynamic_stiffness.png``.
+
+    ``out_dir`` is created with its missing parents. The CSV files have no index column;
+    the PNG is saved at 120 dpi (960 x 540 pixels for the 8 x 4.5 in figure).
 
     Returns
     -------
