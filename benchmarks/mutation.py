@@ -1342,6 +1342,11 @@ EQUIVALENT.update({
     "dynstiff.report.cable.x_write_report__mutmut_3":
         "matplotlib.use('agg') instead of 'Agg': backend names are not case-sensitive",
 })
+EQUIVALENT.update({
+    "dynstiff.robot.pose.xǁPoseǁ__post_init____mutmut_24":
+        "the fallback of coordinates that are not numbers np.zeros(1) instead of "
+        "np.zeros(0): any shape but (3,) gives the same refusal",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name
