@@ -601,8 +601,6 @@ _CONST = ("the dtype of the zeros the cables' static stiffnesses are summed into
 _ZERO_FORCE = ("never reached: the chord direction filled in where a start segment's force is "
                "exactly zero, which needs a vertical chain whose force at A cancels a whole "
                "number of segment weights")
-_SEEDS = ("the seed grid of the eigen search (its uniform points, or the massless-cable "
-          "frequencies dropped): brackets are certified by the counts, the same roots")
 _VERTICAL = ("the horizontal direction of an exactly vertical chord in the batched end "
              "stiffness: such a cable has H = 0 and takes its state's own end stiffness")
 EQUIVALENT.update({
@@ -732,15 +730,6 @@ EQUIVALENT.update({
     "dynstiff.analyses.eigen.x__illinois__mutmut_205":
         "the Anderson-Bjorck factor never applied at the low end: plain Illinois steps "
         "there, the same roots in more steps",
-    "dynstiff.analyses.eigen.x__seed_grid__mutmut_7": _SEEDS,
-    "dynstiff.analyses.eigen.x__seed_grid__mutmut_31": _SEEDS,
-    **{f"dynstiff.analyses.eigen.x__seed_grid__mutmut_{n}": _SEEDS for n in (20, 35)},
-    "dynstiff.analyses.eigen.x__seed_grid__mutmut_16":
-        "every massless-cable eigenvalue a seed instead of those in (0, w_hi^2): the seeds "
-        "outside (0, w_hi) are filtered out two lines below (a negative one, of an unstable "
-        "platform only, gives a NaN that the filter drops too); the counts certify the "
-        "brackets, the same roots",
-    **{f"dynstiff.analyses.eigen.x__seed_grid__mutmut_{n}": _SEEDS for n in (21, 36)},
     **{f"dynstiff.analyses.eigen.x__illinois__mutmut_{n}": _BOUNDARY for n in (21, 166)},
     "dynstiff.analyses.eigen.x__illinois__mutmut_6": _FLOAT,
     "dynstiff.analyses.eigen.x__illinois__mutmut_1":
@@ -748,12 +737,6 @@ EQUIVALENT.update({
         "steps at most; the test of a bracket that does not close gives its own max_iter",
     "dynstiff.analyses.eigen.x__search__mutmut_20":
         "searchsorted's side='left' dropped: 'left' is its default",
-    "dynstiff.analyses.eigen.x_eigenfrequencies__mutmut_126":
-        "the compiled search never looked up: the numpy search runs instead, the same "
-        "brackets and the same roots to rtol (the compiled and numpy paths are tested equal)",
-    "dynstiff.analyses.eigen.x_eigenfrequencies__mutmut_105":
-        "the band grown threefold instead of twofold while fewer than n_modes roots lie in "
-        "it: the counts certify the roots found, the same ones, at another cost",
     "dynstiff.analyses.eigen.x__counter__mutmut_32":
         "the compiled search's step cap 201 instead of 200: its brackets close in a few "
         "dozen steps at most; the cap matters only for one that does not close, and the "
@@ -868,15 +851,6 @@ EQUIVALENT.update({
     "dynstiff.analyses.checks.x_modal_model_options__mutmut_5":
         "a given fmax_hz no longer recognised: the computed one is then overridden by the "
         "given one (**model_options last), the same dict",
-    "dynstiff.analyses.platform_modes.x__below__mutmut_8":
-        "the truncated mode table of the found-frequency test without its cable energies: "
-        "only its frequencies and participations are read",
-    "dynstiff.analyses.platform_modes.x__below__mutmut_15":
-        "kind=None dropped: replace() then copies the full table's kinds into the truncated "
-        "one, whose kinds the found-frequency test does not read",
-    "dynstiff.analyses.platform_modes.x__below__mutmut_16":
-        "massless_freq_hz not truncated (replace() copies the full table's): the "
-        "found-frequency test reads only frequencies and participations",
     "dynstiff.io.files.x_write_text__mutmut_2":
         "encoding 'UTF-8' instead of 'utf-8': codec names are case-insensitive",
     "dynstiff.analyses.checks.x__band__mutmut_2":
@@ -1276,9 +1250,9 @@ EQUIVALENT.update({
         "which demo and report do not have: stdout both ways",
     "dynstiff.cli.report.x__common__mutmut_2":
         "add_pose(p, lengths=None): add_pose only tests lengths for truth, None as False",
-    "dynstiff.cli.sweep.x__cmd_sweep__mutmut_198":
+    "dynstiff.cli.sweep.x__cmd_sweep__mutmut_231":
         "matplotlib.use('AGG'): backend names are case-insensitive",
-    "dynstiff.cli.sweep.x__cmd_sweep__mutmut_271":
+    "dynstiff.cli.sweep.x__cmd_sweep__mutmut_304":
         "to_string(index=None): pandas treats None as False there, the same text",
     "dynstiff.plot.accuracy.x__label_offsets__mutmut_42":
         "dy[j] >= 0 for > 0: offsets start at 4 and step 4, -12, 20, -28 ...: never 0",
@@ -1301,13 +1275,13 @@ EQUIVALENT.update({
         "a cumsum of norms)",
     "dynstiff.plot.sweep.x_plot_veering__mutmut_55":
         "any_gap = None for False: only tested for truth",
-    "dynstiff.plot.sweep.x_plot_veering__mutmut_204":
+    "dynstiff.plot.sweep.x_plot_veering__mutmut_212":
         "ax.grid(None, alpha=0.3): matplotlib turns the grid on when visible is None and "
         "keywords are given",
-    "dynstiff.plot.sweep.x_plot_veering__mutmut_212":
+    "dynstiff.plot.sweep.x_plot_veering__mutmut_220":
         "x.size >= 1 in the log-axis test: one finite value cannot satisfy max >= 10 min "
         "> 0",
-    "dynstiff.cli.simulate.x__cmd_simulate__mutmut_95":
+    "dynstiff.cli.simulate.x__cmd_simulate__mutmut_155":
         "resp = None in the --target/--trajectory branch: nothing reads resp after it "
         "there (table from tr.to_frame(), plot from tr, pose from traj)",
     "dynstiff.plot.time.x_plot_tracking__mutmut_39":
