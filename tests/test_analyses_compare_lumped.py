@@ -136,3 +136,23 @@ def test_compare_modes_nonpositive_lumped_frequencies():
     assert df["relative difference [-]"].iloc[0] == pytest.approx(2.1 / 2.0 - 1, rel=1e-12)
     df = _compare(_modes([2.0], ["local"]), _modes([-0.5, 0.0], ["local"] * 2))
     assert df["lumped mode"].iloc[0] in (1, 2) and df["match quality [-]"].iloc[0] == 0.0
+
+
+@pytest.mark.parametrize("W, reason", [
+    (np.diag([1.0, 1.0, 1.0, 1.0, 1.0, -1.0]), "an indefinite weight"),
+    (np.eye(6) + np.triu(np.ones((6, 6)), 1), "an unsymmetric weight"),
+])
+def test_a_mac_weight_that_is_not_a_mass_matrix_is_refused(W, reason):
+    """The MAC's weight must be symmetric positive semi-definite (``reason`` names the case):
+    with an indefinite one a shape's weighted norm can be negative and a 'MAC' leave
+    [0, 1]; refused naming mass_matrix, as a boolean matrix is. A singular weight (no
+    rotation) is accepted: a shape it does not see has no MAC."""
+    a = _modes([2.0], ["global"], [[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]])
+    b = _modes([2.1], ["global"], [[1.0, 0.0, 0.0, 0.0, 0.0, 1.0]])
+    with pytest.raises(InvalidParameterError, match=r"^mass_matrix must be symmetric positive "
+                                                    r"semi-definite \(a mass matrix"):
+        compare_modes(a, b, W)
+    with pytest.raises(InvalidParameterError, match="^mass_matrix must be real numbers, not "
+                                                    "booleans"):
+        compare_modes(a, b, np.eye(6, dtype=bool))
+    assert _compare(a, b, np.diag([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]))["MAC [-]"].isna().all()

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import real_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.results import ModalResult
 
@@ -41,7 +42,8 @@ def compare_modes(closed_form_modes: ModalResult,
         E.g. ``modes(build_model(eq, "lumped"), n)``.
     mass_matrix : array_like, shape (6, 6), optional
         Weight W of the MAC, e.g. the platform mass matrix ``FrequencyModel.M_p``
-        (default identity, which mixes metres and radians).
+        (default identity, which mixes metres and radians): symmetric positive
+        semi-definite, so that every MAC lies in [0, 1].
 
     Returns
     -------
@@ -62,10 +64,17 @@ def compare_modes(closed_form_modes: ModalResult,
         if not isinstance(m, ModalResult):
             raise InvalidParameterError(
                 f"{name} must be a ModalResult, got {type(m).__name__}")
-    W = np.eye(6) if mass_matrix is None else np.asarray(mass_matrix, dtype=float)
+    W = np.eye(6) if mass_matrix is None else real_array("mass_matrix", mass_matrix,
+                                                        "a finite 6x6 matrix")
     if W.shape != (6, 6) or not np.all(np.isfinite(W)):
         raise InvalidParameterError(
             f"mass_matrix must be a finite 6x6 matrix, got shape {W.shape}")
+    scale = np.abs(W).max()
+    if not np.allclose(W, W.T, rtol=0.0, atol=1e-12 * scale) or \
+            np.linalg.eigvalsh(0.5 * (W + W.T)).min() < -1e-12 * scale:
+        raise InvalidParameterError(
+            f"mass_matrix must be symmetric positive semi-definite (a mass matrix: the MAC's "
+            f"weight), got eigenvalues {np.round(np.linalg.eigvals(W).real, 6).tolist()}")
     Xa, Xb = a.platform_shapes, b.platform_shapes
     na = np.einsum("ij,jk,ik->i", Xa, W, Xa)
     nb = np.einsum("ij,jk,ik->i", Xb, W, Xb)
