@@ -1358,6 +1358,14 @@ EQUIVALENT.update({
         "the fallback of coordinates that are not numbers np.zeros(1) instead of "
         "np.zeros(0): any shape but (3,) gives the same refusal",
 })
+EQUIVALENT.update({
+    "dynstiff.timedomain.pendulum.dynamics.x_evaluate_rhs__mutmut_212": _EINSUM,
+    "dynstiff.timedomain.pendulum.dynamics.x_evaluate_rhs__mutmut_169":
+        "slice(4 n) for slice(0, 4 n): the same slice",
+    **{f"dynstiff.timedomain.pendulum.model.xǁCablePendulumǁstate_scale__mutmut_{n}":
+       "dtype=float dropped on the excitation's omega, float64 already (excitation_at "
+       "converts it)" for n in (7, 9)},
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -282,6 +282,128 @@ def test_bad_inputs_name_the_argument(scene):
         pdl.unstable_intervals([2.0, 1.0], [True, False])
 
 
+
+def test_counts_and_angles_are_checked_with_exact_messages():
+    """Integer arguments and the initial tilt are validated; the message names the argument,
+    its bound and the value."""
+    m = pendulum()
+    with pytest.raises(InvalidParameterError, match=r"^n_out must be an integer >= 2, got 1$"):
+        pdl.simulate(m, 10.0, 0.02, 0.1, n_out=1)
+    with pytest.raises(InvalidParameterError,
+                       match=r"^steps_min must be an integer >= 4, got 2\.5$"):
+        pdl.floquet(m, 10.0, 0.02, steps_min=2.5)
+    with pytest.raises(InvalidParameterError, match=r"^phi must be finite \[rad\], got inf$"):
+        pdl.rest_state(m, np.inf)
+
+
+def test_natural_frequency_is_zero_when_gravity_outweighs_the_cables():
+    """Soft cables, no preload: K_phi = 2 k (a d / L)^2 - m g c < 0, the upright pendulum
+    has no restoring stiffness and natural_frequency_hz() is 0 (as documented)."""
+    k = 10.0
+    m = pendulum(stiffness=k, damping=0.0)
+    K_phi = 2 * k * (A * D / np.hypot(A, D)) ** 2 - M * G * C
+    assert K_phi < -40.0
+    assert m.linear_stiffness() == pytest.approx(K_phi, rel=1e-12)
+    assert m.natural_frequency_hz() == 0.0
+
+
+def test_rhs_and_jacobian_evaluate_each_case_on_its_own():
+    """A batch of cases (t, y, f, x0, phase per case) gives row by row the single-case
+    results; one state and scalar arguments give one case, shape (1, 2 n_dof)."""
+    m = pendulum(preload=300.0)
+    rng = np.random.default_rng(3)
+    t = np.array([0.0, 0.011, 0.037])
+    y = rng.normal(0.0, 0.05, (3, 2))
+    f, x0, ph = np.array([10.0, 20.0, 35.0]), np.array([0.01, 0.03, 0.02]), np.array([0, .4, 1])
+    F = pdl.rhs(m, t, y, f, x0, ph)
+    J = pdl.jacobian(m, t, y, f, x0, ph)
+    assert F.shape == (3, 2) and J.shape == (3, 2, 2)
+    for i in range(3):
+        Fi = pdl.rhs(m, t[i], y[i], f[i], x0[i], ph[i])
+        assert Fi.shape == (1, 2)
+        np.testing.assert_allclose(F[i], Fi[0], rtol=1e-14, atol=0)
+        np.testing.assert_allclose(J[i], pdl.jacobian(m, t[i], y[i], f[i], x0[i], ph[i])[0],
+                                   rtol=1e-14, atol=0)
+    assert pdl.jacobian(m, 0.0, y[0], 10.0, 0.01).shape == (1, 2, 2)
+
+
+def test_start_state_moves_the_point_masses_with_the_ends():
+    """At t = 0 the nodes sit at rest_state and their velocities interpolate linearly
+    between the end velocity dE/dt = (-+ x0 omega cos(0 / -psi), 0) and D at rest: node j of
+    n has the share 1 - j / (n + 1)."""
+    from dynstiff.timedomain.pendulum.dynamics import start_state
+    n = 3
+    m = pendulum(preload=1000.0, cable_mass=0.01, n_masses=n)
+    f, x0, ph = 20.0, 0.02, 0.4
+    y = start_state(m, excitation_at(f, x0, ph))
+    nq = m.n_dof
+    assert y.shape == (1, 2 * nq)
+    np.testing.assert_array_equal(y[0, :nq + 1], pdl.rest_state(m)[:nq + 1])
+    w = 2 * np.pi * f
+    vend = np.array([-x0 * w, x0 * w * np.cos(ph)])
+    share = 1.0 - np.arange(1, n + 1) / (n + 1)
+    v = y[0, nq + 1:].reshape(2, n, 2)
+    np.testing.assert_allclose(v[:, :, 0], vend[:, None] * share[None, :], rtol=1e-14)
+    np.testing.assert_array_equal(v[:, :, 1], 0.0)
+
+
+def test_radau_step_reports_a_newton_failure_with_its_residual():
+    """A Radau step whose Newton iteration does not reach the tolerance in max_iter
+    iterations raises ConvergenceError naming the time and the iteration count, with the
+    scaled correction (as printed) as its residual."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.timedomain.pendulum.radau import _radau_step
+    m = pendulum(preload=300.0)
+    exc = excitation_at(20.0, 0.03, 0.0)
+    y = pdl.rest_state(m, 0.02)[None]
+    with pytest.raises(ConvergenceError, match=r"t = 0\.01 s: Newton did not converge in 1 "
+                                               r"iterations") as err:
+        _radau_step(m, np.array([0.01]), y, np.array([2e-3]), exc, m.state_scale(exc.omega),
+                    max_iter=1)
+    res = err.value.residual
+    assert isinstance(res, float) and res > 1e-10
+    assert f"scaled correction {res:.2e}" in str(err.value)
+
+
+def test_robust_step_halves_a_failing_step_up_to_four_times(monkeypatch):
+    """Where Newton fails, the step is split in halves, at most four times: the result is
+    that of the 2^k sub-steps taken in turn (same subspace U, scale and bases), the step
+    derivative their product; a step failing even at h / 16 raises ConvergenceError."""
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.timedomain.pendulum import radau
+    m = pendulum(preload=1000.0, cable_mass=0.01, n_masses=1)
+    U_sym, U_anti = radau.mirror_bases(m)
+    exc = excitation_at(20.0, 0.02, 0.0)
+    scale = m.state_scale(exc.omega)
+    y0 = pdl.rest_state(m, 0.01)[None]   # tilted: increments restricted to U_sym differ
+    h, t0 = 2e-3, 0.004
+    real = radau._radau_step
+    ok = {}
+
+    def failing(model, t, y, hh, *args):
+        if hh.max() > ok["h"] * (1 + 1e-9):
+            raise ConvergenceError("Newton cycles", residual=1.0)
+        return real(model, t, y, hh, *args)
+
+    monkeypatch.setattr(radau, "_radau_step", failing)
+    ok["h"] = h / 16
+    y, S = radau._robust_step(m, np.array([t0]), y0, np.array([h]), exc, scale, U_sym,
+                              (U_sym, U_anti))
+    y_ref, S_ref = y0, [np.eye(4)[None], np.eye(6)[None]]
+    for k in range(16):
+        y_ref, Sk = real(m, np.array([t0 + k * h / 16]), y_ref, np.array([h / 16]), exc,
+                         scale, U_sym, (U_sym, U_anti))
+        S_ref = [b @ a for a, b in zip(S_ref, Sk)]
+    np.testing.assert_allclose(y, y_ref, rtol=1e-13, atol=1e-15)
+    assert y[0, 0] == y0[0, 0]           # phi is not in U_sym: untouched
+    for a, b in zip(S, S_ref):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-14)
+    ok["h"] = h / 32
+    with pytest.raises(ConvergenceError, match="Newton cycles"):
+        radau._robust_step(m, np.array([t0]), y0, np.array([h]), exc, scale, U_sym,
+                           (U_sym, U_anti))
+
+
 # ------------------------------------------------------------------ validation study
 @pytest.fixture(scope="module")
 def quick_validation():
