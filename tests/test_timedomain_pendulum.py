@@ -439,3 +439,114 @@ def test_validation_headline_numbers(quick_validation):
     assert cmp.loc["the preload can make the pendulum unstable", "agrees"]
     assert cmp.loc["some amplitude-frequency combinations are unstable", "agrees"]
     assert not cmp.loc["adding cable mass causes instability", "agrees"]
+
+
+# ------------------------------------------------------------------ mutation-derived checks
+def test_model_parameters_are_checked_with_exact_messages():
+    """Each out-of-range parameter raises with a message naming it, its bound and the value;
+    the preload message gives the stretch P/k that the chord cannot hold."""
+    cases = [
+        (dict(inertia=-1.0), r"^inertia must be > 0, got -1\.0$"),
+        (dict(end_height=np.inf), r"^end_height must be finite \[m\], got inf$"),
+        (dict(n_masses=2.5, cable_mass=0.01), r"^n_masses must be an integer >= 0, got 2\.5$"),
+        (dict(n_masses=True, cable_mass=0.01), r"^n_masses must be an integer >= 0, got True$"),
+        (dict(inertia=0.99 * M * C ** 2),
+         r"^inertia must be >= mass \* com_distance\^2 = 2\.466 kg m\^2 \(parallel-axis "
+         r"theorem\), got 2\.44134"),
+        # P / k = 2 m, chord sqrt(1.2^2 + 0.75^2) = 1.4151 m
+        (dict(preload=2 * K), r"^preload 165280 N needs a stretch P/k = 2 m longer than the "
+                              r"chord 1\.4151 m$"),
+    ]
+    for kw, msg in cases:
+        with pytest.raises(InvalidParameterError, match=msg):
+            pendulum(**kw)
+
+
+def test_model_stores_floats_and_accepts_a_point_mass_inertia_up_to_rounding():
+    """end_height is stored as a float; I_A = m c^2 (1 - 1e-12) is within the documented
+    rounding allowance of the parallel-axis bound."""
+    m = pendulum(end_height=1)
+    assert type(m.end_height) is float and m.end_height == 1.0
+    assert pendulum(inertia=M * C ** 2 * (1 - 1e-12)).inertia == M * C ** 2 * (1 - 1e-12)
+
+
+def test_steps_per_period_are_integer_powers_of_two():
+    """n = max(steps_min, ceil(steps_per_cycle f_n / f)) rounded up to a power of two:
+    f_n = 22.485 Hz, 10 Hz -> ceil(89.9) = 90 -> 128; 100 Hz -> max(64, 9) -> 64."""
+    m = pendulum(preload=2066.0)
+    r = pdl.floquet(m, [10.0, 100.0], 0.0)
+    assert r.steps_per_period.dtype.kind == "i"
+    np.testing.assert_array_equal(r.steps_per_period, [128, 64])
+
+
+def test_shooting_step_is_limited_to_five_percent():
+    """A Newton step of 0.2 rad (start tilted by 0.2 rad, orbit near phi = 0) is scaled
+    down along its direction so that its largest scaled entry is 0.05."""
+    from dynstiff.timedomain.pendulum.floquet import _shooting_step
+    m = pendulum(preload=2066.0)
+    exc = excitation_at(30.0, 0.01, 0.3)
+    scale = m.state_scale(exc.omega)
+    v = pdl.rest_state(m, 0.2)[None]
+    vT, M_, _, step = _shooting_step(m, exc, 64, scale, None, (np.eye(2),), v)
+    newton = np.linalg.solve(M_[0][0] - np.eye(2), -(vT - v)[0])
+    assert np.max(np.abs(newton) / scale[0]) > 0.1
+    assert np.max(np.abs(step[0]) / scale[0]) == pytest.approx(0.05, rel=1e-12)
+    np.testing.assert_allclose(step[0], newton * 0.05 / np.max(np.abs(newton) / scale[0]),
+                               rtol=1e-12)
+
+
+def test_pendulum_share_is_the_energy_norm_share():
+    """Share of phi in sum m_i (|dv_i|^2 + omega^2 |dq_i|^2), omega = 2 pi max(f_n, 1 Hz),
+    for state vectors whose velocity entries are not 0 or 1 in modulus."""
+    from dynstiff.timedomain.pendulum.floquet import _pendulum_share
+    m = pendulum(preload=1000.0, cable_mass=0.01, n_masses=1)
+    nq = m.n_dof
+    rng = np.random.default_rng(5)
+    V = rng.uniform(0.2, 0.9, (1, 2 * nq, 2)) * np.exp(1j * rng.uniform(0, 6, (1, 2 * nq, 2)))
+    w2 = (2 * np.pi * m.natural_frequency_hz()) ** 2
+    mi = m.mass_diagonal()
+    e = mi[:, None] * (np.abs(V[0, nq:]) ** 2 + w2 * np.abs(V[0, :nq]) ** 2)
+    np.testing.assert_allclose(_pendulum_share(m, V)[0], e[0] / e.sum(axis=0), rtol=1e-13)
+
+
+def _failing_batches(monkeypatch, first_ok):
+    """Make floquet's shooting fail (ConvergenceError) for candidate batches of more than
+    one case, or for every candidate when first_ok only lets the first call through."""
+    import importlib
+
+    from dynstiff.errors import ConvergenceError
+    fq = importlib.import_module("dynstiff.timedomain.pendulum.floquet")
+    real, calls = fq._shooting_step, []
+
+    def step(model, exc, n_steps, scale, U, bases, v):
+        calls.append(v.shape[0])
+        if len(calls) > 1 and (first_ok or v.shape[0] > 1):
+            raise ConvergenceError("integration failed", residual=1.0)
+        return real(model, exc, n_steps, scale, U, bases, v)
+    monkeypatch.setattr(fq, "_shooting_step", step)
+    return calls
+
+
+def test_failing_batch_is_retried_case_by_case(monkeypatch):
+    """When a batch of candidates fails, each case is integrated on its own: the result is
+    that of the batch (the cases are independent)."""
+    m = pendulum(preload=2066.0)
+    f = [30.0, 31.0]
+    ref = pdl.floquet(m, f, 0.01, phase=0.3, transient_periods=0)
+    calls = _failing_batches(monkeypatch, first_ok=False)
+    got = pdl.floquet(m, f, 0.01, phase=0.3, transient_periods=0)
+    assert 1 in calls and np.all(got.periodic)
+    np.testing.assert_allclose(got.multipliers, ref.multipliers, rtol=1e-8, atol=1e-10)
+
+
+def test_single_case_whose_candidates_fail_keeps_its_start(monkeypatch):
+    """One case whose every shooting candidate fails (infinite residual, rejected) ends as
+    with no shooting at all (max_shooting = 1): growth averaged from the first period."""
+    m = pendulum(preload=2066.0)
+    kw = dict(phase=0.3, transient_periods=0, average_periods=2)
+    ref = pdl.floquet(m, 30.0, 0.01, max_shooting=1, **kw)
+    calls = _failing_batches(monkeypatch, first_ok=True)
+    got = pdl.floquet(m, 30.0, 0.01, max_shooting=3, **kw)
+    assert len(calls) == 3 and not ref.periodic[0]
+    np.testing.assert_array_equal(got.multipliers, ref.multipliers)
+    np.testing.assert_array_equal(got.orbit_residual, ref.orbit_residual)

@@ -26,7 +26,8 @@ class CablePendulum:
     Parameters
     ----------
     inertia : float
-        I_A, moment of inertia about the pin [kg m^2]; >= mass * com_distance^2.
+        I_A, moment of inertia about the pin [kg m^2]; >= mass * com_distance^2 (checked to a
+        relative 1e-12 for rounding: mass * com_distance^2 * (1 - 1e-12) is accepted).
     mass : float
         Pendulum mass m [kg].
     com_distance : float
@@ -49,6 +50,8 @@ class CablePendulum:
         h, height of the cable ends above the pin [m] (default 0: the pin's level).
     g : float, optional
         Gravity [m/s^2].
+
+    The real parameters are stored as Python floats, ``n_masses`` as an int.
 
     Raises
     ------
