@@ -296,13 +296,37 @@ def _export(rev, where):
     return where
 
 
-def _child(tree, n_poses, chunk, profile, dump):
+def _in_tree(tree, *args):
+    """This script run with ``args`` in a fresh interpreter on the package of ``tree``
+    (single-threaded BLAS): the JSON of its last printed line."""
     env = {**os.environ, "PYTHONPATH": tree, "OPENBLAS_NUM_THREADS": "1"}
-    cmd = [sys.executable, os.path.abspath(__file__), "--child", "--poses", str(n_poses),
-           "--chunk", str(chunk)] + (["--profile"] if profile else []) + \
-        (["--dump", dump] if dump else [])
-    run = subprocess.run(cmd, env=env, check=True, capture_output=True, text=True)
+    run = subprocess.run([sys.executable, os.path.abspath(__file__), *map(str, args)], env=env,
+                         check=True, capture_output=True, text=True)
     return json.loads(run.stdout.strip().splitlines()[-1])
+
+
+def _alternated(trees, repeats, measure):
+    """{tree name: [measure(name, path, repeat) for each repeat]}, the trees taken in
+    alternating order from one repeat to the next (so that a drift of the machine's load
+    favours neither)."""
+    runs = {name: [] for name, _ in trees}
+    for r in range(repeats):
+        for name, path in (trees if r % 2 == 0 else trees[::-1]):
+            runs[name].append(measure(name, path, r))
+    return runs
+
+
+def _trees(against, tmp):
+    """[(name, package folder)]: this tree, and git revision ``against`` exported to ``tmp``."""
+    trees = [("this tree", ROOT)]
+    if against:
+        trees.append((against, _export(against, os.path.join(tmp, "rev"))))
+    return trees
+
+
+def _child(tree, n_poses, chunk, profile, dump):
+    return _in_tree(tree, "--child", "--poses", n_poses, "--chunk", chunk,
+                    *(["--profile"] if profile else []), *(["--dump", dump] if dump else []))
 
 
 def _same_map(a, b):
@@ -332,15 +356,12 @@ def per_pose(n_poses, repeats, against):
           f"over the frame, {N_MODES} modes, chunks of {chunk}, serial; CPU ms per pose, "
           f"least of {repeats}", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
-        trees = [("this tree", ROOT)]
-        if against:
-            trees.append((against, _export(against, os.path.join(tmp, "rev"))))
-        runs = {name: [] for name, _ in trees}
-        for r in range(repeats):
-            for name, path in (trees if r % 2 == 0 else trees[::-1]):
-                dump = os.path.join(tmp, f"map{len(runs[name])}-{name.replace(' ', '_')}") \
-                    if r == 0 else None
-                runs[name].append(_child(path, n_poses, chunk, r == 0, dump))
+        trees = _trees(against, tmp)
+
+        def measure(name, path, r):
+            dump = os.path.join(tmp, f"map0-{name.replace(' ', '_')}") if r == 0 else None
+            return _child(path, n_poses, chunk, r == 0, dump)
+        runs = _alternated(trees, repeats, measure)
         cases = ("band", "no band")
         best = {name: {c: min(x[c]["ms"] for x in rs) for c in cases}
                 for name, rs in runs.items()}
@@ -392,18 +413,8 @@ def ten_thousand(n_poses, repeats, against):
     ``n_poses`` poses on 2 local processes, this tree and (optionally) revision ``against``
     alternated in fresh interpreters, the least of ``repeats``, scaled to 10,000 poses."""
     with tempfile.TemporaryDirectory() as tmp:
-        trees = [("this tree", ROOT)]
-        if against:
-            trees.append((against, _export(against, os.path.join(tmp, "rev"))))
-        runs = {name: [] for name, _ in trees}
-        for r in range(repeats):
-            for name, path in (trees if r % 2 == 0 else trees[::-1]):
-                env = {**os.environ, "PYTHONPATH": path, "OPENBLAS_NUM_THREADS": "1"}
-                out = subprocess.run(
-                    [sys.executable, os.path.abspath(__file__), "--ten-thousand-child",
-                     "--poses", str(n_poses)], env=env, check=True, capture_output=True,
-                    text=True).stdout
-                runs[name].append(json.loads(out.strip().splitlines()[-1]))
+        runs = _alternated(_trees(against, tmp), repeats, lambda name, path, r: _in_tree(
+            path, "--ten-thousand-child", "--poses", n_poses))
         print(f"CoGiRo map on 2 local processes (20 modes, every check, band {BAND} Hz), "
               f"least wall of {repeats}:")
         for name, rs in runs.items():

@@ -145,13 +145,16 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
     if fast is not None and type(m) is FrequencyModel and not m.damped:
         args = compiled_arguments(m)
 
-        def count(
-                omega: NDArray[np.float64] | float,
-        ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]] | None:
+        def checked(omega: NDArray[np.float64] | float) -> NDArray[np.float64]:
             omega = omega_array(omega)
             check_frequency_range(m.stacked_params, omega)
             m.guard_band(omega)
-            ev, J0 = fast.dsm_count(omega, *args)
+            return omega
+
+        def count(
+                omega: NDArray[np.float64] | float,
+        ) -> tuple[NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]] | None:
+            ev, J0 = fast.dsm_count(checked(omega), *args)
             return J0 + np.sum(ev < 0, axis=1), ev, J0
 
         def search(grid: NDArray[np.float64], J: NDArray[np.int64], det: NDArray[np.float64],
@@ -171,10 +174,7 @@ def _counter(m: PlatformModel) -> Callable[..., Any]:
 
         def counts(omega: NDArray[np.float64]) -> tuple[NDArray[Any], ...]:
             # (J, J0, det K) without the eigenvalues (the search needs none): the pivots
-            omega = omega_array(omega)
-            check_frequency_range(m.stacked_params, omega)
-            m.guard_band(omega)
-            return compiled.load("dsm_search").dsm_counts(omega, *args)
+            return compiled.load("dsm_search").dsm_counts(checked(omega), *args)
         count.search = search                       # type: ignore[attr-defined]
         count.counts = counts                       # type: ignore[attr-defined]
         return count

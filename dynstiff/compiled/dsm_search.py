@@ -1,6 +1,6 @@
 """Compiled (numba) Wittrick-Williams search of the "dsm" rung with undamped cables: the
 roots of the count in one call (theory.md §5, §14.2), after the batched count of the seed
-grid (:func:`dynstiff.compiled.dsm.dsm_count`).
+grid (:func:`dsm_counts`, which keeps det K for the regula falsi's first end values).
 
 The count at a frequency comes from the signs of the pivots of an elimination without row
 interchanges (Sylvester's law of inertia), from the eigenvalues where a pivot is unsure; in
