@@ -1378,6 +1378,9 @@ EQUIVALENT.update({
         "for these 2-D arrays (older numpy would raise, killing it)",
     "dynstiff.timedomain.pendulum.radau.x_mirror_bases__mutmut_40":
         "w <= 0 for w < 0 on the eigenvalues of a mirror matrix, exactly +-1: the same columns",
+    "dynstiff.timedomain.pendulum.floquet.x__floquet_group__mutmut_285":
+        "err < orbit_tol for err <= orbit_tol on an averaged response's last residual: "
+        "differs only when the residual equals the tolerance to the last bit",
 })
 EQUIVALENT = _relocated(EQUIVALENT)
 
