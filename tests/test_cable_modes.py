@@ -97,3 +97,37 @@ def test_coincident_closed_form_modes_are_listed_in_family_order(state300):
     assert np.all(fam[ties] == "out-of-plane")
     assert np.all(fam[ties + 1] == "in-plane antisymmetric")
     np.testing.assert_array_equal(cm.order[ties + 1] * 2, cm.order[ties])
+
+
+def test_empty_cable_modes_repr_says_none():
+    empty = ds.CableModes(freq_hz=np.zeros(0), Omega=np.zeros(0), family=(), order=np.zeros(0))
+    assert repr(empty) == "CableModes(0 modes none: , ...)"
+
+
+def test_exact_band_grows_by_half_until_it_holds_the_modes(state300, monkeypatch):
+    """The exact cable's band starts at 1.2 (n + 1) times the first string frequency and
+    grows by a factor 1.5 until it holds n modes: started a thousand times too low, it takes
+    the bands w0 1.5^k, and the modes equal those of the normal start; never holding them in
+    60 bands is an error naming n_modes."""
+    import importlib
+    cm = importlib.import_module("dynstiff.cable.modes")
+    ref = ds.cable_natural_frequencies(state300, 4, model="exact")
+    real_cable, real_lowest, bands = cm.ExactCable, cm.lowest_string_omega, []
+
+    class Spy(real_cable):
+        def __init__(self, state, w):
+            bands.append(w)
+            super().__init__(state, w)
+    monkeypatch.setattr(cm, "ExactCable", Spy)
+    monkeypatch.setattr(cm, "lowest_string_omega", lambda s: 1e-3 * real_lowest(s))
+    got = ds.cable_natural_frequencies(state300, 4, model="exact")
+    w0 = 1.2 * 5 * 1e-3 * real_lowest(state300)
+    assert len(bands) > 10
+    np.testing.assert_allclose(bands, w0 * 1.5 ** np.arange(len(bands)), rtol=1e-12)
+    assert bands[-2] ** 2 < (TWO_PI * got.freq_hz[-1]) ** 2 <= bands[-1] ** 2 * (1 + 1e-12)
+    np.testing.assert_allclose(got.freq_hz, ref.freq_hz, rtol=1e-6)
+    assert got.family == ref.family
+    monkeypatch.setattr(cm, "lowest_string_omega", lambda s: 1e-30 * real_lowest(s))
+    with pytest.raises(InvalidParameterError,
+                       match=r"^n_modes = 4 is more than the exact cable resolves$"):
+        ds.cable_natural_frequencies(state300, 4, model="exact")
