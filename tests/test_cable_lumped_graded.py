@@ -104,3 +104,62 @@ def test_bad_input_and_failure_are_reported():
         graded_chain(A, B, L0, cab, 8, max_iter=1)
     with pytest.raises(InvalidParameterError, match="n_modes"):
         graded_chain(A, B, L0, cab, 4).fixed_end_frequencies(9)
+
+
+def test_messages_name_the_argument_and_the_bound():
+    A, B, L0, cab = SAGGING
+    with pytest.raises(InvalidParameterError, match=r"^cable must be a Cable, got str$"):
+        graded_chain(A, B, L0, "steel", 8)
+    with pytest.raises(InvalidParameterError, match=r"^n_modes must be < 3\(N-1\) = 9, got 9$"):
+        graded_chain(A, B, L0, cab, 4).fixed_end_frequencies(9)
+    with pytest.raises(InvalidParameterError, match=r"^max_iter must be >= 1, got 0$"):
+        graded_chain(A, B, L0, cab, 8, max_iter=0)
+    with pytest.raises(InvalidParameterError, match=r"^tol must be >= 0, got -1\.0$"):
+        graded_chain(A, B, L0, cab, 8, tol=-1.0)
+
+
+def test_two_segments_hang_as_a_v():
+    """N = 2 (the least allowed): one node of mass m L0 / 2 between the ends at equal
+    height; by symmetry each segment carries T with 2 T sin(theta) = m L0 g / 2, and its
+    stretched length l = (L0 / 2)(1 + T / EA) spans half the chord: cos(theta) = d / l."""
+    cab = ds.Cable(2.0, 1e5)
+    L0, d = 10.0, 4.0                                    # half-chord d [m]
+    g = graded_chain((0, 0, 0), (2 * d, 0, 0), L0, cab, 2)
+    T = g.tensions[0]
+    theta = np.arccos(d / ((L0 / 2) * (1 + T / cab.EA)))
+    W = cab.mass_per_length * L0 / 2 * ds.constants.STANDARD_GRAVITY
+    np.testing.assert_allclose(g.tensions, [T, T], rtol=1e-12)
+    assert 2 * T * np.sin(theta) == pytest.approx(W, rel=1e-12)
+    assert g.nodes[1, 2] == pytest.approx(-d * np.tan(theta), rel=1e-10)
+
+
+def test_default_start_is_the_shared_weight_and_an_equal_pull():
+    """Without f0 the first segment starts at -W/2 e_z + W h / |h| (W the interior nodes'
+    weight, h the chord's horizontal part), or -W/2 e_z for a vertical chord: the same chain,
+    to the bit, as with that start given."""
+    A, B, L0, cab = SAGGING
+    for end in (B, (0.0, 0.0, -9.0)):
+        ref = graded_chain(A, end, L0, cab, 8)
+        W = ref.node_masses[1:-1].sum() * ds.constants.STANDARD_GRAVITY
+        h = np.array([end[0] - A[0], end[1] - A[1], 0.0])
+        f0 = -0.5 * W * np.array([0, 0, 1.0]) + (W * h / np.linalg.norm(h) if h.any() else 0)
+        got = graded_chain(A, end, L0, cab, 8, f0=f0)
+        np.testing.assert_array_equal(got.nodes, ref.nodes)
+        np.testing.assert_array_equal(got.tensions, ref.tensions)
+
+
+def test_a_segment_without_force_is_slack():
+    """A start with no force in the first segment gives it no direction."""
+    A, B, L0, cab = SAGGING
+    with pytest.raises(ds.errors.SlackCableError, match="a segment carries no force"):
+        graded_chain(A, B, L0, cab, 8, f0=np.zeros(3))
+
+
+def test_zero_tolerance_closes_the_chain_to_rounding():
+    """tol = 0 iterates until the energy can no longer be lowered: the chain closes to
+    rounding (1e-14 of its length) and agrees with the default tolerance's chain."""
+    A, B, L0, cab = SAGGING
+    ref = graded_chain(A, B, L0, cab, 16)
+    got = graded_chain(A, B, L0, cab, 16, tol=0.0)
+    assert got.closure < 1e-14 * L0
+    np.testing.assert_allclose(got.nodes, ref.nodes, rtol=0, atol=1e-13)

@@ -77,3 +77,34 @@ def test_platform_stiffness_is_minus_the_wrench_derivative_off_equilibrium(cogir
         fd[:, k] = -(wp - wm) / (2 * h)
     assert np.abs(K[3:, 3:] - K[3:, 3:].T).max() > 1.0          # off equilibrium
     np.testing.assert_allclose(K, fd, rtol=0, atol=2e-5 * np.abs(K).max())
+
+
+def test_rich_display_title_header_and_note(cogiro):
+    """The title rounds the pose to 4 decimals (m, rad); the header names each column with
+    its unit; the note gives the statics residual."""
+    import html
+    eq = cogiro.robot.equilibrium(pose=ds.Pose([0.123456, -0.0987654, 1.0],
+                                               [0.0123456, -0.0234567, 0.0345678]))
+    text = html.unescape(eq._repr_html_())
+    assert ("Equilibrium of 8 cables at P = [0.1235, -0.0988, 1.0] m, rotation "
+            "[0.0123, -0.0235, 0.0346] rad") in text
+    assert ("<tr><th>cable</th><th>tension at B [N]</th><th>tension at A [N]</th>"
+            "<th>unstretched length [m]</th><th>sag [m]</th></tr>") in text
+    assert f"statics residual {eq.residual:.2g}" in text
+
+
+def test_table_columns_in_order(cogiro_eq):
+    df = cogiro_eq.to_frame()
+    assert list(df.columns) == ["cable", "tension at B [N]", "tension at A [N]",
+                                "unstretched length [m]", "chord length [m]", "sag [m]",
+                                "lambda^2 [-]"]
+    np.testing.assert_array_equal(df["cable"], np.arange(8))
+
+
+def test_plot_draws_on_the_axes_given(cogiro_eq):
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    try:
+        assert cogiro_eq.plot(ax=ax) is fig and ax.has_data()
+    finally:
+        plt.close(fig)

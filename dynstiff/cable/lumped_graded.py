@@ -248,9 +248,10 @@ def graded_chain(anchor: ArrayLike, end: ArrayLike, unstretched_length: float, c
         Starting force of the first segment [N] (default: the weight shared by the ends
         and a horizontal pull of the same size along A -> B).
     tol : float
-        Closure tolerance relative to max(|B - A|, L0) [-].
+        Closure tolerance relative to max(|B - A|, L0) [-] (>= 0; 0: until the line search
+        can no longer lower the energy, the closure at rounding level).
     max_iter : int
-        Newton iterations.
+        Newton iterations (>= 1).
 
     Returns
     -------
@@ -269,6 +270,8 @@ def graded_chain(anchor: ArrayLike, end: ArrayLike, unstretched_length: float, c
         raise InvalidParameterError(f"cable must be a Cable, got {type(cable).__name__}")
     N = checked_integer("n_segments", n_segments, 2)
     g = positive_scalar("g", g, allow_zero=True)
+    tol = positive_scalar("tol", tol, allow_zero=True)
+    max_iter = checked_integer("max_iter", max_iter, 1)
     l0 = np.diff(graded_edges(L0, N, s_low, core))
     m = cable.mass_per_length
     node_mass = np.concatenate([[0.5 * l0[0]], 0.5 * (l0[:-1] + l0[1:]), [0.5 * l0[-1]]]) * m
