@@ -1,5 +1,7 @@
 """The interface every model shares (dynstiff/models/base.py)."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -38,3 +40,36 @@ def test_require_model_names_what_is_missing(cogiro_eq):
         require_model(mm)
     fm = ds.FrequencyModel(cogiro_eq)
     assert require_model(fm) is fm
+
+
+class DampedToy(Toy):
+    def __init__(self, eq, **attrs):
+        self._init_platform(eq.robot, eq, eq.pose)
+        self.K = np.eye(self.n_free)
+        self.damped = True
+        for k, v in attrs.items():
+            setattr(self, k, v)
+        self._freeze()
+
+
+def test_repr_names_the_class_rung_cables_dofs_pose_and_damping(cogiro_eq):
+    assert repr(Toy(cogiro_eq)) == (
+        "Toy(rung='toy', 8 cables, free ('x', 'y', 'z', 'rx', 'ry', 'rz'), "
+        "Pose(position=[0, 0, 1] m, rotation=[0, 0, 0] rad), undamped)")
+
+
+def test_damping_text_lists_each_part(cogiro_eq):
+    """The analysis' platform modal ratio and cable loss factor, then the cables' own
+    viscous damping and loss factor (their largest), each only when not zero."""
+    m = DampedToy(cogiro_eq, platform_damping_ratio=0.02, cable_loss_factor=0.005)
+    assert m.damping_text() == "damped: platform modal ratio 0.02, cable loss factor 0.005"
+    assert DampedToy(cogiro_eq, cable_loss_factor=0.005).damping_text() == (
+        "damped: cable loss factor 0.005")
+    assert DampedToy(cogiro_eq, platform_damping_ratio=0.02).damping_text() == (
+        "damped: platform modal ratio 0.02")
+    robot = cogiro_eq.robot
+    cables = [replace(c, viscous_damping=3.0 * (i == 2), loss_factor=0.01 * (i == 5))
+              for i, c in enumerate(robot.cables)]
+    eq = replace(cogiro_eq, robot=replace(robot, cables=tuple(cables)))
+    assert DampedToy(eq).damping_text() == (
+        "damped: cable viscous damping up to 3 N s/m^2, cables' own loss factor up to 0.01")
