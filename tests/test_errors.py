@@ -29,7 +29,11 @@ def _package_functions():
 
 def test_user_stacklevel_counts_the_package_frames_above_the_caller():
     """Called from the test itself: level 1 (the caller's own line); called two package
-    frames deep: level 3, and the warning lands on the test's line."""
+    frames deep: level 3, and the warning lands on the test's line. A mutation-testing run
+    (MUTANT_UNDER_TEST set) puts the tool's own frames between caller and library, so
+    there the levels are not compared (the normal run compares them)."""
+    if "MUTANT_UNDER_TEST" in os.environ:
+        pytest.skip("the mutation tool's frames stand between the package's frames")
     assert errors.user_stacklevel() == 1
     outer = _package_functions()
     with warnings.catch_warnings(record=True) as rec:
