@@ -199,3 +199,18 @@ def test_secant_elements_hold_the_derivative_of_the_mean_dashpot(sixcable):
     Kd = 0.5 * (K @ dx)[nf:]
     assert np.abs(dR - dR0)[nf:].max() > 0.2 * np.abs(dR[nf:]).max()
     np.testing.assert_allclose(Kd, -dR[nf:], rtol=0, atol=1e-3 * np.abs(dR[nf:]).max())
+
+
+def test_mean_dashpot_acts_over_the_taut_part_of_the_step():
+    """c_ax theta (l_b - l_a) / (h l0), theta the fraction of [l_a, l_b] above l0: a segment
+    slack over the whole step has none, one taut throughout all of it, one that crosses l0
+    half of it (written out for c_ax = 50 N s, h = 0.01 s, l0 = 1 m); D = T_d (l_b - l_a)."""
+    from dynstiff.timedomain.discrete_gradient import _mean_dashpot
+    la = np.array([0.8, 1.1, 0.9, 1.1])
+    lb = np.array([0.9, 1.2, 1.1, 0.9])
+    T_d, D = _mean_dashpot(la, lb, 1.0, np.array([50.0]), 0.01)
+    rate = (lb - la) / 0.01
+    np.testing.assert_allclose(T_d, 50.0 * np.array([0.0, 1.0, 0.5, 0.5]) * rate, rtol=1e-12)
+    assert D == pytest.approx(np.sum(T_d * (lb - la)), rel=1e-12)
+    assert _mean_dashpot(la, lb, 1.0, None, 0.01) == (0.0, 0.0)
+    assert _mean_dashpot(la, lb, 1.0, np.zeros(1), 0.01) == (0.0, 0.0)
