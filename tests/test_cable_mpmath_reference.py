@@ -95,6 +95,25 @@ def test_irvine_roots_mp_exact_crossovers_and_limits():
             assert (2 * k - 1) * pi < r < (2 * k + 1) * pi
 
 
+@pytest.mark.parametrize("lambda_sq, dps", [("1e-40", 50), ("1e-58", 50), ("1e-61", 50),
+                                             ("1e-70", 50), ("1e-40", 15), ("1e-300", 30)])
+def test_irvine_roots_mp_of_a_nearly_taut_cable(lambda_sq, dps):
+    """For small lambda^2 the k-th root lies above the string's (2k-1) pi by
+    4 lambda^2 / ((2k-1)^3 pi^3) (first order of tan(psi) = psi - 4 psi^3 / lambda^2 about
+    psi = (2k-1) pi / 2): to dps digits, also where that offset is below the working
+    precision (where the end values of the root's bracket are rounding noise), and to 1e-7
+    of the offset itself where dps resolves it."""
+    with mpmath.workdps(dps + 30):
+        lam2 = mpmath.mpf(lambda_sq)
+        roots = irvine_symmetric_roots_mp(lambda_sq, 3, dps=dps)
+        for k, r in enumerate(roots, start=1):
+            base = (2 * k - 1) * mpmath.pi
+            offset = 4 * lam2 / ((2 * k - 1) ** 3 * mpmath.pi ** 3)
+            assert abs(r - (base + offset)) < mpmath.mpf(10) ** (-dps) * base
+            if offset > mpmath.mpf(10) ** (8 - dps) * base:
+                assert abs((r - base) / offset - 1) < 1e-7
+
+
 @pytest.mark.parametrize("lambda_sq", [1e-6, 1e-3, 0.1692, 1.0, 10.0, 4 * np.pi**2, 39.5,
                                        100.0, 16 * np.pi**2, 1e3, 1e4, 1e6])
 def test_irvine_roots_float64_match_mp(lambda_sq):

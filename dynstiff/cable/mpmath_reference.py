@@ -297,11 +297,15 @@ def irvine_symmetric_roots_mp(lambda_sq: Any, n_roots: int, dps: int = 50) -> li
         g(psi) = (4 psi^3 cos(psi) / lambda^2 - psi cos psi + sin psi)
                  / (4 psi^3 / lambda^2 + psi) = 0:
 
-    continuous, of order one for every lambda^2 (so the tolerance means the same thing for
-    lambda^2 = 1e-6 and 1e4), and equal to sin(psi) / psi = -+1 / psi at the two ends of the
-    branch. The k-th root is found in its branch by ``mpmath.findroot`` with the bracketing
-    Anderson-Bjorck solver (bisection if that stalls); |g| < 10^-dps is then checked (g' is
-    of order one there).
+    continuous, and equal to sin(psi) / (4 psi^3 / lambda^2 + psi) at the two ends of the
+    branch (of opposite signs). The k-th root is found in its branch by ``mpmath.findroot``
+    with the bracketing Anderson-Bjorck solver (bisection if that stalls); |g| < 10^-dps is
+    then checked (g' is of order one there). For small lambda^2 the root lies
+    u ~ lambda^2 / (4 psi_k^3) above the branch's start psi_k = (2k-1) pi/2 (then g ~ cos psi:
+    |sin u| = |cos psi| <= lambda^2 / (4 psi^3 - lambda^2 psi)); where that offset is below
+    10^-(dps+10) of psi_k, the end values of g would drown in the rounding of cos(psi_k), and
+    the taut-string root (2k-1) pi is returned instead: it is the root to more than dps
+    digits.
 
     Parameters
     ----------
@@ -331,6 +335,9 @@ def irvine_symmetric_roots_mp(lambda_sq: Any, n_roots: int, dps: int = 50) -> li
             lo = (2 * k - 1) * mpmath.pi / 2
             hi = (2 * k + 1) * mpmath.pi / 2
             if lam2 == 0:                              # taut string: Omega = (2k-1) pi
+                roots.append(2 * lo)
+                continue
+            if lam2 < mpmath.mpf(10) ** (-dps - 10) * lo**4:   # u / psi_k < 10^-(dps+10)
                 roots.append(2 * lo)
                 continue
             inv = 1 / lam2                             # 0 for lambda^2 = inf
