@@ -6,6 +6,8 @@ References: theory.md §7 (lumped-mass model, beaded-string convergence), §1.1 
 Every test asserts a number that the physics fixes. The test cables are in conftest.py.
 """
 
+import os
+
 import numpy as np
 import pytest
 import scipy.linalg
@@ -319,3 +321,44 @@ def test_dynamic_functions_reject_bad_input(state_11):
         chain_fixed_end_frequencies(state_11, 0)
     with pytest.raises(InvalidParameterError, match="state"):
         chain_matrices("not a state")
+
+
+@pytest.mark.parametrize("ends, idx", [("end", slice(-3, None)),
+                                       ("both", np.r_[0:3, -3:0])])
+def test_two_segments_condense_their_single_interior_node(ends, idx):
+    """Two segments (one interior node): S(omega) = K_bb - omega^2 M_b - K_bi (K_ii -
+    omega^2 m)^-1 K_ib, condensed here from the assembled matrices at 3 rad/s."""
+    state = chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 2)
+    K, M = chain_matrices(state)
+    w2 = 9.0
+    D = K.toarray() - w2 * np.diag(M)
+    b = np.arange(9)[idx]
+    i = np.arange(3, 6)
+    ref = D[np.ix_(b, b)] - D[np.ix_(b, i)] @ np.linalg.solve(D[np.ix_(i, i)], D[np.ix_(i, b)])
+    S = chain_end_dynamic_stiffness(state, 3.0, ends=ends)[0]
+    np.testing.assert_allclose(S, ref, rtol=0, atol=1e-10 * np.abs(ref).max())
+
+
+def test_a_singular_interior_block_is_a_pole(state_11, monkeypatch):
+    """Where the interior block cannot be solved (omega on a fixed-end frequency) the end
+    stiffness is inf, with a PoleWarning at the caller's line (the test's)."""
+    from dynstiff.errors import PoleWarning
+
+    def singular(*args, **kw):
+        raise np.linalg.LinAlgError("singular matrix")
+    monkeypatch.setattr(scipy.linalg, "solve_banded", singular)
+    with pytest.warns(PoleWarning, match=r"^chain_end_dynamic_stiffness: omega = 2 rad/s is "
+                                         r"a fixed-end natural frequency \(pole\); returning "
+                                         r"inf$") as rec:
+        S = chain_end_dynamic_stiffness(state_11, 2.0, ends="both")
+    assert S.shape == (1, 6, 6) and np.all(np.isinf(S))
+    if "MUTANT_UNDER_TEST" not in os.environ:    # a mutation run's frames stand between
+        assert rec[0].filename == __file__
+
+
+def test_single_segment_has_no_fixed_end_frequency():
+    state = chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 1)
+    with pytest.raises(InvalidParameterError,
+                       match=r"^state must have n_segments >= 2 for fixed-end frequencies, "
+                             r"got 1$"):
+        chain_fixed_end_frequencies(state, 1)

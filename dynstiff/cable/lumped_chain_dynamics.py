@@ -139,7 +139,7 @@ def chain_end_dynamic_stiffness(state: ChainState, omega: ArrayLike,
                 x = scipy.linalg.solve_banded((BANDWIDTH, BANDWIDTH), ab, coupling,
                                               check_finite=False)
             except np.linalg.LinAlgError:
-                warnings.warn(f"chain_end_dynamic_stiffness: omega = {w!r} rad/s is a "
+                warnings.warn(f"chain_end_dynamic_stiffness: omega = {w:.9g} rad/s is a "
                               f"fixed-end natural frequency (pole); returning inf",
                               PoleWarning, stacklevel=2)
                 s = np.full((n_b, n_b), np.inf, dtype=dtype)
