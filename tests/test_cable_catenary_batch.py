@@ -159,3 +159,44 @@ def test_the_sag_of_a_shallow_cable_is_the_parabolas():
         assert got == pytest.approx(H * (np.cosh(20.0 / (2 * H)) - 1.0) / 20.0, rel=1e-9)
         parabola = 20.0 / (8 * H)
         assert abs(got / parabola - 1) <= (20.0 / H) ** 2 / 48 * 1.01
+
+
+def test_numpy_newton_solves_every_taut_cable_as_the_scalar_solver():
+    """The numpy Newton (compiled=False, the reference of the compiled one) leaves none of
+    these cables pending: spans of 0.4 to 15 m (L0 < 1 m included), rises of either sign,
+    tensions from a deep sag (30 N) to taut (5 kN); (H, V0, L0) equal the scalar solver's
+    (1e-10) and the residual is converged (< 1e-12). From a start on the hanging branch it
+    still returns the taut one."""
+    A = np.zeros((6, 3))
+    B = np.array([[0.4, 0.1, 0.2], [0.6, 0.0, -0.3], [4.0, 1.0, 3.0], [10.0, -2.0, -4.0],
+                  [15.0, 0.0, 0.5], [8.0, 3.0, 6.0]])
+    t = np.array([50.0, 300.0, 30.0, 800.0, 5000.0, 120.0])
+    EA, w0 = arrays([CABLE] * 6)
+    H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, compiled=False)
+    assert not pending.any() and np.all(res < 1e-12)
+    assert L0[0] < 1.0
+    for i in range(6):
+        ref = unstretched_length_for_tension(A[i], B[i], t[i], CABLE, G)
+        assert L0[i] == pytest.approx(ref.unstretched_length, rel=1e-10)
+        assert H[i] == pytest.approx(ref.H, rel=1e-9)
+        assert V0[i] == pytest.approx(ref.V0, rel=1e-9, abs=1e-9 * t[i])
+    from scipy.optimize import brentq
+    A1, B1 = np.array([[0.0, 0.0, 0.0]]), np.array([[10.0, 0.0, -2.0]])
+    L_deep = brentq(lambda L: solve_catenary(A1[0], B1[0], L, CABLE, G).tension_at_end - 60.0,
+                    150.0, 300.0, xtol=1e-12)
+    deep = solve_catenary(A1[0], B1[0], L_deep, CABLE, G)
+    start = (np.array([deep.H]), np.array([deep.V0]), np.array([L_deep]))
+    *_, L1, _, pend = taut_catenaries(A1, B1, np.array([60.0]), *arrays([CABLE]), start=start,
+                                     compiled=False)
+    ref = unstretched_length_for_tension(A1[0], B1[0], 60.0, CABLE, G)
+    assert not pend[0] and L1[0] == pytest.approx(ref.unstretched_length, rel=1e-10)
+
+
+def test_states_carry_the_batch_residual():
+    """Each state solved by the batch records the batch's residual (converged, < 1e-12)."""
+    A = np.array([[-7.1775, -5.4361, 5.3911], [7.2, 5.3, 5.4]])
+    B = np.array([[0.5, -0.49, 1.0], [-3.0, 1.0, 0.4]])
+    t = np.array([850.0, 120.0])
+    res = taut_catenaries(A, B, t, *arrays([CABLE, CABLE]))[3]
+    states = states_for_tensions(A, B, t, [CABLE, CABLE], G)
+    assert [s.residual for s in states] == res.tolist() and np.all(res < 1e-12)
