@@ -3,6 +3,7 @@ functions: frf, eigenfrequencies, modes, mode_count, damped_modes (the interface
 dynstiff/models/base.py, theory.md §4, §5)."""
 
 import dataclasses
+import re
 
 import matplotlib
 import numpy as np
@@ -143,3 +144,21 @@ def test_build_model_rejects_options_of_other_rungs(cogiro_eq):
         ds.build_model(cogiro_eq, "fem")
     with pytest.raises(InvalidParameterError, match="fmax_hz"):
         ds.build_model(cogiro_eq, "exact", tol=1e-9)
+
+
+def test_options_each_rung_takes_are_listed_exactly(cogiro_eq):
+    """The refusal lists the options the rung does take, in their order."""
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "options ['tol'] do not apply to rung 'exact' (it takes ['fmax_hz', 'order', "
+            "'half_waves', 'cable_loss_factor', 'platform_damping_ratio'])")):
+        ds.build_model(cogiro_eq, "exact", tol=1e-9)
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "options ['order'] do not apply to rung 'spring' (it takes none)")):
+        ds.build_model(cogiro_eq, "spring", order=2)
+
+
+def test_lumped_rung_has_30_segments_a_cable_by_default():
+    """planar2 (2 cables, 2 free DOFs): 2 + 2 x 29 interior nodes x 3 = 176 DOFs."""
+    m = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped")
+    assert (m.n_free, m.n_dof) == (2, 2 + 2 * 29 * 3)
+    np.testing.assert_array_equal(m.segments, [30, 30])
