@@ -35,3 +35,23 @@ def test_tangent_integrals_match_quadrature(case):
     tx, tz = s.H / T, V / T
     ref = [0.5 * L0 * np.dot(w, f) for f in (tx * tx, tx * tz, tz * tz)]
     np.testing.assert_allclose(tangent_integrals(s), ref, rtol=1e-12, atol=1e-14 * L0)
+
+
+@pytest.mark.parametrize("H", [1.0, 5.09, 0.0])
+def test_tangent_integrals_are_the_quadrature_of_the_tangent(H):
+    """int_0^L0 t t^T ds with the tangent's slope tan(theta) = (V0 + w s) / H, against
+    adaptive quadrature (1e-12), for horizontal tensions of exactly 1 N, 5.09 N and 0 (a
+    vertical cable: t = e_z everywhere, so (0, 0, L0))."""
+    import dataclasses
+
+    from scipy.integrate import quad
+    cable = ds.Cable(0.064, 1.4e5)
+    s = dataclasses.replace(ds.solve_catenary([0, 0, 0], [3.0, 0, 4.0], 5.01, cable), H=H)
+    w, L0 = cable.mass_per_length * s.g, s.unstretched_length
+
+    def part(x, k):
+        V = s.V0 + w * x
+        T2 = H * H + V * V
+        return (H * H, H * V, V * V)[k] / T2
+    want = [quad(part, 0.0, L0, args=(k,), epsabs=1e-14, epsrel=1e-13)[0] for k in range(3)]
+    np.testing.assert_allclose(tangent_integrals(s), want, rtol=1e-12, atol=1e-14)

@@ -1,0 +1,29 @@
+"""Forward statics (dynstiff/robot/forward_statics.py): the pose for given unstretched
+lengths, and its kinematic start."""
+
+import numpy as np
+
+import dynstiff as ds
+from dynstiff.robot.forward_statics import _kinematic_guess, forward_statics
+
+
+def test_kinematic_start_makes_the_chords_a_little_shorter_than_the_lengths():
+    """The start fits the free DOFs so that straight chords are 0.999 L0 (taut cables):
+    planar2 has as many cables as free DOFs, so the fit is exact."""
+    scene = ds.load_scene("planar2")
+    robot = scene.robot
+    L0 = scene.equilibrium().unstretched_lengths
+    pose = _kinematic_guess(robot, L0)
+    B, _ = robot.attachment_points(pose)
+    np.testing.assert_allclose(np.linalg.norm(robot.anchors - B, axis=1), 0.999 * L0,
+                               rtol=1e-9)
+
+
+def test_forward_statics_returns_the_pose_of_the_lengths():
+    """CoGiRo (all six DOFs free) at a pose off centre, given back its own unstretched
+    lengths, is found again from the kinematic start (to 1e-8 m and rad)."""
+    robot = ds.load_scene("cogiro").robot
+    eq = robot.equilibrium(pose=ds.Pose([1.0, -0.5, 1.5], [0.02, -0.01, 0.03]))
+    got = forward_statics(robot, eq.unstretched_lengths)
+    np.testing.assert_allclose(got.pose.position, eq.pose.position, rtol=0, atol=1e-8)
+    np.testing.assert_allclose(got.pose.rotation, eq.pose.rotation, rtol=0, atol=1e-8)
