@@ -200,3 +200,15 @@ def test_states_carry_the_batch_residual():
     res = taut_catenaries(A, B, t, *arrays([CABLE, CABLE]))[3]
     states = states_for_tensions(A, B, t, [CABLE, CABLE], G)
     assert [s.residual for s in states] == res.tolist() and np.all(res < 1e-12)
+
+
+def test_straight_start_is_the_straight_elastic_cable():
+    """The start: L0 = L / (1 + t / EA), the tension t along the chord at B, so H = t lh / L
+    and V_B = t h / L, and V0 = V_B - w0 L0 (the weight taken off at A)."""
+    from dynstiff.cable.catenary_batch import _straight_start
+    lh, h, t, EA, w0 = np.array([3.0]), np.array([4.0]), np.array([500.0]), np.array([1e5]), \
+        np.array([0.6])
+    H, V0, L0 = _straight_start(lh, h, np.array([5.0]), t, EA, w0)
+    assert L0[0] == pytest.approx(5.0 / 1.005, rel=1e-15)
+    assert H[0] == pytest.approx(300.0, rel=1e-15)
+    assert V0[0] == pytest.approx(400.0 - 0.6 * 5.0 / 1.005, rel=1e-15)

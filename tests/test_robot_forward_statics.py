@@ -27,3 +27,23 @@ def test_forward_statics_returns_the_pose_of_the_lengths():
     got = forward_statics(robot, eq.unstretched_lengths)
     np.testing.assert_allclose(got.pose.position, eq.pose.position, rtol=0, atol=1e-8)
     np.testing.assert_allclose(got.pose.rotation, eq.pose.rotation, rtol=0, atol=1e-8)
+
+
+def test_a_held_rotation_needs_the_initial_pose():
+    """CoGiRo with ry held (its attachments are off the reference point, so rotations
+    matter): without an initial pose the held angle is unknown, and the call is refused
+    naming the free DOFs."""
+    import dataclasses
+
+    import pytest
+
+    from dynstiff.errors import InvalidParameterError
+    robot = ds.load_scene("cogiro").robot
+    held = dataclasses.replace(robot, platform=dataclasses.replace(
+        robot.platform, free_dofs=("x", "y", "z", "rx", "rz")))
+    L0 = ds.load_scene("cogiro").equilibrium().unstretched_lengths
+    with pytest.raises(InvalidParameterError,
+                       match=r"^initial_pose is required when DOFs are held \(free_dofs="
+                             r"\('x', 'y', 'z', 'rx', 'rz'\)\): it fixes the held "
+                             r"coordinates$"):
+        forward_statics(held, L0)
