@@ -7,6 +7,7 @@ with 50+ digits.
 """
 
 import importlib.util
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -25,6 +26,7 @@ from dynstiff.cable.mpmath_reference import (
 from dynstiff.cable.psi import irvine_symmetric_roots
 
 EPS = np.finfo(float).eps
+_FINDROOT = mpmath.findroot          # the real solver, for the stand-ins of the tests below
 _VALIDATION = Path(__file__).resolve().parents[1] / "validation" / "float64_vs_mpmath.py"
 
 
@@ -114,6 +116,145 @@ def test_irvine_roots_mp_of_a_nearly_taut_cable(lambda_sq, dps):
                 assert abs((r - base) / offset - 1) < 1e-7
 
 
+@pytest.mark.parametrize("lambda_sq", [0, "1e-300"])
+def test_irvine_roots_mp_of_a_taut_string_are_n_roots(lambda_sq):
+    """n_roots roots are returned, the k-th (2k-1) pi to dps = 30 significant digits: the taut
+    string at lambda^2 = 0, and at 1e-300 (offset 4 lambda^2 / ((2k-1) pi)^3 < 1e-300)."""
+    roots = irvine_symmetric_roots_mp(lambda_sq, 4, dps=30)
+    assert len(roots) == 4
+    with mpmath.workdps(40):
+        for k, r in enumerate(roots, start=1):
+            base = (2 * k - 1) * mpmath.pi
+            assert abs(r - base) < mpmath.mpf("1e-30") * base
+
+
+@pytest.mark.parametrize("lambda_sq, n_roots, dps", [("1e-66", 20, 50), ("1e-420", 3, 400),
+                                                     ("1e-425", 3, 400)])
+def test_irvine_roots_mp_of_a_nearly_taut_cable_to_dps_digits(lambda_sq, n_roots, dps):
+    """The k-th root lies 4 lambda^2 / ((2k-1) pi)^3 above (2k-1) pi (first order, as in the
+    test above), far below 10^-dps of it here; each root is (2k-1) pi to dps digits, for high
+    modes (k up to 20, whose branch-end values lambda^2 / (4 psi_k^3) ~ 1e-72 sink below the
+    rounding of cos(psi_k) at dps + 20 digits) and for dps = 400 (lambda^2 ~ 10^-(dps+20))."""
+    roots = irvine_symmetric_roots_mp(lambda_sq, n_roots, dps=dps)
+    assert len(roots) == n_roots
+    with mpmath.workdps(dps + 30):
+        for k, r in enumerate(roots, start=1):
+            base = (2 * k - 1) * mpmath.pi
+            assert abs(r - base) < mpmath.mpf(10) ** (-dps) * base
+
+
+@pytest.mark.parametrize("lambda_sq, n_roots, message", [
+    (1.0, 0, "n_roots must be >= 1, got 0"),
+    (-1.0, 2, "lambda_sq must be >= 0, got -1.0"),
+    (float("nan"), 2, "lambda_sq must be >= 0, got nan"),
+])
+def test_irvine_roots_mp_reject_invalid_arguments(lambda_sq, n_roots, message):
+    """n_roots >= 1 and lambda^2 >= 0 (documented); NaN is not >= 0."""
+    with pytest.raises(ValueError, match=rf"^{re.escape(message)}$"):
+        irvine_symmetric_roots_mp(lambda_sq, n_roots)
+
+
+def _irvine_g(lam2):
+    """g(psi) of the irvine_symmetric_roots_mp docstring (zero at psi = Omega_k / 2)."""
+    def g(x):
+        return ((4 * x**3 * mpmath.cos(x) / lam2 - x * mpmath.cos(x) + mpmath.sin(x))
+                / (4 * x**3 / lam2 + x))
+    return g
+
+
+def test_irvine_roots_mp_fall_back_to_bisection_when_anderson_stalls(monkeypatch):
+    """Documented: Anderson-Bjorck, then bisection if that stalls. Anderson is cut to one step
+    here (a stall: a point inside the branch with |g| of order one, far above 10^-dps); each
+    root then comes from the bisection and still solves the published tan form to 40 digits,
+    lies in its branch and matches theory.md §9.1 (lambda^2 = 10, 7 significant digits)."""
+    calls = []
+
+    def one_step_anderson(f, x0, solver, **kw):
+        calls.append(solver)
+        if solver == "anderson":
+            kw["maxsteps"] = 1
+        return _FINDROOT(f, x0, solver=solver, **kw)
+
+    monkeypatch.setattr(mpmath, "findroot", one_step_anderson)
+    roots = irvine_symmetric_roots_mp(10, 3, dps=50)
+    assert calls == ["anderson", "bisect"] * 3
+    np.testing.assert_allclose([float(r) for r in roots], (4.225833, 9.477637, 15.718697),
+                               rtol=0, atol=5e-7)
+    with mpmath.workdps(60):
+        lam2 = mpmath.mpf(10)
+        for k, r in enumerate(roots, start=1):
+            psi = r / 2
+            assert abs(mpmath.tan(psi) - psi + 4 * psi**3 / lam2) < mpmath.mpf("1e-40")
+            assert (2 * k - 1) * mpmath.pi < r < (2 * k + 1) * mpmath.pi
+
+
+def test_irvine_roots_mp_raise_when_no_solver_converges(monkeypatch):
+    """Both solvers cut to one step: ArithmeticError naming the root (1), lambda^2, the last
+    psi and its residual; that psi lies in the first branch (pi/2, 3 pi/2) and the residual
+    is |g(psi)| of the docstring (recomputed here), above 10^-dps."""
+    def one_step(f, x0, solver, **kw):
+        return _FINDROOT(f, x0, solver=solver, **{**kw, "maxsteps": 1})
+
+    monkeypatch.setattr(mpmath, "findroot", one_step)
+    number = r"([0-9.]+(?:e[-+]?[0-9]+)?)"
+    message = (rf"^Irvine root 1 of lambda\^2 = 10\.0 not converged: psi = {number}, "
+               rf"residual {number}$")
+    with pytest.raises(ArithmeticError, match=message) as info:
+        irvine_symmetric_roots_mp(10, 2, dps=30)
+    psi_text, residual_text = re.match(message, str(info.value)).groups()
+    with mpmath.workdps(60):
+        psi, residual = mpmath.mpf(psi_text), mpmath.mpf(residual_text)
+        assert mpmath.pi / 2 < psi < 3 * mpmath.pi / 2
+        assert residual > mpmath.mpf("1e-30")
+        assert abs(residual - abs(_irvine_g(mpmath.mpf(10))(psi))) < mpmath.mpf("1e-25")
+
+
+@pytest.mark.parametrize("residual, bisected", [(1.2, True), (0.8, False), (-1.2, True),
+                                                (-0.8, False)])
+def test_irvine_roots_mp_accept_a_residual_below_ten_to_minus_dps(monkeypatch, residual,
+                                                                  bisected):
+    """The solver's answer is kept when |g| < 10^-dps (documented check), else the bisection
+    runs. Anderson is replaced by a point placed next to the first root of lambda^2 = 1 (found
+    here at 80 digits from g of the docstring) so that g = residual * 10^-30 there (first order
+    in the offset, whose second-order term is ~1e-60), with dps = 30."""
+    with mpmath.workdps(80):
+        g = _irvine_g(mpmath.mpf(1))
+        root = _FINDROOT(g, (mpmath.pi / 2, 3 * mpmath.pi / 2), solver="anderson")
+        point = root + residual * mpmath.mpf("1e-30") / mpmath.diff(g, root)
+        assert abs(g(point) / mpmath.mpf("1e-30") - residual) < 1e-20
+    calls = []
+
+    def placed_anderson(f, x0, solver, **kw):
+        calls.append(solver)
+        return +point if solver == "anderson" else _FINDROOT(f, x0, solver=solver, **kw)
+
+    monkeypatch.setattr(mpmath, "findroot", placed_anderson)
+    (Omega,) = irvine_symmetric_roots_mp(1, 1, dps=30)
+    assert calls == (["anderson", "bisect"] if bisected else ["anderson"])
+    with mpmath.workdps(80):
+        # the kept point is returned (rounded to 30 digits); the bisection's is the root
+        expected = 2 * root if bisected else 2 * point
+        assert abs(Omega - expected) < mpmath.mpf("1e-29")
+        assert abs(float(Omega) - 3.267886) < 5e-7           # theory.md §9.1
+
+
+def test_irvine_roots_mp_keep_a_converged_branch_start(monkeypatch):
+    """lambda^2 = 1e-55 at dps = 50: the first root lies 4 lambda^2 / pi^3 = 1.3e-56 above
+    pi, so the branch start psi = pi/2 is the root to 50 digits (|g| ~ lambda^2 / (4 psi^3) =
+    6.5e-57 < 10^-50) and an Anderson answer exactly there is kept: no bisection."""
+    calls = []
+
+    def anderson_at_branch_start(f, x0, solver, **kw):
+        calls.append(solver)
+        return x0[0] if solver == "anderson" else _FINDROOT(f, x0, solver=solver, **kw)
+
+    monkeypatch.setattr(mpmath, "findroot", anderson_at_branch_start)
+    (Omega,) = irvine_symmetric_roots_mp("1e-55", 1, dps=50)
+    assert calls == ["anderson"]
+    with mpmath.workdps(60):
+        assert abs(Omega - mpmath.pi) < mpmath.mpf("1e-50")
+
+
 @pytest.mark.parametrize("lambda_sq", [1e-6, 1e-3, 0.1692, 1.0, 10.0, 4 * np.pi**2, 39.5,
                                        100.0, 16 * np.pi**2, 1e3, 1e4, 1e6])
 def test_irvine_roots_float64_match_mp(lambda_sq):
@@ -162,6 +303,90 @@ def test_reference_static_limit():
     Kd = end_stiffness_mp(*ARGS_DAMPED, 1e-9 * S)
     np.testing.assert_allclose(Kd, end_stiffness_mp(*ARGS_DAMPED, 0.0), rtol=1e-8,
                                atol=1e-7 * T / L)   # K_uv(0) = 0; here |K_uv| = 7e-9 N/m
+
+
+def test_reference_two_end_static_limit():
+    """theory.md §3.6 at omega = 0: K0 / (1 + lambda^2/12) [[1, -1], [-1, 1]] on (u_A, u_B)
+    (g = [1, alpha tau, -1, alpha tau] with tau = 0), the string T/L [[1, -1], [-1, 1]] on
+    (v_A, v_B) and on (w_A, w_B), no chordwise mass, nothing else."""
+    L, T, m, c, EA, L_e, q = ARGS
+    lam2 = (q * L / T) ** 2 * L * EA / (T * L_e)
+    axial, string = EA / L_e / (1 + lam2 / 12), T / L
+    expected = np.zeros((6, 6))
+    for (a, b), k in (((0, 3), axial), ((1, 4), string), ((2, 5), string)):
+        expected[np.ix_([a, b], [a, b])] = [[k, -k], [-k, k]]
+    K = two_end_stiffness_mp(*ARGS, 0.0)
+    np.testing.assert_allclose(K.real, expected, rtol=1e-15, atol=0)
+    assert np.all(K.imag == 0)
+
+
+@pytest.mark.parametrize("args", [ARGS, ARGS_DAMPED], ids=["undamped", "damped"])
+def test_reference_at_a_vanishing_frequency(args):
+    """Omega = 1e-200: tau = 1 - tan(psi)/psi ~ -psi^2/3 cancels ~400 digits, which the
+    working precision (under the 4000-digit limit) covers; K_B is the static limit
+    diag(K0 / (1 + lambda^2/12), T/L, T/L) of theory.md §3.6 (complex K0 and lambda^2 with
+    hysteretic damping), the corrections being O(Omega) <= 1e-200 relative."""
+    L, T, m, c, EA, L_e, q = args
+    lam2 = (q * L / T) ** 2 * L * EA / (T * L_e)
+    expected = np.diag([EA / L_e / (1 + lam2 / 12), T / L, T / L])
+    K = end_stiffness_mp(*args, 1e-200 * S)
+    np.testing.assert_allclose(K, expected, rtol=1e-15, atol=1e-150 * T / L)
+
+
+def test_reference_of_a_massless_chord_with_viscous_damping():
+    """m = 0, c = 0.3 N s/m^2: beta^2 = -i omega c / T, so psi^2 = -i omega c L^2 / (4 T)
+    = -1e-80 i at omega = 4e-79 rad/s, and tau = 1 - tan(psi)/psi ~ -psi^2/3 cancels ~80
+    digits (with m = 0 the precision is not raised for psi beforehand). K_B is the static limit
+    diag(K0 / (1 + lambda^2/12), T/L, T/L) up to O(|psi|^2) = 1e-80 relative, plus the
+    chordwise term -omega^2 m~ L/3 = i omega c L/3 = 4e-79 i N/m on K_uu."""
+    L, T, m, c, EA, L_e, q = 10.0, 300.0, 0.0, 0.3, 1.39e5, 10.01, 0.565
+    omega = 4e-79
+    lam2 = (q * L / T) ** 2 * L * EA / (T * L_e)
+    expected = np.diag([EA / L_e / (1 + lam2 / 12) + 1j * omega * c * L / 3, T / L, T / L])
+    K = end_stiffness_mp(L, T, m, c, EA, L_e, q, omega)
+    np.testing.assert_allclose(K, expected, rtol=1e-15, atol=1e-60 * T / L)
+
+
+def test_reference_chordwise_stiffness_cancelling_31_digits():
+    """q = 0 (lambda^2 = 0, D = 1) and dyadic inputs L = m = 1, L_e = 3, EA = 1 + 2^-51,
+    omega = 1 + 2^-52: K_uu = EA / L_e - omega^2 m L / 3 = ((1 + 2^-51) - (1 + 2^-52)^2) / 3
+    = -2^-104 / 3 exactly, its two terms cancelling 31 digits. The mpmath matrix
+    (as_mpmath=True) holds it to dps = 50 digits, and k_s = T beta cot(beta L) with
+    beta = omega sqrt(m / T) (K_ww) as well; K_uv = 0 (alpha = 0)."""
+    L, T, m, EA, L_e, omega = 1.0, 300.0, 1.0, 1 + 2.0**-51, 3.0, 1 + 2.0**-52
+    K = end_stiffness_mp(L, T, m, 0.0, EA, L_e, 0.0, omega, dps=50, as_mpmath=True)
+    assert isinstance(K, mpmath.matrix) and (K.rows, K.cols) == (3, 3)
+    with mpmath.workdps(120):
+        K_uu = -mpmath.mpf(2) ** -104 / 3
+        assert abs(K[0, 0] - K_uu) < mpmath.mpf("1e-48") * abs(K_uu)
+        beta = mpmath.mpf(omega) * mpmath.sqrt(mpmath.mpf(m) / T)
+        k_s = T * beta * mpmath.cot(beta * L)
+        assert abs(K[2, 2] - k_s) < mpmath.mpf("1e-48") * abs(k_s)
+        assert K[0, 1] == 0 and K[1, 0] == 0
+
+
+def test_reference_chordwise_coupling_cancelling_21_digits():
+    """K_uAuB = -K0/D - omega^2 m L / 6 (theory.md §3.2-3.3) vanishes where D < 0, between
+    the string pole Omega = pi and the first symmetric root (Omega_1 = 3.1627 here): with
+    K0/D = EA / (L_e (1 - EA kappa s)), kappa = (q L / T)^2 L / (T L_e) and
+    s = tau / (4 psi^2), the zero is at EA = a L_e / (1 + a L_e kappa s), a = -omega^2 m L / 6.
+    At omega = 21.509528057423708 rad/s (Omega = pi (1 + 2.4e-5)) the float nearest that EA
+    makes the two terms cancel 21 digits (checked here). The reference's entry (as_mpmath,
+    dps = 50) matches those forms evaluated here with 200 digits to 48 digits."""
+    L, T, m, L_e, q, omega = 10.0, 300.0, 0.064, 10.01, 0.565, 21.509528057423708
+    with mpmath.workdps(200):
+        L_, T_, m_, L_e_, q_, w = (mpmath.mpf(v) for v in (L, T, m, L_e, q, omega))
+        psi = w * mpmath.sqrt(m_ / T_) * L_ / 2
+        s = (1 - mpmath.tan(psi) / psi) / (4 * psi**2)
+        kappa = (q_ * L_ / T_) ** 2 * L_ / (T_ * L_e_)
+        a = -w**2 * m_ * L_ / 6
+        EA = float(a * L_e_ / (1 + a * L_e_ * kappa * s))
+        K_uAuB = -EA / (L_e_ * (1 - EA * kappa * s)) + a
+        assert abs(K_uAuB) < mpmath.mpf("1e-20") * abs(a)
+    K = two_end_stiffness_mp(L, T, m, 0.0, EA, L_e, q, omega, dps=50, as_mpmath=True)
+    with mpmath.workdps(200):
+        assert abs(K[0, 3] - K_uAuB) < mpmath.mpf("1e-48") * abs(K_uAuB)
+        assert K[3, 0] == K[0, 3]
 
 
 def test_reference_small_frequency_string_series():
