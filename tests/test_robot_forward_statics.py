@@ -47,3 +47,38 @@ def test_a_held_rotation_needs_the_initial_pose():
                              r"\('x', 'y', 'z', 'rx', 'rz'\)\): it fixes the held "
                              r"coordinates$"):
         forward_statics(held, L0)
+
+
+def test_the_residual_is_relative_to_the_platform_weight():
+    """With no iteration allowed the start is returned as a failure whose residual is
+    |W_free| / (m max(g, 1)), written out here for g = 1.5 m/s^2 (a weaker gravity)."""
+    import dataclasses
+
+    import pytest
+
+    from dynstiff.errors import ConvergenceError
+    scene = ds.load_scene("cogiro")
+    robot = dataclasses.replace(scene.robot, g=1.5)
+    L0 = scene.equilibrium().unstretched_lengths
+    pose = ds.Pose([0.1, 0.0, 1.0])
+    W = robot.wrench(pose, robot.cable_states(pose, L0))
+    want = np.linalg.norm(W) / (robot.platform.mass * 1.5)
+    with pytest.raises(ConvergenceError, match="forward statics did not converge") as err:
+        forward_statics(robot, L0, initial_pose=pose, max_iter=0)
+    assert err.value.residual == pytest.approx(want, rel=1e-12)
+
+
+def test_a_singular_stiffness_is_a_failure_with_its_residual(monkeypatch):
+    """When the stiffness cannot be solved the iteration stops with a ConvergenceError
+    giving the residual of the start (it never returns without a pose)."""
+    import pytest
+
+    from dynstiff.errors import ConvergenceError
+    from dynstiff.robot.robot import Robot
+    scene = ds.load_scene("cogiro")
+    L0 = scene.equilibrium().unstretched_lengths
+    pose = ds.Pose([0.1, 0.0, 1.0])
+    monkeypatch.setattr(Robot, "platform_stiffness", lambda self, p, s: np.zeros((6, 6)))
+    with pytest.raises(ConvergenceError, match="wrench residual") as err:
+        forward_statics(scene.robot, L0, initial_pose=pose)
+    assert err.value.residual > 1e-6
