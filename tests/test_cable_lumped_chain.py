@@ -273,3 +273,36 @@ def test_a_newton_without_descent_step_says_so_with_its_residual(monkeypatch):
         chain_equilibrium(A_11, B_11, L0_11, CABLE_11, 20, tol=-1.0)
     with pytest.raises(InvalidParameterError, match="^anchor must be"):
         chain_equilibrium([np.nan, 0, 0], B_11, L0_11, CABLE_11, 20)
+
+
+@pytest.mark.parametrize("stretch, turn", [(1.0, 0.0), (1.05, 0.0), (1.05, 0.7)])
+def test_force_space_start_is_already_the_equilibrium(stretch, turn):
+    """The start solves the chain's own equations in force space (node equilibrium with the
+    weight m l0 g per node, segments closing the chord): for the theory.md §1.1 cable, taut
+    and 5 % longer (sagging), its chord also turned by 0.7 rad about the vertical, its nodes
+    are those of the equilibrium to 1e-12 m."""
+    from dynstiff.cable.lumped_chain import _force_space_start
+    c, s_ = np.cos(turn), np.sin(turn)
+    Rz = np.array([[c, -s_, 0.0], [s_, c, 0.0], [0.0, 0.0, 1.0]])
+    A, B = Rz @ np.asarray(A_11, float), Rz @ np.asarray(B_11, float)
+    L0 = L0_11 * stretch
+    state = chain_equilibrium(A, B, L0, CABLE_11, 20)
+    nodes = _force_space_start(A, B, L0, CABLE_11, 20, G)
+    np.testing.assert_allclose(nodes, state.nodes, rtol=0, atol=1e-12)
+
+
+def test_tension_estimate_is_the_parabolic_cable():
+    """Inclined chord: L (1 + (8/3)(d/L)^2) = L0 (1 + T/EA), d = q L^2 / (8 T), q = m g
+    cos(theta) (theory.md §1.2), checked on the returned T; vertical chord: EA (L/L0 - 1)_+
+    + m g L0."""
+    from dynstiff.cable.lumped_chain import _tension_estimate
+    cab = Cable(0.5, 2e5)
+    A, B, L0 = np.zeros(3), np.array([6.0, 0.0, 8.0]), 10.02
+    T = _tension_estimate(A, B, L0, cab, G)
+    L, q = 10.0, 0.5 * G * 0.6
+    assert L * (1 + 8 / 3 * (q * L / (8 * T)) ** 2) == pytest.approx(L0 * (1 + T / 2e5),
+                                                                      rel=1e-10)
+    V = np.array([0.0, 0.0, 8.0])
+    assert _tension_estimate(A, V, 7.99, cab, G) == pytest.approx(
+        2e5 * (8.0 / 7.99 - 1) + 0.5 * G * 7.99, rel=1e-14)
+    assert _tension_estimate(A, V, 8.01, cab, G) == pytest.approx(0.5 * G * 8.01, rel=1e-14)
