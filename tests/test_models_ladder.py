@@ -162,3 +162,14 @@ def test_lumped_rung_has_30_segments_a_cable_by_default():
     m = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped")
     assert (m.n_free, m.n_dof) == (2, 2 + 2 * 29 * 3)
     np.testing.assert_array_equal(m.segments, [30, 30])
+
+
+def test_lumped_rung_passes_its_equilibrium_options_and_checks_segments():
+    """tol and max_iter reach the lumped equilibrium (one iteration to an unreachable tolerance
+    fails, naming both); segments = 0 is refused by the ladder with its own message."""
+    eq = ds.load_scene("planar2").equilibrium()
+    with pytest.raises(ds.errors.ConvergenceError,
+                       match=r"did not converge in 1 Newton iterations: .* > tol 1e-300$"):
+        ds.build_model(eq, "lumped", segments=4, max_iter=1, tol=1e-300)
+    with pytest.raises(InvalidParameterError, match=r"^segments must be >= 1, got 0$"):
+        ds.build_model(eq, "lumped", segments=0)
