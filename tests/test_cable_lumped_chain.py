@@ -306,3 +306,34 @@ def test_tension_estimate_is_the_parabolic_cable():
     assert _tension_estimate(A, V, 7.99, cab, G) == pytest.approx(
         2e5 * (8.0 / 7.99 - 1) + 0.5 * G * 7.99, rel=1e-14)
     assert _tension_estimate(A, V, 8.01, cab, G) == pytest.approx(0.5 * G * 8.01, rel=1e-14)
+
+
+def test_the_slack_test_counts_the_stretch_of_the_hanging_segments():
+    """Three 1 m segments of a cable with m = 1 kg/m, EA = 100 N under g = 10 m/s^2 (node
+    weight w = 10 N, w / EA = 0.1). If the middle segment is slack, segments 0 and 2 hang
+    straight down from A and B with tension w, each 1.1 m long, so nodes 1 and 2 lie 1.1 m
+    below A and B: the middle segment must bridge B - A itself. B 0.999 m beside A (at the
+    same height) is within its 1 m: slack, named in full. B also 0.1 m higher puts the
+    gap at hypot(0.999, 0.1) = 1.004 m > 1 m: the chain is taut, in balance, with a small
+    middle tension and the end segments carrying about one node weight."""
+    cable = Cable(1.0, 100.0)
+    with pytest.raises(SlackCableError, match=(
+            r"^chain_equilibrium: segment 1 of 3 has zero tension at equilibrium: the chain "
+            r"hangs vertically from both ends and that segment is slack \(unstretched_length "
+            r"3 m, chord 0\.999 m, g 10 m/s\^2\)$")):
+        chain_equilibrium([0.0, 0.0, 0.0], [0.999, 0.0, 0.0], 3.0, cable, 3, g=10.0)
+    state = chain_equilibrium([0.0, 0.0, 0.0], [0.999, 0.0, 0.1], 3.0, cable, 3, g=10.0)
+    scale = _force_scale(state)
+    assert np.max(np.linalg.norm(_node_forces(state), axis=1)) <= 1e-12 * scale
+    # middle segment stretched by less than the 4 mm excess of the gap over 1 m
+    assert 0.0 < state.tensions[1] < 100.0 * 0.004
+    np.testing.assert_allclose(state.tensions[[0, 2]], 10.0, rtol=1e-2)
+
+
+def test_a_wrong_cable_or_gravity_is_named_in_full():
+    """A cable that is not a Cable is refused naming the type given; a gravity below zero is
+    refused naming g and its bound (g = 0 is allowed)."""
+    with pytest.raises(InvalidParameterError, match=r"^cable must be a Cable, got str$"):
+        chain_equilibrium([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.2, "chain", 3)
+    with pytest.raises(InvalidParameterError, match=r"^g must be >= 0, got -9\.81$"):
+        chain_equilibrium([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 1.2, Cable(0.5, 2e5), 3, g=-9.81)
