@@ -212,3 +212,14 @@ def test_straight_start_is_the_straight_elastic_cable():
     assert L0[0] == pytest.approx(5.0 / 1.005, rel=1e-15)
     assert H[0] == pytest.approx(300.0, rel=1e-15)
     assert V0[0] == pytest.approx(400.0 - 0.6 * 5.0 / 1.005, rel=1e-15)
+
+
+def test_sag_ratio_of_a_short_sloped_cable():
+    """A cable spanning 0.5 m horizontally (rising 0.3 m, 2 N at B, deep enough to sag) has
+    the sag ratio of its CatenaryState, not the zero of a straight cable."""
+    from dynstiff.cable.catenary_batch import catenary_arrays, sag_ratios
+    A, B = np.zeros((1, 3)), np.array([[0.5, 0.0, 0.3]])
+    st_ = unstretched_length_for_tension(A[0], B[0], 2.0, CABLE, G)
+    got = sag_ratios(A, B, *catenary_arrays([st_]), *arrays([CABLE]))
+    assert got[0] > 1e-3
+    assert got[0] == pytest.approx(st_.sag / st_.chord_length, rel=1e-12)

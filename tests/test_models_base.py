@@ -73,3 +73,18 @@ def test_damping_text_lists_each_part(cogiro_eq):
     eq = replace(cogiro_eq, robot=replace(robot, cables=tuple(cables)))
     assert DampedToy(eq).damping_text() == (
         "damped: cable viscous damping up to 3 N s/m^2, cables' own loss factor up to 0.01")
+
+
+def test_require_model_messages_say_how_to_build_one(cogiro_eq):
+    """An equilibrium is told to build a model; a lumped-mass model to linearise first."""
+    import re
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "model must be a model of the ladder, got Equilibrium without "
+            "'dynamic_stiffness' (build one with build_model(equilibrium, rung))")):
+        require_model(cogiro_eq)
+    mm = ds.LumpedMassModel(cogiro_eq.robot, cogiro_eq.unstretched_lengths, 3)
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "model must be a model of the ladder, got LumpedMassModel without "
+            "'dynamic_stiffness': linearise it first, LumpedLinearModel(m, m.equilibrium()) "
+            "or build_model(eq, 'lumped')")):
+        require_model(mm)
