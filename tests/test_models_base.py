@@ -1,5 +1,6 @@
 """The interface every model shares (dynstiff/models/base.py)."""
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -88,3 +89,11 @@ def test_require_model_messages_say_how_to_build_one(cogiro_eq):
             "'dynamic_stiffness': linearise it first, LumpedLinearModel(m, m.equilibrium()) "
             "or build_model(eq, 'lumped')")):
         require_model(mm)
+
+
+def test_require_equilibrium_names_what_it_got():
+    from dynstiff.models.base import require_equilibrium
+    with pytest.raises(InvalidParameterError, match=re.escape(
+            "equilibrium must be an Equilibrium (from Robot.equilibrium or "
+            "Scene.equilibrium), got str without 'robot'")):
+        require_equilibrium("cogiro")
