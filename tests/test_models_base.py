@@ -78,7 +78,6 @@ def test_damping_text_lists_each_part(cogiro_eq):
 
 def test_require_model_messages_say_how_to_build_one(cogiro_eq):
     """An equilibrium is told to build a model; a lumped-mass model to linearise first."""
-    import re
     with pytest.raises(InvalidParameterError, match=re.escape(
             "model must be a model of the ladder, got Equilibrium without "
             "'dynamic_stiffness' (build one with build_model(equilibrium, rung))")):
