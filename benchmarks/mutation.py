@@ -261,7 +261,7 @@ cable.catenary_batch            100     79 / 21 / 0         90 / 0 / 10 (P)     
 robot.forward_statics           100     89 / 11 / 0         93 / 0 / 7 (P)             100 %
 cable.lumped_chain              100     86 / 12 / 2         95 / 1 / 4 (P)             99.0 %
 cable.exact_condense            100     90 / 10 / 0         90 / 2 / 8                 97.8 %
-cable.exact_mesh                27      25 / 1 / 1, 73 u.   26 / 0 / 1 (P)             100 % of 27
+cable.exact_mesh                100     94 / 2 / 4          96 / 0 / 4 (P), then fixed 100 %
 ==============================  ======  ==================  =========================  ========
 
   errors: user_stacklevel's seven survivors are killed in a plain run only: a mutation run
@@ -272,7 +272,10 @@ cable.exact_mesh                27      25 / 1 / 1, 73 u.   26 / 0 / 1 (P)      
   now returns the taut-string root, correct to more than dps digits, where the root's
   offset is below 10^-(dps+10); graded_chain raised UnboundLocalError for max_iter = 0 and
   now checks tol and max_iter; chain_end_dynamic_stiffness's pole warning printed
-  "np.float64(2.0)". The mpmath row is the first source's sample; the root finder's new
+  "np.float64(2.0)"; exact_mesh's mesh divided the tension measure by per_efold, documented
+  as elements per e-fold (the same at the default 1; now multiplied, and tested at 3;
+  exact_mesh's first pass counts 73 of its mutants judged after its first new test). The
+  mpmath row is the first source's sample; the root finder's new
   mutants (its taut-string branch renumbers the function's) were looked at, not sampled:
   nine survive there, seven of them likely equivalent (a precision default, <= for <, more
   bisection steps) and two (the power of psi_k in the threshold) not resolved. Survivors

@@ -55,3 +55,17 @@ def test_tangent_integrals_are_the_quadrature_of_the_tangent(H):
         return (H * H, H * V, V * V)[k] / T2
     want = [quad(part, 0.0, L0, args=(k,), epsabs=1e-14, epsrel=1e-13)[0] for k in range(3)]
     np.testing.assert_allclose(tangent_integrals(s), want, rtol=1e-12, atol=1e-14)
+
+
+@pytest.mark.parametrize("per_efold", [1.0, 3.0])
+def test_mesh_puts_per_efold_elements_in_each_e_fold_of_the_tension(per_efold):
+    """Without the band's waves (omega_max = 0), Phi(L0) = 1 + per_efold |asinh(V_B/H) -
+    asinh(V0/H)| (asinh(V/H) grows monotonically along a hanging cable), so the mesh has
+    ceil of that many elements: per_efold elements in each e-fold of the tension measure."""
+    from dynstiff.cable.exact_mesh import mesh
+    cable = ds.Cable(0.064, 1.4e5)
+    s = ds.solve_catenary([0, 0, 0], [10.0, 0, 0.0], 10.6, cable)      # a sagging U
+    span = abs(np.arcsinh(s.Vb / s.H) - np.arcsinh(s.V0 / s.H))
+    assert span > 1.0
+    edges = mesh(s, 0.0, 2.0, per_efold=per_efold)
+    assert edges.size - 1 == int(np.ceil(1.0 + per_efold * span))

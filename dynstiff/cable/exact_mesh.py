@@ -64,7 +64,7 @@ def mesh(state: CatenaryState, omega_max: float, half_waves: float,
     """Element boundaries in s [m], shape (n_el + 1,) (theory.md §11.2).
 
     Elements are spread evenly in the measure
-        Phi(s) = s / L0 + (asinh(V/H) - asinh(V0/H)) / per_efold + int k_t ds / (pi half_waves)
+        Phi(s) = s / L0 + per_efold |asinh(V/H) - asinh(V0/H)| + int k_t ds / (pi half_waves)
     where k_t = omega_max sqrt(m (1 + T/EA) / T) is the transverse wavenumber: the second term
     grades the mesh geometrically towards a point of low tension (a slack cable's U), the third
     resolves the waves of the band.
@@ -83,7 +83,7 @@ def mesh(state: CatenaryState, omega_max: float, half_waves: float,
         psi = np.log(np.maximum(st.T, 1e-300))
     k = omega_max * np.sqrt(m * (1.0 + st.T / EA) / np.maximum(st.T, 1e-300))
     wave = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * np.diff(s))])
-    phi = s / L0 + np.abs(psi - psi[0]) / per_efold + wave / (np.pi * half_waves)
+    phi = s / L0 + per_efold * np.abs(psi - psi[0]) + wave / (np.pi * half_waves)
     phi = np.maximum.accumulate(phi)
     n_el = max(1, int(np.ceil(phi[-1])))
     edges = np.interp(np.linspace(0.0, phi[-1], n_el + 1), phi, s)
