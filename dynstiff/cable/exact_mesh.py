@@ -64,7 +64,7 @@ def mesh(state: CatenaryState, omega_max: float, half_waves: float,
     """Element boundaries in s [m], shape (n_el + 1,) (theory.md §11.2).
 
     Elements are spread evenly in the measure
-        Phi(s) = s / L0 + per_efold |asinh(V/H) - asinh(V0/H)| + int k_t ds / (pi half_waves)
+        Phi(s) = s / L0 + per_efold abs(asinh(V/H) - asinh(V0/H)) + int k_t ds / (pi half_waves)
     where k_t = omega_max sqrt(m (1 + T/EA) / T) is the transverse wavenumber: the second term
     grades the mesh geometrically towards a point of low tension (a slack cable's U), the third
     resolves the waves of the band.
