@@ -97,50 +97,27 @@ def test_irvine_roots_mp_exact_crossovers_and_limits():
             assert (2 * k - 1) * pi < r < (2 * k + 1) * pi
 
 
-@pytest.mark.parametrize("lambda_sq, dps", [("1e-40", 50), ("1e-58", 50), ("1e-61", 50),
-                                             ("1e-70", 50), ("1e-40", 15), ("1e-300", 30)])
-def test_irvine_roots_mp_of_a_nearly_taut_cable(lambda_sq, dps):
+@pytest.mark.parametrize("lambda_sq, n_roots, dps", [
+    (0, 4, 30), ("1e-300", 4, 30), ("1e-40", 3, 50), ("1e-58", 3, 50), ("1e-61", 3, 50),
+    ("1e-70", 3, 50), ("1e-40", 3, 15), ("1e-300", 3, 30), ("1e-66", 20, 50),
+    ("1e-420", 3, 400), ("1e-425", 3, 400)])
+def test_irvine_roots_mp_of_a_nearly_taut_cable(lambda_sq, n_roots, dps):
     """For small lambda^2 the k-th root lies above the string's (2k-1) pi by
     4 lambda^2 / ((2k-1)^3 pi^3) (first order of tan(psi) = psi - 4 psi^3 / lambda^2 about
-    psi = (2k-1) pi / 2): to dps digits, also where that offset is below the working
-    precision (where the end values of the root's bracket are rounding noise), and to 1e-7
-    of the offset itself where dps resolves it."""
+    psi = (2k-1) pi / 2; the taut string at lambda^2 = 0): n_roots roots, each to dps digits,
+    also where that offset is below the working precision (where the end values of the
+    root's bracket, lambda^2 / (4 psi_k^3), are rounding noise: high modes, k up to 20, and
+    dps = 400), and to 1e-7 of the offset itself where dps resolves it."""
+    roots = irvine_symmetric_roots_mp(lambda_sq, n_roots, dps=dps)
+    assert len(roots) == n_roots
     with mpmath.workdps(dps + 30):
         lam2 = mpmath.mpf(lambda_sq)
-        roots = irvine_symmetric_roots_mp(lambda_sq, 3, dps=dps)
         for k, r in enumerate(roots, start=1):
             base = (2 * k - 1) * mpmath.pi
             offset = 4 * lam2 / ((2 * k - 1) ** 3 * mpmath.pi ** 3)
             assert abs(r - (base + offset)) < mpmath.mpf(10) ** (-dps) * base
             if offset > mpmath.mpf(10) ** (8 - dps) * base:
                 assert abs((r - base) / offset - 1) < 1e-7
-
-
-@pytest.mark.parametrize("lambda_sq", [0, "1e-300"])
-def test_irvine_roots_mp_of_a_taut_string_are_n_roots(lambda_sq):
-    """n_roots roots are returned, the k-th (2k-1) pi to dps = 30 significant digits: the taut
-    string at lambda^2 = 0, and at 1e-300 (offset 4 lambda^2 / ((2k-1) pi)^3 < 1e-300)."""
-    roots = irvine_symmetric_roots_mp(lambda_sq, 4, dps=30)
-    assert len(roots) == 4
-    with mpmath.workdps(40):
-        for k, r in enumerate(roots, start=1):
-            base = (2 * k - 1) * mpmath.pi
-            assert abs(r - base) < mpmath.mpf("1e-30") * base
-
-
-@pytest.mark.parametrize("lambda_sq, n_roots, dps", [("1e-66", 20, 50), ("1e-420", 3, 400),
-                                                     ("1e-425", 3, 400)])
-def test_irvine_roots_mp_of_a_nearly_taut_cable_to_dps_digits(lambda_sq, n_roots, dps):
-    """The k-th root lies 4 lambda^2 / ((2k-1) pi)^3 above (2k-1) pi (first order, as in the
-    test above), far below 10^-dps of it here; each root is (2k-1) pi to dps digits, for high
-    modes (k up to 20, whose branch-end values lambda^2 / (4 psi_k^3) ~ 1e-72 sink below the
-    rounding of cos(psi_k) at dps + 20 digits) and for dps = 400 (lambda^2 ~ 10^-(dps+20))."""
-    roots = irvine_symmetric_roots_mp(lambda_sq, n_roots, dps=dps)
-    assert len(roots) == n_roots
-    with mpmath.workdps(dps + 30):
-        for k, r in enumerate(roots, start=1):
-            base = (2 * k - 1) * mpmath.pi
-            assert abs(r - base) < mpmath.mpf(10) ** (-dps) * base
 
 
 @pytest.mark.parametrize("lambda_sq, n_roots, message", [
