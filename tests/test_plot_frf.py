@@ -55,8 +55,11 @@ def test_frf_honours_ax_and_rejects_bad_input(cogiro_model, cogiro_modes):
     res = ds.frf(cogiro_model, 2 * np.pi * np.linspace(1.0, 2.0, 50), inputs=["fz"],
                            outputs=["z"])
     fig0, ax = plt.subplots()
-    fig = plot_frf(res, cogiro_modes, ax=ax, phase=True)      # ax given: magnitude only
+    fig = plot_frf(res, cogiro_modes, ax=ax)      # ax given: magnitude only
     assert fig is ax.figure and fig.axes == [ax]
+    with pytest.raises(InvalidParameterError, match="phase=True draws its own figure"):
+        plot_frf(res, cogiro_modes, ax=ax, phase=True)      # never silently dropped
+    assert fig.axes == [ax]
     with pytest.raises(InvalidParameterError, match="result must be a FRFResult"):
         plot_frf(cogiro_modes)
     with pytest.raises(InvalidParameterError, match=r"pairs.*\('q', 'fz'\)"):

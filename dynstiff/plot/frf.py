@@ -43,9 +43,9 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
         Channels to draw, e.g. ``[("z", "fz")]`` (default: the pairs ``(outputs[k],
         inputs[k])`` present in ``result``).
     ax : matplotlib Axes, optional
-        Axes for the magnitude. When given, only the magnitude is drawn (``phase`` ignored)
-        and its figure is not laid out again: ``ax`` keeps its place. A new figure is laid
-        out tight, the legend inside it.
+        Axes for the magnitude. When given, only the magnitude is drawn (``phase`` must be
+        False: one axes cannot hold both) and its figure is not laid out again: ``ax`` keeps
+        its place. A new figure is laid out tight, the legend inside it.
     phase : bool
         With ``ax`` None, add a second axes below for the phase [deg] (default False); the
         new figure is then 10 x 6 in, the magnitude axes twice as tall as the phase axes.
@@ -66,13 +66,17 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     Raises
     ------
     InvalidParameterError
-        ``result`` not an FRF result, ``modes`` not a modal result, or a channel of
-        ``pairs`` not in ``result``.
+        ``result`` not an FRF result, ``modes`` not a modal result, a channel of ``pairs``
+        not in ``result``, or ``phase`` True with ``ax`` given.
     """
     require(result, "result", ("freq_hz", "H", "inputs", "outputs", "kind"), "FRFResult")
     if modes is not None:
         require(modes, "modes", ("freq_hz", "kind"), "ModalResult")
     phase = flag("phase", phase)
+    if phase and ax is not None:
+        raise InvalidParameterError(
+            "phase=True draws its own figure (magnitude and phase axes): pass ax=None, or "
+            "phase=False to draw the magnitude on ax")
     if pairs is None:
         pairs = list(zip(result.outputs, result.inputs))
     if isinstance(pairs, (str, bytes)) or not hasattr(pairs, "__iter__"):
