@@ -72,6 +72,14 @@ def test_inertia_convention_tensor_flips_the_products_and_moves_frequencies():
     assert 1e-3 < shift < 0.05
 
 
+def test_min_tension_raises_caspr_floor_and_is_checked():
+    """t_min = max(CASPR's force_min, min_tension): CoGiRo's file states 100 N."""
+    assert cogiro_from_caspr(min_tension=150.0)[1].tension_limits == (150.0, 5000.0)
+    assert cogiro_from_caspr(min_tension=50.0)[1].tension_limits == (100.0, 5000.0)
+    with pytest.raises(ds.errors.InvalidParameterError, match="^min_tension must be > 0"):
+        cogiro_from_caspr(min_tension=-1.0)
+
+
 def test_caspr_parallel_axis_check_favours_products_of_inertia():
     """The CoGiRo description prints the inertia at G (eq. 1, CASPR's numbers) and at P
     (eq. 2: off-diagonals -0.414, 2.205, -1.849; theory.md §8.1). The transfer G -> P matches

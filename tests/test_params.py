@@ -40,3 +40,10 @@ def test_damping_defaults_are_stated_and_printed():
     assert (d.platform_ratio, d.cable_loss_factor, d.cable_viscous_damping) == (0.01, 0.01, 0)
     assert not d.is_zero and ds.Damping(0, 0, 0).is_zero
     assert "platform modal ratio 0.01" in d.text() and "cable loss factor 0.01" in d.text()
+
+
+def test_cable_viscous_damping_has_no_upper_bound():
+    """c is a damping per length [N s/m^2], not a ratio: 1 and above are valid (the two
+    ratios stop below 1)."""
+    for c in (1.0, 250.0):
+        assert ds.Damping(cable_viscous_damping=c).cable_viscous_damping == c

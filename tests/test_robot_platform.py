@@ -128,3 +128,18 @@ def test_any_free_rotation_needs_a_positive_definite_physical_inertia():
     with pytest.raises(InvalidParameterError) as err:
         ds.Platform(mass=1.0, center_of_mass=[1.0, 2.0])
     assert str(err.value) == "center_of_mass must be 3 finite numbers [m], got [1.0, 2.0]"
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1.0, 1e6])
+def test_inertia_checks_do_not_depend_on_units(scale):
+    """The symmetry and semi-definiteness checks are relative to the tensor's size: the same
+    body in other units (a tensor scaled by 1e-6 or 1e6) gets the same verdict."""
+    skew = np.array([[1.0, 0.0, 0.0], [5e-10, 1.0, 0.0], [0.0, 0.0, 1.5]])
+    with pytest.raises(InvalidParameterError, match="^inertia must be symmetric"):
+        ds.Platform(mass=1.0, inertia=scale * skew)
+    R = rotation_matrix([0.3, -1.1, 0.7])
+    ds.Platform(mass=1.0, inertia=scale * (R @ np.diag([1.0, 1.0, 1.5]) @ R.T))  # rounding only
+    held = ("x", "y", "z")
+    with pytest.raises(InvalidParameterError, match="positive semi-definite"):
+        ds.Platform(mass=1.0, inertia=scale * np.diag([1.0, 1.0, -1e-9]), free_dofs=held)
+    ds.Platform(mass=1.0, inertia=scale * np.diag([1.0, 1.0, -1e-13]), free_dofs=held)

@@ -131,7 +131,9 @@ class Platform:
     inertia : array_like, shape (3, 3)
         Inertia tensor about G in platform axes [kg m^2]; symmetric positive definite,
         off-diagonal entries are minus the products of inertia (see module notes). A point
-        mass has zero inertia: use ``inertia=0`` together with free translations only.
+        mass has zero inertia: use ``inertia=0`` together with free translations only. The
+        checks are relative, so a tensor's verdict does not depend on its units: symmetric
+        to 1e-12 of its largest entry, no eigenvalue below -1e-12 of the largest.
     free_dofs : sequence of str, optional
         Free degrees of freedom among ``DOF_NAMES`` (default all six). Held DOFs are fixed
         (a pinned pendulum, a planar body, a point mass are the same model with some held).
@@ -162,7 +164,7 @@ class Platform:
         if I.shape != (3, 3) or not np.all(np.isfinite(I)):
             raise InvalidParameterError(
                 f"inertia must be a finite 3x3 tensor [kg m^2], got shape {I.shape}")
-        if not np.allclose(I, I.T, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(I).max())):
+        if not np.allclose(I, I.T, rtol=1e-12, atol=1e-12 * np.abs(I).max()):
             raise InvalidParameterError(f"inertia must be symmetric, got {I.tolist()}")
         if isinstance(self.free_dofs, str):
             raise InvalidParameterError(
@@ -180,7 +182,7 @@ class Platform:
             raise InvalidParameterError(
                 f"inertia must be positive definite when a rotation is free, eigenvalues "
                 f"{ev.tolist()} [kg m^2]")
-        if ev[0] < -1e-12 * max(1.0, abs(ev[-1])):
+        if ev[0] < -1e-12 * abs(ev[-1]):
             raise InvalidParameterError(f"inertia must be positive semi-definite, eigenvalues "
                                         f"{ev.tolist()} [kg m^2]")
         if rotational and (ev[2] > ev[0] + ev[1] + 1e-9 * ev[2]):
