@@ -81,3 +81,28 @@ def test_stiff_cables_converge_to_their_rounding_floor(cogiro):
     assert soft.rounding_floor(cogiro.pose, 300.0) < 1e-10     # the default tol rules there
 
 
+
+
+def test_equilibrium_record_table_plot_and_text(cogiro, cogiro_eq):
+    """The record of a robot with 3 to 6 segments per cable: one table row per cable with its
+    segment count and end tensions, the interior nodes, the tension bars and the summary."""
+    import matplotlib.pyplot as plt
+    segs = [3, 4, 5, 6, 3, 4, 5, 6]
+    st = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segs).equilibrium()
+    df = st.to_frame()
+    assert list(df.columns) == ["cable", "segments", "tension at B [N]", "tension at A [N]"]
+    assert df["cable"].tolist() == list(range(8)) and df["segments"].tolist() == segs
+    np.testing.assert_array_equal(df["tension at B [N]"], [t[-1] for t in st.tensions])
+    np.testing.assert_array_equal(df["tension at A [N]"], [t[0] for t in st.tensions])
+    # a hanging cable pulls harder at its upper end: the anchors of CoGiRo are above B
+    assert np.all(df["tension at A [N]"] > df["tension at B [N]"])
+    assert [len(x) for x in st.interior] == [s - 1 for s in segs]
+    for x, nodes in zip(st.interior, st.nodes):
+        np.testing.assert_array_equal(x, nodes[1:-1])
+    fig = st.plot()
+    bars = [p.get_height() for p in fig.axes[0].patches if p.get_gid() == "tension-B"]
+    np.testing.assert_array_equal(bars, st.end_tensions)
+    plt.close(fig)
+    t = st.end_tensions
+    assert repr(st).startswith(f"LumpedEquilibrium(8 chains, {st.pose!r}, tensions at B "
+                               f"{t.min():.4g}..{t.max():.4g} N, residual")

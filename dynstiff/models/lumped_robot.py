@@ -70,7 +70,9 @@ if TYPE_CHECKING:
 __all__ = ["LumpedMassModel"]
 
 
-def _validatedsegment_forces(segments: ArrayLike | str, n: int) -> NDArray[np.int64]:
+def _validated_segments(segments: ArrayLike | str, n: int) -> NDArray[np.int64]:
+    """Segments per cable, shape (n,), from one integer or one per cable; raise naming
+    ``segments`` otherwise."""
     if isinstance(segments, Integral) and not isinstance(segments, bool):
         segments = [segments] * n
     try:
@@ -140,7 +142,7 @@ class LumpedMassModel:
         n = robot.n_cables
         self.robot = robot
         self.unstretched_lengths = _validate.unstretched_lengths(unstretched_lengths, n)
-        self.segments = _validatedsegment_forces(segments, n)
+        self.segments = _validated_segments(segments, n)
         self.segment_lengths = self.unstretched_lengths / self.segments
         self.free_dofs = robot.platform.free_dofs
         self.free_index = robot.platform.free_index
