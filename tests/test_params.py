@@ -47,3 +47,10 @@ def test_cable_viscous_damping_has_no_upper_bound():
     ratios stop below 1)."""
     for c in (1.0, 250.0):
         assert ds.Damping(cable_viscous_damping=c).cable_viscous_damping == c
+
+
+def test_weight_per_length_is_m_g_and_checks_g():
+    c = ds.Cable(mass_per_length=0.25, EA=1e5)
+    assert c.weight_per_length(9.81) == 0.25 * 9.81 and c.weight_per_length(0.0) == 0.0
+    with pytest.raises(InvalidParameterError, match="^g must be >= 0"):
+        c.weight_per_length(-9.81)

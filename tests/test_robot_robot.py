@@ -20,6 +20,11 @@ def test_bad_robot_inputs_raise_naming_field(cogiro):
     with pytest.raises(InvalidParameterError, match="cables 2 and 3 have both ends in common"
                                                     ".*merge them into one cable"):
         ds.Robot(A, b, r.cables, r.platform)
+    b[3] += [0.0, 1e-3, 0.0]                  # 1 mm apart: two cables, a shared anchor only
+    assert ds.Robot(A, b, r.cables, r.platform).n_cables == 8
+    A[3] += [0.0, 0.0, 1e-3]
+    b[3] = b[2]                               # a shared attachment point only
+    assert ds.Robot(A, b, r.cables, r.platform).n_cables == 8
     with pytest.raises(InvalidParameterError, match="inertia"):
         ds.Platform(10.0, inertia=np.diag([1.0, 1.0, -1.0]))
     with pytest.raises(InvalidParameterError, match="inertia"):
