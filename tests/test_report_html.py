@@ -3,6 +3,7 @@
 import base64
 from html.parser import HTMLParser
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -77,11 +78,12 @@ def test_every_block_kind_has_its_markup_and_nothing_else():
     rows = [dict(check="tension", passed=True, detail="ok", value=120.5, limit=100.0),
             dict(check="band", passed=False, detail="mode in band"),
             dict(check="margin", verdict="unknown", detail="not computed"),
-            dict(check="proximity", verdict="not asked", detail="-")]
+            dict(check="proximity", verdict="not asked", detail="-"),
+            dict(check="custom", verdict="marginal", detail="a verdict not in the list")]
     page = html_page("T", [
         ("h2", "Head"), ("p", "para"), ("note", "careful"), ("ul", ["a", "b < c"]),
         ("kv", [("scene", "cogiro"), ("f", float("nan")), ("g", 9.81)]),
-        ("table", pd.DataFrame({"f [Hz]": [1.23456789], "n": [2]}, index=[7])),
+        ("table", pd.DataFrame({"f [Hz]": [1.23456789, np.nan], "n": [2, 3]}, index=[7, 8])),
         ("png", (png1, "one")), ("pngs", [(png1, "left"), (png2, "right")]),
         ("download", ("m.csv", b"x,y\n", "text/csv", "the table")),
         ("checks", rows), ("checks", [dict(check="c", passed=True, detail="d")])])
@@ -99,10 +101,12 @@ def test_every_block_kind_has_its_markup_and_nothing_else():
     assert t.texts(body + "ul") == [""] and t.texts(body + "ul/li") == ["a", "b < c"]
     assert t.texts("table/tr/th.key")[:3] == ["scene", "f", "g"]
     assert t.texts("table/tr/td.text")[:3] == ["cogiro", "", "9.81"]
-    # the DataFrame: no index column, floats to 5 significant digits
+    # the DataFrame: no index column, floats to 5 significant digits, NaN an empty cell,
+    # no border attribute (the page's style draws the rules)
     frame = [e for e in t.elements if e[0].startswith(body + "table.dataframe")]
+    assert "border" not in frame[0][1]
     assert [e[2] for e in frame if e[0].endswith("/th")] == ["f [Hz]", "n"]
-    assert [e[2] for e in frame if e[0].endswith("/td")] == ["1.2346", "2"]
+    assert [e[2] for e in frame if e[0].endswith("/td")] == ["1.2346", "2", "", "3"]
     # one figure alone, two in a grid; each image decodes to its bytes, captioned
     assert t.texts(body + "figure/figcaption") == ["one"]
     assert t.texts(body + "div.grid/figure/figcaption") == ["left", "right"]
@@ -121,6 +125,6 @@ def test_every_block_kind_has_its_markup_and_nothing_else():
     verdicts = [(e[0].rsplit(".", 1)[1], e[2]) for e in t.elements
                 if e[0].endswith(("td.pass", "td.fail", "td.unknown", "td.na"))]
     assert verdicts == [("pass", "PASS"), ("fail", "FAIL"), ("unknown", "UNKNOWN"),
-                        ("na", "n/a"), ("pass", "PASS")]
+                        ("na", "n/a"), ("fail", "MARGINAL"), ("pass", "PASS")]
     cells = [e[2] for e in t.elements if e[0] == body + "table/tr/td"]
-    assert cells == ["120.5", "100", "", "", "", "", "", ""]      # value, limit per row
+    assert cells == ["120.5", "100"] + [""] * 8                   # value, limit per row

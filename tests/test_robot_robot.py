@@ -31,6 +31,11 @@ def test_bad_robot_inputs_raise_naming_field(cogiro):
         ds.Platform(10.0, inertia=np.diag([1.0, 1.0, 5.0]))      # triangle inequality
     with pytest.raises(InvalidParameterError, match="free_dofs"):
         ds.Platform(10.0, free_dofs=("x", "q"))
+    with pytest.raises(InvalidParameterError,
+                       match="^platform must be a dynstiff.Platform, got dict"):
+        ds.Robot(r.anchors, r.attachments, r.cables, {"mass": 10.0})
+    assert ds.Robot(r.anchors, r.attachments, r.cables, r.platform,
+                    tension_limits=(0.0, 5000.0)).tension_limits == (0.0, 5000.0)  # t_min >= 0
 
 
 def test_each_stiffness_has_its_own_name(cogiro_eq):
