@@ -110,6 +110,17 @@ def test_unstretched_length_for_tension_round_trip(at, cable17):
     assert s2.H == pytest.approx(s.H, rel=1e-12)
 
 
+@pytest.mark.parametrize("strain", [0.3, 2.0, 3.0])
+def test_unstretched_length_for_tension_at_any_strain(strain):
+    """The elastic catenary is linear-elastic at every strain: a target of 2 EA and above
+    (bracket starts that a formula in 1 - T/EA would break) is found as well as 0.3 EA."""
+    cable = ds.Cable(mass_per_length=0.064, EA=1.64e3)
+    s = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], strain * cable.EA, cable)
+    assert s.tension_at_end == pytest.approx(strain * cable.EA, rel=1e-12)
+    # nearly straight: the chord is about L0 (1 + strain)
+    assert s.unstretched_length * (1 + strain) == pytest.approx(5.0, rel=0.02)
+
+
 def test_unreachable_tension_raises(cable17):
     with pytest.raises(SlackCableError, match="tension"):
         ds.unstretched_length_for_tension(A0, B0, 0.3, cable17)
