@@ -36,6 +36,9 @@ def test_bad_robot_inputs_raise_naming_field(cogiro):
         ds.Robot(r.anchors, r.attachments, r.cables, {"mass": 10.0})
     assert ds.Robot(r.anchors, r.attachments, r.cables, r.platform,
                     tension_limits=(0.0, 5000.0)).tension_limits == (0.0, 5000.0)  # t_min >= 0
+    with pytest.raises(InvalidParameterError, match=r"^tension_limits must satisfy 0 <= t_min "
+                                                    r"< t_max \[N\], got \(500.0, 500.0\)"):
+        ds.Robot(r.anchors, r.attachments, r.cables, r.platform, tension_limits=(500.0, 500.0))
 
 
 def test_each_stiffness_has_its_own_name(cogiro_eq):
