@@ -238,3 +238,24 @@ def test_stagnation_above_the_rounding_level_raises(cogiro, cogiro_eq, monkeypat
         model.equilibrium()
     assert exc.value.residual == res0
     assert f"relative residual {res0:.3e}" in str(exc.value)
+
+
+def test_record_is_read_only_and_slack_segments_are_refused(cogiro, cogiro_eq, monkeypatch):
+    """The record's arrays cannot be written (a result is not changed behind its residual);
+    a cable with a zero-tension segment at equilibrium raises SlackCableError naming it."""
+    from dynstiff.errors import SlackCableError
+    from dynstiff.models import lumped_statics
+    model = _small(cogiro, cogiro_eq)
+    st = model.equilibrium()
+    for a in st.nodes + st.tensions + [st.platform_forces]:
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0.0
+    real, calls = lumped_statics.segment_forces, []
+
+    def one_slack(x, l0, EA):           # called once per cable: segment 2 of cable 3 slack
+        u, lengths, T = real(x, l0, EA)
+        calls.append(1)
+        return u, lengths, np.where(np.arange(T.size) == 2, 0.0, T) if len(calls) == 4 else T
+    monkeypatch.setattr(lumped_statics, "segment_forces", one_slack)
+    with pytest.raises(SlackCableError, match=r"cable\(s\) \[3\] have zero-tension segments"):
+        model.equilibrium()

@@ -128,3 +128,27 @@ def test_every_block_kind_has_its_markup_and_nothing_else():
                         ("na", "n/a"), ("fail", "MARGINAL"), ("pass", "PASS")]
     cells = [e[2] for e in t.elements if e[0] == body + "table/tr/td"]
     assert cells == ["120.5", "100"] + [""] * 8                   # value, limit per row
+
+
+def test_figure_png_is_a_png_at_the_dpi_cropped_when_tight():
+    """PNG bytes whatever matplotlib's default save format; a 4 x 2 in figure at 50 dpi is
+    200 x 100 pixels, and smaller when cropped to its drawing (tight)."""
+    import struct
+
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    from dynstiff.report.html import figure_png
+
+    def size(png):
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        return struct.unpack(">II", png[16:24])            # IHDR width, height
+
+    fig = plt.figure(figsize=(4.0, 2.0))
+    fig.add_axes((0.4, 0.4, 0.2, 0.2)).plot([0, 1], [0, 1])
+    with matplotlib.rc_context({"savefig.format": "svg", "savefig.dpi": 80}):
+        assert size(figure_png(fig, dpi=50, tight=False)) == (200, 100)
+        assert size(figure_png(fig, dpi=100, tight=False)) == (400, 200)
+        w, h = size(figure_png(fig, dpi=50))
+    assert w < 150 and h < 90
+    plt.close(fig)

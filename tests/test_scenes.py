@@ -20,6 +20,16 @@ def test_scene_equilibrium_at_another_pose_or_lengths():
     np.testing.assert_allclose(fwd.pose.position, own.pose.position, atol=1e-8)
     with pytest.raises(InvalidParameterError, match="at most one"):
         scene.equilibrium(pose=[0, 0, 1], unstretched_lengths=own.unstretched_lengths)
+    # a scene of lengths only (no [pose]) balances at those lengths; one of neither refuses
+    import dataclasses
+    lengths = own.unstretched_lengths * 1.001
+    by_lengths = dataclasses.replace(scene, pose=None, unstretched_lengths=lengths)
+    eq = by_lengths.equilibrium()
+    np.testing.assert_array_equal(eq.unstretched_lengths, lengths)
+    assert eq.pose == scene.robot.equilibrium(unstretched_lengths=lengths).pose
+    assert eq.pose.position[2] < own.pose.position[2] - 1e-3        # longer cables: lower
+    with pytest.raises(ds.scenes.SceneError, match="names neither a \\[pose\\] nor"):
+        dataclasses.replace(scene, pose=None, unstretched_lengths=None).equilibrium()
 
 
 def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
