@@ -49,6 +49,10 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
     (("[analysis]", "[analysys]"), "analysys", None),
     (("forbidden_band_hz = [0.0, 1.5]", "forbidden_band_hz = [1.5, 0.0]"), "forbidden_band_hz",
      None),
+    (("mass = 91.058", 'mass = "91.058"'),
+     r"bad.toml: line 12: mass in \[platform\] must be a number, got '91.058'$", 12),
+    (('name = "cogiro"', "name = 7"), r"bad.toml: line 7: name in \[scene\] must be a string, "
+                                      r"got 7$", 7),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)
