@@ -187,3 +187,20 @@ def unstretched_lengths(value: ArrayLike | str, n: int) -> NDArray[np.float64]:
             f"unstretched_lengths must be {n} finite positive lengths [m] (one per cable), "
             f"got {value!r}")
     return L0
+
+
+def tension_reference(value: ArrayLike, n: int) -> NDArray[np.float64]:
+    """Return a reference tension [N] as a float array of shape () (every cable's) or (n,)
+    (one per cable), or raise naming ``tension_reference`` if it is neither, or not finite.
+
+    Examples
+    --------
+    >>> tension_reference(500, 8).shape, tension_reference([1.0, 2.0], 2).tolist()
+    ((), [1.0, 2.0])
+    """
+    refuse_bools("tension_reference", value)
+    ref = real_array("tension_reference", value, f"one tension or {n} [N]")
+    if ref.shape not in ((), (n,)) or not np.all(np.isfinite(ref)):
+        raise InvalidParameterError(f"tension_reference must be one tension or {n} finite "
+                                    f"tensions [N], got {value!r}")
+    return ref

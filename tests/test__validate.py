@@ -168,3 +168,14 @@ def test_worded_flags_are_refused_before_any_work(call, name):
     ds, sc = _cogiro()
     with pytest.raises(InvalidParameterError, match=f"^{name} must be True or False, got 'no'"):
         call(ds, sc)
+
+
+def test_tension_reference_is_one_or_n_finite_tensions():
+    from dynstiff._validate import tension_reference
+    assert tension_reference(500, 8).shape == () and float(tension_reference(500, 8)) == 500.0
+    np.testing.assert_array_equal(tension_reference([1.0, 2.0, 3.0], 3), [1.0, 2.0, 3.0])
+    for bad, match in (([1.0, 2.0], "one tension or 3 finite tensions"),
+                       ([1.0, np.nan, 2.0], "finite"), ([1 + 1j] * 3, "one tension or 3"),
+                       ("abc", "one tension or 3"), (True, "not booleans")):
+        with pytest.raises(InvalidParameterError, match="^tension_reference must be .*" + match):
+            tension_reference(bad, 3)

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._validate import tension_reference as checked_reference
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import eigenfrequencies, validated_request
 from dynstiff.analyses.sensitivity_kernels import CS_STEP, perturbed_primitives, primitives
@@ -250,6 +251,12 @@ def frequency_sensitivities(
         raise UnsupportedAnalysisError(
             f"frequency sensitivities need one of the rungs {RUNGS}, got {model.rung!r}")
     n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
+    if hold not in ("pose", "lengths"):
+        raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
+    if tension_reference is not None:
+        tension_reference = checked_reference(tension_reference, model.robot.n_cables)
+    L0 = (model.mass_model if model.rung == "lumped" else model.equilibrium).unstretched_lengths
+    _parameters(parameters, model.robot, model.pose, hold, tension_reference, L0)  # names first
     m = model.undamped()
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
     return sensitivities_at(m, f, parameters, hold, tension_reference)

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import compiled
-from dynstiff._validate import real_array
+from dynstiff._validate import tension_reference as checked_reference
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import catenary_states
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
@@ -251,12 +251,7 @@ def inverse_statics(robot: Robot, pose: Pose,
     Equilibrium
     """
     if tension_reference is not None:
-        n = robot.n_cables
-        ref = real_array("tension_reference", tension_reference, f"one tension or {n} [N]")
-        if ref.shape not in ((), (n,)) or not np.all(np.isfinite(ref)):
-            raise InvalidParameterError(f"tension_reference must be one tension or {n} "
-                                        f"finite tensions [N], got {tension_reference!r}")
-        tension_reference = ref
+        tension_reference = checked_reference(tension_reference, robot.n_cables)
     if start is not None:
         try:
             return _inverse_statics(robot, pose, tension_reference, tol, max_iter, start, False)
