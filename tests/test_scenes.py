@@ -53,6 +53,10 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
      r"bad.toml: line 12: mass in \[platform\] must be a number, got '91.058'$", 12),
     (('name = "cogiro"', "name = 7"), r"bad.toml: line 7: name in \[scene\] must be a string, "
                                       r"got 7$", 7),
+    (("center_of_mass = [-0.034, -0.013, 0.264]", "center_of_mass = [-0.034, -0.013]"),
+     r"center_of_mass in \[platform\] must be 3 numbers, got \[-0.034, -0.013\]$", 13),
+    (('free_dofs = ["x", "y", "z", "rx", "ry", "rz"]', 'free_dofs = "xyz"'),
+     r"free_dofs in \[platform\] must be a list of names, got 'xyz'$", 21),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)

@@ -204,6 +204,11 @@ class Scene:
                          f"give pose= or unstretched_lengths=")
 
 
+#: A table header line, ``[name]`` or ``[[name]]`` (not the continuation line of an array
+#: that spans lines, such as a row ``[1.0, 2.0, 3.0]]`` of a tensor).
+_HEADER = re.compile(r"^\s*\[\[?\s*[A-Za-z_][\w-]*(\.[\w-]+)*\s*\]\]?\s*(#.*)?$")
+
+
 def _line_of(text, key, section=None, occurrence=0):
     """1-based line of ``key =`` (inside ``[section]`` or its ``[[section]]`` number
     ``occurrence`` if given), or of the section header; None if not found."""
@@ -221,7 +226,7 @@ def _line_of(text, key, section=None, occurrence=0):
         if key is None:
             return start + 1
     for i in range(start, len(lines)):
-        if i > start and section is not None and re.match(r"^\s*\[", lines[i]):
+        if i > start and section is not None and _HEADER.match(lines[i]):
             break
         if re.match(rf"^\s*{re.escape(str(key))}\s*=", lines[i]):
             return i + 1
