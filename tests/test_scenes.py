@@ -57,6 +57,8 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
      r"center_of_mass in \[platform\] must be 3 numbers, got \[-0.034, -0.013\]$", 13),
     (('free_dofs = ["x", "y", "z", "rx", "ry", "rz"]', 'free_dofs = "xyz"'),
      r"free_dofs in \[platform\] must be a list of names, got 'xyz'$", 21),
+    (("mass = 91.058", "mass = -1.0"),
+     r"bad.toml: line 12: \[platform\] platform: mass must be > 0, got -1.0$", 12),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)
@@ -68,6 +70,20 @@ def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
         assert f"line {line}" in str(exc.value)
     else:
         assert "line " in str(exc.value)
+
+
+def test_inertia_of_another_type_and_a_missing_file_are_named(tmp_path):
+    """An inertia that is text is named with the three forms it may take and its line; a
+    missing file ending in .toml is a missing file, not an unknown built-in scene."""
+    import re
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text()
+    p = tmp_path / "bad.toml"
+    p.write_text(re.sub(r"inertia = \[\[.*?\]\]\n", 'inertia = "big"\n', text, flags=re.S))
+    with pytest.raises(ds.SceneError, match=r"bad.toml: line 18: inertia in \[platform\] must "
+                       r"be a number, 3 numbers or 3 rows of 3 numbers, got 'big'$"):
+        ds.load_scene(p)
+    with pytest.raises(FileNotFoundError, match="missing.toml"):
+        ds.load_scene(tmp_path / "missing.toml")
 
 
 def test_scene_loads_by_name_and_path(cogiro):
