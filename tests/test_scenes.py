@@ -86,6 +86,27 @@ def test_inertia_of_another_type_and_a_missing_file_are_named(tmp_path):
         ds.load_scene(tmp_path / "missing.toml")
 
 
+def test_pose_section_of_lengths_only_or_absent(tmp_path):
+    """[pose] may give unstretched_lengths instead of a position (forward statics at them);
+    a file with no [pose] loads with neither, and its equilibrium asks for one."""
+    import re
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text()
+    L0 = ds.load_scene("cogiro").equilibrium().unstretched_lengths * 1.001
+    lengths = "[pose]\nunstretched_lengths = [" + ", ".join(repr(float(x)) for x in L0) + "]\n\n"
+    p = tmp_path / "lengths.toml"
+    p.write_text(re.sub(r"\[pose\].*?\n\n", lengths, text, flags=re.S))
+    scene = ds.load_scene(p)
+    assert scene.pose is None
+    np.testing.assert_array_equal(scene.unstretched_lengths, L0)
+    np.testing.assert_array_equal(scene.equilibrium().unstretched_lengths, L0)
+    p = tmp_path / "none.toml"
+    p.write_text(re.sub(r"\[pose\].*?\n\n", "", text, flags=re.S))
+    scene = ds.load_scene(p)
+    assert scene.pose is None and scene.unstretched_lengths is None
+    with pytest.raises(ds.SceneError, match="names neither a \\[pose\\] nor"):
+        scene.equilibrium()
+
+
 def test_scene_loads_by_name_and_path(cogiro):
     assert "cogiro" in ds.list_scenes()
     r = ds.load_scene(ds.scenes.loader.SCENE_DIR / "cogiro.toml").robot
