@@ -59,6 +59,8 @@ def test_scene_gravity_and_dofs_default_to_the_package_constants(tmp_path):
      r"free_dofs in \[platform\] must be a list of names, got 'xyz'$", 21),
     (("mass = 91.058", "mass = -1.0"),
      r"bad.toml: line 12: \[platform\] platform: mass must be > 0, got -1.0$", 12),
+    (("mass = 91.058", "mass = 1" + "0" * 400),         # beyond a float: not a number
+     r"bad.toml: line 12: mass in \[platform\] must be a number, got 10000.*0000$", 12),
 ])
 def test_toml_errors_name_key_and_line(tmp_path, edit, key, line):
     text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text().replace(*edit)

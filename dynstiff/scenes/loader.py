@@ -2,6 +2,8 @@
 
 import os
 import re
+import reprlib
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -64,7 +66,9 @@ _TYPES = {
 
 
 def _is_number(v):
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
+    """A TOML number a float can hold: not a boolean, and no integer beyond 1.8e308."""
+    return isinstance(v, float) or (isinstance(v, int) and not isinstance(v, bool)
+                                    and abs(v) <= sys.float_info.max)
 
 
 def _type_error(value, kind):
@@ -288,7 +292,8 @@ def read_scene(path):
             for key, value in tab.items():
                 expected = _type_error(value, _TYPES[key])
                 if expected:
-                    fail(f"{key} in [{sec}] must be {expected}, got {value!r}", key, sec, k)
+                    fail(f"{key} in [{sec}] must be {expected}, got {reprlib.repr(value)}",
+                         key, sec, k)
             if sec == "pose" and "position" in tab and "unstretched_lengths" in tab:
                 fail("[pose] gives both position and unstretched_lengths: give one (inverse "
                      "or forward statics)", "unstretched_lengths", "pose")
