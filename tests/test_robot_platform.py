@@ -143,3 +143,5 @@ def test_inertia_checks_do_not_depend_on_units(scale):
     with pytest.raises(InvalidParameterError, match="positive semi-definite"):
         ds.Platform(mass=1.0, inertia=scale * np.diag([1.0, 1.0, -1e-9]), free_dofs=held)
     ds.Platform(mass=1.0, inertia=scale * np.diag([1.0, 1.0, -1e-13]), free_dofs=held)
+    # relative to the largest eigenvalue: -5e-11 is rounding next to 100
+    ds.Platform(mass=1.0, inertia=scale * np.diag([1.0, 100.0, -5e-11]), free_dofs=held)
