@@ -65,7 +65,9 @@ def test_tangent_equals_central_difference_jacobian(cogiro, cogiro_eq, case):
 # ------------------------------------------------------------------------------- errors
 @pytest.mark.parametrize("segments, match", [
     (0, "segments"), (-3, "segments"), (2.5, "segments"), (True, "segments"),
-    ([30] * 7, "segments"), ([30] * 7 + [0], "segments"), ("30", "segments")])
+    ([30] * 7, "segments"), ([30] * 7 + [0], r"^segments must be >= 1 for every cable, got "
+                                             r"\[30, 30, 30, 30, 30, 30, 30, 0\]$"),
+    ("30", "segments")])
 def test_bad_segments(cogiro, cogiro_eq, segments, match):
     with pytest.raises(InvalidParameterError, match=match):
         LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=segments)
@@ -79,7 +81,8 @@ def test_bad_lengths(cogiro, lengths):
 
 
 def test_other_bad_inputs(cogiro, cogiro_eq, lumped):
-    with pytest.raises(InvalidParameterError, match="robot"):
+    with pytest.raises(InvalidParameterError, match="^robot must be a dynstiff.Robot, got "
+                                                    "Platform$"):
         LumpedMassModel(cogiro.robot.platform, cogiro_eq.unstretched_lengths)
     with pytest.raises(InvalidParameterError, match="n_modes"):
         ds.eigenfrequencies(lumped(20), 0)
@@ -134,3 +137,25 @@ def test_stacked_residual_equals_the_per_cable_loop(cogiro, cogiro_eq):
     assert any(np.any(t == 0.0) for t in T)                     # slack segments among them
 
 
+
+
+def test_residual_scales_are_the_platform_size_and_the_weight(cogiro, cogiro_eq):
+    """Moments are divided by the platform's size, max |b_i| and |r_G| (0.59 m for CoGiRo's
+    attachments halved), or 1 m for a point mass; forces by the weight m_p g + sum m L0 g
+    plus the largest tension."""
+    rob = dataclasses.replace(cogiro.robot, attachments=0.5 * cogiro.robot.attachments)
+    L0 = cogiro_eq.unstretched_lengths
+    model = LumpedMassModel(rob, L0, segments=3)
+    arm, weight = model.residual_scales()
+    assert arm == max(np.linalg.norm(rob.attachments, axis=1).max(),
+                      np.linalg.norm(rob.platform.center_of_mass)) < 1.0
+    W = rob.g * (rob.platform.mass + sum(c.mass_per_length * l for c, l in zip(rob.cables, L0)))
+    assert weight == pytest.approx(W, rel=1e-15)
+    R = np.zeros(model.n_dof)
+    R[3] = 2.0                                                    # a moment about x [N m]
+    assert model.relative_residual(R, 100.0) == pytest.approx(2.0 / arm / (W + 100.0),
+                                                              rel=1e-15)
+    R[3], R[-1] = 0.0, 3.0                                        # a force on a node [N]
+    assert model.relative_residual(R, 100.0) == pytest.approx(3.0 / (W + 100.0), rel=1e-15)
+    point = LumpedMassModel(point_mass_robot(), np.full(3, 6.0), segments=3)
+    assert point.residual_scales()[0] == 1.0
