@@ -109,6 +109,28 @@ def test_pose_section_of_lengths_only_or_absent(tmp_path):
         scene.equilibrium()
 
 
+def test_analysis_damping_and_trajectory_errors_name_their_line(tmp_path):
+    """A count of zero in [analysis], a damping ratio of 2 and two trajectories of one name:
+    each error names the key, the section and the line of the key."""
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text()
+    traj = ('[[trajectories]]\nname = "pick"\nlaw = "quintic"\ntimes = [0.0, 2.0]\n'
+            "positions = [[0.0, 0.0, 1.0], [0.5, 0.0, 1.0]]\n")
+    cases = [(text.replace("n_modes = 40", "n_modes = 0"), "n_modes = 0",
+              "n_modes in [analysis] must be > 0, got 0"),
+             (text + "\n[damping]\nplatform_ratio = 2.0\n", "[damping]",
+              "[damping] damping: platform_ratio must be < 1, got 2.0"),
+             (text + "\n" + traj + "\n" + traj, 'name = "pick"',
+              "two trajectories named 'pick'")]
+    for k, (bad, key_line, message) in enumerate(cases):
+        p = tmp_path / f"bad{k}.toml"
+        p.write_text(bad)
+        lines = bad.splitlines()
+        line = len(lines) - lines[::-1].index(key_line)          # its last occurrence
+        with pytest.raises(ds.SceneError) as exc:
+            ds.load_scene(p)
+        assert str(exc.value) == f"{p}: line {line}: {message}"
+
+
 def test_scene_loads_by_name_and_path(cogiro):
     assert "cogiro" in ds.list_scenes()
     r = ds.load_scene(ds.scenes.loader.SCENE_DIR / "cogiro.toml").robot
