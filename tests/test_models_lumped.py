@@ -172,3 +172,95 @@ def test_a_worded_damping_flag_is_refused():
     lm = ds.build_model(ds.load_scene("planar2").equilibrium(), "lumped", segments=3)
     with pytest.raises(ds.InvalidParameterError, match="^damping must be True or False, got 'no'"):
         ds.LumpedLinearModel(lm.mass_model, lm.equilibrium, damping="no")
+
+
+# ------------------------------------------- K(omega) of a plumb line, argument checks, repr
+def plumb_line(segments, loss_factor=0.0, viscous_damping=0.0, damping=True):
+    """One vertical CoGiRo cable holding a 5 kg mass free in z only, 4 m below the anchor:
+    a straight chain whose z DOFs form a plain axial spring chain (theory.md §7.1)."""
+    cab = ds.Cable(0.064, 8.2051e-6 * 17e9, loss_factor=loss_factor,
+                   viscous_damping=viscous_damping)
+    rob = ds.Robot(np.array([[0.0, 0.0, 5.0]]), np.zeros((1, 3)), cab,
+                   ds.Platform(5.0, free_dofs=("z",)))
+    eq = rob.equilibrium(pose=[0.0, 0.0, 1.0])
+    mm = ds.LumpedMassModel(rob, eq.unstretched_lengths, segments=segments)
+    return ds.LumpedLinearModel(mm, mm.equilibrium(initial_pose=eq.pose), damping=damping)
+
+
+W = np.array([0.0, 0.5, 2.0, 7.0, 30.0])                         # [rad/s]
+
+
+def test_one_segment_dynamic_stiffness_is_the_closed_form_spring_mass_damper():
+    """N = 1 (no interior node, K(omega) = D_pp): the platform sees the axial spring
+    EA (1 + i eta) / L0, the mass m_p + m0 L0 / 2 (half the cable at B) and the damper
+    c0 L0 / 2 (theory.md §7.1): K(omega) = EA (1 + i eta)/L0 - omega^2 (m_p + m0 L0/2)
+    + i omega c0 L0/2, complex when damped; undamped it is real at real omega."""
+    EA, m0, mp, eta, c0 = 8.2051e-6 * 17e9, 0.064, 5.0, 0.01, 0.5
+    m = plumb_line(1, eta, c0)
+    assert m.n_dof == m.n_free == 1 and m.damped
+    L0 = m.unstretched_lengths[0]
+    D = m.dynamic_stiffness(W)
+    assert D.shape == (W.size, 1, 1) and np.iscomplexobj(D)
+    ref = EA * (1 + 1j * eta) / L0 - W ** 2 * (mp + m0 * L0 / 2) + 1j * W * c0 * L0 / 2
+    np.testing.assert_allclose(D[:, 0, 0], ref, rtol=1e-12)
+    for damping in (True, False):                                # no damping / switched off
+        u = plumb_line(1, 0.0, 0.0) if damping else plumb_line(1, eta, c0, damping=False)
+        Du = u.dynamic_stiffness(W)
+        assert not u.damped and Du.dtype == np.float64
+        np.testing.assert_allclose(Du[:, 0, 0], EA / L0 - W ** 2 * (mp + m0 * L0 / 2),
+                                   rtol=1e-12)
+
+
+def test_condensed_dynamic_stiffness_equals_dense_schur_complement_when_damped():
+    """N = 4, hysteretic + viscous: K(omega) = D_pp - K_pi D_ii^-1 K_ip with
+    D = K_damped - omega^2 M + i omega C, computed densely from the model's own matrices,
+    at several frequencies; its imaginary part (dissipation) is positive."""
+    m = plumb_line(4, 0.01, 0.5)
+    nf = m.n_free
+    assert m.n_dof == nf + 9 and m.damped and m.C is not None and m.K_damped is not None
+    K, M, C = (A.toarray() for A in (m.K_damped, m.M, m.C))
+    D = m.dynamic_stiffness(W)
+    for k, w in enumerate(W):
+        Dw = K - w ** 2 * M + 1j * w * C
+        ref = Dw[:nf, :nf] - Dw[:nf, nf:] @ np.linalg.solve(Dw[nf:, nf:], Dw[nf:, :nf])
+        np.testing.assert_allclose(D[k], ref, rtol=1e-10)
+    assert np.all(D.imag > 0)
+
+
+def test_damping_matrices_exist_only_for_damped_cables():
+    """K_damped only with a loss factor, C only with viscous damping, neither with
+    damping=False; damped says whether any is there."""
+    cases = {(0.0, 0.0, True): (False, False), (0.01, 0.0, True): (True, False),
+             (0.0, 0.5, True): (False, True), (0.01, 0.5, False): (False, False)}
+    for (eta, c0, damping), (hyst, visc) in cases.items():
+        m = plumb_line(1, eta, c0, damping)
+        assert (m.K_damped is not None, m.C is not None) == (hyst, visc)
+        assert m.damped == (hyst or visc)
+        assert (m.undamped() is m) == (not m.damped)
+
+
+def test_wrong_argument_types_are_refused_naming_the_argument():
+    """mass_model must be a LumpedMassModel, state a LumpedEquilibrium; the error names the
+    argument and the type given."""
+    m = plumb_line(1)
+    with pytest.raises(ds.InvalidParameterError,
+                       match="^mass_model must be a LumpedMassModel, got str$"):
+        ds.LumpedLinearModel("cable", m.equilibrium)
+    eq = m.robot.equilibrium(pose=[0.0, 0.0, 1.0])
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"^state must be a LumpedEquilibrium \(from "
+                             r"mass_model.equilibrium\(\)\), got Equilibrium$"):
+        ds.LumpedLinearModel(m.mass_model, eq)
+
+
+def test_repr_gives_cables_segments_dofs_and_pose():
+    """One segment count when all cables share it (also for a single cable), else the list."""
+    m = plumb_line(3)
+    assert repr(m) == (f"LumpedLinearModel(rung='lumped', 1 cables, segments 3, n_dof 7, "
+                       f"{m.pose!r})")
+    rob = point_mass_robot()
+    eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])
+    mm = ds.LumpedMassModel(rob, eq.unstretched_lengths, segments=[1, 2, 1])
+    m3 = ds.LumpedLinearModel(mm, mm.equilibrium())
+    assert repr(m3) == (f"LumpedLinearModel(rung='lumped', 3 cables, segments [1, 2, 1], "
+                        f"n_dof 6, {m3.pose!r})")

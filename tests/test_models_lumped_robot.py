@@ -98,6 +98,8 @@ def test_per_cable_segments(cogiro, cogiro_eq):
     st = model.equilibrium()
     assert [len(t) for t in st.tensions] == segs
     assert model.n_dof == 6 + 3 * sum(n - 1 for n in segs)
+    one = LumpedMassModel(cogiro.robot, cogiro_eq.unstretched_lengths, segments=1)
+    assert list(one.segments) == [1] * 8 and one.n_dof == 6       # no interior node
 
 
 def test_the_lumped_model_holds_no_hidden_state(cogiro, cogiro_eq):

@@ -85,3 +85,57 @@ def test_axial_dashpot_stacked_equals_loop_and_dissipates_its_power(lumped):
         power -= c_ax[i] * l0 * np.sum(np.where(lengths > l0, rate**2, 0.0))
     assert power < 0
     assert F @ v == pytest.approx(power, rel=1e-10)
+
+
+def test_slack_segments_are_those_without_tension(cogiro, cogiro_eq):
+    """Straight chains whose segments carry 0.5 N are taut (none reported slack, 0.5 N at
+    both ends); a chain a little shorter than its unstretched length has zero tension: slack,
+    reported at its first segment."""
+    from dynstiff.timedomain.dynamics import interior_views
+    rob, pose, N = cogiro.robot, cogiro_eq.pose, 4
+    B, _ = rob.attachment_points(pose)
+    chord = np.linalg.norm(B - rob.anchors, axis=1)
+    EA = np.array([c.EA for c in rob.cables])
+    L0 = chord / (1.0 + 0.5 / EA)                                 # T = 0.5 N when straight
+    L0[5] = chord[5] * (1.0 + 1e-9)                               # shorter than l0: T = 0
+    mm = LumpedMassModel(rob, L0, segments=N)
+    X = np.concatenate([(a + np.outer(np.arange(1, N) / N, b - a)).ravel()
+                        for a, b in zip(rob.anchors, B)])
+    assert [x.shape for x in interior_views(mm, X)] == [(N - 1, 3)] * 8
+    _, _, t_end, t_anchor, slack, strain = potential_energy(mm, Frame(mm, pose), X)
+    np.testing.assert_allclose(np.delete(t_end, 5), 0.5, rtol=1e-6)
+    np.testing.assert_allclose(np.delete(t_anchor, 5), 0.5, rtol=1e-6)
+    assert t_end[5] == 0.0 and slack == [(5, 0)]
+    assert strain == pytest.approx(0.5 / EA.min(), rel=1e-6)
+
+
+def test_model_at_other_lengths_and_an_increment_about_x_alone(lumped):
+    """model_at keeps the model for equal lengths and rebuilds it for others; an increment
+    that rotates about x alone turns the platform (composed exactly, as Pose.moved)."""
+    from dynstiff.timedomain.dynamics import FastPose, advance, model_at
+    mm, st = lumped
+    assert model_at(mm, mm.unstretched_lengths.copy()) is mm
+    other = model_at(mm, 1.001 * mm.unstretched_lengths)
+    np.testing.assert_array_equal(other.unstretched_lengths, 1.001 * mm.unstretched_lengths)
+    assert list(other.segments) == list(mm.segments) and other.robot is mm.robot
+    pose = FastPose(st.pose.position, st.pose.rotation)
+    X = np.concatenate([x.ravel() for x in st.interior])
+    dx = np.zeros(mm.n_dof)
+    dx[3] = 1e-3                                                   # rx only
+    moved, X2 = advance(mm, pose, X, dx)
+    want = st.pose.moved(np.r_[0.0, 0.0, 0.0, 1e-3, 0.0, 0.0])
+    np.testing.assert_allclose(moved.rotation, want.rotation, rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(moved.position, st.pose.position)
+    np.testing.assert_array_equal(X2, X)
+
+
+def test_loads_are_six_floats_whatever_the_excitation_returns():
+    """An excitation may return integers or numeric text: the loads are float64; anything but
+    6 finite numbers is refused with the time."""
+    from dynstiff.errors import InvalidParameterError
+    from dynstiff.timedomain.dynamics import load_at
+    f = load_at(lambda t: [0, 0, 1, 0, 0, 0], 0.0)
+    assert f.dtype == np.float64 and f.tolist() == [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+    assert load_at(lambda t: ["0", "0", "2.5", "0", "0", "0"], 0.0)[2] == 2.5
+    with pytest.raises(InvalidParameterError, match=r"6 finite loads .* at t = 0.5 s"):
+        load_at(lambda t: [0.0, np.inf, 0.0, 0.0, 0.0, 0.0], 0.5)
