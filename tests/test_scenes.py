@@ -131,6 +131,17 @@ def test_analysis_damping_and_trajectory_errors_name_their_line(tmp_path):
         assert str(exc.value) == f"{p}: line {line}: {message}"
 
 
+def test_scene_name_and_description_default_to_the_file(tmp_path):
+    """Without name and description in [scene], the name is the file's stem and the
+    description empty."""
+    text = (ds.scenes.loader.SCENE_DIR / "cogiro.toml").read_text()
+    lines = [ln for ln in text.splitlines() if not ln.startswith(("name =", "description ="))]
+    p = tmp_path / "my_robot.toml"
+    p.write_text("\n".join(lines) + "\n")
+    scene = ds.load_scene(p)
+    assert (scene.name, scene.description) == ("my_robot", "")
+
+
 def test_scene_loads_by_name_and_path(cogiro):
     assert "cogiro" in ds.list_scenes()
     r = ds.load_scene(ds.scenes.loader.SCENE_DIR / "cogiro.toml").robot
