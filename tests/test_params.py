@@ -54,3 +54,12 @@ def test_weight_per_length_is_m_g_and_checks_g():
     assert c.weight_per_length(9.81) == 0.25 * 9.81 and c.weight_per_length(0.0) == 0.0
     with pytest.raises(InvalidParameterError, match="^g must be >= 0"):
         c.weight_per_length(-9.81)
+
+
+def test_cable_values_are_stored_as_floats():
+    """Numbers given as text, integers or numpy scalars are stored as Python floats."""
+    import numpy as np
+    c = ds.Cable(mass_per_length="0.5", EA=np.float32(1e5), loss_factor=0, viscous_damping=2)
+    assert [type(v) for v in (c.mass_per_length, c.EA, c.loss_factor, c.viscous_damping)] \
+        == [float] * 4
+    assert (c.mass_per_length, c.EA) == (0.5, 1e5)
