@@ -318,7 +318,7 @@ models.lumped                      100     82 / 18 / 0         99 / 0 / 1 (P)   
 models.lumped_robot                100     90 / 10 / 0         97 / 0 / 3 (P)             100 %
 timedomain.dynamics                100     95 / 5 / 0          99 / 0 / 1 (P)             100 %
 analyses.sensitivity_lumped        100     94 / 6 / 0          94 / 2 / 4 (not handled)   97.9 %
-analyses.sensitivity_statics       100     87 / 13 / 0         first pass only            87.0 %
+analyses.sensitivity_statics       100     87 / 13 / 0         94 / 3 / 3 (P)             96.9 %
 =================================  ======  ==================  =========================  ======
 
   Found on the way and fixed, each with a test that fails on the old code: the scene
@@ -340,11 +340,17 @@ analyses.sensitivity_statics       100     87 / 13 / 0         first pass only  
   survivors of sensitivity_lumped (forms mutmut_8, the gravity vector's x component 1
   instead of 0 in the forms' geometric stiffness: the slow tier's central-difference test
   of the lumped rung passes with it planted, its effect below that test's tolerance; and
-  _98, EA / axial for EA * axial, which differ only where a segment is slack) and the 13
-  of sensitivity_statics. Not run at all: about
-  15 modules (the largest: report.robot3d, timedomain.stepping, analyses.sensitivity_rungs,
-  cable.exact, timedomain.simulation; also analyses.sensitivity_kernels, models.dsm_compiled,
-  maps/cli/compiled __init__), and the third round's rows noted above.
+  _98, EA / axial for EA * axial, which differ only where a segment is slack), and three
+  of sensitivity_statics, each a tolerance band no caller reaches: _active_set mutmut_44
+  (<= for < at a tension exactly one tolerance from t_min: the statics put held cables
+  at t_min to 3e-13), _factor mutmut_18 (the pivot indices' largest, always n - 1, for
+  the largest pivot in the singularity test: it moves the 1e-13 threshold by a factor 2
+  to 20; the singular cases that occur have a zero pivot) and __init__ mutmut_108 (a 2 N
+  floor for 1 N in the optimality check's scale: it matters only below 2 N tensions).
+  Not run at all: about 15 modules (the largest: report.robot3d, timedomain.stepping,
+  analyses.sensitivity_rungs, cable.exact, timedomain.simulation; also
+  analyses.sensitivity_kernels, models.dsm_compiled, maps/cli/compiled __init__), and the
+  third round's rows noted above.
 
   * results: judged on its last source (DampedModes' repr edited last); its two
   survivors were then named equivalent (an index read only for a non-empty channel) and
@@ -1830,6 +1836,15 @@ EQUIVALENT.update({
     f"{_SL}_config__mutmut_8": "a 7th column of the increment, always zero: d6[:, 3:] gains "
                                "a zero 4th entry, which adds 0 to theta^2 and which skew3 "
                                "does not read (it takes components 0 to 2)",
+})
+_SS = "dynstiff.analyses.sensitivity_statics.xǁLinearisedEquilibriumǁ"
+EQUIVALENT.update({
+    f"{_SS}derivatives__mutmut_27":
+        "check_finite=None for False: a false value, lu_solve skips the check either way",
+    f"{_SS}__init____mutmut_26":
+        "P['L0'] filled at a fixed pose too: it is read only by quantities() when L0 is no "
+        "unknown, i.e. at fixed lengths",
+    f"{_SS}__init____mutmut_49": "scale_N = None: the attribute is never read (dead)",
 })
 EQUIVALENT = _relocated(EQUIVALENT)
 
