@@ -135,3 +135,5 @@ def test_bad_requests_are_refused_before_the_search(cogiro, monkeypatch):
         ds.frequency_sensitivities(model, ["mass"], n_modes=2, hold="length")
     with pytest.raises(InvalidParameterError, match="'bogus' is not a parameter"):
         ds.frequency_sensitivities(model, ["bogus"], n_modes=2)
+    with pytest.raises(InvalidParameterError, match="^tension_reference must be"):
+        sens.sensitivities_at(model, np.array([1.0]), ["t_ref_0"], tension_reference="abc")

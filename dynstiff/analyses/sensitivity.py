@@ -251,12 +251,7 @@ def frequency_sensitivities(
         raise UnsupportedAnalysisError(
             f"frequency sensitivities need one of the rungs {RUNGS}, got {model.rung!r}")
     n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
-    if hold not in ("pose", "lengths"):
-        raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
-    if tension_reference is not None:
-        tension_reference = checked_reference(tension_reference, model.robot.n_cables)
-    L0 = (model.mass_model if model.rung == "lumped" else model.equilibrium).unstretched_lengths
-    _parameters(parameters, model.robot, model.pose, hold, tension_reference, L0)  # names first
+    tension_reference = _checked_request(model, parameters, hold, tension_reference)
     m = model.undamped()
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
     return sensitivities_at(m, f, parameters, hold, tension_reference)
@@ -281,10 +276,9 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
     >>> round(float(sensitivities_at(m, f, ["mass"]).derivative[0, 0]), 5)  # Hz/kg
     -0.01118
     """
+    tension_reference = _checked_request(model, parameters, hold, tension_reference)
     m = model.undamped()
     f = np.asarray(freq_hz, dtype=float)
-    if hold not in ("pose", "lengths"):
-        raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
     if m.rung == "lumped":
         return _lumped(m, f, parameters, hold, tension_reference)
     lin = linearisation or LinearisedEquilibrium(m.equilibrium, hold, tension_reference)
@@ -317,6 +311,19 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
         "modes with the platform at rest on a cable pole (NaN): their sensitivities are "
         "those of the clamped cable")
     return _result(out, f, params, groups, m.rung, hold, note)
+
+
+def _checked_request(model: PlatformModel, parameters: list[str | Parameter], hold: str,
+                     tension_reference: ArrayLike | None) -> NDArray[np.float64] | None:
+    """``hold``, ``tension_reference`` and the parameter names checked before any work (a
+    typed error naming the argument); returns the reference as an array (or None)."""
+    if hold not in ("pose", "lengths"):
+        raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
+    if tension_reference is not None:
+        tension_reference = checked_reference(tension_reference, model.robot.n_cables)
+    L0 = (model.mass_model if model.rung == "lumped" else model.equilibrium).unstretched_lengths
+    _parameters(parameters, model.robot, model.pose, hold, tension_reference, L0)
+    return tension_reference
 
 
 def _parameters(parameters: list[str | Parameter], robot: Robot, pose: Pose, hold: str,
