@@ -88,7 +88,8 @@ def divided_differences(
     same = np.real(a) * np.real(b) > 0
     zero = np.real(delta) == 0
     d = np.where(zero, 1.0, delta)
-    iod = np.where(same, (a + b) / (b * sa + a * sb), (b * sa - a * sb) / d)
+    with np.errstate(divide="ignore", invalid="ignore"):    # np.where evaluates both forms
+        iod = np.where(same, (a + b) / (b * sa + a * sb), (b * sa - a * sb) / d)
     d_asinh = np.where(zero, 1.0 / sa, np.arcsinh(d * iod) / d)
     d_f = np.where(zero, 1.0 / sa**3, iod / (sa * sb))
     d_g = np.where(zero, -a / sa**3, -(a + b) / ((sa + sb) * sa * sb))
