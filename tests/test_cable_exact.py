@@ -553,3 +553,24 @@ def test_the_self_check_refuses_a_discretisation_that_misses_the_statics():
     assert 1e-3 < err.value.residual < 1e-2
     ec = ExactCable(s, 0.1)
     assert ec.static_mismatch < 1e-10 and ec.static_floor < 1e-6
+
+
+def test_a_response_exactly_on_a_clamped_pole_is_finite_and_silent():
+    """At an omega where w^2 mu_j = 1 exactly (a clamped mode's pole, as a mode shape at a
+    root on a cable pole asks), the undetermined resonant amplitude is dropped: the nodes are
+    finite, the end node is u_end, and no floating-point warning escapes (the package's
+    RuntimeWarnings are errors in the tests)."""
+    s = state(HARD["soft, axial mode among the first ten"])
+    ec = ExactCable(s, TWO_PI * 4.0)
+    poles = []
+    for f in ec._fam:                               # omegas with w^2 mu == 1 in floats
+        for mu in f.mu[1 / f.mu < ec.omega_max ** 2]:
+            w = np.sqrt(1 / mu)
+            poles += [c for c in (w, np.nextafter(w, 0), np.nextafter(w, np.inf))
+                      if c * c * mu == 1.0][:1]
+    assert len(poles) >= 3
+    u_end = np.array([0.1, 0.2, 0.3])
+    for w in poles[:3]:
+        u = ec.end_response(float(w), u_end)
+        assert np.all(np.isfinite(u))
+        np.testing.assert_array_equal(u[-1], u_end)
