@@ -247,3 +247,180 @@ def test_a_boolean_scale_is_refused():
     r = ds.modes(ds.FrequencyModel(eq), n_modes=2)
     with pytest.raises(InvalidParameterError, match="^scale must be a real number, got True"):
         plot_robot(eq, r, mode=0, scale=True)
+
+
+# ------------------------------------------------------------- documented styles and layout
+def drawn_points(ax):
+    """Every point the main axes draw (lines and markers), NaN separators dropped."""
+    pts = [np.column_stack(ln.get_data_3d()) for ln in ax.get_lines()]
+    pts += [np.column_stack(c._offsets3d) for c in by_gid(ax, "anchors") + by_gid(ax, "P")]
+    pts = np.vstack(pts)
+    return pts[np.all(np.isfinite(pts), axis=1)]
+
+
+def gid1(ax, gid):
+    (a,) = [a for a in ax.get_children() if a.get_gid() == gid]
+    return a
+
+
+def test_static_figure_styles_layout_and_title(cogiro_eq):
+    """Module and plot_robot docstrings: static cables 1.2 wide in grey 0.15, the platform's
+    edges 1.5 wide in orange, faces without edges, P a black dot (20 pt^2) at P; the view
+    (22, -60), the limits (bounding box, sides >= 15 % of the longest, + 6 %), the tick
+    counts, the figure's size and axes rectangle, the legend's corner, the labels' offsets
+    and the title, all read back."""
+    from matplotlib.colors import to_rgba
+    from matplotlib.ticker import MaxNLocator
+    with plt.rc_context({"patch.force_edgecolor": True}):   # a style that edges patches
+        fig = plot_robot(cogiro_eq)
+    ax = fig.axes[0]
+    rob, P = cogiro_eq.robot, cogiro_eq.pose.position
+    B, _ = rob.attachment_points(cogiro_eq.pose)
+    for i in range(8):
+        c = gid1(ax, f"cable-{i}")
+        assert c.get_linewidth() == 1.2 and to_rgba(c.get_color()) == to_rgba("0.15")
+    plat = gid1(ax, "platform")
+    assert plat.get_linewidth() == 1.5 and to_rgba(plat.get_color()) == to_rgba("tab:orange")
+    assert len(gid1(ax, "platform-faces").get_edgecolor()) == 0      # "none", whatever the style
+    dot = gid1(ax, "P")
+    np.testing.assert_array_equal(np.ravel(dot._offsets3d), P)
+    assert tuple(dot.get_facecolor()[0]) == to_rgba("k") and dot.get_sizes()[0] == 20
+    assert (ax.elev, ax.azim) == (22, -60)
+    pts = drawn_points(ax)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    side = np.maximum(hi - lo, 0.15 * np.max(hi - lo)) * 1.06
+    lims = np.array([ax.get_xlim(), ax.get_ylim(), ax.get_zlim()])
+    np.testing.assert_allclose(lims.mean(axis=1), (lo + hi) / 2, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(np.ptp(lims, axis=1), side, rtol=1e-12)
+    assert side[2] < 0.4 * side.max()                  # z gets the floor of 3 ticks
+    # matplotlib has no public getter of a MaxNLocator's nbins
+    assert [a.get_major_locator()._nbins for a in (ax.xaxis, ax.yaxis, ax.zaxis)] == [
+        int(np.clip(round(8 * s / side.max()), 3, 8)) for s in side]
+    assert all(isinstance(a.get_major_locator(), MaxNLocator)
+               for a in (ax.xaxis, ax.yaxis, ax.zaxis))
+    h = np.ptp(np.vstack([rob.anchors, B]), axis=0)
+    np.testing.assert_allclose(fig.get_size_inches(),
+                               [10.0, 10.0 * (0.24 + 0.5 * min(1.0, h[2] / max(h[:2])))])
+    np.testing.assert_allclose(ax.get_position(original=True).bounds,
+                               (-0.03, -0.07, 0.74, 0.98), atol=1e-12)
+    leg = fig.legends[0]
+    corner = leg.get_bbox_to_anchor().transformed(fig.transFigure.inverted()).bounds[:2]
+    np.testing.assert_allclose(corner, (0.71, 0.97), atol=1e-12)
+    assert [t.get_fontsize() for t in leg.get_texts()][:1] == [7.0]
+    size = h.max()
+    for i in range(8):                                   # even above, odd below the anchor
+        t = gid1(ax, f"anchor-label-{i}")
+        assert t.get_fontsize() == 8
+        np.testing.assert_allclose(t.get_position_3d(),
+                                   rob.anchors[i] + [0, 0, 0.025 * size * (-1) ** i],
+                                   rtol=0, atol=1e-12)
+    assert ax.get_title() == f"cogiro at equilibrium, P = {[round(float(v), 3) for v in P]} m"
+    ref = plt.figure().add_subplot(projection="3d")
+    ref.set_title("t", y=0.98)
+    assert ax.title.get_position()[1] == ref.title.get_position()[1]
+    assert ax.title.get_fontsize() == 10
+
+
+def test_mode_figure_styles_close_up_and_given_axes(cogiro_eq, cogiro_modes):
+    """Under a mode: static cables 0.9 wide and P in light grey, mode cables 1.3 wide, the
+    displaced platform 2.0 wide in orange with its orange faces, arrows 1.0 wide; the
+    close-up's cable stubs 1.0 wide, its platform at B_i + f dB_i and its diamond at
+    P + f dp (f = 0.25 * platform size / largest motion), in a cube. In a given axes the
+    legend's centre left is at (1.17, 0.5) and the title at y = 0.9."""
+    from matplotlib.colors import to_rgba
+    k, scale = 2, 3.0
+    x6 = cogiro_modes.platform_shapes[k]
+    dB = x6[:3] + np.cross(x6[3:], cogiro_eq.lever_arms)
+    B, _ = cogiro_eq.robot.attachment_points(cogiro_eq.pose)
+    P = cogiro_eq.pose.position
+    fig = plot_robot(cogiro_eq, cogiro_modes, k, scale=scale)
+    ax = fig.axes[0]
+    for i in range(8):
+        c = gid1(ax, f"cable-{i}")
+        assert c.get_linewidth() == 0.9 and to_rgba(c.get_color()) == to_rgba("0.65")
+        assert gid1(ax, f"cable-{i}-mode").get_linewidth() == 1.3
+    assert tuple(gid1(ax, "P").get_facecolor()[0]) == to_rgba("0.65")
+    pm = gid1(ax, "platform-mode")
+    assert pm.get_linewidth() == 2.0 and to_rgba(pm.get_color()) == to_rgba("tab:orange")
+    faces = gid1(ax, "platform-mode-faces")
+    assert tuple(faces.get_facecolor()[0]) == to_rgba("tab:orange", 0.35)
+    assert list(gid1(ax, "motion").get_linewidth()) == [1.0]
+    assert ax.get_title() == (
+        f"cogiro: mode 3 of 8, {cogiro_modes.freq_hz[k]:.4g} Hz, {cogiro_modes.kind[k]}\n"
+        "displacements x 3, cables quasi-static (give model= for their fields)")
+    (inset,) = [a for a in fig.axes if a.get_gid() == "platform-inset"]
+    stubs = [ln for ln in inset.get_lines() if ln.get_gid() is None]
+    assert len(stubs) == 8 and all(ln.get_linewidth() == 1.0 for ln in stubs)
+    f = 0.25 * np.ptp(B, axis=0).max() / max(np.linalg.norm(dB, axis=1).max(),
+                                              np.linalg.norm(x6[:3]))
+    static, moved = line(inset, "inset-platform"), line(inset, "inset-platform-mode")
+    ok = np.all(np.isfinite(static), axis=1)
+    for p, q in zip(static[ok], moved[ok]):
+        i = int(np.argmin(np.linalg.norm(B - p, axis=1)))
+        np.testing.assert_allclose(q, B[i] + f * dB[i], rtol=0, atol=1e-12)
+    (diamond,) = [c for c in inset.collections if hasattr(c, "_offsets3d")]
+    np.testing.assert_allclose(np.ravel(diamond._offsets3d), P + f * x6[:3], atol=1e-12)
+    box = inset.get_box_aspect()
+    np.testing.assert_allclose(box / box[0], [1.0, 1.0, 1.0], rtol=1e-12)
+    ax2 = plt.figure().add_subplot(projection="3d")
+    plot_robot(cogiro_eq, cogiro_modes, k, scale=scale, ax=ax2)
+    anchor = ax2.get_legend().get_bbox_to_anchor().transformed(ax2.transAxes.inverted())
+    np.testing.assert_allclose(anchor.bounds[:2], (1.17, 0.5), atol=1e-12)
+    ref = plt.figure().add_subplot(projection="3d")
+    ref.set_title("t", y=0.9)
+    assert ax2.title.get_position()[1] == ref.title.get_position()[1]
+
+
+def test_title_of_a_mode_that_leaves_everything_at_rest(cogiro_eq, cogiro_modes):
+    """A purely local mode drawn without model: nothing drawn moves, and the title says so."""
+    import dataclasses
+    rest = dataclasses.replace(cogiro_modes,
+                               platform_shapes=np.zeros_like(cogiro_modes.platform_shapes))
+    title = plot_robot(cogiro_eq, rest, 1).axes[0].get_title()
+    assert title.endswith("\nplatform at rest (purely local cable mode; shape not drawn)")
+    assert title.startswith("cogiro: mode 2 of 8,")
+
+
+def test_flat_robot_figure_height_from_its_proportions():
+    """pendulum: 2.4 m wide, 0.75 m high, no depth (floored at 1e-9 m, not 1 m): the figure is
+    10 x 10 (0.24 + 0.5 * 0.75 / 2.4) in."""
+    eq = ds.load_scene("pendulum").equilibrium()
+    B, _ = eq.robot.attachment_points(eq.pose)
+    h = np.ptp(np.vstack([eq.robot.anchors, B]), axis=0)
+    assert h[1] == 0.0 and h[2] < 1.0 < h[0]
+    fig = plot_robot(eq)
+    np.testing.assert_allclose(fig.get_size_inches(), [10.0, 10.0 * (0.24 + 0.5 * h[2] / h[0])])
+
+
+def test_animation_frames_follow_sin_of_phase(tmp_path, cogiro_eq, cogiro_modes, monkeypatch):
+    """Frame j (of 4) draws the shape times sin(2 pi j / 4) with a plus sign: the cables'
+    ends, the platform and P at B_i + scale sin dB_i and P + scale sin dp; labelled axes."""
+    from matplotlib.animation import PillowWriter
+    grab, seen = PillowWriter.grab_frame, []
+
+    def record(self, **kw):
+        ax = self.fig.axes[0]
+        seen.append(dict(labels=(ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()),
+                         ends=np.array([line(ax, f"cable-{i}-mode")[-1] for i in range(8)]),
+                         plat=line(ax, "platform-mode"),
+                         P=np.ravel(gid1(ax, "P-mode")._offsets3d)))
+        grab(self, **kw)
+
+    monkeypatch.setattr(PillowWriter, "grab_frame", record)
+    k, scale = 0, 2.0
+    animate_mode(cogiro_eq, cogiro_modes, k, tmp_path / "a.gif", frames=4, scale=scale, dpi=20)
+    x6 = cogiro_modes.platform_shapes[k]
+    dB = x6[:3] + np.cross(x6[3:], cogiro_eq.lever_arms)
+    B, _ = cogiro_eq.robot.attachment_points(cogiro_eq.pose)
+    assert len(seen) == 4
+    for j, fr in enumerate(seen):
+        s = scale * np.sin(2 * np.pi * j / 4)
+        assert fr["labels"] == ("x [m]", "y [m]", "z [m]")
+        np.testing.assert_allclose(fr["ends"], B + s * dB, rtol=0, atol=1e-9)
+        np.testing.assert_allclose(fr["P"], cogiro_eq.pose.position + s * x6[:3], atol=1e-12)
+        ok = np.all(np.isfinite(fr["plat"]), axis=1)
+        for q in fr["plat"][ok]:
+            assert np.min(np.linalg.norm(B + s * dB - q, axis=1)) < 1e-12
+    assert np.abs(dB).max() > 1e-3                         # frames 1 and 3 do move
+    with pytest.raises(InvalidParameterError, match=r"^fps must be > 0, got 0\.0"):
+        animate_mode(cogiro_eq, cogiro_modes, 0, tmp_path / "b.gif", fps=0)

@@ -17,6 +17,28 @@ Artists carry a ``gid``: ``anchors``, ``P``, ``cable-<i>`` (static cable i), ``p
 ``platform-mode-faces`` and ``P-mode``. A platform smaller than a tenth of the robot gets a
 close-up axes of its own (gid ``platform-inset``, lines ``inset-platform`` and
 ``inset-platform-mode``), where its motion is drawn at its own scale.
+
+What the figure shows (line widths in points, marker sizes in points^2):
+
+- static cables (``cable-<i>``): 1.2 wide, dark grey (0.15); under a mode shape 0.9 wide,
+  light grey (0.65);
+- the static platform: edges (``platform``) 1.5 wide, faces (``platform-faces``, alpha 0.25)
+  filled without edge lines, both orange, light grey under a mode shape; P (``P``) a dot
+  (``o``, 20), black, light grey under a mode shape;
+- the mode shape, drawn at B_i + scale * dB_i and P + scale * dp (plus, not minus: the
+  displacement the mode's ``platform_shapes`` give): each cable (``cable-<i>-mode``) 1.3 wide
+  in a colour of its own, the platform's edges (``platform-mode``) 2.0 wide and faces
+  (``platform-mode-faces``, alpha 0.35, no edge lines) in orange, P (``P-mode``) an orange
+  diamond (``D``, 60) edged in black; arrows (``motion``, black, 1.0 wide) from B_i and P to
+  their displaced points;
+- cable numbers (``anchor-label-<i>``, 8 pt, in the colour of cable i's mode shape) at each
+  anchor point, offset along z by 2.5 % of the robot's size (the longest side of the bounding
+  box of the anchors and attachment points): above the anchor for even i, below for odd i;
+- the close-up (``platform-inset``): a cube (box aspect 1:1:1) seen as the main view, at
+  most 3 tick intervals per axis, the last stretch of each cable 1.0 wide in light grey, the
+  platform's edges 1.8 wide (light grey static, orange at B_i + f dB_i) and P an orange
+  diamond (30) at P + f dp, with f = 0.25 * platform size / largest motion of the B_i and P,
+  titled ``platform close-up, motion x <f:.3g>``.
 """
 
 from pathlib import Path
@@ -294,7 +316,29 @@ def plot_robot(eq, modes=None, mode=None, scale=None, ax=None, n_points=41, mode
     matplotlib Figure
         Axes with equal scales, labels ``x [m]``, ``y [m]``, ``z [m]``; gids ``anchors``,
         ``P``, ``cable-<i>``, ``platform``, ``platform-faces`` and, with a mode,
-        ``cable-<i>-mode``, ``platform-mode``, ``platform-mode-faces``, ``P-mode``.
+        ``cable-<i>-mode``, ``platform-mode``, ``platform-mode-faces``, ``P-mode``
+        (their styles: see the module's docstring).
+
+        Layout: seen from elevation 22 deg, azimuth -60 deg. Limits: the bounding box of
+        everything drawn (static and displaced), each side raised to at least 15 % of the
+        longest one, then widened by 6 %, about its centre; box aspect the sides' lengths;
+        on each axis at most round(8 * side / longest side), clipped to [3, 8], tick
+        intervals (:class:`~matplotlib.ticker.MaxNLocator`). A new figure is 10 in wide and
+        10 * (0.24 + 0.5 * min(1, h / w)) in high, h the height and w the longest horizontal
+        side of the bounding box of anchors and attachment points (sides below 1e-9 m count
+        as 1e-9 m); its 3-D axes fill the rectangle (-0.03, -0.07, 0.74, 0.98) of the figure
+        and the figure's legend (7 pt) has its upper left corner at (0.71, 0.97) (figure
+        fraction). Given ``ax``, the legend stands at the axes' right, its centre left point
+        at (1.17, 0.5) (axes fraction).
+
+        Title (10 pt, at y = 0.98 of a new figure, 0.9 of a given ``ax``, to which Axes3D
+        applies its own factor 0.92): ``<name> at equilibrium, P = [x, y, z] m`` (P rounded
+        to 1 mm) without a mode; with one, ``<name>: mode <mode + 1> of <n_modes>, <f:.4g>
+        Hz, <kind>`` and a second line ``displacements x <scale:.3g>`` (followed by
+        ``, cables quasi-static (give model= for their fields)`` without ``model``), or
+        ``platform at rest (purely local cable mode; shape not drawn)`` when nothing drawn
+        moves; ``; sag x <sag_scale:g>`` is appended when ``sag_scale`` != 1. ``<name>`` is
+        the robot's name, or ``robot`` when it has none.
 
     Raises
     ------
@@ -354,7 +398,10 @@ def animate_mode(eq, modes, mode, path, model=None, frames=24, scale=None, fps=1
     Returns
     -------
     pathlib.Path
-        ``path``.
+        ``path``. The frames are 8 x 6 in, drawn as :func:`plot_robot` draws (same styles
+        and gids, axes labels ``x [m]``, ``y [m]``, ``z [m]``), with limits enclosing the
+        shape at +scale and -scale; frame j's mode shape is at B_i + scale * sin(2 pi j /
+        frames) * dB_i (and likewise P and the cables).
 
     Raises
     ------
