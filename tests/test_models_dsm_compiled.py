@@ -70,3 +70,13 @@ def test_the_symmetric_map_rebuilds_the_stiffness_of_the_full_map(cogiro_model):
     assert red.shape == (4 * n, nf * (nf + 1) // 2) and red.flags.c_contiguous
     iu = np.triu_indices(nf)
     np.testing.assert_allclose(c.ravel() @ red, K[iu], rtol=1e-14, atol=1e-14 * np.abs(K).max())
+
+
+def test_the_symmetric_map_is_computed_once_and_shared_with_damped_copies(cogiro_eq):
+    """The map is geometry only: one read-only array per model, the same object for the
+    damped copies that share the model's cables (``_with_model_damping``, a map's check)."""
+    from dynstiff.models.dsm_compiled import _symmetric_assembly_of
+    m = ds.FrequencyModel(cogiro_eq)
+    first = _symmetric_assembly_of(m)
+    assert _symmetric_assembly_of(m) is first and not first.flags.writeable
+    assert _symmetric_assembly_of(m._with_model_damping(0.01, 0.0)) is first
