@@ -1846,6 +1846,60 @@ EQUIVALENT.update({
         "unknown, i.e. at fixed lengths",
     f"{_SS}__init____mutmut_49": "scale_N = None: the attribute is never read (dead)",
 })
+_SR = "dynstiff.analyses.sensitivity_rungs.x_"
+EQUIVALENT.update({
+    f"{_SR}static_forms__mutmut_42": "upper-case einsum subscripts: the same contraction",
+    f"{_SR}exact_forms__mutmut_29": "upper-case einsum subscripts: the same contraction",
+    f"{_SR}exact_forms__mutmut_59": "upper-case einsum subscripts: the same contraction",
+})
+_SK = "dynstiff.analyses.sensitivity_kernels.x_"
+EQUIVALENT.update({
+    f"{_SK}divided_differences__mutmut_14":
+        "same-sign test >= 0 for > 0: differs only at Re a or Re b exactly 0, where both iod "
+        "forms are exact rearrangements without cancellation (1e-15 apart; unused at delta 0)",
+    f"{_SK}mean_tension__mutmut_28":
+        "Taylor test <= for <: differs only at W exactly 1e-6 T, where both branches give the "
+        "mean tension (the closed form to 1e-10, the series to rounding)",
+    f"{_SK}primitives__mutmut_47":
+        "dtype=float dropped on a list of Python floats (Cable.EA is a float): float64 anyway",
+    f"{_SK}primitives__mutmut_67":
+        "dtype=float dropped on Pose.position: Pose stores it as float64 already",
+})
+_EC = "dynstiff.cable.exact.xǁExactCableǁ"
+EQUIVALENT.update({
+    f"{_EC}_build_modes__mutmut_152": "argsort kind='STABLE': numpy reads the kind's case "
+                                      "insensitively, the same stable sort",
+    f"{_EC}_self_check__mutmut_22": "slice(3, None) for slice(3, 6) of a 6 x 6 block: the same",
+    f"{_EC}_self_check__mutmut_36":
+        "the column blocks (0:3, 0:3) for (0:3, 3:6): the unchecked B-B block's error is the "
+        "A-A block's (rigid translations move no force: K_AB = -K_AA, K_BB = K_AA, in the "
+        "exact stiffness, and the discrete one to 6e-14 of its largest entry, measured)",
+    f"{_EC}_static_floor__mutmut_3": "a 7 x 6 zero array for 6 x 6: its one reader "
+                                     "(_self_check) slices rows 0:3 and 3:6 only",
+    f"{_EC}_static_floor__mutmut_6": "the floors subtracted, not added: the bound comes out "
+                                     "negated, and its one reader takes a 2-norm of it",
+})
+_DC = "dynstiff.models.dsm_compiled.x_"
+_DC_DTYPE = ("numerically the same: the damped kernel computes in complex whatever the input "
+             "array's dtype (float where the model's loss factor leaves the values real); "
+             "numba only compiles one more specialisation")
+EQUIVALENT.update({
+    f"{_DC}damped_compiled_arguments__mutmut_44": _DC_DTYPE + " (alpha)",
+    f"{_DC}damped_compiled_arguments__mutmut_48": _DC_DTYPE + " (K0)",
+    f"{_DC}damped_compiled_arguments__mutmut_52": _DC_DTYPE + " (the assembly map)",
+    f"{_DC}damped_compiled_arguments__mutmut_58": "dtype=float dropped on the platform mass "
+                                                  "matrix, float64 already",
+    f"{_DC}stiffness_and_count__mutmut_21": "dtype=None for float: both callers (sensitivity, "
+                                            "participation) pass float arrays of omega",
+})
+_R3 = "dynstiff.report.robot3d.x_"
+EQUIVALENT.update({
+    f"{_R3}_platform_inset__mutmut_223": "view_init(azim=None) takes the axes' initial azimuth, "
+                                         "-60, the default the close-up was made with",
+    f"{_R3}_title__mutmut_5": "getattr's default None for '': Robot always has its name field "
+                              "(a dataclass field, default ''), the default is never used",
+    f"{_R3}_title__mutmut_8": "getattr without a default: Robot always has its name field",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name
