@@ -1900,6 +1900,25 @@ EQUIVALENT.update({
                               "(a dataclass field, default ''), the default is never used",
     f"{_R3}_title__mutmut_8": "getattr without a default: Robot always has its name field",
 })
+_ST = "dynstiff.timedomain.stepping.x_"
+EQUIVALENT.update({
+    f"{_ST}_kernel_arguments__mutmut_18": "the pose is a FastPose, whose rotation is float64 "
+                                          "already: the same copy",
+    f"{_ST}_kernel_arguments__mutmut_61": "the K0 placeholder when beta = 0: the kernel reads "
+                                          "K0 only if beta != 0 (the same int64 1-D type)",
+    f"{_ST}_kernel_arguments__mutmut_71": "astype(None) is astype(float64): the same copy",
+    f"{_ST}_kernel_arguments__mutmut_85": "Platform stores its inertia as a float64 array: "
+                                          "the same array",
+    f"{_ST}compiled_explicit_run__mutmut_46":
+        "the table dropped: a table run's excitation callable is np.interp of that same table, "
+        "the same loads step by step (test_excitation_table_equals_its_interpolating_callable)",
+    f"{_ST}compiled_implicit_run__mutmut_49": "a placeholder LU never solved with: with "
+                                              "counters[0][0] = 0 the kernel returns 5 first",
+    f"{_ST}finish_compiled_run__mutmut_14": "peaks enter only as their sum (the scale); a "
+                                            "compiled run has no winch, peaks 0 and 1 start 0",
+    f"{_ST}finish_compiled_run__mutmut_48": "(step, order) pairs built in another order: the "
+                                            "tuples sort the same, the lambdas never compared",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

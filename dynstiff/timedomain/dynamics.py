@@ -372,9 +372,18 @@ class Dynamics:
 
 
 def load_at(excitation: Callable[..., Any], t: float) -> NDArray[np.float64]:
-    f = np.asarray(excitation(t), dtype=float)
-    if f.shape != (6,) or not np.all(np.isfinite(f)):
+    """The loads ``excitation(t)`` returns, as 6 real finite floats, or InvalidParameterError
+    naming t (complex loads are refused, not cut to their real parts; text or ragged ones
+    too)."""
+    raw = excitation(t)
+    f = None
+    if not np.iscomplexobj(raw):
+        try:
+            f = np.asarray(raw, dtype=float)
+        except (TypeError, ValueError):
+            pass
+    if f is None or f.shape != (6,) or not np.all(np.isfinite(f)):
         raise InvalidParameterError(
-            f"excitation(t) must return 6 finite loads (fx, fy, fz [N], mx, my, mz [N m]), "
-            f"got {f!r} at t = {t:g} s")
+            f"excitation(t) must return 6 real finite loads (fx, fy, fz [N], mx, my, mz "
+            f"[N m]), got {raw!r} at t = {t:g} s")
     return f

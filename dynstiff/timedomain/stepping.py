@@ -273,15 +273,7 @@ def excitation_loads(excitation: Callable[..., Any] | None, table, free: NDArray
     if table is not None:
         loads = np.column_stack([np.interp(times, table[0], table[1][:, j]) for j in range(6)])
     else:
-        loads = np.empty((n_steps, 6))
-        for j, t in enumerate(times):
-            f = np.asarray(excitation(t), dtype=float)
-            if f.shape != (6,):
-                load_at(excitation, t)                     # raises, naming t
-            loads[j] = f
-        bad = ~np.all(np.isfinite(loads), axis=1)
-        if np.any(bad):
-            load_at(excitation, times[np.argmax(bad)])
+        loads = np.array([load_at(excitation, t) for t in times]).reshape(n_steps, 6)
     loads[:, ~free] = 0.0
     return loads
 
