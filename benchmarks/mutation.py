@@ -603,10 +603,9 @@ EQUIVALENT.update({
     f"{_EM}dynamic_stiffness__mutmut_30": "the block of frequencies evaluated at once "
                                           "(memory only; every block gives the same K)",
 })
-EQUIVALENT.update({f"{_CE}xǁExactCableǁlocal_coefficients__mutmut_{n}": _ERRSTATE
-                   for n in (5, 6, 7, 8)})
-EQUIVALENT.update({f"{_CE}xǁExactCableǁend_response__mutmut_{n}": _ERRSTATE
-                   for n in (26, 27, 28, 29)})
+# (the errstate mutants of local_coefficients and end_response, once named equivalent here
+# because "a float frequency next to a float eigenvalue does not hit w^2 mu = 1", are killed:
+# such frequencies exist, test_a_response_exactly_on_a_clamped_pole_is_finite_and_silent)
 _GROW = ("the first band tried for the exact clamped modes (or the loop bound, or one more "
          "mode than needed): the band grows by 1.5 until it holds n modes, and modes inside "
          "the band are exact whatever band was asked")
@@ -1891,6 +1890,8 @@ EQUIVALENT.update({
                                                   "matrix, float64 already",
     f"{_DC}stiffness_and_count__mutmut_21": "dtype=None for float: both callers (sensitivity, "
                                             "participation) pass float arrays of omega",
+    f"{_DC}symmetric_assembly__mutmut_11": "reshape(-2, ...) for (-1, ...): numpy takes any "
+                                           "negative size as the one unknown (numpy 2.4)",
 })
 _R3 = "dynstiff.report.robot3d.x_"
 EQUIVALENT.update({

@@ -558,8 +558,8 @@ def test_the_self_check_refuses_a_discretisation_that_misses_the_statics():
 def test_a_response_exactly_on_a_clamped_pole_is_finite_and_silent():
     """At an omega where w^2 mu_j = 1 exactly (a clamped mode's pole, as a mode shape at a
     root on a cable pole asks), the undetermined resonant amplitude is dropped: the nodes are
-    finite, the end node is u_end, and no floating-point warning escapes (the package's
-    RuntimeWarnings are errors in the tests)."""
+    finite and the end node is u_end; the stiffness there is not finite (documented); no
+    floating-point warning escapes (the package's RuntimeWarnings are errors in the tests)."""
     s = state(HARD["soft, axial mode among the first ten"])
     ec = ExactCable(s, TWO_PI * 4.0)
     poles = []
@@ -574,3 +574,7 @@ def test_a_response_exactly_on_a_clamped_pole_is_finite_and_silent():
         u = ec.end_response(float(w), u_end)
         assert np.all(np.isfinite(u))
         np.testing.assert_array_equal(u[-1], u_end)
+        # the stiffness itself is infinite there: entries not finite, as documented
+        K = ec.local_coefficients(np.array([float(w)]))
+        assert not np.all(np.isfinite(K)) and np.all(np.isfinite(
+            ec.local_coefficients(np.array([float(w) * (1 - 1e-9)]))))

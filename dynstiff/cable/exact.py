@@ -288,14 +288,16 @@ class ExactCable:
     def local_coefficients(self, omega: NDArray[Any]) -> NDArray[Any]:
         """Two-end dynamic stiffness in the local frame, flattened, shape (n_omega, 36)
         [N/m], ordering (A x y z, B x y z) x (A x y z, B x y z) (theory.md §11.3).
-        ``omega`` [rad/s], validated array (real or complex)."""
+        ``omega`` [rad/s], validated array (real or complex). At an omega exactly on a
+        clamped pole (w^2 mu_j = 1 in floats) the stiffness is infinite: its entries there
+        are not finite (inf, or NaN where a zero meets the infinity), without a warning."""
         self._check(omega)
         w2 = self.omega_eff_sq(omega)[:, None]
         mu = self._mu[None, :]
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore"):   # at a pole: inf, 0 x inf
             g = mu / (1.0 - w2 * mu)
-        K = self._K_s.ravel()[None, :] - w2 * (self._M_psi.ravel()[None, :]
-                                               + w2 * (g @ self._BB))
+            K = self._K_s.ravel()[None, :] - w2 * (self._M_psi.ravel()[None, :]
+                                                   + w2 * (g @ self._BB))
         if not self.damped and np.isrealobj(omega):
             K = K.real
         return K
