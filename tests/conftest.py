@@ -184,6 +184,20 @@ class _Stderr(io.StringIO):
         return self.terminal
 
 
+def damped_explicit_limit(mm, c_ax):
+    """The explicit step limit of theory.md §7.3 computed from the cables of a
+    LumpedMassModel ``mm``: dt0 = l0 / sqrt(EA / m), reduced by the damping ratio of the
+    highest axial chain mode, zeta = c_ax / (l0 sqrt(EA m)) (axial dashpots c_ax [N s]), to
+    dt0 (sqrt(1 + zeta^2) - zeta); the least over the cables [s]."""
+    out = []
+    for cb, L0, N in zip(mm.robot.cables, mm.unstretched_lengths, mm.segments):
+        l0 = L0 / N
+        dt0 = l0 / np.sqrt(cb.EA / cb.mass_per_length)
+        zeta = c_ax / (l0 * np.sqrt(cb.EA * cb.mass_per_length))
+        out.append(dt0 * (np.sqrt(1.0 + zeta ** 2) - zeta))
+    return min(out)
+
+
 def run_cli(*args, cwd=None, in_subprocess=False, terminal=False):
     """The command line ``dynstiff ARGS`` with its output captured, as
     ``subprocess.CompletedProcess`` (returncode, stdout, stderr), run in folder ``cwd``.

@@ -15,6 +15,7 @@ import warnings
 
 import numpy as np
 import pytest
+from conftest import damped_explicit_limit
 
 import dynstiff.compiled
 from dynstiff.errors import InvalidParameterError
@@ -39,17 +40,6 @@ from dynstiff.timedomain.stepping import (
 C_AX = 50.0                      # axial dashpot [N s]: zeta about 0.13 on the highest mode
 
 
-def damped_limit(mm, c_ax):
-    """The explicit step limit of theory.md §7.3, computed here from the cables: the
-    highest axial chain mode omega_max = 2 / dt0, dt0 = l0 / sqrt(EA / m), damped by
-    zeta = c_ax / (l0 sqrt(EA m)): dt < dt0 (sqrt(1 + zeta^2) - zeta), min over cables."""
-    out = []
-    for cb, L0, N in zip(mm.robot.cables, mm.unstretched_lengths, mm.segments):
-        l0 = L0 / N
-        dt0 = l0 / np.sqrt(cb.EA / cb.mass_per_length)
-        zeta = c_ax / (l0 * np.sqrt(cb.EA * cb.mass_per_length))
-        out.append(dt0 * (np.sqrt(1.0 + zeta ** 2) - zeta))
-    return min(out)
 
 
 def limit_in(message, pattern):
@@ -91,8 +81,8 @@ def test_explicit_step_non_finite_names_the_damped_stability_limit(robot_model):
     with pytest.raises(IntegrationError, match="explicit dt") as err:
         explicit_step(dyn, pose, X, v, a, k * dt, dt, k, StepNewton(1e-9, 25))
     named = limit_in(str(err.value), "stability limit is")
-    assert named == pytest.approx(damped_limit(mm, C_AX), rel=1e-5)
-    assert damped_limit(mm, 0.0) > 1.2 * named                     # the damping matters
+    assert named == pytest.approx(damped_explicit_limit(mm, C_AX), rel=1e-5)
+    assert damped_explicit_limit(mm, 0.0) > 1.2 * named                     # the damping matters
     assert (err.value.step, err.value.time, err.value.dt) == (k, k * dt, dt)
 
 
@@ -110,7 +100,7 @@ def test_check_blow_up_names_the_strain_and_the_hint_of_the_scheme(robot_model, 
     assert (err.value.step, err.value.time, err.value.dt) == (4, 0.008, 0.002)
     if scheme == "explicit":
         assert limit_in(msg, "stability limit is dt <") == pytest.approx(
-            damped_limit(mm, C_AX), rel=1e-5)
+            damped_explicit_limit(mm, C_AX), rel=1e-5)
         assert "reduce dt" not in msg
     else:
         assert msg.endswith("; reduce dt") and "stability limit" not in msg
@@ -124,7 +114,7 @@ def test_compiled_explicit_blow_up_names_the_damped_limit(robot_model):
     the error's time is its step times dt."""
     m = robot_model(3)
     mm = m.mass_model
-    lim = damped_limit(mm, C_AX)
+    lim = damped_explicit_limit(mm, C_AX)
     dt = 3.0 * lim
     with pytest.warns(TimeStepWarning), warnings.catch_warnings():
         # the blow-up is what is probed: its ledger and slack warnings are expected
@@ -134,7 +124,7 @@ def test_compiled_explicit_blow_up_names_the_damped_limit(robot_model):
             simulate(m, 100 * dt, dt, scheme="explicit", damping=TimeDamping(axial=C_AX),
                      initial=[1e-3, 0, 0, 0, 0, 0])
     assert limit_in(str(err.value), "stability limit is dt <") == pytest.approx(lim, rel=1e-5)
-    assert damped_limit(mm, 0.0) > 1.2 * lim
+    assert damped_explicit_limit(mm, 0.0) > 1.2 * lim
     e = err.value
     assert e.dt == dt and 1 <= e.step < 100 and e.time == pytest.approx(e.step * dt)
 
