@@ -1892,6 +1892,13 @@ EQUIVALENT.update({
                                             "participation) pass float arrays of omega",
     f"{_DC}symmetric_assembly__mutmut_11": "reshape(-2, ...) for (-1, ...): numpy takes any "
                                            "negative size as the one unknown (numpy 2.4)",
+    f"{_DC}compiled_arguments__mutmut_6": "getattr without a default: its one caller passes "
+                                          "a FrequencyModel, which always has _memo",
+    f"{_DC}compiled_arguments__mutmut_18": "dtype=None for float on np.real of the float or "
+                                           "complex parameters: float64 either way",
+    f"{_DC}compiled_arguments__mutmut_20": "dtype dropped on np.real of the float or complex "
+                                           "parameters: float64 either way",
+    f"{_DC}compiled_arguments__mutmut_36": "dtype=None on K_geo_free, a float64 array already",
 })
 _R3 = "dynstiff.report.robot3d.x_"
 EQUIVALENT.update({

@@ -80,3 +80,15 @@ def test_the_symmetric_map_is_computed_once_and_shared_with_damped_copies(cogiro
     first = _symmetric_assembly_of(m)
     assert _symmetric_assembly_of(m) is first and not first.flags.writeable
     assert _symmetric_assembly_of(m._with_model_damping(0.01, 0.0)) is first
+
+
+def test_the_kernel_arguments_are_computed_once_per_model(cogiro_eq):
+    """The model is immutable: its kernels' arguments are built once (the same tuple again),
+    real contiguous arrays of one value per cable."""
+    from dynstiff.models.dsm_compiled import compiled_arguments
+    m = ds.FrequencyModel(cogiro_eq)
+    args = compiled_arguments(m)
+    assert compiled_arguments(m) is args
+    n = m.robot.n_cables
+    for a in args[:6]:                                     # L, m, T, lambda^2, alpha, K0
+        assert a.shape == (n,) and a.dtype == np.float64 and a.flags.c_contiguous
