@@ -1899,6 +1899,10 @@ EQUIVALENT.update({
     f"{_DC}compiled_arguments__mutmut_20": "dtype dropped on np.real of the float or complex "
                                            "parameters: float64 either way",
     f"{_DC}compiled_arguments__mutmut_36": "dtype=None on K_geo_free, a float64 array already",
+    f"{_DC}compiled_arguments__mutmut_40": "dtype=None on the platform mass matrix, float64 "
+                                           "already",
+    f"{_DC}compiled_arguments__mutmut_42": "dtype dropped on the platform mass matrix, float64 "
+                                           "already",
 })
 _R3 = "dynstiff.report.robot3d.x_"
 EQUIVALENT.update({
