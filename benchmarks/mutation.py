@@ -593,8 +593,6 @@ EQUIVALENT.update({f"dynstiff.robot.distribution.x__active_solution__mutmut_{n}"
                    for n in (2, 4, 28)})
 _EM = "dynstiff.models.exact.xǁExactModelǁ"
 EQUIVALENT.update({
-    f"{_EM}_block__mutmut_34": _ERRSTATE, f"{_EM}_block__mutmut_35": _ERRSTATE,
-    f"{_EM}_block__mutmut_36": _ERRSTATE, f"{_EM}_block__mutmut_37": _ERRSTATE,
     f"{_EM}__init____mutmut_126": _EINSUM,
     f"{_EM}__init____mutmut_85": "np.array(lever_arms) without dtype=float: the "
                                  "equilibrium's lever arms are a float array already",

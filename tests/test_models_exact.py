@@ -318,3 +318,19 @@ def test_a_worded_damping_flag_is_refused():
     eq = ds.load_scene("planar2").equilibrium()
     with pytest.raises(InvalidParameterError, match="^damping must be True or False, got 'no'"):
         ExactModel(eq, damping="no")
+
+
+def test_the_stiffness_exactly_on_a_clamped_pole_is_not_finite_and_silent(cogiro_exact):
+    """Float frequencies do land on a clamped pole (w^2 mu = 1 exactly): K there is not
+    finite, as documented, with no floating-point warning (the package's RuntimeWarnings are
+    errors in the tests); a relative 1e-9 below it, K is finite."""
+    m = cogiro_exact
+    poles = []
+    for mu in m._mu[1 / m._mu < m.max_omega ** 2]:
+        w = np.sqrt(1 / mu)
+        poles += [c for c in (w, np.nextafter(w, 0), np.nextafter(w, np.inf))
+                  if c * c * mu == 1.0][:1]
+    assert len(poles) >= 2
+    for w in poles[:2]:
+        assert not np.all(np.isfinite(m.dynamic_stiffness(w)))
+        assert np.all(np.isfinite(m.dynamic_stiffness(w * (1 - 1e-9))))

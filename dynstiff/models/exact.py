@@ -142,7 +142,8 @@ class ExactModel(PlatformModel):
         Returns
         -------
         ndarray [N/m, N, N m/rad]; real when undamped and omega real. Infinite on a
-        clamped-cable pole.
+        clamped-cable pole: at an omega exactly on one (w^2 mu = 1 in floats) the entries
+        are not finite (inf, or NaN where a zero meets the infinity), without a warning.
         """
         omega = omega_array(omega, complex_ok=True)
         self._check(omega)
@@ -165,16 +166,19 @@ class ExactModel(PlatformModel):
         w2_m = w**2 - 1j * w * self._visc_mode[None, :] if self.damped else w**2
         if self.cable_loss_factor > 0:
             w2_c, w2_m = w2_c / s, w2_m / s
+        # at an omega exactly on a clamped pole (w^2 mu = 1 in floats) g is infinite and K
+        # not finite (inf, or NaN where a zero meets it): no floating-point warning
         with np.errstate(divide="ignore", invalid="ignore"):
             g = w2_m**2 * self._mu[None, :] / (1.0 - w2_m * self._mu[None, :])
-        if self.damped:
-            K = self._const[None, :] - w2_c @ self._mass - g @ self._modes
-            if self.cable_loss_factor > 0:
-                K = s * K
-            if self._K_platform_damping is not None:
-                K = K + self._K_platform_damping[None, :]
-        else:
-            K = self._const[None, :] - w2_c * self._mass.sum(axis=0)[None, :] - g @ self._modes
+            if self.damped:
+                K = self._const[None, :] - w2_c @ self._mass - g @ self._modes
+                if self.cable_loss_factor > 0:
+                    K = s * K
+                if self._K_platform_damping is not None:
+                    K = K + self._K_platform_damping[None, :]
+            else:
+                K = (self._const[None, :] - w2_c * self._mass.sum(axis=0)[None, :]
+                     - g @ self._modes)
         if not self.damped and np.isrealobj(omega):
             K = K.real
         nf = self.n_free
