@@ -9,7 +9,9 @@ import io
 import re
 import shutil
 import subprocess
+import tomllib
 import warnings
+from dataclasses import replace
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -19,7 +21,13 @@ from conftest import assert_valid_html, inverted_stewart_scene
 
 import dynstiff as ds
 from dynstiff.errors import ClosedFormWarning
-from dynstiff.report.document import platform_mode_table, spread_note
+from dynstiff.report.document import (
+    cable_frame,
+    input_rows,
+    platform_mode_table,
+    spread_note,
+    title_rows,
+)
 from dynstiff.report.robot import robot_report
 
 
@@ -141,6 +149,11 @@ def test_spread_platform_motion_is_said():
     note = spread_note(pm)
     assert "spread over many cable-dominated modes" in note and "(x, z)" in note
     assert f"{pm.modes.platform_share.max():.0%}" in note
+    assert note == (f"No mode below {pm.searched_hz:.4g} Hz has more than half of its kinetic "
+                    f"energy in the platform (largest share "
+                    f"{round(100 * pm.modes.platform_share.max())}%): the platform's motion "
+                    "is spread over many cable-dominated modes. Each DOF (x, z) is listed "
+                    "with the mode that moves it most; the FRFs show the spread.")
     table = platform_mode_table(pm)
     assert list(table["mode"]) == [k + 1 for k in pm.index]
     for d, k in pm.carriers.items():
@@ -203,3 +216,172 @@ def test_a_mode_below_the_first_platform_mode_that_moves_the_platform_is_named(t
     first, share, mode, low = float(m[1]), int(m[2]), int(m[3]), float(m[4])
     assert mode == 1 and 5 <= share < 50 and low < 0.25 * first
     assert 0.12 <= low <= 0.2                         # the measured band (Li et al. 2024)
+
+
+WHEN = datetime.datetime(2024, 2, 29, 23, 5, 7, tzinfo=datetime.UTC)
+
+
+def test_title_rows_of_a_scene_file_give_its_name_description_and_sha256(cogiro):
+    """The title block of a scene read from a file: its name and description as the file
+    states them, the version, the date, the file's path and the SHA-256 of its bytes."""
+    toml = tomllib.loads(cogiro.path.read_text(encoding="utf-8"))["scene"]
+    assert toml["description"]                       # a scene with a description
+    digest = hashlib.sha256(Path(cogiro.path).read_bytes()).hexdigest()
+    assert title_rows(cogiro, when=WHEN) == [
+        ("scene", toml["name"]), ("description", toml["description"]),
+        ("dynstiff version", ds.__version__), ("date", "2024-02-29 23:05:07 UTC"),
+        ("input file", str(cogiro.path)), ("input file SHA-256", digest)]
+
+
+def test_title_rows_of_a_scene_built_in_memory_say_so(cogiro, tmp_path):
+    """A scene built in memory (no path), without a description: an empty description and
+    the one input-file row saying so; likewise for a file that no longer exists."""
+    sc = ds.scenes.loader.Scene(robot=cogiro.robot, pose=cogiro.pose, name="in memory")
+    tail = [("dynstiff version", ds.__version__), ("date", "2024-02-29 23:05:07 UTC"),
+            ("input file", "none (scene built in memory)")]
+    assert title_rows(sc, when=WHEN) == [("scene", "in memory"), ("description", ""), *tail]
+    gone = replace(cogiro, path=tmp_path / "gone.toml")
+    assert title_rows(gone, when=WHEN)[2:] == tail
+
+
+def test_input_rows_state_the_robot_and_the_settings_in_the_documented_format(cogiro):
+    """Every row of the inputs, its label and its text, for inputs with more digits than
+    the rows keep: mass and gravity to 6 significant digits, vectors "(x, y, z)" to 4,
+    the inertia's rows to 5, joined by "; "; the settings as documented."""
+    inertia = [[36.59812, 0.4531234, -3.012345], [0.4531234, 35.98234, 1.539876],
+               [-3.012345, 1.539876, 25.43912]]
+    pl = ds.Platform(91.0583721, [-0.0341234, -0.0129876, 0.264321], inertia)
+    robot = replace(cogiro.robot, platform=pl)
+    eq = robot.equilibrium(pose=ds.Pose([0.0123456, -0.0234567, 1.0345678],
+                                        [0.00123456, -0.00234567, 0.0345678]))
+    st = ds.analyses.settings.analysis_settings(
+        cogiro, band_hz=(0.5, 20.0), forbidden_hz=(2.5, 4.0), rung="lumped", segments=12,
+        model_rtol=0.02, margin=0.1, participation=0.2, frf_limit=5.0,
+        damping=[0.02, 0.03, 0.5])
+    rows = input_rows(eq, st)
+    assert rows == [
+        ("platform mass [kg]", "91.0584"),
+        ("centre of mass, platform frame [m]", "(-0.03412, -0.01299, 0.2643)"),
+        ("inertia about G, platform axes [kg m^2]",
+         "(36.598, 0.45312, -3.0123); (0.45312, 35.982, 1.5399); (-3.0123, 1.5399, 25.439)"),
+        ("free DOFs", "x, y, z, rx, ry, rz"),
+        ("pose: position of P [m]", "(0.01235, -0.02346, 1.035)"),
+        ("pose: rotation vector [rad]", "(0.001235, -0.002346, 0.03457)"),
+        ("gravity [m/s^2]", "9.81"),
+        ("tension limits [N]", "100 to 5000"),
+        ("cable model", "lumped, 12 segments per cable, admissible frequency error 0.02"),
+        ("band of interest [Hz]", "0.5-20"),
+        ("forbidden band", "2.5-4 Hz, margin 10%, modes with platform share >= 20%, "
+                           "receptance <= 5 x static"),
+        ("damping", "platform modal ratio 0.02, cable loss factor 0.03 (axial and "
+                    "transverse), cable viscous 0.5 N s/m^2"),
+    ]
+    assert rows[-1][1] == st.damping.text().removeprefix("damping: ")
+    # no forbidden band: not checked; another rung: no segments
+    rows = dict(input_rows(eq, replace(st, forbidden_hz=None, rung="dsm")))
+    assert rows["forbidden band"] == "none (not checked)"
+    assert rows["cable model"] == "dsm, admissible frequency error 0.02"
+
+
+COLUMNS = ["mode", "freq [Hz]", "kind", "platform share [-]", "dominant dof", "carries",
+           "massless freq [Hz]"]
+
+
+def test_platform_mode_table_lists_each_platform_mode_and_the_dofs_it_carries(cogiro_eq):
+    """CoGiRo: one row per platform mode, numbered from 1, with the modal result's numbers;
+    a mode that carries no DOF says "-", one that carries two names both, in DOF order."""
+    from dynstiff.analyses.platform_modes import find_platform_modes
+    from dynstiff.robot.platform import DOF_NAMES
+    pm = find_platform_modes(ds.FrequencyModel(cogiro_eq))
+    m, k = pm.modes, pm.index
+    t = platform_mode_table(pm)
+    assert list(t.columns) == COLUMNS
+    assert list(t["mode"]) == [int(j) + 1 for j in k]
+    np.testing.assert_array_equal(t["freq [Hz]"], np.asarray(m.freq_hz)[k])
+    np.testing.assert_array_equal(t["platform share [-]"], m.platform_share[k])
+    np.testing.assert_array_equal(t["massless freq [Hz]"], np.asarray(m.massless_freq_hz)[k])
+    assert list(t["kind"]) == [m.kind[j] for j in k]
+    assert list(t["dominant dof"]) == [m.dominant_dof[j] for j in k]
+    carried = [[d for d in DOF_NAMES if pm.carriers.get(d) == j] for j in k]
+    assert any(len(c) == 0 for c in carried) and any(len(c) >= 2 for c in carried)
+    assert list(t["carries"]) == [", ".join(c) if c else "-" for c in carried]
+
+
+def test_a_search_without_modes_gives_the_columns_and_a_general_note():
+    """No mode below the top of an incomplete search: the table has its columns and no row;
+    the note names no DOF ("the free DOFs") and a largest share of 0 %."""
+    from dynstiff.analyses.platform_modes import PlatformModes
+    from dynstiff.results import ModalResult
+    none = ModalResult(np.zeros(0), np.zeros((0, 6)), np.zeros(0), np.zeros((0, 8)), kind=(),
+                       massless_freq_hz=np.zeros(0))
+    for modes in (None, none):
+        pm = PlatformModes(modes, np.zeros(0, int), {}, False, np.nan, 3.0, "ceiling reached")
+        t = platform_mode_table(pm)
+        assert list(t.columns) == COLUMNS and len(t) == 0
+    assert spread_note(pm) == (
+        "No mode below 3 Hz has more than half of its kinetic energy in the platform "
+        "(largest share 0%): the platform's motion is spread over many cable-dominated "
+        "modes. Each DOF (the free DOFs) is listed with the mode that moves it most; the "
+        "FRFs show the spread.")
+
+
+def test_cable_frame_lists_each_cable_in_order(cogiro, cogiro_eq):
+    """One row per cable, in the robot's order: its anchor and attachment as "(x, y, z)" to
+    4 significant digits, and its own mass per length, EA, loss factor, viscous damping."""
+    cables = [replace(c, mass_per_length=0.05 + 0.001 * i, EA=1e5 * (i + 1),
+                      loss_factor=0.01 * (i + 1), viscous_damping=0.1 * i)
+              for i, c in enumerate(cogiro.robot.cables)]
+    robot = replace(cogiro.robot, cables=cables)
+    t = cable_frame(robot.equilibrium(pose=cogiro.pose))
+    assert list(t.columns) == ["cable", "anchor A [m]", "attachment b [m]",
+                               "mass per length [kg/m]", "EA [N]", "loss factor [-]",
+                               "viscous damping [N s/m^2]"]
+    n = len(cables)
+    assert list(t["cable"]) == list(range(n)) and n == 8
+    assert list(t["anchor A [m]"]) == [
+        "(" + ", ".join(f"{x:.4g}" for x in a) + ")" for a in robot.anchors]
+    assert list(t["attachment b [m]"]) == [
+        "(" + ", ".join(f"{x:.4g}" for x in b) + ")" for b in robot.attachments]
+    assert t["anchor A [m]"][0] == "(-7.178, -5.436, 5.391)"     # CoGiRo Table I, A0
+    assert list(t["mass per length [kg/m]"]) == [0.05 + 0.001 * i for i in range(n)]
+    assert list(t["EA [N]"]) == [1e5 * (i + 1) for i in range(n)]
+    assert list(t["loss factor [-]"]) == [0.01 * (i + 1) for i in range(n)]
+    assert list(t["viscous damping [N s/m^2]"]) == [0.1 * i for i in range(n)]
+
+
+def test_the_default_date_is_now_in_utc_whatever_the_local_time_zone(cogiro, monkeypatch):
+    """Without ``when`` the date is the present time in UTC, also on a machine whose local
+    time is 5 h behind UTC (TZ=XST+05)."""
+    import time
+    monkeypatch.setenv("TZ", "XST+05")
+    time.tzset()
+    try:
+        assert time.localtime().tm_gmtoff == -5 * 3600
+        before = datetime.datetime.now(datetime.UTC).replace(microsecond=0)
+        date = dict(title_rows(cogiro))["date"]
+        after = datetime.datetime.now(datetime.UTC)
+    finally:
+        monkeypatch.undo()
+        time.tzset()
+    stamp = datetime.datetime.strptime(date, "%Y-%m-%d %H:%M:%S UTC").replace(
+        tzinfo=datetime.UTC)
+    assert before <= stamp <= after
+
+
+def test_the_spread_note_is_given_up_to_a_largest_share_of_exactly_one_half():
+    """"More than half" is strict: a largest platform share of exactly 0.5 gets the note,
+    0.5001 none."""
+    from dynstiff.analyses.platform_modes import PlatformModes
+    from dynstiff.results import ModalResult
+
+    def note(cable_fraction):
+        m = ModalResult(np.array([1.0, 2.0]), np.zeros((2, 6)), np.array(cable_fraction),
+                        np.zeros((2, 8)))
+        return spread_note(PlatformModes(m, np.array([1]), {"x": 1}, True, 2.0, 2.5, ""))
+
+    assert note([0.75, 0.5]) == (
+        "No mode below 2.5 Hz has more than half of its kinetic energy in the platform "
+        "(largest share 50%): the platform's motion is spread over many cable-dominated "
+        "modes. Each DOF (x) is listed with the mode that moves it most; the FRFs show the "
+        "spread.")
+    assert note([0.75, 0.4999]) == ""

@@ -15,8 +15,17 @@ __all__ = ["cable_frame", "input_rows", "platform_mode_table", "spread_note", "t
 
 
 def title_rows(scene, when=None):
-    """(key, value) rows of the title block: scene, description, dynstiff version, date
-    (UTC), input file and its SHA-256 (or "none" for a scene built in memory)."""
+    """(key, value) rows of the title block, in this order:
+
+    - ``("scene", scene.name)``;
+    - ``("description", scene.description)``, ``""`` for a scene without one;
+    - ``("dynstiff version", dynstiff.__version__)``;
+    - ``("date", "YYYY-MM-DD HH:MM:SS UTC")``: ``when`` (a UTC datetime, default now);
+    - for a scene read from a file (``scene.path`` an existing file):
+      ``("input file", str(scene.path))`` then ``("input file SHA-256", h)``, ``h`` the
+      lower-case hexadecimal SHA-256 of the file's bytes; otherwise (a scene built in
+      memory) the one row ``("input file", "none (scene built in memory)")``.
+    """
     from dynstiff._version import __version__
     when = when or datetime.datetime.now(datetime.UTC)
     path = getattr(scene, "path", None)
@@ -35,8 +44,25 @@ def _vec(v, nd=4):
 
 
 def input_rows(eq, settings):
-    """(key, value) rows of the robot and the analysis: platform mass, centre of mass,
-    inertia, free DOFs, pose, gravity, tension limits, model, band, damping."""
+    """(key, value) rows of the robot and the analysis, in this order. A vector is written
+    ``"(x, y, z)"``, its components to 4 significant digits (``:.4g``) unless said.
+
+    - ``"platform mass [kg]"``: 6 significant digits;
+    - ``"centre of mass, platform frame [m]"``: vector;
+    - ``"inertia about G, platform axes [kg m^2]"``: the three rows of the tensor, each a
+      vector to 5 significant digits, joined by ``"; "``;
+    - ``"free DOFs"``: their names joined by ``", "`` (e.g. ``"x, y, z"``);
+    - ``"pose: position of P [m]"``, ``"pose: rotation vector [rad]"``: vectors;
+    - ``"gravity [m/s^2]"``: 6 significant digits;
+    - ``"tension limits [N]"``: ``"t_min to t_max"`` (``:g``);
+    - ``"cable model"``: the rung, for ``"lumped"`` followed by ``", N segments per
+      cable"``, then ``", admissible frequency error E"`` (``:g``);
+    - ``"band of interest [Hz]"``: ``"f0-f1"`` (``:g``);
+    - ``"forbidden band"``: ``"f0-f1 Hz, margin M%, modes with platform share >= P%,
+      receptance <= L x static"`` (frequencies and L ``:g``, percentages rounded), or
+      ``"none (not checked)"`` when the settings give none;
+    - ``"damping"``: :meth:`dynstiff.Damping.text` without its ``"damping: "`` prefix.
+    """
     rob = eq.robot
     p = rob.platform
     t_min, t_max = rob.tension_limits
@@ -64,8 +90,10 @@ def input_rows(eq, settings):
 
 
 def cable_frame(eq):
-    """pandas DataFrame, one row per cable: anchor [m], attachment [m], mass per length
-    [kg/m], EA [N], loss factor, viscous damping [N s/m^2]."""
+    """pandas DataFrame, one row per cable in the robot's order, with the columns
+    ``"cable"`` (its index, from 0), ``"anchor A [m]"`` and ``"attachment b [m]"`` (each
+    ``"(x, y, z)"``, 4 significant digits), ``"mass per length [kg/m]"``, ``"EA [N]"``,
+    ``"loss factor [-]"`` and ``"viscous damping [N s/m^2]"`` (the cable's numbers)."""
     import pandas as pd
     rob = eq.robot
     return pd.DataFrame({
@@ -80,9 +108,12 @@ def cable_frame(eq):
 
 
 def platform_mode_table(pm):
-    """pandas DataFrame of the platform modes of ``pm`` (PlatformModes): mode number (from
-    1), frequency [Hz], kind, platform share, dominant DOF, the DOFs it carries (their
-    largest participation) and the massless-cable frequency it continues [Hz]."""
+    """pandas DataFrame of the platform modes of ``pm`` (PlatformModes), one row per mode
+    of ``pm.index``, with the columns ``"mode"`` (its number, from 1), ``"freq [Hz]"``,
+    ``"kind"``, ``"platform share [-]"``, ``"dominant dof"``, ``"carries"`` (the DOFs whose
+    largest participation it holds, joined by ``", "``; ``"-"`` for none) and ``"massless
+    freq [Hz]"`` (the massless-cable frequency it continues). The same columns, no row,
+    when the search found no mode."""
     import pandas as pd
     m = pm.modes
     if m is None or not pm.index.size:
@@ -102,7 +133,12 @@ def platform_mode_table(pm):
 
 def spread_note(pm):
     """A sentence when no computed mode has more than half its kinetic energy in the
-    platform (the platform's motion spread over many cable-dominated modes), else ""."""
+    platform (the platform's motion spread over many cable-dominated modes), else "":
+    "No mode below F Hz has more than half of its kinetic energy in the platform (largest
+    share S%): the platform's motion is spread over many cable-dominated modes. Each DOF
+    (D) is listed with the mode that moves it most; the FRFs show the spread.", F
+    ``pm.searched_hz`` to 4 significant digits, S the largest platform share (0 % without
+    modes), D the DOFs of ``pm.carriers`` joined by ", " (or "the free DOFs")."""
     if pm.modes is None:
         return ""
     share = pm.modes.platform_share
