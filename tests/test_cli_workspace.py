@@ -2,6 +2,8 @@
 written to netCDF with its figure and table (run in this process: conftest.run_cli); argument
 errors on one line."""
 
+import sys
+
 import numpy as np
 import pytest
 from conftest import inverted_stewart_scene, run_cli
@@ -153,3 +155,112 @@ def test_workspace_command_maps_the_uncertain_row_as_check_does(tmp_path, capsys
         pytest.approx(res.rows[-1]["value"], abs=0)]
     assert main(args[:-4] + ["--uncertain", "mass", "--out", str(tmp_path / "n.nc")]) == 2
     assert "--uncertain mass: give NAME=VALUE[%]" in capsys.readouterr().err
+
+
+def rotated_cogiro(path, rz=0.1):
+    """CoGiRo's scene file with its pose turned by ``rz`` [rad] about z."""
+    from pathlib import Path
+
+    import dynstiff
+    text = (Path(dynstiff.__file__).parent / "scenes" / "cogiro.toml").read_text()
+    assert "rotation = [0.0, 0.0, 0.0]" in text
+    path.write_text(text.replace("rotation = [0.0, 0.0, 0.0]", f"rotation = [0.0, 0.0, {rz}]"))
+    return path
+
+
+@pytest.mark.parametrize("rows, match", [
+    ("# rx ry\n0 0\n", "need 3 numbers a line (rx ry rz [rad]), got shape (1, 2)"),
+    ("0 0 x\n", "--orientations r.txt: could not convert"),
+])
+def test_a_bad_orientations_file_fails_on_one_line_naming_it(tmp_path, rows, match):
+    (tmp_path / "r.txt").write_text(rows)
+    r = run("cogiro", "--box", "0", "0", "0", "0", "1", "1", "--step", "1", "-n", "3",
+            "--orientations", "r.txt", "--out", "m.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 2 and match in r.stderr and len(r.stderr.splitlines()) == 1
+    assert r.stderr.count("--orientations r.txt:") == 1
+    assert not (tmp_path / "m.nc").exists()
+
+
+def test_workers_below_one_are_refused_with_the_documented_line(tmp_path):
+    r = run("cogiro", "--box", "0", "0", "0", "0", "1", "1", "--step", "1", "-n", "3",
+            "--workers", "0", "--out", "m.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 2
+    assert r.stderr.strip() == "dynstiff: error: --workers must be >= 1, got 0"
+
+
+def test_missing_zarr_and_dask_are_named_with_the_install_line(tmp_path, monkeypatch):
+    """NAME.zarr is a valid --out, refused (one line) only when the zarr package is missing;
+    --scheduler without Dask says how to install it (both imports blocked here)."""
+    monkeypatch.setitem(sys.modules, "zarr", None)
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    base = ["cogiro", "--box", "0", "0", "0", "0", "1", "1", "--step", "1", "-n", "3"]
+    r = run(*base, "--out", "m.zarr", cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.strip() == (
+        "dynstiff: error: --out m.zarr: Zarr output needs the zarr package (pip install "
+        "zarr); or give NAME.nc")
+    r = run(*base, "--scheduler", "tcp://127.0.0.1:1", "--out", "m.nc", "--quiet",
+            cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.strip() == (
+        'dynstiff: error: --scheduler needs Dask: pip install "dynstiff[workspace]"')
+    assert not list(tmp_path.iterdir())
+
+
+def test_the_scenes_rotation_values_band_and_settings_reach_map_and_table(tmp_path):
+    """A scene posed with a rotation maps its positions at that rotation; --values of
+    --parameter, the scene's model band (its [analysis] band_hz) and --workers 1 (one
+    process) reach the map; the JSON table's header records the model, n_modes and step."""
+    import json
+
+    from dynstiff.maps.dataset import open_workspace
+    scene = rotated_cogiro(tmp_path / "s.toml")
+    r = run(str(scene), "--box", "0", "0", "0", "0", "1", "1", "--step", "1", "-n", "3",
+            "--parameter", "EA", "--values", "1.5e5", "3e5", "--workers", "1",
+            "--out", "m.nc", "--json", "m.json", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    m = open_workspace(tmp_path / "m.nc")
+    assert dict(m.sizes)["orientation"] == 1 and dict(m.sizes)["parameter"] == 2
+    np.testing.assert_array_equal(m["rotation"].values, [[0.0, 0.0, 0.1]])
+    assert m["parameter"].values.tolist() == [1.5e5, 3e5]
+    assert m.attrs["model_band_hz"].tolist() == [0.1, 12.0]       # the scene's band_hz
+    assert m.attrs["engine"] == "serial" and m.attrs["rung"] == "dsm"
+    f1 = m["first_platform_hz"].values.ravel()
+    assert f1[1] > f1[0] > 0                                       # stiffer cables, higher
+    meta = json.loads((tmp_path / "m.json").read_text())["metadata"]
+    assert meta["model"] == "dsm" and meta["n_modes"] == 3 and meta["step [m]"] == 1.0
+    assert meta["box"] == [0.0, 0.0, 0.0, 0.0, 1.0, 1.0] and meta["map"] == "m.nc"
+
+
+def test_an_unrotated_scene_maps_positions_only(tmp_path):
+    """CoGiRo's pose has no rotation: the map has no orientation dimension."""
+    from dynstiff.maps.dataset import open_workspace
+    r = run("cogiro", "--box", "0", "0", "0", "0", "1", "1", "--step", "1", "-n", "3",
+            "--out", "m.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    m = open_workspace(tmp_path / "m.nc")
+    assert "orientation" not in m.dims and m.attrs["engine"] == "serial"
+
+
+def test_workers_two_run_on_two_processes(tmp_path):
+    from dynstiff.maps.dataset import open_workspace
+    r = run("cogiro", "--box", "-1", "1", "0", "0", "1", "1", "--step", "2", "-n", "3",
+            "--workers", "2", "--chunk-size", "1", "--out", "m.nc", "--quiet", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert open_workspace(tmp_path / "m.nc").attrs["engine"] == "2 processes"
+
+
+def test_scheduler_runs_the_scenes_robot_on_a_dask_cluster(tmp_path):
+    """--scheduler ADDRESS: the map of the scene's robot computed on that cluster (an
+    in-process one here) equals the serial map."""
+    distributed = pytest.importorskip("distributed")
+    from dynstiff.maps.dataset import open_workspace
+    args = ["cogiro", "--box", "-1", "1", "0", "0", "1", "1", "--step", "2", "-n", "3",
+            "--quiet"]
+    assert run(*args, "--out", "serial.nc", cwd=tmp_path).returncode == 0
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster:
+        r = run(*args, "--scheduler", cluster.scheduler_address, "--out", "m.nc",
+                cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    a, b = open_workspace(tmp_path / "m.nc"), open_workspace(tmp_path / "serial.nc")
+    assert a.attrs["engine"] == "dask" and a.attrs["robot"] == "cogiro"
+    np.testing.assert_array_equal(a["first_platform_hz"].values, b["first_platform_hz"].values)
