@@ -1,6 +1,10 @@
 """The main job of `dynstiff demo` (dynstiff/report/robot.py, robot_report), run in-process; the
 command itself is run in test_cli.py."""
 
+import numpy as np
+import pytest
+
+
 def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
     """The table holds the first 40 modes (to 9.6 Hz); the FRF runs to 12 Hz, and every mode
     below 12 Hz is marked on it (the W-W count up to 12 Hz), not only the table's."""
@@ -31,3 +35,92 @@ def test_a_worded_html_flag_is_refused_and_nothing_is_written(tmp_path):
     with pytest.raises(ds.InvalidParameterError, match="^html must be True or False, got 'no'"):
         robot_report(ds.load_scene("planar2"), tmp_path / "out", html="no")
     assert not (tmp_path / "out").exists()
+
+
+def _summary_page(monkeypatch, freq_hz, cable_fraction, index, complete=True, passed=True):
+    """The page of _page (robot.py) for platform modes given by hand: the document's
+    helpers (tested in test_report_document.py) replaced by stubs, the summary paragraph and
+    the section headings returned."""
+    import re
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    import dynstiff.report.document as doc
+    from dynstiff.analyses.platform_modes import PlatformModes
+    from dynstiff.report.robot import _page
+    for name in ("title_rows", "input_rows"):
+        monkeypatch.setattr(doc, name, lambda *a: [("k", "v")])
+    for name in ("cable_frame", "platform_mode_table"):
+        monkeypatch.setattr(doc, name, lambda *a: pd.DataFrame({"c": [1]}))
+    monkeypatch.setattr(doc, "spread_note", lambda pm: "")
+    modes = SimpleNamespace(freq_hz=np.asarray(freq_hz, float),
+                            cable_energy_fraction=np.asarray(cable_fraction, float))
+    pm = PlatformModes(modes, np.asarray(index, int), {}, complete,
+                       2.0 if complete else np.nan, 3.0, "" if complete else "ceiling")
+    st = SimpleNamespace(check_options=lambda: {"participation": 0.05}, rung="dsm",
+                         band_hz=(0.0, 10.0), model_rtol=0.01, forbidden_hz=None,
+                         damping=SimpleNamespace(text=lambda: "damping none"))
+    checks = SimpleNamespace(passed=passed, rows=[])
+    rec = SimpleNamespace(rung="dsm", segments=0, predicted_error=1e-3,
+                          to_frame=lambda: pd.DataFrame({"r": [1]}))
+    png = (b"\x89PNG", "figure")
+    page = _page(SimpleNamespace(name="s"), None, st, checks, pm, rec, (1e-3, "cause"),
+                 pd.DataFrame({"x": [1]}), [png, png], "a,b\n", 3, 10)
+    summary = page[page.index("Summary:"):].split("</p>")[0]
+    return summary, re.findall(r"<h2>(.*?)</h2>", page), page
+
+
+def test_the_page_has_the_documented_sections_in_order(monkeypatch):
+    _, heads, _ = _summary_page(monkeypatch, [1.0, 2.0], [0.5, 0.5], [0])
+    assert heads == ["Inputs", "Design checks", "Platform modes", "Frequency response",
+                     "Cable model", "Assumptions", "Statics", "Downloads"]
+
+
+def test_the_summary_verdict_is_worded_as_documented(monkeypatch):
+    ok, _, _ = _summary_page(monkeypatch, [1.0, 2.0], [0.5, 0.5], [0], passed=True)
+    bad, _, _ = _summary_page(monkeypatch, [1.0, 2.0], [0.5, 0.5], [0], passed=False)
+    assert ok.startswith("Summary: all checks passed; 1 platform mode(s), the first at 1 Hz;")
+    assert bad.startswith("Summary: some checks FAILED; 1 platform mode(s), the first at 1 Hz;")
+
+
+def test_the_summary_names_the_lowest_mode_below_the_first_platform_mode_moving_it(monkeypatch):
+    """Mode 1 (0.5 Hz) has a platform share 1 - 0.99 = 1 % < 5 %, mode 2 (0.7 Hz) 1 - 0.9 =
+    10 %: mode 2 is named, below the first platform mode (mode 3, 1.25 Hz)."""
+    s, _, _ = _summary_page(monkeypatch, [0.5, 0.7, 1.25, 2.0], [0.99, 0.9, 0.2, 0.3], [2, 3])
+    assert ("2 platform mode(s), the first at 1.25 Hz (the lowest mode the platform moves in, "
+            "with a share of 10%, is mode 2 at 0.7 Hz); cable model dsm") in s
+
+
+@pytest.mark.parametrize("case", ["first is lowest", "incomplete", "none held"])
+def test_the_summary_names_no_mode_when_none_below_the_first_platform_mode_moves_it(
+        monkeypatch, case):
+    """The lowest mode holding >= 5 % in the platform is the first platform mode itself (not
+    below it), or the search is incomplete, or no mode reaches 5 %: nothing is added."""
+    if case == "first is lowest":
+        s, _, _ = _summary_page(monkeypatch, [0.5, 1.25], [0.99, 0.2], [1])
+        assert "the first at 1.25 Hz; cable model" in s
+    elif case == "incomplete":
+        s, _, _ = _summary_page(monkeypatch, [0.5, 1.25], [0.5, 0.5], [], complete=False)
+        assert "; the platform modes not all found; cable model" in s
+    else:
+        s, _, _ = _summary_page(monkeypatch, [0.5, 1.25], [0.99, 0.98], [1])
+        assert "the first at 1.25 Hz; cable model" in s
+    assert "lowest mode" not in s
+
+
+@pytest.mark.parametrize("complete", [True, False])
+def test_the_platform_modes_section_opens_with_the_documented_paragraph(monkeypatch, complete):
+    """found_hz = 2 Hz given: the paragraph ends with "(2 Hz)"; without it (an incomplete
+    search) the note says why."""
+    from html import unescape
+    _, _, page = _summary_page(monkeypatch, [0.5, 1.25], [0.5, 0.5], [1] if complete else [],
+                               complete=complete)
+    sec = unescape(page[page.index("<h2>Platform modes</h2>"):])
+    para = ("The modes every modal verdict is about (theory.md §12.4): the mode that moves "
+            "each free DOF most and every global mode below the frequency by which every "
+            "free DOF has half of its participation" + (" (2 Hz)" if complete else "")
+            + "; undamped frequencies.")
+    assert sec.startswith(f"<h2>Platform modes</h2>\n<p>{para}</p>")
+    note = "The search for the platform modes is incomplete: ceiling"
+    assert (note in sec) is not complete

@@ -146,7 +146,23 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
 
 
 def _page(scene, eq, st, checks, pm, rec, error, statics, pngs, modes_csv, n_modes, n_freq):
-    """The HTML page (:mod:`dynstiff.report.document`)."""
+    """The HTML page (:mod:`dynstiff.report.document`).
+
+    Below the title block, one paragraph ``Summary: V; F; cable model R with estimated error
+    E up to B Hz.``: V is "all checks passed" or, when a check did not pass, "some checks
+    FAILED"; F is "N platform mode(s), the first at F1 Hz" (or "the platform modes not all
+    found" when the search is incomplete), followed, when a mode below the first platform
+    mode holds at least the checks' ``participation`` share of its energy in the platform
+    (share = 1 - cable energy fraction), by " (the lowest mode the platform moves in, with a
+    share of S%, is mode K at FK Hz)" for the lowest such mode (K counted from 1). Then the
+    sections, each an ``h2`` heading, in this order: "Inputs", "Design checks", "Platform
+    modes", "Frequency response", "Cable model", "Assumptions", "Statics", "Downloads".
+    "Platform modes" opens with the paragraph "The modes every modal verdict is about
+    (theory.md §12.4): the mode that moves each free DOF most and every global mode below the
+    frequency by which every free DOF has half of its participation (FOUND Hz); undamped
+    frequencies." (FOUND: ``pm.found_hz``; the parenthesis left out when the search is
+    incomplete, which a note then says with its reason).
+    """
     from dynstiff.report.document import (
         cable_frame,
         input_rows,
