@@ -1,0 +1,92 @@
+"""The numpy loop of inverse statics (dynstiff/robot/statics.py, ``_fixed_point``, theory.md
+§4): the fixed point of cable directions and tension distribution run without the compiled
+kernel (``dynstiff.compiled.load`` gives None for "statics", as without numba): its exit
+rule (a linear contraction's remaining change below rounding) and the messages of a cable
+that the scalar catenary solver cannot bring to the asked tension."""
+
+import numpy as np
+import pytest
+
+import dynstiff as ds
+import dynstiff.compiled
+from dynstiff.errors import InfeasiblePoseError, SlackCableError
+from dynstiff.robot import statics
+
+UPPER = [[-4.0, -3.0, 5.0], [4.5, -2.0, 5.2], [0.3, 4.0, 4.8]]
+
+
+@pytest.fixture
+def numpy_loop(monkeypatch):
+    """Inverse statics by the numpy loop from the start."""
+    load = dynstiff.compiled.load
+    monkeypatch.setattr(dynstiff.compiled, "load",
+                        lambda name: None if name == "statics" else load(name))
+
+
+def heavy_rising_cable():
+    """Three upper cables and a heavy one (0.2 kg/m) rising 2 m from a low anchor to the
+    point-mass platform at [0, 0, 2]: the distribution asks it less tension than any
+    catenary between its ends has at the platform."""
+    return ds.Robot(np.asarray(UPPER + [[3.0, 3.0, 0.0]], float), np.zeros((4, 3)),
+                    ds.Cable(0.2, 1e6), ds.Platform(20.0, free_dofs=("x", "y", "z")),
+                    tension_limits=(1.0, np.inf))
+
+
+@pytest.mark.usefixtures("numpy_loop")
+def test_unreachable_cable_is_diagnosed_at_its_pose():
+    """The scalar solver's failure is diagnosed (cable 3, the cable's weight) and the
+    message starts with the pose it was asked at."""
+    pose = [0.0, 0.0, 2.0]
+    with pytest.raises(InfeasiblePoseError) as err:
+        heavy_rising_cable().equilibrium(pose=pose)
+    assert err.value.cable == 3 and err.value.cause == "cable weight"
+    assert str(err.value).startswith("pose [0.0, 0.0, 2.0, 0.0, 0.0, 0.0]: cable 3 (rising 2 m")
+
+
+@pytest.mark.usefixtures("numpy_loop")
+def test_undiagnosed_unreachable_cable_names_the_pose_and_the_solver(monkeypatch):
+    """Without a diagnosis (another cause), the scalar solver's own SlackCableError is
+    raised, prefixed by the pose."""
+    monkeypatch.setattr(statics, "diagnose_unreachable", lambda *a: None)
+    with pytest.raises(SlackCableError) as err:
+        heavy_rising_cable().equilibrium(pose=[0.0, 0.0, 2.0])
+    assert not isinstance(err.value, InfeasiblePoseError)
+    assert str(err.value).startswith("pose [0.0, 0.0, 2.0, 0.0, 0.0, 0.0]: tension ")
+    assert "not reachable" in str(err.value)
+
+
+@pytest.mark.usefixtures("numpy_loop")
+@pytest.mark.parametrize("pose", [[0.0, 0.0, 1.0], [0.5, 0.3, 1.2]])
+def test_loop_stops_once_the_contraction_leaves_rounding_to_go(monkeypatch, pose):
+    """Each iteration's change (of the directions, and of the margins relative to the
+    largest tension) is recorded from the iterates; the loop goes on while the change is
+    at least 1e-15 and, for a linear contraction rho = change / last < 0.5, the change
+    still to go (rho / (1 - rho) change) is at least 2e-16, and stops at the first
+    iteration where it is not (no wasted iteration). The point-mass robot contracts fast
+    (rho ~ 1e-2), so this rule, not change < 1e-15, ends the loop."""
+    from conftest import point_mass_robot
+    calls = []
+    step, ends = statics._step_distribution, statics._end_quantities
+
+    def step_spy(*a, **k):
+        out = step(*a, **k)
+        calls.append([a[2].copy(), a[7].copy(), a[8].copy(), out[0].copy()])
+        return out
+
+    def ends_spy(*a, **k):
+        out = ends(*a, **k)
+        calls[-1].append(out)
+        return out
+
+    monkeypatch.setattr(statics, "_step_distribution", step_spy)
+    monkeypatch.setattr(statics, "_end_quantities", ends_spy)
+    eq = point_mass_robot().equilibrium(pose=pose)
+    assert eq.residual < 1e-10
+    changes = [max(np.abs(u1 - u).max(),
+                   np.abs(np.concatenate([lo1 - lo, hi1 - hi])).max() / t.max())
+               for u, lo, hi, t, (u1, lo1, hi1) in calls]
+    done = [c < 1e-15 or (0 < c / p < 0.5 and c * (c / p) / (1 - c / p) < 2e-16)
+            for p, c in zip([np.inf] + changes[:-1], changes)]
+    assert len(changes) >= 3
+    assert done[-1] and not any(done[:-1])
+    assert changes[-1] >= 1e-15                  # the contraction rule ended it
