@@ -37,7 +37,8 @@ def test_a_worded_html_flag_is_refused_and_nothing_is_written(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
-def _summary_page(monkeypatch, freq_hz, cable_fraction, index, complete=True, passed=True):
+def _summary_page(monkeypatch, freq_hz, cable_fraction, index, complete=True, passed=True,
+                  segments=0, forbidden_hz=None):
     """The page of _page (robot.py) for platform modes given by hand: the document's
     helpers (tested in test_report_document.py) replaced by stubs, the summary paragraph and
     the section headings returned."""
@@ -59,10 +60,11 @@ def _summary_page(monkeypatch, freq_hz, cable_fraction, index, complete=True, pa
     pm = PlatformModes(modes, np.asarray(index, int), {}, complete,
                        2.0 if complete else np.nan, 3.0, "" if complete else "ceiling")
     st = SimpleNamespace(check_options=lambda: {"participation": 0.05}, rung="dsm",
-                         band_hz=(0.0, 10.0), model_rtol=0.01, forbidden_hz=None,
+                         band_hz=(0.0, 10.0), model_rtol=0.01, forbidden_hz=forbidden_hz,
                          damping=SimpleNamespace(text=lambda: "damping none"))
     checks = SimpleNamespace(passed=passed, rows=[])
-    rec = SimpleNamespace(rung="dsm", segments=0, predicted_error=1e-3,
+    rec = SimpleNamespace(rung="dsm" if not segments else "lumped", segments=segments,
+                          predicted_error=1e-3,
                           to_frame=lambda: pd.DataFrame({"r": [1]}))
     png = (b"\x89PNG", "figure")
     page = _page(SimpleNamespace(name="s"), None, st, checks, pm, rec, (1e-3, "cause"),
@@ -124,3 +126,30 @@ def test_the_platform_modes_section_opens_with_the_documented_paragraph(monkeypa
     assert sec.startswith(f"<h2>Platform modes</h2>\n<p>{para}</p>")
     note = "The search for the platform modes is incomplete: ceiling"
     assert (note in sec) is not complete
+
+
+@pytest.mark.parametrize("segments, forbidden", [(0, None), (12, (4.0, 6.5))])
+def test_the_cable_model_and_assumptions_say_what_was_and_was_not_checked(monkeypatch,
+                                                                          segments, forbidden):
+    """The recommendation names its segments only for a lumped rung; the assumptions say
+    the forbidden band's two checks are not asked when none is given, else give the band,
+    and that no mode below the highest listed is missed (the Wittrick-Williams count)."""
+    import html
+    _, _, page = _summary_page(monkeypatch, [1.0, 2.0], [0.5, 0.5], [0], segments=segments,
+                               forbidden_hz=forbidden)
+    text = html.unescape(page)
+    rec = "lumped with 12 segments (predicted" if segments else "dsm (predicted"
+    assert f"Recommended for this band: {rec} error 0.001)." in text
+    assert ("forbidden band 4-6.5 Hz" if forbidden else
+            "forbidden band none given: its two checks are not asked") in text
+    assert ("every mode below the highest listed found (Wittrick-Williams count)") in text
+
+
+def test_the_download_is_the_modes_table_described_in_full(monkeypatch):
+    """The one download: modes.csv, with the number of modes and what the file holds."""
+    import html
+    _, _, page = _summary_page(monkeypatch, [1.0, 2.0], [0.5, 0.5], [0])
+    text = html.unescape(page)
+    assert ("All 3 modes computed (modes.csv: frequencies, kinds, participations, platform "
+            "shapes; also written beside this page)") in text
+    assert 'download="modes.csv"' in text
