@@ -25,6 +25,21 @@ def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
     n_band = ds.eigenfrequencies(model, fmax_hz=12.0).size
     assert n_band > 40
     assert len(seen["modes"].freq_hz) == n_band
+    # the CSV tables as documented: their own name and units lines, modes.csv's fourth
+    # column, frf.csv's inputs and outputs
+    import pandas as pd
+    units = {"statics.csv": "SI, in the column names",
+             "modes.csv": "Hz; mode shapes normalised to unit platform kinetic energy",
+             "checks.csv": "as each row's value and limit",
+             "frf.csv": "in each row's unit column"}
+    for name, unit in units.items():
+        head = [ln for ln in (tmp_path / name).read_text().splitlines() if ln.startswith("#")]
+        assert f'# table: "{name}"' in head and f'# units: "{unit}"' in head
+    table = pd.read_csv(tmp_path / "modes.csv", comment="#")
+    assert list(table.columns[:4]) == ["mode", "freq [Hz]", "kind", "platform mode"]
+    assert table["platform mode"].dtype == bool and 0 < table["platform mode"].sum() < len(table)
+    frf_rows = pd.read_csv(tmp_path / "frf.csv", comment="#")
+    assert set(frf_rows["input"]) == {"fx", "fz"} and set(frf_rows["output"]) == {"x", "z"}
 
 
 def test_a_worded_html_flag_is_refused_and_nothing_is_written(tmp_path):

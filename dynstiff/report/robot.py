@@ -52,7 +52,14 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     text : str
         The printed report.
     files : list of Path
-        Files written.
+        Files written. The tables are CSV files (:func:`dynstiff.io.table.write_csv`), each
+        headed by the run's metadata and the lines ``# table: "<file name>"`` and ``# units:
+        "<where the units are>"``: ``statics.csv`` (units "SI, in the column names"),
+        ``modes.csv`` (the modes with a fourth column ``platform mode``, True for the
+        platform modes the verdicts are about; units "Hz; mode shapes normalised to unit
+        platform kinetic energy"), ``checks.csv`` ("as each row's value and limit") and
+        ``frf.csv`` ("in each row's unit column": the receptances from the forces fx, fz to
+        the displacements x, z, those of them that are free DOFs).
     """
     import matplotlib
     matplotlib.use("Agg")
