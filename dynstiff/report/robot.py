@@ -52,7 +52,7 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     text : str
         The printed report.
     files : list of Path
-        Files written. The tables are CSV files (:func:`dynstiff.io.table.write_csv`), each
+        Files written. The tables are CSV files (:func:`write_csv`), each
         headed by the run's metadata and the lines ``# table: "<file name>"`` and ``# units:
         "<where the units are>"``: ``statics.csv`` (units "SI, in the column names"),
         ``modes.csv`` (the modes with a fourth column ``platform mode``, True for the
