@@ -184,6 +184,18 @@ class _Stderr(io.StringIO):
         return self.terminal
 
 
+def exact_float_poles(mu, omega_max):
+    """The omegas [rad/s] below ``omega_max`` that sit exactly on a clamped pole in floats,
+    w * w * mu_j == 1.0 (the float next to sqrt(1 / mu_j), or one of its neighbours), one
+    per pole that has such a float; ``mu`` the exact cable's flexibility eigenvalues."""
+    poles = []
+    for m in np.asarray(mu)[1 / np.asarray(mu) < omega_max ** 2]:
+        w = np.sqrt(1 / m)
+        poles += [c for c in (w, np.nextafter(w, 0), np.nextafter(w, np.inf))
+                  if c * c * m == 1.0][:1]
+    return poles
+
+
 def damped_explicit_limit(mm, c_ax):
     """The explicit step limit of theory.md §7.3 computed from the cables of a
     LumpedMassModel ``mm``: dt0 = l0 / sqrt(EA / m), reduced by the damping ratio of the

@@ -6,6 +6,7 @@ import functools
 
 import numpy as np
 import pytest
+from conftest import exact_float_poles
 
 import dynstiff as ds
 from dynstiff.cable.dsm import cable_dynamic_stiffness
@@ -562,12 +563,7 @@ def test_a_response_exactly_on_a_clamped_pole_is_finite_and_silent():
     floating-point warning escapes (the package's RuntimeWarnings are errors in the tests)."""
     s = state(HARD["soft, axial mode among the first ten"])
     ec = ExactCable(s, TWO_PI * 4.0)
-    poles = []
-    for f in ec._fam:                               # omegas with w^2 mu == 1 in floats
-        for mu in f.mu[1 / f.mu < ec.omega_max ** 2]:
-            w = np.sqrt(1 / mu)
-            poles += [c for c in (w, np.nextafter(w, 0), np.nextafter(w, np.inf))
-                      if c * c * mu == 1.0][:1]
+    poles = exact_float_poles(ec._mu, ec.omega_max)
     assert len(poles) >= 3
     u_end = np.array([0.1, 0.2, 0.3])
     for w in poles[:3]:

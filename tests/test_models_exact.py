@@ -7,6 +7,7 @@ import warnings
 
 import numpy as np
 import pytest
+from conftest import exact_float_poles
 
 import dynstiff as ds
 from dynstiff.errors import ClosedFormWarning, InvalidParameterError
@@ -325,11 +326,7 @@ def test_the_stiffness_exactly_on_a_clamped_pole_is_not_finite_and_silent(cogiro
     finite, as documented, with no floating-point warning (the package's RuntimeWarnings are
     errors in the tests); a relative 1e-9 below it, K is finite."""
     m = cogiro_exact
-    poles = []
-    for mu in m._mu[1 / m._mu < m.max_omega ** 2]:
-        w = np.sqrt(1 / mu)
-        poles += [c for c in (w, np.nextafter(w, 0), np.nextafter(w, np.inf))
-                  if c * c * mu == 1.0][:1]
+    poles = exact_float_poles(m._mu, m.max_omega)
     assert len(poles) >= 2
     for w in poles[:2]:
         assert not np.all(np.isfinite(m.dynamic_stiffness(w)))
