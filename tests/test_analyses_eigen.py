@@ -329,6 +329,15 @@ def test_illinois_converges_superlinearly_and_stops_on_an_exact_zero():
     assert calls[0] == 8 and calls[-1] <= 4                # converged brackets drop out
 
 
+def test_illinois_takes_a_root_on_the_brackets_lower_end_quietly():
+    """The search's contract allows f_lo = 0 (f_lo >= 0 > f_hi): for 2 - x on [2, 4] the root
+    is the lower end itself. The Anderson-Bjorck factor 1 - f_new / f_lo divides by that zero
+    (the factor is then replaced by 1/2); it must do so under its errstate, with no
+    RuntimeWarning (an error in this suite), and the root 2 is found to rtol."""
+    roots, _ = _run_illinois([lambda x: 2.0 - x], [2.0], [4.0])
+    assert roots[0] == pytest.approx(2.0, rel=1e-12)
+
+
 def test_illinois_on_a_strongly_curved_function_halves_its_bracket_and_converges():
     """exp(8 (1 - x)) - 1 on [0.1, 3] (values 1300 and -1): plain regula falsi creeps from
     the flat end (0.2 % per step; 100 steps left [0.1, 2.96]). A bracket that has not halved
