@@ -20,7 +20,7 @@ from dynstiff.errors import InvalidParameterError
     (dict(mass_per_length=0.1, EA=1e5, viscous_damping=float("nan")), "viscous_damping"),
 ])
 def test_bad_cable_raises_naming_field(kwargs, name):
-    with pytest.raises(InvalidParameterError, match=name):
+    with pytest.raises(InvalidParameterError, match="^" + name):   # the message opens with it
         ds.Cable(**kwargs)
 
 
@@ -31,7 +31,7 @@ def test_bad_cable_raises_naming_field(kwargs, name):
     (dict(cable_viscous_damping=-1.0), "cable_viscous_damping"),
 ])
 def test_bad_damping_raises_naming_field(kwargs, name):
-    with pytest.raises(InvalidParameterError, match=name):
+    with pytest.raises(InvalidParameterError, match="^" + name):   # the message opens with it
         ds.Damping(**kwargs)
 
 
