@@ -20,7 +20,16 @@ def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
 
     monkeypatch.setattr(dynstiff.plot, "plot_frf", spy)
     scene = ds.load_scene("cogiro")
-    robot_report(scene, tmp_path, n_points=200)
+    text, _ = robot_report(scene, tmp_path, n_points=200)
+    # the printed report as documented: the title line, then the four titled sections
+    lines = text.splitlines()
+    assert lines[0] == f"dynstiff: cogiro: {scene.description}"
+    titles = ["Statics (elastic catenaries)",
+              "First 40 modes, which hold the platform modes (Wittrick-Williams count: none "
+              "missed; undamped frequencies)", "Cable model", "Design checks"]
+    at = [lines.index(t) for t in titles]
+    assert at == sorted(at) and all(lines[k - 1] == "" for k in at)
+    assert lines[at[1] + 1].split()[:3] == ["mode", "freq", "[Hz]"]
     model = ds.FrequencyModel(scene.equilibrium())
     n_band = ds.eigenfrequencies(model, fmax_hz=12.0).size
     assert n_band > 40
