@@ -4,7 +4,7 @@ name the argument, the expectation and the value found."""
 import numpy as np
 import pytest
 
-from dynstiff._validate import omega_array, point, positive_scalar, unstretched_lengths
+from dynstiff._validate import count, omega_array, point, positive_scalar, unstretched_lengths
 from dynstiff.errors import DynstiffError, InvalidParameterError
 
 
@@ -39,6 +39,9 @@ def test_omega_array_real_and_complex():
 def test_point_and_lengths():
     with pytest.raises(InvalidParameterError, match=r"anchor must have shape \(3,\)"):
         point("anchor", [1, 2])
+    with pytest.raises(InvalidParameterError,
+                       match=r"^anchor must be finite, got \[1\.0, nan, 2\.0\]$"):
+        point("anchor", [1.0, np.nan, 2.0])
     with pytest.raises(InvalidParameterError, match="unstretched_lengths must be 2 finite"):
         unstretched_lengths([1.0, 0.0], 2)
     with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
@@ -179,3 +182,13 @@ def test_tension_reference_is_one_or_n_finite_tensions():
                        ("abc", "one tension or 3"), (True, "not booleans")):
         with pytest.raises(InvalidParameterError, match="^tension_reference must be .*" + match):
             tension_reference(bad, 3)
+
+
+def test_a_count_takes_its_least_value_and_refuses_one_less():
+    """count(name, value, least): the bound is inclusive, as its message says (>= least)."""
+    assert count("n_modes", 1) == 1 and count("workers", 0, least=0) == 0
+    assert type(count("n", np.int64(5), least=5)) is int
+    with pytest.raises(InvalidParameterError, match=r"^n_modes must be an integer >= 1, got 0$"):
+        count("n_modes", 0)
+    with pytest.raises(InvalidParameterError, match=r"^n must be an integer >= 5, got 4$"):
+        count("n", 4, least=5)
