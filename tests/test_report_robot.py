@@ -20,7 +20,14 @@ def test_demo_frf_marks_every_mode_of_its_band(tmp_path, monkeypatch):
 
     monkeypatch.setattr(dynstiff.plot, "plot_frf", spy)
     scene = ds.load_scene("cogiro")
-    text, _ = robot_report(scene, tmp_path, n_points=200)
+    text, files = robot_report(scene, tmp_path, n_points=200)
+    from dynstiff.analyses.settings import analysis_settings
+    pm = ds.design_checks(scene.robot, scene.equilibrium().pose,
+                          **analysis_settings(scene).check_options()).platform
+    assert [f.name for f in files] == (
+        ["statics.csv", "modes.csv", "checks.csv", "frf.csv", "frf.png"]
+        + [f"mode_shape_{k + 1}.png" for k in pm.index] + ["report.html"])
+    assert all(f.parent == tmp_path and f.stat().st_size > 0 for f in files)
     # the printed report as documented: the title line, then the four titled sections
     lines = text.splitlines()
     assert lines[0] == f"dynstiff: cogiro: {scene.description}"

@@ -65,7 +65,10 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         platform modes the verdicts are about; units "Hz; mode shapes normalised to unit
         platform kinetic energy"), ``checks.csv`` ("as each row's value and limit") and
         ``frf.csv`` ("in each row's unit column": the receptances from the forces fx, fz to
-        the displacements x, z, those of them that are free DOFs).
+        the displacements x, z, those of them that are free DOFs). Then the figures, PNG:
+        ``frf.png`` (the damped FRFs, magnitude and phase, every mode of the band marked) and
+        ``mode_shape_K.png`` for each platform mode K (counted from 1); last ``report.html``
+        when ``html``.
     """
     import matplotlib
     matplotlib.use("Agg")
