@@ -34,6 +34,9 @@ def test_omega_array_real_and_complex():
     with pytest.raises(InvalidParameterError, match=r"^omega must be finite \[rad/s\], got"):
         omega_array([np.nan + 1j], complex_ok=True)         # complex: no sign to check
     assert omega_array([1.0], complex_ok=True).dtype == float     # real stays real
+    with pytest.raises(InvalidParameterError,          # by default complex is refused
+                       match=r"^omega must be real angular frequencies \[rad/s\], got complex"):
+        omega_array([1.0 + 0.1j])
 
 
 def test_point_and_lengths():
@@ -42,6 +45,9 @@ def test_point_and_lengths():
     with pytest.raises(InvalidParameterError,
                        match=r"^anchor must be finite, got \[1\.0, nan, 2\.0\]$"):
         point("anchor", [1.0, np.nan, 2.0])
+    with pytest.raises(InvalidParameterError,
+                       match=r"^anchor must be a sequence of 3 real numbers, got 'abc'$"):
+        point("anchor", "abc")
     with pytest.raises(InvalidParameterError, match="unstretched_lengths must be 2 finite"):
         unstretched_lengths([1.0, 0.0], 2)
     with pytest.raises(InvalidParameterError, match="unstretched_lengths"):
