@@ -2030,6 +2030,11 @@ EQUIVALENT.update({
     "dynstiff.report.robot.x__page__mutmut_186": "'UTF-8' for 'utf-8': codec names are read "
                                                  "case-insensitively, the same bytes",
 })
+# eighth round
+_CAUGHT = ("the name given to real_array: its error is caught and replaced by "
+           "unstretched_lengths' own message, which names the argument")
+EQUIVALENT.update({f"dynstiff._validate.x_unstretched_lengths__mutmut_{n}": _CAUGHT
+                   for n in (12, 13)})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -4,7 +4,16 @@ name the argument, the expectation and the value found."""
 import numpy as np
 import pytest
 
-from dynstiff._validate import count, omega_array, point, positive_scalar, unstretched_lengths
+from dynstiff._validate import (
+    count,
+    flag,
+    index,
+    omega_array,
+    point,
+    positive_scalar,
+    real_array,
+    unstretched_lengths,
+)
 from dynstiff.errors import DynstiffError, InvalidParameterError
 
 
@@ -198,3 +207,35 @@ def test_a_count_takes_its_least_value_and_refuses_one_less():
         count("n_modes", 0)
     with pytest.raises(InvalidParameterError, match=r"^n must be an integer >= 5, got 4$"):
         count("n", 4, least=5)
+
+
+def test_an_index_takes_zero_and_a_flag_keeps_its_truth():
+    assert index("mode", 0, 3) == 0 and index("mode", np.int64(2), 3) == 2
+    with pytest.raises(InvalidParameterError,
+                       match=r"^mode must be an integer in \[0, 3\), got 3$"):
+        index("mode", 3, 3)
+    assert flag("html", True) is True and flag("html", np.bool_(True)) is True
+    assert flag("html", False) is False
+
+
+def test_the_bound_in_a_scalars_message_is_the_one_it_checks():
+    with pytest.raises(InvalidParameterError, match=r"^eta must be >= 0, got -1\.0$"):
+        positive_scalar("eta", -1.0, allow_zero=True)
+    with pytest.raises(InvalidParameterError, match=r"^EA must be > 0, got 0\.0$"):
+        positive_scalar("EA", 0.0)
+
+
+def test_a_real_array_refuses_text_and_complex_numbers_by_name():
+    """The default expectation is "real numbers"; a complex array is refused (never cut to
+    its real part with a ComplexWarning)."""
+    with pytest.raises(InvalidParameterError, match=r"^x must be real numbers, got 'abc'$"):
+        real_array("x", "abc")
+    with pytest.raises(InvalidParameterError, match=r"^x must be real numbers, got array"):
+        real_array("x", np.array([1.0 + 1e-3j]))
+
+
+@pytest.mark.parametrize("value", [[1.0, 2.0, 3.0], [1.0, np.nan], [1.0, np.inf]])
+def test_unstretched_lengths_of_the_wrong_count_or_not_finite_are_refused(value):
+    with pytest.raises(InvalidParameterError,
+                       match=r"^unstretched_lengths must be 2 finite positive lengths"):
+        unstretched_lengths(value, 2)
