@@ -184,3 +184,36 @@ def test_the_download_is_the_modes_table_described_in_full(monkeypatch):
     assert ("All 3 modes computed (modes.csv: frequencies, kinds, participations, platform "
             "shapes; also written beside this page)") in text
     assert 'download="modes.csv"' in text
+
+
+def test_the_report_reuses_the_checks_modes_and_rounds_the_pose_to_four_decimals(tmp_path,
+                                                                              monkeypatch):
+    """planar2 at a pose rotated by 0.0123456 rad, the settings asking for exactly as many
+    modes as the design checks searched: the report's pose line rounds to 4 decimals, the
+    table holds the checks' modes without a second search (the only search is the band's
+    marks, by fmax_hz), and the page says how many modes it holds."""
+    import html
+    from dataclasses import replace
+
+    import dynstiff as ds
+    import dynstiff.analyses.modes
+    from dynstiff.analyses.settings import analysis_settings
+    from dynstiff.report.robot import robot_report
+    from dynstiff.robot.pose import as_pose
+    scene = ds.load_scene("planar2")
+    scene = replace(scene, pose=as_pose([0.1, 0.0, -9.5, 0.0, 0.0123456, 0.0]),
+                    unstretched_lengths=None)
+    st = analysis_settings(scene)
+    found = len(ds.design_checks(scene.robot, scene.pose, **st.check_options()).platform.modes)
+    calls, real = [], dynstiff.analyses.modes.modes
+
+    def spy(model, **kw):
+        calls.append(kw)
+        return real(model, **kw)
+
+    monkeypatch.setattr(dynstiff.analyses.modes, "modes", spy)
+    text, _ = robot_report(scene, tmp_path, settings=replace(st, n_modes=found), n_points=50)
+    assert text.splitlines()[1] == "pose [0.1, 0.0, -9.5] m, rotation [0.0, 0.0123, 0.0] rad"
+    assert [sorted(kw) for kw in calls] == [["fmax_hz"]]
+    page = html.unescape((tmp_path / "report.html").read_text())
+    assert f"All {found} modes computed (modes.csv:" in page

@@ -50,12 +50,14 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
     Returns
     -------
     text : str
-        The printed report: a line ``dynstiff: NAME: DESCRIPTION``, the pose, the settings'
+        The printed report: a line ``dynstiff: NAME: DESCRIPTION``, the pose (``pose
+        [x, y, z] m, rotation [rx, ry, rz] rad``, rounded to 4 decimals), the settings'
         lines, then four sections, each its title on one line followed by its table and a
         blank line: "Statics (elastic catenaries)" (the equilibrium's table), "First N
         modes, which hold the platform modes (Wittrick-Williams count: none missed; undamped
         frequencies)" (columns mode, freq [Hz], kind, platform mode, platform share [-],
-        dominant dof, massless freq [Hz]), "Cable model" (the recommendation) and "Design
+        dominant dof, massless freq [Hz]; the modes the design checks searched, or, where
+        they are fewer than the settings' ``n_modes``, that many searched again), "Cable model" (the recommendation) and "Design
         checks" (the checks' verdicts).
     files : list of Path
         Files written. The tables are CSV files (:func:`write_csv`), each
