@@ -191,7 +191,8 @@ def test_the_report_reuses_the_checks_modes_and_rounds_the_pose_to_four_decimals
     """planar2 at a pose rotated by 0.0123456 rad, the settings asking for exactly as many
     modes as the design checks searched: the report's pose line rounds to 4 decimals, the
     table holds the checks' modes without a second search (the only search is the band's
-    marks, by fmax_hz), and the page says how many modes it holds."""
+    marks, by fmax_hz), and the page says how many modes it holds and on how many
+    frequencies (those of frf.csv) the FRFs are."""
     import html
     from dataclasses import replace
 
@@ -217,3 +218,7 @@ def test_the_report_reuses_the_checks_modes_and_rounds_the_pose_to_four_decimals
     assert [sorted(kw) for kw in calls] == [["fmax_hz"]]
     page = html.unescape((tmp_path / "report.html").read_text())
     assert f"All {found} modes computed (modes.csv:" in page
+    import pandas as pd
+    n_freq = pd.read_csv(tmp_path / "frf.csv", comment="#")["freq [Hz]"].nunique()
+    assert n_freq > 50
+    assert f"FRFs on {n_freq} frequencies, refined around every mode of the band" in page
