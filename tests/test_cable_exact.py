@@ -349,46 +349,6 @@ def test_undamped_stiffness_is_real_and_responses_are_linear_in_the_end_motion()
         ec.dynamic_stiffness([1.0, 6.0, 2.0])
 
 
-@pytest.mark.parametrize("name, half_waves", [
-    ("sagging 10x5 m, d/L 0.10", 2.0), ("slack U (T_min 0.04 T_max)", 2.0),
-    ("exactly vertical", 2.0),
-    ("sagging 10x5 m, d/L 0.10", 0.3)])
-def test_elements_are_spread_evenly_in_the_mesh_measure(name, half_waves):
-    """theory.md §11.2: the element edges divide Phi(s) = s / L0 + |asinh(V/H) -
-    asinh(V0/H)| + int_0^s k_t ds / (pi half_waves), k_t = omega_max sqrt(m (1 + T/EA) / T),
-    into ceil(Phi(L0)) equal parts (ln T replaces asinh(V/H) when H = 0). Phi is evaluated
-    here by adaptive quadrature, independently of the mesh's own 4001-point sums."""
-    from scipy.integrate import quad
-    if name == "exactly vertical":
-        s = ds.solve_catenary((0, 0, 0), (0.0, 0, 10.0), 9.9, ds.Cable(0.5, 2e4))
-    else:
-        s = state((HARD | STATIC)[name])
-    w_max = TWO_PI * 12.0
-    ec = ExactCable(s, w_max, half_waves=half_waves)
-    L0, EA, m = s.unstretched_length, s.cable.EA, s.cable.mass_per_length
-    w0 = s.cable.weight_per_length(s.g)
-
-    def T(x):
-        return np.hypot(s.H, s.V0 + w0 * x)
-
-    def psi(x):
-        return np.arcsinh((s.V0 + w0 * x) / s.H) if s.H > 0 else np.log(T(x))
-
-    def k(x):
-        return w_max * np.sqrt(m * (1 + T(x) / EA) / T(x))
-
-    def phi(x):
-        wave = quad(k, 0.0, x, epsabs=0, epsrel=1e-12, limit=200)[0]
-        return x / L0 + abs(psi(x) - psi(0.0)) + wave / (np.pi * half_waves)
-
-    edges = ec.edges
-    n_el = len(edges) - 1
-    assert edges[0] == 0.0 and edges[-1] == L0
-    assert n_el == int(np.ceil(phi(L0))) and n_el > 3
-    # equal to the accuracy of the mesh's trapezoid sums on 4001+ points (measured <= 4e-7)
-    np.testing.assert_allclose(np.diff([phi(x) for x in edges]), phi(L0) / n_el, rtol=1e-6)
-
-
 def test_a_single_element_cable_equals_a_refined_one():
     """A weightless cable with a band near zero is one element (Phi(L0) rounds to 1): its
     discrete statics must still reproduce the exact ones, and its K(omega) in the band

@@ -1,7 +1,7 @@
 """The static state and mesh of the exact cable (dynstiff/cable/exact_mesh.py, theory.md
 §11.2, §11.3): the Gauss-Lobatto-Legendre rule and the closed-form integrals of t t^T along
-the arc, each against quadrature. The mesh's spacing is tested through the cable in
-tests/test_cable_exact.py."""
+the arc, each against quadrature; the mesh's spacing against the measure Phi integrated by
+adaptive quadrature."""
 
 import numpy as np
 import pytest
@@ -69,3 +69,44 @@ def test_mesh_puts_per_efold_elements_in_each_e_fold_of_the_tension(per_efold):
     assert span > 1.0
     edges = mesh(s, 0.0, 2.0, per_efold=per_efold)
     assert edges.size - 1 == int(np.ceil(1.0 + per_efold * span))
+
+
+@pytest.mark.parametrize("name, half_waves", [
+    ("sagging 10x5 m, d/L 0.10", 2.0), ("slack U (T_min 0.04 T_max)", 2.0),
+    ("exactly vertical", 2.0), ("sagging 10x5 m, d/L 0.10", 0.3)])
+def test_elements_are_spread_evenly_in_the_mesh_measure(name, half_waves):
+    """theory.md §11.2: the element edges divide Phi(s) = s / L0 + |asinh(V/H) -
+    asinh(V0/H)| + int_0^s k_t ds / (pi half_waves), k_t = omega_max sqrt(m (1 + T/EA) / T),
+    into ceil(Phi(L0)) equal parts (ln T replaces asinh(V/H) when H = 0). Phi is evaluated
+    here by adaptive quadrature, independently of the mesh's own 4001-point sums."""
+    from scipy.integrate import quad
+
+    from dynstiff.cable.exact_mesh import mesh
+    A, B, L0, cable = {
+        "sagging 10x5 m, d/L 0.10": ((0, 0, 0), (10.0, 0, 5.0), 11.5, ds.Cable(1.0, 1e6)),
+        "slack U (T_min 0.04 T_max)": ((0, 0, 0), (2.0, 0, 9.0), 10.1, ds.Cable(0.064, 1.4e5)),
+        "exactly vertical": ((0, 0, 0), (0.0, 0, 10.0), 9.9, ds.Cable(0.5, 2e4))}[name]
+    s = ds.solve_catenary(A, B, L0, cable)
+    w_max = 2 * np.pi * 12.0
+    L0, EA, m = s.unstretched_length, s.cable.EA, s.cable.mass_per_length
+    w0 = s.cable.weight_per_length(s.g)
+
+    def T(x):
+        return np.hypot(s.H, s.V0 + w0 * x)
+
+    def psi(x):
+        return np.arcsinh((s.V0 + w0 * x) / s.H) if s.H > 0 else np.log(T(x))
+
+    def k(x):
+        return w_max * np.sqrt(m * (1 + T(x) / EA) / T(x))
+
+    def phi(x):
+        wave = quad(k, 0.0, x, epsabs=0, epsrel=1e-12, limit=200)[0]
+        return x / L0 + abs(psi(x) - psi(0.0)) + wave / (np.pi * half_waves)
+
+    edges = mesh(s, w_max, half_waves)
+    n_el = len(edges) - 1
+    assert edges[0] == 0.0 and edges[-1] == L0
+    assert n_el == int(np.ceil(phi(L0))) and n_el > 3
+    # equal to the accuracy of the mesh's trapezoid sums on 4001+ points (measured <= 4e-7)
+    np.testing.assert_allclose(np.diff([phi(x) for x in edges]), phi(L0) / n_el, rtol=1e-6)
