@@ -524,7 +524,7 @@ _MESH = ("the sampling of the mesh measure Phi (theory.md §11.2): the extra poi
          "one sample deciding the element count change the edges by less than the 4e-7 of "
          "the 4001-point sums (test_elements_are_spread_evenly_in_the_mesh_measure)")
 EQUIVALENT.update({f"dynstiff.cable.exact_mesh.x_mesh__mutmut_{n}": _MESH
-                   for n in (12, 15, 17, 34, 38, 39, 51, 63, 76, 110)})
+                   for n in (12, 34, 38, 39, 63, 110)})
 _CE = "dynstiff.cable.exact."
 # ExactCable.__init__, _build_modes and _self_check were rewritten for the mixed form
 # (theory.md §11.2): their equivalent mutants are to be judged again.
@@ -778,7 +778,7 @@ EQUIVALENT.update({
         "and checked), but mutmut's own frames move every warning's place",
     "dynstiff.cable.psi.x_mode_count_psi__mutmut_24":
         "-2 instead of -1 in a factor whose sign alone is tested",
-    "dynstiff.cable.psi.x_check_frequency_range__mutmut_34":
+    "dynstiff.cable.psi.x_check_frequency_range__mutmut_39":
         "omega as a column for a single cable too: psi is elementwise, the same maximum",
     "dynstiff.cable.guard.x_guard_cable__mutmut_55":
         "cable=None dropped: None is the warning's default",
@@ -798,9 +798,11 @@ EQUIVALENT.update({
         "bracket closes to rtol in a few more steps, at the same root",
     "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_20":
         "the viscous form of w^2 for an undamped model: its viscous rates are 0 and K.real "
-        "follows",
+        "follows (complex rounding: 1e-16; on an exact pole NaN entries for inf, both the "
+        "documented 'not finite')",
     "dynstiff.models.exact.xǁExactModelǁ_block__mutmut_29":
-        "division by 1 + i 0 (loss factor 0): the same values, K.real follows when undamped",
+        "division by 1 + i 0 (loss factor 0): the same values, K.real follows when undamped "
+        "(complex rounding: 1e-16; on an exact pole NaN entries for inf, both 'not finite')",
     "dynstiff.cable.lumped_elements.x_block_tridiagonal_entries__mutmut_9":
         "meshgrid's 'xy' indexing transposes each element block: element stiffnesses are "
         "symmetric",
@@ -883,7 +885,7 @@ EQUIVALENT.update({
     "dynstiff.robot.statics.x__end_quantities__mutmut_79":
         "V0 <= 0 instead of < 0: at V0 = 0 both forms give H",
     "dynstiff.models.dsm_guard.x_guard_static__mutmut_21": _BOUNDARY,
-    "dynstiff.cable.psi.x_check_frequency_range__mutmut_45": _BOUNDARY,
+    "dynstiff.cable.psi.x_check_frequency_range__mutmut_50": _BOUNDARY,
     "dynstiff.cable.catenary_solve.x__newton__mutmut_80": _BOUNDARY,
     "dynstiff.cable.catenary_solve.x__newton__mutmut_70":
         "the catenary Newton's line search accepts a short step only when converged: the "
@@ -904,7 +906,7 @@ EQUIVALENT.update({
         "steps at most; the test of a bracket that does not close gives its own max_iter",
     "dynstiff.analyses.eigen.x__search__mutmut_20":
         "searchsorted's side='left' dropped: 'left' is its default",
-    "dynstiff.analyses.eigen.x__counter__mutmut_32":
+    "dynstiff.analyses.eigen.x__counter__mutmut_33":
         "the compiled search's step cap 201 instead of 200: its brackets close in a few "
         "dozen steps at most; the cap matters only for one that does not close, and the "
         "test of that case gives its own max_iter",
@@ -966,18 +968,15 @@ EQUIVALENT.update({
         "singular Hessian, which no chain met (it is a start: the node Newton goes on)",
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_224": _ZERO_FORCE,
     "dynstiff.cable.lumped_chain.x__force_space_start__mutmut_228": _ZERO_FORCE,
-    f"{_EM}__init____mutmut_130": "beta_dyads(ends=None): any value but 'both' gives the end "
-                                  "block",
-    f"{_EM}__init____mutmut_131": "beta_dyads(ends='XXendXX'): any value but 'both' gives the "
+    f"{_EM}__init____mutmut_134": "beta_dyads(ends='XXendXX'): any value but 'both' gives the "
                                   "end block",
-    f"{_EM}__init____mutmut_142":
+    f"{_EM}__init____mutmut_145":
         "a zero platform damping matrix built (ratio >= 0) and added to a damped model's K: "
         "the same values",
-    f"{_EM}__init____mutmut_76": "dtype dropped on lever arms that are float already",
-    f"{_EM}__init____mutmut_78": "dtype dropped on lever arms that are float already",
-    f"{_EM}__init____mutmut_96": _CONST,
-    f"{_EM}__init____mutmut_98": _CONST,
+    f"{_EM}__init____mutmut_83": "dtype dropped on lever arms that are float already",
     f"{_EM}__init____mutmut_99": _CONST,
+    f"{_EM}__init____mutmut_101": _CONST,
+    f"{_EM}__init____mutmut_102": _CONST,
     f"{_EM}_block__mutmut_80": "reshape(-2, ...) infers like -1",
     f"{_EM}_check__mutmut_4": _BOUNDARY,
     f"{_EM}dynamic_stiffness__mutmut_24":
@@ -993,7 +992,7 @@ EQUIVALENT.update({
         "the sign of the theta^4 term of the small-angle series (theta <= 1e-3): below 3e-16",
     "dynstiff.robot.platform.x_rotvec_to_quaternion__mutmut_3":
         "dtype=None on a rotation vector: integer input gives the same float quaternion",
-    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_65": _FALSY,
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_77": _FALSY,
     "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_11": _FALSY,
     "dynstiff.robot.distribution.x__closest_in_box__mutmut_97": _BOUNDARY,
     "dynstiff.robot.distribution.x__closest_in_box__mutmut_98":
@@ -1031,10 +1030,7 @@ EQUIVALENT.update({
         "mask.astype(None) instead of astype(float): numpy's default dtype is float64",
     "dynstiff.analyses.measured.x_massless_pairing__mutmut_27":
         "einsum subscripts in upper case: einsum takes either case, the same contraction",
-    "dynstiff.analyses.calibrate.x_calibrate__mutmut_537":
-        "np.full(None, nan) for the standard errors of a singular J^T J: a 0-d NaN that "
-        "broadcasts to the same NaN intervals (the errors themselves are not kept)",
-    "dynstiff.analyses.calibrate.x_calibrate__mutmut_588":
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_595":
         "the start and estimate modes passed to the findings also without measured modes: "
         "calibration_findings reads them only with measured modes",
     **{f"dynstiff.analyses.calibration_checks.x_fit_options__mutmut_{n}":
@@ -1046,17 +1042,17 @@ EQUIVALENT.update({
         "range(1, n + 2) for the mode numbers: zip stops at the n measured modes",
     "dynstiff.analyses.measured_frf.xǁFRFComparisonǁplot__mutmut_37":
         "the model's '-' format dropped: semilogy draws a solid line by default",
-    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_46":
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_47":
         "None instead of '' for a record without id1: pyuff's reader gives every record "
         "an id1 ('NONE' when the file has none)",
-    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_168":
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_169":
         "the product of two direction signs (+-1) written as their quotient: the same",
-    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_73":
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_74":
         "0 instead of None as the default of a missing function or data type: neither is "
         "a type dynstiff reads, the record is refused either way",
     "dynstiff.analyses.measured_frf.x__frf_from_csv__mutmut_42":
         "NaN - 0j instead of NaN + 0j for a channel not measured: NaN either way",
-    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_100":
+    "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_101":
         "dtype=None for the abscissa: pyuff gives it as float64",
     "dynstiff.io.exchange.x_even_grid__mutmut_82":
         "the upper clip of searchsorted at f.size + 1 instead of f.size - 1: the even grid "
@@ -1064,7 +1060,7 @@ EQUIVALENT.update({
     **{f"dynstiff.io.exchange.x_{fn}__mutmut_{n}":
        "dtype=float dropped on the frequencies: an FRFResult's are float already, and ints "
        "give the same numbers through the float arithmetic after"
-       for fn, n in (("even_grid", 5), ("uff58_records", 11), ("frf_to_control", 21))},
+       for fn, n in (("even_grid", 5), ("uff58_records", 40), ("frf_to_control", 25))},
     "dynstiff.io.exchange.x_write_uff58__mutmut_18":
         "pyuff mode 'ADD' instead of 'add' (pyuff then overwrites): the records go to a new "
         "temporary file, where adding and overwriting are the same",
@@ -1157,7 +1153,7 @@ EQUIVALENT.update({
         "the lumped rung's primitives without the tension reference: its linearisation reads "
         "their lengths and loads, not the reference, which enters through the catenary "
         "statics' length derivatives (taken with it; tested against central differences)",
-    "dynstiff.analyses.uncertainty.x_propagate_uncertainty__mutmut_110":
+    "dynstiff.analyses.uncertainty.x_propagate_uncertainty__mutmut_142":
         "without a band, the platform search covering 1 Hz instead of 0: it only lengthens "
         "the list beyond the modes every free DOF needs; the first n_modes, the first "
         "platform mode and its row are the same",
@@ -1177,10 +1173,10 @@ EQUIVALENT.update({
         "their own class)",
     "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
         "einsum's subscripts in capitals: the same contraction",
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_92":
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_95":
         "the fields '' instead of None off the exact rung: only the exact rung's forms read "
         "them, and it sets them",
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_107":
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_110":
         "the second vector's fields computed even when it is the first: the same fields",
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_166":
         "the parabola's fraction without its upper clip 0.9: on that branch (ratio <= 0.1) "
@@ -1237,7 +1233,7 @@ EQUIVALENT.update({
         "references too",
     "dynstiff.results.x_mode_kinds__mutmut_5":
         "dtype=float dropped on platform shares that are floats (NaN included) already",
-    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_25":
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_32":
         "kind not in 'XXiuXX' instead of 'iu': a dtype's kind is one letter, and X is no "
         "kind",
     "dynstiff.results.xǁFRFResultǁ_repr_html___mutmut_23":
@@ -1288,7 +1284,7 @@ EQUIVALENT.update({
         "the damped copy shares the undamped model's memo of measured cable errors instead of "
         "a copy of it: an entry depends on the cable, the band and the tension, the same in "
         "both models (the damping is not in it), so either model's entry is the other's",
-    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_120": _FLOAT,
+    "dynstiff.models.dsm.xǁFrequencyModelǁ__init____mutmut_132": _FLOAT,
     "dynstiff.models.dsm.xǁFrequencyModelǁcable_error__mutmut_6": _BOUNDARY,
     "dynstiff.analyses.frf.x_frf__mutmut_64": _BOUNDARY,
     **{f"dynstiff.analyses.frf.x_frf__mutmut_{n}": _FRF_FILTER for n in (57, 59)},
@@ -1299,8 +1295,8 @@ EQUIVALENT.update({
         "every pre-filtered frequency; 1e-9 from a pole this changes H by O(1e-9)",
     "dynstiff.analyses.frf.x_frf__mutmut_109":
         "the response factor applied to a receptance too: its factor is (i omega)^0 = 1",
-    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_48": _BOUNDARY,
-    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_75":
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_55": _BOUNDARY,
+    "dynstiff.analyses.interaction.x_proximity_warnings__mutmut_82":
         "stacklevel=3 of the ProximityWarning: under mutation the trampoline adds a frame, so "
         "the test of the caller's file cannot tell 2 from 3 (stacklevel 1 is killed)",
     "dynstiff.analyses.sweep.x__listed__mutmut_9":
@@ -1315,9 +1311,8 @@ EQUIVALENT.update({
         "getattr(scene, 'model') without its default None: every Scene has the field",
     "dynstiff.models.dsm_guard.x_guard_robot__mutmut_9": _BOUNDARY,
     "dynstiff.models.dsm_guard.x_guard_band__mutmut_13": _BOUNDARY,
-    "dynstiff.models.dsm_guard.x_static_error__mutmut_25": _EINSUM,
-    "dynstiff.models.dsm_guard.x_static_error__mutmut_89": _EINSUM,
-    "dynstiff.models.dsm_guard.x_static_error__mutmut_14":
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_83": _EINSUM,
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_10":
         "the type named in typing.cast: cast returns its value unchanged at run time",
     **{f"dynstiff.models.dsm_guard.x_guard_band__mutmut_{n}":
        "typing.cast's type given in another case: cast returns its value unchanged"
@@ -1501,10 +1496,10 @@ EQUIVALENT.update({f"dynstiff.timedomain.damping.xǁTimeDampingǁaxial_per_cable
                    "dtype=float dropped on a tuple of Python floats (__post_init__ stores "
                    "several dashpots so): float64 anyway" for n in (14, 16)})
 EQUIVALENT.update({
-    "dynstiff.plot.frf.x_plot_frf__mutmut_178":
+    "dynstiff.plot.frf.x_plot_frf__mutmut_187":
         "np.errstate(invalid=None) around np.degrees(np.angle(h)), which raises no invalid "
         "warning for any complex input (nan and inf included, checked under all='raise')",
-    "dynstiff.plot.frf.x_plot_frf__mutmut_193":
+    "dynstiff.plot.frf.x_plot_frf__mutmut_202":
         "break for continue on a None axes: ax is never None after the figure is made, so "
         "the branch runs only for ax_ph, the last item of the loop",
 })
