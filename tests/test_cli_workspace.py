@@ -6,7 +6,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import inverted_stewart_scene, run_cli
+from conftest import cli_help, inverted_stewart_scene, run_cli
 
 pytest.importorskip("xarray")
 
@@ -61,6 +61,8 @@ def test_workspace_command_maps_the_frequency_optimal_tensions(tmp_path):
      "more than 10000: raise step= (--step)"),
     (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc", "-n", "30000"],
      "n_modes must be at most max_modes=2000"),
+    (["--box", "0", "1", "0", "1", "1", "2", "--step", "1", "--out", "m.nc",
+      "--max-poses", "7"], "gives 8 poses, more than max_poses=7 (about "),
 ])
 def test_bad_workspace_arguments_fail_on_one_line(tmp_path, args, match):
     r = run("cogiro", *args, cwd=tmp_path)
@@ -264,3 +266,57 @@ def test_scheduler_runs_the_scenes_robot_on_a_dask_cluster(tmp_path):
     a, b = open_workspace(tmp_path / "m.nc"), open_workspace(tmp_path / "serial.nc")
     assert a.attrs["engine"] == "dask" and a.attrs["robot"] == "cogiro"
     np.testing.assert_array_equal(a["first_platform_hz"].values, b["first_platform_hz"].values)
+
+
+def test_workspace_help(monkeypatch):
+    """`dynstiff workspace -h`: the usage line and every option with its metavar, choices,
+    default and help; and the command's line in `dynstiff -h`."""
+    from dynstiff.cli.options import MEANINGS
+    from dynstiff.maps.guards import MAX_POSES
+    assert ("workspace map statics, modes and design checks over a box grid of positions "
+            "(optionally x orientations x a cable parameter); netCDF output"
+            in cli_help(monkeypatch))
+    h = cli_help(monkeypatch, "workspace")
+    assert h == " ".join((
+        "usage: dynstiff workspace [-h] [--box X0 X1 Y0 Y1 Z0 Z1] [--step STEP] "
+        "[--orientations FILE] [--parameter {EA,mass_per_length}] [--values V [V ...]] "
+        "[-n N] [--max-modes N] [--forbidden-band LO HI] [--margin MARGIN] "
+        "[--uncertain NAME=VALUE[%]] [--tensions {default,max-frequency}] "
+        "[--chunk-size CHUNK_SIZE] [--workers WORKERS | --scheduler ADDRESS] --out FILE "
+        "[--csv FILE] [--json FILE] [--plot FILE] [--quiet] [--resume] "
+        "[--max-poses MAX_POSES] scene",
+        f"positional arguments: scene {MEANINGS['scene']}",
+        "options: -h, --help show this help message and exit",
+        "--box X0 X1 Y0 Y1 Z0 Z1 grid box [m] (default: the scene's [workspace] box, e.g. a "
+        "CASPR joint's q_min / q_max)",
+        "--step STEP grid spacing [m] (default: a quarter of the box's longest side)",
+        "--orientations FILE rotation vectors rx ry rz [rad], one a line ('#' comments), "
+        "crossed with the positions (default: the scene's rotation)",
+        f"--parameter {{EA,mass_per_length}} {MEANINGS['--parameter']}: set on every cable, "
+        "crossed with the poses: EA (axial stiffness of every cable [N]), mass_per_length "
+        "(mass per unstretched length of every cable [kg/m])",
+        "--values V [V ...] values of --parameter, in its unit",
+        f"-n N, --n-modes N {MEANINGS['--n-modes']}: per pose (default: the scene's n_modes)",
+        f"--max-modes N {MEANINGS['--max-modes']}: beyond it the search stops with an error "
+        "or an 'unknown' verdict (default 2000)",
+        f"--forbidden-band LO HI {MEANINGS['--forbidden-band']}: no platform mode may lie in "
+        "it (default: the scene's forbidden_band_hz)",
+        f"--margin MARGIN {MEANINGS['--margin']} (default: the scene's, else 0.05)",
+        f"--uncertain NAME=VALUE[%] {MEANINGS['--uncertain']}: EA=10% is a standard deviation "
+        "of 10 %, EA=10%:uniform +-10 %, mass=2 absolute; adds the probability that a "
+        "platform mode enters the band and the margin at 95 % confidence (Monte Carlo, 200 "
+        "samples)",
+        "--tensions {default,max-frequency} tension distribution at every pose: the default "
+        "(closest to t_min) or the one that maximises the first platform mode",
+        "--chunk-size CHUNK_SIZE poses per task, warm-started along it (default 25)",
+        "--workers WORKERS local worker processes",
+        "--scheduler ADDRESS Dask scheduler address, e.g. tcp://10.0.0.5:8786",
+        f"--out FILE {MEANINGS['--out']}: the map file, NAME.nc (netCDF) or NAME.zarr "
+        "(Zarr folder)",
+        f"--csv FILE {MEANINGS['--csv']}: one row per pose ('-': standard output)",
+        f"--json FILE {MEANINGS['--json']}: one row per pose ('-': standard output)",
+        f"--plot FILE {MEANINGS['--plot']}: the slices of the map (PNG, PDF, SVG, ...)",
+        f"--quiet {MEANINGS['--quiet']}: nor the first-run notice (bars are off too when "
+        "standard error is not a terminal)",
+        "--resume continue an interrupted run (its chunks are saved in OUT.parts)",
+        f"--max-poses MAX_POSES refuse a map of more poses (default {MAX_POSES})"))
