@@ -2030,6 +2030,14 @@ _CAUGHT = ("the name given to real_array: its error is caught and replaced by "
            "unstretched_lengths' own message, which names the argument")
 EQUIVALENT.update({f"dynstiff._validate.x_unstretched_lengths__mutmut_{n}": _CAUGHT
                    for n in (12, 13)})
+EQUIVALENT.update({
+    "dynstiff.report.geometry3d.x__geometry__mutmut_18":
+        "dtype=float dropped on the pose's position, which Pose stores as float64",
+    "dynstiff.report.geometry3d.x__hull__mutmut_83":
+        "a Qhull facet equation times its normal's norm instead of divided by it: Qhull's "
+        "normals are unit vectors, so the two differ by an ulp, far inside the 1 degree and "
+        "1 % tolerances of the coplanar test",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

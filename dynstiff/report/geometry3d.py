@@ -24,7 +24,9 @@ def _hull(points):
     Returns ``(path, faces)``: ``path`` a list of point indices, -1 separating the pieces of
     the polyline of the hull's edges (edges between coplanar facets left out); ``faces`` a
     list of index lists, one polygon each. Coincident points give an empty outline, collinear
-    ones a segment, coplanar ones one polygon.
+    ones a segment, coplanar ones one polygon. Facets whose normals are within 1 degree and
+    whose vertices lie within 1 % of the points' largest extent of one facet's plane are one
+    face (a platform face measured with millimetre scatter stays one polygon).
     """
     from scipy.spatial import ConvexHull, QhullError
     uniq = np.unique(np.round(points, 12), axis=0, return_index=True)[1]
@@ -50,8 +52,7 @@ def _hull(points):
             return [], []
         loop = [int(uniq[v]) for v in h.vertices]         # counter-clockwise order
         return loop + loop[:1], [loop]
-    # facets of one plane together (normals within 1 degree, vertices within 1 % of the
-    # size of the plane: a platform face measured with millimetre scatter stays one polygon)
+    # facets of one plane together (the docstring's rule)
     P = points[uniq]
     size = float(np.ptp(P, axis=0).max())
     planes, groups = [], []
@@ -82,7 +83,8 @@ def _hull(points):
 
 
 def _chain(edges, uniq):
-    """Vertex loop (original indices) of a polygon given by its boundary edges."""
+    """Vertex loop (original indices ``uniq[v]``) of a polygon given by its boundary edges,
+    starting with the first edge: ``edges[0][0]``, then ``edges[0][1]``."""
     nxt = {}
     for a, b in edges:
         nxt.setdefault(a, []).append(b)
@@ -134,6 +136,8 @@ def _check_mode(modes, mode):
 
 
 def _check_model(model, eq, modes):
+    """``model`` a FrequencyModel built on ``eq``: its cable ends equal eq's within 1e-9 m
+    (absolute); ``modes``, when given, with platform shapes of shape (n, 6)."""
     if not isinstance(model, FrequencyModel):
         raise InvalidParameterError(
             f"model must be the dynstiff.FrequencyModel of the modes, got "
@@ -174,8 +178,9 @@ def _geometry(eq, modes, k, model, n_points, sag_scale):
     Returns a dict: ``cables`` (n_cables, n_points, 3) profiles [m], ``cable_disp`` the same
     shape per unit scale (None without a mode), ``B`` (n, 3) attachment points and ``dB``
     their displacement, ``P`` and ``dP`` (3,), ``anchors`` (n, 3), ``path`` and ``faces``
-    of the platform outline, ``kind`` and ``freq_hz`` of the mode, ``dynamic`` (cable fields
-    from the model, not the quasi-static straight-line interpolation).
+    of the platform outline, ``kind`` and ``freq_hz`` of the mode, ``dynamic`` (bool: the
+    cable fields from the model, not the quasi-static straight-line interpolation; False
+    without a mode).
     """
     robot = eq.robot
     anchors = np.asarray(robot.anchors, dtype=float)
