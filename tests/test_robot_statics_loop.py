@@ -90,3 +90,16 @@ def test_loop_stops_once_the_contraction_leaves_rounding_to_go(monkeypatch, pose
     assert len(changes) >= 3
     assert done[-1] and not any(done[:-1])
     assert changes[-1] >= 1e-15                  # the contraction rule ended it
+
+
+@pytest.mark.usefixtures("numpy_loop")
+def test_the_relaxed_first_distribution_is_a_start_only(cogiro):
+    """Straight chords may get a first distribution down to 1e-3 t_min (theory.md §4); the
+    catenaries' distributions keep t_min. CoGiRo moved 5.5 m along x needs a cable below
+    t_min = 100 N: the pose is refused (as by the compiled loop), never returned with that
+    tension."""
+    pose = cogiro.pose.position + [5.5, 0.0, 0.0]
+    with pytest.raises(InfeasiblePoseError):
+        cogiro.robot.equilibrium(pose=pose)
+    eq = cogiro.robot.equilibrium(pose=cogiro.pose.position + [5.25, 0.0, 0.0])
+    assert min(s.tension_at_end for s in eq.states) >= 100.0 * (1 - 1e-9)
