@@ -60,8 +60,8 @@ def test_help_of_the_analysis_commands_names_each_option(monkeypatch):
             "(Wittrick-Williams: none missed)") in top
     assert "frf frequency response functions of the platform" in top
     mo = cli_help(monkeypatch, "modes")
-    assert ("--band LO HI band of interest LO HI [Hz]: every mode in it (default: the first "
-            "--n-modes)") in mo
+    assert ("--band LO HI band of interest LO HI [Hz]: every mode in it, both ends included "
+            "(default: the first --n-modes)") in mo
     assert ("-n N, --n-modes N number of modes: the lowest N (default: the scene's n_modes; "
             "with --band or --fmax, all in the band)") in mo
     assert ("--json FILE write the table as JSON: the full modes table ('-': standard "
@@ -240,6 +240,7 @@ def test_cli_modes_and_check_show_their_progress_label_on_a_terminal():
                         (["check", "planar2"], "check planar2: ")):
         run = run_cli(*argv, terminal=True)
         assert run.returncode == 0 and label in run.stderr
+        assert run_cli(*argv, "--quiet", terminal=True).stderr == ""      # --quiet: no bar
 
 
 # ------------------------------------------------------------------------ frf
@@ -415,8 +416,10 @@ def test_cli_check_has_no_lengths_option():
 
 
 def test_cli_modes_table_and_csv(tmp_path):
-    out = run_cli("modes", "cogiro", "-n", "6", "--csv", str(tmp_path / "m.csv"))
+    out = run_cli("modes", "cogiro", "-n", "6", "--csv", tmp_path / "m.csv", "--plot",
+                  tmp_path / "m.png")
     assert out.returncode == 0, out.stderr
+    assert (tmp_path / "m.png").read_bytes().startswith(b"\x89PNG")
     assert "global" in out.stdout and "freq [Hz]" in out.stdout
     import pandas as pd
     df = pd.read_csv(tmp_path / "m.csv", comment="#")
@@ -692,6 +695,9 @@ def test_modes_band_lists_every_mode_in_it_and_frf_defaults_to_a_free_dof(tmp_pa
     assert main(["modes", "planar2", "--fmax", "6", "--csv", str(tmp_path / "f.csv")]) == 0
     got = pd.read_csv(tmp_path / "f.csv", comment="#")["freq [Hz]"].to_numpy()
     np.testing.assert_allclose(got, f, rtol=1e-9)
+    lo, e = float(got[1]), tmp_path / "e.csv"               # LO on a mode: in [LO, HI]
+    assert main(["modes", "planar2", "--band", repr(lo), "6", "--csv", str(e)]) == 0
+    assert pd.read_csv(e, comment="#")["freq [Hz]"].iloc[0] == lo
     assert 0 < np.sum(f < 3.0) < f.size                     # the band cut something
     capsys.readouterr()
     assert main(["frf", "pendulum", "--points", "50"]) == 0

@@ -234,3 +234,22 @@ def test_the_date_of_a_header_is_utc():
     from datetime import datetime
     stamp = common.table_metadata("x", None, None)["date"]
     assert stamp.endswith("+00:00") and datetime.fromisoformat(stamp).utcoffset().seconds == 0
+
+
+def test_refuse_unused_names_every_option_given_in_one_line():
+    """refuse_unused: the options given (not None: 0 is given), each found under its argparse
+    name (leading dashes dropped, inner ones as underscores, any first letter), in the order
+    listed, with "does" for one and "do" for more; none given: nothing refused."""
+    import argparse
+    options = ("-n", "--max-modes", "-X", "--pose")
+    p = argparse.ArgumentParser()
+    for opt in options:
+        p.add_argument(opt, type=float)
+    why = "without --line (the poses are the line's)"
+    common.refuse_unused(p.parse_args([]), options, why)
+    for argv, names, verb in ((["-X", "0"], "-X", "does"),
+                              (["--max-modes", "2"], "--max-modes", "does"),
+                              (["--pose", "1", "-n", "0"], "-n, --pose", "do")):
+        with pytest.raises(ds.InvalidParameterError) as err:
+            common.refuse_unused(p.parse_args(argv), options, why)
+        assert str(err.value) == f"{names} {verb} not apply {why}"

@@ -217,7 +217,8 @@ def add_parsers(sub):
                                       "fractions (Wittrick-Williams: none missed)")
     add_scene(mo)
     add_pose(mo)
-    add_band(mo, "every mode in it (default: the first --n-modes)")
+    add_band(mo, "every mode in it, both ends included (default: the first "
+                 "--n-modes)")
     add_n_modes(mo, "the lowest N (default: the scene's n_modes; with --band or --fmax, all "
                     "in the band)")
     add_max_modes(mo, 20000)

@@ -48,7 +48,8 @@ def scene_settings(scene, args):
 
 def refuse_unused(args, options, why):
     """One line naming the options given (not left at None) that ``why`` leaves unused:
-    an option given is never silently ignored."""
+    an option given is never silently ignored. Each option is looked up under argparse's
+    name for it (leading dashes dropped, inner dashes as underscores)."""
     from dynstiff.errors import InvalidParameterError
     given = [o for o in options if getattr(args, o.lstrip("-").replace("-", "_"), None)
              is not None]
