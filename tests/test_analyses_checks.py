@@ -362,3 +362,29 @@ def test_a_pose_or_robot_that_is_not_one_is_an_error_not_a_fail_verdict(robot, p
     sc = ds.load_scene("cogiro")
     with pytest.raises(InvalidParameterError, match=message):
         design_checks(sc.robot if robot == "cogiro" else robot, pose)
+
+
+def test_stated_uncertainties_add_the_last_row_with_its_samples(cogiro):
+    """uncertain= adds a last row (the uncertain_row of the same options, samples and seed)
+    and the distributions behind it; its names are checked at the pose before any work."""
+    from dynstiff.analyses.uncertainty import UNCERTAIN_CHECK
+    from dynstiff.analyses.verdicts import CheckOptions
+    unc = {"EA": "10%", "pose_z": "0.001"}
+    res = design_checks(cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5), uncertain=unc,
+                        n_samples=8, seed=3)
+    assert [r["check"] for r in res.rows[:-1]] == [r["check"] for r in design_checks(
+        cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5)).rows]
+    last = res.rows[-1]
+    assert last["check"] == UNCERTAIN_CHECK
+    assert "Monte Carlo, 8 samples, seed 3" in last["detail"]
+    u = res.uncertainty
+    assert u.samples.shape == (8, 2) and u.seed == 3
+    from dynstiff.analyses.uncertainty import uncertain_row
+    row, _ = uncertain_row(cogiro.robot, cogiro.pose, CheckOptions(forbidden_hz=(0.0, 1.5)),
+                           unc, n_samples=8, seed=3)
+    assert row == last
+    with pytest.raises(InvalidParameterError, match="nope"):
+        design_checks(cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5), uncertain={"nope": "1%"})
+    with pytest.raises(InvalidParameterError, match="^n_samples must be an integer >= 1"):
+        design_checks(cogiro.robot, cogiro.pose, band_hz=(0.0, 1.5), uncertain=unc,
+                      n_samples=0)
