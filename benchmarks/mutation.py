@@ -2055,6 +2055,17 @@ EQUIVALENT.update({
 EQUIVALENT.update({f"dynstiff.cli.report.x__cmd_demo__mutmut_{n}":
                    "info(None) for info(args): demo has no --csv or --json, so its report "
                    "goes to standard output either way" for n in (47, 49)})
+EQUIVALENT.update({
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_149":
+        "H_meas is read only when frf is given, and then set to frf.H first",
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_363":
+        "u is always a float64 array (scipy's x, x +- h e, sol.x): the same copy",
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_436":
+        "unreachable: scipy's trf calls jac(x) right after fun(x), so r0 is the last residual",
+    "dynstiff.analyses.calibrate.x_calibrate__mutmut_499":
+        "unreachable: trf refuses a non-finite start and takes no non-finite step, so "
+        "r(sol.x) is finite",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

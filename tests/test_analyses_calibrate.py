@@ -404,3 +404,57 @@ def test_forward_differences_reuse_the_residual_at_the_point(scene, monkeypatch)
     sol, n = seen[0], 2
     assert sol.njev >= 2
     assert fit.n_evaluations <= 1 + sol.nfev + n * sol.njev + 1 + 2 * n
+
+
+def test_a_non_bool_strict_and_mac_pairing_without_shapes_are_refused(scene):
+    with pytest.raises(ds.InvalidParameterError, match="^strict must be True or False, got 'no'"):
+        calibrate(scene, [2.2, 2.4], parameters="EA", strict="no")
+    with pytest.raises(ds.InvalidParameterError, match="pairing='mac' needs measured shapes"):
+        calibrate(scene, [2.2, 2.4], parameters="EA", pairing="mac")
+
+
+def test_one_mode_with_its_damping_ratio_fixes_EA_and_the_loss_factor(scene):
+    """A measured damping ratio is a measured value: one mode's frequency and damping ratio
+    are two values, enough for EA and the loss factor (recovered exactly from the noiseless
+    mode of the robot at 20 GPa and loss factor 0.02), with no spread left to estimate:
+    both intervals NaN."""
+    truth = replace(scene.robot, cables=[replace(c, EA=AREA * 20e9, loss_factor=0.02)
+                                         for c in scene.robot.cables])
+    m = ds.build_model(truth.equilibrium(scene.pose), "dsm")
+    md = ds.modes(m, fmax_hz=6.0)
+    idx = massless_pairing(md, m, 1)
+    meas = MeasuredModes(md.freq_hz[idx],
+                         damping_ratio=ds.damped_modes(m, fmax_hz=6.0).damping_ratio[idx])
+    res = calibrate(scene, meas, parameters=["EA", "loss_factor"], start={"loss_factor": 0.005})
+    np.testing.assert_allclose(res.estimate, [AREA * 20e9, 0.02], rtol=1e-6)
+    assert np.all(np.isnan(res.ci_low)) and np.all(np.isnan(res.ci_high))
+
+
+def test_frf_translations_at_a_platform_point_are_fitted_at_that_point(scene):
+    """The measured fx -> x FRF of a point 0.5 m off P in each direction (below the first
+    mode, noiseless, at 60 GPa; about half P's magnitude): with frf_point the
+    model's FRF is taken at the same point and EA is recovered exactly."""
+    model = ds.build_model(with_E(scene.robot, E_TRUE).equilibrium(scene.pose), "dsm")
+    point = np.array([0.5, 0.5, 0.5])
+    meas = ds.frf(model, 2 * np.pi * np.linspace(0.1, 1.5, 10), inputs="fx", outputs="x",
+                  point=point)
+    fit = calibrate(scene, None, parameters="EA", frf=meas, frf_point=point)
+    assert fit.estimate[0] == pytest.approx(AREA * E_TRUE, rel=1e-8)
+    assert fit.frf_log_error < 1e-8
+
+
+def test_an_interval_bound_beyond_the_float_range_is_infinite_without_a_warning(scene):
+    """Two modes (with shapes, 0.1 % noise) and one parameter: one degree of freedom, and at
+    the level 1 - 1e-9 Student's t quantile is about 6e8 (a Cauchy tail), so
+    exp(u + q se) overflows: the upper bound is inf, the lower 0, and numpy's overflow is
+    not reported (the estimate is still within 2e-5 of the truth)."""
+    from scipy.stats import t as student_t
+    assert student_t.ppf(1 - 5e-10, 1) > 1e8
+    full = _platform_modes_measured(with_E(scene.robot, E_TRUE), scene.pose)
+    meas = MeasuredModes(full.freq_hz[:2] * (1 + 1e-3 * np.array([1.0, -1.0])),
+                         shapes=full.shapes[:2])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                 # numpy's RuntimeWarning too
+        res = calibrate(scene, meas, parameters="EA", confidence=1 - 1e-9)
+    assert abs(res.estimate[0] / (AREA * E_TRUE) - 1) < 2e-5
+    assert res.ci_high[0] == np.inf and res.ci_low[0] == 0.0

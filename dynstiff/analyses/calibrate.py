@@ -18,8 +18,10 @@ At the optimum the covariance of u is
                                                    nothing else is fitted),
 
 and the confidence interval of p_j is p0_j exp(u_j -+ t_{m-n} sqrt(C_jj)) (Student's t at
-the chosen level; a normal quantile when the sigmas are given). With as many measured modes as
-parameters the spread of the residuals is unknown: the interval is NaN unless sigmas are given.
+the chosen level; a normal quantile when the sigmas are given). With as many measured values
+(frequencies, damping ratios, FRF entries) as parameters the spread of the residuals is
+unknown: the interval is NaN unless sigmas are given. A bound beyond the floating-point range
+is inf (0 for the lower one), without a numpy warning.
 
 Parameters (names):
 
@@ -198,6 +200,7 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
         "mac" (default with measured shapes): :func:`dynstiff.analyses.measured.pair_modes`;
         "massless" (default without): the k-th measured mode is the continuation of the k-th
         massless-cable platform mode (:func:`dynstiff.analyses.measured.massless_pairing`).
+        "mac" needs measured shapes (InvalidParameterError otherwise).
     confidence : float
         Level of the intervals, in (0, 1).
     bounds : (float, float)
@@ -231,7 +234,8 @@ def calibrate(scene_or_robot: Robot | Scene, measured: ArrayLike | MeasuredModes
     strict : bool
         Raise a :class:`~dynstiff.errors.CalibrationError` instead of warning when the
         calibration finds fault with itself
-        (:mod:`dynstiff.analyses.calibration_checks`).
+        (:mod:`dynstiff.analyses.calibration_checks`). Anything but a bool (e.g. the text
+        "no") raises InvalidParameterError.
 
     Returns
     -------
