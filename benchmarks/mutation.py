@@ -2074,6 +2074,16 @@ EQUIVALENT.update({
         "the owner stored for a multiple root's copy is never read: a later root at that "
         "frequency finds the original first (same[0] is the earliest found root)",
 })
+EQUIVALENT.update({
+    "dynstiff.analyses.compare_lumped.x_compare_modes__mutmut_180": "1e+300 is the same float "
+                                                                    "as 1e300",
+    "dynstiff.analyses.compare_lumped.x_compare_modes__mutmut_158":
+        "the frequency pairing run with one side empty: a (0, k) or (k, 0) cost matrix, "
+        "where linear_sum_assignment pairs nothing",
+    **{f"dynstiff.cli.simulate.x__cmd_simulate__mutmut_{n}":
+       "matplotlib.use('agg') or 'AGG' for 'Agg': backend names are case-insensitive"
+       for n in (303, 304)},
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

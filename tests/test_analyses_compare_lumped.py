@@ -141,6 +141,8 @@ def test_compare_modes_nonpositive_lumped_frequencies():
 @pytest.mark.parametrize("W, reason", [
     (np.diag([1.0, 1.0, 1.0, 1.0, 1.0, -1.0]), "an indefinite weight"),
     (np.eye(6) + np.triu(np.ones((6, 6)), 1), "an unsymmetric weight"),
+    (2 * np.eye(6) + np.diag([0.5] * 5, 1) + np.diag([0.5 + 4e-12] * 5, -1),
+     "an asymmetry of 2e-12 of the largest entry"),
 ])
 def test_a_mac_weight_that_is_not_a_mass_matrix_is_refused(W, reason):
     """The MAC's weight must be symmetric positive semi-definite (``reason`` names the case):
@@ -156,3 +158,49 @@ def test_a_mac_weight_that_is_not_a_mass_matrix_is_refused(W, reason):
                                                     "booleans"):
         compare_modes(a, b, np.eye(6, dtype=bool))
     assert _compare(a, b, np.diag([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]))["MAC [-]"].isna().all()
+
+
+def test_a_weight_symmetric_to_1e_12_is_accepted_and_its_eigenvalues_named_if_refused():
+    """The weight's symmetry is checked to 1e-12 of its largest entry: 0.5e-12 is accepted
+    (a shape it does not see, rz, gets no MAC and is paired by frequency, without a
+    warning though W rz is not zero), 2e-12 refused; an indefinite weight is refused
+    naming its eigenvalues to 4 significant digits."""
+    a = _modes([2.0], ["global"], [[0.0, 0.0, 0.0, 0.0, 0.0, 1.0]])
+    b = _modes([2.1], ["global"], [[1.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
+    W = np.diag([1.0, 1.0, 1.0, 1.0, 1.0, 0.0])
+    W[5, 0] = 0.5e-12
+    df = _compare(a, b, W)
+    assert df["matched by"].tolist() == ["frequency"] and np.isnan(df["MAC [-]"].iloc[0])
+    W[5, 0] = 2e-12
+    with pytest.raises(InvalidParameterError, match=r"^mass_matrix must be symmetric"):
+        compare_modes(a, b, W)
+    with pytest.raises(InvalidParameterError,
+                       match=r"got eigenvalues \[1\.0, 1\.0, 1\.0, 1\.0, 1\.0, -0\.001235\]$"):
+        compare_modes(a, b, np.diag([1.0, 1.0, 1.0, 1.0, 1.0, -1.23456789e-3]))
+    with pytest.raises(InvalidParameterError,     # a small eigenvalue is not rounded to 0
+                       match=r"got eigenvalues \[1\.0, 1\.0, 1\.0, 1\.0, 1\.0, -4e-07\]$"):
+        compare_modes(a, b, np.diag([1.0, 1.0, 1.0, 1.0, 1.0, -4e-7]))
+
+
+def test_mac_pairs_across_indices_leave_the_others_to_frequency():
+    """A MAC pair of closed-form mode 2 with lumped mode 1 leaves closed-form mode 1 and
+    lumped mode 2 to be paired by frequency: each mode appears once."""
+    s = [1.0, 0.3, -0.2, 0, 0, 0]
+    a = _modes([1.0, 2.0], ["local", "global"], [np.zeros(6), s])
+    b = _modes([2.05, 1.1], ["global", "local"], [s, np.zeros(6)])
+    df = _compare(a, b)
+    assert df["closed-form mode"].tolist() == [1, 2] and df["lumped mode"].tolist() == [2, 1]
+    assert df["matched by"].tolist() == ["frequency", "MAC"]
+
+
+def test_a_0_hz_closed_form_mode_and_an_empty_lumped_result():
+    """A 0 Hz closed-form mode: relative difference inf against a positive lumped
+    frequency, NaN against 0 Hz, without warnings. No lumped mode at all: a row per
+    closed-form mode, the mode numbers still nullable integers (<NA> for the lumped)."""
+    df = _compare(_modes([0.0], ["local"]), _modes([2.0], ["local"]))
+    assert df["relative difference [-]"].tolist() == [np.inf]
+    df = _compare(_modes([0.0], ["local"]), _modes([0.0], ["local"]))
+    assert df["lumped mode"].tolist() == [1] and np.isnan(df["relative difference [-]"].iloc[0])
+    df = _compare(_modes([2.0, 3.0], ["local"] * 2), _modes([], []))
+    assert df["closed-form mode"].tolist() == [1, 2] and df["lumped mode"].isna().all()
+    assert df["closed-form mode"].dtype == "Int64" and df["lumped mode"].dtype == "Int64"

@@ -224,7 +224,8 @@ def test_free_vibration_band_defaults_to_the_model_frequencies(free_spy, monkeyp
 def test_free_vibration_without_band_nor_mode_is_refused_with_one_line(free_spy, monkeypatch,
                                                                         tmp_path):
     """A scene without band_hz and a lumped model with no mode below half the spectrum's
-    top: one line naming --band and --dt, exit 2, and no table written."""
+    top: one line naming --band and --dt, exit 2, and no table written; with --band the
+    peaks are listed, with no nearest mode (nan)."""
     import dataclasses
 
     import dynstiff.scenes
@@ -242,6 +243,9 @@ def test_free_vibration_without_band_nor_mode_is_refused_with_one_line(free_spy,
     assert not csv.exists()
     free_spy.modes = [70.0]                                   # one mode: the band 0-105 Hz
     assert run_cli("simulate", "fourcable", "--time", "1", "--dt", "0.004").returncode == 0
+    free_spy.modes = []
+    out = run_cli("simulate", "fourcable", "--time", "1", "--band", "1", "3")
+    assert out.returncode == 0 and "\n  2.1 Hz ~ mode nan Hz (+nan Hz)\n" in out.stdout
 
 
 def test_free_vibration_options_reach_the_run_and_the_plot(free_spy, tmp_path):
@@ -415,7 +419,7 @@ def test_line_table_on_stdout_keeps_the_report_on_stderr(track_spy, tmp_path):
 
 def test_line_progress_on_a_terminal(track_spy):
     """On a terminal: a bar 'quasi-static lengths' counting poses, then, once they are
-    done, the time elapsed while 'time stepping'."""
+    done, the time elapsed while 'time stepping'; neither with --quiet."""
     run = run_cli("simulate", "planar2", "--target", "1", "0", "-10", terminal=True)
     code, err = run.returncode, run.stderr
     assert code == 0
@@ -423,6 +427,8 @@ def test_line_progress_on_a_terminal(track_spy):
     assert m, err
     step = re.search(r"\rtime stepping: \d\d:\d\d\r", err)
     assert step and step.start() > m.start(), err
+    run = run_cli("simulate", "planar2", "--target", "1", "0", "-10", "--quiet", terminal=True)
+    assert (run.returncode, run.stderr) == (0, "")                       # --quiet: no bars
 
 
 def test_trajectory_of_the_scene_reaches_track(track_spy, tmp_path):
@@ -492,8 +498,10 @@ def test_options_that_do_not_apply_are_refused_before_any_work(given, message, t
 
 def test_simulate_help(monkeypatch):
     """`dynstiff simulate -h`: the usage line and every option with its metavar, choices,
-    default and help."""
+    default and help; `dynstiff -h` names the command with its help."""
     from dynstiff.cli.options import MEANINGS
+    assert (" simulate time domain (lumped-mass cables): free vibration from an offset, or a "
+            "line commanded through quasi-static cable lengths ") in cli_help(monkeypatch)
     h = cli_help(monkeypatch, "simulate")
     assert h == " ".join((
         "usage: dynstiff simulate [-h] [--pose X [X ...] | --lengths L0 [L0 ...]] "

@@ -43,7 +43,9 @@ def compare_modes(closed_form_modes: ModalResult,
     mass_matrix : array_like, shape (6, 6), optional
         Weight W of the MAC, e.g. the platform mass matrix ``FrequencyModel.M_p``
         (default identity, which mixes metres and radians): symmetric positive
-        semi-definite, so that every MAC lies in [0, 1].
+        semi-definite, so that every MAC lies in [0, 1]: symmetric to within 1e-12 of its
+        largest entry, no eigenvalue below -1e-12 of it (else InvalidParameterError, naming
+        the eigenvalues to 4 significant digits).
 
     Returns
     -------
@@ -54,7 +56,9 @@ def compare_modes(closed_form_modes: ModalResult,
         (NaN where a platform shape is zero), "matched by" ("MAC" or "frequency"), and
         "match quality [-]": the MAC for MAC pairs; for frequency pairs
         1 - ln^2(f_b/f_a) / ln^2(f_b'/f_a), f_b' the nearest other unpaired lumped frequency
-        (1: unambiguous, 0: another mode is as close).
+        (1: unambiguous, 0: another mode is as close). The mode numbers are pandas
+        Int64, <NA> on the empty side; a 0 Hz closed-form mode has the relative difference
+        inf (NaN against a 0 Hz lumped mode), without a warning.
     """
     import pandas as pd
     from scipy.optimize import linear_sum_assignment
@@ -74,7 +78,8 @@ def compare_modes(closed_form_modes: ModalResult,
             np.linalg.eigvalsh(0.5 * (W + W.T)).min() < -1e-12 * scale:
         raise InvalidParameterError(
             f"mass_matrix must be symmetric positive semi-definite (a mass matrix: the MAC's "
-            f"weight), got eigenvalues {np.round(np.linalg.eigvals(W).real, 6).tolist()}")
+            f"weight), got eigenvalues "
+            f"{[float(f'{v:.4g}') for v in np.linalg.eigvals(W).real]}")
     Xa, Xb = a.platform_shapes, b.platform_shapes
     na = np.einsum("ij,jk,ik->i", Xa, W, Xa)
     nb = np.einsum("ij,jk,ik->i", Xb, W, Xb)

@@ -1,6 +1,11 @@
 """``simulate``: the lumped-mass time domain (free vibration from an offset and its
 spectrum, or a line or a trajectory of the scene commanded through quasi-static cable
-lengths)."""
+lengths).
+
+A free vibration prints the spectrum's peaks in the band, each with the nearest frequency of
+the linearised model: ``F Hz ~ mode M Hz (F - M Hz)``, M nan where the model has no mode in
+the band.
+"""
 
 from dynstiff.cli.common import (
     ProgressBar,
