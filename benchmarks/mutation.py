@@ -1385,8 +1385,9 @@ EQUIVALENT.update({
     "dynstiff.analyses.reduced.x__floor__mutmut_5": _FLOAT,
     "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_8":
         "the NaN fill written as NaN - 0j: still NaN, overwritten or tested with isfinite only",
-    "dynstiff.analyses.damped.x_damped_modes__mutmut_36":
-        "the NaN fill written as NaN - i NaN: still NaN, overwritten or tested with isfinite",
+    **{f"dynstiff.analyses.damped.x_damped_modes__mutmut_{n}":
+       "the NaN fill written as NaN - i NaN or NaN + 2i NaN: still NaN, overwritten or "
+       "tested with isnan" for n in (36, 38)},
     "dynstiff.analyses.damped.x_damped_modes__mutmut_2":
         "max_iter 81 instead of 80: converging roots take at most 45 secant steps",
     "dynstiff.analyses.damped.x__perturbation_estimates__mutmut_32":
