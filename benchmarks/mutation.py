@@ -2085,6 +2085,12 @@ EQUIVALENT.update({
        "matplotlib.use('agg') or 'AGG' for 'Agg': backend names are case-insensitive"
        for n in (303, 304)},
 })
+EQUIVALENT.update({
+    "dynstiff.cli.sweep.x_add_parsers__mutmut_114":
+        "add_pose(lengths=None) for False: add_pose tests its truth only",
+    "dynstiff.cli.sweep.x__cmd_sweep__mutmut_230":
+        "matplotlib.use('agg') for 'Agg': backend names are case-insensitive",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -409,6 +409,8 @@ def test_cli_sweep_help(monkeypatch):
         "--json FILE write the table as JSON: one row per mode and step ('-': standard "
         "output)",
         "--plot FILE write a figure: the veering diagram (PNG, PDF, SVG, ...)",
+        "--segments SEGMENTS segments per cable of the lumped model (default: the scene's, "
+        "else 30)",
     ]:
         assert opt in text, opt
     assert "--lengths" not in text
