@@ -2091,6 +2091,17 @@ EQUIVALENT.update({
     "dynstiff.cli.sweep.x__cmd_sweep__mutmut_230":
         "matplotlib.use('agg') for 'Agg': backend names are case-insensitive",
 })
+EQUIVALENT.update({
+    "dynstiff.analyses.eigen.x__seed_grid__mutmut_37":
+        "pts >= 0 for pts > 0: pts never holds 0 (linspace[1:] > 0, w0 > 0 by its filter), "
+        "and 0.0 is prepended and merged by np.unique",
+    "dynstiff.analyses.eigen.x__counter__mutmut_90":
+        "errstate(invalid=None): eigvalsh sets its own errstate, and K + K.T is invalid only "
+        "for K_ij = -K_ji = inf, which no rung's symmetric assembly gives",
+    "dynstiff.analyses.eigen.x_eigenfrequencies__mutmut_126":
+        "w_hi >= 1e8 for > 1e8: w_hi = min(2 pi 2^k, max_omega) is 1e8 only for a model whose "
+        "band ends exactly at 1e8 rad/s (16 MHz), which no rung is built to",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -281,3 +281,26 @@ def test_massless_pairing_brute_force():
                                             np.diag([1.0, 4.0]) * (2 * np.pi) ** 2,
                                             np.eye(2), np.array([0, 1]))
         np.testing.assert_allclose(out, [1.0, 2.0 if keep else np.nan], rtol=1e-12)
+
+
+def test_massless_modes_solve_the_static_problem_once_per_model(cogiro_eq):
+    """(lam, X) of (K0, M_p): for a point mass (M_p = m I) lam = eig(K0) / m; for CoGiRo
+    the eigenvalues of M_p^-1 K(0) by the general nonsymmetric solver, K0 X = M_p X diag(lam)
+    and X^T M_p X = I, read-only. The closed form keeps them in its memo (a second call
+    returns the same arrays); a model without a memo solves each time."""
+    spring = ds.build_model(point_mass_robot().equilibrium(pose=[0.2, -0.1, 1.0]), "spring")
+    assert not hasattr(spring, "_memo")
+    K0 = spring.massless_stiffness()
+    for _ in range(2):
+        lam, X = eigen_matrix.massless_modes(spring)
+        np.testing.assert_allclose(lam, np.linalg.eigvalsh(K0) / 20.0, rtol=1e-12)
+    m = ds.FrequencyModel(cogiro_eq)
+    K0, Mp = np.real(m.dynamic_stiffness(0.0))[0], m.platform_mass
+    lam, X = eigen_matrix.massless_modes(m)
+    ref = np.sort(np.linalg.eigvals(np.linalg.solve(Mp, K0)).real)
+    np.testing.assert_allclose(lam, ref, rtol=1e-10)
+    np.testing.assert_allclose(K0 @ X, Mp @ X * lam, atol=1e-9 * np.abs(K0).max())
+    np.testing.assert_allclose(X.T @ Mp @ X, np.eye(6), atol=1e-12)
+    assert not lam.flags.writeable and not X.flags.writeable
+    again = eigen_matrix.massless_modes(m)
+    assert again[0] is lam and again[1] is X

@@ -206,7 +206,7 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
         All frequencies below this [Hz]. Give ``n_modes`` or ``fmax_hz`` (or both: the first
         ``n_modes`` below ``fmax_hz``).
     rtol : float
-        Relative width of the final Wittrick-Williams bracket (default 1e-12).
+        Relative width of the final Wittrick-Williams bracket, in (0, 1e-2) (default 1e-12).
     method : {"auto", "matrix", "wittrick-williams"}
         "auto": the finite eigenproblem for discrete rungs, W-W otherwise.
     max_modes : int
@@ -223,7 +223,9 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
     ------
     InvalidParameterError
         Bad ``n_modes``, ``fmax_hz``, ``rtol`` or ``method``; ``n_modes`` larger than a
-        discrete rung's number of DOFs.
+        discrete rung's number of DOFs (by either method); ``n_modes`` more than a model's
+        band holds (``max_omega``, the exact rung), also when that band ends at the
+        search's cap of 1e8 rad/s.
 
     Examples
     --------
@@ -251,6 +253,11 @@ def eigenfrequencies(model: PlatformModel, n_modes: int | None = None, fmax_hz: 
                 f"{max_modes}; lower fmax_hz or raise max_modes")
         return f
     m = model.undamped()
+    n_dof = getattr(m, "n_dof", None)              # a discrete rung holds n_dof modes
+    if n_modes is not None and fmax_hz is None and n_dof is not None and n_modes > n_dof:
+        raise InvalidParameterError(
+            f"n_modes must be an integer in [1, {n_dof}] (the number of DOFs of the "
+            f"{m.rung!r} model), got {n_modes!r}")
     count = _counter(m)
     search = getattr(count, "search", None)         # the compiled search ("dsm" rung)
     counts = getattr(count, "counts", None)          # its counts, without the eigenvalues
