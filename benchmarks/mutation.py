@@ -2102,6 +2102,9 @@ EQUIVALENT.update({
         "w_hi >= 1e8 for > 1e8: w_hi = min(2 pi 2^k, max_omega) is 1e8 only for a model whose "
         "band ends exactly at 1e8 rad/s (16 MHz), which no rung is built to",
 })
+EQUIVALENT.update({f"dynstiff.analyses.measured.xǁMeasuredModesǁ__post_init____mutmut_{n}":
+                   "the name given to real_array: its error is caught and replaced by "
+                   "MeasuredModes' own message, which names freq_hz" for n in (7, 8)})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

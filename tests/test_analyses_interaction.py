@@ -74,6 +74,8 @@ def test_proximity_bad_input_names_argument(modes120):
         proximity_warnings(modes120, rtol=0.0)
     with pytest.raises(InvalidParameterError, match="ModalResult .*got list$"):
         proximity_warnings([1.0, 2.0])
+    with pytest.raises(InvalidParameterError, match="^warn must be True or False, got 'yes'$"):
+        proximity_warnings(modes120, warn="yes")
     with pytest.raises(InvalidParameterError, match="warnings"):
         to_frame([(1, 2)])
 
@@ -104,6 +106,7 @@ def test_one_global_and_one_local_mode_make_one_pair():
     assert [(w.global_mode, w.local_mode, w.freq_global_hz, w.freq_local_hz)
             for w in pairs] == [(1, 2, 6.48, 6.5)]
     assert pairs[0].relative_gap == pytest.approx(0.02 / 6.48, rel=1e-13)
+    assert proximity_warnings(m, rtol=0.01, platform=[0]) == pairs     # index 0 given
     assert str(pairs[0]) == ("local mode 2 (6.5 Hz) is within 0.309 % of global mode 1 "
                              "(6.48 Hz)")
     with pytest.warns(ProximityWarning) as record:

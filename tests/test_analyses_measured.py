@@ -188,6 +188,11 @@ def test_measured_modes_refuse_zero_and_negative_values_and_empty_shape_rows():
         with pytest.raises(ds.InvalidParameterError, match="sigma_hz must be finite and > 0"):
             MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=bad)
     assert MeasuredModes(freq_hz=[1.0, 2.0], sigma_hz=[1.0, 1.0]).sigma_hz.tolist() == [1, 1]
+    for bad in (1.0, 1.5, -0.01):                  # a damping ratio in [0, 1): 0 is taken
+        with pytest.raises(ds.InvalidParameterError,
+                           match=r"^damping_ratio must be in \[0, 1\) \(an underdamped mode\)"):
+            MeasuredModes(freq_hz=[1.0, 2.0], damping_ratio=[0.01, bad])
+    assert MeasuredModes(freq_hz=[1.0], damping_ratio=0.0).damping_ratio.tolist() == [0.0]
     row = [1.0, 0.0, 0.0, 0.0, 0.0, 0.0]
     for empty in ([np.nan] * 6, [0.0] * 6, [0.0, np.nan, 0.0, np.nan, 0.0, 0.0]):
         with pytest.raises(ds.InvalidParameterError,
