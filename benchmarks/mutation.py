@@ -2105,6 +2105,14 @@ EQUIVALENT.update({
 EQUIVALENT.update({f"dynstiff.analyses.measured.xǁMeasuredModesǁ__post_init____mutmut_{n}":
                    "the name given to real_array: its error is caught and replaced by "
                    "MeasuredModes' own message, which names freq_hz" for n in (7, 8)})
+_MFRF = "dynstiff.analyses.measured_frf.x_read_measured_frf__mutmut_"
+EQUIVALENT.update({
+    **{f"{_MFRF}{n}": "None for 0 as the default of a record's abscissa type: pyuff's reader "
+                      "gives every type 58 record its abscissa type" for n in (70, 73)},
+    f"{_MFRF}167": "'XXXX' for '' as the default id1 in a message: pyuff's reader gives every "
+                   "record an id1 ('NONE' when the file has none)",
+    f"{_MFRF}103": "dtype=float dropped on the abscissa: pyuff gives it as float64",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

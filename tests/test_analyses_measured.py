@@ -115,7 +115,8 @@ def test_measured_frf_files_read_back(tmp_path, model, suffix):
 def test_uff_direction_signs_are_honoured_and_unknown_types_refused(tmp_path, model):
     """A response along -z (direction code -3) is the +z response with its sign flipped, as
     is a force along -fz; a second record of the same pair, another function type (time
-    response), an unknown data type or a time abscissa is refused naming the record."""
+    response), an unknown data type or a time abscissa is refused naming the record (its
+    number and id1); a file without a frequency response record is refused."""
     pyuff = pytest.importorskip("pyuff")
     from dynstiff.io.exchange import uff58_records
     res = ds.frf(model, 2 * np.pi * np.linspace(0.5, 4.0, 12), inputs=["fz", "mx"],
@@ -134,12 +135,18 @@ def test_uff_direction_signs_are_honoured_and_unknown_types_refused(tmp_path, mo
     np.testing.assert_array_equal(read(both, "both.uff").H[:, 0, 0], res.H[:, 0, 0])
     for k, (change, match) in enumerate([
             ({"rsp_dir": -3}, "record 2 .*: a second record of z/fz"),
-            ({"func_type": 1}, "record 2 .*function type 1 is not one dynstiff reads"),
+            ({"func_type": 1}, r"record 2 \('[^']+'\): function type 1 is not one dynstiff "
+                               "reads"),
             ({"ordinate_spec_data_type": 9}, "record 2 .*data type 9 is not one"),
             ({"abscissa_spec_data_type": 17}, "record 2 .*abscissa type 17"),
             ({"rsp_dir": 7}, "record 2 .*direction rsp_dir=7")]):
         with pytest.raises(ds.InvalidParameterError, match=match):
             read([recs[0], dict(recs[0], **change)], f"bad{k}.uff")
+    nodes = pyuff.prepare_15(node_nums=[1], def_cs=[0], disp_cs=[0], color=[1], x=[0.0],
+                             y=[0.0], z=[0.0], return_full_dict=True)
+    with pytest.raises(ds.InvalidParameterError, match=r"nodes\.uff: no UFF 58 frequency "
+                                                       r"response record \(function type 4\)$"):
+        read([nodes], "nodes.uff")                  # a file of nodes only
 
 
 def test_compare_frf_overlays_and_scores(model):
