@@ -114,3 +114,28 @@ def test_cable_fields_refuse_a_mode_or_a_point_count_that_is_not_one(k, n_points
 def test_cable_fields_of_no_model_is_refused():
     with pytest.raises(InvalidParameterError, match="^model must be a model of the ladder"):
         ds.cable_fields(None, None, 0)
+
+
+def test_cable_fields_are_taken_at_the_modes_frequency_and_refused_without_fields(cogiro_eq,
+                                                                                  monkeypatch):
+    """The field of mode k is the model's cable displacement at omega = 2 pi f_k for its
+    platform shape; the rungs without continuous fields are refused, the lumped one pointing
+    to its node shapes."""
+    from dynstiff.errors import UnsupportedAnalysisError
+    m = ds.FrequencyModel(cogiro_eq)
+    res = ds.modes(m, n_modes=3)
+    seen, real = [], type(m).cable_displacements
+
+    def spy(self, omega, shape, n_points):
+        seen.append((omega, shape))
+        return real(self, omega, shape, n_points)
+    monkeypatch.setattr(type(m), "cable_displacements", spy)
+    ds.cable_fields(m, res, 2, n_points=5)
+    assert seen[0][0] == 2 * np.pi * res.freq_hz[2]
+    np.testing.assert_array_equal(seen[0][1], res.platform_shapes[2])
+    for rung, tail in (("lumped", r": its node motions are modes\(model, \.\.\.\)\.node_shapes$"),
+                       ("spring", r" \(massless cables\)$")):
+        with pytest.raises(UnsupportedAnalysisError,
+                           match=rf"^cable_fields needs closed-form cable fields \(rung 'dsm'\); "
+                                 rf"the '{rung}' model has none{tail}"):
+            ds.cable_fields(ds.build_model(cogiro_eq, rung, segments=4), res, 0)

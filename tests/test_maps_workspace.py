@@ -189,6 +189,7 @@ def test_box_grid_axes():
     ({"poses": [[0, 0, 1]], "band_hz": (2.0, 1.0)}, "band_hz"),
     ({"poses": [[0, 0, 1]], "rung": "beam"}, "rung"),
     ({"poses": [[0, 0, 1]], "workers": 0}, "workers"),
+    ({"poses": [[0, 0, 1]], "progress": "no"}, "progress must be True or False, got 'no'"),
     ({"poses": [], }, "at least one pose"),
     # options checked before the first pose: never a map of "infeasible" poses
     ({"poses": [[0, 0, 1]], "rung": "exact", "fmax_hz": -1.0}, "fmax_hz must be > 0"),
@@ -264,7 +265,6 @@ def test_fast_statics_give_the_numbers_of_the_previous_path(robot, monkeypatch):
     from dynstiff.maps.workspace import evaluate_chunk
     from dynstiff.robot import statics
     options = check_options(BAND)
-
     grid = np.stack(np.meshgrid(np.linspace(-5.0, 5.0, 5), np.linspace(-3.5, 3.5, 4),
                                 np.linspace(0.5, 3.0, 3), indexing="ij"), -1).reshape(-1, 3)
     X = np.hstack([grid, np.zeros_like(grid)])
@@ -396,6 +396,8 @@ def test_the_estimate_is_one_line_on_stderr(robot, capsys):
     err = capsys.readouterr().err
     line = err.split("\n")[0]
     assert line.startswith("workspace: 2 poses, about ") and line.endswith("in a sample)")
+    from dynstiff.maps.guards import _gib, map_bytes  # the 5 checks without a band
+    assert f"about {_gib(map_bytes(2, 8, 2, 5))}, about " in line
 
 
 def test_the_model_band_given_is_the_maps(robot):
@@ -463,3 +465,35 @@ def test_a_failure_of_the_modes_is_the_poses_reason(robot, monkeypatch):
     assert str(m["reason"].values[1]).endswith("planted: no modes here")
     assert m["unknown"].values[1].any() and not m["passed"].values[1].any()
     assert m["passed"].values[0].all()
+
+
+def test_an_interrupted_map_resumes_to_the_whole_map(robot, tmp_path, monkeypatch):
+    """Ctrl-C (planted in task 2) stops the map counting the poses saved of the total;
+    resume=True reads the saved task, computes only the other and gives the whole map."""
+    import dynstiff.maps.workspace as ws
+    kw = {"poses": [[0, 0, 1.0], [0.5, 0, 1.0], [1.0, 0, 1.0]], "n_modes": 2, "chunk_size": 2}
+    whole, real, calls = workspace(robot, **kw), ws.evaluate_chunk, []
+
+    def planted(rob, X, *a):
+        calls.append(len(X))
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        return real(rob, X, *a)
+    monkeypatch.setattr(ws, "evaluate_chunk", planted)
+    with pytest.raises(ds.errors.Interrupted, match="2 of 3 poses saved") as stop:
+        workspace(robot, checkpoint=tmp_path / "m.parts", **kw)
+    assert (stop.value.saved, stop.value.total) == (2, 3)
+    m = workspace(robot, checkpoint=tmp_path / "m.parts", resume=True, **kw)
+    assert calls == [2, 1, 1]
+    xr.testing.assert_equal(m, whole)            # every variable (not the run's attributes)
+
+
+def test_the_tasks_are_submitted_to_the_client_given(robot):
+    """client=: each task goes to client.submit (a stub that refuses it: no cluster)."""
+    pytest.importorskip("distributed")
+
+    class Client:
+        def submit(self, fn, rob, X, *a, pure=True):
+            raise RuntimeError(f"planted: {fn.__name__} of {len(X)} poses, pure={pure}")
+    with pytest.raises(RuntimeError, match="planted: evaluate_chunk of 1 poses, pure=False"):
+        workspace(robot, [[0.0, 0.0, 1.0]], n_modes=2, client=Client())

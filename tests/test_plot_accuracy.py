@@ -289,3 +289,76 @@ def test_a_nan_or_negative_error_of_one_case_is_refused_naming_its_model(bad):
         plot_speed_accuracy(df)
     assert str(e.value) == (f"df: 'err first 20' must be >= 0 or inf, got {bad!r} "
                             f"(model 'lumped N=10', row {k})")
+
+
+def test_a_table_without_rows_is_refused_and_one_row_is_a_chart():
+    df = one_row_table({"dsm": (1e-3, 1.0)})
+    with pytest.raises(InvalidParameterError, match="^df has no rows$"):
+        plot_speed_accuracy(df.iloc[:0])
+    assert lines_of(plot_speed_accuracy(df).axes[0])["dsm"].get_ydata().tolist() == [1e-3]
+
+
+def test_a_zero_error_is_drawn_at_a_tenth_of_the_smallest_positive_one():
+    df = one_row_table({"exact": (0.0, 3.0), "a": (1e-3, 1.0), "b": (5e-2, 0.5)})
+    pts = lines_of(plot_speed_accuracy(df).axes[0])
+    assert pts["exact"].get_ydata()[0] == pytest.approx(1e-4, rel=1e-14)
+    assert pts["a"].get_ydata().tolist() == [1e-3] and pts["b"].get_ydata().tolist() == [5e-2]
+
+
+def test_without_a_positive_error_zero_is_drawn_at_1e_12_and_missing_modes_at_1():
+    """No positive error to scale from: a zero error sits at 1e-12, an infinite one at 1 (and
+    the dotted line at 1)."""
+    df = one_row_table({"exact": (0.0, 1.0), "spring": (np.inf, 0.1)})
+    ax = plot_speed_accuracy(df).axes[0]
+    pts = lines_of(ax)
+    assert pts["exact"].get_ydata().tolist() == [1e-12]
+    assert pts["spring"].get_ydata().tolist() == [1.0]
+    (line,) = [ln for ln in ax.get_lines() if not ln.get_gid()]
+    assert list(line.get_ydata()) == [1.0, 1.0]
+
+
+def test_a_dotted_grey_line_marks_the_height_of_the_models_missing_modes():
+    """With a model missing modes: a dotted line, grey 0.6, 0.6 pt, across the axes at the
+    triangles' height (a decade above the largest positive error); none without."""
+    df = speed_table()
+    ax = plot_speed_accuracy(df).axes[0]
+    err, _ = worst_and_total(df)
+    (line,) = [ln for ln in ax.get_lines() if not ln.get_gid()]
+    ceiling = 10.0 * err[np.isfinite(err)].max()
+    assert list(line.get_ydata()) == [ceiling, ceiling]
+    assert lines_of(ax)["spring"].get_ydata().tolist() == [ceiling]
+    assert list(line.get_xdata()) == [0, 1]                   # axes coordinates: across
+    assert line.get_transform() == ax.get_yaxis_transform()
+    assert line.get_linestyle() == ":" and line.get_linewidth() == 0.6
+    assert to_rgba(line.get_color()) == to_rgba("0.6")
+    finite = df[np.isfinite(df["err first 20"])]
+    ax = plot_speed_accuracy(finite).axes[0]
+    assert not [ln for ln in ax.get_lines() if not ln.get_gid()]
+
+
+def test_a_missing_modes_triangle_takes_its_tab10_colour_whatever_the_style():
+    """Under a style whose colour cycle is not tab10, model k (finite or missing modes) is
+    still drawn in tab10 colour k."""
+    tab10 = plt.get_cmap("tab10").colors
+    df = one_row_table({"dsm": (1e-3, 1.0), "spring": (np.inf, 0.1), "rod": (np.inf, 0.2)})
+    with plt.rc_context({"axes.prop_cycle": matplotlib.cycler(color=["r", "g", "b"])}):
+        pts = lines_of(plot_speed_accuracy(df).axes[0])
+    for k, m in enumerate(("dsm", "spring", "rod")):
+        assert to_rgba(pts[m].get_color()) == to_rgba(tab10[k]), m
+    for m in ("spring", "rod"):                       # open triangles: edged in it too
+        assert to_rgba(pts[m].get_markeredgecolor()) == to_rgba(pts[m].get_color()), m
+
+
+def test_a_grid_at_major_and_minor_ticks_with_alpha_0_3():
+    """Grid lines at the major and minor ticks of both log axes, alpha 0.3; drawing the
+    chart warns of nothing (e.g. matplotlib's "grid() is false, but line properties")."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = plot_speed_accuracy(speed_table())
+    fig.canvas.draw()
+    ax = fig.axes[0]
+    for axis in (ax.xaxis, ax.yaxis):
+        ticks = axis.get_major_ticks() + axis.get_minor_ticks()
+        assert len(axis.get_minor_ticks()) > 0
+        assert all(t.gridline.get_visible() and t.gridline.get_alpha() == 0.3 for t in ticks)

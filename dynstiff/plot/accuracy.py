@@ -51,15 +51,19 @@ def plot_speed_accuracy(df, error="err first 20", cost="40 modes [s]", ax=None):
     and the cost the median of ``cost`` plus the median of ``"build [s]"``. A model whose
     error is infinite (it misses modes, e.g. a massless-cable model asked for cable modes)
     is drawn as an open 7 pt triangle a decade above the largest positive error and
-    annotated "(misses modes)". A zero error is drawn at a tenth of the smallest positive one.
+    annotated "(misses modes)", a dotted grey line (colour 0.6, 0.6 pt) across the axes at
+    its height. A zero error is drawn at a tenth of the smallest positive one; without a
+    positive error, a zero error is drawn at 1e-12 and an infinite one at 1.
 
-    Model k takes colour k mod 10 of the tab10 palette; models on the front are drawn as
-    8 pt circles edged in black, the others as 6 pt. Labels (8 pt) sit 5 points right of
-    their point, stepped up or down so that labels of neighbouring points do not overlap.
+    Model k takes colour k mod 10 of the tab10 palette whatever the matplotlib style
+    (triangles included); models on the front are drawn as 8 pt circles edged in black, the
+    others as 6 pt. Labels (8 pt) sit 5 points right of their point, stepped up or down so
+    that labels of neighbouring points do not overlap.
     The front is a dashed black step line, 1 pt wide with alpha 0.7, named "Pareto front
     (black-edged points)" in a legend at lower left. The x axis is labelled "wall time:
-    <cost without ' [s]'> + build [s]"; the margins are 25 % in x and 20 % in y. A new
-    figure is 6.5 x 4.5 in.
+    <cost without ' [s]'> + build [s]"; the margins are 25 % in x and 20 % in y; a grid is
+    drawn at the major and minor ticks of both axes, with alpha 0.3. A new figure is 6.5 x
+    4.5 in.
 
     Parameters
     ----------
