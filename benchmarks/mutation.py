@@ -2113,6 +2113,15 @@ EQUIVALENT.update({
                    "record an id1 ('NONE' when the file has none)",
     f"{_MFRF}103": "dtype=float dropped on the abscissa: pyuff gives it as float64",
 })
+EQUIVALENT.update({
+    **{f"dynstiff.analyses.participation.x_modal_data__mutmut_{n}":
+       "massless= not passed to massless_pairing, which then runs the same eigh(sym K0, "
+       "M_p) as massless_modes" for n in (79, 84)},
+    "dynstiff.analyses.participation.x_modal_data__mutmut_30":
+        "< for <= in the coincident-roots test: differs only for a gap of exactly 1e-8 f",
+    "dynstiff.plot.frf.x_plot_frf__mutmut_341":
+        "grid(None, alpha=...): matplotlib turns the grid on when line properties are given",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

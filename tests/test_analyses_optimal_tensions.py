@@ -2,6 +2,7 @@
 theory.md §16.7): the optimum against its neighbours in the tension null space and against
 a brute-force search over it, the limits along every cable, what binds, warm starts."""
 
+import re
 from collections import deque
 
 import numpy as np
@@ -75,6 +76,10 @@ def test_bad_requests_are_refused(cogiro):
         optimal_tensions(rob, [0, 0, 1], objective="stiffness")
     with pytest.raises(InvalidParameterError, match="needs band_hz"):
         optimal_tensions(rob, [0, 0, 1], objective="band_margin")
+    for band in ((2.0, 1.0), (-1.0, 2.0), (1.0, 1.0)):     # not 0 <= lo < hi
+        with pytest.raises(InvalidParameterError, match=r"^band_hz must be \(lo, hi\), "
+                           r"0 <= lo < hi \[Hz\], got " + re.escape(repr(band)) + "$"):
+            optimal_tensions(rob, [0, 0, 1], objective="band_margin", band_hz=band)
     with pytest.raises(InvalidParameterError, match="start must be"):
         optimal_tensions(rob, [0, 0, 1], start=[1.0, 2.0])
     with pytest.raises(InvalidParameterError, match="tensions must be one of"):

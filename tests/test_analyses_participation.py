@@ -211,3 +211,59 @@ def test_modal_data_of_a_first_coincident_pair_alone_takes_the_full_modes():
     assert res.freq_hz.size == 2 and res.freq_hz[1] - res.freq_hz[0] <= 1e-8 * res.freq_hz[1]
     assert np.all(np.isfinite(res.cable_energy))
     np.testing.assert_array_equal(res.platform_share, ref.platform_share)
+
+
+def test_modal_data_of_the_lumped_rung_obeys_the_sum_rule():
+    """Other rungs go through dynstiff.modes: on the lumped CoGiRo (2 segments per cable,
+    all 30 modes) the frequencies are those of the dense generalized eigenproblem (K, M)
+    and each free DOF's participations sum to 1 (theory.md §12.1)."""
+    import scipy.linalg
+    sc = ds.load_scene("cogiro")
+    lm = ds.build_model(sc.equilibrium(), "lumped", segments=2)
+    res = modal_data(lm, 1e6, max_modes=lm.n_dof)
+    K, M = (a.toarray() if hasattr(a, "toarray") else np.asarray(a) for a in lm.matrices())
+    lam = scipy.linalg.eigh(K, M, eigvals_only=True)
+    np.testing.assert_allclose(res.freq_hz, np.sqrt(lam) / (2 * np.pi), rtol=1e-8)
+    np.testing.assert_allclose(res.participation.sum(axis=0), 1.0, rtol=1e-10)
+
+
+def test_modal_data_of_a_point_mass_holds_the_rotations():
+    """A point mass (x, y, z free, 20 kg) on three cables, closed form: the fast path's
+    platform mass is 20 kg on the translations and 0 on the held rotations, whose
+    participations are 0; each translation's participations over the modes below 60 Hz sum
+    to at most 1 (the sum rule) and equal dynstiff.modes'; every global mode continues a
+    mode of the massless-cable model, eigenvalues of (K0, m I)."""
+    import scipy.linalg
+    from conftest import point_mass_robot
+    eq = point_mass_robot(mass=20.0).equilibrium(pose=[0.2, -0.1, 1.0, 0, 0, 0])
+    m = ds.build_model(eq, "dsm")
+    res, ref = modal_data(m, 12.0), ds.modes(m, fmax_hz=12.0)
+    assert np.all(np.isnan(res.cable_energy))
+    np.testing.assert_array_equal(res.platform_mass, np.diag([20.0] * 3 + [0.0] * 3))
+    p = res.participation
+    assert np.all(p[:, 3:] == 0) and np.all(p.sum(axis=0)[:3] <= 1 + 1e-9)
+    np.testing.assert_allclose(p, ref.participation, atol=1e-7)
+    f0 = np.sqrt(scipy.linalg.eigvalsh(m.massless_stiffness(), 20.0 * np.eye(3))) / (2 * np.pi)
+    glob = np.array(res.kind) == "global"
+    assert glob.sum() >= 2
+    got = res.massless_freq_hz[glob]
+    assert np.all(np.min(np.abs(got[:, None] - f0[None, :]), axis=1) <= 1e-9 * f0.max())
+    assert len(set(got)) == got.size                    # one to one
+    np.testing.assert_array_equal(res.massless_freq_hz, ref.massless_freq_hz)
+
+
+def test_modal_data_of_nearly_coincident_roots_takes_the_full_modes():
+    """Roots split by less than 1e-8 of the higher one count as coincident: the octahedron
+    of inertia (100, 100 (1 + 1e-9), 150) kg m^2 splits its C3v pair at 16.7 Hz by 5e-10
+    (relative), and modal_data takes dynstiff.modes (cable energies computed); a split of
+    5e-8 (inertia 1 + 1e-7) takes the fast path (cable energies NaN)."""
+    from conftest import inverted_stewart
+    for eps, full in ((1e-9, True), (1e-7, False)):
+        rob = inverted_stewart(inertia=(100.0, 100.0 * (1 + eps), 150.0))
+        m = ds.build_model(rob.equilibrium(pose=[0.0, 0.0, 1.5], tol=1e-12), "dsm")
+        res, ref = modal_data(m, 20.0), ds.modes(m, fmax_hz=20.0)
+        split = (res.freq_hz[1] - res.freq_hz[0]) / res.freq_hz[1]
+        assert res.freq_hz.size == 2 and 0.1 * eps < split < eps     # split, not coincident
+        assert np.all(np.isfinite(res.cable_energy)) == full
+        assert np.all(np.isnan(res.cable_energy)) == (not full)
+        np.testing.assert_allclose(res.platform_share, ref.platform_share, atol=1e-8)

@@ -57,7 +57,8 @@ def test_frf_honours_ax_and_rejects_bad_input(cogiro_model, cogiro_modes):
     fig0, ax = plt.subplots()
     fig = plot_frf(res, cogiro_modes, ax=ax)      # ax given: magnitude only
     assert fig is ax.figure and fig.axes == [ax]
-    with pytest.raises(InvalidParameterError, match="phase=True draws its own figure"):
+    with pytest.raises(InvalidParameterError, match="phase=True draws its own figure"
+                       r".*pass ax=None, or phase=False to draw the magnitude on ax"):
         plot_frf(res, cogiro_modes, ax=ax, phase=True)      # never silently dropped
     assert fig.axes == [ax]
     with pytest.raises(InvalidParameterError, match="result must be a FRFResult"):
@@ -283,3 +284,38 @@ def test_frf_axes_span_the_frequencies_and_the_phase_axes_its_half_turns():
     assert ph.get_ylabel() == "phase [deg]" and ph.get_ylim() == (-190.0, 190.0)
     assert list(ph.get_yticks()) == [-180, -90, 0, 90, 180]
     assert all(line.get_visible() for line in ph.get_ygridlines())
+
+
+def test_frf_legend_corner_where_the_axes_top_right_is_empty():
+    """The legend's top left corner is at (1.01, 1.0) even where the axes' top right corner
+    is empty (one falling curve, no modes), where a "best" placement would move it."""
+    from dynstiff.results import FRFResult
+    f = np.linspace(1.0, 3.0, 20)
+    res = FRFResult(f, (f ** -4.0)[:, None, None].astype(complex), ("fz",), ("z",),
+                    "receptance")
+    fig = plot_frf(res)
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    box = ax.get_legend().get_window_extent()
+    corner = ax.transAxes.inverted().transform((box.x0, box.y1))
+    np.testing.assert_allclose(corner, [1.01, 1.0], atol=1e-9)
+
+
+def test_frf_marks_every_mode_of_the_band_and_no_other():
+    """A mode between the last two frequencies of the grid is inside the band and marked,
+    on both axes; modes below the first or above the last frequency are not. The mode
+    lines are dashed, 0.6 wide and translucent (alpha 0.6)."""
+    res, _ = _toy_frf()
+    from types import SimpleNamespace
+    f = res.freq_hz
+    inside = 0.5 * (f[-2] + f[-1])
+    modes = SimpleNamespace(freq_hz=np.array([0.95, 1.5, inside, 3.05]),
+                            kind=("global", "mixed", "local", "global"))
+    fig = plot_frf(res, modes, phase=True)
+    for ax in fig.axes:
+        marks = [ln for ln in ax.get_lines() if (ln.get_gid() or "").startswith("mode-")]
+        assert [ln.get_xdata()[0] for ln in marks] == [1.5, inside]
+        assert [ln.get_gid() for ln in marks] == ["mode-mixed", "mode-local"]
+        for ln in marks:
+            assert ln.get_linestyle() == "--" and ln.get_linewidth() == 0.6
+            assert ln.get_alpha() == 0.6

@@ -213,7 +213,7 @@ def optimal_tensions(robot: Robot, pose: ArrayLike | Pose, objective: str = "fir
         each DOF's carrier); "band_margin": the
         relative margin to ``band_hz`` of the modes with platform share >= ``participation``.
     band_hz : (float, float), optional
-        Forbidden band [Hz] ("band_margin").
+        Forbidden band [Hz] ("band_margin"), 0 <= lo < hi.
     participation : float
         Platform share from which a mode is held to the band [-].
     rung : str

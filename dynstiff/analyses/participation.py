@@ -130,8 +130,9 @@ def modal_data(model: PlatformModel, fmax_hz: float, max_modes: int = 20000) -> 
 
     :func:`dynstiff.modes` for every rung but the undamped closed form, whose shares come
     from :func:`platform_shares` (faster; the same frequencies, shares within 1e-8,
-    ``cable_energy`` NaN). Coincident roots of the closed form go through
-    :func:`dynstiff.modes` too (their shapes need the null space of K).
+    ``cable_energy`` NaN). Coincident roots of the closed form (closer than 1e-8 of the
+    higher one, relative) go through :func:`dynstiff.modes` too (their shapes need the null
+    space of K).
 
     Returns
     -------

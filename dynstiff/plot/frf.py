@@ -31,8 +31,9 @@ def plot_frf(result, modes=None, pairs=None, ax=None, phase=False):
     result : FRFResult
         ``H`` of shape (n_freq, n_out, n_in) at ``freq_hz``, shape (n_freq,) [Hz].
     modes : ModalResult, optional
-        Marks each mode inside the band by a dashed vertical line coloured by its platform
-        share (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
+        Marks each mode inside the band by a dashed vertical line, 0.6 wide with alpha 0.6
+        so that the curves show through, coloured by its platform share
+        (:func:`mode_categories`): red (gid ``mode-global``), purple (``mode-mixed``),
         blue (``mode-local``); the legend names the three, each by a dashed line 0.8 wide
         in its class's colour. The curves take other colours (:data:`CHANNEL_COLORS`) and
         are solid, 1.0 wide; a channel drawn after its reciprocal twin (``z / fx`` after

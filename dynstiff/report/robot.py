@@ -57,8 +57,8 @@ def robot_report(scene, out, settings=None, n_points=3000, html=True):
         modes, which hold the platform modes (Wittrick-Williams count: none missed; undamped
         frequencies)" (columns mode, freq [Hz], kind, platform mode, platform share [-],
         dominant dof, massless freq [Hz]; the modes the design checks searched, or, where
-        they are fewer than the settings' ``n_modes``, that many searched again), "Cable model" (the recommendation) and "Design
-        checks" (the checks' verdicts).
+        they are fewer than the settings' ``n_modes``, that many searched again), "Cable
+        model" (the recommendation) and "Design checks" (the checks' verdicts).
     files : list of Path
         Files written. The tables are CSV files (:func:`write_csv`), each
         headed by the run's metadata and the lines ``# table: "<file name>"`` and ``# units:
