@@ -183,3 +183,117 @@ def test_a_dof_no_mode_below_moves_has_no_carrier():
     assert list(index) == [0, 1] and index.dtype.kind == "i"
     index, carriers = select_platform_modes(modes, [0, 1], 2.0)
     assert carriers == {"x": 1, "y": 2} and list(index) == [0, 1, 2]
+
+
+def test_found_frequency_counts_the_modes_at_the_top_and_needs_every_dof():
+    """_found_frequency on three modes (1, 2, 3 Hz), DOFs x and y: x is half found by the
+    first mode (0.6), y by the second (0.2 + 0.4); the mode at ``top`` counts ("at or below"),
+    the found frequency is the last DOF's; below every mode nothing is found and each DOF's
+    cumulative participation is 0."""
+    from types import SimpleNamespace
+
+    from dynstiff.analyses.platform_modes import _found_frequency
+    p = np.zeros((3, 6))
+    p[:, 0] = [0.6, 0.1, 0.3]
+    p[:, 1] = [0.2, 0.4, 0.4]
+    p[0, 2] = np.nan                                    # not a free DOF here
+    modes = SimpleNamespace(freq_hz=np.array([1.0, 2.0, 3.0]), participation=p)
+    found, cum = _found_frequency(modes, np.array([0, 1]), 2.0)
+    assert found == 2.0
+    np.testing.assert_allclose(cum, [0.7, 0.6], rtol=1e-15)
+    found, cum = _found_frequency(modes, np.array([0, 1]), 1.5)   # y: 0.2 < 1/2
+    assert found is None
+    np.testing.assert_allclose(cum, [0.6, 0.2], rtol=1e-15)
+    assert _found_frequency(modes, np.array([0, 1]))[0] == 2.0      # no top: every mode
+    found, cum = _found_frequency(modes, np.array([0, 1]), 0.5)
+    assert found is None and cum.shape == (2,) and not np.any(cum)
+
+
+def _softened(cls, scale):
+    """``cls`` with its massless-cable stiffness scaled by ``scale`` (only the search's
+    start moves: the modes are the model's own)."""
+    class Soft(cls):
+        def massless_stiffness(self):
+            return scale * super().massless_stiffness()
+    return Soft
+
+
+@pytest.fixture
+def bounded_steps(monkeypatch):
+    """At most 30 steps of the search (a search that never ends fails instead of hanging)."""
+    import dynstiff.analyses.platform_modes as mod
+    real, steps = mod.modal_data, []
+
+    def counted(*args, **kw):
+        steps.append(args[1])
+        assert len(steps) <= 30, "the search does not end"
+        return real(*args, **kw)
+    monkeypatch.setattr(mod, "modal_data", counted)
+    return steps
+
+
+def _first_top(model):
+    """1.1 x the highest massless-cable platform frequency (1 Hz without one) [Hz]."""
+    import scipy.linalg
+    K0 = model.massless_stiffness()
+    lam = scipy.linalg.eigh(0.5 * (K0 + K0.T), model.platform_mass, eigvals_only=True)
+    return 1.1 * (np.sqrt(lam.max()) / (2 * np.pi) if lam.max() > 0 else 1.0)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 0.0])
+def test_the_band_grows_by_one_and_a_half_until_every_dof_is_found(pm, scale, bounded_steps):
+    """CoGiRo with its massless stiffness scaled by 1e-3 (first band 0.2 Hz, below every
+    mode) or by 0 (no massless frequency: the search starts at 1.1 Hz): the band grows by
+    1.5 to the first step at or above the found frequency (5.85 Hz), and the platform modes
+    are those of the plain search (the start sets only the cost)."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    soft = _softened(ds.FrequencyModel, scale)(eq)
+    top = _first_top(soft)
+    assert top < pm.found_hz / 1.5 ** 3
+    while top < pm.found_hz:
+        top *= 1.5
+    res = find_platform_modes(soft)
+    assert res.complete and res.searched_hz == pytest.approx(top, rel=1e-12)
+    assert bounded_steps[-1] == res.searched_hz
+    assert res.found_hz == pytest.approx(pm.found_hz, rel=1e-9)
+    assert res.carriers == pm.carriers and list(res.index) == list(pm.index)
+    f = np.asarray(res.modes.freq_hz)
+    direct = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=top)
+    np.testing.assert_allclose(f, direct, rtol=1e-8)
+
+
+def test_a_ceiling_of_modes_met_while_growing_keeps_the_last_step(bounded_steps):
+    """The softened CoGiRo (first band 0.2 Hz) with at most 5 modes: the search grows by 1.5
+    until a band holds more than 5 modes; the incomplete result keeps the modes of the step
+    before it, and says the band it could not compute."""
+    eq = ds.load_scene("cogiro").equilibrium()
+    soft = _softened(ds.FrequencyModel, 1e-3)(eq)
+    direct = ds.eigenfrequencies(ds.FrequencyModel(eq), fmax_hz=8.0)
+    tops = [_first_top(soft)]
+    while np.sum(direct <= tops[-1]) <= 5:
+        tops.append(1.5 * tops[-1])
+    assert np.sum(direct <= tops[-2]) >= 1                # a step found modes first
+    res = find_platform_modes(soft, max_modes=5)
+    assert not res.complete and res.index.size == 0 and np.isnan(res.found_hz)
+    assert res.reason.startswith(f"more than 5 modes below {tops[-1]:.4g} Hz")
+    assert res.searched_hz == pytest.approx(tops[-2], rel=1e-12)
+    np.testing.assert_allclose(res.modes.freq_hz, direct[direct <= tops[-2]], rtol=1e-8)
+
+
+def test_the_search_grows_up_to_an_exact_models_band_less_its_neighbours(bounded_steps):
+    """An exact model built up to 3 Hz, its first band 1 Hz (massless stiffness scaled): the
+    band grows by 1.5 (1, 1.5, 2.25 Hz) and then stops at the model's band over
+    (1 + neighbours_rtol), so that the neighbours searched stay in the band."""
+    from dynstiff.models.exact import ExactModel
+    eq = ds.load_scene("cogiro").equilibrium()
+    plain = ExactModel(eq, fmax_hz=3.0)
+    scale = (1.0 / _first_top(plain)) ** 2
+    model = _softened(ExactModel, scale)(eq, fmax_hz=3.0)
+    assert _first_top(model) == pytest.approx(1.0, rel=1e-9)
+    res = find_platform_modes(model, neighbours_rtol=0.1)
+    ceiling = model.max_omega / (2 * np.pi) / 1.1
+    assert ceiling == pytest.approx(3.0 / 1.1, rel=1e-12) and 2.25 < ceiling < 3.375
+    assert not res.complete and res.reason.startswith("the model's band ends at ")
+    assert res.searched_hz == pytest.approx(ceiling, rel=1e-12)
+    f = np.asarray(res.modes.freq_hz)
+    assert f.size >= 1 and f.max() <= 3.0

@@ -326,3 +326,19 @@ def test_a_band_that_is_not_one_is_refused_naming_band_hz(band):
 def test_an_equilibrium_that_is_not_one_is_refused():
     with pytest.raises(ds.InvalidParameterError, match="^equilibrium must be an Equilibrium"):
         ds.recommend_model(None, band_hz=(0.0, 2.0))
+
+
+def test_the_estimates_name_the_closed_forms_causes():
+    """The estimates carry the causes the closed form's guard names for the cables at the
+    band's top (cable.guard.closed_form_validity, reasons above 1e-2): on soft heavy cables
+    with axial modes in the band, the axial modes among them."""
+    from dynstiff.analyses.recommend import predicted_errors
+    from dynstiff.cable.guard import AXIAL_MARGIN, closed_form_validity
+    soft = three_cable(5, 5, 50, 2e8, 1.0)
+    f_ax = min(closed_form_validity(s, 0.0).values["axial_hz"] for s in soft.states)
+    hi = 1.01 * AXIAL_MARGIN * f_ax
+    errors, est, _ = predicted_errors(soft, (0.0, hi))
+    causes = sorted({r for s in soft.states
+                     for r in closed_form_validity(s, 2 * np.pi * hi).reasons(1e-2)})
+    assert est["closed_form_causes"] == causes and np.isinf(errors["dsm"])
+    assert any("axial modes from" in c for c in causes)

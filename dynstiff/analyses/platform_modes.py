@@ -156,11 +156,19 @@ def find_platform_modes(model, cover_hz=0.0, neighbours_rtol=0.0,
         Also every mode within this relative distance above the last frequency searched
         (the local neighbours of the platform modes, for a proximity check) [-].
     max_modes : int
-        The ceiling: most modes computed.
+        The ceiling: most modes computed. A search stopped by it is incomplete and keeps the
+        modes of its last completed step.
 
     Returns
     -------
     PlatformModes
+
+    Notes
+    -----
+    Without a positive massless-cable frequency the search starts at 1.1 Hz. For a model
+    with a band (``max_omega``, the exact rung) the search stops at max_omega / 2 pi /
+    (1 + neighbours_rtol), so that the neighbours it reads stay in the band; a search
+    stopped there is incomplete.
 
     Examples
     --------

@@ -285,6 +285,9 @@ def predicted_errors(
     -------
     errors : dict rung -> float
     estimates : dict
+        The estimates behind the errors; among them ``closed_form_causes``, the causes
+        (sorted) that the closed form's guard (:func:`dynstiff.cable.guard.closed_form_validity`)
+        names above 1e-2 for the cables at the band's top.
     segments : int
         Segments per cable for the lumped rung.
     """
