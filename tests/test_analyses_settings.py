@@ -193,3 +193,45 @@ def test_a_band_of_booleans_is_refused():
     with pytest.raises(InvalidParameterError, match="^band_hz must be real numbers, not "
                                                     "booleans"):
         analysis_settings(ds.load_scene("planar2"), band_hz=(0.0, True))
+
+
+def test_a_scene_without_an_attribute_names_the_first_one_missing():
+    """Something that is not a Scene is refused naming the first of robot, pose, band_hz,
+    damping it lacks: all four (None), or only the damping."""
+    from types import SimpleNamespace
+    with pytest.raises(InvalidParameterError) as err:
+        analysis_settings(None)
+    assert str(err.value).endswith("got NoneType without 'robot'")
+    sc = ds.load_scene("planar2")
+    partial = SimpleNamespace(robot=sc.robot, pose=sc.pose, band_hz=sc.band_hz)
+    with pytest.raises(InvalidParameterError) as err:
+        analysis_settings(partial)
+    assert str(err.value).endswith("got SimpleNamespace without 'damping'")
+
+
+def test_the_scenes_own_damping_is_the_base_of_the_values_given():
+    """A scene's [damping] (not the defaults) is the damping, and the base of a partial
+    override."""
+    own = ds.Damping(0.03, 0.02, 0.1)
+    assert own != ds.Damping()
+    sc = dataclasses.replace(ds.load_scene("planar2"), damping=own)
+    assert analysis_settings(sc).damping == own
+    assert analysis_settings(sc, damping=[0.05]).damping == ds.Damping(0.05, 0.02, 0.1)
+
+
+def test_scene_model_passes_the_further_settings_on():
+    """segments given to scene_model reach the lumped model: 3 segments per cable, not the
+    default 30."""
+    m = ds.scene_model(ds.load_scene("planar2"), rung="lumped", segments=3)
+    assert m.rung == "lumped" and list(m.segments) == [3] * m.robot.n_cables
+
+
+def test_scene_model_lists_exactly_the_settings_it_takes_further():
+    """The further settings are analysis_settings' keywords but scene, rung and damping
+    (scene_model's own arguments)."""
+    with pytest.raises(InvalidParameterError) as err:
+        ds.scene_model(ds.load_scene("planar2"), band=(0, 3))
+    assert str(err.value) == (
+        "settings ['band'] are not settings of an analysis (they are ['band_hz', "
+        "'forbidden_hz', 'frf_limit', 'margin', 'model_rtol', 'n_modes', 'participation', "
+        "'segments'])")

@@ -310,3 +310,43 @@ def test_rungs_without_finite_error_are_drawn_at_one():
     """When no rung has a finite positive error, the ones missing modes are drawn at 1."""
     ax = plot_model_errors(recommendation({"chord": np.inf, "dsm": np.inf}, "dsm")).axes[0]
     assert [b.get_height() for b in by_gid(ax, "rung-errors")] == [1.0, 1.0]
+
+
+def test_tension_bars_keep_their_colours_on_axes_already_used():
+    """On a caller's axes that already hold bars, the bars at A are still blue and those at
+    B red (docstring), not the next colours of the axes' patch cycle."""
+    fig, ax = plt.subplots()
+    ax.bar([5.0], [1.0])                                 # takes the patch cycle's first colour
+    plot_tensions(equilibrium([300.0, 310.0], [290.0, 305.0]), ax=ax)
+    assert all(b.get_facecolor() == to_rgba("tab:blue") for b in by_gid(ax, "tension-A"))
+    assert all(b.get_facecolor() == to_rgba("tab:red") for b in by_gid(ax, "tension-B"))
+
+
+@pytest.mark.parametrize("limits, largest", [(None, 330.0), ((100.0, 400.0), 400.0),
+                                             ((100.0, 5000.0), 330.0)])
+def test_tension_axis_runs_from_zero_to_1_25_times_the_largest_value_drawn(limits, largest):
+    """Largest bar 330 N; a t_max of 400 N is drawn (below 2 x 330), one of 5000 N is not."""
+    eq = equilibrium([300.0, 310.0, 320.0], [290.0, 305.0, 330.0])
+    ax = plot_tensions(eq, limits=limits).axes[0]
+    assert ax.get_ylim() == (0.0, 1.25 * largest)
+
+
+def test_zero_tensions_keep_a_unit_axis_without_warning():
+    """All tensions 0 (slack cables) and no limit: nothing positive to scale to, so the axis
+    runs from 0 to 1 N rather than collapsing (matplotlib would warn on identical limits)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ax = plot_tensions(equilibrium([0.0, 0.0], [0.0, 0.0])).axes[0]
+    assert ax.get_ylim() == (0.0, 1.0)
+
+
+def test_tension_title_and_legend_text_sizes():
+    """The title is 10 pt and the legend has two columns of 8 pt text on a 0.9 alpha frame,
+    whatever the default font size (here 14 pt)."""
+    with matplotlib.rc_context({"font.size": 14.0}):
+        ax = plot_tensions(equilibrium([300.0, 310.0], [290.0, 305.0])).axes[0]
+    assert ax.title.get_fontsize() == 10
+    leg = ax.get_legend()
+    assert leg._ncols == 2
+    assert [t.get_fontsize() for t in leg.get_texts()] == [8, 8]
+    assert leg.get_frame().get_alpha() == 0.9

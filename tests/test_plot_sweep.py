@@ -282,3 +282,22 @@ def test_a_single_step_keeps_automatic_limits_without_warning(v):
     assert ax.get_autoscalex_on() and ax.get_xscale() == "linear"
     lo, hi = ax.get_xlim()
     assert lo < v < hi
+
+
+def test_fewer_than_ten_tracks_take_the_first_tab10_colours():
+    """With 3 tracks, track t has the t-th tab10 colour (not tab10 spread end to end)."""
+    ax = plot_veering(n_track_stub(3)).axes[0]
+    tab10 = matplotlib.colormaps["tab10"]
+    got = {int(ln.get_gid().split("-")[1]): to_rgba(ln.get_color())
+           for ln in by_gid(ax, "track-")}
+    assert got == {t: to_rgba(tab10(t)) for t in range(3)}
+
+
+def test_local_dots_are_drawn_and_named_even_when_there_is_none():
+    """With show_local the local-mode dots are drawn (an empty set here) and the title names
+    them; mixed dots, of which there are none, are not."""
+    ax = plot_veering(n_track_stub(2)).axes[0]
+    (local,) = by_gid(ax, "local-modes")
+    assert len(local.get_offsets()) == 0
+    assert by_gid(ax, "mixed-modes") == []
+    assert ax.get_title() == "Modes along the sweep: 2 platform-mode tracks, grey dots local modes"

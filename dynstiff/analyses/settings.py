@@ -173,7 +173,8 @@ def analysis_settings(
     Raises
     ------
     InvalidParameterError
-        A value out of range, naming it.
+        A value out of range, naming it; also when ``scene`` is not a Scene (it lacks
+        robot, pose, band_hz or damping): the message names the first of these it lacks.
     """
     missing = [a for a in ("robot", "pose", "band_hz", "damping") if not hasattr(scene, a)]
     if missing:
@@ -285,6 +286,12 @@ def scene_model(scene: Scene, pose: ArrayLike | Pose | None = None, *,
     Returns
     -------
     model of the rung (damped unless the damping is zero)
+
+    Raises
+    ------
+    InvalidParameterError
+        A setting that is not a keyword of :func:`analysis_settings` other than scene, rung
+        and damping; the message lists the settings it takes.
 
     Examples
     --------
