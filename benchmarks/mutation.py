@@ -2171,6 +2171,8 @@ EQUIVALENT.update({
     "dynstiff.plot.sweep.x_plot_veering__mutmut_136":
         "default track -1 or -2: both < 0, every mode untracked",
 })
+EQUIVALENT["dynstiff.plot.workspace.x_plot_workspace_slices__mutmut_43"] = (
+    "squeeze=None for False: matplotlib tests its truth only, and keeps the 2-D array")
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

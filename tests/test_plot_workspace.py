@@ -1,6 +1,8 @@
 """Figures of a workspace map (dynstiff/plot/workspace.py): the worst case over orientations
 and parameter values, and the figures' content (cells, colour limits, counts in titles)."""
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -85,7 +87,8 @@ def test_every_height_gets_its_panels_and_the_title_fits():
     fig = plot_workspace_slices(ds, n_slices=3)                   # fewer asked: said so
     heights = [a.get_title() for a in fig.axes if a.get_title().startswith("z = ")]
     assert heights == ["z = 1 m", "z = 3 m", "z = 5 m"]
-    assert "3 of 5 heights drawn" in fig._suptitle.get_text().replace("\n", " ")
+    assert "; 3 of 5 heights drawn (z = 1, 3, 5 m) forbidden band" in \
+        fig._suptitle.get_text().replace("\n", " ")
     plt.close(fig)
     with pytest.raises(InvalidParameterError, match="n_slices"):
         plot_workspace_slices(ds, n_slices=0)
@@ -231,7 +234,8 @@ def test_margin_panels_are_red_below_zero_blue_above_on_a_symmetric_scale(close_
 
 def test_without_finite_margins_the_margin_scale_runs_from_minus_one_to_one(close_figures):
     """A map without a single finite margin (no band) gets the margin scale -1 to 1, and no
-    contour; the title says there is no band."""
+    contour; the title says there is no band. Without a finite frequency either (nothing
+    feasible) the frequency scale runs from 0 to 1 Hz, without a warning."""
     ds = grid_map([0.0, 1.0], [0.0, 1.0], [1.0], np.full((2, 2, 1), 2.0))
     ds["band_margin"][:] = np.nan
     del ds.attrs["band_hz"]
@@ -241,6 +245,12 @@ def test_without_finite_margins_the_margin_scale_runs_from_minus_one_to_one(clos
     assert not [c for c in middle.collections if isinstance(c, ContourSet)]
     assert fig.get_suptitle().replace("\n", " ").endswith(
         "dynamic workspace no band; grey: infeasible, or platform modes not all found")
+    ds["first_platform_hz"][:] = np.nan
+    ds["feasible"][:] = ds["dynamic"][:] = False
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fig = plot_workspace_slices(ds)
+    assert mesh(panels(fig)[0, 0]).get_clim() == (0.0, 1.0)
 
 
 def test_margin_contours_mark_zero_and_the_required_margin(close_figures):
@@ -365,9 +375,12 @@ def test_slices_are_laid_out_without_overlaps_or_blank_margins(close_figures):
 
 
 def test_all_panels_share_their_x_and_y_axes(close_figures):
-    """Zooming one panel zooms every panel alike, in x and in y."""
-    fig = plot_workspace_slices(five_level_map(), n_slices=3)
-    axs = panels(fig).ravel()
+    """Zooming one panel zooms every panel alike, in x and in y; the bottom panels are
+    labelled x [m], the left panels y [m]."""
+    axs = panels(plot_workspace_slices(five_level_map(), n_slices=3))
+    assert [a.get_xlabel() for a in axs[2]] + [a.get_ylabel() for a in axs[:, 0]] == [
+        "x [m]"] * 3 + ["y [m]"] * 3
+    axs = axs.ravel()
     axs[4].set_xlim(0.2, 0.7)
     axs[8].set_ylim(0.1, 0.6)
     assert {a.get_xlim() for a in axs} == {(0.2, 0.7)}
@@ -384,6 +397,8 @@ def test_slices_title_names_robot_worst_case_count_and_band(close_figures):
         f"test workspace map (worst case over parameter): {n_dyn} of 12 positions in the "
         "dynamic workspace forbidden band [0.0, 1.5] Hz, margin 5%; grey: infeasible, or "
         "platform modes not all found")
+    title = plot_workspace_slices(ds.expand_dims(orientation=[0, 1])).get_suptitle()
+    assert "map (worst case over orientation, parameter): " in title.replace("\n", " ")
 
 
 @pytest.mark.parametrize("margin, text", [(0.004, "margin 0.4%"), (0.125, "margin 12.5%"),
@@ -496,3 +511,16 @@ def test_3d_view_draws_a_feasible_position_whose_modes_were_not_all_found(close_
     np.testing.assert_array_equal(lost, [[1.0, 0.0, 1.0]])
     assert sum(len(np.ravel(g._offsets3d[0])) for g in groups.values()) == 4
     assert groups["modes not all found"].get_facecolor()[0].tolist() == [0.0, 0.0, 0.0, 1.0]
+
+
+
+def test_a_long_title_word_is_broken_to_fit_the_figure(close_figures):
+    """A robot name of 200 letters s (0.521 em in DejaVu Sans, 6.25 pt at 12 pt) is broken
+    to fit the 8 in figure: 88 letters a line (11 per inch) are 7.6 in; 96 would be 8.3 in."""
+    ds = five_level_map()
+    ds.attrs["robot"] = "s" * 200
+    with matplotlib.rc_context({"font.family": "DejaVu Sans", "figure.titlesize": 12.0}):
+        fig = plot_workspace_slices(ds, n_slices=1)
+        fig.canvas.draw()
+    box, title = fig.get_window_extent(), fig._suptitle.get_window_extent()
+    assert fig.get_figwidth() == 8.0 and box.x0 <= title.x0 and title.x1 <= box.x1

@@ -99,6 +99,25 @@ def test_an_averaged_orientation_rate_is_refused_saying_where_it_comes_from(tmp_
                                rtol=1e-14)
 
 
+@pytest.mark.parametrize("first", [True, False])
+def test_an_end_rate_of_an_averaged_spline_is_refused_as_given(tmp_path, first):
+    """An average-velocity spline's first and last rates are the file's own: a nonzero
+    orientation rate there is refused naming the waypoint (0 or the last, 2) without saying
+    it is a mean of two segments' rates."""
+    end = "0 0 0 0 0 0.3"
+    zero = "0 0 0 0 0 0"
+    t = _trajectories(tmp_path, (
+        '<cubic_spline_average_velocity_trajectory id="avg" time_definition="relative">'
+        f'<points><point><q>0 0 1.5 0 0 0</q><q_dot>{end if first else zero}</q_dot></point>'
+        '<point time="1.0"><q>0.1 0 1.5 0 0 0</q></point>'
+        f'<point time="2.0"><q>0.2 0 1.5 0 0 0</q><q_dot>{zero if first else end}</q_dot>'
+        '</point></points></cubic_spline_average_velocity_trajectory>'))
+    with pytest.raises(CasprError) as exc:
+        import_caspr(*INV, CABLE, trajectories_xml=t)
+    assert str(exc.value) == (f"{t}: trajectory 'avg': nonzero orientation velocity at "
+                              f"waypoint {0 if first else 2}; {REFUSAL}")
+
+
 def test_written_scene_reads_back_the_trajectories_and_box(tmp_path, scene):
     path = write_scene(tmp_path / "s.toml", scene.robot, scene.pose,
                        trajectories=scene.trajectories.values(),

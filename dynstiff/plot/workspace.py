@@ -66,8 +66,9 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     (bottom: every check passes / a check fails / infeasible).
 
     Each position is a cell centred on it (1 m wide along an axis with a single value); all
-    panels share their x and y axes. The frequency panels share one colour scale, from the
-    least to the greatest frequency of the map. The margin scale is red below 0 and blue
+    panels share their x and y axes, the bottom panels labelled x [m] and the left panels
+    y [m]. The frequency panels share one colour scale, from the least to the greatest
+    frequency of the map (0 to 1 Hz when none is finite). The margin scale is red below 0 and blue
     above, symmetric about 0 (to the largest absolute margin, or 1 when none is finite); its
     contours are 0.8 pt black lines, drawn where the grid is at least 2 x 2 and the height
     has more than three finite margins. The dynamic workspace is green where every check
@@ -83,7 +84,7 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     n_slices : int, optional
         Most heights drawn (:func:`slice_levels`); default every height of the grid up to
         :data:`MAX_SLICES`. When fewer heights than the grid's are drawn, the title says
-        which.
+        which: ``; n of N heights drawn (z = z1, z2, ... m)``.
     fig : matplotlib Figure, optional
 
     Returns
@@ -91,7 +92,8 @@ def plot_workspace_slices(ds, n_slices=None, fig=None):
     matplotlib.figure.Figure
         One column of three panels per height drawn, each titled ``z = ... m``. The figure's
         title gives the robot, the dimensions reduced to their worst case, how many positions
-        are in the dynamic workspace, and the forbidden band [Hz] and margin (or "no band").
+        are in the dynamic workspace, and the forbidden band [Hz] and margin (or "no band");
+        it is wrapped to fit the figure's width.
     """
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, TwoSlopeNorm
