@@ -2173,6 +2173,18 @@ EQUIVALENT.update({
 })
 EQUIVALENT["dynstiff.plot.workspace.x_plot_workspace_slices__mutmut_43"] = (
     "squeeze=None for False: matplotlib tests its truth only, and keeps the 2-D array")
+EQUIVALENT.update({
+    "dynstiff.analyses.uncertainty.xǁUncertainǁ__post_init____mutmut_8":
+        "the name only words positive_scalar's message, which the except replaces by its own",
+    "dynstiff.cable.catenary.x_catenary_states__mutmut_3":
+        "dtype=float dropped on anchors that are float64 (the statics pass the robot's)",
+    "dynstiff.cable.catenary.x_catenary_states__mutmut_38":
+        "the safe fill reaches only the rows of E, F of cables not clear, which are never read",
+    "dynstiff.models.dsm_guard.x_static_error__mutmut_8":
+        "the type named in typing.cast: cast returns its value unchanged at run time",
+    "dynstiff.robot.waypoints.xǁWaypointPathǁ__post_init____mutmut_69":
+        "required=None for False: _rows tests its truth only",
+})
 EQUIVALENT = _relocated(EQUIVALENT)
 
 #: The judged code of each equivalent mutant ({name: sha1 of its mutated function, name

@@ -283,6 +283,13 @@ def test_an_incomplete_platform_search_gives_nan_rows(cogiro, monkeypatch):
     assert np.isnan(res.nominal[i]) and np.all(np.isnan(res.gradient[i]))
     assert np.all(np.isnan(res.first_order[:, i]))
     assert np.all(np.isfinite(res.gradient[:2])) and np.all(np.isfinite(res.first_order[:, :2]))
+    monkeypatch.setattr(unc, "find_platform_modes",             # and it found none of them
+                        lambda *a, **kw: replace(real(*a, **kw), complete=False,
+                                                 reason="planted", index=np.array([], int)))
+    none = propagate_uncertainty(cogiro, uncertain={"EA": "1%"}, n_modes=2, n_samples=4,
+                                 method="first-order")
+    np.testing.assert_array_equal(none.nominal[:2], res.nominal[:2])
+    assert np.isnan(none.nominal[2]) and np.all(np.isnan(none.gradient[2]))
 
 
 def test_samples_without_equilibrium_are_counted_as_failing(cogiro):
@@ -416,3 +423,35 @@ def test_a_pose_without_equilibrium_leaves_the_uncertain_row_unknown(cogiro):
                         uncertain={"EA": "10%"}, n_samples=4)
     assert res.verdicts["workspace (tension-feasible pose)"] == "fail"
     assert res.verdicts[UNCERTAIN_CHECK] == "unknown"
+
+
+def test_the_nominal_band_margin_counts_the_modes_up_to_five_percent_above_the_band(cogiro):
+    """At participation 0.004 a cable mode at 6.42 Hz (platform share 0.0044), above
+    CoGiRo's last platform mode (5.85 Hz, where the platform search stops), is held to the
+    band (6.1, 6.2) Hz and sets its margin (0.036 above it; 5.85 Hz is 0.040 below): the
+    nominal margin is that of every held mode of a search well beyond the band (12 Hz)."""
+    import dynstiff as ds
+    from dynstiff.analyses.platform_modes import find_platform_modes
+    lo, hi = 6.1, 6.2
+    res = propagate_uncertainty(cogiro, uncertain={"EA": "1%"}, n_modes=1, n_samples=2,
+                                band_hz=(lo, hi), participation=0.004, method="first-order")
+    model = ds.build_model(cogiro.robot.equilibrium(pose=cogiro.pose), "dsm")
+    m = find_platform_modes(model, 12.0).modes
+    f = np.asarray(m.freq_hz)[np.asarray(m.platform_share) >= 0.004]
+    ref = np.min(np.maximum(f / hi - 1.0, 1.0 - f / lo))
+    assert 0.03 < ref < 0.04 and f[np.argmin(np.maximum(f / hi - 1, 1 - f / lo))] > hi
+    assert res.nominal[res.quantities.index("band_margin")] == pytest.approx(ref, rel=1e-9)
+
+
+def test_a_stated_pose_coordinate_and_a_distribution_not_known():
+    """A pose coordinate is uncertain at the pose given (pose_z = 1 m of CoGiRo's scene),
+    the result names its parameters; a distribution not known is refused in words."""
+    import dynstiff as ds
+    sc = ds.load_scene("cogiro")
+    res = propagate_uncertainty(sc, uncertain={"pose_z": "0.001", "EA": "1%"}, n_modes=1,
+                                n_samples=2, method="first-order")
+    assert res.parameters == ("pose_z", "EA")
+    assert res.nominal_values[0] == sc.pose.position[2] == 1.0
+    with pytest.raises(InvalidParameterError, match=r"^distribution must be one of "
+                                                    r"\('normal', 'uniform'\), got 'lognormal'$"):
+        Uncertain(0.1, "lognormal")

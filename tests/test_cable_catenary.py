@@ -251,8 +251,9 @@ def test_a_vertical_cable_profile_ends_at_its_end(mass, end, tension):
 def test_states_from_arrays_prime_the_same_numbers_as_one_state_computes():
     """catenary_states computes the chord, horizontal direction and force on B of many
     cables at once: each is bit for bit what a fresh state computes for itself, on random
-    inclined cables, an exactly vertical one and one within rounding of vertical (those two
-    are left to compute their own direction: the same numbers again)."""
+    inclined cables, an exactly vertical one, one within rounding of vertical and a 10 m one
+    5e-14 m off vertical (vertical for one state: 5e-14 <= 1e-14 |C|; those three are left
+    to compute their own direction: the same numbers again)."""
     from dynstiff.cable.catenary import CatenaryState, catenary_states
     rng = np.random.default_rng(11)
     n = 60
@@ -260,14 +261,15 @@ def test_states_from_arrays_prime_the_same_numbers_as_one_state_computes():
     B = A + rng.uniform(-8, 8, size=(n, 3))
     B[0, :2] = A[0, :2]                                      # vertical
     B[1, :2] = A[1, :2] + 1e-16 * np.array([3.0, -1.0])      # within rounding of vertical
+    A[2], B[2] = 0.0, [0.0, 5e-14, 10.0]                     # vertical for one state
     L0 = np.linalg.norm(B - A, axis=1) * rng.uniform(0.98, 1.01, n)
     H, V0 = rng.uniform(1.0, 5e3, n), rng.uniform(-3e3, 3e3, n)
     res = rng.uniform(0, 1e-12, n)
     cables = [ds.Cable(mass_per_length=m, EA=1e6) for m in rng.uniform(0.01, 2.0, n)]
     states = catenary_states(A, B, L0, cables, 9.81, H, V0, res)
     primed = {"force_on_end", "horizontal_direction"}
-    assert [primed <= set(vars(s)) for s in states[:2]] == [False, False]
-    assert all(primed <= set(vars(s)) for s in states[2:])
+    assert [primed <= set(vars(s)) for s in states[:3]] == [False, False, False]
+    assert all(primed <= set(vars(s)) for s in states[3:])
     for i, s in enumerate(states):
         fresh = CatenaryState(anchor=A[i], end=B[i], unstretched_length=float(L0[i]),
                               cable=cables[i], g=9.81, H=float(H[i]), V0=float(V0[i]),
@@ -280,3 +282,4 @@ def test_states_from_arrays_prime_the_same_numbers_as_one_state_computes():
             assert np.array_equal(got, ref) and not got.flags.writeable, (i, name)
         assert s.horizontal_span == fresh.horizontal_span
     assert states[0].horizontal_direction.tolist() == [1.0, 0.0, 0.0]
+    assert states[2].horizontal_direction.tolist() == [1.0, 0.0, 0.0]

@@ -387,6 +387,20 @@ def test_a_cable_error_below_one_radian_per_second_is_measured():
         assert m._measured[i] == (8 * m._local_omega[i], err)
 
 
+def test_a_cable_error_ends_at_axial_modes_below_one_radian_per_second():
+    """A soft cable (EA 0.01 N, g = 0.02 m/s^2) has its first axial mode at 0.15 Hz: below
+    AXIAL_MARGIN of it (0.85 rad/s) its error is its envelope, from there on inf."""
+    from dynstiff.cable.guard import AXIAL_MARGIN, closed_form_validity
+    one = ds.Robot(np.array([[1.0, 0.0, 5.0]]), np.zeros((1, 3)), ds.Cable(0.064, 0.01),
+                   ds.Platform(1.0, free_dofs=("z",)), tension_limits=(1e-6, 1e6), g=0.02)
+    s = one.equilibrium(pose=[0.0, 0.0, 1.0]).states[0]
+    w_ax = AXIAL_MARGIN * np.pi * np.sqrt(0.01 / 0.064) / s.unstretched_length
+    m = ds.FrequencyModel(one.equilibrium(pose=[0.0, 0.0, 1.0]), guard_rtol=None)
+    assert 0.8 < w_ax < 0.9
+    assert m.cable_error(0, 0.5) == closed_form_validity(s).error < 1e-2
+    assert m.cable_error(0, w_ax) == np.inf
+
+
 def test_the_damped_copy_checks_its_damping_naming_it(cogiro_eq):
     m = ds.FrequencyModel(cogiro_eq)
     with pytest.raises(InvalidParameterError, match="^platform_damping_ratio"):
