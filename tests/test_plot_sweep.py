@@ -161,13 +161,15 @@ def test_gap_bridge_data_are_float_pairs_separated_by_nan():
     assert gx.size == gy.size == 0
 
 
-def test_up_to_ten_tracks_take_the_tab10_colours():
-    """With 10 tracks (the most for tab10), track t has the t-th tab10 colour."""
-    ax = plot_veering(n_track_stub(10)).axes[0]
+@pytest.mark.parametrize("n", [3, 10])
+def test_up_to_ten_tracks_take_the_tab10_colours(n):
+    """With 3 or 10 tracks (10 the most for tab10), track t has the t-th tab10 colour (not
+    tab10 spread end to end)."""
+    ax = plot_veering(n_track_stub(n)).axes[0]
     tab10 = matplotlib.colormaps["tab10"]
     got = {int(ln.get_gid().split("-")[1]): to_rgba(ln.get_color())
            for ln in by_gid(ax, "track-")}
-    assert got == {t: to_rgba(tab10(t)) for t in range(10)}
+    assert got == {t: to_rgba(tab10(t)) for t in range(n)}
 
 
 def test_more_than_ten_tracks_spread_over_turbo_from_end_to_end():
@@ -282,15 +284,6 @@ def test_a_single_step_keeps_automatic_limits_without_warning(v):
     assert ax.get_autoscalex_on() and ax.get_xscale() == "linear"
     lo, hi = ax.get_xlim()
     assert lo < v < hi
-
-
-def test_fewer_than_ten_tracks_take_the_first_tab10_colours():
-    """With 3 tracks, track t has the t-th tab10 colour (not tab10 spread end to end)."""
-    ax = plot_veering(n_track_stub(3)).axes[0]
-    tab10 = matplotlib.colormaps["tab10"]
-    got = {int(ln.get_gid().split("-")[1]): to_rgba(ln.get_color())
-           for ln in by_gid(ax, "track-")}
-    assert got == {t: to_rgba(tab10(t)) for t in range(3)}
 
 
 def test_local_dots_are_drawn_and_named_even_when_there_is_none():
