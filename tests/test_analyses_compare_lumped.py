@@ -157,6 +157,9 @@ def test_a_mac_weight_that_is_not_a_mass_matrix_is_refused(W, reason):
     with pytest.raises(InvalidParameterError, match="^mass_matrix must be real numbers, not "
                                                     "booleans"):
         compare_modes(a, b, np.eye(6, dtype=bool))
+    with pytest.raises(InvalidParameterError,
+                       match=r"^mass_matrix must be a finite 6x6 matrix, got 'abc'$"):
+        compare_modes(a, b, "abc")
     assert _compare(a, b, np.diag([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]))["MAC [-]"].isna().all()
 
 
