@@ -162,3 +162,83 @@ def test_a_root_whose_shape_is_ambiguous_goes_to_the_nearest_estimate(scene, mon
         got = damped_modes(m, n).omega
         assert np.all(np.isfinite(got))
         np.testing.assert_array_equal(got, w)
+
+
+
+@pytest.mark.parametrize("scale, found", [(0.85, True), (0.75, False)])
+def test_a_secant_that_leaves_its_estimates_disc_gives_up(scene, monkeypatch, scale, found):
+    """The secant is confined to |omega - estimate| <= 0.2 |estimate|. The first mode's
+    estimate moved down (no root below it): at 0.85 of it the root is 0.15 / 0.85 = 18 % of
+    the estimate away and is found; at 0.75 it is 33 % away, outside the disc: NaN."""
+    import dynstiff.analyses.damped as damped
+    m = ds.FrequencyModel(scene.equilibrium(), platform_damping_ratio=0.02)
+    root = damped_modes(m, 1).omega[0]
+    monkeypatch.setattr(damped, "_perturbation_estimates",
+                        lambda model, und: scale * _perturbation_estimates(model, und))
+    got = damped_modes(m, 1)
+    if found:
+        np.testing.assert_allclose(got.omega[0], root, rtol=1e-10)
+    else:
+        assert np.isnan(got.omega[0])
+
+
+class Overflowing(ds.FrequencyModel):
+    """K overflowing in an intermediate at complex omega, returned finite (1 / inf = 0)."""
+
+    def dynamic_stiffness(self, omega):
+        if np.any(np.imag(omega) != 0):
+            1.0 / np.exp(np.full(1, 800.0))
+        return super().dynamic_stiffness(omega)
+
+
+def test_floating_point_warnings_of_k_at_complex_iterates_are_silenced(scene):
+    """A model whose K overflows in an intermediate at complex omega (an exact rung's
+    hyperbolic functions far from the real axis) but is finite: no RuntimeWarning leaves
+    damped_modes, and the roots are those of the same K without the overflow."""
+    import warnings
+    eq = scene.equilibrium()
+    want = damped_modes(ds.FrequencyModel(eq, platform_damping_ratio=0.02), 2).omega
+    m = Overflowing(eq, platform_damping_ratio=0.02)
+    with pytest.warns(RuntimeWarning, match="overflow"):
+        m.dynamic_stiffness(14.0 + 0.3j)                # the planted overflow does warn
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = damped_modes(m, 2).omega
+    np.testing.assert_array_equal(got, want)
+
+
+def test_a_multiple_root_found_again_goes_to_the_copy_whose_search_found_it(monkeypatch):
+    """Bookkeeping of a triple root on a synthetic 4-DOF K(w): a(w) I on three DOFs with a
+    Jordan coupling (so the null vector is e0 alone, its shape unambiguous), a = (1 + 2i zeta)
+    - w^2, root r = sqrt(1 + 2i zeta). Three copies of the undamped mode (shapes e0, e1, e2):
+    copy 0's estimate is 0.75 r (its secant leaves the disc, gives up); copy 1's search finds
+    r, which its shape gives to copy 0; copy 2's search, deflated once, finds r again and keeps
+    it (not copy 1, the first NaN copy). With every search converging, all three hold r."""
+    from types import SimpleNamespace
+
+    import dynstiff.analyses.damped as damped
+    zeta = 0.02
+    r = np.sqrt(1 + 2j * zeta)
+
+    def K(w):
+        k = np.zeros((1, 4, 4), complex)
+        k[0, [0, 1, 2], [0, 1, 2]] = (1 + 2j * zeta) - complex(w) ** 2
+        k[0, [0, 1], [1, 2]] = 1.0
+        k[0, 3, 3] = 10.0
+        return k
+
+    class Undamped:
+        freq_hz = np.full(3, 1 / (2 * np.pi))
+        platform_shapes = np.eye(4)[:3]
+
+        def __len__(self):
+            return 3
+    model = SimpleNamespace(dynamic_stiffness=K, free_index=np.arange(4),
+                            platform_mass=np.eye(4))
+    monkeypatch.setattr(damped, "modes", lambda *a, **kw: Undamped())
+    for first, want in ((0.75, [r, np.nan, r]), (1.002, [r, r, r])):
+        monkeypatch.setattr(damped, "_perturbation_estimates",
+                            lambda *a, first=first: np.array([first, 1.004, 1.006]) * r)
+        d = damped_modes(model, 3)
+        np.testing.assert_allclose(d.omega, want, rtol=1e-7)
+        assert np.all(d.residual[1:] < 1e-8)

@@ -77,15 +77,22 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     omega_r + d_omega, d_omega = -x^T (K_d - K_u) x / x^T dK_u/domega x (perturbation of the
     real root by the damping part of K). From there a secant iteration in the complex plane
     on det K(omega), deflated by the roots already found, converges to the damped root
-    (theory.md §5.4). A root is accepted only if the eigenvalue of K nearest zero is below
-    1e-8 ||K||, and given to the undamped mode whose platform shape its null vector matches
-    without ambiguity (mass-weighted MAC above 0.9 with it, below 0.5 with every other),
-    else to the mode whose estimate it is closest to (clusters of close modes of similar
-    shapes); never to a mode that has a root already, so a root is never attributed to the
-    wrong mode, and heavy damping, where first-order estimates pass a neighbour's root,
-    gives NaN rather than that root. A multiple root (the double modes of a symmetric robot)
-    is the root of every copy. Otherwise, and for purely local modes (platform at rest, not
-    zeros of det K), it is NaN with its ``residual`` recorded.
+    (theory.md §5.4). It is confined to the disc |omega - estimate| <= 0.2 |estimate|: an
+    iterate outside it, or where K is not finite, gives the mode up (NaN), and the model's
+    floating-point warnings at the complex iterates (an exact rung's hyperbolic functions far
+    from the real axis) are silenced. A root is accepted only if the eigenvalue of K nearest
+    zero is below 1e-8 ||K||, and given to the undamped mode whose platform shape its null
+    vector matches without ambiguity (mass-weighted MAC above 0.9 with it, below 0.5 with
+    every other), else to the mode whose estimate it is closest to (clusters of close modes
+    of similar shapes); never to a mode that has a root already, so heavy damping, where
+    first-order estimates pass a neighbour's root, gives NaN rather than that root. Both
+    tests compare the modes asked for only: a lone mode (``n_modes=1``) keeps any root its
+    secant converges to in its disc, so where damping is heavy ask for its neighbours too.
+    A multiple root (the double modes of a symmetric robot) is found again by the searches
+    of the other copies of its undamped mode (det K deflated by it still vanishes there),
+    and each time goes to a copy that has none: the copy whose search found it, else the
+    first; when every search converges, every copy has it. Otherwise, and for purely local
+    modes (platform at rest, not zeros of det K), it is NaN with its ``residual`` recorded.
 
     Parameters
     ----------
