@@ -103,3 +103,40 @@ def test_the_relaxed_first_distribution_is_a_start_only(cogiro):
         cogiro.robot.equilibrium(pose=pose)
     eq = cogiro.robot.equilibrium(pose=cogiro.pose.position + [5.25, 0.0, 0.0])
     assert min(s.tension_at_end for s in eq.states) >= 100.0 * (1 - 1e-9)
+
+
+@pytest.mark.parametrize("loop", ["compiled", "numpy"])
+def test_a_relaxed_start_below_any_catenary_is_a_start_not_the_refusal(monkeypatch, loop):
+    """Three upper cables and one rising 2.87 m from a low anchor to a 37.39 kg point mass,
+    limits [t_min, 18045.1] N. The straight chords fit no distribution; the relaxed start
+    (lower limits 1e-3 t_min + lo) asks the rising cable 1.09 N, less than any catenary
+    between its ends has at the platform (1.66 N): it starts from the catenary of least
+    tension there, and the refusal is the limits', with a remedy that holds. The null space
+    of the balance trades the rising cable's tension against cable 1's, so the pose holds
+    for t_min up to about the stated value only: just below it the pose is solved with the
+    rising cable at t_min and cable 1 within 1 % of it, 1 % above it is refused. (The start's tension was taken as the request: 'raise
+    t_min to above about 76.47 N', which no t_min satisfies.)"""
+    if loop == "numpy":
+        load = dynstiff.compiled.load
+        monkeypatch.setattr(dynstiff.compiled, "load",
+                            lambda name: None if name == "statics" else load(name))
+    A = np.array([[0.24, 4.6, 6.31], [-3.94, -2.4, 6.31], [3.73, -2.72, 6.31],
+                  [-2.34, -0.93, -2.08]])
+
+    def robot(t_min):
+        return ds.Robot(A, np.zeros((4, 3)), ds.Cable(0.036, 1e6),
+                        ds.Platform(37.39, free_dofs=("x", "y", "z")),
+                        tension_limits=(t_min, 18045.1))
+    pose = [0.58, 1.32, 0.79]
+    with pytest.raises(InfeasiblePoseError, match=r"no tension distribution within "
+                       r"\[75\.9, 18045\.1\] N balances the platform") as info:
+        robot(75.9).equilibrium(pose=pose)
+    bound = info.value.remedies["t_min"]
+    assert 40.0 < bound < 75.9
+    t_min = bound * (1 - 1e-3)
+    eq = robot(t_min).equilibrium(pose=pose)
+    assert eq.min_tensions[3] == pytest.approx(t_min, rel=1e-8)    # the rising cable
+    assert t_min < eq.min_tensions[1] < 1.01 * t_min                # cable 1, near its limit
+    assert eq.min_tensions.min() >= t_min * (1 - 1e-9)
+    with pytest.raises(InfeasiblePoseError, match="no tension distribution within"):
+        robot(bound * (1 + 1e-2)).equilibrium(pose=pose)

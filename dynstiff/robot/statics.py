@@ -22,12 +22,12 @@ from dynstiff._validate import tension_reference as checked_reference
 from dynstiff._vec import cross
 from dynstiff.cable.catenary import catenary_states
 from dynstiff.cable.catenary_batch import catenary_arrays, taut_catenaries
-from dynstiff.cable.catenary_solve import unstretched_length_for_tension
+from dynstiff.cable.catenary_solve import solve_catenary, unstretched_length_for_tension
 from dynstiff.errors import ConvergenceError, DynstiffError, InvalidParameterError, SlackCableError
 from dynstiff.robot.distribution import distribution_with_active_set as _distribution
 from dynstiff.robot.distribution import tension_distribution
 from dynstiff.robot.equilibrium import Equilibrium
-from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable
+from dynstiff.robot.feasibility import diagnose_limits, diagnose_unreachable, least_end_tension
 from dynstiff.robot.pose import Pose
 
 if TYPE_CHECKING:
@@ -108,6 +108,26 @@ def _step_distribution(pose: Pose, r: NDArray[np.float64], u: NDArray[np.float64
         raise diagnose_limits(W, w, t_min, t_max, lo, hi, where) from None
 
 
+def _start_or_request(robot: Robot, i: int, A_i: NDArray[np.float64], B_i: NDArray[np.float64],
+                      t: NDArray[np.float64], relaxed: bool) -> Any:
+    """Cable i's catenary at the platform-end tension t[i] [N] (scalar solver); where the
+    distribution was the ``relaxed`` start and no catenary between A_i and B_i has so little
+    tension at B_i, the catenary of least tension there (t[i] raised to it): that start only
+    gives the next iteration its directions (theory.md §4), and an unreachable tension
+    there is not the pose's refusal."""
+    try:
+        return unstretched_length_for_tension(A_i, B_i, t[i], robot.cables[i], robot.g)
+    except SlackCableError:
+        if not relaxed:
+            raise
+        least, L0 = least_end_tension(A_i, B_i, robot.cables[i], robot.g)
+        if not least > t[i]:
+            raise
+        state = solve_catenary(A_i, B_i, L0, robot.cables[i], robot.g)
+        t[i] = state.tension_at_end
+        return state
+
+
 def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np.float64],
                  r: NDArray[np.float64], fi: NDArray[np.int64], wg: NDArray[np.float64],
                  EA: NDArray[np.float64], w0: NDArray[np.float64], t_min: NDArray[np.float64],
@@ -124,13 +144,14 @@ def _fixed_point(robot: Robot, pose: Pose, A: NDArray[np.float64], B: NDArray[np
     for _ in range(max(max_iter - done, 1)):
         t, sides = _step_distribution(pose, r, u, fi, -wg[fi], t_min, t_max, lo, hi,
                                       tension_reference, sides, straight, diagnose)
+        # the relaxed first distribution (below t_min + lo somewhere) is a start only
+        relaxed = straight and bool(np.any(t < t_min + lo))
         straight = False
         H, V0, L0, res, pending = taut_catenaries(A, B, t, EA, w0, warm)
         scalar = {}
         for i in np.flatnonzero(pending):
             try:
-                scalar[i] = unstretched_length_for_tension(A[i], B[i], t[i], robot.cables[i],
-                                                           robot.g)
+                scalar[i] = _start_or_request(robot, i, A[i], B[i], t, relaxed)
             except SlackCableError as exc:
                 where = f"pose {pose.as_vector().tolist()}"
                 raise (diagnose_unreachable(robot, i, A[i], B[i], t[i], lo[i], where)
