@@ -1,11 +1,13 @@
 """Shared fixtures and helpers: CoGiRo-like cables and robots (theory.md §8.1, §9.2), lumped
-models built once per module, and the test cables of the lumped chain tests (theory.md
-§1.1, §7.2, §9.2)."""
+models built once per module, the test cables of the lumped chain tests (theory.md
+§1.1, §7.2, §9.2), the command line run in this process, the exact cable's hard cases
+(theory.md §11.3) and the fuzzers' hostile values and oracle (tests/test_fuzz*.py)."""
 
 import io
 import os
 import subprocess
 import sys
+import warnings
 
 # Under pytest-xdist every core runs a worker: one BLAS thread each (set before numpy loads
 # OpenBLAS), else the workers' dense factorisations and eigen solves (the exact cable's)
@@ -23,9 +25,11 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
 import numpy as np
 import pytest
 import scipy.linalg
-from hypothesis import Phase, settings
+from hypothesis import HealthCheck, Phase, settings
+from hypothesis import strategies as st
 
 import dynstiff as ds
+from dynstiff.errors import DynstiffError, PoleWarning
 from dynstiff.lumped import LumpedLinearModel, LumpedMassModel, chain_equilibrium, chain_matrices
 from dynstiff.params import Cable
 
@@ -339,3 +343,90 @@ def assert_valid_html(text):
     p.close()
     assert not p.stack, f"unclosed {p.stack}"
     return " ".join(p.text)
+
+
+# ------------------------------------ the command line's tables and library calls
+def _metadata(path):
+    """The ``# key: value`` header of a CSV table written by the command line, decoded."""
+    import json
+    return {k: json.loads(v) for k, v in (line[2:].split(": ", 1) for line in
+                                          path.read_text().splitlines()
+                                          if line.startswith("# "))}
+
+
+def _spy(monkeypatch, module, name, calls, limit=None):
+    """Replace ``module.name`` by a wrapper that records (args, kwargs) of each call in
+    ``calls`` and calls the real function (more than ``limit`` calls: an error, not a hang)."""
+    real = getattr(module, name)
+
+    def spy(*a, **kw):
+        calls.append((a, kw))
+        if limit is not None and len(calls) > limit:
+            raise AssertionError(f"{name} called more than {limit} times")
+        return real(*a, **kw)
+    monkeypatch.setattr(module, name, spy)
+    return real
+
+
+# ----------------------------------------------------------- the exact cable's cases
+# (anchor, end, L0, cable): the hard cases of theory.md §11.3
+HARD = {
+    "sagging 10x5 m, d/L 0.10": ((0, 0, 0), (10.0, 0, 5.0), 11.5, ds.Cable(1.0, 1e6)),
+    "steep 60 deg sagging": ((0, 0, 0), (5.0, 0, 5 * np.sqrt(3)), 10.6, ds.Cable(1.0, 1e6)),
+    "soft, axial mode among the first ten": ((0, 0, 0), (10.0, 0, -2.0), 9.8,
+                                             ds.Cable(1.0, 2e3)),
+}
+
+
+# ------------------------------------------ hostile input (tests/test_fuzz*.py)
+# examples of a fuzzer in the default tier and (most fuzzers) in the slow tier
+FAST, LONG = 25, 2500
+
+# values a hostile user might pass where a number, a vector or a count is expected
+weird_scalars = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.floats(-1e3, 1e3), st.integers(-10**20, 10**20), st.booleans(), st.none(),
+    st.text(max_size=4), st.complex_numbers(allow_nan=True, allow_infinity=True),
+    st.lists(st.floats(-10, 10), max_size=4))
+weird_vectors = st.one_of(
+    weird_scalars, st.lists(st.floats(allow_nan=True, allow_infinity=True), min_size=3,
+                            max_size=3),
+    st.lists(st.floats(-20, 20), min_size=3, max_size=3), st.lists(st.text(max_size=2),
+                                                                  min_size=3, max_size=3))
+
+
+def _settings(n):
+    return settings(max_examples=n, deadline=None, derandomize=n == FAST,
+                    suppress_health_check=[HealthCheck.too_slow,
+                                           HealthCheck.function_scoped_fixture])
+
+
+def _all_finite(result):
+    """Every number reachable in ``result`` (arrays, dataclass fields, tuples) is finite."""
+    if isinstance(result, (np.ndarray, float, int, complex, np.number)):
+        arr = np.asarray(result)
+        return arr.dtype.kind not in "fc" or bool(np.all(np.isfinite(arr)))
+    if isinstance(result, (list, tuple)):
+        return all(_all_finite(r) for r in result)
+    fields = getattr(result, "__dataclass_fields__", None)
+    if fields:
+        return all(_all_finite(getattr(result, f)) for f in fields
+                   if isinstance(getattr(result, f), (np.ndarray, float, int, complex, tuple)))
+    return True
+
+
+def obey_the_rule(fn, names):
+    """Call ``fn``; a dynstiff error must name one of ``names``; a result must be finite
+    unless a PoleWarning said why."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            result = fn()
+        except DynstiffError as exc:
+            text = str(exc)
+            assert any(n in text for n in names), f"error does not name {names}: {text}"
+            assert isinstance(exc, (ValueError, RuntimeError, TypeError)), type(exc)
+            return None
+    if not any(issubclass(w.category, PoleWarning) for w in caught):
+        assert _all_finite(result), f"non-finite result without a PoleWarning: {result!r}"
+    return result
