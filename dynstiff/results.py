@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff.constants import DOF_NAMES, GLOBAL_SHARE, LOAD_NAMES, PLATFORM_SHARE_THRESHOLD
 from dynstiff.errors import InvalidParameterError
 
@@ -330,7 +331,7 @@ class ModalResult:
 
     def __repr__(self) -> str:
         n = {c: sum(k == c for k in self.kind) for c in ("global", "mixed", "local")}
-        return (f"{type(self).__name__}({len(self)} modes {_span(self.freq_hz)}: "
+        return (f"{type(self).__name__}({counted(len(self), 'mode')} {_span(self.freq_hz)}: "
                 f"{n['global']} global, {n['mixed']} mixed, {n['local']} local)")
 
     def _repr_html_(self) -> str:
@@ -461,11 +462,10 @@ class DampedModes:
 
     def __repr__(self) -> str:
         ok, z = np.isfinite(self.omega), self.damping_ratio[np.isfinite(self.damping_ratio)]
-        if not ok.any():
-            return f"DampedModes({len(self)} modes, no damped root found)"
+        n, found = counted(len(self), "mode"), counted(int(ok.sum()), "damped root")
         span = f"{z.min():.3g}..{z.max():.3g}" if z.size else "undefined"
-        return (f"DampedModes({len(self)} modes, {int(ok.sum())} damped roots found, "
-                f"damping ratio {span})")
+        return (f"DampedModes({n}, {found} found, damping ratio {span})" if ok.any() else
+                f"DampedModes({n}, no damped root found)")
 
     def plot(self, ax: Axes | None = None) -> Figure:
         """Damping ratio against damped frequency: :func:`dynstiff.plot.plot_damped_modes`.

@@ -211,7 +211,7 @@ def test_measured_modes_repr_and_table_name_what_they_hold(tmp_path):
     with_shapes = MeasuredModes(freq_hz=[1.0, 2.0], shapes=np.eye(6)[:2],
                                 damping_ratio=[0.01, 0.02])
     assert repr(with_shapes) == "MeasuredModes(2 modes 1-2 Hz, shapes yes)"
-    assert repr(MeasuredModes(freq_hz=[1.5])) == "MeasuredModes(1 modes 1.5-1.5 Hz, shapes no)"
+    assert repr(MeasuredModes(freq_hz=[1.5])) == "MeasuredModes(1 mode 1.5-1.5 Hz, shapes no)"
     df = with_shapes.to_frame()
     assert list(df.columns) == ["freq [Hz]", "damping ratio [-]", "x", "y", "z", "rx", "ry",
                                 "rz"]

@@ -256,7 +256,7 @@ def test_wrong_argument_types_are_refused_naming_the_argument():
 def test_repr_gives_cables_segments_dofs_and_pose():
     """One segment count when all cables share it (also for a single cable), else the list."""
     m = plumb_line(3)
-    assert repr(m) == (f"LumpedLinearModel(rung='lumped', 1 cables, segments 3, n_dof 7, "
+    assert repr(m) == (f"LumpedLinearModel(rung='lumped', 1 cable, segments 3, n_dof 7, "
                        f"{m.pose!r})")
     rob = point_mass_robot()
     eq = rob.equilibrium(pose=[0.2, -0.1, 1.0])

@@ -56,7 +56,7 @@ def test_damped_modes_frequency_and_damping_ratio_from_the_complex_root():
     df = d.to_frame()
     assert list(df.columns) == ["undamped freq [Hz]", "damped freq [Hz]", "damping ratio [-]",
                                 "residual [-]"]
-    assert "1 damped roots found" in repr(d)
+    assert "1 damped root found" in repr(d)
 
 
 def test_modal_table_units_and_shift(cogiro_model):
@@ -163,7 +163,7 @@ def test_damped_modes_repr_with_a_root_at_zero_gives_no_warning():
         at_zero = ds.DampedModes(undamped_freq_hz=np.array([1.0]), omega=np.array([0j]),
                                  residual=np.array([0.0]))
         assert repr(at_zero) == \
-            "DampedModes(1 modes, 1 damped roots found, damping ratio undefined)"
+            "DampedModes(1 mode, 1 damped root found, damping ratio undefined)"
 
 
 def test_result_plots_draw_into_the_axes_given(cogiro_model):

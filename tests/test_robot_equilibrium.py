@@ -108,3 +108,20 @@ def test_plot_draws_on_the_axes_given(cogiro_eq):
         assert cogiro_eq.plot(ax=ax) is fig and ax.has_data()
     finally:
         plt.close(fig)
+
+
+def test_one_cable_is_said_in_the_singular():
+    """A 2 kg mass hanging on one cable (z free): the repr, the rich display's title and the
+    refusal of a second free DOF say "1 cable"; the tension at the mass is its weight."""
+    import html
+    rob = ds.Robot([[0.0, 0.0, 5.0]], [[0.0, 0.0, 0.0]], ds.Cable(0.1, 1e6),
+                   ds.Platform(2.0, free_dofs=("z",)))
+    eq = rob.equilibrium(pose=[0.0, 0.0, 1.0])
+    assert repr(eq).startswith("Equilibrium(1 cable, Pose(")
+    assert eq.tensions[0] == pytest.approx(2.0 * 9.81, rel=1e-9)
+    assert "Equilibrium of 1 cable at P = [0.0, 0.0, 1.0] m" in html.unescape(eq._repr_html_())
+    assert repr(ds.load_scene("planar2").equilibrium()).startswith("Equilibrium(2 cables, ")
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"^anchors: 1 cable cannot hold a platform with 2 free DOFs "):
+        ds.Robot([[0.0, 0.0, 5.0]], [[0.0, 0.0, 0.0]], ds.Cable(0.1, 1e6),
+                 ds.Platform(2.0, free_dofs=("x", "z")))

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff._validate import real_array
 from dynstiff.analyses.measured_frf import FRFComparison, compare_frf, read_measured_frf
 from dynstiff.constants import DOF_NAMES
@@ -122,7 +123,7 @@ class MeasuredModes:
 
     def __repr__(self) -> str:
         shapes = "yes" if self.shapes is not None else "no"
-        return (f"MeasuredModes({len(self)} modes {self.freq_hz.min():.4g}-"
+        return (f"MeasuredModes({counted(len(self), 'mode')} {self.freq_hz.min():.4g}-"
                 f"{self.freq_hz.max():.4g} Hz, shapes {shapes})")
 
     def to_frame(self) -> pd.DataFrame:

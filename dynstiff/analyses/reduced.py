@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff._validate import flag, positive_scalar, real_array
 from dynstiff.analyses.eigen import eigenfrequencies
 from dynstiff.analyses.frf import channel_maps
@@ -108,7 +109,7 @@ class ModalModel:
     def __repr__(self) -> str:
         f = self.freq_hz
         span = f"{f.min():.4g}-{f.max():.4g} Hz" if f.size else "none"
-        return (f"ModalModel({len(self)} modes {span}, free {self.free_dofs}, residual "
+        return (f"ModalModel({counted(len(self), 'mode')} {span}, free {self.free_dofs}, residual "
                 f"{'on' if self.residual is not None else 'off'})")
 
     def receptance(self, omega: ArrayLike) -> NDArray[np.complex128]:

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff._validate import tension_reference as checked_reference
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import eigenfrequencies, validated_request
@@ -140,8 +141,9 @@ class SensitivityResult:
         return self.derivative * self.values[None, :] / self.freq_hz[:, None]
 
     def __repr__(self) -> str:
-        return (f"SensitivityResult({len(self.freq_hz)} modes x {len(self.parameters)} "
-                f"parameters, {self.rung} rung at fixed {self.hold})")
+        return (f"SensitivityResult({counted(len(self.freq_hz), 'mode')} x "
+                f"{counted(len(self.parameters), 'parameter')}, {self.rung} rung at fixed "
+                f"{self.hold})")
 
     def to_frame(self) -> pd.DataFrame:
         """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff._validate import positive_scalar, real_array
 from dynstiff.analyses.modes import modes
 from dynstiff.analyses.platform_modes import find_platform_modes
@@ -110,8 +111,9 @@ class SweepResult:
 
     def __repr__(self) -> str:
         v = self.values
-        return (f"SweepResult({self.parameter} {v.min():.4g}..{v.max():.4g}, {self.n_steps} "
-                f"steps, {len(self)} modes, {self.n_tracks} platform-mode tracks)")
+        return (f"SweepResult({self.parameter} {v.min():.4g}..{v.max():.4g}, "
+                f"{counted(self.n_steps, 'step')}, {counted(len(self), 'mode')}, "
+                f"{counted(self.n_tracks, 'platform-mode track')})")
 
     def plot(self, ax: Axes | None = None, show_local: bool = True) -> Figure:
         """Veering diagram: :func:`dynstiff.plot.plot_veering`. Returns the Figure.

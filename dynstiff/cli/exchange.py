@@ -7,6 +7,7 @@ reported on one line by :func:`dynstiff.cli.main`.
 import sys
 import warnings
 
+from dynstiff._text import counted
 from dynstiff.cli.common import save_figure, table_metadata, write_tables
 from dynstiff.cli.options import (
     MEANINGS,
@@ -64,8 +65,9 @@ def cmd_import_caspr(args):
     _out(args.out, text)
     info = sys.stderr if args.out == "-" else sys.stdout
     r = scene.robot
-    info.write(f"{scene.name}: {r.n_cables} cables, platform {r.platform.mass:g} kg, free "
-               f"{' '.join(r.platform.free_dofs)}, pose {scene.pose.position.tolist()} m, "
+    info.write(f"{scene.name}: {counted(r.n_cables, 'cable')}, platform "
+               f"{r.platform.mass:g} kg, free {' '.join(r.platform.free_dofs)}, pose "
+               f"{scene.pose.position.tolist()} m, "
                f"tensions {r.tension_limits[0]:g}-{r.tension_limits[1]:g} N, inertia "
                f"convention {args.inertia_convention!r}\n")
     if scene.workspace_box is not None:

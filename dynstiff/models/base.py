@@ -53,6 +53,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff.errors import InvalidParameterError
 from dynstiff.robot.platform import platform_mass_matrix
 from dynstiff.robot.robot import geometric_stiffness
@@ -150,8 +151,9 @@ class PlatformModel:
         object.__setattr__(self, name, value)
 
     def __repr__(self) -> str:
-        return (f"{type(self).__name__}(rung={self.rung!r}, {self.robot.n_cables} cables, "
-                f"free {self.free_dofs}, {self.pose!r}, {self.damping_text()})")
+        return (f"{type(self).__name__}(rung={self.rung!r}, "
+                f"{counted(self.robot.n_cables, 'cable')}, free {self.free_dofs}, "
+                f"{self.pose!r}, {self.damping_text()})")
 
     def damping_text(self) -> str:
         """The model's damping in words: "undamped", or its parts (cables' own viscous and

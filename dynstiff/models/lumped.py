@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff._validate import flag, omega_array
 from dynstiff.errors import InvalidParameterError
 from dynstiff.models.base import PlatformModel
@@ -110,7 +111,8 @@ class LumpedLinearModel(PlatformModel):
     def __repr__(self) -> str:
         seg = self.segments
         seg = int(seg[0]) if np.all(seg == seg[0]) else seg.tolist()
-        return (f"LumpedLinearModel(rung='lumped', {self.robot.n_cables} cables, segments "
+        return (f"LumpedLinearModel(rung='lumped', {counted(self.robot.n_cables, 'cable')}, "
+                f"segments "
                 f"{seg}, n_dof {self.n_dof}, {self.pose!r})")
 
     # ---------------------------------------------------------------- the interface

@@ -50,6 +50,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import _validate
+from dynstiff._text import counted
 from dynstiff._vec import cross
 from dynstiff.cable.lumped_elements import block_tridiagonal_entries, element_stiffness
 from dynstiff.errors import InvalidParameterError
@@ -157,7 +158,7 @@ class LumpedMassModel:
         self._moment_arm = size if size > 0 else 1.0
 
     def __repr__(self) -> str:
-        return (f"LumpedMassModel({self.robot.n_cables} cables, segments "
+        return (f"LumpedMassModel({counted(self.robot.n_cables, 'cable')}, segments "
                 f"{self.segments.tolist()}, unstretched lengths "
                 f"{np.round(self.unstretched_lengths, 6).tolist()} m)")
 

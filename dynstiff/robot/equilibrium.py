@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._text import counted
 from dynstiff.robot.pose import Pose
 
 if TYPE_CHECKING:
@@ -140,7 +141,7 @@ class Equilibrium:
 
     def __repr__(self) -> str:
         t = self.tensions
-        return (f"Equilibrium({self.robot.n_cables} cables, {self.pose!r}, tensions "
+        return (f"Equilibrium({counted(self.robot.n_cables, 'cable')}, {self.pose!r}, tensions "
                 f"{t.min():.4g}..{t.max():.4g} N, residual {self.residual:.1e})")
 
     def _repr_html_(self) -> str:
@@ -149,7 +150,7 @@ class Equilibrium:
         rows = [[i, s.tension_at_end, s.tension_at_anchor, L0, s.sag]
                 for i, (s, L0) in enumerate(zip(self.states, self.unstretched_lengths))]
         return html_table(
-            f"Equilibrium of {self.robot.n_cables} cables at P = "
+            f"Equilibrium of {counted(self.robot.n_cables, 'cable')} at P = "
             f"{np.round(self.pose.position, 4).tolist()} m, rotation "
             f"{np.round(self.pose.rotation, 4).tolist()} rad",
             ["cable", "tension at B [N]", "tension at A [N]", "unstretched length [m]",

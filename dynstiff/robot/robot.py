@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from dynstiff import _validate
+from dynstiff._text import counted
 from dynstiff._validate import flag, positive_scalar, real_array
 from dynstiff._vec import cross
 from dynstiff.cable.catenary_solve import solve_catenary
@@ -111,7 +112,7 @@ class Robot:
         n_free = len(self.platform.free_dofs)
         if n < n_free:
             raise InvalidParameterError(
-                f"anchors: {n} cables cannot hold a platform with {n_free} free DOFs "
+                f"anchors: {counted(n, 'cable')} cannot hold a platform with {n_free} free DOFs "
                 f"{self.platform.free_dofs}; at least {n_free} are needed")
         _refuse_duplicate_cables(A, b)
         g = positive_scalar("g", self.g, allow_zero=True)
