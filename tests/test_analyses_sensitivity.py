@@ -350,3 +350,13 @@ def test_an_unstretched_length_is_reported_with_its_value():
     np.testing.assert_array_equal(s.values, eq.unstretched_lengths[[0, 3]])
     np.testing.assert_allclose(s.relative, s.derivative * s.values / 100, rtol=1e-12)
     assert s.cluster.dtype.kind == "i" and s.to_frame()["cluster"].dtype.kind == "i"
+
+
+def test_the_repr_counts_modes_and_parameters(cogiro_dsm):
+    """One mode and one parameter in the singular, more in the plural; the rung and what is
+    held fixed."""
+    _, model = cogiro_dsm
+    one = frequency_sensitivities(model, ["mass"], n_modes=1)
+    assert repr(one) == "SensitivityResult(1 mode x 1 parameter, dsm rung at fixed pose)"
+    two = frequency_sensitivities(model, ["mass", "EA"], n_modes=2)
+    assert repr(two) == "SensitivityResult(2 modes x 2 parameters, dsm rung at fixed pose)"

@@ -244,7 +244,9 @@ def test_sweep_records_an_infeasible_pose_and_goes_on():
     assert list(table.index) == [0, 1, 2] and table.loc[1].isna().all()
     assert int(bad["mode"].iloc[0]) == 0 and bad["track"].isna().all()
     assert df["freq [Hz]"].dtype == np.float64 and df["mode"].dtype == np.int64
-    assert repr(res).startswith("SweepResult(")
+    assert repr(res).startswith("SweepResult(") and ", 3 steps, " in repr(res)
+    assert f", {len(alone)} modes, " in repr(alone) and ", 1 step, " in repr(alone)
+    assert repr(alone).endswith(f", {alone.n_tracks} platform-mode tracks)")
     for k in (0, 2):
         np.testing.assert_array_equal(df[df["step"] == k]["cable energy fraction [-]"],
                                       res.modal[k].cable_energy_fraction)

@@ -161,3 +161,12 @@ def test_residual_scales_are_the_platform_size_and_the_weight(cogiro, cogiro_eq)
     assert model.relative_residual(R, 100.0) == pytest.approx(3.0 / (W + 100.0), rel=1e-15)
     point = LumpedMassModel(point_mass_robot(), np.full(3, 6.0), segments=3)
     assert point.residual_scales()[0] == 1.0
+
+
+def test_the_repr_gives_cables_segments_and_lengths():
+    """One cable in the singular, its segments and its unstretched length to 1e-6 m."""
+    rob = ds.Robot([[0.0, 0.0, 5.0]], [[0.0, 0.0, 0.0]], ds.Cable(0.1, 1e6),
+                   ds.Platform(2.0, free_dofs=("z",)))
+    model = LumpedMassModel(rob, [4.123456789], segments=4)
+    assert repr(model) == ("LumpedMassModel(1 cable, segments [4], unstretched lengths "
+                           "[4.123457] m)")

@@ -57,6 +57,9 @@ def test_damped_modes_frequency_and_damping_ratio_from_the_complex_root():
     assert list(df.columns) == ["undamped freq [Hz]", "damped freq [Hz]", "damping ratio [-]",
                                 "residual [-]"]
     assert "1 damped root found" in repr(d)
+    none = ds.DampedModes(undamped_freq_hz=np.array([3.0, 5.0]), omega=np.full(2, np.nan + 0j),
+                          residual=np.full(2, np.nan))
+    assert repr(none) == "DampedModes(2 modes, no damped root found)"
 
 
 def test_modal_table_units_and_shift(cogiro_model):

@@ -107,3 +107,33 @@ def test_shared_attachment_points_solve_with_the_analytic_tension():
     eq = rob.equilibrium(pose=[0.0, 0.0, 1.5, 0.0, 0.0, 0.0])
     L = np.linalg.norm(A[0] - (b[0] + [0.0, 0.0, 1.5]))
     np.testing.assert_allclose(eq.tensions, 100.0 * rob.g * L / (6 * 1.5), rtol=2e-5)
+
+
+@pytest.mark.parametrize("kw, message", [
+    (dict(anchors="a"), r"anchors must be a finite \(n, 3\) array \[m\], got 'a'"),
+    (dict(anchors=[[0, 0, 0], [1, 0, 0], [1, 1]]),
+     r"anchors must be a finite \(n, 3\) array \[m\], got \[\[0, 0, 0\], \[1, 0, 0\], \[1, 1\]\]"),
+    (dict(cables=["EA"]), r"cables must be one Cable or a sequence of 2 Cables, got \['EA'\]"),
+    (dict(cables=[ds.Cable(0.1, 1e7), "EA"]),
+     r"cables must be one Cable or a sequence of 2 Cables, got \[Cable\(.*\), 'EA'\]"),
+    (dict(g="x"), r"g must be a real number, got 'x'"),
+    (dict(g=-1.0), r"g must be >= 0, got -1\.0"),
+    (dict(tension_limits="a"), r"tension_limits must be \(t_min, t_max\) \[N\], got 'a'"),
+    (dict(tension_limits=(1, 2, 3)), r"tension_limits must be \(t_min, t_max\) \[N\], got "
+                                     r"\(1, 2, 3\)"),
+    (dict(platform=ds.Platform(2.0, free_dofs=("x", "y", "z"))),
+     r"anchors: 2 cables cannot hold a platform with 3 free DOFs \('x', 'y', 'z'\); at least "
+     r"3 are needed"),
+    (dict(anchors=[[0, 0, 5.0]], attachments=[[0, 0, 0.0]], cables=ds.Cable(0.1, 1e7)),
+     r"anchors: 1 cable cannot hold a platform with 2 free DOFs \('x', 'z'\); at least 2 are "
+     r"needed")])
+def test_a_bad_robot_is_refused_with_the_whole_message(kw, message):
+    """planar2's robot (2 cables, x and z free) with one field changed: the message names the
+    field, what it must be and the value given; a right-length list with a text in it is
+    refused as a wrong-length one is; one cable and two free DOFs is said in the singular."""
+    r = ds.load_scene("planar2").robot
+    args = dict(anchors=r.anchors, attachments=r.attachments, cables=r.cables,
+                platform=r.platform, g=r.g, tension_limits=r.tension_limits)
+    args.update(kw)
+    with pytest.raises(InvalidParameterError, match=f"^{message}$"):
+        ds.Robot(**args)

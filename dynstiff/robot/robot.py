@@ -105,7 +105,8 @@ class Robot:
         cables = tuple(cables)
         if len(cables) != n or not all(isinstance(c, Cable) for c in cables):
             raise InvalidParameterError(
-                f"cables must be one Cable or a sequence of {n} Cable, got {self.cables!r}")
+                f"cables must be one Cable or a sequence of {counted(n, 'Cable')}, got "
+                f"{self.cables!r}")
         if not isinstance(self.platform, Platform):
             raise InvalidParameterError(
                 f"platform must be a dynstiff.Platform, got {type(self.platform).__name__}")
