@@ -63,6 +63,8 @@ def test_coordinates_beyond_1e100_m_are_named(cogiro):
     far[0, 0] = 1.0000000000000002e100
     with pytest.raises(InvalidParameterError, match="attachments must lie within"):
         ds.Robot(r.anchors, far, r.cables, r.platform)
+    with pytest.raises(InvalidParameterError, match=r"^anchors must lie within 1e\+100 m of "):
+        ds.Robot(far, r.attachments, r.cables, r.platform)
     with pytest.raises(InvalidParameterError, match="pose position"):
         ds.Pose([1e101, 0.0, 0.0])
 
@@ -118,6 +120,11 @@ def test_shared_attachment_points_solve_with_the_analytic_tension():
      r"cables must be one Cable or a sequence of 2 Cables, got \[Cable\(.*\), 'EA'\]"),
     (dict(g="x"), r"g must be a real number, got 'x'"),
     (dict(g=-1.0), r"g must be >= 0, got -1\.0"),
+    (dict(attachments="a"), r"attachments must be a finite \(n, 3\) array \[m\], got 'a'"),
+    (dict(anchors=np.zeros((0, 3)), attachments=np.zeros((0, 3)), cables=[],
+          platform=ds.Platform(1.0, free_dofs=("z",))),
+     r"anchors: 0 cables cannot hold a platform with 1 free DOF \('z',\); at least 1 is "
+     r"needed"),
     (dict(tension_limits="a"), r"tension_limits must be \(t_min, t_max\) \[N\], got 'a'"),
     (dict(tension_limits=(1, 2, 3)), r"tension_limits must be \(t_min, t_max\) \[N\], got "
                                      r"\(1, 2, 3\)"),
@@ -137,3 +144,13 @@ def test_a_bad_robot_is_refused_with_the_whole_message(kw, message):
     args.update(kw)
     with pytest.raises(InvalidParameterError, match=f"^{message}$"):
         ds.Robot(**args)
+
+
+def test_the_robot_holds_its_checked_arrays():
+    """Lists in, float arrays out: the anchors, attachments and limits are the checked ones."""
+    r = ds.Robot([[0, 0, 5]], [[0, 0, 0]], ds.Cable(0.1, 1e6),
+                 ds.Platform(1.0, free_dofs=("z",)), tension_limits=[1, 100])
+    for got, want in ((r.anchors, [[0.0, 0.0, 5.0]]), (r.attachments, [[0.0, 0.0, 0.0]])):
+        assert isinstance(got, np.ndarray) and got.dtype == np.float64
+        np.testing.assert_array_equal(got, want)
+    assert r.tension_limits == (1.0, 100.0)

@@ -113,8 +113,9 @@ class Robot:
         n_free = len(self.platform.free_dofs)
         if n < n_free:
             raise InvalidParameterError(
-                f"anchors: {counted(n, 'cable')} cannot hold a platform with {n_free} free DOFs "
-                f"{self.platform.free_dofs}; at least {n_free} are needed")
+                f"anchors: {counted(n, 'cable')} cannot hold a platform with "
+                f"{counted(n_free, 'free DOF')} {self.platform.free_dofs}; at least {n_free} "
+                f"{'is' if n_free == 1 else 'are'} needed")
         _refuse_duplicate_cables(A, b)
         g = positive_scalar("g", self.g, allow_zero=True)
         limits = real_array("tension_limits", self.tension_limits, "(t_min, t_max) [N]")
