@@ -65,6 +65,8 @@ def test_coordinates_beyond_1e100_m_are_named(cogiro):
         ds.Robot(r.anchors, far, r.cables, r.platform)
     with pytest.raises(InvalidParameterError, match=r"^anchors must lie within 1e\+100 m of "):
         ds.Robot(far, r.attachments, r.cables, r.platform)
+    far[0, 0] = 1e100                                       # within: the bound included
+    assert ds.Robot(far, r.attachments, r.cables, r.platform).anchors[0, 0] == 1e100
     with pytest.raises(InvalidParameterError, match="pose position"):
         ds.Pose([1e101, 0.0, 0.0])
 
@@ -121,6 +123,10 @@ def test_shared_attachment_points_solve_with_the_analytic_tension():
     (dict(g="x"), r"g must be a real number, got 'x'"),
     (dict(g=-1.0), r"g must be >= 0, got -1\.0"),
     (dict(attachments="a"), r"attachments must be a finite \(n, 3\) array \[m\], got 'a'"),
+    (dict(anchors=[[0, 0], [1, 1]]), r"anchors must be a finite \(n, 3\) array \[m\], got "
+                                     r"shape \(2, 2\)"),
+    (dict(attachments=[[0, 0, 0]]), r"attachments must be a finite array of shape \(2, 3\) "
+                                    r"like anchors, got shape \(1, 3\)"),
     (dict(anchors=np.zeros((0, 3)), attachments=np.zeros((0, 3)), cables=[],
           platform=ds.Platform(1.0, free_dofs=("z",))),
      r"anchors: 0 cables cannot hold a platform with 1 free DOF \('z',\); at least 1 is "
