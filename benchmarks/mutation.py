@@ -591,6 +591,14 @@ timedomain.dynamics (849)          3       3 / 0        3 / 0 / 0               
   mutmut_22 and _34 are named equivalent. With these, no survivor of either table is left:
   robot.statics 87 / 0 / 13 of the eighth round's sample, analyses.damped 78 / 0 / 5 and
   cli.sweep 77 / 0 / 4, each 100 %.
+  Then the counts of reprs and messages were put in the singular for one (dynstiff._text, a
+  new module), which edited eleven reprs, import-caspr's command and Robot.__post_init__.
+  Their sampled mutants and all 4 of _text were judged on the new source, each against its
+  module's own file: 160 in all (Robot.__post_init__'s 42 of the module's 100-sample, drawn
+  again after its last edit), 151 killed at once (19 of them as the conftest's robots were
+  refused at import), and the 9 survivors killed by new tests of the reprs' counts and of
+  Robot's whole messages. Robot.__post_init__ mutmut_49, an equivalent, was re-stamped after
+  its diff was checked (730 equivalents, none stale).
 
 Earlier, the physics core only (2 children; the sample was then drawn with one generator
 over the core's modules, so today's per-module samples are other mutants):
