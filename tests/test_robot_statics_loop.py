@@ -193,3 +193,18 @@ def test_a_stalled_loop_stops_only_below_1e_9(monkeypatch, delta):
                            match=r"cable directions still change by 1\.99e-07 after 60 "):
             statics.inverse_statics(robot, pose, max_iter=60)
         assert len(count) == 60
+
+
+def test_a_relaxed_start_whose_least_tension_is_not_found_is_diagnosed(monkeypatch):
+    """Where no catenary between the cable's ends could be solved (the least end tension
+    inf), the relaxed start is not moved: the cable's unreachable tension is diagnosed as the
+    refusal, with the pose and the cable's weight."""
+    monkeypatch.setattr(statics, "least_end_tension", lambda *a: (np.inf, 5.0))
+    A = np.array([[0.24, 4.6, 6.31], [-3.94, -2.4, 6.31], [3.73, -2.72, 6.31],
+                  [-2.34, -0.93, -2.08]])
+    robot = ds.Robot(A, np.zeros((4, 3)), ds.Cable(0.036, 1e6),
+                     ds.Platform(37.39, free_dofs=("x", "y", "z")), tension_limits=(75.9, 18045.1))
+    with pytest.raises(InfeasiblePoseError, match=r"^pose \[0\.58, 1\.32, 0\.79, 0\.0, 0\.0, "
+                       r"0\.0\]: cable 3 \(rising 2\.87 m to the platform") as err:
+        robot.equilibrium(pose=[0.58, 1.32, 0.79])
+    assert err.value.cause == "cable weight"

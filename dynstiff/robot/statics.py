@@ -121,7 +121,7 @@ def _start_or_request(robot: Robot, i: int, A_i: NDArray[np.float64], B_i: NDArr
         if not relaxed:
             raise
         least, L0 = least_end_tension(A_i, B_i, robot.cables[i], robot.g)
-        if not least > t[i]:
+        if not (np.isfinite(least) and least > t[i]):       # no catenary found: diagnosed
             raise
         state = solve_catenary(A_i, B_i, L0, robot.cables[i], robot.g)
         t[i] = state.tension_at_end
