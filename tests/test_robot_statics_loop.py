@@ -174,20 +174,39 @@ def test_a_stalled_loop_stops_only_below_1e_9(monkeypatch, delta):
     never stalls: ConvergenceError naming the change after max_iter iterations, not a
     wrench residual."""
     from conftest import point_mass_robot
-    ends, count = statics._end_quantities, []
+    ends, step, count, seen = statics._end_quantities, statics._step_distribution, [], []
 
     def toggled(*a, **k):
         u, lo, hi = ends(*a, **k)
         count.append(1)
         u = u.copy()
         u[0, 0] += delta * (-1) ** len(count)
+        seen[-1].append((u, lo, hi))
         return u, lo, hi
+
+    def step_spy(*a, **k):
+        out = step(*a, **k)
+        seen.append([a[2].copy(), a[7].copy(), a[8].copy(), out[0].copy()])
+        return out
     monkeypatch.setattr(statics, "_end_quantities", toggled)
+    monkeypatch.setattr(statics, "_step_distribution", step_spy)
     robot, pose = point_mass_robot(), ds.Pose([0.5, 0.3, 1.2])
     if delta < 1e-9:
         eq = statics.inverse_statics(robot, pose, max_iter=200)
         assert eq.residual < 1e-10
-        assert 12 <= len(count) < 60
+        changes = [max(np.abs(u1 - u).max(),
+                       np.abs(np.concatenate([lo1 - lo, hi1 - hi])).max() / t.max())
+                   for u, lo, hi, t, (u1, lo1, hi1) in seen]
+        best, since, last, stop = np.inf, 0, np.inf, None
+        for k, c in enumerate(changes):           # the documented exit rule, from the iterates
+            best, since = (c, 0) if c < best else (best, since + 1)
+            rho, last = (c / last if 0 < last < np.inf else 1.0), c
+            if c < 1e-15 or (rho < 0.5 and c * rho / (1 - rho) < 2e-16) or \
+                    (best < 1e-9 and since >= 10):
+                stop = k
+                break
+        assert stop is not None and len(count) == stop + 1 < 60
+        assert since == 10 and changes[stop] >= 1e-15              # the stall ended it
     else:
         with pytest.raises(ds.ConvergenceError,
                            match=r"cable directions still change by 1\.99e-07 after 60 "):
