@@ -273,3 +273,39 @@ def test_long_spans_converge_and_limits_are_exact():
         ds.unstretched_length_for_tension((0, 0, 0), (3.0, 0, 4.0), -5.0, ds.Cable(1.0, 1e6))
 
 
+
+
+@pytest.mark.parametrize("EA", [1.0, 1e-3, 1e-300])
+def test_a_very_soft_cable_reaches_its_tension_with_the_weightless_length(EA):
+    """A cable far softer than its tension (T / EA from 300 to 3e302) hangs straight, its
+    weight negligible: L0 = L / (1 + T / EA) (Hooke along the chord), and the tension at B
+    is the one asked to 1e-9 (at EA = 1e-300 the step tolerance, absolute on the chord's
+    scale, stopped at a bracket end: 600 N for 300)."""
+    T, L = 300.0, 5.0
+    st = ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], T, ds.Cable(0.064, EA))
+    assert st.tension_at_end == pytest.approx(T, rel=1e-9)
+    assert st.unstretched_length == pytest.approx(L / (1 + T / EA), rel=1e-4)
+
+
+def test_a_strain_beyond_the_float_range_is_refused_naming_the_tension():
+    """EA = 7.9e-308 N (found by the scene-file fuzzer): T / EA overflows and no unstretched
+    length above 0 gives the tension; the error names the tension, the strain and EA (it
+    was 'unstretched_length must be > 0, got 0.0', a value the caller never gave)."""
+    with pytest.raises(ds.InvalidParameterError,
+                       match=r"^tension 300\.0 N at the end: its strain tension / EA = inf "
+                             r"\(EA 7\.9e-308 N\) leaves no unstretched length above 0"):
+        ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0,
+                                          ds.Cable(0.064, 7.9e-308))
+
+
+def test_a_root_that_misses_the_tension_is_refused_with_its_residual(monkeypatch):
+    """A planted root finder that returns its bracket's short end: the tension there is
+    above the target, and the solver says so with the relative residual, never returning
+    that state."""
+    import scipy.optimize
+    monkeypatch.setattr(scipy.optimize, "brentq", lambda f, a, b, **kw: a)
+    with pytest.raises(ds.ConvergenceError, match=r"^unstretched length for tension 300\.0 N "
+                       r"at the end: the tension found is .* N \(relative residual") as err:
+        ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0,
+                                          ds.Cable(0.064, 1.64e6))
+    assert err.value.residual > 1e-9

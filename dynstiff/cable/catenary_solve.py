@@ -232,7 +232,12 @@ def unstretched_length_for_tension(anchor: ArrayLike, end: ArrayLike, tension: f
     until the tension first drops under the target. The tension first decreases as L0
     grows, reaches a minimum, then rises again as the cable hangs deeper; the solution
     returned is the shorter, taut one. Raises :class:`SlackCableError` when the target is
-    below the minimum tension any cable between these points can have.
+    below the minimum tension any cable between these points can have,
+    :class:`InvalidParameterError` when the strain tension / EA leaves no unstretched length
+    above 0 (EA below about 1e-300 N), and :class:`ConvergenceError` with its residual when
+    the tension found misses the target by more than 1e-9, relative. Brent's step tolerance
+    is relative to L0's scale, so a very soft cable (L0 far below the chord) is solved as
+    accurately as a stiff one.
 
     Examples
     --------
@@ -258,6 +263,11 @@ def unstretched_length_for_tension(anchor: ArrayLike, end: ArrayLike, tension: f
 
     # Upper bracket: a short cable is stiff, so tension is high; lower tension needs longer L0.
     L_hi_tension = L / (1.0 + 2.0 * T_target / cable.EA)
+    if not L_hi_tension > 0.0:
+        raise InvalidParameterError(
+            f"tension {T_target!r} N at the {at}: its strain tension / EA = "
+            f"{T_target / cable.EA:.3g} (EA {cable.EA!r} N) leaves no unstretched length above "
+            f"0 between anchor {A.tolist()} and end {B.tolist()}")
 
     def too_long(L0: float) -> bool | None:  # tension under the target, or slack (vertical cable)
         try:
@@ -266,7 +276,7 @@ def unstretched_length_for_tension(anchor: ArrayLike, end: ArrayLike, tension: f
             return True
 
     while too_long(L_hi_tension):
-        L_hi_tension *= 1.0 - 0.5 * min(0.5, 1.0 / np.log10(cable.EA))
+        L_hi_tension *= 1.0 - 0.5 * min(0.5, 1.0 / max(np.log10(cable.EA), 1.0))
     # Lower bracket: grow L0 until the tension drops under the target; a straight (vertical)
     # cable that goes slack first, at a length where the tension would be negative, is
     # bisected back between the last length too tensioned and the first slack one.
@@ -291,5 +301,13 @@ def unstretched_length_for_tension(anchor: ArrayLike, end: ArrayLike, tension: f
                 f"tension {T_target!r} N at the {at} is not reachable between anchor "
                 f"{A.tolist()} and end {B.tolist()}: no unstretched length gives a tension "
                 f"this low")
-    L0 = brentq(f, L_hi_tension, L_lo_tension, xtol=1e-15 * L, rtol=1e-15, maxiter=200)
-    return solve_catenary(A, B, L0, cable, g)
+    # xtol on the scale of L0 itself: a very soft cable's L0 is far below the chord L
+    L0 = brentq(f, L_hi_tension, L_lo_tension, xtol=1e-15 * L_hi_tension, rtol=1e-15,
+                maxiter=200)
+    state = solve_catenary(A, B, L0, cable, g)
+    miss = abs(tension_of(state) / T_target - 1.0)
+    if not miss <= 1e-9:
+        raise ConvergenceError(
+            f"unstretched length for tension {T_target!r} N at the {at}: the tension found "
+            f"is {tension_of(state)!r} N (relative residual {miss:.2e})", residual=miss)
+    return state
