@@ -603,7 +603,18 @@ timedomain.dynamics (849)          3       3 / 0        3 / 0 / 0               
   again after its last edit), 151 killed at once (19 of them as the conftest's robots were
   refused at import), and the 9 survivors killed by new tests of the reprs' counts and of
   Robot's whole messages. Robot.__post_init__ mutmut_49, an equivalent, was re-stamped after
-  its diff was checked (730 equivalents, none stale).
+  its diff was checked.
+  Then the slow tier's scene-file fuzzer (EA = 7.9e-308) found unstretched_length_for_tension
+  refusing with a value nobody gave ("unstretched_length must be > 0, got 0.0"), and the
+  search around it a silently wrong tension (600 N for 300 at EA = 1e-300: Brent's step
+  tolerance was on the chord's scale). Fixed (the tolerance on L0's scale, a strain beyond
+  the float range refused naming the tension, a residual check on the tension found); the
+  function's 35 mutants in the module's sample (drawn again, 545 mutants) were judged on
+  the new source against test_cable_catenary_solve.py: 27 killed at once, 3 more by new
+  tests (a sagging root beyond the chord, a trial length whose catenary does not converge),
+  5 equivalent (8 of the function's equivalents renumbered by their diffs and 2 re-stamped;
+  2 new: the short end shrunk by 0.75 whatever EA, and the search giving up one trial
+  earlier). 732 equivalents, none stale.
 
 Earlier, the physics core only (2 children; the sample was then drawn with one generator
 over the core's modules, so today's per-module samples are other mutants):
@@ -698,7 +709,7 @@ EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁundamped__mutmut_5":
         "every warning ignored while the undamped copy is built, not only the "
         "ClosedFormWarning that the original already issued: no other warning arises there",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_109":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_119":
         "k >= 200 instead of > 200 in a bracket expansion that ends after a few steps",
 })
 _START = ("the starting guess of the chain's Newton (its tension estimate or force-space "
@@ -760,6 +771,12 @@ EQUIVALENT.update({
         "the placeholder H of cables outside the taut mask, whose results are discarded",
     "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_52":
         "the start of the bracket on L0, which is widened until it brackets the tension",
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_77":
+        "the short end shrunk by 0.75 per step whatever EA (1.0 * max for 1.0 / max): a "
+        "wider bracket of the same taut root",
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_94":
+        "k counted from 1: the lower bracket's search gives up after 200 trials instead of "
+        "201 (1.05^200 = 17,000 times the start, or 200 halvings)",
 })
 EQUIVALENT.update({
     "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_29":
@@ -966,24 +983,24 @@ EQUIVALENT.update({
     "dynstiff.robot.platform.x_quaternion_to_rotvec__mutmut_38":
         "2881 for 2880 in the theta^4 term of the small-angle series (theta <= 1e-3): below "
         "1e-18",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_128":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_138":
         "brentq's maxiter 201 instead of 200",
     "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_53":
         "the short end of the bracket on L0 far shorter (T EA instead of T / EA): still "
         "above the target tension, the same root in more Brent steps",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_123":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_133":
         "brentq's rtol left at its default 4 eps instead of 1e-15 (4.4 eps): the same root "
         "to a few ulps",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_81":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_91":
         "the start of the lower bracket on L0, which is grown (or bisected back from slack) "
         "until the tension is under the target",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_101":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_111":
         "the lower bracket grown by 2.05 instead of 1.05 per step: the taut solution and "
         "the deep loop's are far apart in L0, and a slack trial is bisected back",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_108":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_118":
         "the bracket search gives up after 100 instead of 200 steps (1.05^100 = 130 chord "
         "lengths, or 100 halvings)",
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_92": _BOUNDARY,
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_102": _BOUNDARY,
     "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_37": _CAT_START,
     "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_40": _CAT_START,
     "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_74": _CAT_START,
@@ -1098,7 +1115,7 @@ EQUIVALENT.update({
         "the repr of an empty mode table: never built (n_modes >= 1 is enforced)",
     "dynstiff.cable.catenary_solve.x__initial_guesses__mutmut_44": _CAT_START,
     "dynstiff.cable.catenary.x_end_stiffnesses__mutmut_104": _VERTICAL,
-    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_73":
+    "dynstiff.cable.catenary_solve.x_unstretched_length_for_tension__mutmut_78":
         "the short end of the bracket shrunk by a larger factor per step: the same root",
     "dynstiff.cable.catenary_solve.x__newton__mutmut_72": _BOUNDARY,
     "dynstiff.cable.catenary_solve.x__validate_ends__mutmut_27": _BOUNDARY,

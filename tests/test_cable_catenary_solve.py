@@ -309,3 +309,48 @@ def test_a_root_that_misses_the_tension_is_refused_with_its_residual(monkeypatch
         ds.unstretched_length_for_tension([0, 0, 0], [4.0, 0, 3.0], 300.0,
                                           ds.Cable(0.064, 1.64e6))
     assert err.value.residual > 1e-9
+
+
+def _sagging_root(T=100.0, w=1.0 * G, L=10.0):
+    """The taut root of an inextensible catenary between two points 10 m apart at one
+    height with end tension T: H cosh(w L / 2H) = T on the branch of large H, its length
+    S = (2H / w) sinh(w L / 2H) [m]."""
+    from scipy.optimize import brentq
+    H = brentq(lambda H: H * np.cosh(w * L / (2 * H)) - T, 41.0, 10 * T)
+    return 2 * H / w * np.sinh(w * L / (2 * H))
+
+
+def test_a_sagging_root_beyond_the_chord_is_bracketed_by_growing_the_length():
+    """1 kg/m over a 10 m level span at 100 N: the root lies beyond the chord (L0 = 10.556
+    m), so the lower bracket, started at L / (1 + T / 2EA) where the tension is too high,
+    grows to it. The root is the inextensible catenary's length over 1 + T / EA (to 1e-5,
+    the mean tension being below T), the taut one (the tension still falls beyond it)."""
+    cable = ds.Cable(1.0, 1e6)
+    st = ds.unstretched_length_for_tension([0, 0, 0], [10.0, 0, 0], 100.0, cable)
+    assert st.tension_at_end == pytest.approx(100.0, rel=1e-9)
+    assert st.unstretched_length == pytest.approx(_sagging_root() / (1 + 100.0 / 1e6),
+                                                  rel=1e-5)
+    longer = ds.solve_catenary([0, 0, 0], [10.0, 0, 0], st.unstretched_length * (1 + 1e-6),
+                               cable)
+    assert longer.tension_at_end < 100.0
+
+
+def test_a_trial_length_whose_catenary_does_not_converge_is_passed_over(monkeypatch):
+    """A catenary solve that raises ConvergenceError at the lower bracket's first trial
+    length: that length is passed over (the bracket grows past it) and the same root is
+    found as without the failure."""
+    from dynstiff.cable import catenary_solve
+    cable = ds.Cable(1.0, 1e6)
+    want = ds.unstretched_length_for_tension([0, 0, 0], [10.0, 0, 0], 100.0, cable)
+    first, real = 10.0 / (1.0 + 0.5 * 100.0 / 1e6), catenary_solve.solve_catenary
+    failed = []
+
+    def flaky(A, B, L0, *args, **kw):
+        if L0 == first:
+            failed.append(L0)
+            raise ds.ConvergenceError("planted", residual=1.0)
+        return real(A, B, L0, *args, **kw)
+    monkeypatch.setattr(catenary_solve, "solve_catenary", flaky)
+    got = ds.unstretched_length_for_tension([0, 0, 0], [10.0, 0, 0], 100.0, cable)
+    assert failed == [first]
+    assert got.unstretched_length == pytest.approx(want.unstretched_length, rel=1e-14)
