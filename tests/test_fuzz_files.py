@@ -9,7 +9,7 @@ examples here).
 import numpy as np
 import pytest
 from conftest import FAST, LONG, _settings, obey_the_rule, weird_vectors
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 import dynstiff as ds
@@ -42,6 +42,7 @@ def _toml_value(v):
 def _scene_fuzzer(n):
     @_settings(n)
     @given(key=st.sampled_from(KEYS), value=weird_vectors)
+    @example(key="EA", value=7.930652811838276e-308)  # a strain beyond the float range
     def check(tmp_path_factory, key, value):
         text = (ds.scenes.loader.SCENE_DIR / "planar2.toml").read_text()
         lines = text.splitlines()
