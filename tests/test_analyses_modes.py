@@ -32,6 +32,18 @@ def test_the_basis_of_a_cluster_is_mass_orthonormal_and_diagonal_in_cable_energy
             assert abs(cross) < 1e-10 * (E[a] + E[b])
 
 
+def test_a_lone_roots_shape_is_the_general_basis_to_the_bit():
+    """One platform motion: V / sqrt(V^T M_p V), the same numbers as the general basis
+    (eigh of the 1 x 1 mass, lam = B, U = 1), without computing cable energies."""
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    fi, Mf = m.free_index, m.platform_mass
+    V = np.random.default_rng(11).standard_normal((len(fi), 1))
+    B = V.T @ Mf @ V
+    lam, U = np.linalg.eigh(0.5 * (B + B.T))
+    np.testing.assert_array_equal(_energy_basis(m, 2 * np.pi * 2.5, V, Mf, fi),
+                                  V @ (U / np.sqrt(lam)))
+
+
 def test_the_mode_count_limit_holds_on_both_paths():
     """20000 modes by default: 20001 asked of the closed form is refused naming the limit;
     a discrete rung with more DOFs than max_modes is refused when the band holds more

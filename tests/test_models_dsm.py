@@ -297,3 +297,26 @@ def test_cable_fields_without_motion_and_the_loss_factor_with_chordwise_inertia_
                                sq**2 * plain.cable_coefficients(w / sq), rtol=1e-12)
     with_inertia = ds.FrequencyModel(cogiro_eq, cable_loss_factor=0.03)
     assert np.abs(with_inertia.cable_coefficients(w) - lossy.cable_coefficients(w)).max() > 1.0
+
+
+@pytest.mark.parametrize("chordwise_inertia", [True, False])
+def test_cable_energies_of_many_motions_at_once_are_each_cables_own(cogiro_eq,
+                                                                   chordwise_inertia):
+    """cable_kinetic_energies with omega (n,) and x (n, 6) gives, row by row, the energies of
+    one motion at a time, and each entry is that cable's own cable_kinetic_energy of its end
+    motion in its chord frame (the per-cable quadrature of theory.md §6, tested against an
+    adaptive quadrature of the field in test_cable_dsm.py), to rounding."""
+    from dynstiff.cable.dsm import cable_kinetic_energy
+    m = ds.FrequencyModel(cogiro_eq, chordwise_inertia=chordwise_inertia)
+    w = 2 * np.pi * np.array([0.7, 2.5, 4.1, 9.3])
+    X = np.random.default_rng(7).standard_normal((4, 6))
+    E = m.cable_kinetic_energies(w, X)
+    assert E.shape == (4, 8) and np.all(E > 0)
+    for k in range(4):
+        row = m.cable_kinetic_energies(w[k], X[k])
+        assert row.shape == (8,)
+        np.testing.assert_allclose(E[k], row, rtol=1e-13)
+        for i, (p, r) in enumerate(zip(m.params, m.lever_arms)):
+            d = p.rotation.T @ (X[k, :3] + np.cross(X[k, 3:], r))
+            assert E[k, i] == pytest.approx(
+                cable_kinetic_energy(p, w[k], d, chordwise_inertia), rel=1e-13)

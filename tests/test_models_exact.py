@@ -331,3 +331,14 @@ def test_the_stiffness_exactly_on_a_clamped_pole_is_not_finite_and_silent(cogiro
     for w in poles[:2]:
         assert not np.all(np.isfinite(m.dynamic_stiffness(w)))
         assert np.all(np.isfinite(m.dynamic_stiffness(w * (1 - 1e-9))))
+
+
+def test_exact_cable_energies_of_many_motions_at_once_are_each_motions(cogiro_exact):
+    """The exact rung's cable_kinetic_energies with omega (n,) and x (n, 6): row k is the
+    energies of motion k alone, shape (n, n_cables); one motion gives (n_cables,)."""
+    w = 2 * np.pi * np.array([0.9, 3.3, 5.2])
+    X = np.random.default_rng(3).standard_normal((3, 6))
+    E = cogiro_exact.cable_kinetic_energies(w, X)
+    assert E.shape == (3, 8) and np.all(E > 0)
+    for k in range(3):
+        np.testing.assert_array_equal(E[k], cogiro_exact.cable_kinetic_energies(w[k], X[k]))

@@ -137,12 +137,10 @@ def modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | Non
     J0_lo = m.cable_mode_count(w * (1 - 1e-9)) if len(w) else []
     J0_hi = m.cable_mode_count(w * (1 + 1e-9)) if len(w) else []
     scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
-    for ks in _clusters(f):
-        Kk = K[ks[0]]
-        finite = np.all(np.isfinite(Kk))
-        if not finite:
-            continue                     # on a cable pole: purely local, platform at rest
-        ev, V = np.linalg.eigh(Kk)
+    # on a cable pole (K not finite) a root is purely local, the platform at rest
+    heads = [ks for ks in _clusters(f) if np.all(np.isfinite(K[ks[0]]))]
+    eigs = np.linalg.eigh(K[[ks[0] for ks in heads]]) if heads else ((), ())
+    for ks, ev, V in zip(heads, *eigs):
         order = np.argsort(np.abs(ev))
         on_pole = J0_hi[ks[-1]] > J0_lo[ks[0]]
         n_move = len(ks)
@@ -151,11 +149,11 @@ def modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: float | Non
         if n_move == 0:
             continue
         X = _energy_basis(m, w[ks[0]], V[:, order[:n_move]], Mf, fi)
-        for j, k in enumerate(ks[:n_move]):
-            shapes[k, fi] = X[:, j]
-            E_cab[k] = m.cable_kinetic_energies(w[k], shapes[k])
-    total = 1.0 + E_cab.sum(axis=1)
+        shapes[np.ix_(ks[:n_move], fi)] = X.T
     moving = np.any(shapes != 0, axis=1)
+    if np.any(moving):
+        E_cab[moving] = m.cable_kinetic_energies(w[moving], shapes[moving])
+    total = 1.0 + E_cab.sum(axis=1)
     frac = np.where(moving, E_cab.sum(axis=1) / total, 1.0)
     E_cab = np.where(moving[:, None], E_cab / total[:, None], 0.0)
     Mp = np.zeros((6, 6))
@@ -183,18 +181,18 @@ def _energy_basis(m: FrequencyModel, omega: float, V: NDArray[np.float64], Mf: N
     cables' kinetic energy at omega (polarisation of the quadratic form): the shapes of c
     coincident modes, unique up to sign where their energies differ."""
     B = V.T @ Mf @ V
+    c = V.shape[1]
+    if c == 1:                           # what eigh gives for 1 x 1: lam = B, U = 1
+        return V * (1.0 / np.sqrt(B[0, 0]))
     lam, U = np.linalg.eigh(0.5 * (B + B.T))
     X = V @ (U / np.sqrt(lam))
-    c = X.shape[1]
-    if c == 1:
-        return X
     full = np.zeros((c, 6))
     full[:, fi] = X.T
-    e = np.array([m.cable_kinetic_energies(omega, x).sum() for x in full])
+    a, b = np.triu_indices(c, 1)
+    both = np.concatenate([full, full[a] + full[b]])
+    E = m.cable_kinetic_energies(np.full(len(both), omega), both).sum(axis=1)
+    e = E[:c]
     Q = np.diag(e)
-    for a in range(c):
-        for b in range(a + 1, c):
-            Q[a, b] = Q[b, a] = 0.5 * (m.cable_kinetic_energies(omega, full[a] + full[b]).sum()
-                                       - e[a] - e[b])
+    Q[a, b] = Q[b, a] = 0.5 * (E[c:] - e[a] - e[b])
     _, R = np.linalg.eigh(Q)
     return X @ R

@@ -44,7 +44,8 @@ What a rung can say about its own poles (one of)
   kinetic energy of each cable for mode vectors V (n_dof, n_modes);
 * ``cable_kinetic_energies(omega, x)`` -> (n_cables,): a continuous rung's cable kinetic
   energy per unit omega^2 / 2 at a natural frequency omega for the platform motion x (6,),
-  its clamped-cable poles being counted by ``cable_mode_count``.
+  its clamped-cable poles being counted by ``cable_mode_count``; for omega (n,) and x
+  (n, 6), all n at once, (n, n_cables).
 """
 
 from __future__ import annotations

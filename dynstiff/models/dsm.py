@@ -25,10 +25,10 @@ from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
     DYAD_PAIRS,
     cable_field,
-    cable_kinetic_energy,
     chord_parameters,
     end_block_coefficients,
     end_block_coefficients_and_count,
+    field_kinetic_energies,
     stack_parameters,
     static_block_coefficients,
 )
@@ -169,8 +169,8 @@ class FrequencyModel(PlatformModel):
         # (5 n, nf*nf) map from dyad coefficients of every cable to the free-DOF matrix:
         # J^T (e_a e_b^T) J = (J^T e_a)(J^T e_b)^T for the dyads (a, b) of DYAD_PAIRS
         self._lever_maps = lever_maps(self.lever_arms, fi)                 # (n, 3, nf)
-        G = np.einsum("cai,cam->cim", self._lever_maps,
-                      np.array([p.rotation for p in self.params]))   # (n, nf, 3)
+        self._rotations = np.array([p.rotation for p in self.params])      # (n, 3, 3)
+        G = np.einsum("cai,cam->cim", self._lever_maps, self._rotations)   # (n, nf, 3)
         a, b = np.array(DYAD_PAIRS).T
         self._assembly = np.einsum("cik,cjk->ckij", G[:, :, a], G[:, :, b]).reshape(
             5 * len(self.params), -1)
@@ -401,15 +401,19 @@ class FrequencyModel(PlatformModel):
         new._freeze()
         return new
 
-    def cable_kinetic_energies(self, omega: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    def cable_kinetic_energies(self, omega: ArrayLike,
+                               x: NDArray[np.float64]) -> NDArray[np.float64]:
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
         shape (n_cables,), for the platform motion x (6,) (dp [m], dtheta [rad]) at the
-        natural frequency omega [rad/s] (closed-form fields, theory.md §5.3, §6)."""
-        out = np.empty(len(self.params))
-        for i, (p, r) in enumerate(zip(self.params, self.lever_arms)):
-            dB = x[:3] + cross(x[3:], r)
-            out[i] = cable_kinetic_energy(p, omega, p.rotation.T @ dB, self.chordwise_inertia)
-        return out
+        natural frequency omega [rad/s] (closed-form fields, theory.md §5.3, §6); for omega of
+        shape (n,) and x of shape (n, 6), all n in one broadcast call, shape (n, n_cables)."""
+        one = np.ndim(omega) == 0
+        om = np.atleast_1d(np.asarray(omega, dtype=float))
+        xs = np.asarray(x, dtype=float).reshape(om.size, 6)
+        dB = xs[:, None, :3] + cross(xs[:, None, 3:], self.lever_arms[None])   # (n, c, 3)
+        d_local = np.einsum("cji,ncj->nci", self._rotations, dB)
+        E = field_kinetic_energies(self.stacked_params, om, d_local, self.chordwise_inertia)
+        return E[0] if one else E
 
     def cable_displacements(self, omega: float, x: NDArray[np.float64],
                             n_points: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -21,7 +21,7 @@ from dynstiff.models.base import PlatformModel, require_equilibrium
 from dynstiff.robot.platform import lever_map
 
 if TYPE_CHECKING:
-    from numpy.typing import NDArray
+    from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.robot.equilibrium import Equilibrium
 
@@ -224,11 +224,18 @@ class ExactModel(PlatformModel):
                     x: NDArray[np.float64]) -> NDArray[np.float64]:
         return cab.frame.T @ (x[:3] + np.cross(x[3:], r))
 
-    def cable_kinetic_energies(self, omega: float, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    def cable_kinetic_energies(self, omega: ArrayLike,
+                               x: NDArray[np.float64]) -> NDArray[np.float64]:
         """Kinetic energy of every cable per unit omega^2 / 2 [kg m^2 per unit amplitude^2],
-        shape (n_cables,), for the platform motion x (6,) at omega [rad/s] (theory.md §11.3)."""
-        return np.array([c.kinetic_energy(omega, self._end_motion(c, r, x))
-                         for c, r in zip(self.cables, self.lever_arms)])
+        shape (n_cables,), for the platform motion x (6,) at omega [rad/s] (theory.md §11.3);
+        for omega of shape (n,) and x of shape (n, 6), shape (n, n_cables)."""
+        one = np.ndim(omega) == 0
+        om = np.atleast_1d(np.asarray(omega, dtype=float))
+        xs = np.asarray(x, dtype=float).reshape(om.size, 6)
+        E = np.array([[c.kinetic_energy(w, self._end_motion(c, r, xk))
+                       for c, r in zip(self.cables, self.lever_arms)]
+                      for w, xk in zip(om, xs)]).reshape(om.size, len(self.cables))
+        return E[0] if one else E
 
     def cable_displacements(self, omega: float, x: NDArray[np.float64],
                             n_points: int = 41) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
