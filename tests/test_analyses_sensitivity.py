@@ -360,3 +360,20 @@ def test_the_repr_counts_modes_and_parameters(cogiro_dsm):
     assert repr(one) == "SensitivityResult(1 mode x 1 parameter, dsm rung at fixed pose)"
     two = frequency_sensitivities(model, ["mass", "EA"], n_modes=2)
     assert repr(two) == "SensitivityResult(2 modes x 2 parameters, dsm rung at fixed pose)"
+
+
+def test_a_loss_factor_beside_frequency_parameters_keeps_each_columns_meaning(cogiro_dsm):
+    """Mixed parameters: each column is what it is alone, to rounding (the forms of all the
+    parameters are one stacked product): the loss factor's d f = 0 and its d zeta; EA's and
+    the mass's d f with d zeta NaN, not computed; for lone roots."""
+    model = cogiro_dsm[1]
+    both = frequency_sensitivities(model, ["EA", "loss_factor", "mass"], n_modes=6)
+    for j, name in enumerate(["EA", "loss_factor", "mass"]):
+        alone = frequency_sensitivities(model, [name], n_modes=6)
+        np.testing.assert_allclose(both.derivative[:, j], alone.derivative[:, 0], rtol=1e-12)
+        np.testing.assert_allclose(both.damping_derivative[:, j],
+                                   alone.damping_derivative[:, 0], rtol=1e-12)
+    assert np.all(both.derivative[:, 1] == 0) and np.all(both.damping_derivative[:, 1] > 0)
+    assert np.all(np.isnan(both.damping_derivative[:, [0, 2]]))
+    assert np.all(both.derivative[:, 0] > 0) and np.all(np.isfinite(both.derivative))
+    assert len(set(both.cluster)) == 6                          # all lone roots

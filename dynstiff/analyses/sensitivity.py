@@ -22,18 +22,17 @@ undamped mode: the modal strain energy method).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from dynstiff._text import counted
 from dynstiff._validate import tension_reference as checked_reference
 from dynstiff.analyses import eigen_matrix
 from dynstiff.analyses.eigen import eigenfrequencies, validated_request
 from dynstiff.analyses.sensitivity_kernels import CS_STEP, perturbed_primitives, primitives
 from dynstiff.analyses.sensitivity_lumped import LumpedLinearisation
 from dynstiff.analyses.sensitivity_parameters import expand_parameters
+from dynstiff.analyses.sensitivity_result import SensitivityResult
 from dynstiff.analyses.sensitivity_rungs import exact_fields, forms
 from dynstiff.analyses.sensitivity_statics import LinearisedEquilibrium
 from dynstiff.errors import InvalidParameterError, UnsupportedAnalysisError
@@ -43,9 +42,6 @@ from dynstiff.models.dsm_compiled import stiffness_and_count
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-    import pandas as pd
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
     from numpy.typing import ArrayLike, NDArray
 
     from dynstiff.analyses.sensitivity_parameters import Parameter
@@ -61,148 +57,6 @@ __all__ = ["SensitivityResult", "frequency_sensitivities", "sensitivities_at", "
 RUNGS = ("spring", "catenary", "dsm", "exact", "lumped")
 _TWO_PI = 2.0 * np.pi
 _CLUSTER_RTOL = 1e-8
-
-
-@dataclass(frozen=True)
-class SensitivityResult:
-    """Derivatives of the natural frequencies with respect to parameters.
-
-    Attributes
-    ----------
-    freq_hz : ndarray, shape (m,)
-        Natural frequencies of the undamped model [Hz].
-    parameters : tuple of str
-        Parameter names (:mod:`dynstiff.analyses.sensitivity_parameters`).
-    values : ndarray, shape (p,)
-        Their values at the model.
-    units : tuple of str
-        Their units.
-    derivative : ndarray, shape (m, p)
-        d f_k / d p_j [Hz per unit of p_j]; 0 for a loss factor; NaN for a mode whose
-        platform is at rest on a cable pole (``note``). Within a cluster of coincident
-        modes, the one-sided derivatives for an increase of p_j, ascending.
-    damping_derivative : ndarray, shape (m, p)
-        d zeta_k / d p_j [per unit] of the modal damping ratio, for the loss factors (first
-        order about the undamped mode); NaN for the other parameters.
-    cluster : ndarray of int, shape (m,)
-        Modes with the same number are coincident (one subspace).
-    platform_share : ndarray, shape (m,)
-        Platform share of each mode's kinetic energy [-] (theory.md §13.3).
-    rung, hold : str
-    note : str
-
-    Examples
-    --------
-    >>> import dynstiff as ds
-    >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-    >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
-    >>> s.parameters, s.derivative.shape
-    (('EA', 'mass'), (2, 2))
-    """
-
-    freq_hz: np.ndarray
-    parameters: tuple
-    values: np.ndarray
-    units: tuple
-    derivative: np.ndarray
-    damping_derivative: np.ndarray
-    cluster: np.ndarray
-    platform_share: np.ndarray
-    rung: str
-    hold: str
-    note: str = ""
-
-    @property
-    def relative(self) -> NDArray[np.float64]:
-        """Change of each frequency per 1 % of each parameter, 0.01 p df/dp [Hz], (m, p).
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
-        >>> [f"{v:+.4f}" for v in s.relative[0]]      # Hz per +1 % of EA, of the mass
-        ['+0.0108', '-0.0102']
-        """
-        return 0.01 * self.derivative * self.values[None, :]
-
-    @property
-    def elasticity(self) -> NDArray[np.float64]:
-        """(p / f) df/dp [-], (m, p): the relative change of f per relative change of p.
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
-        >>> [f"{v:+.3f}" for v in s.elasticity[0]]
-        ['+0.487', '-0.461']
-        """
-        return self.derivative * self.values[None, :] / self.freq_hz[:, None]
-
-    def __repr__(self) -> str:
-        return (f"SensitivityResult({counted(len(self.freq_hz), 'mode')} x "
-                f"{counted(len(self.parameters), 'parameter')}, {self.rung} rung at fixed "
-                f"{self.hold})")
-
-    def to_frame(self) -> pd.DataFrame:
-        """pandas DataFrame, one row per mode and parameter: frequency, parameter, value,
-        unit, df/dp, df per 1 %, elasticity, d zeta/dp.
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
-        >>> len(s.to_frame())
-        4
-        """
-        import pandas as pd
-        m, p = self.derivative.shape
-        return pd.DataFrame({
-            "mode": np.repeat(np.arange(1, m + 1), p),
-            "freq [Hz]": np.repeat(self.freq_hz, p),
-            "cluster": np.repeat(self.cluster, p),
-            "platform share [-]": np.repeat(self.platform_share, p),
-            "parameter": np.tile(self.parameters, m),
-            "value": np.tile(self.values, m), "unit": np.tile(self.units, m),
-            "df/dp [Hz/unit]": self.derivative.ravel(),
-            "df per 1 % [Hz]": self.relative.ravel(),
-            "elasticity [-]": self.elasticity.ravel(),
-            "dzeta/dp [1/unit]": self.damping_derivative.ravel()})
-
-    def plot(self, modes: tuple[int, int] = (0,), n_parameters: int = 10,
-             ax: Axes | None = None) -> Figure:
-        """Tornado chart per mode: the change of the frequency per 1 % of each parameter,
-        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure.
-
-        Examples
-        --------
-        >>> import dynstiff as ds
-        >>> m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
-        >>> s = ds.frequency_sensitivities(m, ["EA", "mass"], n_modes=2)
-        >>> import matplotlib.pyplot as plt
-        >>> plt.close(s.plot())
-        """
-        import matplotlib.pyplot as plt
-        modes = list(modes)
-        if ax is None:
-            fig, axes = plt.subplots(1, len(modes), figsize=(4.2 * len(modes), 3.6),
-                                     squeeze=False)
-            axes = axes[0]
-        else:
-            axes, fig = [ax], ax.figure
-        for a, k in zip(axes, modes):
-            r = np.nan_to_num(self.relative[k])
-            order = np.argsort(np.abs(r))[::-1][:n_parameters][::-1]
-            a.barh(np.arange(order.size), r[order],
-                   color=np.where(r[order] >= 0, "tab:blue", "tab:red"))
-            a.set_yticks(np.arange(order.size), [self.parameters[j] for j in order])
-            a.axvline(0.0, color="0.3", lw=0.8)
-            a.set(xlabel="change per +1 % of the parameter [Hz]",
-                  title=f"mode {k + 1}: {self.freq_hz[k]:.4g} Hz")
-        fig.tight_layout()
-        return fig
 
 
 def frequency_sensitivities(
@@ -253,7 +107,7 @@ def frequency_sensitivities(
         raise UnsupportedAnalysisError(
             f"frequency sensitivities need one of the rungs {RUNGS}, got {model.rung!r}")
     n_modes, fmax_hz = validated_request(n_modes, fmax_hz)
-    tension_reference = _checked_request(model, parameters, hold, tension_reference)
+    tension_reference, _ = _checked_request(model, parameters, hold, tension_reference)
     m = model.undamped()
     f = eigenfrequencies(m, n_modes=n_modes, fmax_hz=fmax_hz)
     return sensitivities_at(m, f, parameters, hold, tension_reference)
@@ -278,14 +132,12 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
     >>> round(float(sensitivities_at(m, f, ["mass"]).derivative[0, 0]), 5)  # Hz/kg
     -0.01118
     """
-    tension_reference = _checked_request(model, parameters, hold, tension_reference)
+    tension_reference, params = _checked_request(model, parameters, hold, tension_reference)
     m = model.undamped()
     f = np.asarray(freq_hz, dtype=float)
     if m.rung == "lumped":
         return _lumped(m, f, parameters, hold, tension_reference)
     lin = linearisation or LinearisedEquilibrium(m.equilibrium, hold, tension_reference)
-    params = _parameters(parameters, m.robot, m.pose, hold, tension_reference,
-                         m.equilibrium.unstretched_lengths)
     dy = lin.derivatives([p.direction for p in params])
     groups, X, moving = _null_vectors(m, f)
     pairs = [(k, a, b) for k, g in enumerate(groups) for a in range(len(g))
@@ -315,17 +167,20 @@ def sensitivities_at(model: PlatformModel, freq_hz: NDArray[np.float64],
     return _result(out, f, params, groups, m.rung, hold, note)
 
 
-def _checked_request(model: PlatformModel, parameters: list[str | Parameter], hold: str,
-                     tension_reference: ArrayLike | None) -> NDArray[np.float64] | None:
+def _checked_request(
+        model: PlatformModel, parameters: list[str | Parameter], hold: str,
+        tension_reference: ArrayLike | None,
+) -> tuple[NDArray[np.float64] | None, list[Parameter]]:
     """``hold``, ``tension_reference`` and the parameter names checked before any work (a
-    typed error naming the argument); returns the reference as an array (or None)."""
+    typed error naming the argument); returns the reference as an array (or None) and the
+    parameters expanded at the model's pose."""
     if hold not in ("pose", "lengths"):
         raise InvalidParameterError(f"hold must be 'pose' or 'lengths', got {hold!r}")
     if tension_reference is not None:
         tension_reference = checked_reference(tension_reference, model.robot.n_cables)
     L0 = (model.mass_model if model.rung == "lumped" else model.equilibrium).unstretched_lengths
-    _parameters(parameters, model.robot, model.pose, hold, tension_reference, L0)
-    return tension_reference
+    return tension_reference, _parameters(parameters, model.robot, model.pose, hold,
+                                          tension_reference, L0)
 
 
 def _parameters(parameters: list[str | Parameter], robot: Robot, pose: Pose, hold: str,
@@ -368,20 +223,23 @@ def _null_vectors(
     """Clusters of coincident roots, their null spaces X (6, c) of K(omega) (full
     platform vectors) and whether they move the platform (theory.md §5.3)."""
     groups = _clusters(f)
+    X, moving = [], np.zeros(len(f), bool)
+    if not groups:
+        return groups, X, moving
     w = _TWO_PI * f
     scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
-    X, moving = [], np.zeros(len(f), bool)
-    ends = np.array([[g[0], g[-1]] for g in groups], dtype=int).reshape(-1, 2)
+    ends = np.array([[g[0], g[-1]] for g in groups], dtype=int)
     w_ends = (w[ends] * np.array([1 - 1e-9, 1 + 1e-9])).ravel()
     # K at the roots and the cable counts beside them, from one call
-    K, J0 = (stiffness_and_count(m, np.concatenate([w[[g[0] for g in groups]], w_ends]))
-             if len(f) else (np.zeros((0,)), np.zeros((0,), dtype=int)))
-    K, J0 = K[:len(groups)], J0[len(groups):].reshape(-1, 2)
+    K, J0 = stiffness_and_count(m, np.concatenate([w[[g[0] for g in groups]], w_ends]))
+    K, J0 = np.real(K[:len(groups)]), J0[len(groups):].reshape(-1, 2)
+    finite = np.all(np.isfinite(K), axis=(1, 2))
+    eigs = dict(zip(np.flatnonzero(finite),
+                    zip(*np.linalg.eigh(0.5 * (K[finite] + K[finite].transpose(0, 2, 1))))))
     for j, g in enumerate(groups):
-        Kk = np.real(K[j])
         x = np.zeros((6, len(g)))
-        if np.all(np.isfinite(Kk)):
-            ev, V = np.linalg.eigh(0.5 * (Kk + Kk.T))
+        if finite[j]:
+            ev, V = eigs[j]
             order = np.argsort(np.abs(ev))[:len(g)]
             small = np.abs(ev[order]) <= 1e-6 * scale
             if J0[j, 1] == J0[j, 0] or np.all(small):
@@ -419,8 +277,16 @@ def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
     index = {}
     for i, (k, a, b) in enumerate(pairs):
         index[(k, a, b)] = index[(k, b, a)] = i
+    one = [k for k, g in enumerate(groups) if len(g) == 1 and moving[g[0]]]
+    if one:                                            # lone roots: mu = A / B, all at once
+        i = np.array([index[(k, 0, 0)] for k in one])
+        g1 = np.array([groups[k][0] for k in one])
+        mu = Ap[:, i].T / Bp[i, None]                                  # (n_one, p)
+        out["d"][g1] = np.where(damping, 0.0, mu / (2.0 * w[g1, None] * _TWO_PI))
+        out["z"][g1[:, None], damping] = (mu / (2.0 * w[g1, None] ** 2))[:, damping]
+        out["share"][g1] = masses[g1] / np.real(Bp[i])
     for k, g in enumerate(groups):
-        if not moving[g[0]]:
+        if not moving[g[0]] or len(g) == 1:
             continue
         c = len(g)
         sel = np.array([[index[(k, a, b)] for b in range(c)] for a in range(c)])

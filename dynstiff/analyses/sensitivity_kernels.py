@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._vec import cross
+
 if TYPE_CHECKING:
     from typing import Any
 
@@ -248,7 +250,7 @@ def wrench(P: dict[str, NDArray[Any]], q: dict[str, NDArray[Any]], g: float) -> 
     fg = m[..., None] * np.array([0.0, 0.0, -g])
     rG = np.einsum("...ij,...j->...i", q["R"], P["com"])
     F = q["f"].sum(-2) + fg
-    M = np.cross(q["r"], q["f"]).sum(-2) + np.cross(rG, fg)
+    M = cross(q["r"], q["f"]).sum(-2) + cross(rG, fg)
     return np.concatenate([F, M], -1)
 
 

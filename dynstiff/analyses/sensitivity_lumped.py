@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._vec import cross
 from dynstiff.analyses.sensitivity_kernels import (
     CS_STEP,
     geometric_stiffness,
@@ -124,7 +125,7 @@ class LumpedLinearisation:
         fg = m[:, None] * gv
         rG = np.einsum("bij,bj->bi", R, P["com"])
         W = np.concatenate([F.sum(1) + fg,
-                            np.cross(r, F).sum(1) + np.cross(rG, fg)], -1)
+                            cross(r, F).sum(1) + cross(rG, fg)], -1)
         out[:, :self.nf] = W[:, self.fi]
         return out
 
@@ -156,7 +157,7 @@ class LumpedLinearisation:
             ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
                 """Node motions of cable i (anchor 0, interior, B = J_i x), (B, m, N+1, 3)."""
                 inner = v[:, o:o + 3 * (N - 1)].reshape(len(v), N - 1, 3)
-                end = v6[None, :, :3] + np.cross(v6[None, :, 3:], r[:, None, i, :])
+                end = v6[None, :, :3] + cross(v6[None, :, 3:], r[:, None, i, :])
                 nodes = [np.zeros((nb, len(v), 1, 3)),
                          np.broadcast_to(inner, (nb,) + inner.shape), end[:, :, None]]
                 return np.concatenate(nodes, 2), inner

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._vec import cross
 from dynstiff.analyses.sensitivity_kernels import (
     catenary_flexibility,
     geometric_stiffness,
@@ -52,7 +53,7 @@ _EZ = np.array([0.0, 0.0, 1.0])
 def _motions(x: NDArray[np.float64], r: NDArray[np.complex128]) -> NDArray[np.complex128]:
     """Motion of every attachment, J_i x = dp + dtheta x r_i: x (m, 6), r (B, n, 3) ->
     (B, m, n, 3)."""
-    return x[None, :, None, :3] + np.cross(x[None, :, None, 3:], r[:, None, :, :])
+    return x[None, :, None, :3] + cross(x[None, :, None, 3:], r[:, None, :, :])
 
 
 def _platform_terms(lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
@@ -80,7 +81,7 @@ def _chord_frames(q: dict[str, NDArray[np.complex128]],
     gv = np.array([0.0, 0.0, -g])
     gp = gv - (eu @ gv)[..., None] * eu
     ev = gp / np.sqrt(np.sum(gp * gp, -1))[..., None]
-    return eu, ev, np.cross(eu, ev), L, q["lh"] / L
+    return eu, ev, cross(eu, ev), L, q["lh"] / L
 
 
 def dsm_forms(model: FrequencyModel, lin: LinearisedEquilibrium, Y: NDArray[np.complex128],
@@ -145,7 +146,7 @@ def _static_local(q: dict[str, NDArray[np.complex128]], H: NDArray[np.complex128
 def _frames(q: dict[str, NDArray[np.complex128]]) -> NDArray[np.complex128]:
     """Local frames E = [e_h, e_z x e_h, e_z] of every cable, (B, n, 3, 3)."""
     eh = q["eh"]
-    ep = np.cross(np.broadcast_to(_EZ, eh.shape), eh)
+    ep = cross(np.broadcast_to(_EZ, eh.shape), eh)
     return np.stack([eh, ep, np.broadcast_to(_EZ, eh.shape)], -1)
 
 
@@ -184,7 +185,7 @@ def exact_fields(model: ExactModel, omega: NDArray[np.float64],
     """
     out = []
     for cab, r in zip(model.cables, model.lever_arms):
-        loc = (X[:, :3] + np.cross(X[:, 3:], r)) @ cab.frame
+        loc = (X[:, :3] + cross(X[:, 3:], r)) @ cab.frame
         static = np.array([np.real(cab.end_response(0.0, e)) for e in np.eye(3)])
         dyn = np.array([np.real(cab.end_response(w, d)) for w, d in zip(omega, loc)])
         out.append(np.array([dyn.reshape(len(omega), -1, 3),

@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from dynstiff._vec import cross
 from dynstiff.analyses.sensitivity_kernels import (
     CS_STEP,
     cable_quantities,
@@ -190,7 +191,7 @@ class LinearisedEquilibrium:
         bal = wrench(P, q, self.g)[..., self.fi]
         if self.hold == "pose":
             _, _, _, t, nu = self._split(y)
-            W = np.concatenate([q["f"], np.cross(q["r"], q["f"])], -1) / q["TB"][..., None]
+            W = np.concatenate([q["f"], cross(q["r"], q["f"])], -1) / q["TB"][..., None]
             Wt_nu = np.einsum("...nj,...j->...n", W[..., self.fi], nu)
             lo = self._min_tension(q, V0)
             t_ref = P["t_ref"] + (P["t_min"][..., None] + q["TB"] - lo
@@ -219,7 +220,7 @@ class LinearisedEquilibrium:
         n, k = self.n, self.k
         opt = R[3 * n:4 * n]                       # with nu = 0: t - t_ref (free cables)
         H, V0, L0, q = self.quantities(y, self.P)
-        W = (np.concatenate([q["f"], np.cross(q["r"], q["f"])], -1)
+        W = (np.concatenate([q["f"], cross(q["r"], q["f"])], -1)
              / q["TB"][:, None])[:, self.fi]       # (n, k): W^T
         free = self.active == 0
         g = np.real(np.where(free, opt, 0.0))
