@@ -16,6 +16,11 @@ projected (``--ten-thousand --against f54db41``, 2 local processes, one run): 10
 in 18.4 s of wall (17.2 s per 10,000 poses, 3.41 ms of CPU a pose, workers and parent)
 against 73.3 s (68.8 s per 10,000, 13.66 ms a pose) at f54db41. The projection below scales the
 pool's extra CPU of a small map (mostly the workers' start) to 10,000 poses: 23 s.
+Measured again later (``--ten-thousand --against 2b8cc54``, load 1.4-1.5): 10,648 poses in
+19.5 s (18.3 s per 10,000, 3.64 ms of CPU a pose) against 20.4 s at 2b8cc54; and
+``--per-pose --against c0371f8`` (the code of the 17.2 s figure) in one run: 3.90 against
+3.86 ms with the band, 3.20 against 3.13 ms without, maps identical (the machine about 4 %
+slower than in that run, theory.md §13.7).
 
 Run:  OPENBLAS_NUM_THREADS=1 python benchmarks/bench_workspace.py [--poses N] [--repeats R]
       [--no-dask]
