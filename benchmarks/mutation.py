@@ -1332,10 +1332,10 @@ EQUIVALENT.update({
         "their own class)",
     "dynstiff.analyses.sensitivity.x__modal_masses__mutmut_28":
         "einsum's subscripts in capitals: the same contraction",
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_95":
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_82":
         "the fields '' instead of None off the exact rung: only the exact rung's forms read "
         "them, and it sets them",
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_110":
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_97":
         "the second vector's fields computed even when it is the first: the same fields",
     "dynstiff.analyses.optimal_tensions.xǁ_Searchǁrun__mutmut_166":
         "the parabola's fraction without its upper clip 0.9: on that branch (ratio <= 0.1) "
@@ -1424,11 +1424,6 @@ EQUIVALENT.update({
     "dynstiff.models.dsm.xǁFrequencyModelǁ_with_model_damping__mutmut_24":
         "the damped copy's platform-damping term not reset to None before it is computed: "
         "the copy is made only of an undamped model, whose own term is None already",
-    **{f"dynstiff.analyses.modes.x__energy_basis__mutmut_{n}":
-       "the polarisation loop over more pairs (b from 0, or from a - 1, which is the last "
-       "index for a = 0): each extra entry is written with its own value again (Q symmetric, "
-       "x_a + x_b summed exactly either way), a diagonal one as (E(2 x) - 2 E(x)) / 2 = E(x) "
-       "to rounding" for n in (29, 31)},
     "dynstiff.analyses.modes.x_modes__mutmut_62":
         "the root search without method='wittrick-williams' takes 'auto': this branch is "
         "reached only by a model with cable_kinetic_energies (dsm, exact), continuous rungs "
@@ -2307,10 +2302,7 @@ EQUIVALENT.update({
     **{f"dynstiff.analyses.settings.x_analysis_settings__mutmut_{n}":
        f"getattr(scene, '{field}') without its default None: every Scene has the field"
        for n, field in ((64, "model"), (89, "segments"))},
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_43":
-        "hold=None to _parameters: hold only refuses names, and _checked_request has "
-        "already checked them with the real hold",
-    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_109":
+    "dynstiff.analyses.sensitivity.x_sensitivities_at__mutmut_96":
         "array_equal(None, Xb) is False: the fields of Xb are computed again when Xb equals "
         "Xa, the same values (exact_fields is a pure function of its arguments)",
     **{f"dynstiff.plot.modes.x_plot_tensions__mutmut_{n}":

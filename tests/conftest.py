@@ -430,3 +430,44 @@ def obey_the_rule(fn, names):
     if not any(issubclass(w.category, PoleWarning) for w in caught):
         assert _all_finite(result), f"non-finite result without a PoleWarning: {result!r}"
     return result
+
+
+class PoleAtTheRoot:
+    """A closed-form model with a cable pole planted at ``root_hz`` (J0 steps there, in
+    ``cable_mode_count`` and ``dynamic_stiffness_and_count``) and K's eigenvalue along its
+    null vector at that root set to ``null_eigenvalue`` [N/m] (the vector itself unchanged):
+    what a root sitting on a cable pole looks like, with the platform moving (a small null
+    eigenvalue) or at rest (a large one), theory.md §5.3. Its fused K and count
+    (``dynamic_stiffness_and_count``, what the root search reads) are the model's own, so
+    the search finds the model's roots."""
+
+    def __init__(self, model, root_hz, null_eigenvalue):
+        self._m, self._w = model, 2 * np.pi * root_hz
+        ev, V = np.linalg.eigh(model.dynamic_stiffness(self._w)[0])
+        v = V[:, np.argmin(np.abs(ev))]
+        self._shift = (null_eigenvalue - ev[np.argmin(np.abs(ev))]) * np.outer(v, v)
+
+    def __getattr__(self, name):
+        return getattr(self._m, name)
+
+    def undamped(self):
+        return self
+
+    def _at_root(self, omega):
+        return np.abs(np.asarray(omega) - self._w) < 1e-12 * self._w
+
+    def cable_mode_count(self, omega):
+        return self._m.cable_mode_count(omega) + (np.asarray(omega) > self._w)
+
+    def dynamic_stiffness(self, omega):
+        K = self._m.dynamic_stiffness(omega)
+        K[np.atleast_1d(self._at_root(omega))] += self._shift
+        return K
+
+
+class PoleAtTheRootCounted(PoleAtTheRoot):
+    """:class:`PoleAtTheRoot` whose fused K and count (what a root search reads, and the
+    sensitivities' null vectors) see the planted pole too."""
+
+    def dynamic_stiffness_and_count(self, omega):
+        return self.dynamic_stiffness(omega), self.cable_mode_count(omega)

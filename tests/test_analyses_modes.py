@@ -151,3 +151,51 @@ def test_cable_fields_are_taken_at_the_modes_frequency_and_refused_without_field
                            match=rf"^cable_fields needs closed-form cable fields \(rung 'dsm'\); "
                                  rf"the '{rung}' model has none{tail}"):
             ds.cable_fields(ds.build_model(cogiro_eq, rung, segments=4), res, 0)
+
+
+def test_near_a_pole_each_roots_share_is_that_of_its_total_modal_mass():
+    """Roots a few 1e-9 from the cables' poles (FAST's 4th root is 3.3e-9 from the first pole
+    of all six cables), where K's null eigenvalue is far from zero on the massless scale:
+    only a pole within 1e-9 of the root may hold the platform at rest, so such a root that
+    moves the platform keeps its shape, and dynstiff.modes' platform shares equal those of
+    the total modal mass identity (participation.platform_shares, theory.md §13.3) to 1e-8.
+    FAST's closed form is built without its guard (guard_rtol=None), which would warn that
+    the exact rung is closer; the identity holds on either."""
+    from dynstiff.analyses.modes import _clusters
+    from dynstiff.analyses.participation import platform_shares
+    m = ds.build_model(ds.load_scene("fast").equilibrium(), "dsm",
+                       guard_rtol=None).undamped()        # FAST's closed form would warn
+    r = ds.modes(m, n_modes=24)
+    scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
+    K = m.dynamic_stiffness(2 * np.pi * r.freq_hz)
+    share, _ = platform_shares(m, r.freq_hz)
+    far = [k for ks in _clusters(r.freq_hz) for k in ks[:1]
+           if np.abs(np.linalg.eigvalsh(K[k])).min() > 1e-6 * scale and share[k] > 1e-3]
+    assert far == [3, 5]                                   # the case this test is about
+    np.testing.assert_allclose(1.0 - r.cable_energy_fraction, share, rtol=0, atol=1e-8)
+
+
+@pytest.mark.parametrize("factor, moves", [(0.5, True), (2.0, False)])
+def test_a_root_on_a_cable_pole_moves_the_platform_only_with_a_small_null_eigenvalue(factor,
+                                                                                     moves):
+    """A pole planted at CoGiRo's 2nd root (J0 steps there): the root keeps its platform
+    shape when K's null eigenvalue is at most 1e-6 of the massless stiffness's largest
+    |eigenvalue| (here 0.5e-6), and is purely local, all cable, above it (2e-6); the other
+    roots are unchanged (theory.md §5.3). The wrapped model's roots come from the numpy
+    search, not the compiled one: the same to 2e-13."""
+    from conftest import PoleAtTheRoot
+    m = ds.FrequencyModel(ds.load_scene("cogiro").equilibrium())
+    ref = ds.modes(m, n_modes=4)
+    scale = np.abs(np.linalg.eigvalsh(m.massless_stiffness())).max()
+    r = ds.modes(PoleAtTheRoot(m, ref.freq_hz[1], factor * 1e-6 * scale), n_modes=4)
+    np.testing.assert_allclose(r.freq_hz, ref.freq_hz, rtol=1e-11)  # the numpy search's
+    others = [0, 2, 3]
+    np.testing.assert_allclose(r.platform_shapes[others], ref.platform_shapes[others],
+                               rtol=1e-9, atol=1e-12)
+    if moves:
+        np.testing.assert_allclose(np.abs(r.platform_shapes[1]),
+                                   np.abs(ref.platform_shapes[1]), rtol=1e-9, atol=1e-12)
+        assert r.cable_energy_fraction[1] == pytest.approx(ref.cable_energy_fraction[1],
+                                                           rel=1e-9)
+    else:
+        assert not np.any(r.platform_shapes[1]) and r.cable_energy_fraction[1] == 1.0

@@ -8,7 +8,7 @@ from conftest import inverted_stewart
 
 import dynstiff as ds
 from dynstiff.analyses import sensitivity_statics
-from dynstiff.analyses.sensitivity import frequency_sensitivities
+from dynstiff.analyses.sensitivity import frequency_sensitivities, sensitivities_at
 from dynstiff.analyses.sensitivity_parameters import equilibrium_with, expand_parameters
 from dynstiff.errors import InvalidParameterError
 
@@ -377,3 +377,78 @@ def test_a_loss_factor_beside_frequency_parameters_keeps_each_columns_meaning(co
     assert np.all(np.isnan(both.damping_derivative[:, [0, 2]]))
     assert np.all(both.derivative[:, 0] > 0) and np.all(np.isfinite(both.derivative))
     assert len(set(both.cluster)) == 6                          # all lone roots
+
+
+class _OtherRung:
+    """A closed-form model under another rung's name (the interface of the ladder, no
+    sensitivities)."""
+
+    rung = "other"
+
+    def __init__(self, model):
+        self._m = model
+
+    def __getattr__(self, name):
+        return getattr(self._m, name)
+
+
+def test_a_rung_without_sensitivities_is_refused_naming_the_rungs(cogiro_dsm):
+    """Before any work: the rungs that have sensitivities, and the one given."""
+    from dynstiff.errors import UnsupportedAnalysisError
+    with pytest.raises(UnsupportedAnalysisError,
+                       match=r"^frequency sensitivities need one of the rungs \('spring', "
+                             r"'catenary', 'dsm', 'exact', 'lumped'\), got 'other'$"):
+        frequency_sensitivities(_OtherRung(cogiro_dsm[1]), ["EA"], n_modes=2)
+
+
+def test_the_tornado_draws_the_largest_changes_top_down_coloured_by_sign(cogiro_dsm):
+    """As its docstring says: the 10 largest |change per 1 %| by default, the largest at the
+    top, named on the axis, blue for a rise (a zero change too: the loss factor's) and red
+    for a fall, a zero line 0.8 pt wide; one mode gives one panel."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgba
+    names = ["EA", "mass_per_length", "loss_factor", "mass", "inertia", "com_z", "anchor_2_x",
+             "anchor_5_y", "pose_z", "anchor_1_z", "t_min", "EA_3"]
+    s = frequency_sensitivities(cogiro_dsm[1], names, n_modes=1)
+    r = s.relative[0]
+    assert np.any(r < 0) and np.any(r > 0) and np.sum(r == 0) == 1
+    for n_shown, fig in ((10, s.plot()), (12, s.plot(n_parameters=12))):
+        (ax,) = fig.axes
+        widths = np.array([b.get_width() for b in ax.patches])
+        top_down = np.argsort(np.abs(r))[::-1][:n_shown]
+        np.testing.assert_array_equal(widths[::-1], r[top_down])
+        assert [t.get_text() for t in ax.get_yticklabels()][::-1] == [names[j]
+                                                                      for j in top_down]
+        for b in ax.patches:
+            assert b.get_facecolor() == to_rgba("tab:blue" if b.get_width() >= 0
+                                                else "tab:red")
+        zero = [ln for ln in ax.get_lines() if list(ln.get_xdata()) == [0.0, 0.0]]
+        assert zero[0].get_linewidth() == 0.8
+        plt.close(fig)
+    assert 0.0 in widths                                # the loss factor, drawn in blue
+
+
+@pytest.mark.parametrize("factor, moves", [(0.5, True), (2.0, False)])
+def test_a_root_on_a_cable_pole_has_sensitivities_only_if_the_platform_moves(cogiro_dsm,
+                                                                            factor, moves):
+    """A pole planted at CoGiRo's 1st root (J0 steps there): with K's null eigenvalue at
+    most 1e-6 of the massless stiffness's largest |eigenvalue| (0.5e-6 here) the platform
+    moves and the root keeps the model's own sensitivities; above it (2e-6) the platform is
+    at rest: NaN, and the note says why (theory.md §5.3)."""
+    from conftest import PoleAtTheRootCounted
+    model = cogiro_dsm[1]
+    f = ds.eigenfrequencies(model, n_modes=3)
+    ref = sensitivities_at(model, f, ["EA", "mass"])
+    scale = np.abs(np.linalg.eigvalsh(model.massless_stiffness())).max()
+    s = sensitivities_at(PoleAtTheRootCounted(model, f[0], factor * 1e-6 * scale), f,
+                         ["EA", "mass"])
+    np.testing.assert_allclose(s.derivative[1:], ref.derivative[1:], rtol=1e-12)
+    if moves:
+        np.testing.assert_allclose(s.derivative[0], ref.derivative[0], rtol=1e-6)
+        assert s.platform_share[0] == pytest.approx(ref.platform_share[0], rel=1e-9)
+        assert s.note == ""
+    else:
+        assert np.all(np.isnan(s.derivative[0])) and np.isnan(s.platform_share[0])
+        assert s.note.startswith("modes with the platform at rest on a cable pole (NaN)")

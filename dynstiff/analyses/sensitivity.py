@@ -269,9 +269,9 @@ def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
               pairs: list[tuple[int, int, int]], Ap: NDArray[np.float64], Bp: NDArray[np.float64],
               w: NDArray[np.float64], params: list[Parameter], moving: NDArray[np.bool_],
               masses: NDArray[np.float64]) -> None:
-    """Per cluster: the eigenvalues of (A_j, B) for every parameter j, into d f/dp and
-    d zeta/dp (module notes); the platform share x^T M_p x / x^T B x of each mode from
-    ``masses``, its vector's x^T M_p x."""
+    """Per cluster: the eigenvalues of (A_j, B) for every parameter j (A_j / B for all the
+    lone roots at once), into d f/dp and d zeta/dp (module notes); the platform share
+    x^T M_p x / x^T B x of each mode from ``masses``, its vector's x^T M_p x."""
     import scipy.linalg
     damping = np.array([p.kind == "damping" for p in params])
     index = {}
@@ -294,8 +294,8 @@ def _assemble(out: dict[str, NDArray[np.float64]], groups: list[list[int]],
         lam = w[g[0]] ** 2
         for j in range(len(params)):
             A = Ap[j][sel]
-            mu = np.array([A[0, 0] / B[0, 0]]) if c == 1 else \
-                np.sort(scipy.linalg.eigh(0.5 * (A + A.T), 0.5 * (B + B.T), eigvals_only=True))
+            mu = np.sort(scipy.linalg.eigh(0.5 * (A + A.T), 0.5 * (B + B.T),
+                                           eigvals_only=True))
             if damping[j]:
                 out["d"][g, j] = 0.0
                 out["z"][g, j] = mu / (2.0 * lam)

@@ -132,8 +132,12 @@ class SensitivityResult:
 
     def plot(self, modes: tuple[int, int] = (0,), n_parameters: int = 10,
              ax: Axes | None = None) -> Figure:
-        """Tornado chart per mode: the change of the frequency per 1 % of each parameter,
-        largest first (the ``n_parameters`` largest). Returns the matplotlib Figure.
+        """Tornado chart per mode: the change of the frequency per 1 % of each parameter
+        (:attr:`relative`, NaN drawn as 0), the ``n_parameters`` largest in magnitude, the
+        largest at the top, a rise in blue ("tab:blue", zero counted as a rise) and a fall in
+        red ("tab:red"), the parameters' names on the bars, a zero line (grey 0.3, 0.8 pt).
+        One panel per mode of ``modes``, side by side, 4.2 x 3.6 in each (or on ``ax``, the
+        first mode only). Returns the matplotlib Figure.
 
         Examples
         --------
