@@ -242,3 +242,19 @@ def test_a_multiple_root_found_again_goes_to_the_copy_whose_search_found_it(monk
         d = damped_modes(model, 3)
         np.testing.assert_allclose(d.omega, want, rtol=1e-7)
         assert np.all(d.residual[1:] < 1e-8)
+
+
+@pytest.mark.parametrize("eta", [1e-3, 0.02])
+def test_an_exactly_double_mode_gives_both_copies_the_damped_root(eta):
+    """The octahedron's two degenerate pairs (C3v, equal to the last bit) under a loss
+    factor of every cable, which keeps them double: both copies of each pair get the damped
+    root, a zero of K (residual below 1e-8). Before, at eta = 1e-3, the first copy's root
+    matched neither shape of the pair alone and tied with its twin's estimate, and was left
+    NaN (at 0.02 its null vector happened to match one shape)."""
+    eq = inverted_stewart().equilibrium(pose=ds.Pose([0.0, 0.0, 1.5]), tol=1e-12)
+    f = ds.eigenfrequencies(ds.FrequencyModel(eq), n_modes=6)
+    assert f[1] == f[2] and f[3] == f[4]
+    d = damped_modes(ds.build_model(eq, "dsm", cable_loss_factor=eta), n_modes=6)
+    assert np.all(np.isfinite(d.omega)) and np.all(d.residual < 1e-8)
+    np.testing.assert_allclose(d.omega[[2, 4]], d.omega[[1, 3]], rtol=1e-10)  # secant's tol
+    assert np.all(np.abs(np.diff(d.omega[[0, 1, 3, 5]])) > 0.1 * np.abs(d.omega[0]))

@@ -179,6 +179,26 @@ def test_a_cluster_of_coincident_modes_gives_the_derivatives_of_its_eigenvalues(
     np.testing.assert_allclose(s.derivative[2, 2], s.derivative[1, 2], rtol=1e-9)
 
 
+def test_a_cluster_has_the_damping_ratios_of_its_damped_roots():
+    """The octahedron's degenerate pairs under a loss factor of every cable (which keeps the
+    symmetry): d f = 0, d zeta of each pair the same for both, and each against the damped
+    roots (theory.md §5.4) at eta = h and 2 h, Richardson; EA beside it has no d zeta."""
+    rob, pose = inverted_stewart(), ds.Pose([0.0, 0.0, 1.5])
+    eq = rob.equilibrium(pose=pose, tol=1e-12)
+    s = frequency_sensitivities(ds.FrequencyModel(eq), ["loss_factor", "EA"], n_modes=6)
+    assert s.cluster.tolist() == [0, 1, 1, 2, 2, 3]
+    assert np.all(s.derivative[:, 0] == 0) and np.all(np.isnan(s.damping_derivative[:, 1]))
+
+    def zeta(eta):
+        e = equilibrium_with(rob, eq.pose, ["loss_factor"], [eta])
+        return ds.damped_modes(ds.FrequencyModel(e), n_modes=6).damping_ratio
+    h = 1e-3
+    ref = (4 * zeta(h) / h - zeta(2 * h) / (2 * h)) / 3
+    np.testing.assert_allclose(s.damping_derivative[:, 0], ref, rtol=1e-6)
+    np.testing.assert_allclose(s.damping_derivative[[2, 4], 0], s.damping_derivative[[1, 3], 0],
+                               rtol=1e-9)
+
+
 def test_loss_factor_gives_the_damping_ratio_of_the_damped_root(cogiro):
     """d zeta / d eta at eta = 0 against the damped roots (theory.md §5.4) of models with
     eta = h and 2 h, Richardson (zeta is odd in eta); the undamped frequencies do not move."""

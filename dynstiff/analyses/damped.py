@@ -83,8 +83,9 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
     from the real axis) are silenced. A root is accepted only if the eigenvalue of K nearest
     zero is below 1e-8 ||K||, and given to the undamped mode whose platform shape its null
     vector matches without ambiguity (mass-weighted MAC above 0.9 with it, below 0.5 with
-    every other), else to the mode whose estimate it is closest to (clusters of close modes
-    of similar shapes); never to a mode that has a root already, so heavy damping, where
+    every other), else to the mode whose estimate it is closer to than to any other mode's
+    (clusters of close modes of similar shapes; a copy of its own multiple mode is not a
+    rival); never to a mode that has a root already, so heavy damping, where
     first-order estimates pass a neighbour's root, gives NaN rather than that root. Both
     tests compare the modes asked for only: a lone mode (``n_modes=1``) keeps any root its
     secant converges to in its disc, so where damping is heavy ask for its neighbours too.
@@ -177,8 +178,8 @@ def damped_modes(model: PlatformModel, n_modes: int | None = None, fmax_hz: floa
         # has one, so a wrong attribution leaves NaN, not another mode's root
         owner = _shape_owner(K, model.platform_mass, shapes, np.isfinite(est))
         if owner is None:
-            others = np.delete(est, k)
-            others = others[np.isfinite(others)]
+            f = und.freq_hz              # the other modes' estimates, not k's own copies
+            others = est[np.isfinite(est) & (np.abs(f - f[k]) > 1e-9 * f[k])]
             owner = k if abs(w1 - est[k]) < np.min(np.abs(w1 - others), initial=np.inf) \
                 else None
         if owner is not None and np.isnan(out[owner]):
