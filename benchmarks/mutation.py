@@ -616,6 +616,49 @@ timedomain.dynamics (849)          3       3 / 0        3 / 0 / 0               
   2 new: the short end shrunk by 0.75 whatever EA, and the search giving up one trial
   earlier). 732 equivalents, none stale.
 
+Then a ninth round, after dynstiff.modes' cable energies were batched over the modes and
+cables (cable.dsm _fields and field_kinetic_energies new, cable_field and
+cable_kinetic_energy through them; the models' cable_kinetic_energies; modes and
+_energy_basis), the sensitivities' assembly batched (sensitivity: _checked_request,
+_null_vectors, _assemble, sensitivities_at, frequency_sensitivities; SensitivityResult moved
+to sensitivity_result; the component cross product in six functions of the kernels, rungs,
+statics and lumped modules) and damped_modes' attribution fixed. Every mutant of an edited
+function in its module's 100-sample (drawn again on the final source) was planted, each
+against its module's own test files (cable.dsm with test_models_dsm.py, modes with the
+participation and sensitivity files, which call it): 444 on the first source, then the 63
+the sensitivity module's new sample added or the first pass left, then damped_modes' 59
+(its sample of 62 less 3 equivalents).
+- First pass: 412 of 439 killed at once. The survivors and what became of them:
+  - killed by new tests: modes mutmut_97 and _120 (every root taken as on a pole; FAST's
+    4th and 6th roots, 3.3e-9 from the first pole of all six cables with a null eigenvalue
+    of 3e-4 of the scale, moving their platform: shares against the total modal mass);
+    _null_vectors _64 and _86 (the pole rule's threshold: a pole planted at a root, the null
+    eigenvalue at 0.5 and 2 times 1e-6 of the scale, in modes and in the sensitivities);
+    frequency_sensitivities _5 (a rung without sensitivities: the whole message); the
+    tornado chart's _1, _31, _33, _40, _48, _49, _55, _57, _67 (its docstring now states
+    the order, the colours, the zero line; the test reads the bars); _assemble _86 and _93
+    of the new source (a cluster's d zeta against the damped roots of the octahedron, which
+    found damped_modes' error below); sensitivity_lumped forms _8 and _98, the two left
+    "not handled" in the fourth round (the gravity vector's x component changed the
+    lumped rung's mass, centre-of-mass and rotation sensitivities by 4 to 7 %: a test
+    against central differences; EA / axial flips the loss factor's d zeta: a test against
+    the closed form's, converging with the segments);
+  - removed: _assemble's lone-root branch inside the cluster loop (mutmut_78 of the first
+    source), unreachable once lone roots are assembled at once;
+  - named equivalent: 12 (below, with their reasons), and modes _84 joining _78 and _92;
+  - _assemble _66 of the first source (a cluster's lambda from its second root, 1e-8 from
+    the first at most) is not in the final source's sample, and was not judged again.
+- Stale equivalents: 16 on the first source. modes _energy_basis 29 and 31 (the
+  polarisation loop, now one batched call) and sensitivities_at 43 (the second expansion
+  of the parameters, gone) were dropped; sensitivities_at 95, 109, 110 renumbered to 82,
+  96, 97 after their diffs were checked; the other 10 (modes 21, 62, 78, 92; lumped forms
+  122, 233, residual 49; FrequencyModel.__init__ 77, 97, 132) and damped_modes 2, 36, 38,
+  153 keep their numbers, their diffs and reasons checked against the new code, and were
+  re-stamped.
+- damped_modes (its attribution fixed): 59 planted against test_analyses_damped.py, 54
+  killed, 5 named equivalent (three moves of the secant's second start, two inclusive
+  comparisons at exact ties). 747 equivalents.
+
 Earlier, the physics core only (2 children; the sample was then drawn with one generator
 over the core's modules, so today's per-module samples are other mutants):
 - ``--sample 200``: 2382 mutants (chord has 182 in all), 2193 killed, 1 survived, 188
@@ -1430,7 +1473,7 @@ EQUIVALENT.update({
         "for which 'auto' is Wittrick-Williams",
     **{f"dynstiff.analyses.modes.x_modes__mutmut_{n}":
        "K and the cable-mode counts computed also when no root was found: both return "
-       "empty arrays for an empty omega, as the shortcut does" for n in (78, 92)},
+       "empty arrays for an empty omega, as the shortcut does" for n in (78, 84, 92)},
     "dynstiff.analyses.modes.x_modes__mutmut_21":
         "getattr without the default 0: every model on the matrix path has n_dof "
         "(eigen_matrix reads model.n_dof), so the default is never taken",
@@ -2340,6 +2383,46 @@ EQUIVALENT.update({
     "dynstiff.analyses.eigen.x_eigenfrequencies__mutmut_141":
         "the band grown by 3 instead of 2 until it holds n_modes: the same lowest n_modes are "
         "found in the larger band (Wittrick-Williams counts every one below it)",
+})
+_SA = "dynstiff.analyses.sensitivity."
+_SECANT = ("the secant's second starting point moved by another 1e-6 of the estimate: it "
+           "converges to the same root, to its tolerance (1e-12 relative)")
+EQUIVALENT.update({
+    "dynstiff.cable.dsm.x_field_kinetic_energies__mutmut_12":
+        "omega not made float for stacked parameters: the model passes float arrays, and an "
+        "integer one would be made float by its first product with a float parameter",
+    "dynstiff.analyses.modes.x_modes__mutmut_108":
+        "eigh of the empty stack when no root's K is finite: empty arrays, and the loop "
+        "over no clusters does nothing",
+    "dynstiff.analyses.modes.x_modes__mutmut_131":
+        "< for <= in the count of K's null eigenvalues at a root on a cable pole: differs "
+        "only for an eigenvalue of exactly 1e-6 of the scale (tested at 0.5 and 2 times it)",
+    "dynstiff.analyses.modes.x_modes__mutmut_25":
+        ">= for > in the matrix path's limit check: with n_dof equal to max_modes every "
+        "request fits (a discrete rung has n_dof modes), so the extra call passes, unused",
+    f"{_SA}x__null_vectors__mutmut_18": "dtype=int dropped on an array of Python ints",
+    f"{_SA}x__null_vectors__mutmut_23":
+        "the points beside a root swapped (w / (1 -+ 1e-9) for w (1 -+ 1e-9)): only "
+        "whether the counts there are equal is read",
+    f"{_SA}x_sensitivities_at__mutmut_15":
+        "dtype=None: frequencies given as integers become float in 2 pi f",
+    f"{_SA}x_sensitivities_at__mutmut_142": _EINSUM,
+    f"{_SA}x_sensitivities_at__mutmut_50":
+        "pairs (a, b) with a > b too, and of modes at rest: a cluster's (b, a) entry is "
+        "its (a, b) entry again (x_a^T dK x_b of a symmetric dK, symmetrised anyway), and "
+        "the modes at rest are skipped in the assembly",
+    "dynstiff.analyses.sensitivity_result.xǁSensitivityResultǁplot__mutmut_9":
+        "squeeze=None for False: falsy all the same (an array of axes either way)",
+    "dynstiff.analyses.sensitivity_result.xǁSensitivityResultǁplot__mutmut_53":
+        "'TAB:RED' for 'tab:red': matplotlib's colour names are case-insensitive",
+    "dynstiff.analyses.sensitivity_result.xǁSensitivityResultǁplot__mutmut_62":
+        "axvline() for axvline(0.0): x = 0 is its default",
+    **{f"dynstiff.analyses.damped.x_damped_modes__mutmut_{n}": _SECANT for n in (73, 78, 79)},
+    "dynstiff.analyses.damped.x_damped_modes__mutmut_103":
+        "< for <= in the secant's stopping test: differs only for a step of exactly tol",
+    "dynstiff.analyses.damped.x_damped_modes__mutmut_180":
+        "<= for < against the other modes' estimates: a tie, at exactly equal distance from "
+        "two modes' estimates, is all it changes (a copy's own twin is no longer among them)",
 })
 EQUIVALENT = _relocated(EQUIVALENT)
 
