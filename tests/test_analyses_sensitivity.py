@@ -34,6 +34,15 @@ def central_difference(robot, pose, name, rung, n_modes, rel=1e-3, hold="pose",
     return (4 * diff(h / 2) - diff(h)) / 3
 
 
+def damping_difference(robot, pose, n_modes, h=1e-3):
+    """d zeta / d eta at eta = 0 of the first ``n_modes`` damped roots (theory.md §5.4) from
+    models with a loss factor h and 2 h, Richardson (zeta is odd in eta)."""
+    def zeta(eta):
+        e = equilibrium_with(robot, pose, ["loss_factor"], [eta])
+        return ds.damped_modes(ds.FrequencyModel(e), n_modes=n_modes).damping_ratio
+    return (4 * zeta(h) / h - zeta(2 * h) / (2 * h)) / 3
+
+
 def assert_matches(s, fd, j, rtol=1e-6):
     """Every mode's derivative within rtol of the parameter's largest effect."""
     scale = np.abs(fd).max()
@@ -188,12 +197,7 @@ def test_a_cluster_has_the_damping_ratios_of_its_damped_roots():
     s = frequency_sensitivities(ds.FrequencyModel(eq), ["loss_factor", "EA"], n_modes=6)
     assert s.cluster.tolist() == [0, 1, 1, 2, 2, 3]
     assert np.all(s.derivative[:, 0] == 0) and np.all(np.isnan(s.damping_derivative[:, 1]))
-
-    def zeta(eta):
-        e = equilibrium_with(rob, eq.pose, ["loss_factor"], [eta])
-        return ds.damped_modes(ds.FrequencyModel(e), n_modes=6).damping_ratio
-    h = 1e-3
-    ref = (4 * zeta(h) / h - zeta(2 * h) / (2 * h)) / 3
+    ref = damping_difference(rob, eq.pose, 6)
     np.testing.assert_allclose(s.damping_derivative[:, 0], ref, rtol=1e-6)
     np.testing.assert_allclose(s.damping_derivative[[2, 4], 0], s.damping_derivative[[1, 3], 0],
                                rtol=1e-9)
@@ -206,13 +210,8 @@ def test_loss_factor_gives_the_damping_ratio_of_the_damped_root(cogiro):
     eq = rob.equilibrium(pose=cogiro.pose)
     s = frequency_sensitivities(ds.FrequencyModel(eq), ["loss_factor"], n_modes=4)
     assert np.all(s.derivative == 0.0)
-
-    def zeta(eta):
-        e = equilibrium_with(rob, eq.pose, ["loss_factor"], [eta])
-        return ds.damped_modes(ds.FrequencyModel(e), n_modes=4).damping_ratio
-    h = 1e-3
-    ref = (4 * zeta(h) / h - zeta(2 * h) / (2 * h)) / 3
-    np.testing.assert_allclose(s.damping_derivative[:, 0], ref, rtol=1e-6)
+    np.testing.assert_allclose(s.damping_derivative[:, 0], damping_difference(rob, eq.pose, 4),
+                               rtol=1e-6)
 
 
 def test_the_statics_term_matters_and_the_comparison_catches_its_loss(cogiro, cogiro_dsm,
