@@ -292,7 +292,7 @@ def test_cable_field_solves_the_field_equations_with_its_end_motion(state300, f_
     chord (T v'' + h y'' = -m omega^2 v), w'' + beta^2 w = 0, the field meets the clamped end A
     and the end motion at B, and h satisfies the compatibility condition
     h L_e / EA = u_B + int y' v' dx = u_B - alpha v_B + (q / T) int v dx."""
-    from dynstiff.cable.dsm import cable_field
+    from dynstiff.cable.dsm_fields import cable_field
     p = chord_parameters(state300)
     omega = 2 * np.pi * f_hz
     d = np.array([2e-3, -3e-3, 1.5e-3])
@@ -317,7 +317,7 @@ def test_cable_kinetic_energy_is_the_integral_of_its_field(state300):
     cable_field, plus m L / 3 |u_B|^2 with the chordwise inertia (theory.md §3.6, §6)."""
     from scipy.integrate import quad
 
-    from dynstiff.cable.dsm import cable_field, cable_kinetic_energy
+    from dynstiff.cable.dsm_fields import cable_field, cable_kinetic_energy
     p = chord_parameters(state300)
     omega, d = 2 * np.pi * 2.7, np.array([1e-3, 2e-3, -1e-3])
 

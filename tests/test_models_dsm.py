@@ -306,7 +306,7 @@ def test_cable_energies_of_many_motions_at_once_are_each_cables_own(cogiro_eq,
     one motion at a time, and each entry is that cable's own cable_kinetic_energy of its end
     motion in its chord frame (the per-cable quadrature of theory.md §6, tested against an
     adaptive quadrature of the field in test_cable_dsm.py), to rounding."""
-    from dynstiff.cable.dsm import cable_kinetic_energy
+    from dynstiff.cable.dsm_fields import cable_kinetic_energy
     m = ds.FrequencyModel(cogiro_eq, chordwise_inertia=chordwise_inertia)
     w = 2 * np.pi * np.array([0.7, 2.5, 4.1, 9.3])
     X = np.random.default_rng(7).standard_normal((4, 6))

@@ -24,14 +24,13 @@ from dynstiff._vec import cross
 from dynstiff.cable.dsm import (
     DEFAULT_CHORDWISE_INERTIA,
     DYAD_PAIRS,
-    cable_field,
     chord_parameters,
     end_block_coefficients,
     end_block_coefficients_and_count,
-    field_kinetic_energies,
     stack_parameters,
     static_block_coefficients,
 )
+from dynstiff.cable.dsm_fields import cable_field, field_kinetic_energies
 from dynstiff.cable.guard import (
     AXIAL_MARGIN,
     DEFAULT_GUARD_RTOL,
