@@ -621,7 +621,7 @@ timedomain.dynamics (849)          3       3 / 0        3 / 0 / 0               
 
 Then a ninth round, after dynstiff.modes' cable energies were batched over the modes and
 cables (cable.dsm _fields and field_kinetic_energies new, cable_field and
-cable_kinetic_energy through them; the models' cable_kinetic_energies; modes and
+cable_kinetic_energy through them, all four then moved to cable.dsm_fields; the models' cable_kinetic_energies; modes and
 _energy_basis), the sensitivities' assembly batched (sensitivity: _checked_request,
 _null_vectors, _assemble, sensitivities_at, frequency_sensitivities; SensitivityResult moved
 to sensitivity_result; the component cross product in six functions of the kernels, rungs,
@@ -2391,7 +2391,7 @@ _SA = "dynstiff.analyses.sensitivity."
 _SECANT = ("the secant's second starting point moved by another 1e-6 of the estimate: it "
            "converges to the same root, to its tolerance (1e-12 relative)")
 EQUIVALENT.update({
-    "dynstiff.cable.dsm.x_field_kinetic_energies__mutmut_12":
+    "dynstiff.cable.dsm_fields.x_field_kinetic_energies__mutmut_12":
         "omega not made float for stacked parameters: the model passes float arrays, and an "
         "integer one would be made float by its first product with a float parameter",
     "dynstiff.analyses.modes.x_modes__mutmut_108":
