@@ -621,11 +621,12 @@ timedomain.dynamics (849)          3       3 / 0        3 / 0 / 0               
 
 Then a ninth round, after dynstiff.modes' cable energies were batched over the modes and
 cables (cable.dsm _fields and field_kinetic_energies new, cable_field and
-cable_kinetic_energy through them, all four then moved to cable.dsm_fields; the models' cable_kinetic_energies; modes and
-_energy_basis), the sensitivities' assembly batched (sensitivity: _checked_request,
-_null_vectors, _assemble, sensitivities_at, frequency_sensitivities; SensitivityResult moved
-to sensitivity_result; the component cross product in six functions of the kernels, rungs,
-statics and lumped modules) and damped_modes' attribution fixed. Every mutant of an edited
+cable_kinetic_energy through them, all four then moved to cable.dsm_fields; the models'
+cable_kinetic_energies; modes and _energy_basis), the sensitivities' assembly batched
+(sensitivity: _checked_request, _null_vectors, _assemble, sensitivities_at,
+frequency_sensitivities; SensitivityResult moved to sensitivity_result; the component cross
+product in six functions of the kernels, rungs, statics and lumped modules) and
+damped_modes' attribution fixed. Every mutant of an edited
 function in its module's 100-sample (drawn again on the final source) was planted, each
 against its module's own test files (cable.dsm with test_models_dsm.py, modes with the
 participation and sensitivity files, which call it): 444 on the first source, then the 63
