@@ -434,7 +434,7 @@ def obey_the_rule(fn, names):
 
 class PoleAtTheRoot:
     """A closed-form model with a cable pole planted at ``root_hz`` (J0 steps there, in
-    ``cable_mode_count`` and ``dynamic_stiffness_and_count``) and K's eigenvalue along its
+    ``cable_mode_count``) and K's eigenvalue along its
     null vector at that root set to ``null_eigenvalue`` [N/m] (the vector itself unchanged):
     what a root sitting on a cable pole looks like, with the platform moving (a small null
     eigenvalue) or at rest (a large one), theory.md §5.3. Its fused K and count
